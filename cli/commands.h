@@ -1,0 +1,20 @@
+// kdop's subcommands. Each add_*_command registers its options on the parent app and returns the
+// action to run when that subcommand was chosen; the action returns the process exit code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace kdop::cli {
+
+using Action = std::function<int()>;
+
+Action add_list_command(CLI::App& app);
+Action add_gen_command(CLI::App& app);
+Action add_show_command(CLI::App& app);
+
+// Prints an error message (which already names file/line or argument) to stderr; returns 1.
+int report_error(const std::string& message);
+
+} // namespace kdop::cli

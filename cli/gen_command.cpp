@@ -1,0 +1,70 @@
+#include "commands.h"
+
+#include "output_files.h"
+#include "selection_options.h"
+#include "variant_builder.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <unistd.h>
+
+namespace kdop::cli {
+namespace {
+
+void print_table(const std::vector<BuiltVariant>& built) {
+    std::cout << fmt::format("{:<26} {:>4} {:>11} {:>12} {:>17}  {}\n", "variant", "k", "spirv_bytes", "instructions",
+                             "code_instructions", "spirv_hash");
+    for (const BuiltVariant& v : built)
+        std::cout << fmt::format("{:<26} {:>4} {:>11} {:>12} {:>17}  {:016x}\n", v.name, 2 * v.spec.set.axes.size(),
+                                 4 * v.spirv.size(), v.counts.instructions, v.counts.function_instructions,
+                                 spirv_hash(v.spirv));
+}
+
+} // namespace
+
+Action add_gen_command(CLI::App& app) {
+    struct Options {
+        std::string out;
+        SelectionOptions selection;
+        unsigned threads = 0;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* gen = app.add_subcommand(
+        "gen", "Generate variants: write <name>.glsl (includable function), <name>.comp (compute shader) and "
+               "<name>.spv (optimized SPIR-V) per variant, then print a table of them");
+    gen->add_option("--out", options->out, "Output directory (created if missing)")->required();
+    options->selection.add_to(*gen);
+    gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]");
+
+    return [options] {
+        auto start = std::chrono::steady_clock::now();
+        auto specs = options->selection.select();
+        if (!specs) return report_error(specs.error().message);
+
+        const bool tty = isatty(fileno(stderr));
+        auto built = build_variants(*specs, options->threads, [tty](std::size_t done, std::size_t total, const std::string& name) {
+            if (tty) std::cerr << fmt::format("\r\033[K[{}/{}] {}", done, total, name) << std::flush;
+        });
+        if (tty) std::cerr << "\r\033[K";
+        if (!built) return report_error(built.error().message);
+
+        std::vector<OutputFile> files;
+        for (const BuiltVariant& v : *built) {
+            for (OutputFile& f : glsl_files(v, options->out)) files.push_back(std::move(f));
+            files.push_back(spirv_file(v, options->out));
+        }
+        if (auto ok = write_files_atomically(files); !ok) return report_error(ok.error().message);
+
+        print_table(*built);
+        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::cout << fmt::format("\nwrote {} files for {} variants to {} in {:.2f} s\n", files.size(), built->size(),
+                                 options->out, seconds);
+        return 0;
+    };
+}
+
+} // namespace kdop::cli

@@ -1,0 +1,19 @@
+// kdop: generate, run and measure k-DOP neighborhood-clipping variants. See README.md.
+#include "commands.h"
+
+#include <iostream>
+#include <map>
+
+int main(int argc, char** argv) {
+    CLI::App app{"kdop: k-DOP neighborhood clipping for temporal antialiasing: generate shader variants, run them, "
+                 "measure them"};
+    app.require_subcommand(1);
+    std::map<std::string, kdop::cli::Action> actions{
+        {"list", kdop::cli::add_list_command(app)},
+        {"gen", kdop::cli::add_gen_command(app)},
+        {"show", kdop::cli::add_show_command(app)},
+    };
+    CLI11_PARSE(app, argc, argv);
+    for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();
+    return 1;
+}

@@ -1,0 +1,183 @@
+#include "axis_set.h"
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <optional>
+
+namespace kdop {
+namespace {
+
+// Beyond this the generated shader grows past anything worth shipping (a 128-DOP unrolled over a
+// 3x3 neighborhood is already ~1,200 projections); refusing early gives a clear message instead.
+constexpr size_t kMaxAxes = 64;
+
+// Below this |det| three unit axes count as coplanar: the k-DOP they bound would be a slab so
+// elongated that float32 clipping against it is meaningless.
+constexpr double kMinSpanDeterminant = 1e-6;
+
+std::string_view trim(std::string_view s) {
+    const char* ws = " \t\r\n";
+    size_t b = s.find_first_not_of(ws);
+    if (b == std::string_view::npos) return {};
+    size_t e = s.find_last_not_of(ws);
+    return s.substr(b, e - b + 1);
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+Result<double> parse_number(std::string_view token, const std::string& where) {
+    std::string_view digits = token.starts_with('+') ? token.substr(1) : token;
+    double value = 0;
+    auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (ec == std::errc::result_out_of_range) return fail(fmt::format("{}'{}' is out of range for a double", where, token));
+    if (ec != std::errc() || end != digits.data() + digits.size())
+        return fail(fmt::format("{}'{}' is not a number", where, token));
+    return value;
+}
+
+// Splits "x y z", "x, y, z" or "x,y,z" into number tokens; an empty field ("1,,0") is an error.
+Result<std::vector<std::string_view>> split_numbers(std::string_view s, const std::string& where) {
+    std::vector<std::string_view> tokens;
+    size_t i = 0;
+    while (i < s.size()) {
+        size_t start = i;
+        while (i < s.size() && !is_space(s[i]) && s[i] != ',') ++i;
+        if (i == start) return fail(where + "empty number between commas");
+        tokens.push_back(s.substr(start, i - start));
+        while (i < s.size() && is_space(s[i])) ++i;
+        if (i < s.size() && s[i] == ',') {
+            ++i;
+            while (i < s.size() && is_space(s[i])) ++i;
+            if (i == s.size()) return fail(where + "line ends with a comma after the last number");
+        }
+    }
+    return tokens;
+}
+
+// The numbers of one axis line, with an optional vec3(...) wrapper and one trailing comma.
+Result<glm::dvec3> parse_axis_line(std::string_view line, const std::string& where) {
+    if (line.ends_with(',')) line = trim(line.substr(0, line.size() - 1));
+    if (line.starts_with("vec3")) {
+        std::string_view inner = trim(line.substr(4));
+        if (!inner.starts_with('(') || !inner.ends_with(')'))
+            return fail(where + "expected vec3(x, y, z)");
+        line = trim(inner.substr(1, inner.size() - 2));
+    }
+    auto tokens = split_numbers(line, where);
+    if (!tokens) return std::unexpected(tokens.error());
+    if (tokens->size() != 3)
+        return fail(fmt::format("{}expected 3 numbers (x y z), found {}", where, tokens->size()));
+    glm::dvec3 v;
+    for (int c = 0; c < 3; ++c) {
+        auto number = parse_number((*tokens)[c], where);
+        if (!number) return std::unexpected(number.error());
+        v[c] = *number;
+    }
+    return v;
+}
+
+std::optional<Error> check_axis(const Axis& axis, const std::vector<Axis>& earlier, const std::string& where) {
+    for (int c = 0; c < 3; ++c) {
+        if (std::isnan(axis.direction[c])) return Error{where + "axis component is NaN"};
+        if (std::isinf(axis.direction[c])) return Error{where + "axis component is infinite"};
+    }
+    double length = glm::length(axis.direction);
+    if (length == 0) return Error{where + "axis has zero length"};
+    glm::dvec3 unit = axis.direction / length;
+    for (const Axis& other : earlier) {
+        glm::dvec3 other_unit = glm::normalize(other.direction);
+        if (glm::length(glm::cross(unit, other_unit)) >= kParallelAxisAngle) continue;
+        if (glm::dot(unit, other_unit) > 0)
+            return Error{fmt::format("{}axis duplicates the axis on line {}", where, other.line)};
+        return Error{fmt::format("{}axis is antiparallel to the axis on line {} (both bound the same slab)",
+                                 where, other.line)};
+    }
+    return std::nullopt;
+}
+
+bool spans_3d(const std::vector<Axis>& axes) {
+    for (size_t i = 0; i < axes.size(); ++i)
+        for (size_t j = i + 1; j < axes.size(); ++j)
+            for (size_t k = j + 1; k < axes.size(); ++k) {
+                glm::dvec3 a = glm::normalize(axes[i].direction), b = glm::normalize(axes[j].direction),
+                           c = glm::normalize(axes[k].direction);
+                if (std::abs(glm::dot(a, glm::cross(b, c))) >= kMinSpanDeterminant) return true;
+            }
+    return false;
+}
+
+} // namespace
+
+bool is_valid_set_name(std::string_view name) {
+    if (name.empty() || name.size() > 48 || !(name[0] >= 'a' && name[0] <= 'z')) return false;
+    char previous = 0;
+    for (char c : name) {
+        bool alnum = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+        if (!alnum && !(c == '-' && previous != '-')) return false;
+        previous = c;
+    }
+    return previous != '-';
+}
+
+Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
+    AxisSet set;
+    set.origin = std::string(origin);
+    int name_line = 0, provenance_line = 0;
+    int line_number = 0;
+    while (!text.empty()) {
+        size_t eol = text.find('\n');
+        std::string_view raw = text.substr(0, eol);
+        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
+        ++line_number;
+        std::string where = fmt::format("{}:{}: ", origin, line_number);
+
+        std::string_view line = trim(raw.substr(0, raw.find('#')));
+        if (line.empty()) continue;
+
+        size_t colon = line.find(':');
+        bool is_key = colon != std::string_view::npos && colon > 0 &&
+                      line.substr(0, colon).find_first_not_of("abcdefghijklmnopqrstuvwxyz_") == std::string_view::npos;
+        if (is_key) {
+            std::string_view key = line.substr(0, colon);
+            std::string_view value = trim(line.substr(colon + 1));
+            int* seen = key == "name" ? &name_line : key == "provenance" ? &provenance_line : nullptr;
+            if (!seen) return fail(fmt::format("{}unknown key '{}' (expected 'name:' or 'provenance:')", where, key));
+            if (*seen) return fail(fmt::format("{}second '{}:' line (the first is on line {})", where, key, *seen));
+            if (value.empty()) return fail(fmt::format("{}'{}:' has no value", where, key));
+            *seen = line_number;
+            if (key == "name") {
+                if (!is_valid_set_name(value))
+                    return fail(fmt::format("{}set name '{}' is not valid: use lowercase letters and digits, "
+                                            "starting with a letter, with single '-' between words (at most 48 characters)",
+                                            where, value));
+                set.name = std::string(value);
+            } else {
+                set.provenance = std::string(value);
+            }
+            continue;
+        }
+
+        auto direction = parse_axis_line(line, where);
+        if (!direction) return std::unexpected(direction.error());
+        Axis axis{*direction, line_number};
+        if (auto error = check_axis(axis, set.axes, where)) return std::unexpected(*error);
+        if (set.axes.size() == kMaxAxes)
+            return fail(fmt::format("{}more than {} axes (a {}-DOP); kdop refuses sets this large", where, kMaxAxes,
+                                    2 * kMaxAxes));
+        set.axes.push_back(axis);
+    }
+
+    if (!name_line) return fail(fmt::format("{}: missing 'name:' line", origin));
+    if (!provenance_line)
+        return fail(fmt::format("{}: missing 'provenance:' line (say where the numbers come from)", origin));
+    if (!spans_3d(set.axes))
+        return fail(fmt::format("{}: the {} axes do not span 3-D space (fewer than 3, or all in one plane), "
+                                "so the k-DOP would not bound a region",
+                                origin, set.axes.size()));
+    return set;
+}
+
+} // namespace kdop

@@ -1,0 +1,90 @@
+#include "glsl_compiler.h"
+
+#include <fmt/format.h>
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <mutex>
+#include <regex>
+#include <string>
+
+namespace kdop {
+namespace {
+
+void initialize_glslang_once() {
+    static std::once_flag once;
+    std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+std::string_view source_line(std::string_view source, int line) {
+    for (int l = 1; l < line && !source.empty(); ++l) {
+        size_t eol = source.find('\n');
+        source = eol == std::string_view::npos ? std::string_view{} : source.substr(eol + 1);
+    }
+    return source.substr(0, source.find('\n'));
+}
+
+// glslang logs "ERROR: name:12: 'x' : undeclared identifier"; rewrite each such line as a
+// diagnostic with the source line, and keep any other text as it is.
+std::string rewrite_log(std::string_view log, std::string_view source, std::string_view name) {
+    static const std::regex located(R"(^(ERROR|WARNING): [^:]*:(\d+): (.*)$)");
+    std::string out;
+    std::string text(log);
+    size_t start = 0;
+    while (start < text.size()) {
+        size_t eol = text.find('\n', start);
+        std::string line = text.substr(start, eol == std::string::npos ? std::string::npos : eol - start);
+        start = eol == std::string::npos ? text.size() : eol + 1;
+        std::smatch m;
+        if (std::regex_match(line, m, located)) {
+            std::string severity = m[1] == "ERROR" ? "error" : "warning";
+            out += glsl_diagnostic(source, name, std::stoi(m[2]), severity + ": " + m[3].str());
+        } else if (!line.empty() && line.find("compilation terminated") == std::string::npos &&
+                   line.find("compilation errors") == std::string::npos) {
+            out += fmt::format("{}: {}\n", name, line);
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message) {
+    if (line <= 0) return fmt::format("{}: {}\n", name, message);
+    return fmt::format("{}:{}: {}\n    {}\n", name, line, message, source_line(source, line));
+}
+
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name) {
+    initialize_glslang_once();
+    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+
+    glslang::TShader shader(EShLangCompute);
+    const char* text = source.data();
+    const int length = static_cast<int>(source.size());
+    const std::string name_string(name);
+    const char* names = name_string.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    if (!shader.parse(GetDefaultResources(), 450, false, messages))
+        return fail(rewrite_log(shader.getInfoLog(), source, name));
+
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (!program.link(messages)) return fail(rewrite_log(program.getInfoLog(), source, name));
+
+    std::vector<std::uint32_t> words;
+    spv::SpvBuildLogger logger;
+    glslang::SpvOptions options;
+    options.generateDebugInfo = true; // OpLine, so validator messages can name GLSL lines
+    options.disableOptimizer = true;  // SPIRV-Tools optimizes in the next stage, with our settings
+    glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), words, &logger, &options);
+    std::string spv_messages = logger.getAllMessages();
+    if (words.empty() || !spv_messages.empty())
+        return fail(fmt::format("{}: SPIR-V generation failed: {}", name, spv_messages));
+    return words;
+}
+
+} // namespace kdop

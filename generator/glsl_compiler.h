@@ -1,0 +1,20 @@
+// GLSL -> SPIR-V with glslang, in-process. Targets Vulkan 1.0 / SPIR-V 1.0 so the output runs on any
+// Vulkan device. The module carries OpLine debug information so later stages can name GLSL lines.
+#pragma once
+
+#include "result.h"
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace kdop {
+
+// Compiles one compute shader. `name` (e.g. "dop22-clip-n9.comp") prefixes every message, which
+// reads "name:LINE: error: ..." followed by the offending source line. Thread-safe.
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name);
+
+// "name:LINE: <message>" and the source line under it, the form every GLSL diagnostic takes.
+std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message);
+
+} // namespace kdop

@@ -1,0 +1,85 @@
+// The registry of embedded k-DOP clipping variants: what kdop_add_variants() generates for a target
+// and what a caller needs to build a compute pipeline without guessing. Plain data, C++17, no
+// dependencies, so a renderer can include it as is.
+//
+// Each variant's compute shader reads the current frame and the history (two combined image
+// samplers, read with texelFetch, so any float format works), clips the history to the k-DOP of
+// the current frame's neighborhood (clamp-to-edge) and writes the result to an rgba32f storage
+// image. Dispatch ceil(width / local_size[0]) x ceil(height / local_size[1]) workgroups.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+namespace kdop {
+
+enum class Mode : std::uint8_t {
+    clip,    // slabs span the neighborhood's min..max (the paper's k-DOP clip)
+    varclip, // slabs span mean +- gamma * sigma (variance clip; gamma is a push constant)
+};
+
+enum class Neighborhood : std::uint8_t {
+    n9, // 3x3, row-major, the pixel itself at index 4
+    n5, // plus shape: up, left, self, right, down (the pixel itself at index 2)
+};
+
+enum class DescriptorType : std::uint8_t {
+    combined_image_sampler, // VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+    storage_image,          // VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+};
+
+struct DescriptorBinding {
+    std::uint32_t set;
+    std::uint32_t binding;
+    DescriptorType type;
+    const char* name; // the GLSL variable name
+};
+
+// One member of the push-constant block (compute stage). All of a variant's members together
+// form one range starting at offset 0 of push_constant_size bytes.
+struct PushConstantMember {
+    const char* name;
+    std::uint32_t offset;
+    std::uint32_t size;
+};
+
+struct Variant {
+    const char* name;     // "<set>-<mode>-<neighborhood>", e.g. "dop32-clip-n9"
+    const char* axis_set; // e.g. "dop32"
+    Mode mode;
+    Neighborhood neighborhood;
+    std::uint32_t axis_count; // k / 2
+
+    const std::uint32_t* spirv;     // optimized, validated SPIR-V words (shared by identical variants)
+    std::size_t spirv_word_count;
+    std::uint64_t spirv_hash;       // FNV-1a 64 of the SPIR-V bytes: equal hashes, same module
+
+    const char* entry_point;
+    std::uint32_t local_size[3];
+    const DescriptorBinding* bindings;
+    std::uint32_t binding_count;
+    const PushConstantMember* push_constants;
+    std::uint32_t push_constant_count;
+    std::uint32_t push_constant_size; // bytes; 0 when the variant takes none
+};
+
+struct VariantList {
+    const Variant* first;
+    std::size_t count;
+    const Variant* begin() const { return first; }
+    const Variant* end() const { return first + count; }
+    std::size_t size() const { return count; }
+
+    // The variant called `name`, or nullptr.
+    const Variant* find(const char* name) const {
+        for (const Variant& v : *this)
+            if (std::strcmp(v.name, name) == 0) return &v;
+        return nullptr;
+    }
+};
+
+inline const char* to_string(Mode mode) { return mode == Mode::clip ? "clip" : "varclip"; }
+inline const char* to_string(Neighborhood n) { return n == Neighborhood::n9 ? "n9" : "n5"; }
+
+} // namespace kdop

@@ -1,0 +1,111 @@
+// kdop-gen: the build-time half of kdop. kdop_add_variants() runs `kdop-gen registry` to embed
+// variants in a target; the refresh-generated target runs `kdop-gen glsl` to rewrite generated/,
+// and a test runs `kdop-gen glsl --check` to catch a stale generated/.
+#include "output_files.h"
+#include "registry_writer.h"
+#include "selection_options.h"
+#include "variant_builder.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace kdop;
+
+namespace {
+
+int report(const Error& error) {
+    std::cerr << error.message << (error.message.ends_with('\n') ? "" : "\n");
+    return 1;
+}
+
+std::string read_file(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Rewrites `dir` with the default variants' GLSL, removing GLSL files no default variant has; with
+// `check`, writes nothing and fails when any file would change.
+int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, bool check) {
+    std::vector<OutputFile> files;
+    std::set<fs::path> expected;
+    for (const BuiltVariant& v : built)
+        for (OutputFile& f : glsl_files(v, dir)) {
+            expected.insert(f.path);
+            files.push_back(std::move(f));
+        }
+    std::vector<fs::path> extra;
+    if (fs::is_directory(dir))
+        for (const auto& entry : fs::directory_iterator(dir)) {
+            auto ext = entry.path().extension();
+            if ((ext == ".glsl" || ext == ".comp") && !expected.count(entry.path())) extra.push_back(entry.path());
+        }
+    std::sort(extra.begin(), extra.end());
+
+    if (check) {
+        int stale = 0;
+        for (const OutputFile& f : files)
+            if (!fs::exists(f.path) || read_file(f.path) != f.content) {
+                std::cerr << f.path.string() << ": stale or missing\n";
+                ++stale;
+            }
+        for (const fs::path& p : extra) {
+            std::cerr << p.string() << ": no default variant generates this file\n";
+            ++stale;
+        }
+        if (stale)
+            std::cerr << fmt::format("{} generated file(s) out of date; run `cmake --build build --target refresh-generated`\n",
+                                     stale);
+        return stale ? 1 : 0;
+    }
+    if (auto ok = write_files_atomically(files); !ok) return report(ok.error());
+    for (const fs::path& p : extra) fs::remove(p);
+    std::cout << fmt::format("kdop-gen: wrote {} files to {}\n", files.size(), dir.string());
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"kdop-gen: generate k-DOP clipping variants at build time"};
+    app.require_subcommand(1);
+
+    SelectionOptions selection;
+    std::string header, source, cpp_namespace;
+    CLI::App* registry = app.add_subcommand("registry", "Write a C++ registry (header + source) of the selected variants");
+    selection.add_to(*registry);
+    registry->add_option("--header", header, "Header file to write")->required();
+    registry->add_option("--source", source, "Source file to write")->required();
+    registry->add_option("--namespace", cpp_namespace, "C++ namespace of the registry")->required();
+
+    std::string glsl_dir;
+    bool check = false;
+    CLI::App* glsl = app.add_subcommand("glsl", "Write every default variant's .glsl and .comp into a directory");
+    glsl->add_option("--out", glsl_dir, "Directory (normally generated/)")->required();
+    glsl->add_flag("--check", check, "Write nothing; fail if any file in the directory is stale");
+
+    CLI11_PARSE(app, argc, argv);
+
+    if (*registry && !is_valid_cpp_namespace(cpp_namespace))
+        return report({fmt::format("--namespace: '{}' is not a C++ namespace (identifiers separated by ::)", cpp_namespace)});
+
+    auto specs = *registry ? selection.select() : select_variants({}, {}, {});
+    if (!specs) return report(specs.error());
+    auto built = build_variants(*specs);
+    if (!built) return report(built.error());
+
+    if (*glsl) return glsl_directory(*built, glsl_dir, check);
+
+    auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
+    if (auto ok = write_files_atomically({{header, sources.header}, {source, sources.source}}); !ok)
+        return report(ok.error());
+    return 0;
+}

@@ -1,0 +1,28 @@
+// The --sets / --modes / --neighborhoods options shared by kdop and kdop-gen, so both accept and
+// describe a selection of variants the same way.
+#pragma once
+
+#include "variant_spec.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+struct SelectionOptions {
+    std::vector<std::string> sets, modes, neighborhoods;
+
+    void add_to(CLI::App& app) {
+        app.add_option("--sets", sets,
+                       "Axis sets: built-in names (aabb ycocg dop16-grass dop16-asphalt dop22 dop32) or paths to "
+                       ".axes files [default: every built-in set]");
+        app.add_option("--modes", modes, "clip and/or varclip [default: both]");
+        app.add_option("--neighborhoods", neighborhoods, "n9 (3x3) and/or n5 (plus) [default: both]");
+    }
+
+    Result<std::vector<VariantSpec>> select() const { return select_variants(sets, modes, neighborhoods); }
+};
+
+} // namespace kdop

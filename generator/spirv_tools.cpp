@@ -1,0 +1,64 @@
+#include "spirv_tools.h"
+
+#include "glsl_compiler.h"
+#include "spirv_module.h"
+
+#include <fmt/format.h>
+#include <spirv-tools/libspirv.hpp>
+#include <spirv-tools/optimizer.hpp>
+
+namespace kdop {
+namespace {
+
+constexpr spv_target_env kTargetEnv = SPV_ENV_VULKAN_1_0;
+
+// Collects SPIRV-Tools messages; the position's index is the 1-based ordinal of the instruction.
+struct MessageLog {
+    std::vector<std::pair<std::size_t, std::string>> messages;
+    spvtools::MessageConsumer consumer() {
+        return [this](spv_message_level_t level, const char*, const spv_position_t& position, const char* message) {
+            if (level <= SPV_MSG_ERROR) messages.emplace_back(position.index, message);
+        };
+    }
+};
+
+Result<std::vector<std::uint32_t>> run_passes(const std::vector<std::uint32_t>& words, std::string_view name,
+                                              std::string_view what, void (*register_passes)(spvtools::Optimizer&)) {
+    spvtools::Optimizer optimizer(kTargetEnv);
+    MessageLog log;
+    optimizer.SetMessageConsumer(log.consumer());
+    register_passes(optimizer);
+    std::vector<std::uint32_t> out;
+    if (!optimizer.Run(words.data(), words.size(), &out)) {
+        std::string text = fmt::format("{}: SPIR-V {} failed:\n", name, what);
+        for (const auto& [index, message] : log.messages) text += fmt::format("    {}\n", message);
+        return fail(text);
+    }
+    return out;
+}
+
+} // namespace
+
+Result<void> validate_spirv(const std::vector<std::uint32_t>& words, std::string_view source, std::string_view name,
+                            std::string_view stage) {
+    spvtools::SpirvTools tools(kTargetEnv);
+    MessageLog log;
+    tools.SetMessageConsumer(log.consumer());
+    if (tools.Validate(words)) return {};
+    std::string text;
+    for (const auto& [index, message] : log.messages)
+        text += glsl_diagnostic(source, name, glsl_line_of_instruction(words, index),
+                                fmt::format("error: SPIR-V validation of the {} failed: {}", stage, message));
+    return fail(text.empty() ? fmt::format("{}: SPIR-V validation of the {} failed", name, stage) : text);
+}
+
+Result<std::vector<std::uint32_t>> optimize_spirv(const std::vector<std::uint32_t>& words, std::string_view name) {
+    return run_passes(words, name, "optimization", [](spvtools::Optimizer& o) { o.RegisterPerformancePasses(); });
+}
+
+Result<std::vector<std::uint32_t>> strip_debug_info(const std::vector<std::uint32_t>& words, std::string_view name) {
+    return run_passes(words, name, "debug-information stripping",
+                      [](spvtools::Optimizer& o) { o.RegisterPass(spvtools::CreateStripDebugInfoPass()); });
+}
+
+} // namespace kdop

@@ -1,0 +1,38 @@
+// Building variants: emit GLSL, compile with glslang, validate, optimize, validate again, reflect
+// the interface, strip debug information, validate what ships, and check that no loop survived.
+// Variants build in parallel; results come back in the order of the specs, so output does not
+// depend on thread timing.
+#pragma once
+
+#include "result.h"
+#include "spirv_module.h"
+#include "variant_spec.h"
+
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+struct BuiltVariant {
+    VariantSpec spec;
+    std::string name;
+    std::string function_glsl;       // the includable function (.glsl)
+    std::string compute_glsl;        // the compute shader (.comp)
+    std::vector<std::uint32_t> spirv; // optimized, validated, stripped (.spv)
+    ShaderInterface interface;
+    SpirvCounts counts;
+};
+
+Result<BuiltVariant> build_variant(const VariantSpec& spec);
+
+// Called after each variant finishes, from the worker that built it (calls are serialized).
+using BuildProgress = std::function<void(std::size_t done, std::size_t total, const std::string& name)>;
+
+// Builds every spec, on up to `threads` threads (0: one per core). Fails if any variant fails,
+// with every failing variant's messages in spec order.
+Result<std::vector<BuiltVariant>> build_variants(std::span<const VariantSpec> specs, unsigned threads = 0,
+                                                 const BuildProgress& progress = {});
+
+} // namespace kdop

@@ -1,0 +1,116 @@
+#include "variant_spec.h"
+
+#include "embedded_files.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <sstream>
+
+namespace kdop {
+namespace {
+
+constexpr std::string_view kDefaultSets[] = {"aabb", "ycocg", "dop16-grass", "dop16-asphalt", "dop22", "dop32"};
+
+constexpr glm::ivec2 kOffsetsN9[] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+constexpr glm::ivec2 kOffsetsN5[] = {{0, -1}, {-1, 0}, {0, 0}, {1, 0}, {0, 1}};
+
+std::string builtin_path(std::string_view name) { return fmt::format("shader_templates/axis_sets/{}.axes", name); }
+
+template <class T>
+bool contains(std::span<const T> list, const T& value) {
+    return std::find(list.begin(), list.end(), value) != list.end();
+}
+
+} // namespace
+
+std::string variant_name(const VariantSpec& spec) {
+    return fmt::format("{}-{}-{}", spec.set.name, to_string(spec.mode), to_string(spec.neighborhood));
+}
+
+std::span<const glm::ivec2> neighborhood_offsets(Neighborhood n) {
+    if (n == Neighborhood::n9) return kOffsetsN9;
+    return kOffsetsN5;
+}
+
+int neighborhood_center(Neighborhood n) { return n == Neighborhood::n9 ? 4 : 2; }
+
+std::optional<Mode> parse_mode(std::string_view s) {
+    for (Mode m : kAllModes)
+        if (s == to_string(m)) return m;
+    return std::nullopt;
+}
+
+std::optional<Neighborhood> parse_neighborhood(std::string_view s) {
+    for (Neighborhood n : kAllNeighborhoods)
+        if (s == to_string(n)) return n;
+    return std::nullopt;
+}
+
+std::span<const std::string_view> default_set_names() { return kDefaultSets; }
+
+Result<AxisSet> resolve_axis_set(std::string_view name_or_path) {
+    if (contains(default_set_names(), name_or_path)) {
+        std::string path = builtin_path(name_or_path);
+        auto text = find_embedded_file(path);
+        if (!text) return fail(fmt::format("internal error: built-in axis set '{}' is not embedded", path));
+        return parse_axis_set(*text, path);
+    }
+    std::ifstream file{std::string(name_or_path), std::ios::binary};
+    if (!file)
+        return fail(fmt::format("--sets: '{}' is not a built-in axis set ({}) nor a readable file",
+                                name_or_path, fmt::join(default_set_names(), ", ")));
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (file.bad()) return fail(fmt::format("{}: read error", name_or_path));
+    return parse_axis_set(text.str(), name_or_path);
+}
+
+Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& set_args,
+                                                 const std::vector<std::string>& mode_args,
+                                                 const std::vector<std::string>& neighborhood_args) {
+    std::vector<std::string> set_names(set_args.begin(), set_args.end());
+    if (set_names.empty()) set_names.assign(kDefaultSets, kDefaultSets + std::size(kDefaultSets));
+
+    std::vector<AxisSet> sets;
+    for (const std::string& arg : set_names) {
+        auto set = resolve_axis_set(arg);
+        if (!set) return std::unexpected(set.error());
+        for (const AxisSet& other : sets)
+            if (other.name == set->name)
+                return fail(other.origin == set->origin
+                                ? fmt::format("--sets: '{}' is given twice", arg)
+                                : fmt::format("--sets: two axis sets are named '{}': {} and {}", set->name, other.origin,
+                                              set->origin));
+        sets.push_back(std::move(*set));
+    }
+
+    std::vector<Mode> modes;
+    for (const std::string& arg : mode_args) {
+        auto mode = parse_mode(arg);
+        if (!mode) return fail(fmt::format("--modes: unknown mode '{}' (expected clip or varclip)", arg));
+        if (contains<Mode>(modes, *mode)) return fail(fmt::format("--modes: '{}' is given twice", arg));
+        modes.push_back(*mode);
+    }
+    if (modes.empty()) modes.assign(std::begin(kAllModes), std::end(kAllModes));
+
+    std::vector<Neighborhood> neighborhoods;
+    for (const std::string& arg : neighborhood_args) {
+        auto n = parse_neighborhood(arg);
+        if (!n) return fail(fmt::format("--neighborhoods: unknown neighborhood '{}' (expected n9 or n5)", arg));
+        if (contains<Neighborhood>(neighborhoods, *n)) return fail(fmt::format("--neighborhoods: '{}' is given twice", arg));
+        neighborhoods.push_back(*n);
+    }
+    if (neighborhoods.empty()) neighborhoods.assign(std::begin(kAllNeighborhoods), std::end(kAllNeighborhoods));
+
+    std::vector<VariantSpec> specs;
+    for (const AxisSet& set : sets)
+        for (Mode mode : modes)
+            for (Neighborhood n : neighborhoods) specs.push_back({set, mode, n});
+    return specs;
+}
+
+} // namespace kdop

@@ -1,0 +1,51 @@
+// Variant descriptions: which axis set, mode and neighborhood one generated shader implements,
+// how variants are named, and how command-line / CMake selections turn into a list of them.
+#pragma once
+
+#include "axis_set.h"
+#include "result.h"
+
+#include <kdop/variant.h>
+
+#include <glm/vec2.hpp>
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace kdop {
+
+struct VariantSpec {
+    AxisSet set;
+    Mode mode;
+    Neighborhood neighborhood;
+};
+
+// "<set>-<mode>-<neighborhood>", e.g. "dop16-grass-varclip-n5".
+std::string variant_name(const VariantSpec& spec);
+
+// Texel offsets of the neighborhood in the order the generated function receives them.
+std::span<const glm::ivec2> neighborhood_offsets(Neighborhood n);
+// Index of the pixel itself in neighborhood_offsets(n).
+int neighborhood_center(Neighborhood n);
+
+std::optional<Mode> parse_mode(std::string_view s);
+std::optional<Neighborhood> parse_neighborhood(std::string_view s);
+
+// The built-in sets, in the order `kdop list` shows them.
+std::span<const std::string_view> default_set_names();
+inline constexpr Mode kAllModes[] = {Mode::clip, Mode::varclip};
+inline constexpr Neighborhood kAllNeighborhoods[] = {Neighborhood::n9, Neighborhood::n5};
+
+// A built-in set by name, or else an axis-set file by path. Errors name the argument.
+Result<AxisSet> resolve_axis_set(std::string_view name_or_path);
+
+// The cross product sets x modes x neighborhoods, in that nesting order. Empty lists mean "all
+// defaults". Unknown names, repeated entries and two different sets with one name are refused.
+Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& sets,
+                                                 const std::vector<std::string>& modes,
+                                                 const std::vector<std::string>& neighborhoods);
+
+} // namespace kdop

@@ -1,0 +1,26 @@
+#!/bin/sh
+# Installs the Debian 12 packages kdop needs to build, test and run, skipping those already
+# installed. Run as root (the README's Quick start calls it first).
+set -eu
+
+packages="
+  build-essential cmake ninja-build
+  glslang-dev spirv-tools spirv-headers
+  libglm-dev libfmt-dev libcli11-dev
+  libgtest-dev
+"
+
+missing=""
+for package in $packages; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $package"
+  fi
+done
+
+if [ -n "$missing" ]; then
+  echo "install-deps.sh: installing$missing"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  # shellcheck disable=SC2086 # word splitting of the package list is intended
+  apt-get install -y -qq --no-install-recommends $missing
+fi

@@ -1,0 +1,151 @@
+// Axis-set files: the accepted spellings, the built-in sets' numbers, and every refusal with its
+// file:line and reason.
+#include "axis_set.h"
+#include "variant_spec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace kdop {
+namespace {
+
+constexpr const char* kHeader = "name: test\nprovenance: unit test\n";
+
+Result<AxisSet> parse(const std::string& axes) { return parse_axis_set(std::string(kHeader) + axes, "t.axes"); }
+
+std::string error_of(const std::string& text) {
+    auto set = parse_axis_set(text, "t.axes");
+    EXPECT_FALSE(set.has_value()) << "accepted:\n" << text;
+    return set ? "" : set.error().message;
+}
+
+TEST(AxisSet, AcceptsSpacesCommasVec3WrappersCommentsAndTrailingCommas) {
+    auto set = parse("# leading comment\n"
+                     "1 0 0\n"
+                     "0, 1, 0   # comment after an axis\n"
+                     "vec3(0.0, 0.0, 1.0),\n"
+                     "  vec3( 0.5 ,-0.25,  +1e-1 ) \n"
+                     "\n"
+                     "0.3,0.4,-0.5,\n");
+    ASSERT_TRUE(set) << set.error().message;
+    EXPECT_EQ(set->name, "test");
+    EXPECT_EQ(set->provenance, "unit test");
+    ASSERT_EQ(set->axes.size(), 5u);
+    EXPECT_EQ(set->axes[0].direction, glm::dvec3(1, 0, 0));
+    EXPECT_EQ(set->axes[3].direction, glm::dvec3(0.5, -0.25, 0.1));
+    EXPECT_EQ(set->axes[4].direction, glm::dvec3(0.3, 0.4, -0.5));
+    EXPECT_EQ(set->axes[0].line, 4);
+    EXPECT_EQ(set->axes[4].line, 9);
+}
+
+TEST(AxisSet, BuiltInSetsHoldThePublishedNumbers) {
+    // Spot checks against the supplement's listings (first and last axis of each k-DOP listing)
+    // and the YCoCg transform rows; axis counts give k.
+    struct Expect {
+        const char* name;
+        size_t axes;
+        glm::dvec3 first, last;
+    };
+    const Expect expected[] = {
+        {"aabb", 3, {1, 0, 0}, {0, 0, 1}},
+        {"ycocg", 3, {0.25, 0.5, 0.25}, {-0.25, 0.5, -0.25}},
+        {"dop16-grass", 8, {-0.663315, 0.729578, -0.166518}, {0.488190, -0.812612, 0.318327}},
+        {"dop16-asphalt", 8, {0.997167, -0.054820, 0.051500}, {0.898010, -0.436338, -0.056459}},
+        {"dop22", 11, {1, 0, 0}, {0.656800, -0.655635, 0.372501}},
+        {"dop32", 16, {1, 0, 0}, {-0.554854, -0.041550, -0.830910}},
+    };
+    ASSERT_EQ(default_set_names().size(), std::size(expected));
+    for (const Expect& e : expected) {
+        auto set = resolve_axis_set(e.name);
+        ASSERT_TRUE(set) << set.error().message;
+        EXPECT_EQ(set->name, e.name);
+        EXPECT_FALSE(set->provenance.empty());
+        ASSERT_EQ(set->axes.size(), e.axes) << e.name;
+        EXPECT_EQ(set->axes.front().direction, e.first) << e.name;
+        EXPECT_EQ(set->axes.back().direction, e.last) << e.name;
+    }
+}
+
+TEST(AxisSet, RefusesUnparseableNumbers) {
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0\n0 1 zero\n"), "t.axes:4: 'zero' is not a number");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0\n0 1 0x1\n"), "t.axes:4: '0x1' is not a number");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1,,0 0\n"), "t.axes:3: empty number between commas");
+    EXPECT_EQ(error_of(std::string(kHeader) + "vec3(1, 0, 0\n"), "t.axes:3: expected vec3(x, y, z)");
+}
+
+TEST(AxisSet, RefusesLinesWithOtherThanThreeNumbers) {
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0\n"), "t.axes:3: expected 3 numbers (x y z), found 2");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0 0\n"), "t.axes:3: expected 3 numbers (x y z), found 4");
+    EXPECT_EQ(error_of(std::string(kHeader) + "vec3(1, 0)\n"), "t.axes:3: expected 3 numbers (x y z), found 2");
+}
+
+TEST(AxisSet, RefusesZeroNanAndInfiniteAxes) {
+    EXPECT_EQ(error_of(std::string(kHeader) + "0 0 0\n"), "t.axes:3: axis has zero length");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 nan 0\n"), "t.axes:3: axis component is NaN");
+    EXPECT_EQ(error_of(std::string(kHeader) + "inf 0 0\n"), "t.axes:3: axis component is infinite");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1e400 0 0\n"), "t.axes:3: '1e400' is out of range for a double");
+}
+
+TEST(AxisSet, RefusesDuplicateAndAntiparallelAxes) {
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0\n0 1 0\n2 0 0\n"), "t.axes:5: axis duplicates the axis on line 3");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 1 0\n0 0 1\n-0.5 -0.5 0\n"),
+              "t.axes:5: axis is antiparallel to the axis on line 3 (both bound the same slab)");
+    // Equal up to the 6-decimal rounding of published listings counts as a duplicate...
+    EXPECT_EQ(error_of(std::string(kHeader) + "0.577350 0.577350 0.577350\n0.577351 0.577350 0.577350\n"),
+              "t.axes:4: axis duplicates the axis on line 3");
+    // ...while a real difference in the third decimal does not.
+    EXPECT_TRUE(parse("1 0 0\n0 1 0\n0 0 1\n0.577 0.577 0.577\n0.578 0.577 0.577\n"));
+}
+
+TEST(AxisSet, RefusesSetsThatDoNotBoundARegion) {
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0\n0 1 0\n1 1 0\n1 -2 0\n"),
+              "t.axes: the 4 axes do not span 3-D space (fewer than 3, or all in one plane), so the k-DOP "
+              "would not bound a region");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0\n0 1 0\n"),
+              "t.axes: the 2 axes do not span 3-D space (fewer than 3, or all in one plane), so the k-DOP "
+              "would not bound a region");
+}
+
+TEST(AxisSet, RefusesMissingOrBadHeaderLines) {
+    EXPECT_EQ(error_of("provenance: x\n1 0 0\n0 1 0\n0 0 1\n"), "t.axes: missing 'name:' line");
+    EXPECT_EQ(error_of("name: a\n1 0 0\n0 1 0\n0 0 1\n"),
+              "t.axes: missing 'provenance:' line (say where the numbers come from)");
+    EXPECT_EQ(error_of("name: a\nname: b\n"), "t.axes:2: second 'name:' line (the first is on line 1)");
+    EXPECT_EQ(error_of("nmae: a\n"), "t.axes:1: unknown key 'nmae' (expected 'name:' or 'provenance:')");
+    EXPECT_EQ(error_of("name:\n"), "t.axes:1: 'name:' has no value");
+    EXPECT_NE(error_of("name: My_Set\n").find("t.axes:1: set name 'My_Set' is not valid"), std::string::npos);
+}
+
+TEST(AxisSet, SetNamesMapOneToOneOntoIdentifiers) {
+    for (const char* good : {"a", "dop16-grass", "x2-y3", "k9"}) EXPECT_TRUE(is_valid_set_name(good)) << good;
+    for (const char* bad : {"", "A", "9a", "a_b", "a--b", "a-", "-a", "a b", "a.b"})
+        EXPECT_FALSE(is_valid_set_name(bad)) << bad;
+}
+
+TEST(VariantSelection, RefusesUnknownNamesRepeatsAndNameClashes) {
+    auto error = [](std::vector<std::string> sets, std::vector<std::string> modes, std::vector<std::string> ns) {
+        auto specs = select_variants(sets, modes, ns);
+        EXPECT_FALSE(specs.has_value());
+        return specs ? "" : specs.error().message;
+    };
+    EXPECT_EQ(error({"nope"}, {}, {}),
+              "--sets: 'nope' is not a built-in axis set (aabb, ycocg, dop16-grass, dop16-asphalt, dop22, dop32) "
+              "nor a readable file");
+    EXPECT_EQ(error({"aabb", "aabb"}, {}, {}), "--sets: 'aabb' is given twice");
+    EXPECT_EQ(error({}, {"clamp"}, {}), "--modes: unknown mode 'clamp' (expected clip or varclip)");
+    EXPECT_EQ(error({}, {"clip", "clip"}, {}), "--modes: 'clip' is given twice");
+    EXPECT_EQ(error({}, {}, {"n4"}), "--neighborhoods: unknown neighborhood 'n4' (expected n9 or n5)");
+}
+
+TEST(VariantSelection, DefaultsAreEverySetModeAndNeighborhoodInOrder) {
+    auto specs = select_variants({}, {}, {});
+    ASSERT_TRUE(specs);
+    ASSERT_EQ(specs->size(), 24u);
+    EXPECT_EQ(variant_name((*specs)[0]), "aabb-clip-n9");
+    EXPECT_EQ(variant_name((*specs)[3]), "aabb-varclip-n5");
+    EXPECT_EQ(variant_name((*specs)[23]), "dop32-varclip-n5");
+}
+
+} // namespace
+} // namespace kdop

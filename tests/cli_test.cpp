@@ -1,0 +1,144 @@
+// The kdop command line, run as a user runs it: list, gen and show, bad input refused with a
+// message naming the file/line or argument, a non-zero exit and nothing written.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+namespace kdop {
+namespace {
+namespace fs = std::filesystem;
+using test::run;
+
+std::string kdop(const std::string& args) { return test::kdop_binary() + " " + args; }
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+TEST(Cli, ListPrintsEveryDefaultCombinationOncePerLine) {
+    auto r = run(kdop("list"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> expected;
+    for (std::string set : {"aabb", "ycocg", "dop16-grass", "dop16-asphalt", "dop22", "dop32"})
+        for (std::string mode : {"clip", "varclip"})
+            for (std::string n : {"n9", "n5"}) expected.push_back(set + "-" + mode + "-" + n);
+    EXPECT_EQ(lines(r.out), expected);
+}
+
+TEST(Cli, GenWritesGlslCompAndSpvPerVariantAndPrintsATable) {
+    test::TempDir dir;
+    auto r = run(kdop("gen --out " + (dir / "out").string() + " --sets dop22 " + test::data_path("tiny.axes") +
+                      " --modes clip --neighborhoods n9 n5"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (std::string name : {"dop22-clip-n9", "dop22-clip-n5", "tiny-clip-n9", "tiny-clip-n5"})
+        for (std::string ext : {".glsl", ".comp", ".spv"}) EXPECT_TRUE(fs::exists(dir / "out" / (name + ext))) << name + ext;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 12);
+    EXPECT_NE(r.out.find("variant"), std::string::npos);
+    EXPECT_NE(r.out.find("instructions"), std::string::npos);
+    EXPECT_NE(r.out.find("dop22-clip-n9"), std::string::npos);
+    // The .spv is the module's words: SPIR-V magic first.
+    std::string spv = test::read_file(dir / "out" / "dop22-clip-n9.spv");
+    ASSERT_GE(spv.size(), 20u);
+    EXPECT_EQ(spv.substr(0, 4), std::string("\x03\x02\x23\x07", 4));
+}
+
+TEST(Cli, TwoGenerationRunsGiveIdenticalBytes) {
+    test::TempDir dir;
+    ASSERT_EQ(run(kdop("gen --out " + (dir / "a").string())).exit_code, 0);
+    ASSERT_EQ(run(kdop("gen --threads 1 --out " + (dir / "b").string())).exit_code, 0);
+    size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(dir / "a")) {
+        ++files;
+        EXPECT_EQ(test::read_file(entry.path()), test::read_file(dir / "b" / entry.path().filename()))
+            << entry.path().filename();
+    }
+    EXPECT_EQ(files, 72u);
+}
+
+// Runs `kdop gen` on an axis file with the given text; expects refusal with `message` on stderr
+// and no output directory.
+void expect_refused(const std::string& axes_text, const std::string& message) {
+    test::TempDir dir;
+    test::write_file(dir / "bad.axes", axes_text);
+    fs::path out = dir / "out";
+    auto r = run("cd " + dir.path().string() + " && " + kdop("gen --sets bad.axes --out " + out.string()));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find(message), std::string::npos) << "stderr was: " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "output written despite the error";
+}
+
+TEST(Cli, GenRefusesBadAxisFilesAndWritesNothing) {
+    const std::string header = "name: bad\nprovenance: test\n";
+    expect_refused(header + "1 0 0\n0 1 x\n0 0 1\n", "bad.axes:4: 'x' is not a number");
+    expect_refused(header + "1 0 0\n0 1\n0 0 1\n", "bad.axes:4: expected 3 numbers (x y z), found 2");
+    expect_refused(header + "1 0 0\n0 0 0\n0 0 1\n", "bad.axes:4: axis has zero length");
+    expect_refused(header + "1 0 0\nnan 1 0\n0 0 1\n", "bad.axes:4: axis component is NaN");
+    expect_refused(header + "1 0 0\n0 -inf 0\n0 0 1\n", "bad.axes:4: axis component is infinite");
+    expect_refused(header + "1 0 0\n0 1 0\n0 0 1\n0 2 0\n", "bad.axes:6: axis duplicates the axis on line 4");
+    expect_refused(header + "1 0 0\n0 1 0\n0 0 1\n-1 0 0\n", "bad.axes:6: axis is antiparallel to the axis on line 3");
+    expect_refused(header + "1 0 0\n0 1 0\n1 1 0\n", "bad.axes: the 3 axes do not span 3-D space");
+}
+
+TEST(Cli, GenRefusesUnknownNamesAndBadOptionsAndWritesNothing) {
+    test::TempDir dir;
+    fs::path out = dir / "out";
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {"--sets dop99", "--sets: 'dop99' is not a built-in axis set"},
+        {"--modes clamp", "--modes: unknown mode 'clamp' (expected clip or varclip)"},
+        {"--neighborhoods n25", "--neighborhoods: unknown neighborhood 'n25' (expected n9 or n5)"},
+        {"--sets aabb aabb", "--sets: 'aabb' is given twice"},
+        {"--threads many", "--threads"},
+        {"--frobnicate", "--frobnicate"},
+    };
+    for (const Case& c : cases) {
+        auto r = run(kdop("gen --out " + out.string() + " " + c.args));
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": stderr was: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
+    auto r = run(kdop("gen"));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("--out is required"), std::string::npos) << r.err;
+}
+
+TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
+    auto r = run(kdop("show dop32-clip-n9"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])"), std::string::npos);
+    EXPECT_EQ(r.out.find("void main()"), std::string::npos);
+
+    r = run(kdop("show dop22-varclip-n5 --compute"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("void main()"), std::string::npos);
+    EXPECT_NE(r.out.find("float gamma;"), std::string::npos);
+
+    r = run(kdop("show tiny-clip-n9 --sets " + test::data_path("tiny.axes")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("kdop_tiny_clip_n9"), std::string::npos);
+
+    r = run(kdop("show dop32-clamp-n9"));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("show: unknown variant 'dop32-clamp-n9'"), std::string::npos) << r.err;
+}
+
+TEST(Cli, EverySubcommandHasHelp) {
+    for (std::string sub : {"", "list ", "gen ", "show "}) {
+        auto r = run(kdop(sub + "--help"));
+        EXPECT_EQ(r.exit_code, 0) << sub;
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
+    }
+    auto r = run(kdop(""));
+    EXPECT_NE(r.exit_code, 0);
+}
+
+} // namespace
+} // namespace kdop

@@ -1,0 +1,112 @@
+// The GLSL emitter: golden text for a tiny set that exercises every folding rule, and structural
+// properties of the real sets' text (no loops, no run-time indexing, zeros and units folded).
+#include "glsl_emitter.h"
+#include "test_support.h"
+#include "variant_spec.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+namespace kdop {
+namespace {
+
+VariantSpec spec(const std::string& set, Mode mode, Neighborhood n) {
+    auto axis_set = resolve_axis_set(set);
+    EXPECT_TRUE(axis_set) << axis_set.error().message;
+    return {*axis_set, mode, n};
+}
+
+VariantSpec tiny(Mode mode, Neighborhood n) { return spec(test::data_path("tiny.axes"), mode, n); }
+
+TEST(Emitter, GoldenClipFunction) {
+    test::expect_golden("tiny-clip-n5.glsl", emit_function(tiny(Mode::clip, Neighborhood::n5)));
+}
+
+TEST(Emitter, GoldenVarclipFunction) {
+    test::expect_golden("tiny-varclip-n5.glsl", emit_function(tiny(Mode::varclip, Neighborhood::n5)));
+}
+
+TEST(Emitter, ScalesEachAxisSoItsLargestComponentIsPlusOne) {
+    ScaledAxis a = scale_axis({0, -2, 0});
+    EXPECT_EQ(a.coefficients, glm::vec3(0, 1, 0));
+    EXPECT_EQ(a.factor, -0.5);
+    EXPECT_FLOAT_EQ(a.padding, 1e-5f); // |(0,-2,0)| x 0.5: the padding stays 1e-5 per unit length
+
+    ScaledAxis b = scale_axis({0.656800, -0.655635, 0.372501});
+    EXPECT_EQ(b.coefficients.x, 1.0f);
+    EXPECT_FLOAT_EQ(b.coefficients.y, static_cast<float>(-0.655635 / 0.656800));
+    EXPECT_FALSE(std::signbit(scale_axis({0, 0.6, -0.8}).coefficients.x)) << "zero must stay +0 after flipping";
+}
+
+TEST(Emitter, FoldsZeroAndUnitComponents) {
+    std::string text = emit_function(tiny(Mode::clip, Neighborhood::n9));
+    EXPECT_NE(text.find("float q0 = c0.x;"), std::string::npos);
+    EXPECT_NE(text.find("float q0 = c0.y;"), std::string::npos);       // (0, -2, 0) flipped and scaled
+    EXPECT_NE(text.find("float q0 = c0.x - c0.z;"), std::string::npos); // (0.5, 0, -0.5)
+    EXPECT_NE(text.find("float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5));"), std::string::npos);
+    EXPECT_NE(text.find("float q0 = c0.z + c0.y * -0.75;"), std::string::npos);
+}
+
+// Properties every default variant's function must have; checked on the text itself.
+void expect_fully_folded_and_unrolled(const std::string& name, const std::string& text) {
+    SCOPED_TRACE(name);
+    std::string code = std::regex_replace(text, std::regex("//[^\n]*"), "");
+    EXPECT_EQ(code.find("for"), std::string::npos);
+    EXPECT_EQ(code.find("while"), std::string::npos);
+    // Arrays are read only at literal indices.
+    EXPECT_FALSE(std::regex_search(code, std::regex(R"(\[[^\]0-9])"))) << "run-time array index";
+    // No multiply by zero or one, no zero or unit component inside a constant vector.
+    const std::string zero_or_unit = R"(-?(0|1)(\.0*)?(e[-+]?\d+)?)";
+    EXPECT_FALSE(std::regex_search(code, std::regex(R"(\*\s*)" + zero_or_unit + R"(\b(?![.\d]))")))
+        << "multiply by a 0 or 1 literal";
+    std::smatch vector;
+    std::regex constant_vector(R"(vec[234]\(([-0-9.e, ]+)\))");
+    for (auto it = std::sregex_iterator(code.begin(), code.end(), constant_vector); it != std::sregex_iterator(); ++it) {
+        std::string components = (*it)[1];
+        EXPECT_FALSE(std::regex_search(components, std::regex(R"((^|,)\s*)" + zero_or_unit + R"(\s*(,|$))")))
+            << "constant vector with a 0 or +-1 component: " << it->str();
+    }
+}
+
+TEST(Emitter, DefaultVariantsAreFullyFoldedAndUnrolled) {
+    auto specs = select_variants({}, {}, {});
+    ASSERT_TRUE(specs);
+    for (const VariantSpec& s : *specs) expect_fully_folded_and_unrolled(variant_name(s), emit_function(s));
+}
+
+TEST(Emitter, Dop22HasNoMultiplyByZeroAndNoZeroInAConstantVector) {
+    // dop22 is the set with explicit 0.000000 components; the general check above covers it, this
+    // pins that its text really contains folded projections of such axes.
+    std::string text = emit_function(spec("dop22", Mode::clip, Neighborhood::n9));
+    expect_fully_folded_and_unrolled("dop22-clip-n9", text);
+    // Axes (0, 0.664104, -0.747640) and (-0.664672, 0, 0.747135): one multiply-add each, the
+    // coefficient being the published ratio rounded to float.
+    auto literal = [](double ratio) { return fmt::format("{}", static_cast<float>(ratio)); };
+    EXPECT_NE(text.find("float q0 = c0.z + c0.y * " + literal(0.664104 / -0.747640) + ";"), std::string::npos);
+    EXPECT_NE(text.find("float q0 = c0.z + c0.x * " + literal(-0.664672 / 0.747135) + ";"), std::string::npos);
+}
+
+TEST(Emitter, ComputeShaderFillsEveryPlaceholderAndCallsTheFunction) {
+    auto templ = "@VARIANT@|@NEIGHBOR_COUNT@|@CALL@";
+    auto text = emit_compute_shader(spec("aabb", Mode::varclip, Neighborhood::n5), templ, "t.in");
+    ASSERT_TRUE(text) << text.error().message;
+    EXPECT_EQ(*text, "aabb-varclip-n5|5|kdop_aabb_varclip_n5(neighborhood[2], history, parameters.gamma, neighborhood)");
+}
+
+TEST(Emitter, TemplateErrorsNameTheLine) {
+    auto s = spec("aabb", Mode::clip, Neighborhood::n9);
+    EXPECT_EQ(emit_compute_shader(s, "a\nb @NOPE@\n", "t.in").error().message, "t.in:2: unknown placeholder @NOPE@");
+    EXPECT_EQ(emit_compute_shader(s, "a\n\nb @VARIANT\n", "t.in").error().message,
+              "t.in:3: unterminated placeholder (a '@' without its closing '@')");
+}
+
+TEST(Emitter, OutputIsAPureFunctionOfTheSpec) {
+    auto s = spec("dop32", Mode::varclip, Neighborhood::n9);
+    EXPECT_EQ(emit_function(s), emit_function(s));
+}
+
+} // namespace
+} // namespace kdop

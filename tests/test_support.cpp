@@ -1,0 +1,63 @@
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace kdop::test {
+namespace fs = std::filesystem;
+
+std::string data_path(const std::string& name) { return std::string(KDOP_TEST_DATA_DIR) + "/" + name; }
+
+std::string read_file(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+void expect_golden(const std::string& name, const std::string& actual) {
+    fs::path golden = fs::path(KDOP_TEST_GOLDEN_DIR) / name;
+    const char* update = std::getenv("KDOP_UPDATE_GOLDEN");
+    if (update && std::string(update) == "1") {
+        write_file(golden, actual);
+        return;
+    }
+    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run the test with KDOP_UPDATE_GOLDEN=1 to create it";
+    EXPECT_EQ(actual, read_file(golden)) << "differs from " << golden
+                                         << " (if the change is intended: KDOP_UPDATE_GOLDEN=1, then review the diff)";
+}
+
+TempDir::TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() / ("kdop-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+}
+
+CommandResult run(const std::string& command_line) {
+    TempDir dir;
+    int status = std::system((command_line + " >" + (dir / "out").string() + " 2>" + (dir / "err").string()).c_str());
+    int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return {exit_code, read_file(dir / "out"), read_file(dir / "err")};
+}
+
+std::string kdop_binary() { return KDOP_CLI_PATH; }
+std::string kdop_gen_binary() { return KDOP_GEN_PATH; }
+
+} // namespace kdop::test
