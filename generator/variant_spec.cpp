@@ -25,6 +25,22 @@ bool contains(std::span<const T> list, const T& value) {
     return std::find(list.begin(), list.end(), value) != list.end();
 }
 
+// Parses option values naming enum choices; no values means all of them.
+template <class T>
+Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::string_view option, std::string_view what,
+                                     std::string_view expected, std::optional<T> (*parse)(std::string_view),
+                                     std::span<const T> all) {
+    std::vector<T> choices;
+    for (const std::string& arg : args) {
+        auto choice = parse(arg);
+        if (!choice) return fail(fmt::format("{}: unknown {} '{}' (expected {})", option, what, arg, expected));
+        if (contains<T>(choices, *choice)) return fail(fmt::format("{}: '{}' is given twice", option, arg));
+        choices.push_back(*choice);
+    }
+    if (choices.empty()) choices.assign(all.begin(), all.end());
+    return choices;
+}
+
 } // namespace
 
 std::string variant_name(const VariantSpec& spec) {
@@ -88,28 +104,16 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
         sets.push_back(std::move(*set));
     }
 
-    std::vector<Mode> modes;
-    for (const std::string& arg : mode_args) {
-        auto mode = parse_mode(arg);
-        if (!mode) return fail(fmt::format("--modes: unknown mode '{}' (expected clip or varclip)", arg));
-        if (contains<Mode>(modes, *mode)) return fail(fmt::format("--modes: '{}' is given twice", arg));
-        modes.push_back(*mode);
-    }
-    if (modes.empty()) modes.assign(std::begin(kAllModes), std::end(kAllModes));
-
-    std::vector<Neighborhood> neighborhoods;
-    for (const std::string& arg : neighborhood_args) {
-        auto n = parse_neighborhood(arg);
-        if (!n) return fail(fmt::format("--neighborhoods: unknown neighborhood '{}' (expected n9 or n5)", arg));
-        if (contains<Neighborhood>(neighborhoods, *n)) return fail(fmt::format("--neighborhoods: '{}' is given twice", arg));
-        neighborhoods.push_back(*n);
-    }
-    if (neighborhoods.empty()) neighborhoods.assign(std::begin(kAllNeighborhoods), std::end(kAllNeighborhoods));
+    auto modes = parse_choices<Mode>(mode_args, "--modes", "mode", "clip or varclip", parse_mode, kAllModes);
+    if (!modes) return std::unexpected(modes.error());
+    auto neighborhoods = parse_choices<Neighborhood>(neighborhood_args, "--neighborhoods", "neighborhood", "n9 or n5",
+                                                     parse_neighborhood, kAllNeighborhoods);
+    if (!neighborhoods) return std::unexpected(neighborhoods.error());
 
     std::vector<VariantSpec> specs;
     for (const AxisSet& set : sets)
-        for (Mode mode : modes)
-            for (Neighborhood n : neighborhoods) specs.push_back({set, mode, n});
+        for (Mode mode : *modes)
+            for (Neighborhood n : *neighborhoods) specs.push_back({set, mode, n});
     return specs;
 }
 
