@@ -3,9 +3,11 @@
 # installed. Run as root (the README's Quick start calls it first).
 set -eu
 
+# glslang-tools: Debian 12's glslang CMake package refers to /usr/bin/glslangValidator, so
+# find_package(glslang) fails without it even though kdop uses glslang only as a library.
 packages="
   build-essential cmake ninja-build
-  glslang-dev spirv-tools spirv-headers
+  glslang-dev glslang-tools spirv-tools spirv-headers
   libglm-dev libfmt-dev libcli11-dev
   libgtest-dev
 "
