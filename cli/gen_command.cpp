@@ -16,10 +16,10 @@ namespace kdop::cli {
 namespace {
 
 void print_table(const std::vector<BuiltVariant>& built) {
-    std::cout << fmt::format("{:<26} {:>4} {:>11} {:>12} {:>17}  {}\n", "variant", "k", "spirv_bytes", "instructions",
+    std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17}  {}\n", "variant", "k", "spirv_bytes", "instructions",
                              "code_instructions", "spirv_hash");
     for (const BuiltVariant& v : built)
-        std::cout << fmt::format("{:<26} {:>4} {:>11} {:>12} {:>17}  {:016x}\n", v.name, 2 * v.spec.set.axes.size(),
+        std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17}  {:016x}\n", v.name, 2 * v.spec.set.axes.size(),
                                  4 * v.spirv.size(), v.counts.instructions, v.counts.function_instructions,
                                  spirv_hash(v.spirv));
 }

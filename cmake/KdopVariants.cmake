@@ -3,6 +3,8 @@
 #                                       dop32) or paths to .axes files; default: every built-in set
 #     [MODES <clip|varclip>...]         default: both
 #     [NEIGHBORHOODS <n9|n5>...]        default: both
+#     [FORMS <unrolled|loop>...]        default: unrolled; loop is the supplement's form, a baseline
+#     [BASELINES]                       also the cost baselines gather-n9, gather-n5 and copy
 #     [NAMESPACE <ns>]                  C++ namespace of the registry; default: <target> made an identifier
 #     [HEADER <file-name>]              default: <target>_kdop_variants.h
 #     [PUBLIC])                         also give <target>'s users the header (for a library target)
@@ -16,7 +18,7 @@ include_guard(GLOBAL)
 set(KDOP_BUILTIN_SETS aabb ycocg dop16-grass dop16-asphalt dop22 dop32)
 
 function(kdop_add_variants target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC" "NAMESPACE;HEADER" "SETS;MODES;NEIGHBORHOODS")
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES" "NAMESPACE;HEADER" "SETS;MODES;NEIGHBORHOODS;FORMS")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "kdop_add_variants(${target}): unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
   endif()
@@ -59,6 +61,12 @@ function(kdop_add_variants target)
   foreach(neighborhood IN LISTS ARG_NEIGHBORHOODS)
     list(APPEND arguments --neighborhoods ${neighborhood})
   endforeach()
+  foreach(form IN LISTS ARG_FORMS)
+    list(APPEND arguments --forms ${form})
+  endforeach()
+  if(ARG_BASELINES)
+    list(APPEND arguments --baselines)
+  endif()
 
   add_custom_command(
     OUTPUT "${header}" "${source}"

@@ -25,50 +25,50 @@ vec3 kdop_aabb_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
 
     // Slab 1 of 3: axis (1, 0, 0) from aabb.axes:5
     {
-        float q0 = c0.x;
-        float q1 = c1.x;
-        float q2 = c2.x;
-        float q3 = c3.x;
-        float q4 = c4.x;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
+        float q0 = c0.x - p;
+        float q1 = c1.x - p;
+        float q2 = c2.x - p;
+        float q3 = c3.x - p;
+        float q4 = c4.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 3: axis (0, 1, 0) from aabb.axes:6
     {
-        float q0 = c0.y;
-        float q1 = c1.y;
-        float q2 = c2.y;
-        float q3 = c3.y;
-        float q4 = c4.y;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
+        float q0 = c0.y - p;
+        float q1 = c1.y - p;
+        float q2 = c2.y - p;
+        float q3 = c3.y - p;
+        float q4 = c4.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 3: axis (0, 0, 1) from aabb.axes:7
     {
-        float q0 = c0.z;
-        float q1 = c1.z;
-        float q2 = c2.z;
-        float q3 = c3.z;
-        float q4 = c4.z;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
+        float q0 = c0.z - p;
+        float q1 = c1.z - p;
+        float q2 = c2.z - p;
+        float q3 = c3.z - p;
+        float q4 = c4.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

@@ -50,162 +50,162 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
 
     // Slab 1 of 8: axis (0.997167, -0.05482, 0.0515) from dop16-asphalt.axes:5, scaled by 1.00284 to (1, -0.054975748, 0.051646315)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.054975748, 0.051646315));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.054975748, 0.051646315));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.054975748, 0.051646315));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.054975748, 0.051646315));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.054975748, 0.051646315));
-        float q5 = c5.x + dot(c5.yz, vec2(-0.054975748, 0.051646315));
-        float q6 = c6.x + dot(c6.yz, vec2(-0.054975748, 0.051646315));
-        float q7 = c7.x + dot(c7.yz, vec2(-0.054975748, 0.051646315));
-        float q8 = c8.x + dot(c8.yz, vec2(-0.054975748, 0.051646315));
         float p = current.x + dot(current.yz, vec2(-0.054975748, 0.051646315));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.054975748, 0.051646315)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q5 = c5.x + dot(c5.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q6 = c6.x + dot(c6.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q7 = c7.x + dot(c7.yz, vec2(-0.054975748, 0.051646315)) - p;
+        float q8 = c8.x + dot(c8.yz, vec2(-0.054975748, 0.051646315)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 8: axis (0.043682, -0.727663, 0.684542) from dop16-asphalt.axes:6, scaled by -1.37426 to (-0.060030535, 1, -0.9407404)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.060030535, -0.9407404));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.060030535, -0.9407404));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.060030535, -0.9407404));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.060030535, -0.9407404));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.060030535, -0.9407404));
-        float q5 = c5.y + dot(c5.xz, vec2(-0.060030535, -0.9407404));
-        float q6 = c6.y + dot(c6.xz, vec2(-0.060030535, -0.9407404));
-        float q7 = c7.y + dot(c7.xz, vec2(-0.060030535, -0.9407404));
-        float q8 = c8.y + dot(c8.xz, vec2(-0.060030535, -0.9407404));
         float p = current.y + dot(current.xz, vec2(-0.060030535, -0.9407404));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.060030535, -0.9407404)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q5 = c5.y + dot(c5.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q6 = c6.y + dot(c6.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q7 = c7.y + dot(c7.xz, vec2(-0.060030535, -0.9407404)) - p;
+        float q8 = c8.y + dot(c8.xz, vec2(-0.060030535, -0.9407404)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 8: axis (-0.451553, 0.808335, -0.377751) from dop16-asphalt.axes:7, scaled by 1.23711 to (-0.5586211, 1, -0.46731988)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5586211, -0.46731988));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5586211, -0.46731988));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5586211, -0.46731988));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5586211, -0.46731988));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5586211, -0.46731988));
-        float q5 = c5.y + dot(c5.xz, vec2(-0.5586211, -0.46731988));
-        float q6 = c6.y + dot(c6.xz, vec2(-0.5586211, -0.46731988));
-        float q7 = c7.y + dot(c7.xz, vec2(-0.5586211, -0.46731988));
-        float q8 = c8.y + dot(c8.xz, vec2(-0.5586211, -0.46731988));
         float p = current.y + dot(current.xz, vec2(-0.5586211, -0.46731988));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5586211, -0.46731988)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q5 = c5.y + dot(c5.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q6 = c6.y + dot(c6.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q7 = c7.y + dot(c7.xz, vec2(-0.5586211, -0.46731988)) - p;
+        float q8 = c8.y + dot(c8.xz, vec2(-0.5586211, -0.46731988)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 4 of 8: axis (-0.003001, 0.615645, -0.788018) from dop16-asphalt.axes:8, scaled by -1.26901 to (0.0038082886, -0.7812575, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.0038082886, -0.7812575));
-        float q1 = c1.z + dot(c1.xy, vec2(0.0038082886, -0.7812575));
-        float q2 = c2.z + dot(c2.xy, vec2(0.0038082886, -0.7812575));
-        float q3 = c3.z + dot(c3.xy, vec2(0.0038082886, -0.7812575));
-        float q4 = c4.z + dot(c4.xy, vec2(0.0038082886, -0.7812575));
-        float q5 = c5.z + dot(c5.xy, vec2(0.0038082886, -0.7812575));
-        float q6 = c6.z + dot(c6.xy, vec2(0.0038082886, -0.7812575));
-        float q7 = c7.z + dot(c7.xy, vec2(0.0038082886, -0.7812575));
-        float q8 = c8.z + dot(c8.xy, vec2(0.0038082886, -0.7812575));
         float p = current.z + dot(current.xy, vec2(0.0038082886, -0.7812575));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.0038082886, -0.7812575)));
+        float q0 = c0.z + dot(c0.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q5 = c5.z + dot(c5.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q6 = c6.z + dot(c6.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q7 = c7.z + dot(c7.xy, vec2(0.0038082886, -0.7812575)) - p;
+        float q8 = c8.z + dot(c8.xy, vec2(0.0038082886, -0.7812575)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 5 of 8: axis (0.130192, -0.063137, -0.989476) from dop16-asphalt.axes:9, scaled by -1.01064 to (-0.13157672, 0.06380852, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.13157672, 0.06380852));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.13157672, 0.06380852));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.13157672, 0.06380852));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.13157672, 0.06380852));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.13157672, 0.06380852));
-        float q5 = c5.z + dot(c5.xy, vec2(-0.13157672, 0.06380852));
-        float q6 = c6.z + dot(c6.xy, vec2(-0.13157672, 0.06380852));
-        float q7 = c7.z + dot(c7.xy, vec2(-0.13157672, 0.06380852));
-        float q8 = c8.z + dot(c8.xy, vec2(-0.13157672, 0.06380852));
         float p = current.z + dot(current.xy, vec2(-0.13157672, 0.06380852));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.13157672, 0.06380852)));
+        float q0 = c0.z + dot(c0.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q5 = c5.z + dot(c5.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q6 = c6.z + dot(c6.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q7 = c7.z + dot(c7.xy, vec2(-0.13157672, 0.06380852)) - p;
+        float q8 = c8.z + dot(c8.xy, vec2(-0.13157672, 0.06380852)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 6 of 8: axis (0.775079, -0.584236, -0.240668) from dop16-asphalt.axes:10, scaled by 1.29019 to (1, -0.7537761, -0.3105077)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.7537761, -0.3105077));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.7537761, -0.3105077));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.7537761, -0.3105077));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.7537761, -0.3105077));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.7537761, -0.3105077));
-        float q5 = c5.x + dot(c5.yz, vec2(-0.7537761, -0.3105077));
-        float q6 = c6.x + dot(c6.yz, vec2(-0.7537761, -0.3105077));
-        float q7 = c7.x + dot(c7.yz, vec2(-0.7537761, -0.3105077));
-        float q8 = c8.x + dot(c8.yz, vec2(-0.7537761, -0.3105077));
         float p = current.x + dot(current.yz, vec2(-0.7537761, -0.3105077));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.7537761, -0.3105077)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q5 = c5.x + dot(c5.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q6 = c6.x + dot(c6.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q7 = c7.x + dot(c7.yz, vec2(-0.7537761, -0.3105077)) - p;
+        float q8 = c8.x + dot(c8.yz, vec2(-0.7537761, -0.3105077)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 7 of 8: axis (0.589837, 0.171644, -0.78907) from dop16-asphalt.axes:11, scaled by -1.26731 to (-0.7475091, -0.21752696, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.7475091, -0.21752696));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.7475091, -0.21752696));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.7475091, -0.21752696));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.7475091, -0.21752696));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.7475091, -0.21752696));
-        float q5 = c5.z + dot(c5.xy, vec2(-0.7475091, -0.21752696));
-        float q6 = c6.z + dot(c6.xy, vec2(-0.7475091, -0.21752696));
-        float q7 = c7.z + dot(c7.xy, vec2(-0.7475091, -0.21752696));
-        float q8 = c8.z + dot(c8.xy, vec2(-0.7475091, -0.21752696));
         float p = current.z + dot(current.xy, vec2(-0.7475091, -0.21752696));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.7475091, -0.21752696)));
+        float q0 = c0.z + dot(c0.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q5 = c5.z + dot(c5.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q6 = c6.z + dot(c6.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q7 = c7.z + dot(c7.xy, vec2(-0.7475091, -0.21752696)) - p;
+        float q8 = c8.z + dot(c8.xy, vec2(-0.7475091, -0.21752696)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 8 of 8: axis (0.89801, -0.436338, -0.056459) from dop16-asphalt.axes:12, scaled by 1.11357 to (1, -0.48589435, -0.06287124)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.48589435, -0.06287124));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.48589435, -0.06287124));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.48589435, -0.06287124));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.48589435, -0.06287124));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.48589435, -0.06287124));
-        float q5 = c5.x + dot(c5.yz, vec2(-0.48589435, -0.06287124));
-        float q6 = c6.x + dot(c6.yz, vec2(-0.48589435, -0.06287124));
-        float q7 = c7.x + dot(c7.yz, vec2(-0.48589435, -0.06287124));
-        float q8 = c8.x + dot(c8.yz, vec2(-0.48589435, -0.06287124));
         float p = current.x + dot(current.yz, vec2(-0.48589435, -0.06287124));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.48589435, -0.06287124)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q5 = c5.x + dot(c5.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q6 = c6.x + dot(c6.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q7 = c7.x + dot(c7.yz, vec2(-0.48589435, -0.06287124)) - p;
+        float q8 = c8.x + dot(c8.yz, vec2(-0.48589435, -0.06287124)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

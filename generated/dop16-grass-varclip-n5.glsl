@@ -25,130 +25,130 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 1 of 8: axis (-0.663315, 0.729578, -0.166518) from dop16-grass.axes:6, scaled by 1.37066 to (-0.9091763, 1, -0.22823879)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.9091763, -0.22823879));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.9091763, -0.22823879));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.9091763, -0.22823879));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.9091763, -0.22823879));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.9091763, -0.22823879));
         float p = current.y + dot(current.xz, vec2(-0.9091763, -0.22823879));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.9091763, -0.22823879)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.9091763, -0.22823879)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.9091763, -0.22823879)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.9091763, -0.22823879)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.9091763, -0.22823879)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.9091763, -0.22823879)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.70663214, 0.10394432));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.70663214, 0.10394432));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.70663214, 0.10394432));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.70663214, 0.10394432));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.70663214, 0.10394432));
         float p = current.z + dot(current.xy, vec2(-0.70663214, 0.10394432));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.70663214, 0.10394432)));
+        float q0 = c0.z + dot(c0.xy, vec2(-0.70663214, 0.10394432)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(-0.70663214, 0.10394432)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(-0.70663214, 0.10394432)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(-0.70663214, 0.10394432)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(-0.70663214, 0.10394432)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.18454187, -0.57063365));
-        float q1 = c1.z + dot(c1.xy, vec2(0.18454187, -0.57063365));
-        float q2 = c2.z + dot(c2.xy, vec2(0.18454187, -0.57063365));
-        float q3 = c3.z + dot(c3.xy, vec2(0.18454187, -0.57063365));
-        float q4 = c4.z + dot(c4.xy, vec2(0.18454187, -0.57063365));
         float p = current.z + dot(current.xy, vec2(0.18454187, -0.57063365));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.18454187, -0.57063365)));
+        float q0 = c0.z + dot(c0.xy, vec2(0.18454187, -0.57063365)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(0.18454187, -0.57063365)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(0.18454187, -0.57063365)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(0.18454187, -0.57063365)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(0.18454187, -0.57063365)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.2652209, 0.040031724));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.2652209, 0.040031724));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.2652209, 0.040031724));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.2652209, 0.040031724));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.2652209, 0.040031724));
         float p = current.z + dot(current.xy, vec2(-0.2652209, 0.040031724));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.2652209, 0.040031724)));
+        float q0 = c0.z + dot(c0.xy, vec2(-0.2652209, 0.040031724)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(-0.2652209, 0.040031724)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(-0.2652209, 0.040031724)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(-0.2652209, 0.040031724)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(-0.2652209, 0.040031724)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.6816266, -0.9873084));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.6816266, -0.9873084));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.6816266, -0.9873084));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.6816266, -0.9873084));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.6816266, -0.9873084));
         float p = current.x + dot(current.yz, vec2(-0.6816266, -0.9873084));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.6816266, -0.9873084)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.6816266, -0.9873084)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.6816266, -0.9873084)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.6816266, -0.9873084)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.6816266, -0.9873084)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.6816266, -0.9873084)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.5726, -0.42632));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.5726, -0.42632));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.5726, -0.42632));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.5726, -0.42632));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.5726, -0.42632));
         float p = current.x + dot(current.yz, vec2(-0.5726, -0.42632));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.5726, -0.42632)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.5726, -0.42632)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.5726, -0.42632)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.5726, -0.42632)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.5726, -0.42632)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.5726, -0.42632)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(0.25867906, 0.61571217));
-        float q1 = c1.x + dot(c1.yz, vec2(0.25867906, 0.61571217));
-        float q2 = c2.x + dot(c2.yz, vec2(0.25867906, 0.61571217));
-        float q3 = c3.x + dot(c3.yz, vec2(0.25867906, 0.61571217));
-        float q4 = c4.x + dot(c4.yz, vec2(0.25867906, 0.61571217));
         float p = current.x + dot(current.yz, vec2(0.25867906, 0.61571217));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.25867906, 0.61571217)));
+        float q0 = c0.x + dot(c0.yz, vec2(0.25867906, 0.61571217)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(0.25867906, 0.61571217)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(0.25867906, 0.61571217)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(0.25867906, 0.61571217)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(0.25867906, 0.61571217)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.6007664, -0.39173308));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.6007664, -0.39173308));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.6007664, -0.39173308));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.6007664, -0.39173308));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.6007664, -0.39173308));
         float p = current.y + dot(current.xz, vec2(-0.6007664, -0.39173308));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.6007664, -0.39173308)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.6007664, -0.39173308)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.6007664, -0.39173308)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.6007664, -0.39173308)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.6007664, -0.39173308)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.6007664, -0.39173308)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

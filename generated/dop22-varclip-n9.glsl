@@ -29,222 +29,222 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 1 of 11: axis (1, 0, 0) from dop22.axes:5
     {
-        float q0 = c0.x;
-        float q1 = c1.x;
-        float q2 = c2.x;
-        float q3 = c3.x;
-        float q4 = c4.x;
-        float q5 = c5.x;
-        float q6 = c6.x;
-        float q7 = c7.x;
-        float q8 = c8.x;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
+        float q0 = c0.x - p;
+        float q1 = c1.x - p;
+        float q2 = c2.x - p;
+        float q3 = c3.x - p;
+        float q4 = c4.x - p;
+        float q5 = c5.x - p;
+        float q6 = c6.x - p;
+        float q7 = c7.x - p;
+        float q8 = c8.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 11: axis (0, 1, 0) from dop22.axes:6
     {
-        float q0 = c0.y;
-        float q1 = c1.y;
-        float q2 = c2.y;
-        float q3 = c3.y;
-        float q4 = c4.y;
-        float q5 = c5.y;
-        float q6 = c6.y;
-        float q7 = c7.y;
-        float q8 = c8.y;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
+        float q0 = c0.y - p;
+        float q1 = c1.y - p;
+        float q2 = c2.y - p;
+        float q3 = c3.y - p;
+        float q4 = c4.y - p;
+        float q5 = c5.y - p;
+        float q6 = c6.y - p;
+        float q7 = c7.y - p;
+        float q8 = c8.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 11: axis (0, 0, 1) from dop22.axes:7
     {
-        float q0 = c0.z;
-        float q1 = c1.z;
-        float q2 = c2.z;
-        float q3 = c3.z;
-        float q4 = c4.z;
-        float q5 = c5.z;
-        float q6 = c6.z;
-        float q7 = c7.z;
-        float q8 = c8.z;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
+        float q0 = c0.z - p;
+        float q1 = c1.z - p;
+        float q2 = c2.z - p;
+        float q3 = c3.z - p;
+        float q4 = c4.z - p;
+        float q5 = c5.z - p;
+        float q6 = c6.z - p;
+        float q7 = c7.z - p;
+        float q8 = c8.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 4 of 11: axis (0, 0.664104, -0.74764) from dop22.axes:8, scaled by -1.33754 to (0, -0.8882671, 1)
     {
-        float q0 = c0.z + c0.y * -0.8882671;
-        float q1 = c1.z + c1.y * -0.8882671;
-        float q2 = c2.z + c2.y * -0.8882671;
-        float q3 = c3.z + c3.y * -0.8882671;
-        float q4 = c4.z + c4.y * -0.8882671;
-        float q5 = c5.z + c5.y * -0.8882671;
-        float q6 = c6.z + c6.y * -0.8882671;
-        float q7 = c7.z + c7.y * -0.8882671;
-        float q8 = c8.z + c8.y * -0.8882671;
         float p = current.z + current.y * -0.8882671;
         float inv_d = 1.0 / (dir.z + dir.y * -0.8882671);
+        float q0 = c0.z + c0.y * -0.8882671 - p;
+        float q1 = c1.z + c1.y * -0.8882671 - p;
+        float q2 = c2.z + c2.y * -0.8882671 - p;
+        float q3 = c3.z + c3.y * -0.8882671 - p;
+        float q4 = c4.z + c4.y * -0.8882671 - p;
+        float q5 = c5.z + c5.y * -0.8882671 - p;
+        float q6 = c6.z + c6.y * -0.8882671 - p;
+        float q7 = c7.z + c7.y * -0.8882671 - p;
+        float q8 = c8.z + c8.y * -0.8882671 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 5 of 11: axis (-0.656496, -0.656139, 0.372149) from dop22.axes:9, scaled by -1.52324 to (1, 0.9994562, -0.5668717)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(0.9994562, -0.5668717));
-        float q1 = c1.x + dot(c1.yz, vec2(0.9994562, -0.5668717));
-        float q2 = c2.x + dot(c2.yz, vec2(0.9994562, -0.5668717));
-        float q3 = c3.x + dot(c3.yz, vec2(0.9994562, -0.5668717));
-        float q4 = c4.x + dot(c4.yz, vec2(0.9994562, -0.5668717));
-        float q5 = c5.x + dot(c5.yz, vec2(0.9994562, -0.5668717));
-        float q6 = c6.x + dot(c6.yz, vec2(0.9994562, -0.5668717));
-        float q7 = c7.x + dot(c7.yz, vec2(0.9994562, -0.5668717));
-        float q8 = c8.x + dot(c8.yz, vec2(0.9994562, -0.5668717));
         float p = current.x + dot(current.yz, vec2(0.9994562, -0.5668717));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.9994562, -0.5668717)));
+        float q0 = c0.x + dot(c0.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q5 = c5.x + dot(c5.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q6 = c6.x + dot(c6.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q7 = c7.x + dot(c7.yz, vec2(0.9994562, -0.5668717)) - p;
+        float q8 = c8.x + dot(c8.yz, vec2(0.9994562, -0.5668717)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 6 of 11: axis (-0.664251, 0, -0.747509) from dop22.axes:10, scaled by -1.33778 to (0.8886194, 0, 1)
     {
-        float q0 = c0.z + c0.x * 0.8886194;
-        float q1 = c1.z + c1.x * 0.8886194;
-        float q2 = c2.z + c2.x * 0.8886194;
-        float q3 = c3.z + c3.x * 0.8886194;
-        float q4 = c4.z + c4.x * 0.8886194;
-        float q5 = c5.z + c5.x * 0.8886194;
-        float q6 = c6.z + c6.x * 0.8886194;
-        float q7 = c7.z + c7.x * 0.8886194;
-        float q8 = c8.z + c8.x * 0.8886194;
         float p = current.z + current.x * 0.8886194;
         float inv_d = 1.0 / (dir.z + dir.x * 0.8886194);
+        float q0 = c0.z + c0.x * 0.8886194 - p;
+        float q1 = c1.z + c1.x * 0.8886194 - p;
+        float q2 = c2.z + c2.x * 0.8886194 - p;
+        float q3 = c3.z + c3.x * 0.8886194 - p;
+        float q4 = c4.z + c4.x * 0.8886194 - p;
+        float q5 = c5.z + c5.x * 0.8886194 - p;
+        float q6 = c6.z + c6.x * 0.8886194 - p;
+        float q7 = c7.z + c7.x * 0.8886194 - p;
+        float q8 = c8.z + c8.x * 0.8886194 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 7 of 11: axis (-0.664672, 0, 0.747135) from dop22.axes:11, scaled by 1.33845 to (-0.8896277, 0, 1)
     {
-        float q0 = c0.z + c0.x * -0.8896277;
-        float q1 = c1.z + c1.x * -0.8896277;
-        float q2 = c2.z + c2.x * -0.8896277;
-        float q3 = c3.z + c3.x * -0.8896277;
-        float q4 = c4.z + c4.x * -0.8896277;
-        float q5 = c5.z + c5.x * -0.8896277;
-        float q6 = c6.z + c6.x * -0.8896277;
-        float q7 = c7.z + c7.x * -0.8896277;
-        float q8 = c8.z + c8.x * -0.8896277;
         float p = current.z + current.x * -0.8896277;
         float inv_d = 1.0 / (dir.z + dir.x * -0.8896277);
+        float q0 = c0.z + c0.x * -0.8896277 - p;
+        float q1 = c1.z + c1.x * -0.8896277 - p;
+        float q2 = c2.z + c2.x * -0.8896277 - p;
+        float q3 = c3.z + c3.x * -0.8896277 - p;
+        float q4 = c4.z + c4.x * -0.8896277 - p;
+        float q5 = c5.z + c5.x * -0.8896277 - p;
+        float q6 = c6.z + c6.x * -0.8896277 - p;
+        float q7 = c7.z + c7.x * -0.8896277 - p;
+        float q8 = c8.z + c8.x * -0.8896277 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 8 of 11: axis (0, 0.664287, 0.747478) from dop22.axes:12, scaled by 1.33783 to (0, 0.8887044, 1)
     {
-        float q0 = c0.z + c0.y * 0.8887044;
-        float q1 = c1.z + c1.y * 0.8887044;
-        float q2 = c2.z + c2.y * 0.8887044;
-        float q3 = c3.z + c3.y * 0.8887044;
-        float q4 = c4.z + c4.y * 0.8887044;
-        float q5 = c5.z + c5.y * 0.8887044;
-        float q6 = c6.z + c6.y * 0.8887044;
-        float q7 = c7.z + c7.y * 0.8887044;
-        float q8 = c8.z + c8.y * 0.8887044;
         float p = current.z + current.y * 0.8887044;
         float inv_d = 1.0 / (dir.z + dir.y * 0.8887044);
+        float q0 = c0.z + c0.y * 0.8887044 - p;
+        float q1 = c1.z + c1.y * 0.8887044 - p;
+        float q2 = c2.z + c2.y * 0.8887044 - p;
+        float q3 = c3.z + c3.y * 0.8887044 - p;
+        float q4 = c4.z + c4.y * 0.8887044 - p;
+        float q5 = c5.z + c5.y * 0.8887044 - p;
+        float q6 = c6.z + c6.y * 0.8887044 - p;
+        float q7 = c7.z + c7.y * 0.8887044 - p;
+        float q8 = c8.z + c8.y * 0.8887044 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 9 of 11: axis (0.657415, -0.657637, -0.367857) from dop22.axes:13, scaled by -1.5206 to (-0.9996624, 1, 0.55936176)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.9996624, 0.55936176));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.9996624, 0.55936176));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.9996624, 0.55936176));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.9996624, 0.55936176));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.9996624, 0.55936176));
-        float q5 = c5.y + dot(c5.xz, vec2(-0.9996624, 0.55936176));
-        float q6 = c6.y + dot(c6.xz, vec2(-0.9996624, 0.55936176));
-        float q7 = c7.y + dot(c7.xz, vec2(-0.9996624, 0.55936176));
-        float q8 = c8.y + dot(c8.xz, vec2(-0.9996624, 0.55936176));
         float p = current.y + dot(current.xz, vec2(-0.9996624, 0.55936176));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.9996624, 0.55936176)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q5 = c5.y + dot(c5.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q6 = c6.y + dot(c6.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q7 = c7.y + dot(c7.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float q8 = c8.y + dot(c8.xz, vec2(-0.9996624, 0.55936176)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 10 of 11: axis (-0.656571, -0.657954, -0.368796) from dop22.axes:14, scaled by -1.51986 to (0.99789804, 1, 0.56051946)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(0.99789804, 0.56051946));
-        float q1 = c1.y + dot(c1.xz, vec2(0.99789804, 0.56051946));
-        float q2 = c2.y + dot(c2.xz, vec2(0.99789804, 0.56051946));
-        float q3 = c3.y + dot(c3.xz, vec2(0.99789804, 0.56051946));
-        float q4 = c4.y + dot(c4.xz, vec2(0.99789804, 0.56051946));
-        float q5 = c5.y + dot(c5.xz, vec2(0.99789804, 0.56051946));
-        float q6 = c6.y + dot(c6.xz, vec2(0.99789804, 0.56051946));
-        float q7 = c7.y + dot(c7.xz, vec2(0.99789804, 0.56051946));
-        float q8 = c8.y + dot(c8.xz, vec2(0.99789804, 0.56051946));
         float p = current.y + dot(current.xz, vec2(0.99789804, 0.56051946));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.99789804, 0.56051946)));
+        float q0 = c0.y + dot(c0.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q5 = c5.y + dot(c5.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q6 = c6.y + dot(c6.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q7 = c7.y + dot(c7.xz, vec2(0.99789804, 0.56051946)) - p;
+        float q8 = c8.y + dot(c8.xz, vec2(0.99789804, 0.56051946)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 11 of 11: axis (0.6568, -0.655635, 0.372501) from dop22.axes:15, scaled by 1.52253 to (1, -0.9982262, 0.5671452)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.9982262, 0.5671452));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.9982262, 0.5671452));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.9982262, 0.5671452));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.9982262, 0.5671452));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.9982262, 0.5671452));
-        float q5 = c5.x + dot(c5.yz, vec2(-0.9982262, 0.5671452));
-        float q6 = c6.x + dot(c6.yz, vec2(-0.9982262, 0.5671452));
-        float q7 = c7.x + dot(c7.yz, vec2(-0.9982262, 0.5671452));
-        float q8 = c8.x + dot(c8.yz, vec2(-0.9982262, 0.5671452));
         float p = current.x + dot(current.yz, vec2(-0.9982262, 0.5671452));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.9982262, 0.5671452)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q5 = c5.x + dot(c5.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q6 = c6.x + dot(c6.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q7 = c7.x + dot(c7.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float q8 = c8.x + dot(c8.yz, vec2(-0.9982262, 0.5671452)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

@@ -25,258 +25,258 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 1 of 16: axis (1, 0, 0) from dop32.axes:5
     {
-        float q0 = c0.x;
-        float q1 = c1.x;
-        float q2 = c2.x;
-        float q3 = c3.x;
-        float q4 = c4.x;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
+        float q0 = c0.x - p;
+        float q1 = c1.x - p;
+        float q2 = c2.x - p;
+        float q3 = c3.x - p;
+        float q4 = c4.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 16: axis (0, 1, 0) from dop32.axes:6
     {
-        float q0 = c0.y;
-        float q1 = c1.y;
-        float q2 = c2.y;
-        float q3 = c3.y;
-        float q4 = c4.y;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
+        float q0 = c0.y - p;
+        float q1 = c1.y - p;
+        float q2 = c2.y - p;
+        float q3 = c3.y - p;
+        float q4 = c4.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 16: axis (0, 0, 1) from dop32.axes:7
     {
-        float q0 = c0.z;
-        float q1 = c1.z;
-        float q2 = c2.z;
-        float q3 = c3.z;
-        float q4 = c4.z;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
+        float q0 = c0.z - p;
+        float q1 = c1.z - p;
+        float q2 = c2.z - p;
+        float q3 = c3.z - p;
+        float q4 = c4.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 4 of 16: axis (0.820081, 0.456727, -0.344773) from dop32.axes:8, scaled by 1.21939 to (1, 0.5569291, -0.42041335)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(0.5569291, -0.42041335));
-        float q1 = c1.x + dot(c1.yz, vec2(0.5569291, -0.42041335));
-        float q2 = c2.x + dot(c2.yz, vec2(0.5569291, -0.42041335));
-        float q3 = c3.x + dot(c3.yz, vec2(0.5569291, -0.42041335));
-        float q4 = c4.x + dot(c4.yz, vec2(0.5569291, -0.42041335));
         float p = current.x + dot(current.yz, vec2(0.5569291, -0.42041335));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.5569291, -0.42041335)));
+        float q0 = c0.x + dot(c0.yz, vec2(0.5569291, -0.42041335)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(0.5569291, -0.42041335)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(0.5569291, -0.42041335)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(0.5569291, -0.42041335)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(0.5569291, -0.42041335)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 5 of 16: axis (0.540295, 0.829202, 0.143195) from dop32.axes:9, scaled by 1.20598 to (0.65158427, 1, 0.17269012)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(0.65158427, 0.17269012));
-        float q1 = c1.y + dot(c1.xz, vec2(0.65158427, 0.17269012));
-        float q2 = c2.y + dot(c2.xz, vec2(0.65158427, 0.17269012));
-        float q3 = c3.y + dot(c3.xz, vec2(0.65158427, 0.17269012));
-        float q4 = c4.y + dot(c4.xz, vec2(0.65158427, 0.17269012));
         float p = current.y + dot(current.xz, vec2(0.65158427, 0.17269012));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.65158427, 0.17269012)));
+        float q0 = c0.y + dot(c0.xz, vec2(0.65158427, 0.17269012)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(0.65158427, 0.17269012)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(0.65158427, 0.17269012)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(0.65158427, 0.17269012)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(0.65158427, 0.17269012)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 6 of 16: axis (0.2558, 0.841084, -0.476597) from dop32.axes:10, scaled by 1.18894 to (0.30413133, 1, -0.56664616)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(0.30413133, -0.56664616));
-        float q1 = c1.y + dot(c1.xz, vec2(0.30413133, -0.56664616));
-        float q2 = c2.y + dot(c2.xz, vec2(0.30413133, -0.56664616));
-        float q3 = c3.y + dot(c3.xz, vec2(0.30413133, -0.56664616));
-        float q4 = c4.y + dot(c4.xz, vec2(0.30413133, -0.56664616));
         float p = current.y + dot(current.xz, vec2(0.30413133, -0.56664616));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.30413133, -0.56664616)));
+        float q0 = c0.y + dot(c0.xz, vec2(0.30413133, -0.56664616)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(0.30413133, -0.56664616)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(0.30413133, -0.56664616)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(0.30413133, -0.56664616)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(0.30413133, -0.56664616)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 7 of 16: axis (-0.406935, -0.389062, 0.826459) from dop32.axes:11, scaled by 1.20998 to (-0.49238378, -0.47075778, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.49238378, -0.47075778));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.49238378, -0.47075778));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.49238378, -0.47075778));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.49238378, -0.47075778));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.49238378, -0.47075778));
         float p = current.z + dot(current.xy, vec2(-0.49238378, -0.47075778));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.49238378, -0.47075778)));
+        float q0 = c0.z + dot(c0.xy, vec2(-0.49238378, -0.47075778)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(-0.49238378, -0.47075778)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(-0.49238378, -0.47075778)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(-0.49238378, -0.47075778)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(-0.49238378, -0.47075778)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 8 of 16: axis (-0.826708, -0.382923, -0.412219) from dop32.axes:12, scaled by -1.20962 to (1, 0.46319014, 0.4986271)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(0.46319014, 0.4986271));
-        float q1 = c1.x + dot(c1.yz, vec2(0.46319014, 0.4986271));
-        float q2 = c2.x + dot(c2.yz, vec2(0.46319014, 0.4986271));
-        float q3 = c3.x + dot(c3.yz, vec2(0.46319014, 0.4986271));
-        float q4 = c4.x + dot(c4.yz, vec2(0.46319014, 0.4986271));
         float p = current.x + dot(current.yz, vec2(0.46319014, 0.4986271));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.46319014, 0.4986271)));
+        float q0 = c0.x + dot(c0.yz, vec2(0.46319014, 0.4986271)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(0.46319014, 0.4986271)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(0.46319014, 0.4986271)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(0.46319014, 0.4986271)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(0.46319014, 0.4986271)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 9 of 16: axis (0.260942, -0.577482, 0.773578) from dop32.axes:13, scaled by 1.29269 to (0.33731827, -0.74650776, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.33731827, -0.74650776));
-        float q1 = c1.z + dot(c1.xy, vec2(0.33731827, -0.74650776));
-        float q2 = c2.z + dot(c2.xy, vec2(0.33731827, -0.74650776));
-        float q3 = c3.z + dot(c3.xy, vec2(0.33731827, -0.74650776));
-        float q4 = c4.z + dot(c4.xy, vec2(0.33731827, -0.74650776));
         float p = current.z + dot(current.xy, vec2(0.33731827, -0.74650776));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.33731827, -0.74650776)));
+        float q0 = c0.z + dot(c0.xy, vec2(0.33731827, -0.74650776)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(0.33731827, -0.74650776)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(0.33731827, -0.74650776)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(0.33731827, -0.74650776)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(0.33731827, -0.74650776)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 10 of 16: axis (0.254398, 0.637821, 0.726957) from dop32.axes:14, scaled by 1.3756 to (0.34994918, 0.8773848, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.34994918, 0.8773848));
-        float q1 = c1.z + dot(c1.xy, vec2(0.34994918, 0.8773848));
-        float q2 = c2.z + dot(c2.xy, vec2(0.34994918, 0.8773848));
-        float q3 = c3.z + dot(c3.xy, vec2(0.34994918, 0.8773848));
-        float q4 = c4.z + dot(c4.xy, vec2(0.34994918, 0.8773848));
         float p = current.z + dot(current.xy, vec2(0.34994918, 0.8773848));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.34994918, 0.8773848)));
+        float q0 = c0.z + dot(c0.xy, vec2(0.34994918, 0.8773848)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(0.34994918, 0.8773848)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(0.34994918, 0.8773848)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(0.34994918, 0.8773848)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(0.34994918, 0.8773848)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 11 of 16: axis (0.3109, -0.728083, -0.61093) from dop32.axes:15, scaled by -1.37347 to (-0.42701176, 1, 0.8390939)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.42701176, 0.8390939));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.42701176, 0.8390939));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.42701176, 0.8390939));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.42701176, 0.8390939));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.42701176, 0.8390939));
         float p = current.y + dot(current.xz, vec2(-0.42701176, 0.8390939));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.42701176, 0.8390939)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.42701176, 0.8390939)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.42701176, 0.8390939)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.42701176, 0.8390939)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.42701176, 0.8390939)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.42701176, 0.8390939)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 12 of 16: axis (0.798513, -0.556827, -0.228738) from dop32.axes:16, scaled by 1.25233 to (1, -0.69732994, -0.28645495)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.69732994, -0.28645495));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.69732994, -0.28645495));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.69732994, -0.28645495));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.69732994, -0.28645495));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.69732994, -0.28645495));
         float p = current.x + dot(current.yz, vec2(-0.69732994, -0.28645495));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.69732994, -0.28645495)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.69732994, -0.28645495)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.69732994, -0.28645495)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.69732994, -0.28645495)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.69732994, -0.28645495)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.69732994, -0.28645495)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 13 of 16: axis (0.673383, -0.163602, -0.720964) from dop32.axes:17, scaled by -1.38703 to (-0.93400365, 0.22692117, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.93400365, 0.22692117));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.93400365, 0.22692117));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.93400365, 0.22692117));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.93400365, 0.22692117));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.93400365, 0.22692117));
         float p = current.z + dot(current.xy, vec2(-0.93400365, 0.22692117));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.93400365, 0.22692117)));
+        float q0 = c0.z + dot(c0.xy, vec2(-0.93400365, 0.22692117)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(-0.93400365, 0.22692117)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(-0.93400365, 0.22692117)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(-0.93400365, 0.22692117)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(-0.93400365, 0.22692117)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 14 of 16: axis (-0.813922, 0.369658, -0.448201) from dop32.axes:18, scaled by -1.22862 to (1, -0.45416883, 0.55066824)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.45416883, 0.55066824));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.45416883, 0.55066824));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.45416883, 0.55066824));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.45416883, 0.55066824));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.45416883, 0.55066824));
         float p = current.x + dot(current.yz, vec2(-0.45416883, 0.55066824));
         float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.45416883, 0.55066824)));
+        float q0 = c0.x + dot(c0.yz, vec2(-0.45416883, 0.55066824)) - p;
+        float q1 = c1.x + dot(c1.yz, vec2(-0.45416883, 0.55066824)) - p;
+        float q2 = c2.x + dot(c2.yz, vec2(-0.45416883, 0.55066824)) - p;
+        float q3 = c3.x + dot(c3.yz, vec2(-0.45416883, 0.55066824)) - p;
+        float q4 = c4.x + dot(c4.yz, vec2(-0.45416883, 0.55066824)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 15 of 16: axis (0.47765, -0.853722, 0.207384) from dop32.axes:19, scaled by -1.17134 to (-0.5594913, 1, -0.24291748)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5594913, -0.24291748));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5594913, -0.24291748));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5594913, -0.24291748));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5594913, -0.24291748));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5594913, -0.24291748));
         float p = current.y + dot(current.xz, vec2(-0.5594913, -0.24291748));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5594913, -0.24291748)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.5594913, -0.24291748)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.5594913, -0.24291748)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.5594913, -0.24291748)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.5594913, -0.24291748)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.5594913, -0.24291748)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 16 of 16: axis (-0.554854, -0.04155, -0.83091) from dop32.axes:20, scaled by -1.2035 to (0.6677667, 0.050005417, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.6677667, 0.050005417));
-        float q1 = c1.z + dot(c1.xy, vec2(0.6677667, 0.050005417));
-        float q2 = c2.z + dot(c2.xy, vec2(0.6677667, 0.050005417));
-        float q3 = c3.z + dot(c3.xy, vec2(0.6677667, 0.050005417));
-        float q4 = c4.z + dot(c4.xy, vec2(0.6677667, 0.050005417));
         float p = current.z + dot(current.xy, vec2(0.6677667, 0.050005417));
         float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.6677667, 0.050005417)));
+        float q0 = c0.z + dot(c0.xy, vec2(0.6677667, 0.050005417)) - p;
+        float q1 = c1.z + dot(c1.xy, vec2(0.6677667, 0.050005417)) - p;
+        float q2 = c2.z + dot(c2.xy, vec2(0.6677667, 0.050005417)) - p;
+        float q3 = c3.z + dot(c3.xy, vec2(0.6677667, 0.050005417)) - p;
+        float q4 = c4.z + dot(c4.xy, vec2(0.6677667, 0.050005417)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

@@ -50,62 +50,62 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(0.5, 0.5));
-        float q1 = c1.y + dot(c1.xz, vec2(0.5, 0.5));
-        float q2 = c2.y + dot(c2.xz, vec2(0.5, 0.5));
-        float q3 = c3.y + dot(c3.xz, vec2(0.5, 0.5));
-        float q4 = c4.y + dot(c4.xz, vec2(0.5, 0.5));
-        float q5 = c5.y + dot(c5.xz, vec2(0.5, 0.5));
-        float q6 = c6.y + dot(c6.xz, vec2(0.5, 0.5));
-        float q7 = c7.y + dot(c7.xz, vec2(0.5, 0.5));
-        float q8 = c8.y + dot(c8.xz, vec2(0.5, 0.5));
         float p = current.y + dot(current.xz, vec2(0.5, 0.5));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.5, 0.5)));
+        float q0 = c0.y + dot(c0.xz, vec2(0.5, 0.5)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(0.5, 0.5)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(0.5, 0.5)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(0.5, 0.5)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(0.5, 0.5)) - p;
+        float q5 = c5.y + dot(c5.xz, vec2(0.5, 0.5)) - p;
+        float q6 = c6.y + dot(c6.xz, vec2(0.5, 0.5)) - p;
+        float q7 = c7.y + dot(c7.xz, vec2(0.5, 0.5)) - p;
+        float q8 = c8.y + dot(c8.xz, vec2(0.5, 0.5)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
     {
-        float q0 = c0.x - c0.z;
-        float q1 = c1.x - c1.z;
-        float q2 = c2.x - c2.z;
-        float q3 = c3.x - c3.z;
-        float q4 = c4.x - c4.z;
-        float q5 = c5.x - c5.z;
-        float q6 = c6.x - c6.z;
-        float q7 = c7.x - c7.z;
-        float q8 = c8.x - c8.z;
         float p = current.x - current.z;
         float inv_d = 1.0 / (dir.x - dir.z);
+        float q0 = c0.x - c0.z - p;
+        float q1 = c1.x - c1.z - p;
+        float q2 = c2.x - c2.z - p;
+        float q3 = c3.x - c3.z - p;
+        float q4 = c4.x - c4.z - p;
+        float q5 = c5.x - c5.z - p;
+        float q6 = c6.x - c6.z - p;
+        float q7 = c7.x - c7.z - p;
+        float q8 = c8.x - c8.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5, -0.5));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5, -0.5));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5, -0.5));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5));
-        float q5 = c5.y + dot(c5.xz, vec2(-0.5, -0.5));
-        float q6 = c6.y + dot(c6.xz, vec2(-0.5, -0.5));
-        float q7 = c7.y + dot(c7.xz, vec2(-0.5, -0.5));
-        float q8 = c8.y + dot(c8.xz, vec2(-0.5, -0.5));
         float p = current.y + dot(current.xz, vec2(-0.5, -0.5));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5, -0.5)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.5, -0.5)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.5, -0.5)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.5, -0.5)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5)) - p;
+        float q5 = c5.y + dot(c5.xz, vec2(-0.5, -0.5)) - p;
+        float q6 = c6.y + dot(c6.xz, vec2(-0.5, -0.5)) - p;
+        float q7 = c7.y + dot(c7.xz, vec2(-0.5, -0.5)) - p;
+        float q8 = c8.y + dot(c8.xz, vec2(-0.5, -0.5)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

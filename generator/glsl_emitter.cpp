@@ -75,43 +75,46 @@ std::string reduce_tree(std::string_view op, int first, int last) {
     return fmt::format("{}({}, {})", op, reduce_tree(op, first, middle), reduce_tree(op, middle, last));
 }
 
+std::string reciprocal(const std::string& expression) {
+    bool compound = expression.find(' ') != std::string::npos;
+    return compound ? fmt::format("1.0 / ({})", expression) : fmt::format("1.0 / {}", expression);
+}
+
 std::string sum(int count, std::string_view term_format) {
     std::string s;
     for (int n = 0; n < count; ++n) s += (n ? " + " : "") + fmt::format(fmt::runtime(term_format), n);
     return s;
 }
 
-// Statements shared by both modes: the neighbors' projections q0..qN-1, the current color's p and
-// the reciprocal of the ray direction's projection.
-void write_projections(std::string& out, const ScaledAxis& axis, int count) {
-    for (int n = 0; n < count; ++n)
-        out += fmt::format("        float q{} = {};\n", n, project(fmt::format("c{}", n), axis.coefficients));
-    out += fmt::format("        float p = {};\n", project("current", axis.coefficients));
-    std::string d = project("dir", axis.coefficients);
-    bool compound = d.find(' ') != std::string::npos;
-    out += fmt::format("        float inv_d = 1.0 / {}{}{};\n", compound ? "(" : "", d, compound ? ")" : "");
-}
-
 // Clip: the slab spans the projections' min..max, dilated by the padding. The ray starts inside,
 // so only its exit counts: the larger of the two plane crossings. A direction parallel to the slab
 // gives inv_d = +-inf and crossings -inf and +inf, so the slab does not limit t.
 void write_clip_slab(std::string& out, const ScaledAxis& axis, int count) {
-    write_projections(out, axis, count);
+    for (int n = 0; n < count; ++n)
+        out += fmt::format("        float q{} = {};\n", n, project(fmt::format("c{}", n), axis.coefficients));
+    out += fmt::format("        float p = {};\n", project("current", axis.coefficients));
+    out += fmt::format("        float inv_d = {};\n", reciprocal(project("dir", axis.coefficients)));
     out += fmt::format("        float lo = {} - {};\n", reduce_tree("min", 0, count), float_literal(axis.padding));
     out += fmt::format("        float hi = {} + {};\n", reduce_tree("max", 0, count), float_literal(axis.padding));
     out += "        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));\n";
 }
 
 // Variance clip (Salvi 2016): the slab spans mean +- gamma * sigma of the projections, widened to
-// include the current color so the ray still starts inside.
+// include the current color so the ray still starts inside. The moments are taken of the
+// projections minus p: a shift to a value inside the neighborhood keeps float32 from cancelling
+// the small variance of bright, flat areas away (the supplement's E[q^2] - E[q]^2 gives sigma of
+// about 3e-4 |q| there, or a negative variance and NaN), and leaves the slab relative to p.
 void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count) {
-    write_projections(out, axis, count);
+    out += fmt::format("        float p = {};\n", project("current", axis.coefficients));
+    out += fmt::format("        float inv_d = {};\n", reciprocal(project("dir", axis.coefficients)));
+    for (int n = 0; n < count; ++n)
+        out += fmt::format("        float q{} = {} - p;\n", n, project(fmt::format("c{}", n), axis.coefficients));
     out += fmt::format("        float mean = ({}) * (1.0 / {}.0);\n", sum(count, "q{}"), count);
-    out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", sum(count, "q{0} * q{0}"),
-                       count);
-    out += "        float lo = min(mean - gamma * sigma, p);\n";
-    out += "        float hi = max(mean + gamma * sigma, p);\n";
-    out += "        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));\n";
+    out += fmt::format("        float sigma = sqrt(max(({}) * (1.0 / {}.0) - mean * mean, 0.0));\n",
+                       sum(count, "q{0} * q{0}"), count);
+    out += "        float lo = min(mean - gamma * sigma, 0.0);\n";
+    out += "        float hi = max(mean + gamma * sigma, 0.0);\n";
+    out += "        t = min(t, max(lo * inv_d, hi * inv_d));\n";
 }
 
 std::string origin_file_name(const AxisSet& set) { return std::filesystem::path(set.origin).filename().string(); }
@@ -122,8 +125,13 @@ std::string neighborhood_description(Neighborhood n) {
 }
 
 std::string mode_description(Mode m) {
-    return m == Mode::clip ? "k-DOP clip (Ikkala et al. 2024): slabs span the neighborhood's min..max"
-                           : "k-DOP variance clip (Ikkala et al. 2024, after Salvi 2016): slabs span mean +- gamma * sigma";
+    switch (m) {
+    case Mode::clip: return "k-DOP clip (Ikkala et al. 2024): slabs span the neighborhood's min..max";
+    case Mode::varclip: return "k-DOP variance clip (Ikkala et al. 2024, after Salvi 2016): slabs span mean +- gamma * sigma";
+    case Mode::gather: return "gather only: reads the neighborhood and history like a clip, writes their sum";
+    case Mode::copy: return "copy: writes the history as it is";
+    }
+    return "";
 }
 
 // Replaces every @KEY@ in `text`; a placeholder without a value is an error naming its line.
@@ -172,19 +180,17 @@ std::string glsl_function_name(const VariantSpec& spec) {
 std::string regenerate_command(const VariantSpec& spec) {
     // Built-in sets are named; a user's set is its file (by name only, so the text does not depend
     // on where the file sat when it was generated).
+    if (spec.mode == Mode::gather || spec.mode == Mode::copy) return "kdop gen --baselines --out DIR";
     bool builtin = spec.set.origin.starts_with("shader_templates/axis_sets/");
-    return fmt::format("kdop gen --sets {} --modes {} --neighborhoods {} --out DIR",
+    return fmt::format("kdop gen --sets {} --modes {} --neighborhoods {}{} --out DIR",
                        builtin ? spec.set.name : origin_file_name(spec.set), to_string(spec.mode),
-                       to_string(spec.neighborhood));
+                       to_string(spec.neighborhood), spec.form == Form::loop ? " --forms loop" : "");
 }
 
-std::string emit_function(const VariantSpec& spec) {
-    const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
-    const int axes = static_cast<int>(spec.set.axes.size());
-    const std::string name = glsl_function_name(spec);
-    const std::string guard = upper_identifier(name) + "_GLSL";
-    const bool varclip = spec.mode == Mode::varclip;
+namespace {
 
+std::string function_header(const VariantSpec& spec) {
+    const int axes = static_cast<int>(spec.set.axes.size());
     std::string out;
     out += fmt::format("// {}: {}.\n", variant_name(spec), mode_description(spec.mode));
     out += fmt::format("// Generated by kdop {} (generator/glsl_emitter.cpp) from axis set '{}' ({}):\n", KDOP_VERSION,
@@ -198,18 +204,29 @@ std::string emit_function(const VariantSpec& spec) {
     out += fmt::format("// that k-DOP; normally it is the pixel's own color, neighborhood[{}].\n",
                        neighborhood_center(spec.neighborhood));
     out += fmt::format("// neighborhood[]: {}.\n", neighborhood_description(spec.neighborhood));
-    if (varclip) out += "// gamma: slab half-width in standard deviations (1 is the usual choice).\n";
-    out += "// Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a\n";
-    out += "// unit component costs no multiply and a zero component nothing.\n";
-    if (!varclip) out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper.\n";
-    out += fmt::format("#ifndef {}\n#define {}\n\n", guard, guard);
+    if (spec.mode == Mode::varclip) out += "// gamma: slab half-width in standard deviations (1 is the usual choice).\n";
+    if (spec.form == Form::loop) {
+        out += "// Written in the supplement's loop form, as a baseline for tests and benchmarks; it needs\n";
+        out += "// GL_EXT_control_flow_attributes for [[unroll]].\n";
+    } else {
+        out += "// Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a\n";
+        out += "// unit component costs no multiply and a zero component nothing.\n";
+    }
+    if (spec.mode == Mode::clip) out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper.\n";
+    return out;
+}
 
-    out += fmt::format("vec3 {}(vec3 current, vec3 history, {}vec3 neighborhood[{}])\n{{\n", name,
-                       varclip ? "float gamma, " : "", count);
+std::string signature(const VariantSpec& spec) {
+    return fmt::format("vec3 {}(vec3 current, vec3 history, {}vec3 neighborhood[{}])", glsl_function_name(spec),
+                       spec.mode == Mode::varclip ? "float gamma, " : "", neighborhood_offsets(spec.neighborhood).size());
+}
+
+void write_unrolled_body(std::string& out, const VariantSpec& spec) {
+    const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
+    const int axes = static_cast<int>(spec.set.axes.size());
     for (int n = 0; n < count; ++n) out += fmt::format("    vec3 c{} = neighborhood[{}];\n", n, n);
     out += "    vec3 dir = history - current;\n";
     out += "    float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n";
-
     for (int a = 0; a < axes; ++a) {
         const Axis& axis = spec.set.axes[a];
         ScaledAxis scaled = scale_axis(axis.direction);
@@ -217,15 +234,95 @@ std::string emit_function(const VariantSpec& spec) {
                            origin_file_name(spec.set), axis.line);
         if (scaled.factor != 1.0)
             out += fmt::format(", scaled by {:.6g} to {}", scaled.factor, vec3_text(scaled.coefficients));
-        out += "\n";
-        out += "    {\n";
-        if (varclip)
+        out += "\n    {\n";
+        if (spec.mode == Mode::varclip)
             write_varclip_slab(out, scaled, count);
         else
             write_clip_slab(out, scaled, count);
         out += "    }\n";
     }
-    out += "\n    return current + max(t, 0.0) * dir;\n}\n\n";
+    out += "\n    return current + max(t, 0.0) * dir;\n";
+}
+
+// The supplement's listing: axes as written in the file, in a constant array; loops over axes
+// and neighbors; entry and exit bounds. Same numerics as the unrolled form (the supplement's
+// epsilon intent, shifted and clamped variance) so both compute the same function.
+void write_loop_body(std::string& out, const VariantSpec& spec) {
+    const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
+    const int axes = static_cast<int>(spec.set.axes.size());
+    out += fmt::format("    const vec3 axes[{}] = vec3[](\n", axes);
+    for (int a = 0; a < axes; ++a) {
+        const glm::vec3 v(spec.set.axes[a].direction);
+        out += fmt::format("        vec3({}, {}, {}){}\n", float_literal(v.x), float_literal(v.y), float_literal(v.z),
+                           a + 1 < axes ? "," : "");
+    }
+    out += "    );\n";
+    if (spec.mode == Mode::clip) out += "    const float epsilon = 1e-5;\n";
+    out += "    vec3 dir = history - current;\n";
+    out += "    float near = -1e9, far = 1e9;\n";
+    out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
+    out += "        vec3 axis = axes[a];\n";
+    out += "        float proj_pos = dot(current, axis);\n";
+    out += "        float inv_dir = 1.0 / dot(dir, axis);\n";
+    if (spec.mode == Mode::clip) {
+        out += "        vec2 extent = vec2(1e9, -1e9);\n";
+        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+        out += "            float t = dot(neighborhood[n], axis);\n";
+        out += "            extent.x = min(t, extent.x);\n";
+        out += "            extent.y = max(t, extent.y);\n";
+        out += "        }\n";
+        out += "        extent += vec2(-epsilon, epsilon) * length(axis);\n";
+        out += "        float t0 = (extent.x - proj_pos) * inv_dir;\n";
+        out += "        float t1 = (extent.y - proj_pos) * inv_dir;\n";
+    } else {
+        out += "        vec2 moments = vec2(0.0);\n";
+        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+        out += "            float t = dot(neighborhood[n], axis) - proj_pos;\n";
+        out += "            moments += vec2(t, t * t);\n";
+        out += "        }\n";
+        out += fmt::format("        moments /= vec2({}.0);\n", count);
+        out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
+        out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
+        out += "        float t0 = extent.x * inv_dir;\n";
+        out += "        float t1 = extent.y * inv_dir;\n";
+    }
+    out += "        near = max(near, min(t0, t1));\n";
+    out += "        far = min(far, max(t0, t1));\n";
+    out += "    }\n";
+    out += "    if (near <= far && (near > 0.0 || far > 0.0))\n    {\n";
+    out += "        float t = clamp(near > 0.0 ? near : far, 0.0, 1.0);\n";
+    out += "        return current + t * dir;\n";
+    out += "    }\n";
+    out += "    return current;\n";
+}
+
+std::string emit_baseline_function(const VariantSpec& spec) {
+    const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
+    std::string out = fmt::format("// {}: {}.\n", variant_name(spec), mode_description(spec.mode));
+    out += fmt::format("// Generated by kdop {} (generator/glsl_emitter.cpp). A cost baseline, not a clip.\n", KDOP_VERSION);
+    out += fmt::format("{}\n{{\n", signature(spec));
+    if (spec.mode == Mode::copy) {
+        out += "    return history;\n";
+    } else {
+        out += "    // Every input is used once, so no load is optimized away.\n";
+        out += fmt::format("    return history + {};\n", sum(count, "neighborhood[{}]"));
+    }
+    return out + "}\n";
+}
+
+} // namespace
+
+std::string emit_function(const VariantSpec& spec) {
+    if (spec.mode == Mode::gather || spec.mode == Mode::copy) return emit_baseline_function(spec);
+    const std::string guard = upper_identifier(glsl_function_name(spec)) + "_GLSL";
+    std::string out = function_header(spec);
+    out += fmt::format("#ifndef {}\n#define {}\n\n", guard, guard);
+    out += signature(spec) + "\n{\n";
+    if (spec.form == Form::loop)
+        write_loop_body(out, spec);
+    else
+        write_unrolled_body(out, spec);
+    out += "}\n\n";
     out += fmt::format("#endif // {}\n", guard);
     return out;
 }
@@ -240,8 +337,11 @@ Result<std::string> emit_compute_shader(const VariantSpec& spec, std::string_vie
     const bool varclip = spec.mode == Mode::varclip;
     std::map<std::string, std::string> values{
         {"VARIANT", variant_name(spec)},
-        {"GENERATED_BY", fmt::format("Generated by kdop {} from {} and axis set '{}' ({}).", KDOP_VERSION,
-                                     template_origin, spec.set.name, origin_file_name(spec.set))},
+        {"GENERATED_BY", spec.set.name.empty()
+                             ? fmt::format("Generated by kdop {} from {}.", KDOP_VERSION, template_origin)
+                             : fmt::format("Generated by kdop {} from {} and axis set '{}' ({}).", KDOP_VERSION,
+                                           template_origin, spec.set.name, origin_file_name(spec.set))},
+        {"EXTENSIONS", spec.form == Form::loop ? "#extension GL_EXT_control_flow_attributes : require\n" : ""},
         {"REGENERATE", regenerate_command(spec)},
         {"PARAMETERS", varclip ? "layout(push_constant) uniform Parameters\n{\n    float gamma;\n} parameters;\n"
                                : "// Clip variants take no parameters.\n"},

@@ -12,7 +12,8 @@
 namespace kdop {
 
 struct SelectionOptions {
-    std::vector<std::string> sets, modes, neighborhoods;
+    std::vector<std::string> sets, modes, neighborhoods, forms;
+    bool baselines = false;
 
     void add_to(CLI::App& app) {
         app.add_option("--sets", sets,
@@ -20,9 +21,17 @@ struct SelectionOptions {
                        ".axes files [default: every built-in set]");
         app.add_option("--modes", modes, "clip and/or varclip [default: both]");
         app.add_option("--neighborhoods", neighborhoods, "n9 (3x3) and/or n5 (plus) [default: both]");
+        app.add_option("--forms", forms,
+                       "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]");
+        app.add_flag("--baselines", baselines, "Also the cost baselines gather-n9, gather-n5 and copy");
     }
 
-    Result<std::vector<VariantSpec>> select() const { return select_variants(sets, modes, neighborhoods); }
+    Result<std::vector<VariantSpec>> select() const {
+        auto specs = select_variants(sets, modes, neighborhoods, forms);
+        if (specs && baselines)
+            for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
+        return specs;
+    }
 };
 
 } // namespace kdop

@@ -44,7 +44,20 @@ Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::
 } // namespace
 
 std::string variant_name(const VariantSpec& spec) {
-    return fmt::format("{}-{}-{}", spec.set.name, to_string(spec.mode), to_string(spec.neighborhood));
+    if (spec.mode == Mode::copy) return "copy";
+    if (spec.mode == Mode::gather) return fmt::format("gather-{}", to_string(spec.neighborhood));
+    return fmt::format("{}-{}-{}{}", spec.set.name, to_string(spec.mode), to_string(spec.neighborhood),
+                       spec.form == Form::loop ? "-loop" : "");
+}
+
+std::vector<VariantSpec> baseline_kernels() {
+    return {{{}, Mode::gather, Neighborhood::n9}, {{}, Mode::gather, Neighborhood::n5}, {{}, Mode::copy, Neighborhood::n9}};
+}
+
+std::optional<Form> parse_form(std::string_view s) {
+    for (Form f : {Form::unrolled, Form::loop})
+        if (s == to_string(f)) return f;
+    return std::nullopt;
 }
 
 std::span<const glm::ivec2> neighborhood_offsets(Neighborhood n) {
@@ -87,7 +100,8 @@ Result<AxisSet> resolve_axis_set(std::string_view name_or_path) {
 
 Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& set_args,
                                                  const std::vector<std::string>& mode_args,
-                                                 const std::vector<std::string>& neighborhood_args) {
+                                                 const std::vector<std::string>& neighborhood_args,
+                                                 const std::vector<std::string>& form_args) {
     std::vector<std::string> set_names(set_args.begin(), set_args.end());
     if (set_names.empty()) set_names.assign(kDefaultSets, kDefaultSets + std::size(kDefaultSets));
 
@@ -109,11 +123,15 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
     auto neighborhoods = parse_choices<Neighborhood>(neighborhood_args, "--neighborhoods", "neighborhood", "n9 or n5",
                                                      parse_neighborhood, kAllNeighborhoods);
     if (!neighborhoods) return std::unexpected(neighborhoods.error());
+    constexpr Form kDefaultForms[] = {Form::unrolled};
+    auto forms = parse_choices<Form>(form_args, "--forms", "form", "unrolled or loop", parse_form, kDefaultForms);
+    if (!forms) return std::unexpected(forms.error());
 
     std::vector<VariantSpec> specs;
     for (const AxisSet& set : sets)
         for (Mode mode : *modes)
-            for (Neighborhood n : *neighborhoods) specs.push_back({set, mode, n});
+            for (Neighborhood n : *neighborhoods)
+                for (Form form : *forms) specs.push_back({set, mode, n, form});
     return specs;
 }
 

@@ -18,12 +18,14 @@
 namespace kdop {
 
 struct VariantSpec {
-    AxisSet set;
+    AxisSet set; // empty for the gather and copy baselines
     Mode mode;
     Neighborhood neighborhood;
+    Form form = Form::unrolled;
 };
 
-// "<set>-<mode>-<neighborhood>", e.g. "dop16-grass-varclip-n5".
+// "<set>-<mode>-<neighborhood>" ("dop16-grass-varclip-n5"), with "-loop" for the loop form;
+// "gather-<neighborhood>" and "copy" for the baselines.
 std::string variant_name(const VariantSpec& spec);
 
 // Texel offsets of the neighborhood in the order the generated function receives them.
@@ -36,16 +38,23 @@ std::optional<Neighborhood> parse_neighborhood(std::string_view s);
 
 // The built-in sets, in the order `kdop list` shows them.
 std::span<const std::string_view> default_set_names();
-inline constexpr Mode kAllModes[] = {Mode::clip, Mode::varclip};
+inline constexpr Mode kAllModes[] = {Mode::clip, Mode::varclip}; // the clips; see baseline_kernels()
 inline constexpr Neighborhood kAllNeighborhoods[] = {Neighborhood::n9, Neighborhood::n5};
 
 // A built-in set by name, or else an axis-set file by path. Errors name the argument.
 Result<AxisSet> resolve_axis_set(std::string_view name_or_path);
 
-// The cross product sets x modes x neighborhoods, in that nesting order. Empty lists mean "all
-// defaults". Unknown names, repeated entries and two different sets with one name are refused.
+std::optional<Form> parse_form(std::string_view s);
+
+// The cross product sets x modes x neighborhoods x forms, in that nesting order. Empty lists mean
+// "all defaults" (for forms: unrolled only). Unknown names, repeated entries and two different
+// sets with one name are refused.
 Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& sets,
                                                  const std::vector<std::string>& modes,
-                                                 const std::vector<std::string>& neighborhoods);
+                                                 const std::vector<std::string>& neighborhoods,
+                                                 const std::vector<std::string>& forms = {});
+
+// The cost baselines: gather-n9, gather-n5 and copy.
+std::vector<VariantSpec> baseline_kernels();
 
 } // namespace kdop

@@ -25,82 +25,82 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
 
     // Slab 1 of 5: axis (1, 0, 0) from tiny.axes:4
     {
-        float q0 = c0.x;
-        float q1 = c1.x;
-        float q2 = c2.x;
-        float q3 = c3.x;
-        float q4 = c4.x;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
+        float q0 = c0.x - p;
+        float q1 = c1.x - p;
+        float q2 = c2.x - p;
+        float q3 = c3.x - p;
+        float q4 = c4.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 2 of 5: axis (0, -2, 0) from tiny.axes:5, scaled by -0.5 to (0, 1, 0)
     {
-        float q0 = c0.y;
-        float q1 = c1.y;
-        float q2 = c2.y;
-        float q3 = c3.y;
-        float q4 = c4.y;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
+        float q0 = c0.y - p;
+        float q1 = c1.y - p;
+        float q2 = c2.y - p;
+        float q3 = c3.y - p;
+        float q4 = c4.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 3 of 5: axis (0.5, 0, -0.5) from tiny.axes:6, scaled by 2 to (1, 0, -1)
     {
-        float q0 = c0.x - c0.z;
-        float q1 = c1.x - c1.z;
-        float q2 = c2.x - c2.z;
-        float q3 = c3.x - c3.z;
-        float q4 = c4.x - c4.z;
         float p = current.x - current.z;
         float inv_d = 1.0 / (dir.x - dir.z);
+        float q0 = c0.x - c0.z - p;
+        float q1 = c1.x - c1.z - p;
+        float q2 = c2.x - c2.z - p;
+        float q3 = c3.x - c3.z - p;
+        float q4 = c4.x - c4.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 4 of 5: axis (-0.25, 0.5, -0.25) from tiny.axes:7, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5, -0.5));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5, -0.5));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5, -0.5));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5));
         float p = current.y + dot(current.xz, vec2(-0.5, -0.5));
         float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5, -0.5)));
+        float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5)) - p;
+        float q1 = c1.y + dot(c1.xz, vec2(-0.5, -0.5)) - p;
+        float q2 = c2.y + dot(c2.xz, vec2(-0.5, -0.5)) - p;
+        float q3 = c3.y + dot(c3.xz, vec2(-0.5, -0.5)) - p;
+        float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     // Slab 5 of 5: axis (0, 0.6, -0.8) from tiny.axes:8, scaled by -1.25 to (0, -0.75, 1)
     {
-        float q0 = c0.z + c0.y * -0.75;
-        float q1 = c1.z + c1.y * -0.75;
-        float q2 = c2.z + c2.y * -0.75;
-        float q3 = c3.z + c3.y * -0.75;
-        float q4 = c4.z + c4.y * -0.75;
         float p = current.z + current.y * -0.75;
         float inv_d = 1.0 / (dir.z + dir.y * -0.75);
+        float q0 = c0.z + c0.y * -0.75 - p;
+        float q1 = c1.z + c1.y * -0.75 - p;
+        float q2 = c2.z + c2.y * -0.75 - p;
+        float q3 = c3.z + c3.y * -0.75 - p;
+        float q4 = c4.z + c4.y * -0.75 - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean);
-        float lo = min(mean - gamma * sigma, p);
-        float hi = max(mean + gamma * sigma, p);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
+        float lo = min(mean - gamma * sigma, 0.0);
+        float hi = max(mean + gamma * sigma, 0.0);
+        t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
     return current + max(t, 0.0) * dir;

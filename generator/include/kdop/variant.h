@@ -17,6 +17,17 @@ namespace kdop {
 enum class Mode : std::uint8_t {
     clip,    // slabs span the neighborhood's min..max (the paper's k-DOP clip)
     varclip, // slabs span mean +- gamma * sigma (variance clip; gamma is a push constant)
+    // Cost baselines, not clips (no axis set): `gather` reads the neighborhood and history as a
+    // clip variant does and writes their sum; `copy` writes the history as it is.
+    gather,
+    copy,
+};
+
+// How a clip is written. Both compute the same function; `loop` is the supplement's form (axes in
+// a constant array, loops over axes and neighbors), kept as a baseline for tests and benchmarks.
+enum class Form : std::uint8_t {
+    unrolled,
+    loop,
 };
 
 enum class Neighborhood : std::uint8_t {
@@ -45,10 +56,11 @@ struct PushConstantMember {
 };
 
 struct Variant {
-    const char* name;     // "<set>-<mode>-<neighborhood>", e.g. "dop32-clip-n9"
-    const char* axis_set; // e.g. "dop32"
+    const char* name;     // "<set>-<mode>-<neighborhood>[-loop]", e.g. "dop32-clip-n9"; "gather-n9"; "copy"
+    const char* axis_set; // e.g. "dop32"; "" for the gather and copy baselines
     Mode mode;
     Neighborhood neighborhood;
+    Form form;
     std::uint32_t axis_count; // k / 2
 
     const std::uint32_t* spirv;     // optimized, validated SPIR-V words (shared by identical variants)
@@ -79,7 +91,16 @@ struct VariantList {
     }
 };
 
-inline const char* to_string(Mode mode) { return mode == Mode::clip ? "clip" : "varclip"; }
+inline const char* to_string(Mode mode) {
+    switch (mode) {
+    case Mode::clip: return "clip";
+    case Mode::varclip: return "varclip";
+    case Mode::gather: return "gather";
+    case Mode::copy: return "copy";
+    }
+    return "?";
+}
+inline const char* to_string(Form form) { return form == Form::unrolled ? "unrolled" : "loop"; }
 inline const char* to_string(Neighborhood n) { return n == Neighborhood::n9 ? "n9" : "n5"; }
 
 } // namespace kdop
