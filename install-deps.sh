@@ -6,10 +6,13 @@ set -eu
 # glslang-tools: Debian 12's glslang CMake package refers to /usr/bin/glslangValidator, so
 # find_package(glslang) fails without it even though kdop uses glslang only as a library.
 packages="
-  build-essential cmake ninja-build
+  build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev
   libgtest-dev
+  colobot-common-textures
 "
 
 missing=""

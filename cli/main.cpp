@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
         {"list", kdop::cli::add_list_command(app)},
         {"gen", kdop::cli::add_gen_command(app)},
         {"show", kdop::cli::add_show_command(app)},
+        {"run", kdop::cli::add_run_command(app)},
+        {"textures", kdop::cli::add_textures_command(app)},
     };
     CLI11_PARSE(app, argc, argv);
     for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();

@@ -27,7 +27,7 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_AABB_CLIP_N9_GLSL
 #define KDOP_AABB_CLIP_N9_GLSL
 

@@ -31,6 +31,7 @@ layout(push_constant) uniform Parameters
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_AABB_VARCLIP_N9_GLSL
 #define KDOP_AABB_VARCLIP_N9_GLSL
 
@@ -63,8 +64,8 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q8 = c8.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -83,8 +84,8 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q8 = c8.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -103,8 +104,8 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q8 = c8.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 

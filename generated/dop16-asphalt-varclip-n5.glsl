@@ -10,6 +10,7 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_DOP16_ASPHALT_VARCLIP_N5_GLSL
 #define KDOP_DOP16_ASPHALT_VARCLIP_N5_GLSL
 
@@ -34,8 +35,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.x + dot(c4.yz, vec2(-0.054975748, 0.051646315)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.0028408e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.0028408e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -50,8 +51,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.y + dot(c4.xz, vec2(-0.060030535, -0.9407404)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.37426205e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.37426205e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -66,8 +67,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.y + dot(c4.xz, vec2(-0.5586211, -0.46731988)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2371117e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2371117e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -82,8 +83,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.z + dot(c4.xy, vec2(0.0038082886, -0.7812575)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2690067e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2690067e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -98,8 +99,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.z + dot(c4.xy, vec2(-0.13157672, 0.06380852)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.0106354e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.0106354e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -114,8 +115,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.x + dot(c4.yz, vec2(-0.7537761, -0.3105077)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2901913e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2901913e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -130,8 +131,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.z + dot(c4.xy, vec2(-0.7475091, -0.21752696)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2673152e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2673152e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -146,8 +147,8 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q4 = c4.x + dot(c4.yz, vec2(-0.48589435, -0.06287124)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.1135736e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.1135736e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 

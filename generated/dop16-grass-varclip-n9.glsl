@@ -10,6 +10,7 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_DOP16_GRASS_VARCLIP_N9_GLSL
 #define KDOP_DOP16_GRASS_VARCLIP_N9_GLSL
 
@@ -42,8 +43,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.y + dot(c8.xz, vec2(-0.9091763, -0.22823879)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.3706547e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.3706547e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -62,8 +63,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.z + dot(c8.xy, vec2(-0.70663214, 0.10394432)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2288749e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2288749e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -82,8 +83,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.z + dot(c8.xy, vec2(0.18454187, -0.57063365)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.1660525e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.1660525e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -102,8 +103,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.z + dot(c8.xy, vec2(-0.2652209, 0.040031724)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.0353476e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.0353476e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -122,8 +123,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.x + dot(c8.yz, vec2(-0.6816266, -0.9873084)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.5618556e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.5618556e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -142,8 +143,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.x + dot(c8.yz, vec2(-0.5726, -0.42632)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2286658e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2286658e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -162,8 +163,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.x + dot(c8.yz, vec2(0.25867906, 0.61571217)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.20250415e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.20250415e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -182,8 +183,8 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q8 = c8.y + dot(c8.xz, vec2(-0.6007664, -0.39173308)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.23059945e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.23059945e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 

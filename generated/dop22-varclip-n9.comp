@@ -31,6 +31,7 @@ layout(push_constant) uniform Parameters
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_DOP22_VARCLIP_N9_GLSL
 #define KDOP_DOP22_VARCLIP_N9_GLSL
 
@@ -63,8 +64,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -83,8 +84,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -103,8 +104,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -123,8 +124,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.z + c8.y * -0.8882671 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.3375419e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.3375419e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -143,8 +144,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.x + dot(c8.yz, vec2(0.9994562, -0.5668717)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.5232387e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.5232387e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -163,8 +164,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.z + c8.x * 0.8886194 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.3377759e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.3377759e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -183,8 +184,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.z + c8.x * -0.8896277 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.3384459e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.3384459e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -203,8 +204,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.z + c8.y * 0.8887044 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.3378324e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.3378324e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -223,8 +224,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.y + dot(c8.xz, vec2(-0.9996624, 0.55936176)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.5205955e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.5205955e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -243,8 +244,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.y + dot(c8.xz, vec2(0.99789804, 0.56051946)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.5198627e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.5198627e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -263,8 +264,8 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q8 = c8.x + dot(c8.yz, vec2(-0.9982262, 0.5671452)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.5225339e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.5225339e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 

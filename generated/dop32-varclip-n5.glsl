@@ -10,6 +10,7 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_DOP32_VARCLIP_N5_GLSL
 #define KDOP_DOP32_VARCLIP_N5_GLSL
 
@@ -34,8 +35,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -50,8 +51,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -66,8 +67,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -82,8 +83,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.x + dot(c4.yz, vec2(0.5569291, -0.42041335)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2193923e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2193923e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -98,8 +99,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.y + dot(c4.xz, vec2(0.65158427, 0.17269012)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2059784e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2059784e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -114,8 +115,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.y + dot(c4.xz, vec2(0.30413133, -0.56664616)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.1889422e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.1889422e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -130,8 +131,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.z + dot(c4.xy, vec2(-0.49238378, -0.47075778)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2099813e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2099813e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -146,8 +147,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.x + dot(c4.yz, vec2(0.46319014, 0.4986271)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2096173e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2096173e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -162,8 +163,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.z + dot(c4.xy, vec2(0.33731827, -0.74650776)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2926939e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2926939e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -178,8 +179,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.z + dot(c4.xy, vec2(0.34994918, 0.8773848)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.3755975e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.3755975e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -194,8 +195,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.y + dot(c4.xz, vec2(-0.42701176, 0.8390939)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.37346915e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.37346915e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -210,8 +211,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.x + dot(c4.yz, vec2(-0.69732994, -0.28645495)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.252328e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.252328e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -226,8 +227,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.z + dot(c4.xy, vec2(-0.93400365, 0.22692117)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.38703135e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.38703135e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -242,8 +243,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.x + dot(c4.yz, vec2(-0.45416883, 0.55066824)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2286191e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2286191e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -258,8 +259,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.y + dot(c4.xz, vec2(-0.5594913, -0.24291748)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.1713409e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.1713409e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -274,8 +275,8 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q4 = c4.z + dot(c4.xy, vec2(0.6677667, 0.050005417)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.2035002e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.2035002e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 

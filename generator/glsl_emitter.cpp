@@ -104,6 +104,8 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count) {
 // projections minus p: a shift to a value inside the neighborhood keeps float32 from cancelling
 // the small variance of bright, flat areas away (the supplement's E[q^2] - E[q]^2 gives sigma of
 // about 3e-4 |q| there, or a negative variance and NaN), and leaves the slab relative to p.
+// The slab is dilated like a clip slab; relative to p the dilation never rounds away, so lo < 0 < hi
+// and a ray parallel to a flat channel (inv_d infinite) gives -inf and +inf, never 0 x inf = NaN.
 void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count) {
     out += fmt::format("        float p = {};\n", project("current", axis.coefficients));
     out += fmt::format("        float inv_d = {};\n", reciprocal(project("dir", axis.coefficients)));
@@ -112,8 +114,8 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count) {
     out += fmt::format("        float mean = ({}) * (1.0 / {}.0);\n", sum(count, "q{}"), count);
     out += fmt::format("        float sigma = sqrt(max(({}) * (1.0 / {}.0) - mean * mean, 0.0));\n",
                        sum(count, "q{0} * q{0}"), count);
-    out += "        float lo = min(mean - gamma * sigma, 0.0);\n";
-    out += "        float hi = max(mean + gamma * sigma, 0.0);\n";
+    out += fmt::format("        float lo = min(mean - gamma * sigma, 0.0) - {};\n", float_literal(axis.padding));
+    out += fmt::format("        float hi = max(mean + gamma * sigma, 0.0) + {};\n", float_literal(axis.padding));
     out += "        t = min(t, max(lo * inv_d, hi * inv_d));\n";
 }
 
@@ -212,7 +214,7 @@ std::string function_header(const VariantSpec& spec) {
         out += "// Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a\n";
         out += "// unit component costs no multiply and a zero component nothing.\n";
     }
-    if (spec.mode == Mode::clip) out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper.\n";
+    out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.\n";
     return out;
 }
 
@@ -257,7 +259,7 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
                            a + 1 < axes ? "," : "");
     }
     out += "    );\n";
-    if (spec.mode == Mode::clip) out += "    const float epsilon = 1e-5;\n";
+    out += "    const float epsilon = 1e-5;\n";
     out += "    vec3 dir = history - current;\n";
     out += "    float near = -1e9, far = 1e9;\n";
     out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
@@ -283,6 +285,7 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
         out += fmt::format("        moments /= vec2({}.0);\n", count);
         out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
         out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
+        out += "        extent += vec2(-epsilon, epsilon) * length(axis);\n";
         out += "        float t0 = extent.x * inv_dir;\n";
         out += "        float t1 = extent.y * inv_dir;\n";
     }

@@ -1,11 +1,14 @@
 // The kdop command line, run as a user runs it: list, gen and show, bad input refused with a
 // message naming the file/line or argument, a non-zero exit and nothing written.
+#include "image_io.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <chrono>
 #include <sstream>
+#include <thread>
 
 namespace kdop {
 namespace {
@@ -131,13 +134,103 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-    for (std::string sub : {"", "list ", "gen ", "show "}) {
+    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures "}) {
         auto r = run(kdop(sub + "--help"));
         EXPECT_EQ(r.exit_code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
     }
     auto r = run(kdop(""));
     EXPECT_NE(r.exit_code, 0);
+}
+
+} // namespace
+} // namespace kdop
+
+namespace kdop {
+namespace {
+
+// A 16x16 current frame, a history of the same size, one of another size, and a text file.
+struct RunInputs {
+    test::TempDir dir;
+    std::string current = (dir / "current.exr").string(), history = (dir / "history.exr").string(),
+                small = (dir / "small.exr").string(), text = (dir / "notes.exr").string(), out = (dir / "out.exr").string();
+    RunInputs() {
+        Image c(16, 16), h(16, 16, {2.0f, 0.0f, 0.5f, 1.0f}), s(8, 8);
+        for (std::uint32_t i = 0; i < c.pixels.size(); ++i) c.pixels[i] = glm::vec4(0.1f * (i % 7), 0.05f * (i % 5), 0.3f, 1);
+        EXPECT_TRUE(write_image(current, c));
+        EXPECT_TRUE(write_image(history, h));
+        EXPECT_TRUE(write_image(small, s));
+        test::write_file(text, "not an image");
+    }
+    std::string args(const std::string& variant, const std::string& extra = "") const {
+        return "run --variant " + variant + " --current " + current + " --history " + history + " --out " + out + " " + extra;
+    }
+};
+
+TEST(CliRun, WritesTheRectifiedHistory) {
+    RunInputs in;
+    auto r = run(kdop(in.args("dop32-clip-n9")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("dop32-clip-n9 on llvmpipe"), std::string::npos) << r.out;
+    auto out = read_image(in.out);
+    ASSERT_TRUE(out) << out.error().message;
+    auto current = read_image(in.current);
+    // The history (2, 0, 0.5) lies far outside every neighborhood here: it must have moved.
+    EXPECT_LT(out->at(5, 5).r, 1.0f);
+    EXPECT_GE(out->at(5, 5).r, current->at(5, 5).r - 1e-4f);
+    EXPECT_EQ(run(kdop(in.args("dop22-varclip-n5", "--gamma 0.5 --format rgba16f"))).exit_code, 0);
+}
+
+TEST(CliRun, RefusesBadInputAndWritesNothing) {
+    RunInputs in;
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {in.args("dop99-clip-n9"), "--variant: unknown variant 'dop99-clip-n9'"},
+        {in.args("dop32-clip-n9", "--gamma 1"), "--gamma: dop32-clip-n9 is not a variance clip and takes no gamma"},
+        {in.args("dop32-varclip-n9", "--gamma -1"), "--gamma: must be a finite number >= 0, got -1"},
+        {in.args("dop32-varclip-n9", "--gamma nan"), "--gamma"},
+        {in.args("dop32-clip-n9", "--format rgb8"), "--format: 'rgb8' is not rgba32f or rgba16f"},
+        {"run --variant aabb-clip-n9 --current " + in.current + " --history " + in.small + " --out " + in.out,
+         "is 8x8 but --current"},
+        {"run --variant aabb-clip-n9 --current " + in.text + " --history " + in.history + " --out " + in.out,
+         in.text + ": cannot read image"},
+        {"run --variant aabb-clip-n9 --current " + in.current + " --history /nonexistent.exr --out " + in.out,
+         "/nonexistent.exr: cannot read image"},
+        {"run --variant aabb-clip-n9 --current " + in.current + " --history " + in.history + " --out " + in.out + ".xyz",
+         "--out: " + in.out + ".xyz: no image format for this extension"},
+        {in.args("aabb-clip-n9", "--device NoSuchGpu"), "no Vulkan device whose name contains 'NoSuchGpu'"},
+    };
+    for (const Case& c : cases) {
+        auto r = run(kdop(c.args));
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
+        EXPECT_FALSE(fs::exists(in.out)) << c.args;
+    }
+    size_t leftovers = 0;
+    for (const auto& entry : fs::directory_iterator(in.dir.path())) leftovers += entry.path().string().find("partial") != std::string::npos;
+    EXPECT_EQ(leftovers, 0u);
+}
+
+TEST(CliTextures, WritesEveryTextureAndHistoryAndReportsTheSeed) {
+    test::TempDir dir;
+    auto r = run(kdop("textures --no-real --width 32 --height 24 --seed 5 --out " + (dir / "t").string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("seed 5"), std::string::npos);
+    for (std::string family : {"grass", "asphalt", "edges", "gradient", "flat", "hdr"}) {
+        auto image = read_image((dir / "t" / (family + ".exr")).string());
+        ASSERT_TRUE(image) << family;
+        EXPECT_EQ(image->width, 32u);
+        EXPECT_EQ(image->height, 24u);
+        for (std::string model : {"same", "shifted", "moved-object", "other-texture"})
+            EXPECT_TRUE(fs::exists(dir / "t" / (family + "-history-" + model + ".exr"))) << family << " " << model;
+    }
+    // Same seed, same bytes, also a second later (no time stamp in the files).
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+    ASSERT_EQ(run(kdop("textures --no-real --width 32 --height 24 --seed 5 --out " + (dir / "u").string())).exit_code, 0);
+    EXPECT_EQ(test::read_file(dir / "t" / "grass.exr"), test::read_file(dir / "u" / "grass.exr"));
+    EXPECT_NE(run(kdop("textures --width 3 --out " + (dir / "v").string())).exit_code, 0);
 }
 
 } // namespace

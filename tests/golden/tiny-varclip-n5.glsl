@@ -10,6 +10,7 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
 #ifndef KDOP_TINY_VARCLIP_N5_GLSL
 #define KDOP_TINY_VARCLIP_N5_GLSL
 
@@ -34,8 +35,8 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q4 = c4.x - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -50,8 +51,8 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q4 = c4.y - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -66,8 +67,8 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q4 = c4.x - c4.z - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.4142136e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.4142136e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -82,8 +83,8 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5)) - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 
@@ -98,8 +99,8 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q4 = c4.z + c4.y * -0.75 - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0);
-        float hi = max(mean + gamma * sigma, 0.0);
+        float lo = min(mean - gamma * sigma, 0.0) - 1.25e-05;
+        float hi = max(mean + gamma * sigma, 0.0) + 1.25e-05;
         t = min(t, max(lo * inv_d, hi * inv_d));
     }
 

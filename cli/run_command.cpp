@@ -1,0 +1,66 @@
+#include "commands.h"
+
+#include "context.h"
+#include "image_io.h"
+#include "rectify_pass.h"
+
+#include <kdop_builtin_variants.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+namespace kdop::cli {
+
+Action add_run_command(CLI::App& app) {
+    struct Options {
+        std::string variant, current, history, out, format = "rgba32f", device;
+        std::optional<double> gamma;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* run = app.add_subcommand("run", "Run one variant on a current frame and a history on the GPU, write the rectified history");
+    run->add_option("--variant", o->variant, "Variant name (see `kdop list --all`)")->required();
+    run->add_option("--current", o->current, "Current frame (any OpenImageIO format; RGB from the first three channels)")->required();
+    run->add_option("--history", o->history, "History, the same size as the current frame")->required();
+    run->add_option("--out", o->out, "Rectified history to write (EXR keeps floats; PNG clamps to 8 bits)")->required();
+    run->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]");
+    run->add_option("--format", o->format, "Texture format the inputs are uploaded in: rgba32f or rgba16f");
+    run->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+
+    return [o] {
+        const Variant* variant = builtin::variants().find(o->variant.c_str());
+        if (!variant) return report_error(fmt::format("--variant: unknown variant '{}' (see `kdop list --all`)", o->variant));
+        auto format = parse_texture_format(o->format);
+        if (!format) return report_error(fmt::format("--format: '{}' is not rgba32f or rgba16f", o->format));
+        if (o->gamma && variant->mode != Mode::varclip)
+            return report_error(fmt::format("--gamma: {} is not a variance clip and takes no gamma", variant->name));
+        const double gamma = o->gamma.value_or(1.0);
+        if (!std::isfinite(gamma) || gamma < 0)
+            return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", gamma));
+        if (!OIIO::ImageOutput::create(o->out))
+            return report_error(fmt::format("--out: {}: no image format for this extension", o->out));
+
+        auto current = read_image(o->current);
+        if (!current) return report_error(current.error().message);
+        auto history = read_image(o->history);
+        if (!history) return report_error(history.error().message);
+        if (current->width != history->width || current->height != history->height)
+            return report_error(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", o->history, history->width,
+                                            history->height, o->current, current->width, current->height));
+
+        auto context = Context::create({o->device, false});
+        if (!context) return report_error(context.error().message);
+        auto result = rectify(**context, *variant, *current, *history, *format, static_cast<float>(gamma));
+        if (!result) return report_error(result.error().message);
+        if (auto ok = write_image(o->out, *result); !ok) return report_error(ok.error().message);
+        std::cout << fmt::format("{} on {}: {}x{} {} -> {}\n", variant->name, (*context)->device_name(), current->width,
+                                 current->height, to_string(*format), o->out);
+        return 0;
+    };
+}
+
+} // namespace kdop::cli

@@ -1,0 +1,64 @@
+#include "image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace kdop {
+
+Result<Image> read_image(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        std::string reason = OIIO::geterror();
+        return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.nchannels < 3)
+        return fail(fmt::format("{}: has {} channel(s); kdop needs RGB in the first three", path, spec.nchannels));
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
+        return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
+
+    const int channels = std::min(spec.nchannels, 4);
+    std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        return fail(fmt::format("{}: cannot read pixels: {}", path, in->geterror()));
+
+    Image image(spec.width, spec.height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < channels; ++c) image.pixels[i][c] = data[i * channels + c];
+    return image;
+}
+
+Result<void> write_image(const std::string& path, const Image& image) {
+    namespace fs = std::filesystem;
+    fs::path final_path(path);
+    // The temporary keeps the extension, which tells OpenImageIO the format.
+    fs::path temporary = final_path.parent_path() / (final_path.stem().string() + ".kdop-partial" + final_path.extension().string());
+    auto out = OIIO::ImageOutput::create(temporary.string());
+    if (!out) return fail(fmt::format("{}: no image format for this extension: {}", path, OIIO::geterror()));
+
+    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, OIIO::TypeDesc::FLOAT);
+    // OpenImageIO stamps EXR files with the time of writing unless told a time. The time is not an
+    // input, so, as reproducible builds do, record the epoch: same pixels, same bytes.
+    spec.attribute("DateTime", "1970:01:01 00:00:00");
+    if (!out->open(temporary.string(), spec))
+        return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+    ok = out->close() && ok;
+    std::error_code ec;
+    if (!ok) {
+        fs::remove(temporary, ec);
+        return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    }
+    fs::rename(temporary, final_path, ec);
+    if (ec) {
+        fs::remove(temporary, ec);
+        return fail(fmt::format("{}: cannot move into place: {}", path, ec.message()));
+    }
+    return {};
+}
+
+} // namespace kdop

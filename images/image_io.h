@@ -1,0 +1,20 @@
+// Reading and writing images through OpenImageIO, in any format it knows (EXR, HDR, PNG, ...).
+// Reading takes RGB from the first three channels as stored (no color conversion, no clamping)
+// and alpha from the fourth if there is one. Writing is all-or-nothing: the file appears complete
+// or not at all; and deterministic: the same image gives the same bytes.
+#pragma once
+
+#include "image.h"
+#include "result.h"
+
+#include <string>
+
+namespace kdop {
+
+Result<Image> read_image(const std::string& path);
+
+// The format follows the extension. EXR and HDR keep 32-bit floats; 8-bit formats such as PNG
+// store the values clamped to [0, 1] (OpenImageIO's conversion), so use EXR for data.
+Result<void> write_image(const std::string& path, const Image& image);
+
+} // namespace kdop

@@ -1,0 +1,85 @@
+#include "cpu_clip.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+namespace kdop {
+
+glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
+                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma) {
+    const glm::dvec3 dir = history - current;
+    const double n = static_cast<double>(neighborhood.size());
+    double t = 1.0;
+    for (const glm::dvec3& axis : unit_axes) {
+        const double p = glm::dot(current, axis);
+        double lo, hi;
+        if (mode == Mode::clip) {
+            lo = std::numeric_limits<double>::infinity();
+            hi = -lo;
+            for (const glm::dvec3& c : neighborhood) {
+                lo = std::min(lo, glm::dot(c, axis));
+                hi = std::max(hi, glm::dot(c, axis));
+            }
+            lo -= kReferencePadding;
+            hi += kReferencePadding;
+        } else {
+            double mean = 0;
+            for (const glm::dvec3& c : neighborhood) mean += glm::dot(c, axis);
+            mean /= n;
+            double variance = 0; // two passes: exact enough in double for any input
+            for (const glm::dvec3& c : neighborhood) variance += (glm::dot(c, axis) - mean) * (glm::dot(c, axis) - mean);
+            const double sigma = std::sqrt(variance / n);
+            lo = std::min(mean - gamma * sigma, p) - kReferencePadding;
+            hi = std::max(mean + gamma * sigma, p) + kReferencePadding;
+        }
+        const double d = glm::dot(dir, axis);
+        if (d > 0) t = std::min(t, (hi - p) / d);
+        if (d < 0) t = std::min(t, (lo - p) / d);
+    }
+    return current + std::clamp(t, 0.0, 1.0) * dir;
+}
+
+std::vector<glm::dvec3> unit_axes(const AxisSet& set) {
+    std::vector<glm::dvec3> axes;
+    for (const Axis& a : set.axes) axes.push_back(glm::normalize(a.direction));
+    return axes;
+}
+
+std::vector<glm::ivec2> reference_offsets(Neighborhood n) {
+    std::vector<glm::ivec2> offsets;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+            if (n == Neighborhood::n9 || dx == 0 || dy == 0) offsets.emplace_back(dx, dy);
+    return offsets;
+}
+
+Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Image& current, const Image& history,
+                        double gamma) {
+    const std::vector<glm::dvec3> axes = unit_axes(set);
+    const std::vector<glm::ivec2> offsets = reference_offsets(n);
+    Image out(current.width, current.height);
+    auto rows = [&](std::uint32_t first, std::uint32_t step) {
+        std::vector<glm::dvec3> neighborhood(offsets.size());
+        for (std::uint32_t y = first; y < current.height; y += step)
+            for (std::uint32_t x = 0; x < current.width; ++x) {
+                for (std::size_t i = 0; i < offsets.size(); ++i)
+                    neighborhood[i] = glm::dvec3(current.clamped(int(x) + offsets[i].x, int(y) + offsets[i].y));
+                glm::dvec3 r = reference_clip(axes, neighborhood, glm::dvec3(current.at(x, y)),
+                                              glm::dvec3(history.at(x, y)), mode, gamma);
+                out.at(x, y) = glm::vec4(glm::vec3(r), 1.0f);
+            }
+    };
+    {
+        const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+        std::vector<std::jthread> workers; // joined at the end of this scope, before `out` is returned
+        for (unsigned t = 0; t < threads; ++t) workers.emplace_back(rows, t, threads);
+    }
+    return out;
+}
+
+} // namespace kdop

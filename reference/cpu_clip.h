@@ -1,0 +1,42 @@
+// The CPU reference of k-DOP clipping, in double precision, written from the paper's definitions
+// and independently of the generator's emitter: GPU results are checked against it.
+//
+// Clip: each axis a (normalized) gives a slab [min q - e, max q + e] of the neighborhood's
+// projections q = c . a, with e = 1e-5 (the paper's dilation). The ray from the current color
+// toward the history leaves the k-DOP at the smallest exit parameter over the slabs; the result
+// is current + clamp(t, 0, 1) * (history - current). A slab the ray runs parallel to never limits t.
+// Variance clip: the slab is mean +- gamma * sigma of the projections (population variance),
+// widened to contain the current color's projection, then dilated by e like a clip slab.
+#pragma once
+
+#include "axis_set.h"
+#include "image.h"
+
+#include <kdop/variant.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <span>
+#include <vector>
+
+namespace kdop {
+
+// The paper's slab dilation, per unit of axis length.
+inline constexpr double kReferencePadding = 1e-5;
+
+// One pixel. `unit_axes` must be normalized; `mode` is clip or varclip.
+glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
+                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma);
+
+std::vector<glm::dvec3> unit_axes(const AxisSet& set);
+
+// Texel offsets of a neighborhood shape (order irrelevant to the result).
+std::vector<glm::ivec2> reference_offsets(Neighborhood n);
+
+// Every pixel of an image pair: the neighborhood is gathered from `current` with clamp-to-edge
+// addressing, the current color is the pixel itself. Alpha of the result is 1.
+Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Image& current, const Image& history,
+                        double gamma);
+
+} // namespace kdop

@@ -1,0 +1,158 @@
+#include "context.h"
+
+#include "vulkan_error.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cstdlib>
+#include <cstring>
+
+namespace kdop {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool has_layer(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> layers(count);
+    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    for (const VkLayerProperties& l : layers)
+        if (std::strcmp(l.layerName, name) == 0) return true;
+    return false;
+}
+
+} // namespace
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                               VkDebugUtilsMessageTypeFlagsEXT,
+                                                               const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                               void* self) {
+    auto* context = static_cast<Context*>(self);
+    std::lock_guard lock(context->messages_mutex_);
+    context->messages_.emplace_back(data->pMessage ? data->pMessage : "(no message)");
+    return VK_FALSE;
+}
+
+Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+    std::unique_ptr<Context> c(new Context);
+
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "kdop";
+    app.apiVersion = VK_API_VERSION_1_1;
+    VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    instance_info.pApplicationInfo = &app;
+
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messenger_info.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                 VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messenger_info.pfnUserCallback = &Context::on_validation_message;
+    messenger_info.pUserData = c.get();
+    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    if (options.validation) {
+        if (!has_layer(kValidationLayer))
+            return fail(fmt::format("the Vulkan validation layer {} is not installed (Debian: vulkan-validationlayers)",
+                                    kValidationLayer));
+        instance_info.enabledLayerCount = 1;
+        instance_info.ppEnabledLayerNames = &kValidationLayer;
+        instance_info.enabledExtensionCount = 1;
+        instance_info.ppEnabledExtensionNames = &extension;
+        instance_info.pNext = &messenger_info; // also reports problems in vkCreateInstance itself
+    }
+    KDOP_VK_TRY(vkCreateInstance(&instance_info, nullptr, &c->instance_));
+    if (options.validation) {
+        auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(c->instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (!create_messenger) return fail("vkCreateDebugUtilsMessengerEXT is not available");
+        KDOP_VK_TRY(create_messenger(c->instance_, &messenger_info, nullptr, &c->messenger_));
+    }
+
+    uint32_t count = 0;
+    KDOP_VK_TRY(vkEnumeratePhysicalDevices(c->instance_, &count, nullptr));
+    std::vector<VkPhysicalDevice> devices(count);
+    KDOP_VK_TRY(vkEnumeratePhysicalDevices(c->instance_, &count, devices.data()));
+
+    std::string wanted = options.device;
+    if (wanted.empty())
+        if (const char* env = std::getenv("KDOP_DEVICE")) wanted = env;
+    std::vector<std::string> names;
+    for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(d, &p);
+        names.emplace_back(p.deviceName);
+        bool match = wanted.empty() ? p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU : names.back().find(wanted) != std::string::npos;
+        if (match && !c->physical_) {
+            c->physical_ = d;
+            c->properties_ = p;
+            c->device_name_ = p.deviceName;
+        }
+    }
+    if (!c->physical_) {
+        std::string available = names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+        return fail(wanted.empty()
+                        ? fmt::format("no CPU Vulkan device (lavapipe; Debian: mesa-vulkan-drivers); available devices: {}",
+                                      available)
+                        : fmt::format("no Vulkan device whose name contains '{}'; available devices: {}", wanted, available));
+    }
+
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(c->physical_, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(c->physical_, &family_count, families.data());
+    bool found = false;
+    for (uint32_t i = 0; i < family_count && !found; ++i)
+        if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+            c->queue_family_ = i;
+            found = true;
+        }
+    if (!found) return fail(fmt::format("{} has no compute queue", c->device_name_));
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queue_info.queueFamilyIndex = c->queue_family_;
+    queue_info.queueCount = 1;
+    queue_info.pQueuePriorities = &priority;
+    VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    device_info.queueCreateInfoCount = 1;
+    device_info.pQueueCreateInfos = &queue_info;
+    KDOP_VK_TRY(vkCreateDevice(c->physical_, &device_info, nullptr, &c->device_));
+    vkGetDeviceQueue(c->device_, c->queue_family_, 0, &c->queue_);
+
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool_info.queueFamilyIndex = c->queue_family_;
+    KDOP_VK_TRY(vkCreateCommandPool(c->device_, &pool_info, nullptr, &c->command_pool_));
+    return c;
+}
+
+Context::~Context() {
+    if (device_) {
+        vkDeviceWaitIdle(device_);
+        vkDestroyCommandPool(device_, command_pool_, nullptr);
+        vkDestroyDevice(device_, nullptr);
+    }
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+Result<uint32_t> Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const {
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memory);
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+        if ((type_bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    return fail(fmt::format("{} has no memory type with flags 0x{:x} among 0x{:x}", device_name_, flags, type_bits));
+}
+
+std::vector<std::string> Context::validation_messages() const {
+    std::lock_guard lock(messages_mutex_);
+    return messages_;
+}
+
+} // namespace kdop

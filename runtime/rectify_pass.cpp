@@ -1,0 +1,333 @@
+#include "rectify_pass.h"
+
+#include "vulkan_error.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/packing.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace kdop {
+namespace {
+
+constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+VkFormat vk_format(TextureFormat f) {
+    return f == TextureFormat::rgba16f ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+VkDeviceSize texel_bytes(TextureFormat f) { return f == TextureFormat::rgba16f ? 8 : 16; }
+
+void image_barrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                   VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = src_access;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+VkBufferImageCopy whole_image(uint32_t w, uint32_t h, VkDeviceSize offset) {
+    VkBufferImageCopy copy{};
+    copy.bufferOffset = offset;
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {w, h, 1};
+    return copy;
+}
+
+} // namespace
+
+std::optional<TextureFormat> parse_texture_format(std::string_view s) {
+    if (s == "rgba32f") return TextureFormat::rgba32f;
+    if (s == "rgba16f") return TextureFormat::rgba16f;
+    return std::nullopt;
+}
+
+const char* to_string(TextureFormat format) { return format == TextureFormat::rgba16f ? "rgba16f" : "rgba32f"; }
+
+Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage) {
+    VkDevice device = context_.device();
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width_, height_, 1};
+    info.mipLevels = info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    KDOP_VK_TRY(vkCreateImage(device, &info, nullptr, &t.image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device, t.image, &req);
+    auto type = context_.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (!type) return std::unexpected(type.error());
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = *type;
+    KDOP_VK_TRY(vkAllocateMemory(device, &alloc, nullptr, &t.memory));
+    KDOP_VK_TRY(vkBindImageMemory(device, t.image, t.memory, 0));
+    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view.image = t.image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = format;
+    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    KDOP_VK_TRY(vkCreateImageView(device, &view, nullptr, &t.view));
+    return {};
+}
+
+Result<void> RectifyPass::create_buffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage) {
+    VkDevice device = context_.device();
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = usage;
+    KDOP_VK_TRY(vkCreateBuffer(device, &info, nullptr, &b.buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device, b.buffer, &req);
+    auto type = context_.memory_type(req.memoryTypeBits,
+                                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    if (!type) return std::unexpected(type.error());
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = *type;
+    KDOP_VK_TRY(vkAllocateMemory(device, &alloc, nullptr, &b.memory));
+    KDOP_VK_TRY(vkBindBufferMemory(device, b.buffer, b.memory, 0));
+    KDOP_VK_TRY(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+    return {};
+}
+
+Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
+                                                         TextureFormat format) {
+    if (width == 0 || height == 0) return fail(fmt::format("cannot rectify an empty {}x{} image", width, height));
+    std::unique_ptr<RectifyPass> p(new RectifyPass(context));
+    p->width_ = width;
+    p->height_ = height;
+    p->format_ = format;
+    VkDevice device = context.device();
+    const VkDeviceSize pixels = VkDeviceSize(width) * height;
+
+    const VkImageUsageFlags input_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    for (Texture* t : {&p->current_, &p->history_})
+        if (auto ok = p->create_texture(*t, vk_format(format), input_usage); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT); !ok)
+        return std::unexpected(ok.error());
+    if (auto ok = p->create_buffer(p->upload_, 2 * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT); !ok)
+        return std::unexpected(ok.error());
+    if (auto ok = p->create_buffer(p->readback_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT); !ok)
+        return std::unexpected(ok.error());
+
+    // texelFetch ignores filtering and addressing; a combined image sampler still needs a sampler.
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = sampler.minFilter = VK_FILTER_NEAREST;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &p->sampler_));
+
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool.maxSets = 1;
+    pool.poolSizeCount = 2;
+    pool.pPoolSizes = sizes;
+    KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &p->descriptor_pool_));
+
+    VkCommandBufferAllocateInfo cb{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    cb.commandPool = context.command_pool();
+    cb.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cb.commandBufferCount = 1;
+    KDOP_VK_TRY(vkAllocateCommandBuffers(device, &cb, &p->commands_));
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    KDOP_VK_TRY(vkCreateFence(device, &fence, nullptr, &p->fence_));
+
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physical_device(), &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physical_device(), &family_count, families.data());
+    if (families[context.queue_family()].timestampValidBits > 0) {
+        VkQueryPoolCreateInfo query{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        query.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        query.queryCount = 2;
+        KDOP_VK_TRY(vkCreateQueryPool(device, &query, nullptr, &p->timestamps_));
+    }
+    return p;
+}
+
+template <class Record>
+Result<double> RectifyPass::submit(Record record) {
+    VkDevice device = context_.device();
+    KDOP_VK_TRY(vkResetCommandBuffer(commands_, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    KDOP_VK_TRY(vkBeginCommandBuffer(commands_, &begin));
+    record(commands_);
+    KDOP_VK_TRY(vkEndCommandBuffer(commands_));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commands_;
+    KDOP_VK_TRY(vkResetFences(device, 1, &fence_));
+    auto start = std::chrono::steady_clock::now();
+    KDOP_VK_TRY(vkQueueSubmit(context_.queue(), 1, &submit, fence_));
+    KDOP_VK_TRY(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX));
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+Result<void> RectifyPass::upload(const Image& current, const Image& history) {
+    for (const Image* image : {&current, &history})
+        if (image->width != width_ || image->height != height_)
+            return fail(fmt::format("image is {}x{}, the pass is {}x{}", image->width, image->height, width_, height_));
+    const std::size_t pixels = std::size_t(width_) * height_;
+    auto* bytes = static_cast<std::byte*>(upload_.mapped);
+    for (const Image* image : {&current, &history}) {
+        if (format_ == TextureFormat::rgba32f) {
+            std::memcpy(bytes, image->pixels.data(), pixels * 16);
+        } else {
+            auto* halves = reinterpret_cast<std::uint64_t*>(bytes);
+            for (std::size_t i = 0; i < pixels; ++i) halves[i] = glm::packHalf4x16(image->pixels[i]);
+        }
+        bytes += pixels * texel_bytes(format_);
+    }
+    auto copied = submit([&](VkCommandBuffer cb) {
+        VkDeviceSize offset = 0;
+        for (const Texture* t : {&current_, &history_}) {
+            image_barrier(cb, t->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+            VkBufferImageCopy copy = whole_image(width_, height_, offset);
+            vkCmdCopyBufferToImage(cb, upload_.buffer, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+            image_barrier(cb, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+            offset += VkDeviceSize(pixels) * texel_bytes(format_);
+        }
+    });
+    if (!copied) return std::unexpected(copied.error());
+    uploaded_ = true;
+    return {};
+}
+
+Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) {
+    if (!uploaded_) return fail("dispatch before upload");
+    VkDevice device = context_.device();
+    const Variant& v = kernel.variant();
+
+    KDOP_VK_TRY(vkResetDescriptorPool(device, descriptor_pool_, 0));
+    VkDescriptorSetLayout layout = kernel.set_layout();
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = descriptor_pool_;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &set));
+    // Binding i of the registry is bound to the i-th of current, history, output: the order the
+    // compute-shader template declares them in, which the registry reports.
+    const Texture* textures[] = {&current_, &history_, &output_};
+    std::vector<VkDescriptorImageInfo> infos(v.binding_count);
+    std::vector<VkWriteDescriptorSet> writes(v.binding_count);
+    for (uint32_t i = 0; i < v.binding_count; ++i) {
+        const DescriptorBinding& b = v.bindings[i];
+        if (b.binding > 2) return fail(fmt::format("{}: unexpected binding {} ('{}')", v.name, b.binding, b.name));
+        bool storage = b.type == DescriptorType::storage_image;
+        infos[i] = {storage ? VK_NULL_HANDLE : sampler_, textures[b.binding]->view,
+                    storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = set;
+        writes[i].dstBinding = b.binding;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[i].pImageInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(device, v.binding_count, writes.data(), 0, nullptr);
+
+    const uint32_t groups_x = (width_ + v.local_size[0] - 1) / v.local_size[0];
+    const uint32_t groups_y = (height_ + v.local_size[1] - 1) / v.local_size[1];
+    auto wall = submit([&](VkCommandBuffer cb) {
+        // The output's previous contents are not needed: every pixel is written.
+        image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout(), 0, 1, &set, 0, nullptr);
+        if (v.push_constant_size >= sizeof(float))
+            vkCmdPushConstants(cb, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(float), &gamma);
+        if (timestamps_) {
+            vkCmdResetQueryPool(cb, timestamps_, 0, 2);
+            vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 0);
+        }
+        vkCmdDispatch(cb, groups_x, groups_y, 1);
+        if (timestamps_) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 1);
+    });
+    if (!wall) return std::unexpected(wall.error());
+    dispatched_ = true;
+
+    DispatchTiming timing{*wall, std::numeric_limits<double>::quiet_NaN()};
+    if (timestamps_) {
+        uint64_t ticks[2];
+        KDOP_VK_TRY(vkGetQueryPoolResults(device, timestamps_, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                          VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+        timing.device_ms = double(ticks[1] - ticks[0]) * context_.properties().limits.timestampPeriod * 1e-6;
+    }
+    return timing;
+}
+
+Result<Image> RectifyPass::download() {
+    if (!dispatched_) return fail("download before any dispatch");
+    auto copied = submit([&](VkCommandBuffer cb) {
+        image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkBufferImageCopy copy = whole_image(width_, height_, 0);
+        vkCmdCopyImageToBuffer(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &copy);
+        VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+        host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        host.buffer = readback_.buffer;
+        host.size = VK_WHOLE_SIZE;
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0, nullptr);
+    });
+    if (!copied) return std::unexpected(copied.error());
+    dispatched_ = false; // the output left the GENERAL layout; the next dispatch starts it afresh
+    Image out(width_, height_);
+    std::memcpy(out.pixels.data(), readback_.mapped, out.pixels.size() * 16);
+    return out;
+}
+
+void RectifyPass::destroy(Texture& t) {
+    vkDestroyImageView(context_.device(), t.view, nullptr);
+    vkDestroyImage(context_.device(), t.image, nullptr);
+    vkFreeMemory(context_.device(), t.memory, nullptr);
+}
+
+void RectifyPass::destroy(Buffer& b) {
+    vkDestroyBuffer(context_.device(), b.buffer, nullptr);
+    vkFreeMemory(context_.device(), b.memory, nullptr); // unmaps
+}
+
+RectifyPass::~RectifyPass() {
+    VkDevice device = context_.device();
+    vkDeviceWaitIdle(device);
+    vkDestroyQueryPool(device, timestamps_, nullptr);
+    vkDestroyFence(device, fence_, nullptr);
+    if (commands_) vkFreeCommandBuffers(device, context_.command_pool(), 1, &commands_);
+    vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+    vkDestroySampler(device, sampler_, nullptr);
+    for (Texture* t : {&current_, &history_, &output_}) destroy(*t);
+    for (Buffer* b : {&upload_, &readback_}) destroy(*b);
+}
+
+Result<Image> rectify(const Context& context, const Variant& variant, const Image& current, const Image& history,
+                      TextureFormat format, float gamma) {
+    if (current.width != history.width || current.height != history.height)
+        return fail(fmt::format("current is {}x{} but history is {}x{}", current.width, current.height, history.width,
+                                history.height));
+    auto kernel = Kernel::create(context, variant);
+    if (!kernel) return std::unexpected(kernel.error());
+    auto pass = RectifyPass::create(context, current.width, current.height, format);
+    if (!pass) return std::unexpected(pass.error());
+    if (auto ok = (*pass)->upload(current, history); !ok) return std::unexpected(ok.error());
+    if (auto timing = (*pass)->dispatch(**kernel, gamma); !timing) return std::unexpected(timing.error());
+    return (*pass)->download();
+}
+
+} // namespace kdop

@@ -1,0 +1,82 @@
+// The GPU side of one rectification: current and history textures (rgba32f or rgba16f), an
+// rgba32f output, and the buffers to fill and read them. Created once per image size and input
+// format; any number of kernels can then be dispatched on the uploaded pair, which is what the
+// benchmarks do. rectify() below does the whole round trip for one variant.
+#pragma once
+
+#include "context.h"
+#include "image.h"
+#include "kernel.h"
+
+#include <memory>
+#include <optional>
+#include <string_view>
+
+namespace kdop {
+
+enum class TextureFormat {
+    rgba32f,
+    rgba16f, // values are rounded to half precision on upload (beyond 65504 they become infinite)
+};
+std::optional<TextureFormat> parse_texture_format(std::string_view s);
+const char* to_string(TextureFormat format);
+
+struct DispatchTiming {
+    double wall_ms;   // submit to fence, as a caller waits for it
+    double device_ms; // between timestamps around the dispatch; NaN where the queue has none
+};
+
+class RectifyPass {
+public:
+    static Result<std::unique_ptr<RectifyPass>> create(const Context& context, uint32_t width, uint32_t height,
+                                                       TextureFormat format);
+    ~RectifyPass();
+    RectifyPass(const RectifyPass&) = delete;
+    RectifyPass& operator=(const RectifyPass&) = delete;
+
+    // Both images must have the pass's size.
+    Result<void> upload(const Image& current, const Image& history);
+    // One dispatch of `kernel` over the whole image; `gamma` goes to kernels with a push constant.
+    Result<DispatchTiming> dispatch(const Kernel& kernel, float gamma);
+    // The output of the last dispatch.
+    Result<Image> download();
+
+private:
+    struct Texture {
+        VkImage image = VK_NULL_HANDLE;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        VkImageView view = VK_NULL_HANDLE;
+    };
+    struct Buffer {
+        VkBuffer buffer = VK_NULL_HANDLE;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        void* mapped = nullptr;
+    };
+
+    explicit RectifyPass(const Context& context) : context_(context) {}
+    Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage);
+    Result<void> create_buffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage);
+    // Records commands with `record`, submits them and waits; returns the wall time in ms.
+    template <class Record>
+    Result<double> submit(Record record);
+    void destroy(Texture& t);
+    void destroy(Buffer& b);
+
+    const Context& context_;
+    uint32_t width_ = 0, height_ = 0;
+    TextureFormat format_ = TextureFormat::rgba32f;
+    Texture current_, history_, output_;
+    Buffer upload_, readback_;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer commands_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
+    bool uploaded_ = false, dispatched_ = false;
+};
+
+// Loads `variant`, runs it once on the pair and reads the result back.
+Result<Image> rectify(const Context& context, const Variant& variant, const Image& current, const Image& history,
+                      TextureFormat format, float gamma);
+
+} // namespace kdop

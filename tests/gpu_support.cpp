@@ -1,0 +1,75 @@
+#include "gpu_support.h"
+
+#include <gtest/gtest.h>
+#include <kdop_builtin_variants.h>
+
+#include <glm/common.hpp>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace kdop::test {
+
+Context& gpu() {
+    static auto context = Context::create({"", true});
+    if (!context) {
+        ADD_FAILURE() << "no Vulkan context: " << context.error().message;
+        std::abort(); // every GPU test needs it; lavapipe is installed by install-deps.sh
+    }
+    return **context;
+}
+
+const Variant& builtin_variant(const std::string& name) {
+    const Variant* v = builtin::variants().find(name.c_str());
+    if (!v) {
+        ADD_FAILURE() << "no built-in variant " << name;
+        std::abort();
+    }
+    return *v;
+}
+
+Image run_on_gpu(const Variant& variant, const Image& current, const Image& history, TextureFormat format, float gamma) {
+    static std::map<std::string, std::unique_ptr<Kernel>> kernels;
+    auto& kernel = kernels[variant.name];
+    if (!kernel) {
+        auto created = Kernel::create(gpu(), variant);
+        EXPECT_TRUE(created) << created.error().message;
+        if (!created) return {};
+        kernel = std::move(*created);
+    }
+    auto pass = RectifyPass::create(gpu(), current.width, current.height, format);
+    EXPECT_TRUE(pass) << pass.error().message;
+    if (!pass) return {};
+    auto uploaded = (*pass)->upload(current, history);
+    EXPECT_TRUE(uploaded) << uploaded.error().message;
+    auto dispatched = (*pass)->dispatch(*kernel, gamma);
+    EXPECT_TRUE(dispatched) << dispatched.error().message;
+    auto out = (*pass)->download();
+    EXPECT_TRUE(out) << out.error().message;
+    return out ? *out : Image{};
+}
+
+VariantSpec builtin_spec(const Variant& variant) {
+    auto set = resolve_axis_set(variant.axis_set);
+    EXPECT_TRUE(set) << set.error().message;
+    return {set ? *set : AxisSet{}, variant.mode, variant.neighborhood, variant.form};
+}
+
+ErrorReport relative_error(const Image& a, const Image& b, const Image& current, const Image& history) {
+    ErrorReport report;
+    for (std::uint32_t y = 0; y < a.height; ++y)
+        for (std::uint32_t x = 0; x < a.width; ++x) {
+            glm::vec3 d = glm::abs(glm::vec3(a.at(x, y)) - glm::vec3(b.at(x, y)));
+            glm::vec3 c = glm::abs(glm::vec3(current.at(x, y))), h = glm::abs(glm::vec3(history.at(x, y)));
+            double scale = std::max({1.0f, c.x, c.y, c.z, h.x, h.y, h.z});
+            double e = std::max({d.x, d.y, d.z}) / scale;
+            if (!(e <= report.max_relative)) { // also catches NaN
+                report = {std::isnan(e) ? INFINITY : e, x, y};
+                if (std::isnan(e)) return report;
+            }
+        }
+    return report;
+}
+
+} // namespace kdop::test

@@ -1,0 +1,40 @@
+// GPU test helpers: one validated Vulkan context for the whole test binary, pipelines cached by
+// variant, and the comparison of images against the CPU reference.
+#pragma once
+
+#include "context.h"
+#include "image.h"
+#include "kernel.h"
+#include "rectify_pass.h"
+#include "variant_spec.h"
+
+#include <kdop/variant.h>
+
+#include <string>
+
+namespace kdop::test {
+
+// The context of the tests: lavapipe (or $KDOP_DEVICE) with the Khronos validation layer on.
+// A failure to create it fails the calling test.
+Context& gpu();
+
+// The built-in registry entry called `name` (fails the test when missing).
+const Variant& builtin_variant(const std::string& name);
+
+// Runs `variant` once on the pair.
+Image run_on_gpu(const Variant& variant, const Image& current, const Image& history,
+                 TextureFormat format = TextureFormat::rgba32f, float gamma = 1.0f);
+
+// The spec (axis set, mode, neighborhood) of a built-in clip variant, for the CPU reference.
+VariantSpec builtin_spec(const Variant& variant);
+
+// Largest per-pixel error |a - b| (max over RGB), divided by the pixel's color magnitude
+// max(1, |current|, |history|) (max norms): float32 rounding grows with the values, so a fixed
+// absolute bound would be too loose for LDR and too tight for HDR.
+struct ErrorReport {
+    double max_relative = 0;
+    std::uint32_t x = 0, y = 0;
+};
+ErrorReport relative_error(const Image& a, const Image& b, const Image& current, const Image& history);
+
+} // namespace kdop::test
