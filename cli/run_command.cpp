@@ -2,6 +2,7 @@
 
 #include "context.h"
 #include "image_io.h"
+#include "kernel.h"
 #include "rectify_pass.h"
 
 #include <kdop_builtin_variants.h>
@@ -9,17 +10,28 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
 
 namespace kdop::cli {
+namespace {
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+} // namespace
 
 Action add_run_command(CLI::App& app) {
     struct Options {
         std::string variant, current, history, out, format = "rgba32f", device;
         std::optional<double> gamma;
+        unsigned repeat = 1;
     };
     auto o = std::make_shared<Options>();
     CLI::App* run = app.add_subcommand("run", "Run one variant on a current frame and a history on the GPU, write the rectified history");
@@ -30,6 +42,8 @@ Action add_run_command(CLI::App& app) {
     run->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]");
     run->add_option("--format", o->format, "Texture format the inputs are uploaded in: rgba32f or rgba16f");
     run->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    run->add_option("--repeat", o->repeat, "Dispatch this many times and report pipeline creation and median dispatch time")
+        ->check(CLI::Range(1u, 100000u));
 
     return [o] {
         const Variant* variant = builtin::variants().find(o->variant.c_str());
@@ -54,11 +68,30 @@ Action add_run_command(CLI::App& app) {
 
         auto context = Context::create({o->device, false});
         if (!context) return report_error(context.error().message);
-        auto result = rectify(**context, *variant, *current, *history, *format, static_cast<float>(gamma));
+        auto kernel = Kernel::create(**context, *variant);
+        if (!kernel) return report_error(kernel.error().message);
+        auto pass = RectifyPass::create(**context, current->width, current->height, *format);
+        if (!pass) return report_error(pass.error().message);
+        if (auto ok = (*pass)->upload(*current, *history); !ok) return report_error(ok.error().message);
+        std::vector<double> wall_ms, device_ms;
+        for (unsigned i = 0; i < o->repeat; ++i) {
+            auto timing = (*pass)->dispatch(**kernel, static_cast<float>(gamma));
+            if (!timing) return report_error(timing.error().message);
+            wall_ms.push_back(timing->wall_ms);
+            device_ms.push_back(timing->device_ms);
+        }
+        auto result = (*pass)->download();
         if (!result) return report_error(result.error().message);
         if (auto ok = write_image(o->out, *result); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("{} on {}: {}x{} {} -> {}\n", variant->name, (*context)->device_name(), current->width,
                                  current->height, to_string(*format), o->out);
+        if (o->repeat > 1) {
+            const double pixels = double(current->width) * current->height;
+            const double wall = median(wall_ms), device = median(device_ms);
+            std::cout << fmt::format("pipeline creation {:.1f} ms; {} dispatches: median {:.2f} ms wall ({:.1f} Mpixel/s), "
+                                     "{:.2f} ms device\n",
+                                     (*kernel)->creation_ms(), o->repeat, wall, pixels / wall * 1e-3, device);
+        }
         return 0;
     };
 }

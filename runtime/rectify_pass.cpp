@@ -51,6 +51,16 @@ std::optional<TextureFormat> parse_texture_format(std::string_view s) {
 
 const char* to_string(TextureFormat format) { return format == TextureFormat::rgba16f ? "rgba16f" : "rgba32f"; }
 
+Result<void> RectifyPass::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory) {
+    auto type = context_.memory_type(req.memoryTypeBits, flags);
+    if (!type) return std::unexpected(type.error());
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = *type;
+    KDOP_VK_TRY(vkAllocateMemory(context_.device(), &alloc, nullptr, &memory));
+    return {};
+}
+
 Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage) {
     VkDevice device = context_.device();
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -65,12 +75,7 @@ Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsa
     KDOP_VK_TRY(vkCreateImage(device, &info, nullptr, &t.image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device, t.image, &req);
-    auto type = context_.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (!type) return std::unexpected(type.error());
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = *type;
-    KDOP_VK_TRY(vkAllocateMemory(device, &alloc, nullptr, &t.memory));
+    if (auto ok = allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, t.memory); !ok) return ok;
     KDOP_VK_TRY(vkBindImageMemory(device, t.image, t.memory, 0));
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = t.image;
@@ -89,13 +94,8 @@ Result<void> RectifyPass::create_buffer(Buffer& b, VkDeviceSize size, VkBufferUs
     KDOP_VK_TRY(vkCreateBuffer(device, &info, nullptr, &b.buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, b.buffer, &req);
-    auto type = context_.memory_type(req.memoryTypeBits,
-                                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    if (!type) return std::unexpected(type.error());
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = *type;
-    KDOP_VK_TRY(vkAllocateMemory(device, &alloc, nullptr, &b.memory));
+    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if (auto ok = allocate(req, host, b.memory); !ok) return ok;
     KDOP_VK_TRY(vkBindBufferMemory(device, b.buffer, b.memory, 0));
     KDOP_VK_TRY(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
     return {};

@@ -54,6 +54,7 @@ private:
     };
 
     explicit RectifyPass(const Context& context) : context_(context) {}
+    Result<void> allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory);
     Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage);
     Result<void> create_buffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage);
     // Records commands with `record`, submits them and waits; returns the wall time in ms.
