@@ -18,15 +18,16 @@ Action add_show_command(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* show = app.add_subcommand("show", "Print a variant's GLSL function (or, with --compute, its compute shader)");
-    show->add_option("NAME", options->name, "Variant name, e.g. dop32-clip-n9 (see `kdop list`)")->required();
+    show->add_option("NAME", options->name, "Variant name, e.g. dop32-clip-n9 (see `kdop list --all`)")->required();
     show->add_option("--sets", options->sets, "Axis-set files to look in besides the built-in sets");
     show->add_flag("--compute", options->compute, "Print the whole compute shader instead of the includable function");
 
     return [options] {
-        auto specs = select_variants({}, {}, {});
+        auto specs = select_variants({}, {}, {}, {"unrolled", "loop"});
         if (!specs) return report_error(specs.error().message);
+        for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
         if (!options->sets.empty()) {
-            auto user = select_variants(options->sets, {}, {});
+            auto user = select_variants(options->sets, {}, {}, {"unrolled", "loop"});
             if (!user) return report_error(user.error().message);
             specs->insert(specs->end(), user->begin(), user->end());
         }
@@ -41,7 +42,7 @@ Action add_show_command(CLI::App& app) {
             std::cout << built->compute_glsl;
             return 0;
         }
-        return report_error(fmt::format("show: unknown variant '{}' (see `kdop list`; a user set needs --sets FILE)",
+        return report_error(fmt::format("show: unknown variant '{}' (see `kdop list --all`; a user set needs --sets FILE)",
                                         options->name));
     };
 }

@@ -124,6 +124,10 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
     EXPECT_NE(r.out.find("void main()"), std::string::npos);
     EXPECT_NE(r.out.find("float gamma;"), std::string::npos);
 
+    r = run(kdop("show dop22-varclip-n9-loop"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("[[unroll]] for (int a = 0; a < 11; ++a)"), std::string::npos);
+
     r = run(kdop("show tiny-clip-n9 --sets " + test::data_path("tiny.axes")));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("kdop_tiny_clip_n9"), std::string::npos);
