@@ -2,6 +2,7 @@
 
 #include "output_files.h"
 #include "selection_options.h"
+#include "spirv_cost.h"
 #include "variant_builder.h"
 
 #include <fmt/format.h>
@@ -16,12 +17,12 @@ namespace kdop::cli {
 namespace {
 
 void print_table(const std::vector<BuiltVariant>& built) {
-    std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17}  {}\n", "variant", "k", "spirv_bytes", "instructions",
-                             "code_instructions", "spirv_hash");
+    std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {}\n", "variant", "k", "spirv_bytes",
+                             "instructions", "code_instructions", "float_ops", "spirv_hash");
     for (const BuiltVariant& v : built)
-        std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17}  {:016x}\n", v.name, 2 * v.spec.set.axes.size(),
+        std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {:016x}\n", v.name, 2 * v.spec.set.axes.size(),
                                  4 * v.spirv.size(), v.counts.instructions, v.counts.function_instructions,
-                                 spirv_hash(v.spirv));
+                                 count_float_ops(v.spirv).total(), spirv_hash(v.spirv));
 }
 
 } // namespace

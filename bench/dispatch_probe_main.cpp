@@ -1,0 +1,54 @@
+// kdop-dispatch-probe: runs one variant's dispatch with callgrind instrumentation around exactly
+// that dispatch, so `valgrind --tool=callgrind --instr-atstart=no` counts the CPU instructions
+// lavapipe executes for it and nothing else (context, upload, pipeline compile and one warm-up
+// dispatch stay outside). Run with LP_NUM_THREADS=0 so the dispatch runs on this thread.
+// The bench (kdop bench) starts it; it is not meant to be run by hand.
+#include "context.h"
+#include "kernel.h"
+#include "rectify_pass.h"
+#include "test_textures.h"
+
+#include <kdop_builtin_variants.h>
+
+#include <CLI/CLI.hpp>
+#include <valgrind/callgrind.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+    using namespace kdop;
+    CLI::App app{"kdop-dispatch-probe: one instrumented dispatch, for callgrind"};
+    std::string name;
+    std::uint32_t width = 256, height = 256;
+    app.add_option("--variant", name)->required();
+    app.add_option("--width", width)->check(CLI::Range(8u, 8192u));
+    app.add_option("--height", height)->check(CLI::Range(8u, 8192u));
+    CLI11_PARSE(app, argc, argv);
+
+    const Variant* variant = builtin::variants().find(name.c_str());
+    if (!variant) {
+        std::cerr << "--variant: unknown variant '" << name << "'\n";
+        return 1;
+    }
+    // The same content for every variant: grass, with a history from another texture, so every
+    // pixel is clipped (the costlier path where a variant has branches).
+    Image current = make_texture(TextureFamily::grass, width, height, 1);
+    Image history = make_texture(TextureFamily::asphalt, width, height, 2);
+    auto context = Context::create({});
+    auto kernel = context ? Kernel::create(**context, *variant) : std::unexpected(context.error());
+    auto pass = context ? RectifyPass::create(**context, width, height, TextureFormat::rgba32f) : std::unexpected(context.error());
+    if (!kernel || !pass) {
+        std::cerr << (kernel ? pass.error() : kernel.error()).message << '\n';
+        return 1;
+    }
+    if (auto ok = (*pass)->upload(current, history); !ok) return std::cerr << ok.error().message << '\n', 1;
+    if (auto warm = (*pass)->dispatch(**kernel, 1.0f); !warm) return std::cerr << warm.error().message << '\n', 1;
+
+    CALLGRIND_ZERO_STATS;
+    CALLGRIND_START_INSTRUMENTATION;
+    auto timing = (*pass)->dispatch(**kernel, 1.0f);
+    CALLGRIND_STOP_INSTRUMENTATION;
+    CALLGRIND_DUMP_STATS_AT("dispatch");
+    if (!timing) return std::cerr << timing.error().message << '\n', 1;
+    return 0;
+}
