@@ -13,23 +13,40 @@
 #include <CLI/CLI.hpp>
 #include <valgrind/callgrind.h>
 
+#include <cstring>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 
 int main(int argc, char** argv) {
     using namespace kdop;
     CLI::App app{"kdop-dispatch-probe: one instrumented dispatch, for callgrind"};
     std::string name;
     std::uint32_t width = 256, height = 256;
-    app.add_option("--variant", name)->required();
+    std::string spirv_path;
+    app.add_option("--variant", name, "Registry variant to run (its interface, and its SPIR-V unless --spirv)")->required();
+    app.add_option("--spirv", spirv_path, "Run this SPIR-V module instead, with the variant's interface");
     app.add_option("--width", width)->check(CLI::Range(8u, 8192u));
     app.add_option("--height", height)->check(CLI::Range(8u, 8192u));
     CLI11_PARSE(app, argc, argv);
 
-    const Variant* variant = builtin::variants().find(name.c_str());
-    if (!variant) {
+    const Variant* registered = builtin::variants().find(name.c_str());
+    if (!registered) {
         std::cerr << "--variant: unknown variant '" << name << "'\n";
         return 1;
     }
+    Variant replaced = *registered;
+    std::vector<std::uint32_t> words;
+    if (!spirv_path.empty()) {
+        std::ifstream in(spirv_path, std::ios::binary);
+        std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in.good() && !in.eof()) return std::cerr << spirv_path << ": cannot read\n", 1;
+        words.resize(bytes.size() / 4);
+        std::memcpy(words.data(), bytes.data(), words.size() * 4);
+        replaced.spirv = words.data();
+        replaced.spirv_word_count = words.size();
+    }
+    const Variant* variant = &replaced;
     // The same content for every variant: grass, with a history from another texture, so every
     // pixel is clipped (the costlier path where a variant has branches).
     Image current = make_texture(TextureFamily::grass, width, height, 1);

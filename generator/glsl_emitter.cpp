@@ -1,6 +1,7 @@
 #include "glsl_emitter.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <glm/geometric.hpp>
 
@@ -44,7 +45,18 @@ std::string upper_identifier(std::string s) {
 // The projection of vector expression `v` on a scaled axis, folded: unit components are added or
 // subtracted, zero components dropped, and the remaining ones multiplied, by one multiply or one
 // dot() over just those components.
-std::string project(std::string_view v, const glm::vec3& k) {
+std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projection style) {
+    if (style == EmitStyle::Projection::full_dot) {
+        std::string components;
+        std::vector<std::string> values;
+        for (int c = 0; c < 3; ++c)
+            if (k[c] != 0.0f) {
+                components += kComponents[c];
+                values.push_back(float_literal(k[c]));
+            }
+        if (values.size() == 1) return fmt::format("{}.{}", v, components); // the unit component itself
+        return fmt::format("dot({}.{}, vec{}({}))", v, components, values.size(), fmt::join(values, ", "));
+    }
     std::string units, negative_units, scaled_components;
     std::vector<float> scales;
     for (int c = 0; c < 3; ++c) {
@@ -59,9 +71,10 @@ std::string project(std::string_view v, const glm::vec3& k) {
     }
     std::string scaled;
     // A negative scale stays in the literal: "a - b * k" would cost a negate once fused into an fma.
-    if (scales.size() == 1)
-        scaled = fmt::format(" + {}.{} * {}", v, scaled_components, float_literal(scales[0]));
-    else if (scales.size() == 2)
+    if (scales.size() == 1 || (scales.size() == 2 && style == EmitStyle::Projection::multiply_add)) {
+        for (std::size_t i = 0; i < scales.size(); ++i)
+            scaled += fmt::format(" + {}.{} * {}", v, scaled_components[i], float_literal(scales[i]));
+    } else if (scales.size() == 2)
         scaled = fmt::format(" + dot({}.{}, vec2({}, {}))", v, scaled_components, float_literal(scales[0]),
                              float_literal(scales[1]));
     return units + scaled + negative_units;
@@ -89,11 +102,22 @@ std::string sum(int count, std::string_view term_format) {
 // Clip: the slab spans the projections' min..max, dilated by the padding. The ray starts inside,
 // so only its exit counts: the larger of the two plane crossings. A direction parallel to the slab
 // gives inv_d = +-inf and crossings -inf and +inf, so the slab does not limit t.
-void write_clip_slab(std::string& out, const ScaledAxis& axis, int count) {
-    for (int n = 0; n < count; ++n)
-        out += fmt::format("        float q{} = {};\n", n, project(fmt::format("c{}", n), axis.coefficients));
-    out += fmt::format("        float p = {};\n", project("current", axis.coefficients));
-    out += fmt::format("        float inv_d = {};\n", reciprocal(project("dir", axis.coefficients)));
+void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
+    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
+    if (style.extent == EmitStyle::Extent::running) {
+        out += fmt::format("        float q = {};\n", proj("c0"));
+        out += "        float lo = q, hi = q;\n";
+        for (int n = 1; n < count; ++n)
+            out += fmt::format("        q = {};\n        lo = min(lo, q);\n        hi = max(hi, q);\n", proj(fmt::format("c{}", n)));
+        out += fmt::format("        lo -= {};\n        hi += {};\n", float_literal(axis.padding), float_literal(axis.padding));
+        out += fmt::format("        float p = {};\n", proj("current"));
+        out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
+        out += "        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));\n";
+        return;
+    }
+    for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
+    out += fmt::format("        float p = {};\n", proj("current"));
+    out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     out += fmt::format("        float lo = {} - {};\n", reduce_tree("min", 0, count), float_literal(axis.padding));
     out += fmt::format("        float hi = {} + {};\n", reduce_tree("max", 0, count), float_literal(axis.padding));
     out += "        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));\n";
@@ -106,11 +130,11 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count) {
 // about 3e-4 |q| there, or a negative variance and NaN), and leaves the slab relative to p.
 // The slab is dilated like a clip slab; relative to p the dilation never rounds away, so lo < 0 < hi
 // and a ray parallel to a flat channel (inv_d infinite) gives -inf and +inf, never 0 x inf = NaN.
-void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count) {
-    out += fmt::format("        float p = {};\n", project("current", axis.coefficients));
-    out += fmt::format("        float inv_d = {};\n", reciprocal(project("dir", axis.coefficients)));
-    for (int n = 0; n < count; ++n)
-        out += fmt::format("        float q{} = {} - p;\n", n, project(fmt::format("c{}", n), axis.coefficients));
+void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
+    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
+    out += fmt::format("        float p = {};\n", proj("current"));
+    out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
+    for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {} - p;\n", n, proj(fmt::format("c{}", n)));
     out += fmt::format("        float mean = ({}) * (1.0 / {}.0);\n", sum(count, "q{}"), count);
     out += fmt::format("        float sigma = sqrt(max(({}) * (1.0 / {}.0) - mean * mean, 0.0));\n",
                        sum(count, "q{0} * q{0}"), count);
@@ -238,9 +262,9 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
             out += fmt::format(", scaled by {:.6g} to {}", scaled.factor, vec3_text(scaled.coefficients));
         out += "\n    {\n";
         if (spec.mode == Mode::varclip)
-            write_varclip_slab(out, scaled, count);
+            write_varclip_slab(out, scaled, count, spec.style);
         else
-            write_clip_slab(out, scaled, count);
+            write_clip_slab(out, scaled, count, spec.style);
         out += "    }\n";
     }
     out += "\n    return current + max(t, 0.0) * dir;\n";

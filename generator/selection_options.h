@@ -14,6 +14,7 @@ namespace kdop {
 struct SelectionOptions {
     std::vector<std::string> sets, modes, neighborhoods, forms;
     bool baselines = false;
+    std::string projection = "fold-dot", extent = "tree";
 
     void add_to(CLI::App& app) {
         app.add_option("--sets", sets,
@@ -24,10 +25,21 @@ struct SelectionOptions {
         app.add_option("--forms", forms,
                        "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]");
         app.add_flag("--baselines", baselines, "Also the cost baselines gather-n9, gather-n5 and copy");
+        app.add_option("--projection", projection, "How unrolled projections are written: fold-dot, multiply-add or full-dot")
+            ->check(CLI::IsMember({"fold-dot", "multiply-add", "full-dot"}));
+        app.add_option("--extent", extent, "How unrolled slab extents are reduced: tree or running")
+            ->check(CLI::IsMember({"tree", "running"}));
     }
 
     Result<std::vector<VariantSpec>> select() const {
         auto specs = select_variants(sets, modes, neighborhoods, forms);
+        EmitStyle style;
+        style.projection = projection == "multiply-add" ? EmitStyle::Projection::multiply_add
+                           : projection == "full-dot"   ? EmitStyle::Projection::full_dot
+                                                        : EmitStyle::Projection::fold_dot;
+        style.extent = extent == "running" ? EmitStyle::Extent::running : EmitStyle::Extent::tree;
+        if (specs)
+            for (VariantSpec& s : *specs) s.style = style;
         if (specs && baselines)
             for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
         return specs;

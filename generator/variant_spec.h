@@ -17,11 +17,26 @@
 
 namespace kdop {
 
+// How the unrolled form writes its arithmetic; the same function either way. The cost bench
+// measures the choices (kdop gen --projection/--extent); the defaults are what it found cheapest.
+struct EmitStyle {
+    enum class Projection {
+        fold_dot,     // c.x + dot(c.yz, vec2(a, b)): unit component added, dot() over the rest
+        multiply_add, // c.x + c.y * a + c.z * b: fused into one Fma per scaled component
+        full_dot,     // dot(c, vec3(1.0, a, b)): one dot over the nonzero components
+    } projection = Projection::fold_dot;
+    enum class Extent {
+        tree,    // min/max of all projections as balanced trees
+        running, // min/max updated neighbor by neighbor, as the loop form does
+    } extent = Extent::tree;
+};
+
 struct VariantSpec {
     AxisSet set; // empty for the gather and copy baselines
     Mode mode;
     Neighborhood neighborhood;
     Form form = Form::unrolled;
+    EmitStyle style = {};
 };
 
 // "<set>-<mode>-<neighborhood>" ("dop16-grass-varclip-n5"), with "-loop" for the loop form;
