@@ -55,7 +55,8 @@ std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projectio
                 values.push_back(float_literal(k[c]));
             }
         if (values.size() == 1) return fmt::format("{}.{}", v, components); // the unit component itself
-        return fmt::format("dot({}.{}, vec{}({}))", v, components, values.size(), fmt::join(values, ", "));
+        std::string operand = components == "xyz" ? std::string(v) : fmt::format("{}.{}", v, components);
+        return fmt::format("dot({}, vec{}({}))", operand, values.size(), fmt::join(values, ", "));
     }
     std::string units, negative_units, scaled_components;
     std::vector<float> scales;

@@ -29,9 +29,17 @@ const Variant& builtin_variant(const std::string& name) {
     return *v;
 }
 
+namespace {
+std::map<std::string, std::unique_ptr<Kernel>>& kernels() {
+    static std::map<std::string, std::unique_ptr<Kernel>> cache;
+    return cache;
+}
+} // namespace
+
+void forget_kernel(const std::string& name) { kernels().erase(name); }
+
 Image run_on_gpu(const Variant& variant, const Image& current, const Image& history, TextureFormat format, float gamma) {
-    static std::map<std::string, std::unique_ptr<Kernel>> kernels;
-    auto& kernel = kernels[variant.name];
+    auto& kernel = kernels()[variant.name];
     if (!kernel) {
         auto created = Kernel::create(gpu(), variant);
         EXPECT_TRUE(created) << created.error().message;

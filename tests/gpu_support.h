@@ -25,6 +25,9 @@ const Variant& builtin_variant(const std::string& name);
 Image run_on_gpu(const Variant& variant, const Image& current, const Image& history,
                  TextureFormat format = TextureFormat::rgba32f, float gamma = 1.0f);
 
+// Drops the cached pipeline of `name` (for tests that reuse one name for different modules).
+void forget_kernel(const std::string& name);
+
 // The spec (axis set, mode, neighborhood) of a built-in clip variant, for the CPU reference.
 VariantSpec builtin_spec(const Variant& variant);
 

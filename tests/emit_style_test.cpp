@@ -1,0 +1,58 @@
+// Every emission style computes the same function: built in-process, run on lavapipe, compared
+// with the CPU reference (same tolerance and reasoning as gpu_reference_test.cpp).
+#include "cpu_clip.h"
+#include "glsl_emitter.h"
+#include "gpu_support.h"
+#include "test_textures.h"
+#include "variant_builder.h"
+
+#include <gtest/gtest.h>
+
+namespace kdop {
+namespace {
+
+constexpr double kTolerance = 2e-4;
+
+TEST(EmitStyle, EveryStyleMatchesTheReference) {
+    const auto cases = make_test_cases(32, 32, 11, false);
+    for (auto projection : {EmitStyle::Projection::fold_dot, EmitStyle::Projection::multiply_add, EmitStyle::Projection::full_dot})
+        for (auto extent : {EmitStyle::Extent::tree, EmitStyle::Extent::running})
+            for (const char* name : {"dop22-clip-n9", "dop22-varclip-n5"}) {
+                const Variant& registered = test::builtin_variant(name);
+                VariantSpec spec = test::builtin_spec(registered);
+                spec.style = {projection, extent};
+                auto built = build_variant(spec);
+                ASSERT_TRUE(built) << built.error().message;
+                Variant variant = registered; // same interface, this style's module
+                variant.spirv = built->spirv.data();
+                variant.spirv_word_count = built->spirv.size();
+                variant.name = "style-under-test"; // a kernel of its own in the test's pipeline cache
+                SCOPED_TRACE(std::string(name) + " projection " + std::to_string(int(projection)) + " extent " +
+                             std::to_string(int(extent)));
+                for (const TestCase& c : cases) {
+                    Image gpu = test::run_on_gpu(variant, c.current, c.history);
+                    Image ref = reference_rectify(spec.set, spec.mode, spec.neighborhood, c.current, c.history, 1.0);
+                    EXPECT_LE(test::relative_error(gpu, ref, c.current, c.history).max_relative, kTolerance) << c.name();
+                }
+                test::forget_kernel("style-under-test");
+            }
+}
+
+TEST(EmitStyle, ProjectionsAreWrittenAsAsked) {
+    VariantSpec spec = test::builtin_spec(test::builtin_variant("dop32-clip-n9"));
+    spec.style.projection = EmitStyle::Projection::multiply_add;
+    std::string ma = emit_function(spec);
+    EXPECT_EQ(ma.find("dot("), std::string::npos);
+    EXPECT_NE(ma.find("float q0 = c0.x + c0.y * "), std::string::npos);
+    spec.style.projection = EmitStyle::Projection::full_dot;
+    std::string fd = emit_function(spec);
+    EXPECT_NE(fd.find("float q0 = dot(c0, vec3(1.0, 0.5569"), std::string::npos); // axis 4: (0.820081, 0.456727, -0.344773)
+    EXPECT_NE(fd.find("float q0 = c0.x;"), std::string::npos);                        // axis 1: X
+    spec.style.extent = EmitStyle::Extent::running;
+    std::string running = emit_function(spec);
+    EXPECT_NE(running.find("lo = min(lo, q);"), std::string::npos);
+    EXPECT_EQ(running.find("float q8"), std::string::npos);
+}
+
+} // namespace
+} // namespace kdop
