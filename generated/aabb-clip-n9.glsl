@@ -29,55 +29,112 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 
     // Slab 1 of 3: axis (1, 0, 0) from aabb.axes:5
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.x;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.x;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.x;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.x;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
         float q5 = c5.x;
+        lo = min(lo, q5);
+        hi = max(hi, q5);
         float q6 = c6.x;
+        lo = min(lo, q6);
+        hi = max(hi, q6);
         float q7 = c7.x;
+        lo = min(lo, q7);
+        hi = max(hi, q7);
         float q8 = c8.x;
+        lo = min(lo, q8);
+        hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
-        float lo = min(min(min(q0, q1), min(q2, q3)), min(min(q4, q5), min(q6, min(q7, q8)))) - 1e-05;
-        float hi = max(max(max(q0, q1), max(q2, q3)), max(max(q4, q5), max(q6, max(q7, q8)))) + 1e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 2 of 3: axis (0, 1, 0) from aabb.axes:6
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.y;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.y;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.y;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.y;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
         float q5 = c5.y;
+        lo = min(lo, q5);
+        hi = max(hi, q5);
         float q6 = c6.y;
+        lo = min(lo, q6);
+        hi = max(hi, q6);
         float q7 = c7.y;
+        lo = min(lo, q7);
+        hi = max(hi, q7);
         float q8 = c8.y;
+        lo = min(lo, q8);
+        hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
-        float lo = min(min(min(q0, q1), min(q2, q3)), min(min(q4, q5), min(q6, min(q7, q8)))) - 1e-05;
-        float hi = max(max(max(q0, q1), max(q2, q3)), max(max(q4, q5), max(q6, max(q7, q8)))) + 1e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 3 of 3: axis (0, 0, 1) from aabb.axes:7
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.z;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.z;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.z;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.z;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
         float q5 = c5.z;
+        lo = min(lo, q5);
+        hi = max(hi, q5);
         float q6 = c6.z;
+        lo = min(lo, q6);
+        hi = max(hi, q6);
         float q7 = c7.z;
+        lo = min(lo, q7);
+        hi = max(hi, q7);
         float q8 = c8.z;
+        lo = min(lo, q8);
+        hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
-        float lo = min(min(min(q0, q1), min(q2, q3)), min(min(q4, q5), min(q6, min(q7, q8)))) - 1e-05;
-        float hi = max(max(max(q0, q1), max(q2, q3)), max(max(q4, q5), max(q6, max(q7, q8)))) + 1e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 

@@ -43,113 +43,201 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
 
     // Slab 1 of 8: axis (0.997167, -0.05482, 0.0515) from dop16-asphalt.axes:5, scaled by 1.00284 to (1, -0.054975748, 0.051646315)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.054975748, 0.051646315));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.054975748, 0.051646315));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.054975748, 0.051646315));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.054975748, 0.051646315));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.054975748, 0.051646315));
-        float p = current.x + dot(current.yz, vec2(-0.054975748, 0.051646315));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.054975748, 0.051646315)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.0028408e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.0028408e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * -0.054975748 + c0.z * 0.051646315;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * -0.054975748 + c1.z * 0.051646315;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * -0.054975748 + c2.z * 0.051646315;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * -0.054975748 + c3.z * 0.051646315;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * -0.054975748 + c4.z * 0.051646315;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.0028408e-05;
+        hi += 1.0028408e-05;
+        float p = current.x + current.y * -0.054975748 + current.z * 0.051646315;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.054975748 + dir.z * 0.051646315);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 2 of 8: axis (0.043682, -0.727663, 0.684542) from dop16-asphalt.axes:6, scaled by -1.37426 to (-0.060030535, 1, -0.9407404)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.060030535, -0.9407404));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.060030535, -0.9407404));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.060030535, -0.9407404));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.060030535, -0.9407404));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.060030535, -0.9407404));
-        float p = current.y + dot(current.xz, vec2(-0.060030535, -0.9407404));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.060030535, -0.9407404)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.37426205e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.37426205e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * -0.060030535 + c0.z * -0.9407404;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * -0.060030535 + c1.z * -0.9407404;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * -0.060030535 + c2.z * -0.9407404;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * -0.060030535 + c3.z * -0.9407404;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * -0.060030535 + c4.z * -0.9407404;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.37426205e-05;
+        hi += 1.37426205e-05;
+        float p = current.y + current.x * -0.060030535 + current.z * -0.9407404;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.060030535 + dir.z * -0.9407404);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 3 of 8: axis (-0.451553, 0.808335, -0.377751) from dop16-asphalt.axes:7, scaled by 1.23711 to (-0.5586211, 1, -0.46731988)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5586211, -0.46731988));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5586211, -0.46731988));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5586211, -0.46731988));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5586211, -0.46731988));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5586211, -0.46731988));
-        float p = current.y + dot(current.xz, vec2(-0.5586211, -0.46731988));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5586211, -0.46731988)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.2371117e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.2371117e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * -0.5586211 + c0.z * -0.46731988;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * -0.5586211 + c1.z * -0.46731988;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * -0.5586211 + c2.z * -0.46731988;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * -0.5586211 + c3.z * -0.46731988;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * -0.5586211 + c4.z * -0.46731988;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.2371117e-05;
+        hi += 1.2371117e-05;
+        float p = current.y + current.x * -0.5586211 + current.z * -0.46731988;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.5586211 + dir.z * -0.46731988);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 4 of 8: axis (-0.003001, 0.615645, -0.788018) from dop16-asphalt.axes:8, scaled by -1.26901 to (0.0038082886, -0.7812575, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.0038082886, -0.7812575));
-        float q1 = c1.z + dot(c1.xy, vec2(0.0038082886, -0.7812575));
-        float q2 = c2.z + dot(c2.xy, vec2(0.0038082886, -0.7812575));
-        float q3 = c3.z + dot(c3.xy, vec2(0.0038082886, -0.7812575));
-        float q4 = c4.z + dot(c4.xy, vec2(0.0038082886, -0.7812575));
-        float p = current.z + dot(current.xy, vec2(0.0038082886, -0.7812575));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.0038082886, -0.7812575)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.2690067e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.2690067e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.z + c0.x * 0.0038082886 + c0.y * -0.7812575;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.z + c1.x * 0.0038082886 + c1.y * -0.7812575;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.z + c2.x * 0.0038082886 + c2.y * -0.7812575;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.z + c3.x * 0.0038082886 + c3.y * -0.7812575;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.z + c4.x * 0.0038082886 + c4.y * -0.7812575;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.2690067e-05;
+        hi += 1.2690067e-05;
+        float p = current.z + current.x * 0.0038082886 + current.y * -0.7812575;
+        float inv_d = 1.0 / (dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 5 of 8: axis (0.130192, -0.063137, -0.989476) from dop16-asphalt.axes:9, scaled by -1.01064 to (-0.13157672, 0.06380852, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.13157672, 0.06380852));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.13157672, 0.06380852));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.13157672, 0.06380852));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.13157672, 0.06380852));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.13157672, 0.06380852));
-        float p = current.z + dot(current.xy, vec2(-0.13157672, 0.06380852));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.13157672, 0.06380852)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.0106354e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.0106354e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.z + c0.x * -0.13157672 + c0.y * 0.06380852;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.z + c1.x * -0.13157672 + c1.y * 0.06380852;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.z + c2.x * -0.13157672 + c2.y * 0.06380852;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.z + c3.x * -0.13157672 + c3.y * 0.06380852;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.z + c4.x * -0.13157672 + c4.y * 0.06380852;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.0106354e-05;
+        hi += 1.0106354e-05;
+        float p = current.z + current.x * -0.13157672 + current.y * 0.06380852;
+        float inv_d = 1.0 / (dir.z + dir.x * -0.13157672 + dir.y * 0.06380852);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 6 of 8: axis (0.775079, -0.584236, -0.240668) from dop16-asphalt.axes:10, scaled by 1.29019 to (1, -0.7537761, -0.3105077)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.7537761, -0.3105077));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.7537761, -0.3105077));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.7537761, -0.3105077));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.7537761, -0.3105077));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.7537761, -0.3105077));
-        float p = current.x + dot(current.yz, vec2(-0.7537761, -0.3105077));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.7537761, -0.3105077)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.2901913e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.2901913e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * -0.7537761 + c0.z * -0.3105077;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * -0.7537761 + c1.z * -0.3105077;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * -0.7537761 + c2.z * -0.3105077;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * -0.7537761 + c3.z * -0.3105077;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * -0.7537761 + c4.z * -0.3105077;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.2901913e-05;
+        hi += 1.2901913e-05;
+        float p = current.x + current.y * -0.7537761 + current.z * -0.3105077;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.7537761 + dir.z * -0.3105077);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 7 of 8: axis (0.589837, 0.171644, -0.78907) from dop16-asphalt.axes:11, scaled by -1.26731 to (-0.7475091, -0.21752696, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.7475091, -0.21752696));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.7475091, -0.21752696));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.7475091, -0.21752696));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.7475091, -0.21752696));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.7475091, -0.21752696));
-        float p = current.z + dot(current.xy, vec2(-0.7475091, -0.21752696));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.7475091, -0.21752696)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.2673152e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.2673152e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.z + c0.x * -0.7475091 + c0.y * -0.21752696;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.z + c1.x * -0.7475091 + c1.y * -0.21752696;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.z + c2.x * -0.7475091 + c2.y * -0.21752696;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.z + c3.x * -0.7475091 + c3.y * -0.21752696;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.z + c4.x * -0.7475091 + c4.y * -0.21752696;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.2673152e-05;
+        hi += 1.2673152e-05;
+        float p = current.z + current.x * -0.7475091 + current.y * -0.21752696;
+        float inv_d = 1.0 / (dir.z + dir.x * -0.7475091 + dir.y * -0.21752696);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 8 of 8: axis (0.89801, -0.436338, -0.056459) from dop16-asphalt.axes:12, scaled by 1.11357 to (1, -0.48589435, -0.06287124)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.48589435, -0.06287124));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.48589435, -0.06287124));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.48589435, -0.06287124));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.48589435, -0.06287124));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.48589435, -0.06287124));
-        float p = current.x + dot(current.yz, vec2(-0.48589435, -0.06287124));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.48589435, -0.06287124)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.1135736e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.1135736e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * -0.48589435 + c0.z * -0.06287124;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * -0.48589435 + c1.z * -0.06287124;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * -0.48589435 + c2.z * -0.06287124;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * -0.48589435 + c3.z * -0.06287124;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * -0.48589435 + c4.z * -0.06287124;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.1135736e-05;
+        hi += 1.1135736e-05;
+        float p = current.x + current.y * -0.48589435 + current.z * -0.06287124;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.48589435 + dir.z * -0.06287124);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 

@@ -43,113 +43,201 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
 
     // Slab 1 of 8: axis (-0.663315, 0.729578, -0.166518) from dop16-grass.axes:6, scaled by 1.37066 to (-0.9091763, 1, -0.22823879)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.9091763, -0.22823879));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.9091763, -0.22823879));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.9091763, -0.22823879));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.9091763, -0.22823879));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.9091763, -0.22823879));
-        float p = current.y + dot(current.xz, vec2(-0.9091763, -0.22823879));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.9091763, -0.22823879)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.3706547e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.3706547e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * -0.9091763 + c0.z * -0.22823879;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * -0.9091763 + c1.z * -0.22823879;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * -0.9091763 + c2.z * -0.22823879;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * -0.9091763 + c3.z * -0.22823879;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * -0.9091763 + c4.z * -0.22823879;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.3706547e-05;
+        hi += 1.3706547e-05;
+        float p = current.y + current.x * -0.9091763 + current.z * -0.22823879;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.9091763 + dir.z * -0.22823879);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.70663214, 0.10394432));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.70663214, 0.10394432));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.70663214, 0.10394432));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.70663214, 0.10394432));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.70663214, 0.10394432));
-        float p = current.z + dot(current.xy, vec2(-0.70663214, 0.10394432));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.70663214, 0.10394432)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.2288749e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.2288749e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.z + c0.x * -0.70663214 + c0.y * 0.10394432;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.z + c1.x * -0.70663214 + c1.y * 0.10394432;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.z + c2.x * -0.70663214 + c2.y * 0.10394432;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.z + c3.x * -0.70663214 + c3.y * 0.10394432;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.z + c4.x * -0.70663214 + c4.y * 0.10394432;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.2288749e-05;
+        hi += 1.2288749e-05;
+        float p = current.z + current.x * -0.70663214 + current.y * 0.10394432;
+        float inv_d = 1.0 / (dir.z + dir.x * -0.70663214 + dir.y * 0.10394432);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(0.18454187, -0.57063365));
-        float q1 = c1.z + dot(c1.xy, vec2(0.18454187, -0.57063365));
-        float q2 = c2.z + dot(c2.xy, vec2(0.18454187, -0.57063365));
-        float q3 = c3.z + dot(c3.xy, vec2(0.18454187, -0.57063365));
-        float q4 = c4.z + dot(c4.xy, vec2(0.18454187, -0.57063365));
-        float p = current.z + dot(current.xy, vec2(0.18454187, -0.57063365));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.18454187, -0.57063365)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.1660525e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.1660525e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.z + c0.x * 0.18454187 + c0.y * -0.57063365;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.z + c1.x * 0.18454187 + c1.y * -0.57063365;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.z + c2.x * 0.18454187 + c2.y * -0.57063365;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.z + c3.x * 0.18454187 + c3.y * -0.57063365;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.z + c4.x * 0.18454187 + c4.y * -0.57063365;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.1660525e-05;
+        hi += 1.1660525e-05;
+        float p = current.z + current.x * 0.18454187 + current.y * -0.57063365;
+        float inv_d = 1.0 / (dir.z + dir.x * 0.18454187 + dir.y * -0.57063365);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
     {
-        float q0 = c0.z + dot(c0.xy, vec2(-0.2652209, 0.040031724));
-        float q1 = c1.z + dot(c1.xy, vec2(-0.2652209, 0.040031724));
-        float q2 = c2.z + dot(c2.xy, vec2(-0.2652209, 0.040031724));
-        float q3 = c3.z + dot(c3.xy, vec2(-0.2652209, 0.040031724));
-        float q4 = c4.z + dot(c4.xy, vec2(-0.2652209, 0.040031724));
-        float p = current.z + dot(current.xy, vec2(-0.2652209, 0.040031724));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.2652209, 0.040031724)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.0353476e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.0353476e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.z + c0.x * -0.2652209 + c0.y * 0.040031724;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.z + c1.x * -0.2652209 + c1.y * 0.040031724;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.z + c2.x * -0.2652209 + c2.y * 0.040031724;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.z + c3.x * -0.2652209 + c3.y * 0.040031724;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.z + c4.x * -0.2652209 + c4.y * 0.040031724;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.0353476e-05;
+        hi += 1.0353476e-05;
+        float p = current.z + current.x * -0.2652209 + current.y * 0.040031724;
+        float inv_d = 1.0 / (dir.z + dir.x * -0.2652209 + dir.y * 0.040031724);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.6816266, -0.9873084));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.6816266, -0.9873084));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.6816266, -0.9873084));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.6816266, -0.9873084));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.6816266, -0.9873084));
-        float p = current.x + dot(current.yz, vec2(-0.6816266, -0.9873084));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.6816266, -0.9873084)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.5618556e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.5618556e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * -0.6816266 + c0.z * -0.9873084;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * -0.6816266 + c1.z * -0.9873084;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * -0.6816266 + c2.z * -0.9873084;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * -0.6816266 + c3.z * -0.9873084;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * -0.6816266 + c4.z * -0.9873084;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.5618556e-05;
+        hi += 1.5618556e-05;
+        float p = current.x + current.y * -0.6816266 + current.z * -0.9873084;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.6816266 + dir.z * -0.9873084);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.5726, -0.42632));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.5726, -0.42632));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.5726, -0.42632));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.5726, -0.42632));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.5726, -0.42632));
-        float p = current.x + dot(current.yz, vec2(-0.5726, -0.42632));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.5726, -0.42632)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.2286658e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.2286658e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * -0.5726 + c0.z * -0.42632;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * -0.5726 + c1.z * -0.42632;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * -0.5726 + c2.z * -0.42632;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * -0.5726 + c3.z * -0.42632;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * -0.5726 + c4.z * -0.42632;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.2286658e-05;
+        hi += 1.2286658e-05;
+        float p = current.x + current.y * -0.5726 + current.z * -0.42632;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.5726 + dir.z * -0.42632);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(0.25867906, 0.61571217));
-        float q1 = c1.x + dot(c1.yz, vec2(0.25867906, 0.61571217));
-        float q2 = c2.x + dot(c2.yz, vec2(0.25867906, 0.61571217));
-        float q3 = c3.x + dot(c3.yz, vec2(0.25867906, 0.61571217));
-        float q4 = c4.x + dot(c4.yz, vec2(0.25867906, 0.61571217));
-        float p = current.x + dot(current.yz, vec2(0.25867906, 0.61571217));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.25867906, 0.61571217)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.20250415e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.20250415e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * 0.25867906 + c0.z * 0.61571217;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * 0.25867906 + c1.z * 0.61571217;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * 0.25867906 + c2.z * 0.61571217;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * 0.25867906 + c3.z * 0.61571217;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * 0.25867906 + c4.z * 0.61571217;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.20250415e-05;
+        hi += 1.20250415e-05;
+        float p = current.x + current.y * 0.25867906 + current.z * 0.61571217;
+        float inv_d = 1.0 / (dir.x + dir.y * 0.25867906 + dir.z * 0.61571217);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.6007664, -0.39173308));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.6007664, -0.39173308));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.6007664, -0.39173308));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.6007664, -0.39173308));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.6007664, -0.39173308));
-        float p = current.y + dot(current.xz, vec2(-0.6007664, -0.39173308));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.6007664, -0.39173308)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.23059945e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.23059945e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * -0.6007664 + c0.z * -0.39173308;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * -0.6007664 + c1.z * -0.39173308;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * -0.6007664 + c2.z * -0.39173308;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * -0.6007664 + c3.z * -0.39173308;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * -0.6007664 + c4.z * -0.39173308;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.23059945e-05;
+        hi += 1.23059945e-05;
+        float p = current.y + current.x * -0.6007664 + current.z * -0.39173308;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.6007664 + dir.z * -0.39173308);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 

@@ -30,17 +30,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 1 of 8: axis (-0.663315, 0.729578, -0.166518) from dop16-grass.axes:6, scaled by 1.37066 to (-0.9091763, 1, -0.22823879)
     {
-        float p = current.y + dot(current.xz, vec2(-0.9091763, -0.22823879));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.9091763, -0.22823879)));
-        float q0 = c0.y + dot(c0.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q1 = c1.y + dot(c1.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q2 = c2.y + dot(c2.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q3 = c3.y + dot(c3.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q4 = c4.y + dot(c4.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q5 = c5.y + dot(c5.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q6 = c6.y + dot(c6.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q7 = c7.y + dot(c7.xz, vec2(-0.9091763, -0.22823879)) - p;
-        float q8 = c8.y + dot(c8.xz, vec2(-0.9091763, -0.22823879)) - p;
+        float p = current.y + current.x * -0.9091763 + current.z * -0.22823879;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.9091763 + dir.z * -0.22823879);
+        float q0 = c0.y + c0.x * -0.9091763 + c0.z * -0.22823879 - p;
+        float q1 = c1.y + c1.x * -0.9091763 + c1.z * -0.22823879 - p;
+        float q2 = c2.y + c2.x * -0.9091763 + c2.z * -0.22823879 - p;
+        float q3 = c3.y + c3.x * -0.9091763 + c3.z * -0.22823879 - p;
+        float q4 = c4.y + c4.x * -0.9091763 + c4.z * -0.22823879 - p;
+        float q5 = c5.y + c5.x * -0.9091763 + c5.z * -0.22823879 - p;
+        float q6 = c6.y + c6.x * -0.9091763 + c6.z * -0.22823879 - p;
+        float q7 = c7.y + c7.x * -0.9091763 + c7.z * -0.22823879 - p;
+        float q8 = c8.y + c8.x * -0.9091763 + c8.z * -0.22823879 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3706547e-05;
@@ -50,17 +50,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
     {
-        float p = current.z + dot(current.xy, vec2(-0.70663214, 0.10394432));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.70663214, 0.10394432)));
-        float q0 = c0.z + dot(c0.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q1 = c1.z + dot(c1.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q2 = c2.z + dot(c2.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q3 = c3.z + dot(c3.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q4 = c4.z + dot(c4.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q5 = c5.z + dot(c5.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q6 = c6.z + dot(c6.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q7 = c7.z + dot(c7.xy, vec2(-0.70663214, 0.10394432)) - p;
-        float q8 = c8.z + dot(c8.xy, vec2(-0.70663214, 0.10394432)) - p;
+        float p = current.z + current.x * -0.70663214 + current.y * 0.10394432;
+        float inv_d = 1.0 / (dir.z + dir.x * -0.70663214 + dir.y * 0.10394432);
+        float q0 = c0.z + c0.x * -0.70663214 + c0.y * 0.10394432 - p;
+        float q1 = c1.z + c1.x * -0.70663214 + c1.y * 0.10394432 - p;
+        float q2 = c2.z + c2.x * -0.70663214 + c2.y * 0.10394432 - p;
+        float q3 = c3.z + c3.x * -0.70663214 + c3.y * 0.10394432 - p;
+        float q4 = c4.z + c4.x * -0.70663214 + c4.y * 0.10394432 - p;
+        float q5 = c5.z + c5.x * -0.70663214 + c5.y * 0.10394432 - p;
+        float q6 = c6.z + c6.x * -0.70663214 + c6.y * 0.10394432 - p;
+        float q7 = c7.z + c7.x * -0.70663214 + c7.y * 0.10394432 - p;
+        float q8 = c8.z + c8.x * -0.70663214 + c8.y * 0.10394432 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2288749e-05;
@@ -70,17 +70,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
     {
-        float p = current.z + dot(current.xy, vec2(0.18454187, -0.57063365));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(0.18454187, -0.57063365)));
-        float q0 = c0.z + dot(c0.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q1 = c1.z + dot(c1.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q2 = c2.z + dot(c2.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q3 = c3.z + dot(c3.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q4 = c4.z + dot(c4.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q5 = c5.z + dot(c5.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q6 = c6.z + dot(c6.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q7 = c7.z + dot(c7.xy, vec2(0.18454187, -0.57063365)) - p;
-        float q8 = c8.z + dot(c8.xy, vec2(0.18454187, -0.57063365)) - p;
+        float p = current.z + current.x * 0.18454187 + current.y * -0.57063365;
+        float inv_d = 1.0 / (dir.z + dir.x * 0.18454187 + dir.y * -0.57063365);
+        float q0 = c0.z + c0.x * 0.18454187 + c0.y * -0.57063365 - p;
+        float q1 = c1.z + c1.x * 0.18454187 + c1.y * -0.57063365 - p;
+        float q2 = c2.z + c2.x * 0.18454187 + c2.y * -0.57063365 - p;
+        float q3 = c3.z + c3.x * 0.18454187 + c3.y * -0.57063365 - p;
+        float q4 = c4.z + c4.x * 0.18454187 + c4.y * -0.57063365 - p;
+        float q5 = c5.z + c5.x * 0.18454187 + c5.y * -0.57063365 - p;
+        float q6 = c6.z + c6.x * 0.18454187 + c6.y * -0.57063365 - p;
+        float q7 = c7.z + c7.x * 0.18454187 + c7.y * -0.57063365 - p;
+        float q8 = c8.z + c8.x * 0.18454187 + c8.y * -0.57063365 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.1660525e-05;
@@ -90,17 +90,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
     {
-        float p = current.z + dot(current.xy, vec2(-0.2652209, 0.040031724));
-        float inv_d = 1.0 / (dir.z + dot(dir.xy, vec2(-0.2652209, 0.040031724)));
-        float q0 = c0.z + dot(c0.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q1 = c1.z + dot(c1.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q2 = c2.z + dot(c2.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q3 = c3.z + dot(c3.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q4 = c4.z + dot(c4.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q5 = c5.z + dot(c5.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q6 = c6.z + dot(c6.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q7 = c7.z + dot(c7.xy, vec2(-0.2652209, 0.040031724)) - p;
-        float q8 = c8.z + dot(c8.xy, vec2(-0.2652209, 0.040031724)) - p;
+        float p = current.z + current.x * -0.2652209 + current.y * 0.040031724;
+        float inv_d = 1.0 / (dir.z + dir.x * -0.2652209 + dir.y * 0.040031724);
+        float q0 = c0.z + c0.x * -0.2652209 + c0.y * 0.040031724 - p;
+        float q1 = c1.z + c1.x * -0.2652209 + c1.y * 0.040031724 - p;
+        float q2 = c2.z + c2.x * -0.2652209 + c2.y * 0.040031724 - p;
+        float q3 = c3.z + c3.x * -0.2652209 + c3.y * 0.040031724 - p;
+        float q4 = c4.z + c4.x * -0.2652209 + c4.y * 0.040031724 - p;
+        float q5 = c5.z + c5.x * -0.2652209 + c5.y * 0.040031724 - p;
+        float q6 = c6.z + c6.x * -0.2652209 + c6.y * 0.040031724 - p;
+        float q7 = c7.z + c7.x * -0.2652209 + c7.y * 0.040031724 - p;
+        float q8 = c8.z + c8.x * -0.2652209 + c8.y * 0.040031724 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.0353476e-05;
@@ -110,17 +110,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
     {
-        float p = current.x + dot(current.yz, vec2(-0.6816266, -0.9873084));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.6816266, -0.9873084)));
-        float q0 = c0.x + dot(c0.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q1 = c1.x + dot(c1.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q2 = c2.x + dot(c2.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q3 = c3.x + dot(c3.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q4 = c4.x + dot(c4.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q5 = c5.x + dot(c5.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q6 = c6.x + dot(c6.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q7 = c7.x + dot(c7.yz, vec2(-0.6816266, -0.9873084)) - p;
-        float q8 = c8.x + dot(c8.yz, vec2(-0.6816266, -0.9873084)) - p;
+        float p = current.x + current.y * -0.6816266 + current.z * -0.9873084;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.6816266 + dir.z * -0.9873084);
+        float q0 = c0.x + c0.y * -0.6816266 + c0.z * -0.9873084 - p;
+        float q1 = c1.x + c1.y * -0.6816266 + c1.z * -0.9873084 - p;
+        float q2 = c2.x + c2.y * -0.6816266 + c2.z * -0.9873084 - p;
+        float q3 = c3.x + c3.y * -0.6816266 + c3.z * -0.9873084 - p;
+        float q4 = c4.x + c4.y * -0.6816266 + c4.z * -0.9873084 - p;
+        float q5 = c5.x + c5.y * -0.6816266 + c5.z * -0.9873084 - p;
+        float q6 = c6.x + c6.y * -0.6816266 + c6.z * -0.9873084 - p;
+        float q7 = c7.x + c7.y * -0.6816266 + c7.z * -0.9873084 - p;
+        float q8 = c8.x + c8.y * -0.6816266 + c8.z * -0.9873084 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5618556e-05;
@@ -130,17 +130,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
     {
-        float p = current.x + dot(current.yz, vec2(-0.5726, -0.42632));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.5726, -0.42632)));
-        float q0 = c0.x + dot(c0.yz, vec2(-0.5726, -0.42632)) - p;
-        float q1 = c1.x + dot(c1.yz, vec2(-0.5726, -0.42632)) - p;
-        float q2 = c2.x + dot(c2.yz, vec2(-0.5726, -0.42632)) - p;
-        float q3 = c3.x + dot(c3.yz, vec2(-0.5726, -0.42632)) - p;
-        float q4 = c4.x + dot(c4.yz, vec2(-0.5726, -0.42632)) - p;
-        float q5 = c5.x + dot(c5.yz, vec2(-0.5726, -0.42632)) - p;
-        float q6 = c6.x + dot(c6.yz, vec2(-0.5726, -0.42632)) - p;
-        float q7 = c7.x + dot(c7.yz, vec2(-0.5726, -0.42632)) - p;
-        float q8 = c8.x + dot(c8.yz, vec2(-0.5726, -0.42632)) - p;
+        float p = current.x + current.y * -0.5726 + current.z * -0.42632;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.5726 + dir.z * -0.42632);
+        float q0 = c0.x + c0.y * -0.5726 + c0.z * -0.42632 - p;
+        float q1 = c1.x + c1.y * -0.5726 + c1.z * -0.42632 - p;
+        float q2 = c2.x + c2.y * -0.5726 + c2.z * -0.42632 - p;
+        float q3 = c3.x + c3.y * -0.5726 + c3.z * -0.42632 - p;
+        float q4 = c4.x + c4.y * -0.5726 + c4.z * -0.42632 - p;
+        float q5 = c5.x + c5.y * -0.5726 + c5.z * -0.42632 - p;
+        float q6 = c6.x + c6.y * -0.5726 + c6.z * -0.42632 - p;
+        float q7 = c7.x + c7.y * -0.5726 + c7.z * -0.42632 - p;
+        float q8 = c8.x + c8.y * -0.5726 + c8.z * -0.42632 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2286658e-05;
@@ -150,17 +150,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
     {
-        float p = current.x + dot(current.yz, vec2(0.25867906, 0.61571217));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.25867906, 0.61571217)));
-        float q0 = c0.x + dot(c0.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q1 = c1.x + dot(c1.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q2 = c2.x + dot(c2.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q3 = c3.x + dot(c3.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q4 = c4.x + dot(c4.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q5 = c5.x + dot(c5.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q6 = c6.x + dot(c6.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q7 = c7.x + dot(c7.yz, vec2(0.25867906, 0.61571217)) - p;
-        float q8 = c8.x + dot(c8.yz, vec2(0.25867906, 0.61571217)) - p;
+        float p = current.x + current.y * 0.25867906 + current.z * 0.61571217;
+        float inv_d = 1.0 / (dir.x + dir.y * 0.25867906 + dir.z * 0.61571217);
+        float q0 = c0.x + c0.y * 0.25867906 + c0.z * 0.61571217 - p;
+        float q1 = c1.x + c1.y * 0.25867906 + c1.z * 0.61571217 - p;
+        float q2 = c2.x + c2.y * 0.25867906 + c2.z * 0.61571217 - p;
+        float q3 = c3.x + c3.y * 0.25867906 + c3.z * 0.61571217 - p;
+        float q4 = c4.x + c4.y * 0.25867906 + c4.z * 0.61571217 - p;
+        float q5 = c5.x + c5.y * 0.25867906 + c5.z * 0.61571217 - p;
+        float q6 = c6.x + c6.y * 0.25867906 + c6.z * 0.61571217 - p;
+        float q7 = c7.x + c7.y * 0.25867906 + c7.z * 0.61571217 - p;
+        float q8 = c8.x + c8.y * 0.25867906 + c8.z * 0.61571217 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.20250415e-05;
@@ -170,17 +170,17 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
     {
-        float p = current.y + dot(current.xz, vec2(-0.6007664, -0.39173308));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.6007664, -0.39173308)));
-        float q0 = c0.y + dot(c0.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q1 = c1.y + dot(c1.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q2 = c2.y + dot(c2.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q3 = c3.y + dot(c3.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q4 = c4.y + dot(c4.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q5 = c5.y + dot(c5.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q6 = c6.y + dot(c6.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q7 = c7.y + dot(c7.xz, vec2(-0.6007664, -0.39173308)) - p;
-        float q8 = c8.y + dot(c8.xz, vec2(-0.6007664, -0.39173308)) - p;
+        float p = current.y + current.x * -0.6007664 + current.z * -0.39173308;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.6007664 + dir.z * -0.39173308);
+        float q0 = c0.y + c0.x * -0.6007664 + c0.z * -0.39173308 - p;
+        float q1 = c1.y + c1.x * -0.6007664 + c1.z * -0.39173308 - p;
+        float q2 = c2.y + c2.x * -0.6007664 + c2.z * -0.39173308 - p;
+        float q3 = c3.y + c3.x * -0.6007664 + c3.z * -0.39173308 - p;
+        float q4 = c4.y + c4.x * -0.6007664 + c4.z * -0.39173308 - p;
+        float q5 = c5.y + c5.x * -0.6007664 + c5.z * -0.39173308 - p;
+        float q6 = c6.y + c6.x * -0.6007664 + c6.z * -0.39173308 - p;
+        float q7 = c7.y + c7.x * -0.6007664 + c7.z * -0.39173308 - p;
+        float q8 = c8.y + c8.x * -0.6007664 + c8.z * -0.39173308 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.23059945e-05;

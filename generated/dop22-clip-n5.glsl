@@ -25,155 +25,276 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
 
     // Slab 1 of 11: axis (1, 0, 0) from dop22.axes:5
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.x;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.x;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.x;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.x;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 2 of 11: axis (0, 1, 0) from dop22.axes:6
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.y;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.y;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.y;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.y;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 3 of 11: axis (0, 0, 1) from dop22.axes:7
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.z;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.z;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.z;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.z;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 4 of 11: axis (0, 0.664104, -0.74764) from dop22.axes:8, scaled by -1.33754 to (0, -0.8882671, 1)
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.y * -0.8882671;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.z + c1.y * -0.8882671;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.z + c2.y * -0.8882671;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.z + c3.y * -0.8882671;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.z + c4.y * -0.8882671;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.3375419e-05;
+        hi += 1.3375419e-05;
         float p = current.z + current.y * -0.8882671;
         float inv_d = 1.0 / (dir.z + dir.y * -0.8882671);
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.3375419e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.3375419e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 5 of 11: axis (-0.656496, -0.656139, 0.372149) from dop22.axes:9, scaled by -1.52324 to (1, 0.9994562, -0.5668717)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(0.9994562, -0.5668717));
-        float q1 = c1.x + dot(c1.yz, vec2(0.9994562, -0.5668717));
-        float q2 = c2.x + dot(c2.yz, vec2(0.9994562, -0.5668717));
-        float q3 = c3.x + dot(c3.yz, vec2(0.9994562, -0.5668717));
-        float q4 = c4.x + dot(c4.yz, vec2(0.9994562, -0.5668717));
-        float p = current.x + dot(current.yz, vec2(0.9994562, -0.5668717));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.9994562, -0.5668717)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.5232387e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.5232387e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * 0.9994562 + c0.z * -0.5668717;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * 0.9994562 + c1.z * -0.5668717;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * 0.9994562 + c2.z * -0.5668717;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * 0.9994562 + c3.z * -0.5668717;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * 0.9994562 + c4.z * -0.5668717;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.5232387e-05;
+        hi += 1.5232387e-05;
+        float p = current.x + current.y * 0.9994562 + current.z * -0.5668717;
+        float inv_d = 1.0 / (dir.x + dir.y * 0.9994562 + dir.z * -0.5668717);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 6 of 11: axis (-0.664251, 0, -0.747509) from dop22.axes:10, scaled by -1.33778 to (0.8886194, 0, 1)
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.8886194;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.8886194;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.z + c2.x * 0.8886194;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.8886194;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.z + c4.x * 0.8886194;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.3377759e-05;
+        hi += 1.3377759e-05;
         float p = current.z + current.x * 0.8886194;
         float inv_d = 1.0 / (dir.z + dir.x * 0.8886194);
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.3377759e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.3377759e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 7 of 11: axis (-0.664672, 0, 0.747135) from dop22.axes:11, scaled by 1.33845 to (-0.8896277, 0, 1)
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.8896277;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.8896277;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.z + c2.x * -0.8896277;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.8896277;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.z + c4.x * -0.8896277;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.3384459e-05;
+        hi += 1.3384459e-05;
         float p = current.z + current.x * -0.8896277;
         float inv_d = 1.0 / (dir.z + dir.x * -0.8896277);
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.3384459e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.3384459e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 8 of 11: axis (0, 0.664287, 0.747478) from dop22.axes:12, scaled by 1.33783 to (0, 0.8887044, 1)
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.y * 0.8887044;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.z + c1.y * 0.8887044;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.z + c2.y * 0.8887044;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.z + c3.y * 0.8887044;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.z + c4.y * 0.8887044;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.3378324e-05;
+        hi += 1.3378324e-05;
         float p = current.z + current.y * 0.8887044;
         float inv_d = 1.0 / (dir.z + dir.y * 0.8887044);
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.3378324e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.3378324e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 9 of 11: axis (0.657415, -0.657637, -0.367857) from dop22.axes:13, scaled by -1.5206 to (-0.9996624, 1, 0.55936176)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.9996624, 0.55936176));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.9996624, 0.55936176));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.9996624, 0.55936176));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.9996624, 0.55936176));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.9996624, 0.55936176));
-        float p = current.y + dot(current.xz, vec2(-0.9996624, 0.55936176));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.9996624, 0.55936176)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.5205955e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.5205955e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * -0.9996624 + c0.z * 0.55936176;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * -0.9996624 + c1.z * 0.55936176;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * -0.9996624 + c2.z * 0.55936176;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * -0.9996624 + c3.z * 0.55936176;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * -0.9996624 + c4.z * 0.55936176;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.5205955e-05;
+        hi += 1.5205955e-05;
+        float p = current.y + current.x * -0.9996624 + current.z * 0.55936176;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.9996624 + dir.z * 0.55936176);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 10 of 11: axis (-0.656571, -0.657954, -0.368796) from dop22.axes:14, scaled by -1.51986 to (0.99789804, 1, 0.56051946)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(0.99789804, 0.56051946));
-        float q1 = c1.y + dot(c1.xz, vec2(0.99789804, 0.56051946));
-        float q2 = c2.y + dot(c2.xz, vec2(0.99789804, 0.56051946));
-        float q3 = c3.y + dot(c3.xz, vec2(0.99789804, 0.56051946));
-        float q4 = c4.y + dot(c4.xz, vec2(0.99789804, 0.56051946));
-        float p = current.y + dot(current.xz, vec2(0.99789804, 0.56051946));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.99789804, 0.56051946)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.5198627e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.5198627e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * 0.99789804 + c0.z * 0.56051946;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * 0.99789804 + c1.z * 0.56051946;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * 0.99789804 + c2.z * 0.56051946;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * 0.99789804 + c3.z * 0.56051946;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * 0.99789804 + c4.z * 0.56051946;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.5198627e-05;
+        hi += 1.5198627e-05;
+        float p = current.y + current.x * 0.99789804 + current.z * 0.56051946;
+        float inv_d = 1.0 / (dir.y + dir.x * 0.99789804 + dir.z * 0.56051946);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 11 of 11: axis (0.6568, -0.655635, 0.372501) from dop22.axes:15, scaled by 1.52253 to (1, -0.9982262, 0.5671452)
     {
-        float q0 = c0.x + dot(c0.yz, vec2(-0.9982262, 0.5671452));
-        float q1 = c1.x + dot(c1.yz, vec2(-0.9982262, 0.5671452));
-        float q2 = c2.x + dot(c2.yz, vec2(-0.9982262, 0.5671452));
-        float q3 = c3.x + dot(c3.yz, vec2(-0.9982262, 0.5671452));
-        float q4 = c4.x + dot(c4.yz, vec2(-0.9982262, 0.5671452));
-        float p = current.x + dot(current.yz, vec2(-0.9982262, 0.5671452));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.9982262, 0.5671452)));
-        float lo = min(min(q0, q1), min(q2, min(q3, q4))) - 1.5225339e-05;
-        float hi = max(max(q0, q1), max(q2, max(q3, q4))) + 1.5225339e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.x + c0.y * -0.9982262 + c0.z * 0.5671452;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.x + c1.y * -0.9982262 + c1.z * 0.5671452;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.x + c2.y * -0.9982262 + c2.z * 0.5671452;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.x + c3.y * -0.9982262 + c3.z * 0.5671452;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.x + c4.y * -0.9982262 + c4.z * 0.5671452;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        lo -= 1.5225339e-05;
+        hi += 1.5225339e-05;
+        float p = current.x + current.y * -0.9982262 + current.z * 0.5671452;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.9982262 + dir.z * 0.5671452);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 

@@ -110,17 +110,17 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 5 of 11: axis (-0.656496, -0.656139, 0.372149) from dop22.axes:9, scaled by -1.52324 to (1, 0.9994562, -0.5668717)
     {
-        float p = current.x + dot(current.yz, vec2(0.9994562, -0.5668717));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(0.9994562, -0.5668717)));
-        float q0 = c0.x + dot(c0.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q1 = c1.x + dot(c1.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q2 = c2.x + dot(c2.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q3 = c3.x + dot(c3.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q4 = c4.x + dot(c4.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q5 = c5.x + dot(c5.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q6 = c6.x + dot(c6.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q7 = c7.x + dot(c7.yz, vec2(0.9994562, -0.5668717)) - p;
-        float q8 = c8.x + dot(c8.yz, vec2(0.9994562, -0.5668717)) - p;
+        float p = current.x + current.y * 0.9994562 + current.z * -0.5668717;
+        float inv_d = 1.0 / (dir.x + dir.y * 0.9994562 + dir.z * -0.5668717);
+        float q0 = c0.x + c0.y * 0.9994562 + c0.z * -0.5668717 - p;
+        float q1 = c1.x + c1.y * 0.9994562 + c1.z * -0.5668717 - p;
+        float q2 = c2.x + c2.y * 0.9994562 + c2.z * -0.5668717 - p;
+        float q3 = c3.x + c3.y * 0.9994562 + c3.z * -0.5668717 - p;
+        float q4 = c4.x + c4.y * 0.9994562 + c4.z * -0.5668717 - p;
+        float q5 = c5.x + c5.y * 0.9994562 + c5.z * -0.5668717 - p;
+        float q6 = c6.x + c6.y * 0.9994562 + c6.z * -0.5668717 - p;
+        float q7 = c7.x + c7.y * 0.9994562 + c7.z * -0.5668717 - p;
+        float q8 = c8.x + c8.y * 0.9994562 + c8.z * -0.5668717 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5232387e-05;
@@ -190,17 +190,17 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 9 of 11: axis (0.657415, -0.657637, -0.367857) from dop22.axes:13, scaled by -1.5206 to (-0.9996624, 1, 0.55936176)
     {
-        float p = current.y + dot(current.xz, vec2(-0.9996624, 0.55936176));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.9996624, 0.55936176)));
-        float q0 = c0.y + dot(c0.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q1 = c1.y + dot(c1.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q2 = c2.y + dot(c2.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q3 = c3.y + dot(c3.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q4 = c4.y + dot(c4.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q5 = c5.y + dot(c5.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q6 = c6.y + dot(c6.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q7 = c7.y + dot(c7.xz, vec2(-0.9996624, 0.55936176)) - p;
-        float q8 = c8.y + dot(c8.xz, vec2(-0.9996624, 0.55936176)) - p;
+        float p = current.y + current.x * -0.9996624 + current.z * 0.55936176;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.9996624 + dir.z * 0.55936176);
+        float q0 = c0.y + c0.x * -0.9996624 + c0.z * 0.55936176 - p;
+        float q1 = c1.y + c1.x * -0.9996624 + c1.z * 0.55936176 - p;
+        float q2 = c2.y + c2.x * -0.9996624 + c2.z * 0.55936176 - p;
+        float q3 = c3.y + c3.x * -0.9996624 + c3.z * 0.55936176 - p;
+        float q4 = c4.y + c4.x * -0.9996624 + c4.z * 0.55936176 - p;
+        float q5 = c5.y + c5.x * -0.9996624 + c5.z * 0.55936176 - p;
+        float q6 = c6.y + c6.x * -0.9996624 + c6.z * 0.55936176 - p;
+        float q7 = c7.y + c7.x * -0.9996624 + c7.z * 0.55936176 - p;
+        float q8 = c8.y + c8.x * -0.9996624 + c8.z * 0.55936176 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5205955e-05;
@@ -210,17 +210,17 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 10 of 11: axis (-0.656571, -0.657954, -0.368796) from dop22.axes:14, scaled by -1.51986 to (0.99789804, 1, 0.56051946)
     {
-        float p = current.y + dot(current.xz, vec2(0.99789804, 0.56051946));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.99789804, 0.56051946)));
-        float q0 = c0.y + dot(c0.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q1 = c1.y + dot(c1.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q2 = c2.y + dot(c2.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q3 = c3.y + dot(c3.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q4 = c4.y + dot(c4.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q5 = c5.y + dot(c5.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q6 = c6.y + dot(c6.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q7 = c7.y + dot(c7.xz, vec2(0.99789804, 0.56051946)) - p;
-        float q8 = c8.y + dot(c8.xz, vec2(0.99789804, 0.56051946)) - p;
+        float p = current.y + current.x * 0.99789804 + current.z * 0.56051946;
+        float inv_d = 1.0 / (dir.y + dir.x * 0.99789804 + dir.z * 0.56051946);
+        float q0 = c0.y + c0.x * 0.99789804 + c0.z * 0.56051946 - p;
+        float q1 = c1.y + c1.x * 0.99789804 + c1.z * 0.56051946 - p;
+        float q2 = c2.y + c2.x * 0.99789804 + c2.z * 0.56051946 - p;
+        float q3 = c3.y + c3.x * 0.99789804 + c3.z * 0.56051946 - p;
+        float q4 = c4.y + c4.x * 0.99789804 + c4.z * 0.56051946 - p;
+        float q5 = c5.y + c5.x * 0.99789804 + c5.z * 0.56051946 - p;
+        float q6 = c6.y + c6.x * 0.99789804 + c6.z * 0.56051946 - p;
+        float q7 = c7.y + c7.x * 0.99789804 + c7.z * 0.56051946 - p;
+        float q8 = c8.y + c8.x * 0.99789804 + c8.z * 0.56051946 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5198627e-05;
@@ -230,17 +230,17 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 11 of 11: axis (0.6568, -0.655635, 0.372501) from dop22.axes:15, scaled by 1.52253 to (1, -0.9982262, 0.5671452)
     {
-        float p = current.x + dot(current.yz, vec2(-0.9982262, 0.5671452));
-        float inv_d = 1.0 / (dir.x + dot(dir.yz, vec2(-0.9982262, 0.5671452)));
-        float q0 = c0.x + dot(c0.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q1 = c1.x + dot(c1.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q2 = c2.x + dot(c2.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q3 = c3.x + dot(c3.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q4 = c4.x + dot(c4.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q5 = c5.x + dot(c5.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q6 = c6.x + dot(c6.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q7 = c7.x + dot(c7.yz, vec2(-0.9982262, 0.5671452)) - p;
-        float q8 = c8.x + dot(c8.yz, vec2(-0.9982262, 0.5671452)) - p;
+        float p = current.x + current.y * -0.9982262 + current.z * 0.5671452;
+        float inv_d = 1.0 / (dir.x + dir.y * -0.9982262 + dir.z * 0.5671452);
+        float q0 = c0.x + c0.y * -0.9982262 + c0.z * 0.5671452 - p;
+        float q1 = c1.x + c1.y * -0.9982262 + c1.z * 0.5671452 - p;
+        float q2 = c2.x + c2.y * -0.9982262 + c2.z * 0.5671452 - p;
+        float q3 = c3.x + c3.y * -0.9982262 + c3.z * 0.5671452 - p;
+        float q4 = c4.x + c4.y * -0.9982262 + c4.z * 0.5671452 - p;
+        float q5 = c5.x + c5.y * -0.9982262 + c5.z * 0.5671452 - p;
+        float q6 = c6.x + c6.y * -0.9982262 + c6.z * 0.5671452 - p;
+        float q7 = c7.x + c7.y * -0.9982262 + c7.z * 0.5671452 - p;
+        float q8 = c8.x + c8.y * -0.9982262 + c8.z * 0.5671452 - p;
         float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5225339e-05;

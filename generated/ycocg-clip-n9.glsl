@@ -29,55 +29,112 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(0.5, 0.5));
-        float q1 = c1.y + dot(c1.xz, vec2(0.5, 0.5));
-        float q2 = c2.y + dot(c2.xz, vec2(0.5, 0.5));
-        float q3 = c3.y + dot(c3.xz, vec2(0.5, 0.5));
-        float q4 = c4.y + dot(c4.xz, vec2(0.5, 0.5));
-        float q5 = c5.y + dot(c5.xz, vec2(0.5, 0.5));
-        float q6 = c6.y + dot(c6.xz, vec2(0.5, 0.5));
-        float q7 = c7.y + dot(c7.xz, vec2(0.5, 0.5));
-        float q8 = c8.y + dot(c8.xz, vec2(0.5, 0.5));
-        float p = current.y + dot(current.xz, vec2(0.5, 0.5));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(0.5, 0.5)));
-        float lo = min(min(min(q0, q1), min(q2, q3)), min(min(q4, q5), min(q6, min(q7, q8)))) - 1.22474485e-05;
-        float hi = max(max(max(q0, q1), max(q2, q3)), max(max(q4, q5), max(q6, max(q7, q8)))) + 1.22474485e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * 0.5 + c0.z * 0.5;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * 0.5 + c1.z * 0.5;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * 0.5 + c2.z * 0.5;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * 0.5 + c3.z * 0.5;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * 0.5 + c4.z * 0.5;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        float q5 = c5.y + c5.x * 0.5 + c5.z * 0.5;
+        lo = min(lo, q5);
+        hi = max(hi, q5);
+        float q6 = c6.y + c6.x * 0.5 + c6.z * 0.5;
+        lo = min(lo, q6);
+        hi = max(hi, q6);
+        float q7 = c7.y + c7.x * 0.5 + c7.z * 0.5;
+        lo = min(lo, q7);
+        hi = max(hi, q7);
+        float q8 = c8.y + c8.x * 0.5 + c8.z * 0.5;
+        lo = min(lo, q8);
+        hi = max(hi, q8);
+        lo -= 1.22474485e-05;
+        hi += 1.22474485e-05;
+        float p = current.y + current.x * 0.5 + current.z * 0.5;
+        float inv_d = 1.0 / (dir.y + dir.x * 0.5 + dir.z * 0.5);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
     {
+        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x - c0.z;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
         float q1 = c1.x - c1.z;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
         float q2 = c2.x - c2.z;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
         float q3 = c3.x - c3.z;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
         float q4 = c4.x - c4.z;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
         float q5 = c5.x - c5.z;
+        lo = min(lo, q5);
+        hi = max(hi, q5);
         float q6 = c6.x - c6.z;
+        lo = min(lo, q6);
+        hi = max(hi, q6);
         float q7 = c7.x - c7.z;
+        lo = min(lo, q7);
+        hi = max(hi, q7);
         float q8 = c8.x - c8.z;
+        lo = min(lo, q8);
+        hi = max(hi, q8);
+        lo -= 1.4142136e-05;
+        hi += 1.4142136e-05;
         float p = current.x - current.z;
         float inv_d = 1.0 / (dir.x - dir.z);
-        float lo = min(min(min(q0, q1), min(q2, q3)), min(min(q4, q5), min(q6, min(q7, q8)))) - 1.4142136e-05;
-        float hi = max(max(max(q0, q1), max(q2, q3)), max(max(q4, q5), max(q6, max(q7, q8)))) + 1.4142136e-05;
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5));
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5, -0.5));
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5, -0.5));
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5, -0.5));
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5));
-        float q5 = c5.y + dot(c5.xz, vec2(-0.5, -0.5));
-        float q6 = c6.y + dot(c6.xz, vec2(-0.5, -0.5));
-        float q7 = c7.y + dot(c7.xz, vec2(-0.5, -0.5));
-        float q8 = c8.y + dot(c8.xz, vec2(-0.5, -0.5));
-        float p = current.y + dot(current.xz, vec2(-0.5, -0.5));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5, -0.5)));
-        float lo = min(min(min(q0, q1), min(q2, q3)), min(min(q4, q5), min(q6, min(q7, q8)))) - 1.22474485e-05;
-        float hi = max(max(max(q0, q1), max(q2, q3)), max(max(q4, q5), max(q6, max(q7, q8)))) + 1.22474485e-05;
+        float lo = 3.40282347e38, hi = -3.40282347e38;
+        float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
+        lo = min(lo, q0);
+        hi = max(hi, q0);
+        float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
+        lo = min(lo, q1);
+        hi = max(hi, q1);
+        float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5;
+        lo = min(lo, q2);
+        hi = max(hi, q2);
+        float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
+        lo = min(lo, q3);
+        hi = max(hi, q3);
+        float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5;
+        lo = min(lo, q4);
+        hi = max(hi, q4);
+        float q5 = c5.y + c5.x * -0.5 + c5.z * -0.5;
+        lo = min(lo, q5);
+        hi = max(hi, q5);
+        float q6 = c6.y + c6.x * -0.5 + c6.z * -0.5;
+        lo = min(lo, q6);
+        hi = max(hi, q6);
+        float q7 = c7.y + c7.x * -0.5 + c7.z * -0.5;
+        lo = min(lo, q7);
+        hi = max(hi, q7);
+        float q8 = c8.y + c8.x * -0.5 + c8.z * -0.5;
+        lo = min(lo, q8);
+        hi = max(hi, q8);
+        lo -= 1.22474485e-05;
+        hi += 1.22474485e-05;
+        float p = current.y + current.x * -0.5 + current.z * -0.5;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
         t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
     }
 

@@ -106,10 +106,14 @@ std::string sum(int count, std::string_view term_format) {
 void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
     if (style.extent == EmitStyle::Extent::running) {
-        out += fmt::format("        float q = {};\n", proj("c0"));
-        out += "        float lo = q, hi = q;\n";
-        for (int n = 1; n < count; ++n)
-            out += fmt::format("        q = {};\n        lo = min(lo, q);\n        hi = max(hi, q);\n", proj(fmt::format("c{}", n)));
+        // Starting from +-FLT_MAX rather than from the first projection costs a min and a max but
+        // measured 8% fewer lavapipe instructions per pixel for dop32 (the driver can drop its NaN
+        // handling down the chain once a constant operand makes the result non-NaN); a NaN
+        // neighbor also drops out instead of poisoning the extent.
+        out += "        float lo = 3.40282347e38, hi = -3.40282347e38;\n";
+        for (int n = 0; n < count; ++n)
+            out += fmt::format("        float q{} = {};\n        lo = min(lo, q{});\n        hi = max(hi, q{});\n", n,
+                               proj(fmt::format("c{}", n)), n, n);
         out += fmt::format("        lo -= {};\n        hi += {};\n", float_literal(axis.padding), float_literal(axis.padding));
         out += fmt::format("        float p = {};\n", proj("current"));
         out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));

@@ -14,7 +14,7 @@ namespace kdop {
 struct SelectionOptions {
     std::vector<std::string> sets, modes, neighborhoods, forms;
     bool baselines = false;
-    std::string projection = "fold-dot", extent = "tree";
+    std::string projection = "multiply-add", extent = "running";
 
     void add_to(CLI::App& app) {
         app.add_option("--sets", sets,

@@ -74,13 +74,13 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
 
     // Slab 4 of 5: axis (-0.25, 0.5, -0.25) from tiny.axes:7, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float p = current.y + dot(current.xz, vec2(-0.5, -0.5));
-        float inv_d = 1.0 / (dir.y + dot(dir.xz, vec2(-0.5, -0.5)));
-        float q0 = c0.y + dot(c0.xz, vec2(-0.5, -0.5)) - p;
-        float q1 = c1.y + dot(c1.xz, vec2(-0.5, -0.5)) - p;
-        float q2 = c2.y + dot(c2.xz, vec2(-0.5, -0.5)) - p;
-        float q3 = c3.y + dot(c3.xz, vec2(-0.5, -0.5)) - p;
-        float q4 = c4.y + dot(c4.xz, vec2(-0.5, -0.5)) - p;
+        float p = current.y + current.x * -0.5 + current.z * -0.5;
+        float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
+        float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5 - p;
+        float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5 - p;
+        float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5 - p;
+        float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5 - p;
+        float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5 - p;
         float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
