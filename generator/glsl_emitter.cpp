@@ -43,8 +43,9 @@ std::string upper_identifier(std::string s) {
 }
 
 // The projection of vector expression `v` on a scaled axis, folded: unit components are added or
-// subtracted, zero components dropped, and the remaining ones multiplied, by one multiply or one
-// dot() over just those components.
+// subtracted, zero components dropped, and the remaining ones multiplied: one multiply-add each
+// (multiply_add), one dot() over just those components (fold_dot), or one dot() over every nonzero
+// component including the unit one (full_dot).
 std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projection style) {
     if (style == EmitStyle::Projection::full_dot) {
         std::string components;

@@ -5,7 +5,7 @@
 // out of every dot product.
 //
 // The projection writer (project) and the two slab writers are the places to change when the cost
-// bench finds a cheaper written form.
+// bench finds a cheaper written form; EmitStyle (variant_spec.h) selects among the forms written so far.
 #pragma once
 
 #include "result.h"
