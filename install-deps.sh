@@ -11,7 +11,7 @@ packages="
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev
-  libgtest-dev
+  libgtest-dev valgrind
   colobot-common-textures
 "
 
