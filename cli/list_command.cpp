@@ -12,10 +12,8 @@ Action add_list_command(CLI::App& app) {
     CLI::App* list = app.add_subcommand("list", "Print the name of every default variant, one per line");
     list->add_flag("--all", *all, "Also the loop-form baselines (<variant>-loop) and gather-n9, gather-n5, copy");
     return [all] {
-        auto specs = *all ? select_variants({}, {}, {}, {"unrolled", "loop"}) : select_variants({}, {}, {});
+        auto specs = *all ? Result<std::vector<VariantSpec>>(all_builtin_variants()) : select_variants({}, {}, {});
         if (!specs) return report_error(specs.error().message);
-        if (*all)
-            for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
         for (const VariantSpec& spec : *specs) std::cout << variant_name(spec) << '\n';
         return 0;
     };

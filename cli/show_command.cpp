@@ -23,15 +23,13 @@ Action add_show_command(CLI::App& app) {
     show->add_flag("--compute", options->compute, "Print the whole compute shader instead of the includable function");
 
     return [options] {
-        auto specs = select_variants({}, {}, {}, {"unrolled", "loop"});
-        if (!specs) return report_error(specs.error().message);
-        for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
+        std::vector<VariantSpec> specs = all_builtin_variants();
         if (!options->sets.empty()) {
             auto user = select_variants(options->sets, {}, {}, {"unrolled", "loop"});
             if (!user) return report_error(user.error().message);
-            specs->insert(specs->end(), user->begin(), user->end());
+            specs.insert(specs.end(), user->begin(), user->end());
         }
-        for (const VariantSpec& spec : *specs) {
+        for (const VariantSpec& spec : specs) {
             if (variant_name(spec) != options->name) continue;
             if (!options->compute) {
                 std::cout << emit_function(spec);

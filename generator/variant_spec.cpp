@@ -54,6 +54,12 @@ std::vector<VariantSpec> baseline_kernels() {
     return {{{}, Mode::gather, Neighborhood::n9}, {{}, Mode::gather, Neighborhood::n5}, {{}, Mode::copy, Neighborhood::n9}};
 }
 
+std::vector<VariantSpec> all_builtin_variants() {
+    std::vector<VariantSpec> specs = *select_variants({}, {}, {}, {"unrolled", "loop"}); // built-in: cannot fail
+    for (VariantSpec& b : baseline_kernels()) specs.push_back(std::move(b));
+    return specs;
+}
+
 std::optional<Form> parse_form(std::string_view s) {
     for (Form f : {Form::unrolled, Form::loop})
         if (s == to_string(f)) return f;

@@ -74,4 +74,7 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
 // The cost baselines: gather-n9, gather-n5 and copy.
 std::vector<VariantSpec> baseline_kernels();
 
+// Every built-in variant: the defaults in both forms, then the baselines (`kdop list --all`).
+std::vector<VariantSpec> all_builtin_variants();
+
 } // namespace kdop
