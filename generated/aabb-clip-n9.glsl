@@ -61,7 +61,7 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi += 1e-05;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 2 of 3: axis (0, 1, 0) from aabb.axes:6
@@ -98,7 +98,7 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi += 1e-05;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 3 of 3: axis (0, 0, 1) from aabb.axes:7
@@ -135,7 +135,7 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi += 1e-05;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

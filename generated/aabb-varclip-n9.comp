@@ -66,7 +66,7 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 3: axis (0, 1, 0) from aabb.axes:6
@@ -86,7 +86,7 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 3: axis (0, 0, 1) from aabb.axes:7
@@ -106,7 +106,7 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

@@ -45,7 +45,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.0028408e-05;
         float p = current.x + current.y * -0.054975748 + current.z * 0.051646315;
         float inv_d = 1.0 / (dir.x + dir.y * -0.054975748 + dir.z * 0.051646315);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 2 of 8: axis (0.043682, -0.727663, 0.684542) from dop16-asphalt.axes:6, scaled by -1.37426 to (-0.060030535, 1, -0.9407404)
@@ -70,7 +70,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.37426205e-05;
         float p = current.y + current.x * -0.060030535 + current.z * -0.9407404;
         float inv_d = 1.0 / (dir.y + dir.x * -0.060030535 + dir.z * -0.9407404);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 3 of 8: axis (-0.451553, 0.808335, -0.377751) from dop16-asphalt.axes:7, scaled by 1.23711 to (-0.5586211, 1, -0.46731988)
@@ -95,7 +95,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.2371117e-05;
         float p = current.y + current.x * -0.5586211 + current.z * -0.46731988;
         float inv_d = 1.0 / (dir.y + dir.x * -0.5586211 + dir.z * -0.46731988);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 4 of 8: axis (-0.003001, 0.615645, -0.788018) from dop16-asphalt.axes:8, scaled by -1.26901 to (0.0038082886, -0.7812575, 1)
@@ -120,7 +120,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.2690067e-05;
         float p = current.z + current.x * 0.0038082886 + current.y * -0.7812575;
         float inv_d = 1.0 / (dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 5 of 8: axis (0.130192, -0.063137, -0.989476) from dop16-asphalt.axes:9, scaled by -1.01064 to (-0.13157672, 0.06380852, 1)
@@ -145,7 +145,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.0106354e-05;
         float p = current.z + current.x * -0.13157672 + current.y * 0.06380852;
         float inv_d = 1.0 / (dir.z + dir.x * -0.13157672 + dir.y * 0.06380852);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 6 of 8: axis (0.775079, -0.584236, -0.240668) from dop16-asphalt.axes:10, scaled by 1.29019 to (1, -0.7537761, -0.3105077)
@@ -170,7 +170,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.2901913e-05;
         float p = current.x + current.y * -0.7537761 + current.z * -0.3105077;
         float inv_d = 1.0 / (dir.x + dir.y * -0.7537761 + dir.z * -0.3105077);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 7 of 8: axis (0.589837, 0.171644, -0.78907) from dop16-asphalt.axes:11, scaled by -1.26731 to (-0.7475091, -0.21752696, 1)
@@ -195,7 +195,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.2673152e-05;
         float p = current.z + current.x * -0.7475091 + current.y * -0.21752696;
         float inv_d = 1.0 / (dir.z + dir.x * -0.7475091 + dir.y * -0.21752696);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 8 of 8: axis (0.89801, -0.436338, -0.056459) from dop16-asphalt.axes:12, scaled by 1.11357 to (1, -0.48589435, -0.06287124)
@@ -220,7 +220,7 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         hi += 1.1135736e-05;
         float p = current.x + current.y * -0.48589435 + current.z * -0.06287124;
         float inv_d = 1.0 / (dir.x + dir.y * -0.48589435 + dir.z * -0.06287124);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

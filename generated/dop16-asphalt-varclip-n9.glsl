@@ -45,7 +45,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.0028408e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.0028408e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 8: axis (0.043682, -0.727663, 0.684542) from dop16-asphalt.axes:6, scaled by -1.37426 to (-0.060030535, 1, -0.9407404)
@@ -65,7 +65,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.37426205e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.37426205e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 8: axis (-0.451553, 0.808335, -0.377751) from dop16-asphalt.axes:7, scaled by 1.23711 to (-0.5586211, 1, -0.46731988)
@@ -85,7 +85,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2371117e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2371117e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 4 of 8: axis (-0.003001, 0.615645, -0.788018) from dop16-asphalt.axes:8, scaled by -1.26901 to (0.0038082886, -0.7812575, 1)
@@ -105,7 +105,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2690067e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2690067e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 5 of 8: axis (0.130192, -0.063137, -0.989476) from dop16-asphalt.axes:9, scaled by -1.01064 to (-0.13157672, 0.06380852, 1)
@@ -125,7 +125,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.0106354e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.0106354e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 6 of 8: axis (0.775079, -0.584236, -0.240668) from dop16-asphalt.axes:10, scaled by 1.29019 to (1, -0.7537761, -0.3105077)
@@ -145,7 +145,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2901913e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2901913e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 7 of 8: axis (0.589837, 0.171644, -0.78907) from dop16-asphalt.axes:11, scaled by -1.26731 to (-0.7475091, -0.21752696, 1)
@@ -165,7 +165,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2673152e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2673152e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 8 of 8: axis (0.89801, -0.436338, -0.056459) from dop16-asphalt.axes:12, scaled by 1.11357 to (1, -0.48589435, -0.06287124)
@@ -185,7 +185,7 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.1135736e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.1135736e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

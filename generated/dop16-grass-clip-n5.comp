@@ -63,7 +63,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.3706547e-05;
         float p = current.y + current.x * -0.9091763 + current.z * -0.22823879;
         float inv_d = 1.0 / (dir.y + dir.x * -0.9091763 + dir.z * -0.22823879);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
@@ -88,7 +88,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.2288749e-05;
         float p = current.z + current.x * -0.70663214 + current.y * 0.10394432;
         float inv_d = 1.0 / (dir.z + dir.x * -0.70663214 + dir.y * 0.10394432);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
@@ -113,7 +113,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.1660525e-05;
         float p = current.z + current.x * 0.18454187 + current.y * -0.57063365;
         float inv_d = 1.0 / (dir.z + dir.x * 0.18454187 + dir.y * -0.57063365);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
@@ -138,7 +138,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.0353476e-05;
         float p = current.z + current.x * -0.2652209 + current.y * 0.040031724;
         float inv_d = 1.0 / (dir.z + dir.x * -0.2652209 + dir.y * 0.040031724);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
@@ -163,7 +163,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.5618556e-05;
         float p = current.x + current.y * -0.6816266 + current.z * -0.9873084;
         float inv_d = 1.0 / (dir.x + dir.y * -0.6816266 + dir.z * -0.9873084);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
@@ -188,7 +188,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.2286658e-05;
         float p = current.x + current.y * -0.5726 + current.z * -0.42632;
         float inv_d = 1.0 / (dir.x + dir.y * -0.5726 + dir.z * -0.42632);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
@@ -213,7 +213,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.20250415e-05;
         float p = current.x + current.y * 0.25867906 + current.z * 0.61571217;
         float inv_d = 1.0 / (dir.x + dir.y * 0.25867906 + dir.z * 0.61571217);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
@@ -238,7 +238,7 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.23059945e-05;
         float p = current.y + current.x * -0.6007664 + current.z * -0.39173308;
         float inv_d = 1.0 / (dir.y + dir.x * -0.6007664 + dir.z * -0.39173308);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

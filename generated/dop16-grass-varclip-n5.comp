@@ -58,7 +58,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3706547e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.3706547e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
@@ -74,7 +74,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2288749e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2288749e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
@@ -90,7 +90,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.1660525e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.1660525e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
@@ -106,7 +106,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.0353476e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.0353476e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
@@ -122,7 +122,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5618556e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.5618556e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
@@ -138,7 +138,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2286658e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2286658e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
@@ -154,7 +154,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.20250415e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.20250415e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
@@ -170,7 +170,7 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.23059945e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.23059945e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

@@ -63,7 +63,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1e-05;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 2 of 11: axis (0, 1, 0) from dop22.axes:6
@@ -88,7 +88,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1e-05;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 3 of 11: axis (0, 0, 1) from dop22.axes:7
@@ -113,7 +113,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1e-05;
         float p = current.z;
         float inv_d = 1.0 / dir.z;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 4 of 11: axis (0, 0.664104, -0.74764) from dop22.axes:8, scaled by -1.33754 to (0, -0.8882671, 1)
@@ -138,7 +138,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.3375419e-05;
         float p = current.z + current.y * -0.8882671;
         float inv_d = 1.0 / (dir.z + dir.y * -0.8882671);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 5 of 11: axis (-0.656496, -0.656139, 0.372149) from dop22.axes:9, scaled by -1.52324 to (1, 0.9994562, -0.5668717)
@@ -163,7 +163,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.5232387e-05;
         float p = current.x + current.y * 0.9994562 + current.z * -0.5668717;
         float inv_d = 1.0 / (dir.x + dir.y * 0.9994562 + dir.z * -0.5668717);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 6 of 11: axis (-0.664251, 0, -0.747509) from dop22.axes:10, scaled by -1.33778 to (0.8886194, 0, 1)
@@ -188,7 +188,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.3377759e-05;
         float p = current.z + current.x * 0.8886194;
         float inv_d = 1.0 / (dir.z + dir.x * 0.8886194);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 7 of 11: axis (-0.664672, 0, 0.747135) from dop22.axes:11, scaled by 1.33845 to (-0.8896277, 0, 1)
@@ -213,7 +213,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.3384459e-05;
         float p = current.z + current.x * -0.8896277;
         float inv_d = 1.0 / (dir.z + dir.x * -0.8896277);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 8 of 11: axis (0, 0.664287, 0.747478) from dop22.axes:12, scaled by 1.33783 to (0, 0.8887044, 1)
@@ -238,7 +238,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.3378324e-05;
         float p = current.z + current.y * 0.8887044;
         float inv_d = 1.0 / (dir.z + dir.y * 0.8887044);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 9 of 11: axis (0.657415, -0.657637, -0.367857) from dop22.axes:13, scaled by -1.5206 to (-0.9996624, 1, 0.55936176)
@@ -263,7 +263,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.5205955e-05;
         float p = current.y + current.x * -0.9996624 + current.z * 0.55936176;
         float inv_d = 1.0 / (dir.y + dir.x * -0.9996624 + dir.z * 0.55936176);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 10 of 11: axis (-0.656571, -0.657954, -0.368796) from dop22.axes:14, scaled by -1.51986 to (0.99789804, 1, 0.56051946)
@@ -288,7 +288,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.5198627e-05;
         float p = current.y + current.x * 0.99789804 + current.z * 0.56051946;
         float inv_d = 1.0 / (dir.y + dir.x * 0.99789804 + dir.z * 0.56051946);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 11 of 11: axis (0.6568, -0.655635, 0.372501) from dop22.axes:15, scaled by 1.52253 to (1, -0.9982262, 0.5671452)
@@ -313,7 +313,7 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.5225339e-05;
         float p = current.x + current.y * -0.9982262 + current.z * 0.5671452;
         float inv_d = 1.0 / (dir.x + dir.y * -0.9982262 + dir.z * 0.5671452);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

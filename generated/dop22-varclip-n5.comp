@@ -58,7 +58,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 11: axis (0, 1, 0) from dop22.axes:6
@@ -74,7 +74,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 11: axis (0, 0, 1) from dop22.axes:7
@@ -90,7 +90,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 4 of 11: axis (0, 0.664104, -0.74764) from dop22.axes:8, scaled by -1.33754 to (0, -0.8882671, 1)
@@ -106,7 +106,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3375419e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.3375419e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 5 of 11: axis (-0.656496, -0.656139, 0.372149) from dop22.axes:9, scaled by -1.52324 to (1, 0.9994562, -0.5668717)
@@ -122,7 +122,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5232387e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.5232387e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 6 of 11: axis (-0.664251, 0, -0.747509) from dop22.axes:10, scaled by -1.33778 to (0.8886194, 0, 1)
@@ -138,7 +138,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3377759e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.3377759e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 7 of 11: axis (-0.664672, 0, 0.747135) from dop22.axes:11, scaled by 1.33845 to (-0.8896277, 0, 1)
@@ -154,7 +154,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3384459e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.3384459e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 8 of 11: axis (0, 0.664287, 0.747478) from dop22.axes:12, scaled by 1.33783 to (0, 0.8887044, 1)
@@ -170,7 +170,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3378324e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.3378324e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 9 of 11: axis (0.657415, -0.657637, -0.367857) from dop22.axes:13, scaled by -1.5206 to (-0.9996624, 1, 0.55936176)
@@ -186,7 +186,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5205955e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.5205955e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 10 of 11: axis (-0.656571, -0.657954, -0.368796) from dop22.axes:14, scaled by -1.51986 to (0.99789804, 1, 0.56051946)
@@ -202,7 +202,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5198627e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.5198627e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 11 of 11: axis (0.6568, -0.655635, 0.372501) from dop22.axes:15, scaled by 1.52253 to (1, -0.9982262, 0.5671452)
@@ -218,7 +218,7 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.5225339e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.5225339e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

@@ -37,7 +37,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 16: axis (0, 1, 0) from dop32.axes:6
@@ -53,7 +53,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 16: axis (0, 0, 1) from dop32.axes:7
@@ -69,7 +69,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 4 of 16: axis (0.820081, 0.456727, -0.344773) from dop32.axes:8, scaled by 1.21939 to (1, 0.5569291, -0.42041335)
@@ -85,7 +85,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2193923e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2193923e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 5 of 16: axis (0.540295, 0.829202, 0.143195) from dop32.axes:9, scaled by 1.20598 to (0.65158427, 1, 0.17269012)
@@ -101,7 +101,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2059784e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2059784e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 6 of 16: axis (0.2558, 0.841084, -0.476597) from dop32.axes:10, scaled by 1.18894 to (0.30413133, 1, -0.56664616)
@@ -117,7 +117,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.1889422e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.1889422e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 7 of 16: axis (-0.406935, -0.389062, 0.826459) from dop32.axes:11, scaled by 1.20998 to (-0.49238378, -0.47075778, 1)
@@ -133,7 +133,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2099813e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2099813e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 8 of 16: axis (-0.826708, -0.382923, -0.412219) from dop32.axes:12, scaled by -1.20962 to (1, 0.46319014, 0.4986271)
@@ -149,7 +149,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2096173e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2096173e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 9 of 16: axis (0.260942, -0.577482, 0.773578) from dop32.axes:13, scaled by 1.29269 to (0.33731827, -0.74650776, 1)
@@ -165,7 +165,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2926939e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2926939e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 10 of 16: axis (0.254398, 0.637821, 0.726957) from dop32.axes:14, scaled by 1.3756 to (0.34994918, 0.8773848, 1)
@@ -181,7 +181,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.3755975e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.3755975e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 11 of 16: axis (0.3109, -0.728083, -0.61093) from dop32.axes:15, scaled by -1.37347 to (-0.42701176, 1, 0.8390939)
@@ -197,7 +197,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.37346915e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.37346915e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 12 of 16: axis (0.798513, -0.556827, -0.228738) from dop32.axes:16, scaled by 1.25233 to (1, -0.69732994, -0.28645495)
@@ -213,7 +213,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.252328e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.252328e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 13 of 16: axis (0.673383, -0.163602, -0.720964) from dop32.axes:17, scaled by -1.38703 to (-0.93400365, 0.22692117, 1)
@@ -229,7 +229,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.38703135e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.38703135e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 14 of 16: axis (-0.813922, 0.369658, -0.448201) from dop32.axes:18, scaled by -1.22862 to (1, -0.45416883, 0.55066824)
@@ -245,7 +245,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2286191e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2286191e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 15 of 16: axis (0.47765, -0.853722, 0.207384) from dop32.axes:19, scaled by -1.17134 to (-0.5594913, 1, -0.24291748)
@@ -261,7 +261,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.1713409e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.1713409e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 16 of 16: axis (-0.554854, -0.04155, -0.83091) from dop32.axes:20, scaled by -1.2035 to (0.6677667, 0.050005417, 1)
@@ -277,7 +277,7 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.2035002e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.2035002e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

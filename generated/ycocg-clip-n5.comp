@@ -63,7 +63,7 @@ vec3 kdop_ycocg_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.22474485e-05;
         float p = current.y + current.x * 0.5 + current.z * 0.5;
         float inv_d = 1.0 / (dir.y + dir.x * 0.5 + dir.z * 0.5);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
@@ -88,7 +88,7 @@ vec3 kdop_ycocg_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.4142136e-05;
         float p = current.x - current.z;
         float inv_d = 1.0 / (dir.x - dir.z);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
@@ -113,7 +113,7 @@ vec3 kdop_ycocg_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.22474485e-05;
         float p = current.y + current.x * -0.5 + current.z * -0.5;
         float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

@@ -58,7 +58,7 @@ vec3 kdop_ycocg_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
@@ -74,7 +74,7 @@ vec3 kdop_ycocg_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.4142136e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.4142136e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
@@ -90,7 +90,7 @@ vec3 kdop_ycocg_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

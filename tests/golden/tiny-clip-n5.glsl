@@ -45,7 +45,7 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1e-05;
         float p = current.x;
         float inv_d = 1.0 / dir.x;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 2 of 5: axis (0, -2, 0) from tiny.axes:5, scaled by -0.5 to (0, 1, 0)
@@ -70,7 +70,7 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1e-05;
         float p = current.y;
         float inv_d = 1.0 / dir.y;
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 3 of 5: axis (0.5, 0, -0.5) from tiny.axes:6, scaled by 2 to (1, 0, -1)
@@ -95,7 +95,7 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.4142136e-05;
         float p = current.x - current.z;
         float inv_d = 1.0 / (dir.x - dir.z);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 4 of 5: axis (-0.25, 0.5, -0.25) from tiny.axes:7, scaled by 2 to (-0.5, 1, -0.5)
@@ -120,7 +120,7 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.22474485e-05;
         float p = current.y + current.x * -0.5 + current.z * -0.5;
         float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     // Slab 5 of 5: axis (0, 0.6, -0.8) from tiny.axes:8, scaled by -1.25 to (0, -0.75, 1)
@@ -145,7 +145,7 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi += 1.25e-05;
         float p = current.z + current.y * -0.75;
         float inv_d = 1.0 / (dir.z + dir.y * -0.75);
-        t = min(t, max((lo - p) * inv_d, (hi - p) * inv_d));
+        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;

@@ -37,7 +37,7 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 5: axis (0, -2, 0) from tiny.axes:5, scaled by -0.5 to (0, 1, 0)
@@ -53,7 +53,7 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 5: axis (0.5, 0, -0.5) from tiny.axes:6, scaled by 2 to (1, 0, -1)
@@ -69,7 +69,7 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.4142136e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.4142136e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 4 of 5: axis (-0.25, 0.5, -0.25) from tiny.axes:7, scaled by 2 to (-0.5, 1, -0.5)
@@ -85,7 +85,7 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 5 of 5: axis (0, 0.6, -0.8) from tiny.axes:8, scaled by -1.25 to (0, -0.75, 1)
@@ -101,7 +101,7 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
         float lo = min(mean - gamma * sigma, 0.0) - 1.25e-05;
         float hi = max(mean + gamma * sigma, 0.0) + 1.25e-05;
-        t = min(t, max(lo * inv_d, hi * inv_d));
+        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     return current + max(t, 0.0) * dir;
