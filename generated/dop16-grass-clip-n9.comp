@@ -341,7 +341,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return current + max(t, 0.0) * dir;
+    return fma(vec3(max(t, 0.0)), dir, current);
 }
 
 #endif // KDOP_DOP16_GRASS_CLIP_N9_GLSL

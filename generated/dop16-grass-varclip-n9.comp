@@ -209,7 +209,7 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
-    return current + max(t, 0.0) * dir;
+    return fma(vec3(max(t, 0.0)), dir, current);
 }
 
 #endif // KDOP_DOP16_GRASS_VARCLIP_N9_GLSL

@@ -116,7 +116,7 @@ vec3 kdop_ycocg_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return current + max(t, 0.0) * dir;
+    return fma(vec3(max(t, 0.0)), dir, current);
 }
 
 #endif // KDOP_YCOCG_CLIP_N5_GLSL

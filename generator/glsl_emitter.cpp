@@ -280,7 +280,8 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
             write_clip_slab(out, scaled, count, spec.style);
         out += "    }\n";
     }
-    out += "\n    return current + max(t, 0.0) * dir;\n";
+    // current + t * dir, written as fma because spirv-opt fuses only scalar multiply-adds.
+    out += "\n    return fma(vec3(max(t, 0.0)), dir, current);\n";
 }
 
 // The supplement's listing: axes as written in the file, in a constant array; loops over axes
