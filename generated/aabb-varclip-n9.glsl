@@ -41,10 +41,12 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q6 = c6.x - p;
         float q7 = c7.x - p;
         float q8 = c8.x - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -61,10 +63,12 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q6 = c6.y - p;
         float q7 = c7.y - p;
         float q8 = c8.y - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +85,12 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q6 = c6.z - p;
         float q7 = c7.z - p;
         float q8 = c8.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

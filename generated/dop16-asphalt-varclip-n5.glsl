@@ -33,10 +33,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.x + c2.y * -0.054975748 + c2.z * 0.051646315 - p;
         float q3 = c3.x + c3.y * -0.054975748 + c3.z * 0.051646315 - p;
         float q4 = c4.x + c4.y * -0.054975748 + c4.z * 0.051646315 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.0028408e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.0028408e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.0028408e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.0028408e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -49,10 +51,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.y + c2.x * -0.060030535 + c2.z * -0.9407404 - p;
         float q3 = c3.y + c3.x * -0.060030535 + c3.z * -0.9407404 - p;
         float q4 = c4.y + c4.x * -0.060030535 + c4.z * -0.9407404 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.37426205e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.37426205e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.37426205e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.37426205e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -65,10 +69,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.y + c2.x * -0.5586211 + c2.z * -0.46731988 - p;
         float q3 = c3.y + c3.x * -0.5586211 + c3.z * -0.46731988 - p;
         float q4 = c4.y + c4.x * -0.5586211 + c4.z * -0.46731988 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2371117e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2371117e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2371117e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2371117e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +87,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.z + c2.x * 0.0038082886 + c2.y * -0.7812575 - p;
         float q3 = c3.z + c3.x * 0.0038082886 + c3.y * -0.7812575 - p;
         float q4 = c4.z + c4.x * 0.0038082886 + c4.y * -0.7812575 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2690067e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2690067e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2690067e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2690067e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -97,10 +105,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.z + c2.x * -0.13157672 + c2.y * 0.06380852 - p;
         float q3 = c3.z + c3.x * -0.13157672 + c3.y * 0.06380852 - p;
         float q4 = c4.z + c4.x * -0.13157672 + c4.y * 0.06380852 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.0106354e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.0106354e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.0106354e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.0106354e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -113,10 +123,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.x + c2.y * -0.7537761 + c2.z * -0.3105077 - p;
         float q3 = c3.x + c3.y * -0.7537761 + c3.z * -0.3105077 - p;
         float q4 = c4.x + c4.y * -0.7537761 + c4.z * -0.3105077 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2901913e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2901913e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2901913e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2901913e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -129,10 +141,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.z + c2.x * -0.7475091 + c2.y * -0.21752696 - p;
         float q3 = c3.z + c3.x * -0.7475091 + c3.y * -0.21752696 - p;
         float q4 = c4.z + c4.x * -0.7475091 + c4.y * -0.21752696 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2673152e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2673152e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2673152e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2673152e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -145,10 +159,12 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float q2 = c2.x + c2.y * -0.48589435 + c2.z * -0.06287124 - p;
         float q3 = c3.x + c3.y * -0.48589435 + c3.z * -0.06287124 - p;
         float q4 = c4.x + c4.y * -0.48589435 + c4.z * -0.06287124 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1135736e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1135736e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1135736e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1135736e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

@@ -41,10 +41,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.x + c6.y * -0.054975748 + c6.z * 0.051646315 - p;
         float q7 = c7.x + c7.y * -0.054975748 + c7.z * 0.051646315 - p;
         float q8 = c8.x + c8.y * -0.054975748 + c8.z * 0.051646315 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.0028408e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.0028408e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.0028408e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.0028408e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -61,10 +63,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.y + c6.x * -0.060030535 + c6.z * -0.9407404 - p;
         float q7 = c7.y + c7.x * -0.060030535 + c7.z * -0.9407404 - p;
         float q8 = c8.y + c8.x * -0.060030535 + c8.z * -0.9407404 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.37426205e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.37426205e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.37426205e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.37426205e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +85,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.y + c6.x * -0.5586211 + c6.z * -0.46731988 - p;
         float q7 = c7.y + c7.x * -0.5586211 + c7.z * -0.46731988 - p;
         float q8 = c8.y + c8.x * -0.5586211 + c8.z * -0.46731988 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2371117e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2371117e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2371117e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2371117e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -101,10 +107,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.z + c6.x * 0.0038082886 + c6.y * -0.7812575 - p;
         float q7 = c7.z + c7.x * 0.0038082886 + c7.y * -0.7812575 - p;
         float q8 = c8.z + c8.x * 0.0038082886 + c8.y * -0.7812575 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2690067e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2690067e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2690067e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2690067e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -121,10 +129,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.z + c6.x * -0.13157672 + c6.y * 0.06380852 - p;
         float q7 = c7.z + c7.x * -0.13157672 + c7.y * 0.06380852 - p;
         float q8 = c8.z + c8.x * -0.13157672 + c8.y * 0.06380852 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.0106354e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.0106354e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.0106354e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.0106354e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -141,10 +151,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.x + c6.y * -0.7537761 + c6.z * -0.3105077 - p;
         float q7 = c7.x + c7.y * -0.7537761 + c7.z * -0.3105077 - p;
         float q8 = c8.x + c8.y * -0.7537761 + c8.z * -0.3105077 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2901913e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2901913e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2901913e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2901913e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -161,10 +173,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.z + c6.x * -0.7475091 + c6.y * -0.21752696 - p;
         float q7 = c7.z + c7.x * -0.7475091 + c7.y * -0.21752696 - p;
         float q8 = c8.z + c8.x * -0.7475091 + c8.y * -0.21752696 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2673152e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2673152e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2673152e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2673152e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -181,10 +195,12 @@ vec3 kdop_dop16_asphalt_varclip_n9(vec3 current, vec3 history, float gamma, vec3
         float q6 = c6.x + c6.y * -0.48589435 + c6.z * -0.06287124 - p;
         float q7 = c7.x + c7.y * -0.48589435 + c7.z * -0.06287124 - p;
         float q8 = c8.x + c8.y * -0.48589435 + c8.z * -0.06287124 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1135736e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1135736e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1135736e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1135736e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

@@ -54,10 +54,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.y + c2.x * -0.9091763 + c2.z * -0.22823879 - p;
         float q3 = c3.y + c3.x * -0.9091763 + c3.z * -0.22823879 - p;
         float q4 = c4.y + c4.x * -0.9091763 + c4.z * -0.22823879 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3706547e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3706547e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3706547e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3706547e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -70,10 +72,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.z + c2.x * -0.70663214 + c2.y * 0.10394432 - p;
         float q3 = c3.z + c3.x * -0.70663214 + c3.y * 0.10394432 - p;
         float q4 = c4.z + c4.x * -0.70663214 + c4.y * 0.10394432 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2288749e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2288749e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2288749e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2288749e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -86,10 +90,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.z + c2.x * 0.18454187 + c2.y * -0.57063365 - p;
         float q3 = c3.z + c3.x * 0.18454187 + c3.y * -0.57063365 - p;
         float q4 = c4.z + c4.x * 0.18454187 + c4.y * -0.57063365 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1660525e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1660525e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1660525e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1660525e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -102,10 +108,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.z + c2.x * -0.2652209 + c2.y * 0.040031724 - p;
         float q3 = c3.z + c3.x * -0.2652209 + c3.y * 0.040031724 - p;
         float q4 = c4.z + c4.x * -0.2652209 + c4.y * 0.040031724 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.0353476e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.0353476e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.0353476e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.0353476e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -118,10 +126,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.x + c2.y * -0.6816266 + c2.z * -0.9873084 - p;
         float q3 = c3.x + c3.y * -0.6816266 + c3.z * -0.9873084 - p;
         float q4 = c4.x + c4.y * -0.6816266 + c4.z * -0.9873084 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5618556e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5618556e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5618556e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5618556e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -134,10 +144,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.x + c2.y * -0.5726 + c2.z * -0.42632 - p;
         float q3 = c3.x + c3.y * -0.5726 + c3.z * -0.42632 - p;
         float q4 = c4.x + c4.y * -0.5726 + c4.z * -0.42632 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2286658e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2286658e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2286658e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2286658e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -150,10 +162,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.x + c2.y * 0.25867906 + c2.z * 0.61571217 - p;
         float q3 = c3.x + c3.y * 0.25867906 + c3.z * 0.61571217 - p;
         float q4 = c4.x + c4.y * 0.25867906 + c4.z * 0.61571217 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.20250415e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.20250415e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.20250415e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.20250415e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -166,10 +180,12 @@ vec3 kdop_dop16_grass_varclip_n5(vec3 current, vec3 history, float gamma, vec3 n
         float q2 = c2.y + c2.x * -0.6007664 + c2.z * -0.39173308 - p;
         float q3 = c3.y + c3.x * -0.6007664 + c3.z * -0.39173308 - p;
         float q4 = c4.y + c4.x * -0.6007664 + c4.z * -0.39173308 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.23059945e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.23059945e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.23059945e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.23059945e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

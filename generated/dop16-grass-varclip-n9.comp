@@ -62,10 +62,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.y + c6.x * -0.9091763 + c6.z * -0.22823879 - p;
         float q7 = c7.y + c7.x * -0.9091763 + c7.z * -0.22823879 - p;
         float q8 = c8.y + c8.x * -0.9091763 + c8.z * -0.22823879 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3706547e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3706547e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3706547e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3706547e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -82,10 +84,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.z + c6.x * -0.70663214 + c6.y * 0.10394432 - p;
         float q7 = c7.z + c7.x * -0.70663214 + c7.y * 0.10394432 - p;
         float q8 = c8.z + c8.x * -0.70663214 + c8.y * 0.10394432 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2288749e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2288749e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2288749e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2288749e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -102,10 +106,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.z + c6.x * 0.18454187 + c6.y * -0.57063365 - p;
         float q7 = c7.z + c7.x * 0.18454187 + c7.y * -0.57063365 - p;
         float q8 = c8.z + c8.x * 0.18454187 + c8.y * -0.57063365 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1660525e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1660525e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1660525e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1660525e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -122,10 +128,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.z + c6.x * -0.2652209 + c6.y * 0.040031724 - p;
         float q7 = c7.z + c7.x * -0.2652209 + c7.y * 0.040031724 - p;
         float q8 = c8.z + c8.x * -0.2652209 + c8.y * 0.040031724 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.0353476e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.0353476e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.0353476e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.0353476e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -142,10 +150,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.x + c6.y * -0.6816266 + c6.z * -0.9873084 - p;
         float q7 = c7.x + c7.y * -0.6816266 + c7.z * -0.9873084 - p;
         float q8 = c8.x + c8.y * -0.6816266 + c8.z * -0.9873084 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5618556e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5618556e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5618556e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5618556e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -162,10 +172,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.x + c6.y * -0.5726 + c6.z * -0.42632 - p;
         float q7 = c7.x + c7.y * -0.5726 + c7.z * -0.42632 - p;
         float q8 = c8.x + c8.y * -0.5726 + c8.z * -0.42632 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2286658e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2286658e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2286658e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2286658e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -182,10 +194,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.x + c6.y * 0.25867906 + c6.z * 0.61571217 - p;
         float q7 = c7.x + c7.y * 0.25867906 + c7.z * 0.61571217 - p;
         float q8 = c8.x + c8.y * 0.25867906 + c8.z * 0.61571217 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.20250415e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.20250415e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.20250415e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.20250415e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -202,10 +216,12 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float q6 = c6.y + c6.x * -0.6007664 + c6.z * -0.39173308 - p;
         float q7 = c7.y + c7.x * -0.6007664 + c7.z * -0.39173308 - p;
         float q8 = c8.y + c8.x * -0.6007664 + c8.z * -0.39173308 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.23059945e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.23059945e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.23059945e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.23059945e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

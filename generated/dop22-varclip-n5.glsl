@@ -33,10 +33,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x - p;
         float q3 = c3.x - p;
         float q4 = c4.x - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -49,10 +51,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y - p;
         float q3 = c3.y - p;
         float q4 = c4.y - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -65,10 +69,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z - p;
         float q3 = c3.z - p;
         float q4 = c4.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +87,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.y * -0.8882671 - p;
         float q3 = c3.z + c3.y * -0.8882671 - p;
         float q4 = c4.z + c4.y * -0.8882671 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3375419e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3375419e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3375419e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3375419e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -97,10 +105,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x + c2.y * 0.9994562 + c2.z * -0.5668717 - p;
         float q3 = c3.x + c3.y * 0.9994562 + c3.z * -0.5668717 - p;
         float q4 = c4.x + c4.y * 0.9994562 + c4.z * -0.5668717 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5232387e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5232387e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5232387e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5232387e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -113,10 +123,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * 0.8886194 - p;
         float q3 = c3.z + c3.x * 0.8886194 - p;
         float q4 = c4.z + c4.x * 0.8886194 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3377759e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3377759e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3377759e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3377759e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -129,10 +141,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * -0.8896277 - p;
         float q3 = c3.z + c3.x * -0.8896277 - p;
         float q4 = c4.z + c4.x * -0.8896277 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3384459e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3384459e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3384459e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3384459e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -145,10 +159,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.y * 0.8887044 - p;
         float q3 = c3.z + c3.y * 0.8887044 - p;
         float q4 = c4.z + c4.y * 0.8887044 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3378324e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3378324e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3378324e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3378324e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -161,10 +177,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y + c2.x * -0.9996624 + c2.z * 0.55936176 - p;
         float q3 = c3.y + c3.x * -0.9996624 + c3.z * 0.55936176 - p;
         float q4 = c4.y + c4.x * -0.9996624 + c4.z * 0.55936176 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5205955e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5205955e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5205955e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5205955e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -177,10 +195,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y + c2.x * 0.99789804 + c2.z * 0.56051946 - p;
         float q3 = c3.y + c3.x * 0.99789804 + c3.z * 0.56051946 - p;
         float q4 = c4.y + c4.x * 0.99789804 + c4.z * 0.56051946 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5198627e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5198627e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5198627e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5198627e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -193,10 +213,12 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x + c2.y * -0.9982262 + c2.z * 0.5671452 - p;
         float q3 = c3.x + c3.y * -0.9982262 + c3.z * 0.5671452 - p;
         float q4 = c4.x + c4.y * -0.9982262 + c4.z * 0.5671452 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5225339e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5225339e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5225339e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5225339e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

@@ -41,10 +41,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x - p;
         float q7 = c7.x - p;
         float q8 = c8.x - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -61,10 +63,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y - p;
         float q7 = c7.y - p;
         float q8 = c8.y - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +85,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z - p;
         float q7 = c7.z - p;
         float q8 = c8.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -101,10 +107,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.y * -0.8882671 - p;
         float q7 = c7.z + c7.y * -0.8882671 - p;
         float q8 = c8.z + c8.y * -0.8882671 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3375419e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3375419e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3375419e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3375419e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -121,10 +129,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x + c6.y * 0.9994562 + c6.z * -0.5668717 - p;
         float q7 = c7.x + c7.y * 0.9994562 + c7.z * -0.5668717 - p;
         float q8 = c8.x + c8.y * 0.9994562 + c8.z * -0.5668717 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5232387e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5232387e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5232387e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5232387e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -141,10 +151,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * 0.8886194 - p;
         float q7 = c7.z + c7.x * 0.8886194 - p;
         float q8 = c8.z + c8.x * 0.8886194 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3377759e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3377759e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3377759e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3377759e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -161,10 +173,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * -0.8896277 - p;
         float q7 = c7.z + c7.x * -0.8896277 - p;
         float q8 = c8.z + c8.x * -0.8896277 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3384459e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3384459e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3384459e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3384459e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -181,10 +195,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.y * 0.8887044 - p;
         float q7 = c7.z + c7.y * 0.8887044 - p;
         float q8 = c8.z + c8.y * 0.8887044 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3378324e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3378324e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3378324e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3378324e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -201,10 +217,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * -0.9996624 + c6.z * 0.55936176 - p;
         float q7 = c7.y + c7.x * -0.9996624 + c7.z * 0.55936176 - p;
         float q8 = c8.y + c8.x * -0.9996624 + c8.z * 0.55936176 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5205955e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5205955e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5205955e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5205955e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -221,10 +239,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * 0.99789804 + c6.z * 0.56051946 - p;
         float q7 = c7.y + c7.x * 0.99789804 + c7.z * 0.56051946 - p;
         float q8 = c8.y + c8.x * 0.99789804 + c8.z * 0.56051946 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5198627e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5198627e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5198627e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5198627e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -241,10 +261,12 @@ vec3 kdop_dop22_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x + c6.y * -0.9982262 + c6.z * 0.5671452 - p;
         float q7 = c7.x + c7.y * -0.9982262 + c7.z * 0.5671452 - p;
         float q8 = c8.x + c8.y * -0.9982262 + c8.z * 0.5671452 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.5225339e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.5225339e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.5225339e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.5225339e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

@@ -54,10 +54,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x - p;
         float q3 = c3.x - p;
         float q4 = c4.x - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -70,10 +72,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y - p;
         float q3 = c3.y - p;
         float q4 = c4.y - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -86,10 +90,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z - p;
         float q3 = c3.z - p;
         float q4 = c4.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -102,10 +108,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x + c2.y * 0.5569291 + c2.z * -0.42041335 - p;
         float q3 = c3.x + c3.y * 0.5569291 + c3.z * -0.42041335 - p;
         float q4 = c4.x + c4.y * 0.5569291 + c4.z * -0.42041335 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2193923e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2193923e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2193923e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2193923e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -118,10 +126,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y + c2.x * 0.65158427 + c2.z * 0.17269012 - p;
         float q3 = c3.y + c3.x * 0.65158427 + c3.z * 0.17269012 - p;
         float q4 = c4.y + c4.x * 0.65158427 + c4.z * 0.17269012 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2059784e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2059784e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2059784e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2059784e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -134,10 +144,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y + c2.x * 0.30413133 + c2.z * -0.56664616 - p;
         float q3 = c3.y + c3.x * 0.30413133 + c3.z * -0.56664616 - p;
         float q4 = c4.y + c4.x * 0.30413133 + c4.z * -0.56664616 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1889422e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1889422e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1889422e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1889422e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -150,10 +162,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * -0.49238378 + c2.y * -0.47075778 - p;
         float q3 = c3.z + c3.x * -0.49238378 + c3.y * -0.47075778 - p;
         float q4 = c4.z + c4.x * -0.49238378 + c4.y * -0.47075778 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2099813e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2099813e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2099813e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2099813e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -166,10 +180,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x + c2.y * 0.46319014 + c2.z * 0.4986271 - p;
         float q3 = c3.x + c3.y * 0.46319014 + c3.z * 0.4986271 - p;
         float q4 = c4.x + c4.y * 0.46319014 + c4.z * 0.4986271 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2096173e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2096173e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2096173e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2096173e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -182,10 +198,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * 0.33731827 + c2.y * -0.74650776 - p;
         float q3 = c3.z + c3.x * 0.33731827 + c3.y * -0.74650776 - p;
         float q4 = c4.z + c4.x * 0.33731827 + c4.y * -0.74650776 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2926939e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2926939e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2926939e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2926939e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -198,10 +216,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * 0.34994918 + c2.y * 0.8773848 - p;
         float q3 = c3.z + c3.x * 0.34994918 + c3.y * 0.8773848 - p;
         float q4 = c4.z + c4.x * 0.34994918 + c4.y * 0.8773848 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3755975e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3755975e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3755975e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3755975e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -214,10 +234,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y + c2.x * -0.42701176 + c2.z * 0.8390939 - p;
         float q3 = c3.y + c3.x * -0.42701176 + c3.z * 0.8390939 - p;
         float q4 = c4.y + c4.x * -0.42701176 + c4.z * 0.8390939 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.37346915e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.37346915e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.37346915e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.37346915e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -230,10 +252,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x + c2.y * -0.69732994 + c2.z * -0.28645495 - p;
         float q3 = c3.x + c3.y * -0.69732994 + c3.z * -0.28645495 - p;
         float q4 = c4.x + c4.y * -0.69732994 + c4.z * -0.28645495 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.252328e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.252328e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.252328e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.252328e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -246,10 +270,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * -0.93400365 + c2.y * 0.22692117 - p;
         float q3 = c3.z + c3.x * -0.93400365 + c3.y * 0.22692117 - p;
         float q4 = c4.z + c4.x * -0.93400365 + c4.y * 0.22692117 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.38703135e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.38703135e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.38703135e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.38703135e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -262,10 +288,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.x + c2.y * -0.45416883 + c2.z * 0.55066824 - p;
         float q3 = c3.x + c3.y * -0.45416883 + c3.z * 0.55066824 - p;
         float q4 = c4.x + c4.y * -0.45416883 + c4.z * 0.55066824 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2286191e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2286191e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2286191e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2286191e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -278,10 +306,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.y + c2.x * -0.5594913 + c2.z * -0.24291748 - p;
         float q3 = c3.y + c3.x * -0.5594913 + c3.z * -0.24291748 - p;
         float q4 = c4.y + c4.x * -0.5594913 + c4.z * -0.24291748 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1713409e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1713409e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1713409e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1713409e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -294,10 +324,12 @@ vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q2 = c2.z + c2.x * 0.6677667 + c2.y * 0.050005417 - p;
         float q3 = c3.z + c3.x * 0.6677667 + c3.y * 0.050005417 - p;
         float q4 = c4.z + c4.x * 0.6677667 + c4.y * 0.050005417 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2035002e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2035002e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2035002e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2035002e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

@@ -41,10 +41,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x - p;
         float q7 = c7.x - p;
         float q8 = c8.x - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -61,10 +63,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y - p;
         float q7 = c7.y - p;
         float q8 = c8.y - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +85,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z - p;
         float q7 = c7.z - p;
         float q8 = c8.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -101,10 +107,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x + c6.y * 0.5569291 + c6.z * -0.42041335 - p;
         float q7 = c7.x + c7.y * 0.5569291 + c7.z * -0.42041335 - p;
         float q8 = c8.x + c8.y * 0.5569291 + c8.z * -0.42041335 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2193923e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2193923e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2193923e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2193923e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -121,10 +129,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * 0.65158427 + c6.z * 0.17269012 - p;
         float q7 = c7.y + c7.x * 0.65158427 + c7.z * 0.17269012 - p;
         float q8 = c8.y + c8.x * 0.65158427 + c8.z * 0.17269012 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2059784e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2059784e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2059784e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2059784e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -141,10 +151,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * 0.30413133 + c6.z * -0.56664616 - p;
         float q7 = c7.y + c7.x * 0.30413133 + c7.z * -0.56664616 - p;
         float q8 = c8.y + c8.x * 0.30413133 + c8.z * -0.56664616 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1889422e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1889422e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1889422e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1889422e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -161,10 +173,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * -0.49238378 + c6.y * -0.47075778 - p;
         float q7 = c7.z + c7.x * -0.49238378 + c7.y * -0.47075778 - p;
         float q8 = c8.z + c8.x * -0.49238378 + c8.y * -0.47075778 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2099813e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2099813e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2099813e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2099813e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -181,10 +195,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x + c6.y * 0.46319014 + c6.z * 0.4986271 - p;
         float q7 = c7.x + c7.y * 0.46319014 + c7.z * 0.4986271 - p;
         float q8 = c8.x + c8.y * 0.46319014 + c8.z * 0.4986271 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2096173e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2096173e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2096173e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2096173e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -201,10 +217,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * 0.33731827 + c6.y * -0.74650776 - p;
         float q7 = c7.z + c7.x * 0.33731827 + c7.y * -0.74650776 - p;
         float q8 = c8.z + c8.x * 0.33731827 + c8.y * -0.74650776 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2926939e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2926939e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2926939e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2926939e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -221,10 +239,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * 0.34994918 + c6.y * 0.8773848 - p;
         float q7 = c7.z + c7.x * 0.34994918 + c7.y * 0.8773848 - p;
         float q8 = c8.z + c8.x * 0.34994918 + c8.y * 0.8773848 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.3755975e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.3755975e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.3755975e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.3755975e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -241,10 +261,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * -0.42701176 + c6.z * 0.8390939 - p;
         float q7 = c7.y + c7.x * -0.42701176 + c7.z * 0.8390939 - p;
         float q8 = c8.y + c8.x * -0.42701176 + c8.z * 0.8390939 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.37346915e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.37346915e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.37346915e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.37346915e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -261,10 +283,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x + c6.y * -0.69732994 + c6.z * -0.28645495 - p;
         float q7 = c7.x + c7.y * -0.69732994 + c7.z * -0.28645495 - p;
         float q8 = c8.x + c8.y * -0.69732994 + c8.z * -0.28645495 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.252328e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.252328e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.252328e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.252328e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -281,10 +305,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * -0.93400365 + c6.y * 0.22692117 - p;
         float q7 = c7.z + c7.x * -0.93400365 + c7.y * 0.22692117 - p;
         float q8 = c8.z + c8.x * -0.93400365 + c8.y * 0.22692117 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.38703135e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.38703135e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.38703135e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.38703135e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -301,10 +327,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x + c6.y * -0.45416883 + c6.z * 0.55066824 - p;
         float q7 = c7.x + c7.y * -0.45416883 + c7.z * 0.55066824 - p;
         float q8 = c8.x + c8.y * -0.45416883 + c8.z * 0.55066824 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2286191e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2286191e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2286191e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2286191e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -321,10 +349,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * -0.5594913 + c6.z * -0.24291748 - p;
         float q7 = c7.y + c7.x * -0.5594913 + c7.z * -0.24291748 - p;
         float q8 = c8.y + c8.x * -0.5594913 + c8.z * -0.24291748 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.1713409e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.1713409e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.1713409e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.1713409e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -341,10 +371,12 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.z + c6.x * 0.6677667 + c6.y * 0.050005417 - p;
         float q7 = c7.z + c7.x * 0.6677667 + c7.y * 0.050005417 - p;
         float q8 = c8.z + c8.x * 0.6677667 + c8.y * 0.050005417 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.2035002e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.2035002e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.2035002e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.2035002e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

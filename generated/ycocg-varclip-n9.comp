@@ -62,10 +62,12 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * 0.5 + c6.z * 0.5 - p;
         float q7 = c7.y + c7.x * 0.5 + c7.z * 0.5 - p;
         float q8 = c8.y + c8.x * 0.5 + c8.z * 0.5 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.22474485e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.22474485e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -82,10 +84,12 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.x - c6.z - p;
         float q7 = c7.x - c7.z - p;
         float q8 = c8.x - c8.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.4142136e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.4142136e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.4142136e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.4142136e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -102,10 +106,12 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float q6 = c6.y + c6.x * -0.5 + c6.z * -0.5 - p;
         float q7 = c7.y + c7.x * -0.5 + c7.z * -0.5 - p;
         float q8 = c8.y + c8.x * -0.5 + c8.z * -0.5 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8) * (1.0 / 9.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
+        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float mean = sum * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.22474485e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.22474485e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

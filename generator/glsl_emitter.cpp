@@ -148,11 +148,15 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, con
     out += fmt::format("        float p = {};\n", proj("current"));
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {} - p;\n", n, proj(fmt::format("c{}", n)));
-    out += fmt::format("        float mean = ({}) * (1.0 / {}.0);\n", sum(count, "q{}"), count);
-    out += fmt::format("        float sigma = sqrt(max(({}) * (1.0 / {}.0) - mean * mean, 0.0));\n",
-                       sum(count, "q{0} * q{0}"), count);
-    out += fmt::format("        float lo = min(mean - gamma * sigma, 0.0) - {};\n", float_literal(axis.padding));
-    out += fmt::format("        float hi = max(mean + gamma * sigma, 0.0) + {};\n", float_literal(axis.padding));
+    // Written so every multiply-add fuses without a negation: the variance is
+    // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
+    out += fmt::format("        float sum = {};\n", sum(count, "q{}"));
+    out += fmt::format("        float mean = sum * (1.0 / {}.0);\n", count);
+    out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
+                       sum(count, "q{0} * q{0}"));
+    out += "        float sigma = sqrt(max(variance, 0.0));\n";
+    out += fmt::format("        float lo = min(fma(-gamma, sigma, mean), 0.0) - {};\n", float_literal(axis.padding));
+    out += fmt::format("        float hi = max(fma(gamma, sigma, mean), 0.0) + {};\n", float_literal(axis.padding));
     out += exit_update("");
 }
 

@@ -33,10 +33,12 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q2 = c2.x - p;
         float q3 = c3.x - p;
         float q4 = c4.x - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -49,10 +51,12 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q2 = c2.y - p;
         float q3 = c3.y - p;
         float q4 = c4.y - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -65,10 +69,12 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q2 = c2.x - c2.z - p;
         float q3 = c3.x - c3.z - p;
         float q4 = c4.x - c4.z - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.4142136e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.4142136e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.4142136e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.4142136e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -81,10 +87,12 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5 - p;
         float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5 - p;
         float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.22474485e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.22474485e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.22474485e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.22474485e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
@@ -97,10 +105,12 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float q2 = c2.z + c2.y * -0.75 - p;
         float q3 = c3.z + c3.y * -0.75 - p;
         float q4 = c4.z + c4.y * -0.75 - p;
-        float mean = (q0 + q1 + q2 + q3 + q4) * (1.0 / 5.0);
-        float sigma = sqrt(max((q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0) - mean * mean, 0.0));
-        float lo = min(mean - gamma * sigma, 0.0) - 1.25e-05;
-        float hi = max(mean + gamma * sigma, 0.0) + 1.25e-05;
+        float sum = q0 + q1 + q2 + q3 + q4;
+        float mean = sum * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float sigma = sqrt(max(variance, 0.0));
+        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1.25e-05;
+        float hi = max(fma(gamma, sigma, mean), 0.0) + 1.25e-05;
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
