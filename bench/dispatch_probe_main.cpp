@@ -6,7 +6,7 @@
 #include "context.h"
 #include "kernel.h"
 #include "rectify_pass.h"
-#include "test_textures.h"
+#include "bench_inputs.h"
 
 #include <kdop_builtin_variants.h>
 
@@ -23,11 +23,12 @@ int main(int argc, char** argv) {
     CLI::App app{"kdop-dispatch-probe: one instrumented dispatch, for callgrind"};
     std::string name;
     std::uint32_t width = 256, height = 256;
-    std::string spirv_path;
+    std::string spirv_path, device;
     app.add_option("--variant", name, "Registry variant to run (its interface, and its SPIR-V unless --spirv)")->required();
     app.add_option("--spirv", spirv_path, "Run this SPIR-V module instead, with the variant's interface");
     app.add_option("--width", width)->check(CLI::Range(8u, 8192u));
     app.add_option("--height", height)->check(CLI::Range(8u, 8192u));
+    app.add_option("--device", device, "Vulkan device: a substring of its name [default: lavapipe]");
     CLI11_PARSE(app, argc, argv);
 
     const Variant* registered = builtin::variants().find(name.c_str());
@@ -47,11 +48,8 @@ int main(int argc, char** argv) {
         replaced.spirv_word_count = words.size();
     }
     const Variant* variant = &replaced;
-    // The same content for every variant: grass, with a history from another texture, so every
-    // pixel is clipped (the costlier path where a variant has branches).
-    Image current = make_texture(TextureFamily::grass, width, height, 1);
-    Image history = make_texture(TextureFamily::asphalt, width, height, 2);
-    auto context = Context::create({});
+    auto [current, history] = bench::bench_inputs(width, height);
+    auto context = Context::create({device, false});
     auto kernel = context ? Kernel::create(**context, *variant) : std::unexpected(context.error());
     auto pass = context ? RectifyPass::create(**context, width, height, TextureFormat::rgba32f) : std::unexpected(context.error());
     if (!kernel || !pass) {

@@ -35,6 +35,29 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_validation_message(VkDebugUtilsMessag
     return VK_FALSE;
 }
 
+namespace {
+
+// "Mesa 22.3.6 (llvmpipe)"-style text from VK_KHR_driver_properties where the device has it (core
+// in 1.2), else the raw version numbers. For reports: which driver produced a measurement.
+std::string driver_description(VkPhysicalDevice device, const VkPhysicalDeviceProperties& p) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+    const std::string api = fmt::format("Vulkan {}.{}.{}", VK_API_VERSION_MAJOR(p.apiVersion),
+                                        VK_API_VERSION_MINOR(p.apiVersion), VK_API_VERSION_PATCH(p.apiVersion));
+    for (const VkExtensionProperties& e : extensions) {
+        if (std::string_view(e.extensionName) != VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME) continue;
+        VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+        VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+        vkGetPhysicalDeviceProperties2(device, &properties);
+        return fmt::format("{} {}, {}", driver.driverName, driver.driverInfo, api);
+    }
+    return fmt::format("driver version {:#x}, {}", p.driverVersion, api);
+}
+
+} // namespace
+
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
     std::unique_ptr<Context> c(new Context);
 
@@ -97,6 +120,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
                                       available)
                         : fmt::format("no Vulkan device whose name contains '{}'; available devices: {}", wanted, available));
     }
+
+    c->driver_info_ = driver_description(c->physical_, c->properties_);
 
     uint32_t family_count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(c->physical_, &family_count, nullptr);

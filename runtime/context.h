@@ -36,6 +36,7 @@ public:
     uint32_t queue_family() const { return queue_family_; }
     VkCommandPool command_pool() const { return command_pool_; }
     const std::string& device_name() const { return device_name_; }
+    const std::string& driver_info() const { return driver_info_; } // e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6), Vulkan 1.3.230"
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
 
     // A memory type allowed by `type_bits` with all of `flags`.
@@ -59,6 +60,7 @@ private:
     uint32_t queue_family_ = 0;
     VkCommandPool command_pool_ = VK_NULL_HANDLE;
     std::string device_name_;
+    std::string driver_info_;
     VkPhysicalDeviceProperties properties_{};
     mutable std::mutex messages_mutex_;
     std::vector<std::string> messages_;

@@ -138,7 +138,7 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures "}) {
+    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures ", "bench "}) {
         auto r = run(kdop(sub + "--help"));
         EXPECT_EQ(r.exit_code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;

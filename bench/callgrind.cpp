@@ -1,0 +1,62 @@
+#include "callgrind.h"
+
+#include <fmt/format.h>
+
+#include "subprocess.h"
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+namespace kdop::bench {
+namespace {
+
+Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::path& valgrind, const std::string& variant) {
+    const std::filesystem::path out = setup.scratch / (variant + ".callgrind");
+    const std::filesystem::path log = setup.scratch / (variant + ".log");
+    std::vector<std::string> argv{valgrind.string(), "--tool=callgrind", "--instr-atstart=no",
+                                  "--callgrind-out-file=" + out.string(), setup.probe.string(), "--variant", variant,
+                                  "--width", std::to_string(setup.size), "--height", std::to_string(setup.size)};
+    if (!setup.device.empty()) argv.insert(argv.end(), {"--device", setup.device});
+    auto status = run_program(argv, log, {"LP_NUM_THREADS=0"});
+    if (!status) return std::unexpected(status.error());
+    if (*status != 0) return fail(fmt::format("callgrind run of {} exited with {}:{}", variant, *status, log_tail(log, 8)));
+    // The probe dumps once, at the end of the dispatch: <out>.1 holds exactly its instructions.
+    std::ifstream dump(out.string() + ".1");
+    for (std::string line; std::getline(dump, line);)
+        if (line.rfind("totals:", 0) == 0)
+            return std::strtod(line.c_str() + 7, nullptr) / (double(setup.size) * setup.size);
+    return fail(fmt::format("callgrind run of {}: no 'totals:' line in {}.1", variant, out.string()));
+}
+
+} // namespace
+
+Result<std::vector<double>> callgrind_instructions_per_pixel(const CallgrindSetup& setup,
+                                                             const std::vector<std::string>& variants, unsigned jobs,
+                                                             Progress& progress) {
+    const std::filesystem::path valgrind = find_program("valgrind");
+    if (valgrind.empty()) return fail("valgrind not found in PATH (Debian: valgrind), or pass --no-callgrind");
+    std::vector<Result<double>> results(variants.size(), fail("not run"));
+    std::atomic<std::size_t> next{0};
+    std::mutex progress_mutex;
+    auto worker = [&] {
+        for (std::size_t i; (i = next++) < variants.size();) {
+            results[i] = measure_one(setup, valgrind, variants[i]);
+            std::lock_guard lock(progress_mutex);
+            progress.advance(variants[i]);
+        }
+    };
+    std::vector<std::jthread> workers;
+    for (unsigned j = 0; j < std::max(1u, jobs); ++j) workers.emplace_back(worker);
+    workers.clear(); // joins
+    std::vector<double> per_pixel;
+    for (auto& r : results) {
+        if (!r) return std::unexpected(r.error());
+        per_pixel.push_back(*r);
+    }
+    return per_pixel;
+}
+
+} // namespace kdop::bench

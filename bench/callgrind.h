@@ -1,0 +1,30 @@
+// Deterministic cost: the CPU instructions lavapipe executes for one dispatch, per pixel, counted
+// by callgrind around that dispatch alone (kdop-dispatch-probe brackets it with client requests;
+// LP_NUM_THREADS=0 keeps it on one thread). Unlike wall time the count repeats from run to run
+// (within 0.002% here), so it is the figure to compare variants by on a noisy machine.
+// valgrind is run as a program: it has no library interface.
+#pragma once
+
+#include "progress.h"
+#include "result.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kdop::bench {
+
+struct CallgrindSetup {
+    std::filesystem::path probe;   // the kdop-dispatch-probe executable
+    std::filesystem::path scratch; // a private directory for callgrind's files and logs
+    std::uint32_t size = 256;      // the dispatch covers size x size pixels
+    std::string device;            // passed on to the probe; empty: lavapipe
+};
+
+// Instructions per pixel for each named variant, `jobs` valgrind processes at a time.
+Result<std::vector<double>> callgrind_instructions_per_pixel(const CallgrindSetup& setup,
+                                                             const std::vector<std::string>& variants, unsigned jobs,
+                                                             Progress& progress);
+
+} // namespace kdop::bench

@@ -1,0 +1,28 @@
+// Order statistics for timing samples. Medians and quartiles, not means: on a shared machine a
+// few dispatches are delayed by other work, and those outliers should not move the figure.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace kdop::bench {
+
+// The q-quantile (0..1) by linear interpolation between order statistics; NaN for no samples.
+inline double quantile(std::vector<double> samples, double q) {
+    if (samples.empty()) return NAN;
+    std::sort(samples.begin(), samples.end());
+    const double position = q * double(samples.size() - 1);
+    const std::size_t below = static_cast<std::size_t>(position);
+    const std::size_t above = std::min(below + 1, samples.size() - 1);
+    return samples[below] + (position - double(below)) * (samples[above] - samples[below]);
+}
+
+inline double median(const std::vector<double>& samples) { return quantile(samples, 0.5); }
+
+// Interquartile range: the spread reported next to each median.
+inline double interquartile_range(const std::vector<double>& samples) {
+    return quantile(samples, 0.75) - quantile(samples, 0.25);
+}
+
+} // namespace kdop::bench

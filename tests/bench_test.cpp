@@ -1,0 +1,135 @@
+// The cost bench: its statistics and CSV on hand-made data, callgrind counts that repeat and rank
+// variants by their work, and `kdop bench` run as a user runs it (small sizes, no timing asserted)
+// with bad input refused before anything is measured or written.
+#include "callgrind.h"
+#include "cost_table.h"
+#include "statistics.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+#include <thread>
+
+namespace kdop::bench {
+namespace {
+namespace fs = std::filesystem;
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string field; std::getline(in, field, separator);) out.push_back(field);
+    if (!text.empty() && text.back() == separator) out.emplace_back();
+    return out;
+}
+
+TEST(BenchStatistics, MedianQuartilesAndSpreadOfHandData) {
+    EXPECT_DOUBLE_EQ(median({5, 1, 3}), 3);
+    EXPECT_DOUBLE_EQ(median({4, 1, 3, 2}), 2.5);
+    // 1..9: quartiles at positions 2 and 6 (0-based), values 3 and 7.
+    EXPECT_DOUBLE_EQ(interquartile_range({9, 1, 8, 2, 7, 3, 6, 4, 5}), 4);
+    EXPECT_DOUBLE_EQ(quantile({10, 20}, 0.25), 12.5);
+    EXPECT_TRUE(std::isnan(median({})));
+}
+
+TEST(BenchCsv, HasTheRequiredColumnsAndLeavesUnmeasuredFieldsEmpty) {
+    CostRow row;
+    row.variant = "dop32-clip-n9";
+    row.float_ops.fma = 10;
+    row.float_ops.min_max = 4;
+    row.baseline_float_ops = 30;
+    row.ms_median = 1.25;
+    const auto lines = split(cost_csv({row}), '\n');
+    ASSERT_EQ(lines.size(), 3u); // header, the row, and nothing after the final newline
+    EXPECT_EQ(lines[2], "");
+    const auto header = split(lines[0], ','), fields = split(lines[1], ',');
+    ASSERT_EQ(header.size(), fields.size());
+    auto value = [&](const std::string& column) {
+        for (std::size_t i = 0; i < header.size(); ++i)
+            if (header[i] == column) return fields[i];
+        ADD_FAILURE() << "no column " << column;
+        return std::string("?");
+    };
+    for (const char* column : {"variant", "spirv_instructions", "float_ops", "baseline_float_ops", "analytic_min_ops",
+                               "ms_median", "ms_spread", "marginal_ms", "instr_per_px", "baseline_instr_per_px"})
+        value(column);
+    EXPECT_EQ(value("variant"), "dop32-clip-n9");
+    EXPECT_EQ(value("float_ops"), "14");
+    EXPECT_EQ(value("baseline_float_ops"), "30");
+    EXPECT_EQ(value("ms_median"), "1.250");
+    EXPECT_EQ(value("marginal_ms"), ""); // not measured: empty, not zero
+    EXPECT_EQ(value("instr_per_px"), "");
+}
+
+TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
+    test::TempDir scratch;
+    CallgrindSetup setup{fs::path(test::kdop_binary()).parent_path() / "kdop-dispatch-probe", scratch.path(), 16, ""};
+    Progress progress("callgrind", 3);
+    auto counts = callgrind_instructions_per_pixel(setup, {"aabb-clip-n9", "aabb-clip-n9", "dop32-clip-n9"}, 3, progress);
+    ASSERT_TRUE(counts) << counts.error().message;
+    EXPECT_GT((*counts)[0], 0.0);
+    EXPECT_NEAR((*counts)[0], (*counts)[1], 1e-3 * (*counts)[0]); // deterministic, unlike a timing
+    EXPECT_GT((*counts)[2], (*counts)[0]);                        // 16 slabs do more work than 3
+
+    auto missing = callgrind_instructions_per_pixel(setup, {"no-such-variant"}, 1, progress);
+    ASSERT_FALSE(missing);
+    EXPECT_NE(missing.error().message.find("unknown variant 'no-such-variant'"), std::string::npos)
+        << missing.error().message;
+}
+
+std::string kdop(const std::string& args) { return test::kdop_binary() + " " + args; }
+
+TEST(CliBench, WritesCsvReportAndCharts) {
+    test::TempDir dir;
+    const fs::path out = dir / "bench";
+    auto r = test::run(kdop("bench --out " + out.string() +
+                            " --variants aabb-clip-n9 dop16-grass-varclip-n5 --size 64x48 --repeat 2 "
+                            "--sweep-sizes 32x32 64x64 --sweep-repeat 1 --no-callgrind"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = split(test::read_file(out / "cost.csv"), '\n');
+    // Header, the two variants, gather-n9, gather-n5, copy, and the final newline.
+    ASSERT_EQ(lines.size(), 7u);
+    EXPECT_TRUE(lines[1].starts_with("aabb-clip-n9,aabb,clip,n9,6,"));
+    EXPECT_TRUE(lines[2].starts_with("dop16-grass-varclip-n5,dop16-grass,varclip,n5,16,"));
+    EXPECT_TRUE(lines[5].starts_with("copy,"));
+    const std::string report = test::read_file(out / "report.md");
+    for (const char* part : {"- commit: ", "- driver: ", "## Targets", "### The analytic minimum", "## Size sweep",
+                             "| aabb-clip-n9 | 6 |", "![", "64x64"})
+        EXPECT_NE(report.find(part), std::string::npos) << part;
+    for (const char* chart : {"static_cost.png", "measured_cost.png", "size_sweep.png"}) {
+        const std::string png = test::read_file(out / chart);
+        EXPECT_EQ(png.substr(0, 4), "\x89PNG") << chart;
+    }
+    // Progress went to stderr, one line per step when it is not a terminal.
+    EXPECT_NE(r.err.find("[2/2] timing 7 kernels, round 2/2 at 64x48"), std::string::npos) << r.err;
+}
+
+TEST(CliBench, RefusesBadInputAndWritesNothing) {
+    test::TempDir dir;
+    const fs::path out = dir / "bench";
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {"--size 1920", "--size: '1920' is not WIDTHxHEIGHT with sides 8..16384"},
+        {"--size 4x4", "--size: '4x4' is not WIDTHxHEIGHT"},
+        {"--sweep-sizes 64x64 big", "--sweep-sizes: 'big' is not WIDTHxHEIGHT"},
+        {"--variants dop99-clip-n9", "--variants: 'dop99-clip-n9' is not a default clip variant"},
+        {"--variants dop32-clip-n9-loop", "--variants: 'dop32-clip-n9-loop' is not a default clip variant"},
+        {"--variants gather-n9", "--variants: 'gather-n9' is not a default clip variant"},
+        {"--variants aabb-clip-n9 aabb-clip-n9", "--variants: 'aabb-clip-n9' is given twice"},
+        {"--repeat 0", "--repeat"},
+        {"--variants aabb-clip-n9 --size 16x16 --no-sweep --no-callgrind --device NoSuchGpu",
+         "no Vulkan device whose name contains 'NoSuchGpu'"},
+    };
+    for (const Case& c : cases) {
+        auto r = test::run(kdop("bench --out " + out.string() + " " + c.args));
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
+}
+
+} // namespace
+} // namespace kdop::bench
