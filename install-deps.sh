@@ -5,13 +5,14 @@ set -eu
 
 # glslang-tools: Debian 12's glslang CMake package refers to /usr/bin/glslangValidator, so
 # find_package(glslang) fails without it even though kdop uses glslang only as a library.
+# valgrind and gnuplot-nox: `kdop bench` (and its tests) run callgrind and draw charts with gnuplot.
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev
-  libgtest-dev valgrind
+  libgtest-dev valgrind gnuplot-nox
   colobot-common-textures
 "
 
