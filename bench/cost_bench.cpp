@@ -100,7 +100,7 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
             auto aabb = std::ranges::find_if(result.rows, [&](const CostRow& r) {
                 return r.axis_set == "aabb" && r.mode == row.mode && r.neighborhood == row.neighborhood;
             });
-            if (!row.axis_set.empty() && aabb != result.rows.end()) row.marginal_vs_aabb = row.marginal_ms / aabb->marginal_ms;
+            if (!row.axis_set.empty() && aabb != result.rows.end()) row.ms_vs_aabb = row.ms_median / aabb->ms_median;
         }
     }
 

@@ -49,13 +49,13 @@ std::string static_table(const BenchResult& result) {
 }
 
 std::string measured_table(const BenchResult& result) {
-    std::string out = "| variant | median ms | IQR ms | marginal ms | marginal vs aabb | loop form ms | loop marginal ms "
+    std::string out = "| variant | median ms | IQR ms | marginal ms | ms vs aabb | loop form ms | loop marginal ms "
                       "| instr/px | loop instr/px | vs loop |\n";
     out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const CostRow& r : result.rows) {
         const double loop_marginal = r.marginal_ms + (r.baseline_ms_median - r.ms_median);
         out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.variant, number(r.ms_median, 2),
-                           number(r.ms_spread, 2), number(r.marginal_ms, 2), number(r.marginal_vs_aabb, 2),
+                           number(r.ms_spread, 2), number(r.marginal_ms, 2), number(r.ms_vs_aabb, 2),
                            number(r.baseline_ms_median, 2), number(loop_marginal, 2), number(r.instr_per_px, 1),
                            number(r.baseline_instr_per_px, 1), ratio(r.instr_per_px, r.baseline_instr_per_px));
     }

@@ -22,7 +22,8 @@ struct CostRow {
     double ms_median = NAN, ms_spread = NAN; // at the timing size; spread = interquartile range
     double baseline_ms_median = NAN;         // the loop form's
     double marginal_ms = NAN;                // ms_median minus the gather-only kernel of the same neighborhood
-    double marginal_vs_aabb = NAN;           // marginal_ms over aabb's of the same mode and neighborhood
+    double ms_vs_aabb = NAN;                 // ms_median over aabb's of the same mode and neighborhood (the
+                                             // marginal ratio is meaningless where marginals are within the noise)
     double instr_per_px = NAN, baseline_instr_per_px = NAN; // callgrind, one dispatch
 };
 
