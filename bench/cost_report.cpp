@@ -177,6 +177,7 @@ set grid ytics
 set key top left
 set xtics rotate by -40 scale 0
 set yrange [0:*]
+set rmargin 10
 )";
 
 } // namespace
