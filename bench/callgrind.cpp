@@ -1,8 +1,8 @@
 #include "callgrind.h"
 
-#include <fmt/format.h>
-
 #include "subprocess.h"
+
+#include <fmt/format.h>
 
 #include <atomic>
 #include <cstdlib>

@@ -4,28 +4,19 @@
 #include "image_io.h"
 #include "kernel.h"
 #include "rectify_pass.h"
+#include "statistics.h"
 
 #include <kdop_builtin_variants.h>
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
 
 namespace kdop::cli {
-namespace {
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-} // namespace
 
 Action add_run_command(CLI::App& app) {
     struct Options {
@@ -87,7 +78,7 @@ Action add_run_command(CLI::App& app) {
                                  current->height, to_string(*format), o->out);
         if (o->repeat > 1) {
             const double pixels = double(current->width) * current->height;
-            const double wall = median(wall_ms), device = median(device_ms);
+            const double wall = bench::median(wall_ms), device = bench::median(device_ms);
             // The first dispatch is reported apart: drivers may finish compiling the pipeline there.
             std::cout << fmt::format("pipeline creation {:.1f} ms, first dispatch {:.2f} ms; {} dispatches: median "
                                      "{:.2f} ms wall ({:.1f} Mpixel/s), {:.2f} ms device\n",
