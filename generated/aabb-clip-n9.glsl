@@ -9,7 +9,10 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_AABB_CLIP_N9_GLSL
 #define KDOP_AABB_CLIP_N9_GLSL
 
@@ -25,6 +28,12 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
     vec3 c7 = neighborhood[7];
     vec3 c8 = neighborhood[8];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 3: axis (1, 0, 0) from aabb.axes:5
@@ -57,8 +66,8 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.x;
         float inv_d = 1.0 / dir.x;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -94,8 +103,8 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.y;
         float inv_d = 1.0 / dir.y;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -131,14 +140,14 @@ vec3 kdop_aabb_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.z;
         float inv_d = 1.0 / dir.z;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_AABB_CLIP_N9_GLSL

@@ -10,75 +10,87 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_AABB_VARCLIP_N5_GLSL
 #define KDOP_AABB_VARCLIP_N5_GLSL
 
 vec3 kdop_aabb_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighborhood[5])
 {
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
+    vec3 c0 = neighborhood[0] - current;
+    vec3 c1 = neighborhood[1] - current;
+    vec3 c2 = neighborhood[2] - current;
+    vec3 c3 = neighborhood[3] - current;
+    vec3 c4 = neighborhood[4] - current;
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 3: axis (1, 0, 0) from aabb.axes:5
     {
-        float p = current.x;
         float inv_d = 1.0 / dir.x;
-        float q0 = c0.x - p;
-        float q1 = c1.x - p;
-        float q2 = c2.x - p;
-        float q3 = c3.x - p;
-        float q4 = c4.x - p;
+        float q0 = c0.x;
+        float q1 = c1.x;
+        float q2 = c2.x;
+        float q3 = c3.x;
+        float q4 = c4.x;
         float sum = q0 + q1 + q2 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
-        float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
-        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
+        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 3: axis (0, 1, 0) from aabb.axes:6
     {
-        float p = current.y;
         float inv_d = 1.0 / dir.y;
-        float q0 = c0.y - p;
-        float q1 = c1.y - p;
-        float q2 = c2.y - p;
-        float q3 = c3.y - p;
-        float q4 = c4.y - p;
+        float q0 = c0.y;
+        float q1 = c1.y;
+        float q2 = c2.y;
+        float q3 = c3.y;
+        float q4 = c4.y;
         float sum = q0 + q1 + q2 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
-        float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
-        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
+        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 3: axis (0, 0, 1) from aabb.axes:7
     {
-        float p = current.z;
         float inv_d = 1.0 / dir.z;
-        float q0 = c0.z - p;
-        float q1 = c1.z - p;
-        float q2 = c2.z - p;
-        float q3 = c3.z - p;
-        float q4 = c4.z - p;
+        float q0 = c0.z;
+        float q1 = c1.z;
+        float q2 = c2.z;
+        float q3 = c3.z;
+        float q4 = c4.z;
         float sum = q0 + q1 + q2 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
-        float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0) - 1e-05;
-        float hi = max(fma(gamma, sigma, mean), 0.0) + 1e-05;
+        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_AABB_VARCLIP_N5_GLSL

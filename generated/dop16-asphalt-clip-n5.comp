@@ -27,7 +27,10 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_ASPHALT_CLIP_N5_GLSL
 #define KDOP_DOP16_ASPHALT_CLIP_N5_GLSL
 
@@ -39,6 +42,12 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
     vec3 c3 = neighborhood[3];
     vec3 c4 = neighborhood[4];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 8: axis (0.997167, -0.05482, 0.0515) from dop16-asphalt.axes:5, scaled by 1.00284 to (1, -0.054975748, 0.051646315)
@@ -59,8 +68,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.x + c4.y * -0.054975748 + c4.z * 0.051646315;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.0028408e-05;
-        hi += 1.0028408e-05;
+        lo = fma(pad_scale, -1.0028408e-05, lo);
+        hi = fma(pad_scale, 1.0028408e-05, hi);
         float p = current.x + current.y * -0.054975748 + current.z * 0.051646315;
         float inv_d = 1.0 / (dir.x + dir.y * -0.054975748 + dir.z * 0.051646315);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -84,8 +93,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.y + c4.x * -0.060030535 + c4.z * -0.9407404;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.37426205e-05;
-        hi += 1.37426205e-05;
+        lo = fma(pad_scale, -1.37426205e-05, lo);
+        hi = fma(pad_scale, 1.37426205e-05, hi);
         float p = current.y + current.x * -0.060030535 + current.z * -0.9407404;
         float inv_d = 1.0 / (dir.y + dir.x * -0.060030535 + dir.z * -0.9407404);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -109,8 +118,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.y + c4.x * -0.5586211 + c4.z * -0.46731988;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2371117e-05;
-        hi += 1.2371117e-05;
+        lo = fma(pad_scale, -1.2371117e-05, lo);
+        hi = fma(pad_scale, 1.2371117e-05, hi);
         float p = current.y + current.x * -0.5586211 + current.z * -0.46731988;
         float inv_d = 1.0 / (dir.y + dir.x * -0.5586211 + dir.z * -0.46731988);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -134,8 +143,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.z + c4.x * 0.0038082886 + c4.y * -0.7812575;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2690067e-05;
-        hi += 1.2690067e-05;
+        lo = fma(pad_scale, -1.2690067e-05, lo);
+        hi = fma(pad_scale, 1.2690067e-05, hi);
         float p = current.z + current.x * 0.0038082886 + current.y * -0.7812575;
         float inv_d = 1.0 / (dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -159,8 +168,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.z + c4.x * -0.13157672 + c4.y * 0.06380852;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.0106354e-05;
-        hi += 1.0106354e-05;
+        lo = fma(pad_scale, -1.0106354e-05, lo);
+        hi = fma(pad_scale, 1.0106354e-05, hi);
         float p = current.z + current.x * -0.13157672 + current.y * 0.06380852;
         float inv_d = 1.0 / (dir.z + dir.x * -0.13157672 + dir.y * 0.06380852);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -184,8 +193,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.x + c4.y * -0.7537761 + c4.z * -0.3105077;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2901913e-05;
-        hi += 1.2901913e-05;
+        lo = fma(pad_scale, -1.2901913e-05, lo);
+        hi = fma(pad_scale, 1.2901913e-05, hi);
         float p = current.x + current.y * -0.7537761 + current.z * -0.3105077;
         float inv_d = 1.0 / (dir.x + dir.y * -0.7537761 + dir.z * -0.3105077);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -209,8 +218,8 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.z + c4.x * -0.7475091 + c4.y * -0.21752696;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2673152e-05;
-        hi += 1.2673152e-05;
+        lo = fma(pad_scale, -1.2673152e-05, lo);
+        hi = fma(pad_scale, 1.2673152e-05, hi);
         float p = current.z + current.x * -0.7475091 + current.y * -0.21752696;
         float inv_d = 1.0 / (dir.z + dir.x * -0.7475091 + dir.y * -0.21752696);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -234,14 +243,14 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q4 = c4.x + c4.y * -0.48589435 + c4.z * -0.06287124;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.1135736e-05;
-        hi += 1.1135736e-05;
+        lo = fma(pad_scale, -1.1135736e-05, lo);
+        hi = fma(pad_scale, 1.1135736e-05, hi);
         float p = current.x + current.y * -0.48589435 + current.z * -0.06287124;
         float inv_d = 1.0 / (dir.x + dir.y * -0.48589435 + dir.z * -0.06287124);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_DOP16_ASPHALT_CLIP_N5_GLSL

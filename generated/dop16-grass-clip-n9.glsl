@@ -9,7 +9,10 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_GRASS_CLIP_N9_GLSL
 #define KDOP_DOP16_GRASS_CLIP_N9_GLSL
 
@@ -25,6 +28,12 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
     vec3 c7 = neighborhood[7];
     vec3 c8 = neighborhood[8];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 8: axis (-0.663315, 0.729578, -0.166518) from dop16-grass.axes:6, scaled by 1.37066 to (-0.9091763, 1, -0.22823879)
@@ -57,8 +66,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * -0.9091763 + c8.z * -0.22823879;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.3706547e-05;
-        hi += 1.3706547e-05;
+        lo = fma(pad_scale, -1.3706547e-05, lo);
+        hi = fma(pad_scale, 1.3706547e-05, hi);
         float p = current.y + current.x * -0.9091763 + current.z * -0.22823879;
         float inv_d = 1.0 / (dir.y + dir.x * -0.9091763 + dir.z * -0.22823879);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -94,8 +103,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * -0.70663214 + c8.y * 0.10394432;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2288749e-05;
-        hi += 1.2288749e-05;
+        lo = fma(pad_scale, -1.2288749e-05, lo);
+        hi = fma(pad_scale, 1.2288749e-05, hi);
         float p = current.z + current.x * -0.70663214 + current.y * 0.10394432;
         float inv_d = 1.0 / (dir.z + dir.x * -0.70663214 + dir.y * 0.10394432);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -131,8 +140,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * 0.18454187 + c8.y * -0.57063365;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.1660525e-05;
-        hi += 1.1660525e-05;
+        lo = fma(pad_scale, -1.1660525e-05, lo);
+        hi = fma(pad_scale, 1.1660525e-05, hi);
         float p = current.z + current.x * 0.18454187 + current.y * -0.57063365;
         float inv_d = 1.0 / (dir.z + dir.x * 0.18454187 + dir.y * -0.57063365);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -168,8 +177,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * -0.2652209 + c8.y * 0.040031724;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.0353476e-05;
-        hi += 1.0353476e-05;
+        lo = fma(pad_scale, -1.0353476e-05, lo);
+        hi = fma(pad_scale, 1.0353476e-05, hi);
         float p = current.z + current.x * -0.2652209 + current.y * 0.040031724;
         float inv_d = 1.0 / (dir.z + dir.x * -0.2652209 + dir.y * 0.040031724);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -205,8 +214,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * -0.6816266 + c8.z * -0.9873084;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.5618556e-05;
-        hi += 1.5618556e-05;
+        lo = fma(pad_scale, -1.5618556e-05, lo);
+        hi = fma(pad_scale, 1.5618556e-05, hi);
         float p = current.x + current.y * -0.6816266 + current.z * -0.9873084;
         float inv_d = 1.0 / (dir.x + dir.y * -0.6816266 + dir.z * -0.9873084);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -242,8 +251,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * -0.5726 + c8.z * -0.42632;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2286658e-05;
-        hi += 1.2286658e-05;
+        lo = fma(pad_scale, -1.2286658e-05, lo);
+        hi = fma(pad_scale, 1.2286658e-05, hi);
         float p = current.x + current.y * -0.5726 + current.z * -0.42632;
         float inv_d = 1.0 / (dir.x + dir.y * -0.5726 + dir.z * -0.42632);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -279,8 +288,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * 0.25867906 + c8.z * 0.61571217;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.20250415e-05;
-        hi += 1.20250415e-05;
+        lo = fma(pad_scale, -1.20250415e-05, lo);
+        hi = fma(pad_scale, 1.20250415e-05, hi);
         float p = current.x + current.y * 0.25867906 + current.z * 0.61571217;
         float inv_d = 1.0 / (dir.x + dir.y * 0.25867906 + dir.z * 0.61571217);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -316,14 +325,14 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * -0.6007664 + c8.z * -0.39173308;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.23059945e-05;
-        hi += 1.23059945e-05;
+        lo = fma(pad_scale, -1.23059945e-05, lo);
+        hi = fma(pad_scale, 1.23059945e-05, hi);
         float p = current.y + current.x * -0.6007664 + current.z * -0.39173308;
         float inv_d = 1.0 / (dir.y + dir.x * -0.6007664 + dir.z * -0.39173308);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_DOP16_GRASS_CLIP_N9_GLSL

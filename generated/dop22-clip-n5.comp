@@ -27,7 +27,10 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_CLIP_N5_GLSL
 #define KDOP_DOP22_CLIP_N5_GLSL
 
@@ -39,6 +42,12 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
     vec3 c3 = neighborhood[3];
     vec3 c4 = neighborhood[4];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 11: axis (1, 0, 0) from dop22.axes:5
@@ -59,8 +68,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.x;
         float inv_d = 1.0 / dir.x;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -84,8 +93,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.y;
         float inv_d = 1.0 / dir.y;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -109,8 +118,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.z;
         float inv_d = 1.0 / dir.z;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -134,8 +143,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.y * -0.8882671;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.3375419e-05;
-        hi += 1.3375419e-05;
+        lo = fma(pad_scale, -1.3375419e-05, lo);
+        hi = fma(pad_scale, 1.3375419e-05, hi);
         float p = current.z + current.y * -0.8882671;
         float inv_d = 1.0 / (dir.z + dir.y * -0.8882671);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -159,8 +168,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x + c4.y * 0.9994562 + c4.z * -0.5668717;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.5232387e-05;
-        hi += 1.5232387e-05;
+        lo = fma(pad_scale, -1.5232387e-05, lo);
+        hi = fma(pad_scale, 1.5232387e-05, hi);
         float p = current.x + current.y * 0.9994562 + current.z * -0.5668717;
         float inv_d = 1.0 / (dir.x + dir.y * 0.9994562 + dir.z * -0.5668717);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -184,8 +193,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * 0.8886194;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.3377759e-05;
-        hi += 1.3377759e-05;
+        lo = fma(pad_scale, -1.3377759e-05, lo);
+        hi = fma(pad_scale, 1.3377759e-05, hi);
         float p = current.z + current.x * 0.8886194;
         float inv_d = 1.0 / (dir.z + dir.x * 0.8886194);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -209,8 +218,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * -0.8896277;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.3384459e-05;
-        hi += 1.3384459e-05;
+        lo = fma(pad_scale, -1.3384459e-05, lo);
+        hi = fma(pad_scale, 1.3384459e-05, hi);
         float p = current.z + current.x * -0.8896277;
         float inv_d = 1.0 / (dir.z + dir.x * -0.8896277);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -234,8 +243,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.y * 0.8887044;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.3378324e-05;
-        hi += 1.3378324e-05;
+        lo = fma(pad_scale, -1.3378324e-05, lo);
+        hi = fma(pad_scale, 1.3378324e-05, hi);
         float p = current.z + current.y * 0.8887044;
         float inv_d = 1.0 / (dir.z + dir.y * 0.8887044);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -259,8 +268,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y + c4.x * -0.9996624 + c4.z * 0.55936176;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.5205955e-05;
-        hi += 1.5205955e-05;
+        lo = fma(pad_scale, -1.5205955e-05, lo);
+        hi = fma(pad_scale, 1.5205955e-05, hi);
         float p = current.y + current.x * -0.9996624 + current.z * 0.55936176;
         float inv_d = 1.0 / (dir.y + dir.x * -0.9996624 + dir.z * 0.55936176);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -284,8 +293,8 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y + c4.x * 0.99789804 + c4.z * 0.56051946;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.5198627e-05;
-        hi += 1.5198627e-05;
+        lo = fma(pad_scale, -1.5198627e-05, lo);
+        hi = fma(pad_scale, 1.5198627e-05, hi);
         float p = current.y + current.x * 0.99789804 + current.z * 0.56051946;
         float inv_d = 1.0 / (dir.y + dir.x * 0.99789804 + dir.z * 0.56051946);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -309,14 +318,14 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x + c4.y * -0.9982262 + c4.z * 0.5671452;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.5225339e-05;
-        hi += 1.5225339e-05;
+        lo = fma(pad_scale, -1.5225339e-05, lo);
+        hi = fma(pad_scale, 1.5225339e-05, hi);
         float p = current.x + current.y * -0.9982262 + current.z * 0.5671452;
         float inv_d = 1.0 / (dir.x + dir.y * -0.9982262 + dir.z * 0.5671452);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_DOP22_CLIP_N5_GLSL

@@ -27,7 +27,10 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_CLIP_N9_GLSL
 #define KDOP_DOP22_CLIP_N9_GLSL
 
@@ -43,6 +46,12 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
     vec3 c7 = neighborhood[7];
     vec3 c8 = neighborhood[8];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 11: axis (1, 0, 0) from dop22.axes:5
@@ -75,8 +84,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.x;
         float inv_d = 1.0 / dir.x;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -112,8 +121,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.y;
         float inv_d = 1.0 / dir.y;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -149,8 +158,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.z;
         float inv_d = 1.0 / dir.z;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -186,8 +195,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.y * -0.8882671;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.3375419e-05;
-        hi += 1.3375419e-05;
+        lo = fma(pad_scale, -1.3375419e-05, lo);
+        hi = fma(pad_scale, 1.3375419e-05, hi);
         float p = current.z + current.y * -0.8882671;
         float inv_d = 1.0 / (dir.z + dir.y * -0.8882671);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -223,8 +232,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * 0.9994562 + c8.z * -0.5668717;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.5232387e-05;
-        hi += 1.5232387e-05;
+        lo = fma(pad_scale, -1.5232387e-05, lo);
+        hi = fma(pad_scale, 1.5232387e-05, hi);
         float p = current.x + current.y * 0.9994562 + current.z * -0.5668717;
         float inv_d = 1.0 / (dir.x + dir.y * 0.9994562 + dir.z * -0.5668717);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -260,8 +269,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * 0.8886194;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.3377759e-05;
-        hi += 1.3377759e-05;
+        lo = fma(pad_scale, -1.3377759e-05, lo);
+        hi = fma(pad_scale, 1.3377759e-05, hi);
         float p = current.z + current.x * 0.8886194;
         float inv_d = 1.0 / (dir.z + dir.x * 0.8886194);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -297,8 +306,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * -0.8896277;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.3384459e-05;
-        hi += 1.3384459e-05;
+        lo = fma(pad_scale, -1.3384459e-05, lo);
+        hi = fma(pad_scale, 1.3384459e-05, hi);
         float p = current.z + current.x * -0.8896277;
         float inv_d = 1.0 / (dir.z + dir.x * -0.8896277);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -334,8 +343,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.y * 0.8887044;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.3378324e-05;
-        hi += 1.3378324e-05;
+        lo = fma(pad_scale, -1.3378324e-05, lo);
+        hi = fma(pad_scale, 1.3378324e-05, hi);
         float p = current.z + current.y * 0.8887044;
         float inv_d = 1.0 / (dir.z + dir.y * 0.8887044);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -371,8 +380,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * -0.9996624 + c8.z * 0.55936176;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.5205955e-05;
-        hi += 1.5205955e-05;
+        lo = fma(pad_scale, -1.5205955e-05, lo);
+        hi = fma(pad_scale, 1.5205955e-05, hi);
         float p = current.y + current.x * -0.9996624 + current.z * 0.55936176;
         float inv_d = 1.0 / (dir.y + dir.x * -0.9996624 + dir.z * 0.55936176);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -408,8 +417,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * 0.99789804 + c8.z * 0.56051946;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.5198627e-05;
-        hi += 1.5198627e-05;
+        lo = fma(pad_scale, -1.5198627e-05, lo);
+        hi = fma(pad_scale, 1.5198627e-05, hi);
         float p = current.y + current.x * 0.99789804 + current.z * 0.56051946;
         float inv_d = 1.0 / (dir.y + dir.x * 0.99789804 + dir.z * 0.56051946);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -445,14 +454,14 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * -0.9982262 + c8.z * 0.5671452;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.5225339e-05;
-        hi += 1.5225339e-05;
+        lo = fma(pad_scale, -1.5225339e-05, lo);
+        hi = fma(pad_scale, 1.5225339e-05, hi);
         float p = current.x + current.y * -0.9982262 + current.z * 0.5671452;
         float inv_d = 1.0 / (dir.x + dir.y * -0.9982262 + dir.z * 0.5671452);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_DOP22_CLIP_N9_GLSL

@@ -27,7 +27,10 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_CLIP_N5_GLSL
 #define KDOP_DOP32_CLIP_N5_GLSL
 
@@ -39,6 +42,12 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
     vec3 c3 = neighborhood[3];
     vec3 c4 = neighborhood[4];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 16: axis (1, 0, 0) from dop32.axes:5
@@ -59,8 +68,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.x;
         float inv_d = 1.0 / dir.x;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -84,8 +93,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.y;
         float inv_d = 1.0 / dir.y;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -109,8 +118,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.z;
         float inv_d = 1.0 / dir.z;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -134,8 +143,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x + c4.y * 0.5569291 + c4.z * -0.42041335;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2193923e-05;
-        hi += 1.2193923e-05;
+        lo = fma(pad_scale, -1.2193923e-05, lo);
+        hi = fma(pad_scale, 1.2193923e-05, hi);
         float p = current.x + current.y * 0.5569291 + current.z * -0.42041335;
         float inv_d = 1.0 / (dir.x + dir.y * 0.5569291 + dir.z * -0.42041335);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -159,8 +168,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y + c4.x * 0.65158427 + c4.z * 0.17269012;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2059784e-05;
-        hi += 1.2059784e-05;
+        lo = fma(pad_scale, -1.2059784e-05, lo);
+        hi = fma(pad_scale, 1.2059784e-05, hi);
         float p = current.y + current.x * 0.65158427 + current.z * 0.17269012;
         float inv_d = 1.0 / (dir.y + dir.x * 0.65158427 + dir.z * 0.17269012);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -184,8 +193,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y + c4.x * 0.30413133 + c4.z * -0.56664616;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.1889422e-05;
-        hi += 1.1889422e-05;
+        lo = fma(pad_scale, -1.1889422e-05, lo);
+        hi = fma(pad_scale, 1.1889422e-05, hi);
         float p = current.y + current.x * 0.30413133 + current.z * -0.56664616;
         float inv_d = 1.0 / (dir.y + dir.x * 0.30413133 + dir.z * -0.56664616);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -209,8 +218,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * -0.49238378 + c4.y * -0.47075778;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2099813e-05;
-        hi += 1.2099813e-05;
+        lo = fma(pad_scale, -1.2099813e-05, lo);
+        hi = fma(pad_scale, 1.2099813e-05, hi);
         float p = current.z + current.x * -0.49238378 + current.y * -0.47075778;
         float inv_d = 1.0 / (dir.z + dir.x * -0.49238378 + dir.y * -0.47075778);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -234,8 +243,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x + c4.y * 0.46319014 + c4.z * 0.4986271;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2096173e-05;
-        hi += 1.2096173e-05;
+        lo = fma(pad_scale, -1.2096173e-05, lo);
+        hi = fma(pad_scale, 1.2096173e-05, hi);
         float p = current.x + current.y * 0.46319014 + current.z * 0.4986271;
         float inv_d = 1.0 / (dir.x + dir.y * 0.46319014 + dir.z * 0.4986271);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -259,8 +268,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * 0.33731827 + c4.y * -0.74650776;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2926939e-05;
-        hi += 1.2926939e-05;
+        lo = fma(pad_scale, -1.2926939e-05, lo);
+        hi = fma(pad_scale, 1.2926939e-05, hi);
         float p = current.z + current.x * 0.33731827 + current.y * -0.74650776;
         float inv_d = 1.0 / (dir.z + dir.x * 0.33731827 + dir.y * -0.74650776);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -284,8 +293,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * 0.34994918 + c4.y * 0.8773848;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.3755975e-05;
-        hi += 1.3755975e-05;
+        lo = fma(pad_scale, -1.3755975e-05, lo);
+        hi = fma(pad_scale, 1.3755975e-05, hi);
         float p = current.z + current.x * 0.34994918 + current.y * 0.8773848;
         float inv_d = 1.0 / (dir.z + dir.x * 0.34994918 + dir.y * 0.8773848);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -309,8 +318,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y + c4.x * -0.42701176 + c4.z * 0.8390939;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.37346915e-05;
-        hi += 1.37346915e-05;
+        lo = fma(pad_scale, -1.37346915e-05, lo);
+        hi = fma(pad_scale, 1.37346915e-05, hi);
         float p = current.y + current.x * -0.42701176 + current.z * 0.8390939;
         float inv_d = 1.0 / (dir.y + dir.x * -0.42701176 + dir.z * 0.8390939);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -334,8 +343,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x + c4.y * -0.69732994 + c4.z * -0.28645495;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.252328e-05;
-        hi += 1.252328e-05;
+        lo = fma(pad_scale, -1.252328e-05, lo);
+        hi = fma(pad_scale, 1.252328e-05, hi);
         float p = current.x + current.y * -0.69732994 + current.z * -0.28645495;
         float inv_d = 1.0 / (dir.x + dir.y * -0.69732994 + dir.z * -0.28645495);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -359,8 +368,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * -0.93400365 + c4.y * 0.22692117;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.38703135e-05;
-        hi += 1.38703135e-05;
+        lo = fma(pad_scale, -1.38703135e-05, lo);
+        hi = fma(pad_scale, 1.38703135e-05, hi);
         float p = current.z + current.x * -0.93400365 + current.y * 0.22692117;
         float inv_d = 1.0 / (dir.z + dir.x * -0.93400365 + dir.y * 0.22692117);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -384,8 +393,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.x + c4.y * -0.45416883 + c4.z * 0.55066824;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2286191e-05;
-        hi += 1.2286191e-05;
+        lo = fma(pad_scale, -1.2286191e-05, lo);
+        hi = fma(pad_scale, 1.2286191e-05, hi);
         float p = current.x + current.y * -0.45416883 + current.z * 0.55066824;
         float inv_d = 1.0 / (dir.x + dir.y * -0.45416883 + dir.z * 0.55066824);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -409,8 +418,8 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.y + c4.x * -0.5594913 + c4.z * -0.24291748;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.1713409e-05;
-        hi += 1.1713409e-05;
+        lo = fma(pad_scale, -1.1713409e-05, lo);
+        hi = fma(pad_scale, 1.1713409e-05, hi);
         float p = current.y + current.x * -0.5594913 + current.z * -0.24291748;
         float inv_d = 1.0 / (dir.y + dir.x * -0.5594913 + dir.z * -0.24291748);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -434,14 +443,14 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q4 = c4.z + c4.x * 0.6677667 + c4.y * 0.050005417;
         lo = min(lo, q4);
         hi = max(hi, q4);
-        lo -= 1.2035002e-05;
-        hi += 1.2035002e-05;
+        lo = fma(pad_scale, -1.2035002e-05, lo);
+        hi = fma(pad_scale, 1.2035002e-05, hi);
         float p = current.z + current.x * 0.6677667 + current.y * 0.050005417;
         float inv_d = 1.0 / (dir.z + dir.x * 0.6677667 + dir.y * 0.050005417);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_DOP32_CLIP_N5_GLSL

@@ -9,7 +9,10 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.
+// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
+// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
+// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
+// current is returned. `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_CLIP_N9_GLSL
 #define KDOP_DOP32_CLIP_N9_GLSL
 
@@ -25,6 +28,12 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
     vec3 c7 = neighborhood[7];
     vec3 c8 = neighborhood[8];
     vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 16: axis (1, 0, 0) from dop32.axes:5
@@ -57,8 +66,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.x;
         float inv_d = 1.0 / dir.x;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -94,8 +103,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.y;
         float inv_d = 1.0 / dir.y;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -131,8 +140,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1e-05;
-        hi += 1e-05;
+        lo = fma(pad_scale, -1e-05, lo);
+        hi = fma(pad_scale, 1e-05, hi);
         float p = current.z;
         float inv_d = 1.0 / dir.z;
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -168,8 +177,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * 0.5569291 + c8.z * -0.42041335;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2193923e-05;
-        hi += 1.2193923e-05;
+        lo = fma(pad_scale, -1.2193923e-05, lo);
+        hi = fma(pad_scale, 1.2193923e-05, hi);
         float p = current.x + current.y * 0.5569291 + current.z * -0.42041335;
         float inv_d = 1.0 / (dir.x + dir.y * 0.5569291 + dir.z * -0.42041335);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -205,8 +214,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * 0.65158427 + c8.z * 0.17269012;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2059784e-05;
-        hi += 1.2059784e-05;
+        lo = fma(pad_scale, -1.2059784e-05, lo);
+        hi = fma(pad_scale, 1.2059784e-05, hi);
         float p = current.y + current.x * 0.65158427 + current.z * 0.17269012;
         float inv_d = 1.0 / (dir.y + dir.x * 0.65158427 + dir.z * 0.17269012);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -242,8 +251,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * 0.30413133 + c8.z * -0.56664616;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.1889422e-05;
-        hi += 1.1889422e-05;
+        lo = fma(pad_scale, -1.1889422e-05, lo);
+        hi = fma(pad_scale, 1.1889422e-05, hi);
         float p = current.y + current.x * 0.30413133 + current.z * -0.56664616;
         float inv_d = 1.0 / (dir.y + dir.x * 0.30413133 + dir.z * -0.56664616);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -279,8 +288,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * -0.49238378 + c8.y * -0.47075778;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2099813e-05;
-        hi += 1.2099813e-05;
+        lo = fma(pad_scale, -1.2099813e-05, lo);
+        hi = fma(pad_scale, 1.2099813e-05, hi);
         float p = current.z + current.x * -0.49238378 + current.y * -0.47075778;
         float inv_d = 1.0 / (dir.z + dir.x * -0.49238378 + dir.y * -0.47075778);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -316,8 +325,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * 0.46319014 + c8.z * 0.4986271;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2096173e-05;
-        hi += 1.2096173e-05;
+        lo = fma(pad_scale, -1.2096173e-05, lo);
+        hi = fma(pad_scale, 1.2096173e-05, hi);
         float p = current.x + current.y * 0.46319014 + current.z * 0.4986271;
         float inv_d = 1.0 / (dir.x + dir.y * 0.46319014 + dir.z * 0.4986271);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -353,8 +362,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * 0.33731827 + c8.y * -0.74650776;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2926939e-05;
-        hi += 1.2926939e-05;
+        lo = fma(pad_scale, -1.2926939e-05, lo);
+        hi = fma(pad_scale, 1.2926939e-05, hi);
         float p = current.z + current.x * 0.33731827 + current.y * -0.74650776;
         float inv_d = 1.0 / (dir.z + dir.x * 0.33731827 + dir.y * -0.74650776);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -390,8 +399,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * 0.34994918 + c8.y * 0.8773848;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.3755975e-05;
-        hi += 1.3755975e-05;
+        lo = fma(pad_scale, -1.3755975e-05, lo);
+        hi = fma(pad_scale, 1.3755975e-05, hi);
         float p = current.z + current.x * 0.34994918 + current.y * 0.8773848;
         float inv_d = 1.0 / (dir.z + dir.x * 0.34994918 + dir.y * 0.8773848);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -427,8 +436,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * -0.42701176 + c8.z * 0.8390939;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.37346915e-05;
-        hi += 1.37346915e-05;
+        lo = fma(pad_scale, -1.37346915e-05, lo);
+        hi = fma(pad_scale, 1.37346915e-05, hi);
         float p = current.y + current.x * -0.42701176 + current.z * 0.8390939;
         float inv_d = 1.0 / (dir.y + dir.x * -0.42701176 + dir.z * 0.8390939);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -464,8 +473,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * -0.69732994 + c8.z * -0.28645495;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.252328e-05;
-        hi += 1.252328e-05;
+        lo = fma(pad_scale, -1.252328e-05, lo);
+        hi = fma(pad_scale, 1.252328e-05, hi);
         float p = current.x + current.y * -0.69732994 + current.z * -0.28645495;
         float inv_d = 1.0 / (dir.x + dir.y * -0.69732994 + dir.z * -0.28645495);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -501,8 +510,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * -0.93400365 + c8.y * 0.22692117;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.38703135e-05;
-        hi += 1.38703135e-05;
+        lo = fma(pad_scale, -1.38703135e-05, lo);
+        hi = fma(pad_scale, 1.38703135e-05, hi);
         float p = current.z + current.x * -0.93400365 + current.y * 0.22692117;
         float inv_d = 1.0 / (dir.z + dir.x * -0.93400365 + dir.y * 0.22692117);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -538,8 +547,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.x + c8.y * -0.45416883 + c8.z * 0.55066824;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2286191e-05;
-        hi += 1.2286191e-05;
+        lo = fma(pad_scale, -1.2286191e-05, lo);
+        hi = fma(pad_scale, 1.2286191e-05, hi);
         float p = current.x + current.y * -0.45416883 + current.z * 0.55066824;
         float inv_d = 1.0 / (dir.x + dir.y * -0.45416883 + dir.z * 0.55066824);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -575,8 +584,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.y + c8.x * -0.5594913 + c8.z * -0.24291748;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.1713409e-05;
-        hi += 1.1713409e-05;
+        lo = fma(pad_scale, -1.1713409e-05, lo);
+        hi = fma(pad_scale, 1.1713409e-05, hi);
         float p = current.y + current.x * -0.5594913 + current.z * -0.24291748;
         float inv_d = 1.0 / (dir.y + dir.x * -0.5594913 + dir.z * -0.24291748);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
@@ -612,14 +621,14 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q8 = c8.z + c8.x * 0.6677667 + c8.y * 0.050005417;
         lo = min(lo, q8);
         hi = max(hi, q8);
-        lo -= 1.2035002e-05;
-        hi += 1.2035002e-05;
+        lo = fma(pad_scale, -1.2035002e-05, lo);
+        hi = fma(pad_scale, 1.2035002e-05, hi);
         float p = current.z + current.x * 0.6677667 + current.y * 0.050005417;
         float inv_d = 1.0 / (dir.z + dir.x * 0.6677667 + dir.y * 0.050005417);
         t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
     }
 
-    return fma(vec3(max(t, 0.0)), dir, current);
+    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
 }
 
 #endif // KDOP_DOP32_CLIP_N9_GLSL

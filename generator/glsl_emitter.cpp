@@ -112,10 +112,19 @@ std::string exit_update(std::string_view origin) {
     return fmt::format("        t = min(t, ((inv_d > 0.0 ? hi : lo) - {}) * inv_d);\n", origin);
 }
 
+// The slab's dilation. The paper's 1e-5 per unit of axis length is below float32 spacing for values
+// above about 84, so hardened it grows with the pixel's magnitude (pad_scale, see
+// write_unrolled_body): the slab then keeps a width, the ray's origin stays strictly inside it, and
+// a ray parallel to it (inv_d infinite) meets a nonzero distance, never 0 x inf = NaN.
+std::string dilation(const ScaledAxis& axis, EmitStyle::Numerics numerics) {
+    const std::string padding = float_literal(axis.padding);
+    if (numerics == EmitStyle::Numerics::paper) return fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
+    return fmt::format("        lo = fma(pad_scale, -{0}, lo);\n        hi = fma(pad_scale, {0}, hi);\n", padding);
+}
+
 // Clip: the slab spans the projections' min..max, dilated by the padding.
 void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
-    const std::string padding = float_literal(axis.padding);
     if (style.extent == EmitStyle::Extent::running) {
         // Starting from +-FLT_MAX rather than from the first projection costs a min and a max but
         // measured 8% fewer lavapipe instructions per pixel for dop32 (the driver can drop its NaN
@@ -125,39 +134,48 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const 
         for (int n = 0; n < count; ++n)
             out += fmt::format("        float q{} = {};\n        lo = min(lo, q{});\n        hi = max(hi, q{});\n", n,
                                proj(fmt::format("c{}", n)), n, n);
-        out += fmt::format("        lo -= {};\n        hi += {};\n", padding, padding);
     } else {
         for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
-        out += fmt::format("        float lo = {} - {};\n", reduce_tree("min", 0, count), padding);
-        out += fmt::format("        float hi = {} + {};\n", reduce_tree("max", 0, count), padding);
+        out += fmt::format("        float lo = {};\n", reduce_tree("min", 0, count));
+        out += fmt::format("        float hi = {};\n", reduce_tree("max", 0, count));
     }
+    out += dilation(axis, style.numerics);
     out += fmt::format("        float p = {};\n", proj("current"));
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     out += exit_update("p");
 }
 
 // Variance clip (Salvi 2016): the slab spans mean +- gamma * sigma of the projections, widened to
-// include the current color so the ray still starts inside. The moments are taken of the
-// projections minus p: a shift to a value inside the neighborhood keeps float32 from cancelling
-// the small variance of bright, flat areas away (the supplement's E[q^2] - E[q]^2 gives sigma of
-// about 3e-4 |q| there, or a negative variance and NaN), and leaves the slab relative to p.
-// The slab is dilated like a clip slab; relative to p the dilation never rounds away, so lo < 0 < hi
-// and a ray parallel to a flat channel (inv_d infinite) gives -inf and +inf, never 0 x inf = NaN.
+// include the current color so the ray still starts inside.
+// Hardened, the colors arrive relative to current (see write_unrolled_body), so the projections are
+// relative to the ray's origin and the widening is to 0. That shift keeps float32 from cancelling
+// the small variance of bright, flat areas away: the supplement's E[q^2] - E[q]^2 gives a sigma of
+// about 3e-4 |q| there, or a negative variance and NaN. The variance is clamped to [0, FLT_MAX], so
+// a spread too large to square narrows the slab instead of opening it to infinity.
 void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
-    out += fmt::format("        float p = {};\n", proj("current"));
+    const bool hardened = style.numerics == EmitStyle::Numerics::hardened;
+    if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
-    for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {} - p;\n", n, proj(fmt::format("c{}", n)));
-    // Written so every multiply-add fuses without a negation: the variance is
-    // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
+    for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
     out += fmt::format("        float sum = {};\n", sum(count, "q{}"));
     out += fmt::format("        float mean = sum * (1.0 / {}.0);\n", count);
-    out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
-                       sum(count, "q{0} * q{0}"));
-    out += "        float sigma = sqrt(max(variance, 0.0));\n";
-    out += fmt::format("        float lo = min(fma(-gamma, sigma, mean), 0.0) - {};\n", float_literal(axis.padding));
-    out += fmt::format("        float hi = max(fma(gamma, sigma, mean), 0.0) + {};\n", float_literal(axis.padding));
-    out += exit_update("");
+    if (hardened) {
+        // Written so every multiply-add fuses without a negation: the variance is
+        // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
+        out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
+                           sum(count, "q{0} * q{0}"));
+        out += "        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));\n";
+        out += "        float lo = min(fma(-gamma, sigma, mean), 0.0);\n";
+        out += "        float hi = max(fma(gamma, sigma, mean), 0.0);\n";
+    } else {
+        out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", sum(count, "q{0} * q{0}"),
+                           count);
+        out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
+        out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
+    }
+    out += dilation(axis, style.numerics);
+    out += exit_update(hardened ? "" : "p");
 }
 
 std::string origin_file_name(const AxisSet& set) { return std::filesystem::path(set.origin).filename().string(); }
@@ -225,9 +243,10 @@ std::string regenerate_command(const VariantSpec& spec) {
     // on where the file sat when it was generated).
     if (spec.mode == Mode::gather || spec.mode == Mode::copy) return "kdop gen --baselines --out DIR";
     bool builtin = spec.set.origin.starts_with("shader_templates/axis_sets/");
-    return fmt::format("kdop gen --sets {} --modes {} --neighborhoods {}{} --out DIR",
+    return fmt::format("kdop gen --sets {} --modes {} --neighborhoods {}{}{} --out DIR",
                        builtin ? spec.set.name : origin_file_name(spec.set), to_string(spec.mode),
-                       to_string(spec.neighborhood), spec.form == Form::loop ? " --forms loop" : "");
+                       to_string(spec.neighborhood), spec.form == Form::loop ? " --forms loop" : "",
+                       spec.style.numerics == EmitStyle::Numerics::paper ? " --numerics paper" : "");
 }
 
 namespace {
@@ -255,7 +274,16 @@ std::string function_header(const VariantSpec& spec) {
         out += "// Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a\n";
         out += "// unit component costs no multiply and a zero component nothing.\n";
     }
-    out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip.\n";
+    if (spec.style.numerics == EmitStyle::Numerics::paper) {
+        out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip. These are the\n";
+        out += "// supplement's numerics: HDR values, flat neighborhoods and NaN or Inf history can give NaN\n";
+        out += "// or a wrong color (`kdop stress` shows which); use the hardened variant unless measured.\n";
+    } else {
+        out += "// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of\n";
+        out += "// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN\n";
+        out += "// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,\n";
+        out += "// current is returned. `kdop stress` checks these promises on a device.\n";
+    }
     return out;
 }
 
@@ -264,11 +292,30 @@ std::string signature(const VariantSpec& spec) {
                        spec.mode == Mode::varclip ? "float gamma, " : "", neighborhood_offsets(spec.neighborhood).size());
 }
 
+// Hardened numerics, shared by both forms: the padding's scale, and whether the history can be used.
+// A history with a NaN or Inf channel, or so far out that a projection of the ray could overflow,
+// is replaced by current; the sum below is then NaN or above FLT_MAX, and the compare is false for
+// NaN. Below that bound no projection of current or of the ray overflows: each is at most the
+// vector's channel magnitudes summed, as no scaled or unit axis component exceeds 1.
+void write_hardening_prologue(std::string& out) {
+    out += "    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).\n";
+    out += "    vec3 current_size = abs(current);\n";
+    out += "    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));\n";
+    out += "    // A history with NaN or Inf, or too far out to project without overflow, is not used.\n";
+    out += "    vec3 reach = abs(dir) + current_size;\n";
+    out += "    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;\n";
+}
+
 void write_unrolled_body(std::string& out, const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
-    for (int n = 0; n < count; ++n) out += fmt::format("    vec3 c{} = neighborhood[{}];\n", n, n);
+    const bool hardened = spec.style.numerics == EmitStyle::Numerics::hardened;
+    // Hardened, variance clip takes its moments of colors relative to current (write_varclip_slab).
+    const bool relative = hardened && spec.mode == Mode::varclip;
+    for (int n = 0; n < count; ++n)
+        out += fmt::format("    vec3 c{} = neighborhood[{}]{};\n", n, n, relative ? " - current" : "");
     out += "    vec3 dir = history - current;\n";
+    if (hardened) write_hardening_prologue(out);
     out += "    float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n";
     for (int a = 0; a < axes; ++a) {
         const Axis& axis = spec.set.axes[a];
@@ -285,15 +332,20 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
         out += "    }\n";
     }
     // current + t * dir, written as fma because spirv-opt fuses only scalar multiply-adds.
-    out += "\n    return fma(vec3(max(t, 0.0)), dir, current);\n";
+    out += "\n";
+    if (hardened)
+        out += "    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;\n";
+    else
+        out += "    return fma(vec3(max(t, 0.0)), dir, current);\n";
 }
 
 // The supplement's listing: axes as written in the file, in a constant array; loops over axes
-// and neighbors; entry and exit bounds. Same numerics as the unrolled form (the supplement's
-// epsilon intent, shifted and clamped variance) so both compute the same function.
+// and neighbors; entry and exit bounds. With paper numerics it is the listing itself (the epsilon
+// intent fixed); hardened, it computes the same function as the hardened unrolled form.
 void write_loop_body(std::string& out, const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
+    const bool hardened = spec.style.numerics == EmitStyle::Numerics::hardened;
     out += fmt::format("    const vec3 axes[{}] = vec3[](\n", axes);
     for (int a = 0; a < axes; ++a) {
         const glm::vec3 v(spec.set.axes[a].direction);
@@ -303,6 +355,7 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
     out += "    );\n";
     out += "    const float epsilon = 1e-5;\n";
     out += "    vec3 dir = history - current;\n";
+    if (hardened) write_hardening_prologue(out);
     out += "    float near = -1e9, far = 1e9;\n";
     out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
     out += "        vec3 axis = axes[a];\n";
@@ -315,26 +368,31 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
         out += "            extent.x = min(t, extent.x);\n";
         out += "            extent.y = max(t, extent.y);\n";
         out += "        }\n";
-        out += "        extent += vec2(-epsilon, epsilon) * length(axis);\n";
-        out += "        float t0 = (extent.x - proj_pos) * inv_dir;\n";
-        out += "        float t1 = (extent.y - proj_pos) * inv_dir;\n";
     } else {
+        // Hardened, the moments are of projections relative to the pixel's (see write_varclip_slab).
         out += "        vec2 moments = vec2(0.0);\n";
         out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
-        out += "            float t = dot(neighborhood[n], axis) - proj_pos;\n";
+        out += fmt::format("            float t = dot(neighborhood[n], axis){};\n", hardened ? " - proj_pos" : "");
         out += "            moments += vec2(t, t * t);\n";
         out += "        }\n";
         out += fmt::format("        moments /= vec2({}.0);\n", count);
-        out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
-        out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
-        out += "        extent += vec2(-epsilon, epsilon) * length(axis);\n";
-        out += "        float t0 = extent.x * inv_dir;\n";
-        out += "        float t1 = extent.y * inv_dir;\n";
+        if (hardened) {
+            out += "        float sigma = sqrt(clamp(moments.y - moments.x * moments.x, 0.0, 3.40282347e38));\n";
+            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
+        } else {
+            out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
+            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * sigma, proj_pos));\n";
+        }
     }
+    out += fmt::format("        extent += vec2(-epsilon, epsilon) * length(axis){};\n", hardened ? " * pad_scale" : "");
+    // Hardened variance slabs are already relative to proj_pos.
+    const std::string origin = hardened && spec.mode == Mode::varclip ? "" : " - proj_pos";
+    out += fmt::format("        float t0 = (extent.x{}) * inv_dir;\n", origin);
+    out += fmt::format("        float t1 = (extent.y{}) * inv_dir;\n", origin);
     out += "        near = max(near, min(t0, t1));\n";
     out += "        far = min(far, max(t0, t1));\n";
     out += "    }\n";
-    out += "    if (near <= far && (near > 0.0 || far > 0.0))\n    {\n";
+    out += fmt::format("    if ({}near <= far && (near > 0.0 || far > 0.0))\n    {{\n", hardened ? "history_usable && " : "");
     out += "        float t = clamp(near > 0.0 ? near : far, 0.0, 1.0);\n";
     out += "        return current + t * dir;\n";
     out += "    }\n";

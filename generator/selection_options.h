@@ -14,7 +14,7 @@ namespace kdop {
 struct SelectionOptions {
     std::vector<std::string> sets, modes, neighborhoods, forms;
     bool baselines = false;
-    std::string projection = "multiply-add", extent = "running";
+    std::string projection = "multiply-add", extent = "running", numerics = "hardened";
 
     void add_to(CLI::App& app) {
         app.add_option("--sets", sets,
@@ -29,6 +29,10 @@ struct SelectionOptions {
             ->check(CLI::IsMember({"fold-dot", "multiply-add", "full-dot"}));
         app.add_option("--extent", extent, "How unrolled slab extents are reduced: tree or running")
             ->check(CLI::IsMember({"tree", "running"}));
+        app.add_option("--numerics", numerics,
+                       "hardened, or paper for the supplement's numerics without kdop's fixes for HDR, flat and "
+                       "NaN input (named <variant>-paper; see `kdop stress`)")
+            ->check(CLI::IsMember({"hardened", "paper"}));
     }
 
     Result<std::vector<VariantSpec>> select() const {
@@ -38,6 +42,7 @@ struct SelectionOptions {
                            : projection == "full-dot"   ? EmitStyle::Projection::full_dot
                                                         : EmitStyle::Projection::fold_dot;
         style.extent = extent == "running" ? EmitStyle::Extent::running : EmitStyle::Extent::tree;
+        style.numerics = numerics == "paper" ? EmitStyle::Numerics::paper : EmitStyle::Numerics::hardened;
         if (specs)
             for (VariantSpec& s : *specs) s.style = style;
         if (specs && baselines)

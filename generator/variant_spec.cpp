@@ -46,8 +46,9 @@ Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::
 std::string variant_name(const VariantSpec& spec) {
     if (spec.mode == Mode::copy) return "copy";
     if (spec.mode == Mode::gather) return fmt::format("gather-{}", to_string(spec.neighborhood));
-    return fmt::format("{}-{}-{}{}", spec.set.name, to_string(spec.mode), to_string(spec.neighborhood),
-                       spec.form == Form::loop ? "-loop" : "");
+    return fmt::format("{}-{}-{}{}{}", spec.set.name, to_string(spec.mode), to_string(spec.neighborhood),
+                       spec.form == Form::loop ? "-loop" : "",
+                       spec.style.numerics == EmitStyle::Numerics::paper ? "-paper" : "");
 }
 
 std::vector<VariantSpec> baseline_kernels() {

@@ -32,6 +32,14 @@ struct EmitStyle {
         tree,    // min/max of all projections as balanced trees
         running, // min/max updated neighbor by neighbor from +-FLT_MAX, as the loop form does from +-1e9
     } extent = Extent::running;
+    // What the stress suite (`kdop stress`) found the supplement's formulation needs at the extremes;
+    // applies to both forms. The price is measured by `kdop bench` (cost.csv, hardening_* columns).
+    enum class Numerics {
+        hardened, // padding grows with the pixel's magnitude, variance taken of colors relative to
+                  // the pixel, a history that is NaN, Inf or too far to project is replaced by current
+        paper,    // the supplement's: absolute padding, E[q^2] - E[q]^2, history used as it is;
+                  // named <variant>-paper
+    } numerics = Numerics::hardened;
 };
 
 struct VariantSpec {

@@ -10,9 +10,22 @@
 
 namespace kdop {
 
+double reference_padding(const glm::dvec3& current) {
+    const glm::dvec3 size = glm::abs(current);
+    return kReferencePadding * std::max({size.x, size.y, size.z, 1.0});
+}
+
+bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& history) {
+    const glm::dvec3 reach = glm::abs(history - current) + glm::abs(current);
+    const double sum = reach.x + reach.y + reach.z;
+    return std::isfinite(sum) && sum <= double(std::numeric_limits<float>::max());
+}
+
 glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
                           const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma) {
+    if (!reference_history_usable(current, history)) return current;
     const glm::dvec3 dir = history - current;
+    const double padding = reference_padding(current);
     const double n = static_cast<double>(neighborhood.size());
     double t = 1.0;
     for (const glm::dvec3& axis : unit_axes) {
@@ -25,8 +38,8 @@ glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const
                 lo = std::min(lo, glm::dot(c, axis));
                 hi = std::max(hi, glm::dot(c, axis));
             }
-            lo -= kReferencePadding;
-            hi += kReferencePadding;
+            lo -= padding;
+            hi += padding;
         } else {
             double mean = 0;
             for (const glm::dvec3& c : neighborhood) mean += glm::dot(c, axis);
@@ -34,8 +47,8 @@ glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const
             double variance = 0; // two passes: exact enough in double for any input
             for (const glm::dvec3& c : neighborhood) variance += (glm::dot(c, axis) - mean) * (glm::dot(c, axis) - mean);
             const double sigma = std::sqrt(variance / n);
-            lo = std::min(mean - gamma * sigma, p) - kReferencePadding;
-            hi = std::max(mean + gamma * sigma, p) + kReferencePadding;
+            lo = std::min(mean - gamma * sigma, p) - padding;
+            hi = std::max(mean + gamma * sigma, p) + padding;
         }
         const double d = glm::dot(dir, axis);
         if (d > 0) t = std::min(t, (hi - p) / d);

@@ -2,11 +2,16 @@
 // and independently of the generator's emitter: GPU results are checked against it.
 //
 // Clip: each axis a (normalized) gives a slab [min q - e, max q + e] of the neighborhood's
-// projections q = c . a, with e = 1e-5 (the paper's dilation). The ray from the current color
-// toward the history leaves the k-DOP at the smallest exit parameter over the slabs; the result
-// is current + clamp(t, 0, 1) * (history - current). A slab the ray runs parallel to never limits t.
+// projections q = c . a. The dilation e is the paper's 1e-5, times the current color's largest
+// channel magnitude where that exceeds 1 (kdop's hardened numerics; the paper's absolute 1e-5
+// vanishes in float32 above about 84). The ray from the current color toward the history leaves
+// the k-DOP at the smallest exit parameter over the slabs; the result is
+// current + clamp(t, 0, 1) * (history - current). A slab the ray runs parallel to never limits t.
 // Variance clip: the slab is mean +- gamma * sigma of the projections (population variance),
 // widened to contain the current color's projection, then dilated by e like a clip slab.
+// A history that is not usable is replaced by the current color: one with a NaN or Inf channel,
+// or one where |history - current|_1 + |current|_1 exceeds FLT_MAX (past which float32
+// projections of the ray could overflow; the generated shaders promise no more).
 #pragma once
 
 #include "axis_set.h"
@@ -22,8 +27,14 @@
 
 namespace kdop {
 
-// The paper's slab dilation, per unit of axis length.
+// The paper's slab dilation, per unit of axis length, for colors up to 1 in magnitude.
 inline constexpr double kReferencePadding = 1e-5;
+
+// The dilation of every slab around `current`, per unit of axis length.
+double reference_padding(const glm::dvec3& current);
+
+// Whether the history takes part at all (see above); if not, the result is `current`.
+bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& history);
 
 // One pixel. `unit_axes` must be normalized; `mode` is clip or varclip.
 glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
