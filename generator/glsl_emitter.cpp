@@ -116,10 +116,11 @@ std::string exit_update(std::string_view origin) {
 // above about 84, so hardened it grows with the pixel's magnitude (pad_scale, see
 // write_unrolled_body): the slab then keeps a width, the ray's origin stays strictly inside it, and
 // a ray parallel to it (inv_d infinite) meets a nonzero distance, never 0 x inf = NaN.
-std::string dilation(const ScaledAxis& axis, EmitStyle::Numerics numerics) {
+// `scale` names the per-pixel factor (hardened only).
+std::string dilation(const ScaledAxis& axis, EmitStyle::Numerics numerics, std::string_view scale) {
     const std::string padding = float_literal(axis.padding);
     if (numerics == EmitStyle::Numerics::paper) return fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
-    return fmt::format("        lo = fma(pad_scale, -{0}, lo);\n        hi = fma(pad_scale, {0}, hi);\n", padding);
+    return fmt::format("        lo = fma({1}, -{0}, lo);\n        hi = fma({1}, {0}, hi);\n", padding, scale);
 }
 
 // Clip: the slab spans the projections' min..max, dilated by the padding.
@@ -139,7 +140,7 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const 
         out += fmt::format("        float lo = {};\n", reduce_tree("min", 0, count));
         out += fmt::format("        float hi = {};\n", reduce_tree("max", 0, count));
     }
-    out += dilation(axis, style.numerics);
+    out += dilation(axis, style.numerics, "pad_scale");
     out += fmt::format("        float p = {};\n", proj("current"));
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     out += exit_update("p");
@@ -147,16 +148,16 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const 
 
 // Variance clip (Salvi 2016): the slab spans mean +- gamma * sigma of the projections, widened to
 // include the current color so the ray still starts inside.
-// Hardened, the colors arrive relative to current (see write_unrolled_body), so the projections are
-// relative to the ray's origin and the widening is to 0. That shift keeps float32 from cancelling
-// the small variance of bright, flat areas away: the supplement's E[q^2] - E[q]^2 gives a sigma of
-// about 3e-4 |q| there, or a negative variance and NaN. The variance is clamped to [0, FLT_MAX], so
-// a spread too large to square narrows the slab instead of opening it to infinity.
+// Hardened, the colors and the ray arrive relative to current and scaled (see
+// write_hardening_prologue), so the projections are relative to the ray's origin and the widening
+// is to 0. That shift keeps float32 from cancelling the small variance of bright, flat areas away:
+// the supplement's E[q^2] - E[q]^2 gives a sigma of about 3e-4 |q| there, or a negative variance
+// and NaN.
 void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
     const bool hardened = style.numerics == EmitStyle::Numerics::hardened;
     if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
-    out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
+    out += fmt::format("        float inv_d = {};\n", reciprocal(proj(hardened ? "ray" : "dir")));
     for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
     out += fmt::format("        float sum = {};\n", sum(count, "q{}"));
     out += fmt::format("        float mean = sum * (1.0 / {}.0);\n", count);
@@ -165,7 +166,7 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, con
         // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
         out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
                            sum(count, "q{0} * q{0}"));
-        out += "        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));\n";
+        out += "        float sigma = sqrt(max(variance, 0.0));\n";
         out += "        float lo = min(fma(-gamma, sigma, mean), 0.0);\n";
         out += "        float hi = max(fma(gamma, sigma, mean), 0.0);\n";
     } else {
@@ -174,7 +175,7 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, con
         out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
         out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
     }
-    out += dilation(axis, style.numerics);
+    out += dilation(axis, style.numerics, "slab_pad");
     out += exit_update(hardened ? "" : "p");
 }
 
@@ -297,13 +298,25 @@ std::string signature(const VariantSpec& spec) {
 // is replaced by current; the sum below is then NaN or above FLT_MAX, and the compare is false for
 // NaN. Below that bound no projection of current or of the ray overflows: each is at most the
 // vector's channel magnitudes summed, as no scaled or unit axis component exceeds 1.
-void write_hardening_prologue(std::string& out) {
+// Variance clip also gets `scale`, a power of two that brings colors relative to current into a
+// range whose squares neither overflow nor underflow: 1, or 2^-100 once the pixel exceeds 2^60.
+// A power of two scales exactly, so fma(c, scale, -current * scale) is (c - current) * scale
+// rounded once, as the plain difference would be.
+void write_hardening_prologue(std::string& out, Mode mode) {
     out += "    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).\n";
     out += "    vec3 current_size = abs(current);\n";
     out += "    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));\n";
     out += "    // A history with NaN or Inf, or too far out to project without overflow, is not used.\n";
     out += "    vec3 reach = abs(dir) + current_size;\n";
     out += "    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;\n";
+    if (mode != Mode::varclip) return;
+    out += "    // Moments of colors relative to current, scaled so squares of HDR differences stay finite.\n";
+    const std::string threshold = float_literal(std::ldexp(1.0f, 60)), small = float_literal(std::ldexp(1.0f, -100));
+    out += fmt::format("    bool huge = pad_scale > {}; // 2^60\n", threshold);
+    out += fmt::format("    float scale = huge ? {} : 1.0; // 2^-100\n", small);
+    out += fmt::format("    vec3 origin = current * (huge ? -{} : -1.0);\n", small);
+    out += "    vec3 ray = dir * scale;\n";
+    out += "    float slab_pad = pad_scale * scale;\n";
 }
 
 void write_unrolled_body(std::string& out, const VariantSpec& spec) {
@@ -312,10 +325,11 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
     const bool hardened = spec.style.numerics == EmitStyle::Numerics::hardened;
     // Hardened, variance clip takes its moments of colors relative to current (write_varclip_slab).
     const bool relative = hardened && spec.mode == Mode::varclip;
-    for (int n = 0; n < count; ++n)
-        out += fmt::format("    vec3 c{} = neighborhood[{}]{};\n", n, n, relative ? " - current" : "");
     out += "    vec3 dir = history - current;\n";
-    if (hardened) write_hardening_prologue(out);
+    if (hardened) write_hardening_prologue(out, spec.mode);
+    for (int n = 0; n < count; ++n)
+        out += relative ? fmt::format("    vec3 c{0} = fma(neighborhood[{0}], vec3(scale), origin);\n", n)
+                        : fmt::format("    vec3 c{0} = neighborhood[{0}];\n", n);
     out += "    float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n";
     for (int a = 0; a < axes; ++a) {
         const Axis& axis = spec.set.axes[a];
@@ -355,38 +369,41 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
     out += "    );\n";
     out += "    const float epsilon = 1e-5;\n";
     out += "    vec3 dir = history - current;\n";
-    if (hardened) write_hardening_prologue(out);
+    if (hardened) write_hardening_prologue(out, spec.mode);
     out += "    float near = -1e9, far = 1e9;\n";
     out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
     out += "        vec3 axis = axes[a];\n";
-    out += "        float proj_pos = dot(current, axis);\n";
-    out += "        float inv_dir = 1.0 / dot(dir, axis);\n";
+    // Hardened variance slabs are relative to the pixel's projection and scaled, like the ray.
+    const bool relative = hardened && spec.mode == Mode::varclip;
+    if (!relative) out += "        float proj_pos = dot(current, axis);\n";
+    out += fmt::format("        float inv_dir = 1.0 / dot({}, axis);\n", relative ? "ray" : "dir");
     if (spec.mode == Mode::clip) {
-        out += "        vec2 extent = vec2(1e9, -1e9);\n";
+        // The supplement starts from +-1e9, which caps the slab of any neighborhood brighter than 1e9.
+        out += hardened ? "        vec2 extent = vec2(3.40282347e38, -3.40282347e38);\n" : "        vec2 extent = vec2(1e9, -1e9);\n";
         out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
         out += "            float t = dot(neighborhood[n], axis);\n";
         out += "            extent.x = min(t, extent.x);\n";
         out += "            extent.y = max(t, extent.y);\n";
         out += "        }\n";
     } else {
-        // Hardened, the moments are of projections relative to the pixel's (see write_varclip_slab).
         out += "        vec2 moments = vec2(0.0);\n";
         out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
-        out += fmt::format("            float t = dot(neighborhood[n], axis){};\n", hardened ? " - proj_pos" : "");
+        out += relative ? "            float t = dot(fma(neighborhood[n], vec3(scale), origin), axis);\n"
+                        : "            float t = dot(neighborhood[n], axis);\n";
         out += "            moments += vec2(t, t * t);\n";
         out += "        }\n";
         out += fmt::format("        moments /= vec2({}.0);\n", count);
         if (hardened) {
-            out += "        float sigma = sqrt(clamp(moments.y - moments.x * moments.x, 0.0, 3.40282347e38));\n";
+            out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
             out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
         } else {
             out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
             out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * sigma, proj_pos));\n";
         }
     }
-    out += fmt::format("        extent += vec2(-epsilon, epsilon) * length(axis){};\n", hardened ? " * pad_scale" : "");
-    // Hardened variance slabs are already relative to proj_pos.
-    const std::string origin = hardened && spec.mode == Mode::varclip ? "" : " - proj_pos";
+    out += fmt::format("        extent += vec2(-epsilon, epsilon) * length(axis){};\n",
+                       !hardened ? "" : relative ? " * slab_pad" : " * pad_scale");
+    const std::string origin = relative ? "" : " - proj_pos";
     out += fmt::format("        float t0 = (extent.x{}) * inv_dir;\n", origin);
     out += fmt::format("        float t1 = (extent.y{}) * inv_dir;\n", origin);
     out += "        near = max(near, min(t0, t1));\n";

@@ -10,7 +10,8 @@
 
 namespace kdop {
 
-double reference_padding(const glm::dvec3& current) {
+double reference_padding(const glm::dvec3& current, EmitStyle::Numerics numerics) {
+    if (numerics == EmitStyle::Numerics::paper) return kReferencePadding;
     const glm::dvec3 size = glm::abs(current);
     return kReferencePadding * std::max({size.x, size.y, size.z, 1.0});
 }
@@ -21,15 +22,13 @@ bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& histo
     return std::isfinite(sum) && sum <= double(std::numeric_limits<float>::max());
 }
 
-glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
-                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma) {
-    if (!reference_history_usable(current, history)) return current;
-    const glm::dvec3 dir = history - current;
-    const double padding = reference_padding(current);
+std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
+                                           const glm::dvec3& current, Mode mode, double gamma,
+                                           EmitStyle::Numerics numerics) {
     const double n = static_cast<double>(neighborhood.size());
-    double t = 1.0;
+    const double padding = reference_padding(current, numerics);
+    std::vector<ReferenceSlab> slabs;
     for (const glm::dvec3& axis : unit_axes) {
-        const double p = glm::dot(current, axis);
         double lo, hi;
         if (mode == Mode::clip) {
             lo = std::numeric_limits<double>::infinity();
@@ -38,8 +37,6 @@ glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const
                 lo = std::min(lo, glm::dot(c, axis));
                 hi = std::max(hi, glm::dot(c, axis));
             }
-            lo -= padding;
-            hi += padding;
         } else {
             double mean = 0;
             for (const glm::dvec3& c : neighborhood) mean += glm::dot(c, axis);
@@ -47,14 +44,32 @@ glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const
             double variance = 0; // two passes: exact enough in double for any input
             for (const glm::dvec3& c : neighborhood) variance += (glm::dot(c, axis) - mean) * (glm::dot(c, axis) - mean);
             const double sigma = std::sqrt(variance / n);
-            lo = std::min(mean - gamma * sigma, p) - padding;
-            hi = std::max(mean + gamma * sigma, p) + padding;
+            const double p = glm::dot(current, axis);
+            lo = std::min(mean - gamma * sigma, p);
+            hi = std::max(mean + gamma * sigma, p);
         }
-        const double d = glm::dot(dir, axis);
-        if (d > 0) t = std::min(t, (hi - p) / d);
-        if (d < 0) t = std::min(t, (lo - p) / d);
+        slabs.push_back({axis, lo - padding, hi + padding});
     }
-    return current + std::clamp(t, 0.0, 1.0) * dir;
+    return slabs;
+}
+
+double reference_exit(std::span<const ReferenceSlab> slabs, const glm::dvec3& current, const glm::dvec3& history) {
+    const glm::dvec3 dir = history - current;
+    double t = 1.0;
+    for (const ReferenceSlab& slab : slabs) {
+        const double p = glm::dot(current, slab.axis);
+        const double d = glm::dot(dir, slab.axis);
+        if (d > 0) t = std::min(t, (slab.hi - p) / d);
+        if (d < 0) t = std::min(t, (slab.lo - p) / d);
+    }
+    return std::clamp(t, 0.0, 1.0);
+}
+
+glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
+                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma) {
+    if (!reference_history_usable(current, history)) return current;
+    const auto slabs = reference_slabs(unit_axes, neighborhood, current, mode, gamma);
+    return current + reference_exit(slabs, current, history) * (history - current);
 }
 
 std::vector<glm::dvec3> unit_axes(const AxisSet& set) {

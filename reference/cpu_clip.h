@@ -16,6 +16,7 @@
 
 #include "axis_set.h"
 #include "image.h"
+#include "variant_spec.h"
 
 #include <kdop/variant.h>
 
@@ -30,13 +31,30 @@ namespace kdop {
 // The paper's slab dilation, per unit of axis length, for colors up to 1 in magnitude.
 inline constexpr double kReferencePadding = 1e-5;
 
-// The dilation of every slab around `current`, per unit of axis length.
-double reference_padding(const glm::dvec3& current);
+// The dilation of every slab around `current`, per unit of axis length: hardened, it grows with
+// the current color's magnitude; with the paper's numerics it is kReferencePadding.
+double reference_padding(const glm::dvec3& current, EmitStyle::Numerics numerics = EmitStyle::Numerics::hardened);
 
 // Whether the history takes part at all (see above); if not, the result is `current`.
 bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& history);
 
-// One pixel. `unit_axes` must be normalized; `mode` is clip or varclip.
+// One slab of the padded k-DOP: the points x with lo <= x . axis <= hi.
+struct ReferenceSlab {
+    glm::dvec3 axis; // normalized
+    double lo, hi;
+};
+
+// The padded k-DOP of a neighborhood around `current` (varclip widens each slab to contain it).
+std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
+                                           const glm::dvec3& current, Mode mode, double gamma,
+                                           EmitStyle::Numerics numerics = EmitStyle::Numerics::hardened);
+
+// Where the ray current + t (history - current) leaves the slabs, clamped to [0, 1]: 1 when the
+// history lies inside. Takes the history as given (no usability rule).
+double reference_exit(std::span<const ReferenceSlab> slabs, const glm::dvec3& current, const glm::dvec3& history);
+
+// One pixel: current + reference_exit(...) * (history - current), or current where the history is
+// not usable. `unit_axes` must be normalized; `mode` is clip or varclip.
 glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
                           const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma);
 
