@@ -36,11 +36,6 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 
 vec3 kdop_aabb_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
 {
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
     vec3 dir = history - current;
     // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
     vec3 current_size = abs(current);
@@ -48,6 +43,11 @@ vec3 kdop_aabb_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
+    vec3 c0 = neighborhood[0];
+    vec3 c1 = neighborhood[1];
+    vec3 c2 = neighborhood[2];
+    vec3 c3 = neighborhood[3];
+    vec3 c4 = neighborhood[4];
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 3: axis (1, 0, 0) from aabb.axes:5

@@ -18,6 +18,13 @@
 
 vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 {
+    vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     vec3 c0 = neighborhood[0];
     vec3 c1 = neighborhood[1];
     vec3 c2 = neighborhood[2];
@@ -27,13 +34,6 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
     vec3 c6 = neighborhood[6];
     vec3 c7 = neighborhood[7];
     vec3 c8 = neighborhood[8];
-    vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
-    // A history with NaN or Inf, or too far out to project without overflow, is not used.
-    vec3 reach = abs(dir) + current_size;
-    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 8: axis (0.997167, -0.05482, 0.0515) from dop16-asphalt.axes:5, scaled by 1.00284 to (1, -0.054975748, 0.051646315)

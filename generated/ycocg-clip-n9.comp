@@ -36,6 +36,13 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 
 vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 {
+    vec3 dir = history - current;
+    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
+    vec3 current_size = abs(current);
+    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
+    // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 reach = abs(dir) + current_size;
+    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     vec3 c0 = neighborhood[0];
     vec3 c1 = neighborhood[1];
     vec3 c2 = neighborhood[2];
@@ -45,13 +52,6 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
     vec3 c6 = neighborhood[6];
     vec3 c7 = neighborhood[7];
     vec3 c8 = neighborhood[8];
-    vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
-    // A history with NaN or Inf, or too far out to project without overflow, is not used.
-    vec3 reach = abs(dir) + current_size;
-    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)

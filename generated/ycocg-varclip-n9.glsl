@@ -19,15 +19,6 @@
 
 vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighborhood[9])
 {
-    vec3 c0 = neighborhood[0] - current;
-    vec3 c1 = neighborhood[1] - current;
-    vec3 c2 = neighborhood[2] - current;
-    vec3 c3 = neighborhood[3] - current;
-    vec3 c4 = neighborhood[4] - current;
-    vec3 c5 = neighborhood[5] - current;
-    vec3 c6 = neighborhood[6] - current;
-    vec3 c7 = neighborhood[7] - current;
-    vec3 c8 = neighborhood[8] - current;
     vec3 dir = history - current;
     // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
     vec3 current_size = abs(current);
@@ -35,11 +26,26 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
+    // Moments of colors relative to current, scaled so squares of HDR differences stay finite.
+    bool huge = pad_scale > 1.1529215e+18; // 2^60
+    float scale = huge ? 7.888609e-31 : 1.0; // 2^-100
+    vec3 origin = current * (huge ? -7.888609e-31 : -1.0);
+    vec3 ray = dir * scale;
+    float slab_pad = pad_scale * scale;
+    vec3 c0 = fma(neighborhood[0], vec3(scale), origin);
+    vec3 c1 = fma(neighborhood[1], vec3(scale), origin);
+    vec3 c2 = fma(neighborhood[2], vec3(scale), origin);
+    vec3 c3 = fma(neighborhood[3], vec3(scale), origin);
+    vec3 c4 = fma(neighborhood[4], vec3(scale), origin);
+    vec3 c5 = fma(neighborhood[5], vec3(scale), origin);
+    vec3 c6 = fma(neighborhood[6], vec3(scale), origin);
+    vec3 c7 = fma(neighborhood[7], vec3(scale), origin);
+    vec3 c8 = fma(neighborhood[8], vec3(scale), origin);
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float inv_d = 1.0 / (dir.y + dir.x * 0.5 + dir.z * 0.5);
+        float inv_d = 1.0 / (ray.y + ray.x * 0.5 + ray.z * 0.5);
         float q0 = c0.y + c0.x * 0.5 + c0.z * 0.5;
         float q1 = c1.y + c1.x * 0.5 + c1.z * 0.5;
         float q2 = c2.y + c2.x * 0.5 + c2.z * 0.5;
@@ -52,17 +58,17 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
-        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));
+        float sigma = sqrt(max(variance, 0.0));
         float lo = min(fma(-gamma, sigma, mean), 0.0);
         float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(pad_scale, -1.22474485e-05, lo);
-        hi = fma(pad_scale, 1.22474485e-05, hi);
+        lo = fma(slab_pad, -1.22474485e-05, lo);
+        hi = fma(slab_pad, 1.22474485e-05, hi);
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
     {
-        float inv_d = 1.0 / (dir.x - dir.z);
+        float inv_d = 1.0 / (ray.x - ray.z);
         float q0 = c0.x - c0.z;
         float q1 = c1.x - c1.z;
         float q2 = c2.x - c2.z;
@@ -75,17 +81,17 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
-        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));
+        float sigma = sqrt(max(variance, 0.0));
         float lo = min(fma(-gamma, sigma, mean), 0.0);
         float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(pad_scale, -1.4142136e-05, lo);
-        hi = fma(pad_scale, 1.4142136e-05, hi);
+        lo = fma(slab_pad, -1.4142136e-05, lo);
+        hi = fma(slab_pad, 1.4142136e-05, hi);
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
+        float inv_d = 1.0 / (ray.y + ray.x * -0.5 + ray.z * -0.5);
         float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
         float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
         float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5;
@@ -98,11 +104,11 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
-        float sigma = sqrt(clamp(variance, 0.0, 3.40282347e38));
+        float sigma = sqrt(max(variance, 0.0));
         float lo = min(fma(-gamma, sigma, mean), 0.0);
         float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(pad_scale, -1.22474485e-05, lo);
-        hi = fma(pad_scale, 1.22474485e-05, hi);
+        lo = fma(slab_pad, -1.22474485e-05, lo);
+        hi = fma(slab_pad, 1.22474485e-05, hi);
         t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
     }
 

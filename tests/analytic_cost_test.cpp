@@ -21,9 +21,9 @@ TEST(AnalyticCost, MatchesHandCounts) {
     // Per pixel: dir 3, padding scale 6, usable history 9, result 4. Per slab (m = 1, N = 9):
     // extent 16, dilation 2, exit 6.
     EXPECT_EQ(analytic_min_float_ops(aabb, Mode::clip, Neighborhood::n9), 22u + 3 * 24);
-    // Per pixel also -gamma and the 5 colors relative to current (15). Per slab (N = 5): varclip
-    // 2*5 + 10 = 20, dilation 2, exit 5.
-    EXPECT_EQ(analytic_min_float_ops(aabb, Mode::varclip, Neighborhood::n5), 22u + 16 + 3 * 27);
+    // Per pixel also -gamma, the scaled frame (10) and the 5 colors relative to current (15). Per
+    // slab (N = 5): varclip 2*5 + 9 = 19, dilation 2, exit 5.
+    EXPECT_EQ(analytic_min_float_ops(aabb, Mode::varclip, Neighborhood::n5), 22u + 26 + 3 * 26);
     // Two nonzero components cost one multiply-add per projection: (9 + 1) * 1 more per such slab;
     // three cost two. The scale of the axis does not matter, only its zeros.
     const AxisSet mixed = set_from("name: mixed\nprovenance: test\n2 0 0\n0 1 -1\n0.2 0.3 0.4\n");

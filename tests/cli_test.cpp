@@ -138,7 +138,7 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures ", "bench "}) {
+    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures ", "bench ", "stress "}) {
         auto r = run(kdop(sub + "--help"));
         EXPECT_EQ(r.exit_code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
@@ -235,6 +235,52 @@ TEST(CliTextures, WritesEveryTextureAndHistoryAndReportsTheSeed) {
     ASSERT_EQ(run(kdop("textures --no-real --width 32 --height 24 --seed 5 --out " + (dir / "u").string())).exit_code, 0);
     EXPECT_EQ(test::read_file(dir / "t" / "grass.exr"), test::read_file(dir / "u" / "grass.exr"));
     EXPECT_NE(run(kdop("textures --width 3 --out " + (dir / "v").string())).exit_code, 0);
+}
+
+} // namespace
+} // namespace kdop
+
+namespace kdop {
+namespace {
+
+TEST(CliStress, PrintsTheTableWritesItsFilesAndExitsByTheResult) {
+    test::TempDir dir;
+    const std::string out = (dir / "stress").string();
+    auto r = run(kdop("stress --sets aabb --modes clip --neighborhoods n5 --seed 3 --out " + out));
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    EXPECT_NE(r.out.find("aabb-clip-n5 "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("All 18 variant-case pairs kept every invariant."), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("seed 3"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("aabb-clip-n5"), std::string::npos) << "progress on stderr: " << r.err;
+    EXPECT_EQ(lines(test::read_file(out + "/stress.csv")).size(), 1u + 18u);
+    EXPECT_NE(test::read_file(out + "/report.md").find("| aabb-clip-n5 | ok |"), std::string::npos);
+    // The paper's numerics break invariants: the table says which, and the exit status is 2.
+    auto paper = run(kdop("stress --sets aabb --modes clip --neighborhoods n5 --numerics paper"));
+    EXPECT_EQ(paper.exit_code, 2) << paper.err;
+    EXPECT_NE(paper.out.find("aabb-clip-n5-paper"), std::string::npos) << paper.out;
+    EXPECT_NE(paper.out.find(" ND "), std::string::npos) << paper.out;
+}
+
+TEST(CliStress, RefusesBadInputAndWritesNothing) {
+    test::TempDir dir;
+    const std::string out = (dir / "stress").string();
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {"--gamma -1", "--gamma: must be a finite number >= 0, got -1"},
+        {"--baselines", "--baselines: the gather and copy baselines are not clips"},
+        {"--sets dop99", "--sets: 'dop99' is not a built-in axis set"},
+        {"--numerics exact", "--numerics"},
+        {"--device NoSuchGpu", "no Vulkan device whose name contains 'NoSuchGpu'"},
+    };
+    for (const Case& c : cases) {
+        auto r = run(kdop("stress --sets aabb --modes clip --neighborhoods n5 --out " + out + " " + c.args));
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_NE(r.exit_code, 2) << c.args;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
 }
 
 } // namespace
