@@ -13,12 +13,14 @@
 namespace kdop::bench {
 namespace {
 
-Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::path& valgrind, const std::string& variant) {
+Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::path& valgrind, const ProbeKernel& kernel) {
+    const std::string& variant = kernel.name;
     const std::filesystem::path out = setup.scratch / (variant + ".callgrind");
     const std::filesystem::path log = setup.scratch / (variant + ".log");
     std::vector<std::string> argv{valgrind.string(), "--tool=callgrind", "--instr-atstart=no",
-                                  "--callgrind-out-file=" + out.string(), setup.probe.string(), "--variant", variant,
+                                  "--callgrind-out-file=" + out.string(), setup.probe.string(), "--variant", kernel.variant,
                                   "--width", std::to_string(setup.size), "--height", std::to_string(setup.size)};
+    if (!kernel.spirv.empty()) argv.insert(argv.end(), {"--spirv", kernel.spirv.string()});
     if (!setup.device.empty()) argv.insert(argv.end(), {"--device", setup.device});
     auto status = run_program(argv, log, {"LP_NUM_THREADS=0"});
     if (!status) return std::unexpected(status.error());
@@ -34,18 +36,18 @@ Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::p
 } // namespace
 
 Result<std::vector<double>> callgrind_instructions_per_pixel(const CallgrindSetup& setup,
-                                                             const std::vector<std::string>& variants, unsigned jobs,
+                                                             const std::vector<ProbeKernel>& kernels, unsigned jobs,
                                                              Progress& progress) {
     const std::filesystem::path valgrind = find_program("valgrind");
     if (valgrind.empty()) return fail("valgrind not found in PATH (Debian: valgrind), or pass --no-callgrind");
-    std::vector<Result<double>> results(variants.size(), fail("not run"));
+    std::vector<Result<double>> results(kernels.size(), fail("not run"));
     std::atomic<std::size_t> next{0};
     std::mutex progress_mutex;
     auto worker = [&] {
-        for (std::size_t i; (i = next++) < variants.size();) {
-            results[i] = measure_one(setup, valgrind, variants[i]);
+        for (std::size_t i; (i = next++) < kernels.size();) {
+            results[i] = measure_one(setup, valgrind, kernels[i]);
             std::lock_guard lock(progress_mutex);
-            progress.advance(variants[i]);
+            progress.advance(kernels[i].name);
         }
     };
     std::vector<std::jthread> workers;

@@ -22,9 +22,16 @@ struct CallgrindSetup {
     std::string device;            // passed on to the probe; empty: lavapipe
 };
 
-// Instructions per pixel for each named variant, `jobs` valgrind processes at a time.
+// A kernel to count: a registry variant, or another module with that variant's interface.
+struct ProbeKernel {
+    std::string name;            // what progress and errors call it; names its scratch files
+    std::string variant;         // the registry variant whose interface (and module) the probe runs
+    std::filesystem::path spirv; // this module instead of the variant's, if not empty
+};
+
+// Instructions per pixel for each kernel, `jobs` valgrind processes at a time.
 Result<std::vector<double>> callgrind_instructions_per_pixel(const CallgrindSetup& setup,
-                                                             const std::vector<std::string>& variants, unsigned jobs,
+                                                             const std::vector<ProbeKernel>& kernels, unsigned jobs,
                                                              Progress& progress);
 
 } // namespace kdop::bench

@@ -4,9 +4,11 @@
 #include "callgrind.h"
 #include "context.h"
 #include "progress.h"
+#include "runnable_variant.h"
 #include "spirv_module.h"
 #include "statistics.h"
 #include "timing.h"
+#include "variant_builder.h"
 #include "variant_spec.h"
 
 #include <kdop_builtin_variants.h>
@@ -14,7 +16,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <fstream>
 #include <map>
+#include <memory>
 
 namespace kdop::bench {
 namespace {
@@ -71,11 +75,28 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
     }
     for (const std::string& name : baselines) result.rows.push_back(static_row(registered(name)));
 
+    // The same variants with the paper's numerics, built here: what the hardening costs.
+    std::vector<VariantSpec> paper_specs;
+    for (const std::string& name : options.variants) {
+        const Variant& v = registered(name);
+        VariantSpec spec{sets.at(v.axis_set), v.mode, v.neighborhood};
+        spec.style.numerics = EmitStyle::Numerics::paper;
+        paper_specs.push_back(spec);
+    }
+    auto paper_built = build_variants(paper_specs);
+    if (!paper_built) return std::unexpected(paper_built.error());
+    std::vector<std::unique_ptr<RunnableVariant>> paper;
+    for (std::size_t i = 0; i < paper_built->size(); ++i) {
+        paper.push_back(std::make_unique<RunnableVariant>(std::move((*paper_built)[i])));
+        result.rows[i].paper_float_ops = double(count_float_ops(paper.back()->built().spirv).total());
+    }
+
     // Every kernel at the timing size, interleaved: variants, their loop forms, the baselines.
     std::vector<const Variant*> kernels;
     for (const std::string& name : options.variants) kernels.push_back(&registered(name));
     for (const std::string& name : options.variants) kernels.push_back(&registered(name + "-loop"));
     for (const std::string& name : baselines) kernels.push_back(&registered(name));
+    for (const auto& p : paper) kernels.push_back(&p->variant());
 
     auto context = Context::create({options.device, false});
     if (!context) return std::unexpected(context.error());
@@ -93,6 +114,7 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
             row.ms_median = median(samples.at(row.variant));
             row.ms_spread = interquartile_range(samples.at(row.variant));
             if (samples.contains(row.variant + "-loop")) row.baseline_ms_median = median(samples.at(row.variant + "-loop"));
+            if (samples.contains(row.variant + "-paper")) row.paper_ms_median = median(samples.at(row.variant + "-paper"));
             if (!row.axis_set.empty())
                 row.marginal_ms = row.ms_median - median(samples.at(gather_of(registered(row.variant))));
         }
@@ -121,18 +143,26 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
     }
 
     if (options.callgrind) {
-        std::vector<std::string> names;
-        for (const CostRow& row : result.rows) names.push_back(row.variant);
-        for (const std::string& name : options.variants) names.push_back(name + "-loop");
+        std::vector<ProbeKernel> probes;
+        for (const CostRow& row : result.rows) probes.push_back({row.variant, row.variant, {}});
+        for (const std::string& name : options.variants) probes.push_back({name + "-loop", name + "-loop", {}});
+        for (const auto& p : paper) { // the probe runs the paper module with its default's interface
+            const std::filesystem::path spirv = options.scratch / (p->built().name + ".spv");
+            std::ofstream(spirv, std::ios::binary)
+                .write(reinterpret_cast<const char*>(p->built().spirv.data()), std::streamsize(4 * p->built().spirv.size()));
+            probes.push_back({p->built().name, variant_name({p->built().spec.set, p->built().spec.mode,
+                                                              p->built().spec.neighborhood}), spirv});
+        }
         CallgrindSetup setup{options.probe, options.scratch, options.callgrind_size, options.device};
-        Progress progress("callgrind", names.size());
-        auto counts = callgrind_instructions_per_pixel(setup, names, options.jobs, progress);
+        Progress progress("callgrind", probes.size());
+        auto counts = callgrind_instructions_per_pixel(setup, probes, options.jobs, progress);
         if (!counts) return std::unexpected(counts.error());
         std::map<std::string, double> per_pixel;
-        for (std::size_t i = 0; i < names.size(); ++i) per_pixel[names[i]] = (*counts)[i];
+        for (std::size_t i = 0; i < probes.size(); ++i) per_pixel[probes[i].name] = (*counts)[i];
         for (CostRow& row : result.rows) {
             row.instr_per_px = per_pixel.at(row.variant);
             if (per_pixel.contains(row.variant + "-loop")) row.baseline_instr_per_px = per_pixel.at(row.variant + "-loop");
+            if (per_pixel.contains(row.variant + "-paper")) row.paper_instr_per_px = per_pixel.at(row.variant + "-paper");
         }
     }
     return result;

@@ -62,6 +62,20 @@ std::string measured_table(const BenchResult& result) {
     return out;
 }
 
+// Hardened numerics (the default) against the paper's, per variant.
+std::string hardening_table(const BenchResult& result) {
+    std::string out = "| variant | float ops | paper | ratio | instr/px | paper | ratio | median ms | paper ms |\n"
+                      "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+    for (const CostRow& r : result.rows) {
+        if (!std::isfinite(r.paper_float_ops)) continue;
+        const double ops = double(r.float_ops.total());
+        out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.variant, ops, r.paper_float_ops,
+                           ratio(ops, r.paper_float_ops), number(r.instr_per_px, 1), number(r.paper_instr_per_px, 1),
+                           ratio(r.instr_per_px, r.paper_instr_per_px), number(r.ms_median, 2), number(r.paper_ms_median, 2));
+    }
+    return out;
+}
+
 std::string sweep_table(const BenchResult& result) {
     const SweepResult& s = result.sweep;
     std::string header = "| size | Mpixel |", rule = "|---|--:|";
@@ -127,11 +141,13 @@ Per slab, for an axis with m nonzero components and N neighborhood colors (the p
 | part | clip | varclip | why |
 |---|---|---|---|
 | projections | (N + 1)(m − 1) | (N + 1)(m − 1) | the N colors and the ray direction; the axis is scaled so one component is exactly 1, so a projection is m − 1 multiply-adds; the pixel's projection is the ray origin's |
-| extent | 2(N − 1) | 3N + 9 | min and max of N values; for varclip: N shifts by the origin, the mean (N − 1 adds, a scale), the second moment (N multiply-adds, a scale), the variance (1), its clamp and sqrt (2), mean ∓ γσ (γσ and 2), widening to contain the origin (2) |
-| dilation | 2 | 2 | lo − padding, hi + padding |
+| extent | 2(N − 1) | 2N + 9 | min and max of N values; for varclip: the mean (N − 1 adds, a scale), the second moment (N multiply-adds), the variance (a scale, a multiply-add, a scale), its clamp at 0 and sqrt (2), mean ∓ γσ (2), widening to contain the origin (2) |
+| dilation | 2 | 2 | lo − padding · scale, hi + padding · scale (a multiply-add each) |
 | exit | 6 | 5 | reciprocal of the direction's projection, compare and select of the plane the ray heads for, minus the origin (clip only), times the reciprocal, min into t |
 
-Per pixel: the ray direction (3), current + max(t, 0) · dir (4), and −γ for varclip (1).
+Per pixel: the ray direction (3); the padding scale, max(1, |current| channels) (6); whether the history
+is usable, |dir|₁ + |current|₁ ≤ FLT_MAX (9); current + max(t, 0) · dir (4). For varclip also −γ (1),
+its power-of-two-scaled frame (10) and the N colors relative to current (3N multiply-adds).
 
 The emitted clips spend exactly 2 operations per slab more than this (a test holds them to it): their running
 min and max start from ±FLT_MAX. The formulation does not need those, but with them lavapipe's
@@ -223,6 +239,11 @@ std::string cost_report_markdown(const BenchResult& result, const ReportContext&
     if (const CostRow* gather = find_row(result, "gather-n9"); gather && std::isfinite(gather->ms_median))
         out += fmt::format("gather-n9 alone: {}; copy: {}.\n\n", run_ms(gather->ms_median, timing_pixels),
                            run_ms(find_row(result, "copy")->ms_median, timing_pixels));
+
+    out += "## Cost of hardening\n\nThe default variants against the same variants with the paper's numerics "
+           "(`kdop gen --numerics paper`), which `kdop stress` shows returning NaN or colors outside the k-DOP on "
+           "extreme input. Both were timed in the same interleaved rounds and counted by callgrind alike.\n\n";
+    out += hardening_table(result) + "\n";
 
     if (!result.sweep.sizes.empty()) {
         out += fmt::format("## Size sweep\n\nMedian of {} interleaved rounds per size.\n\n", o.sweep_rounds);

@@ -67,14 +67,16 @@ TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
     // 128x128: large enough that the per-pixel work, not the dispatch's fixed cost, decides the count.
     CallgrindSetup setup{fs::path(test::kdop_binary()).parent_path() / "kdop-dispatch-probe", scratch.path(), 128, ""};
     Progress progress("callgrind", 3);
-    auto counts = callgrind_instructions_per_pixel(setup, {"aabb-clip-n9", "aabb-clip-n9", "dop32-clip-n9"}, 3, progress);
+    auto counts = callgrind_instructions_per_pixel(
+        setup, {{"aabb-clip-n9", "aabb-clip-n9", {}}, {"aabb-again", "aabb-clip-n9", {}}, {"dop32-clip-n9", "dop32-clip-n9", {}}}, 3,
+        progress);
     ASSERT_TRUE(counts) << counts.error().message;
     EXPECT_GT((*counts)[0], 0.0);
     EXPECT_NEAR((*counts)[0], (*counts)[1], 1e-3 * (*counts)[0]); // deterministic, unlike a timing
     EXPECT_GT((*counts)[2], (*counts)[0]);                        // 16 slabs do more work than 3
 
     Progress second("callgrind", 1);
-    auto missing = callgrind_instructions_per_pixel(setup, {"no-such-variant"}, 1, second);
+    auto missing = callgrind_instructions_per_pixel(setup, {{"no-such-variant", "no-such-variant", {}}}, 1, second);
     ASSERT_FALSE(missing);
     EXPECT_NE(missing.error().message.find("unknown variant 'no-such-variant'"), std::string::npos)
         << missing.error().message;

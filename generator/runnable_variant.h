@@ -1,6 +1,7 @@
 // A variant built in-process (variant_builder.h) in the shape the runtime loads: a registry
 // Variant that points into storage this object owns. `kdop stress` builds what it runs, so it can
-// stress any selection: a user's own axis sets and the paper numerics as well as the defaults.
+// stress any selection (a user's own axis sets, the paper numerics), and the bench can time and
+// count the paper numerics beside the embedded defaults.
 #pragma once
 
 #include "variant_builder.h"
