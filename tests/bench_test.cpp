@@ -99,14 +99,23 @@ TEST(CliBench, WritesCsvReportAndCharts) {
     EXPECT_TRUE(lines[5].starts_with("copy,"));
     const std::string report = test::read_file(out / "report.md");
     for (const char* part : {"- commit: ", "- driver: ", "## Targets", "### The analytic minimum", "## Size sweep",
-                             "| aabb-clip-n9 | 6 |", "![", "64x64"})
+                             "| aabb-clip-n9 | 6 |", "![", "64x64", "## Cost of hardening", "| aabb-clip-n9 | 100 | 85 |"})
         EXPECT_NE(report.find(part), std::string::npos) << part;
     for (const char* chart : {"static_cost.png", "measured_cost.png", "size_sweep.png"}) {
         const std::string png = test::read_file(out / chart);
         EXPECT_EQ(png.substr(0, 4), "\x89PNG") << chart;
     }
-    // Progress went to stderr, one line per step when it is not a terminal.
-    EXPECT_NE(r.err.find("[2/2] timing 7 kernels, round 2/2 at 64x48"), std::string::npos) << r.err;
+    // The paper-numerics twins were timed too, and their float ops are in the CSV.
+    const auto header = split(lines[0], ',');
+    const auto aabb = split(lines[1], ',');
+    ASSERT_EQ(header.size(), aabb.size());
+    auto column = [&](std::string_view name) { return std::ranges::find(header, name) - header.begin(); };
+    EXPECT_EQ(aabb[column("paper_float_ops")], "85");
+    EXPECT_FALSE(aabb[column("paper_ms_median")].empty());
+    EXPECT_TRUE(aabb[column("paper_instr_per_px")].empty()) << "callgrind was off";
+    // Progress went to stderr, one line per step when it is not a terminal: 2 variants, their loop
+    // forms and paper twins, 3 baselines.
+    EXPECT_NE(r.err.find("[2/2] timing 9 kernels, round 2/2 at 64x48"), std::string::npos) << r.err;
 }
 
 TEST(CliBench, RefusesBadInputAndWritesNothing) {

@@ -183,8 +183,9 @@ TEST(Stress, PaddingKeepsTheRayOriginStrictlyInsideEverySlab) {
                 const float pad_scale = std::max(magnitude, 1.0f);
                 EXPECT_GT(std::fma(pad_scale, scaled.padding, q) - q, 0.0f) << name << " at " << magnitude;
                 EXPECT_LT(std::fma(pad_scale, -scaled.padding, q) - q, 0.0f) << name << " at " << magnitude;
-                if (magnitude >= 5e4f && std::abs(q) >= magnitude) // where the paper's padding vanishes
+                if (magnitude >= 5e4f && std::abs(q) >= magnitude) { // where the paper's padding vanishes
                     EXPECT_EQ((q + scaled.padding) - q, 0.0f) << name << " at " << magnitude;
+                }
             }
     }
 }
