@@ -114,7 +114,7 @@ std::string exit_update(std::string_view origin) {
 
 // The slab's dilation. The paper's 1e-5 per unit of axis length is below float32 spacing for values
 // above about 84, so hardened it grows with the pixel's magnitude (pad_scale, see
-// write_unrolled_body): the slab then keeps a width, the ray's origin stays strictly inside it, and
+// write_hardening_prologue): the slab then keeps a width, the ray's origin stays strictly inside it, and
 // a ray parallel to it (inv_d infinite) meets a nonzero distance, never 0 x inf = NaN.
 // `scale` names the per-pixel factor (hardened only).
 std::string dilation(const ScaledAxis& axis, EmitStyle::Numerics numerics, std::string_view scale) {
