@@ -3,6 +3,7 @@
 #include "analytic_cost.h"
 #include "callgrind.h"
 #include "context.h"
+#include "output_files.h"
 #include "progress.h"
 #include "runnable_variant.h"
 #include "spirv_module.h"
@@ -16,7 +17,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <memory>
 
@@ -146,13 +146,13 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
         std::vector<ProbeKernel> probes;
         for (const CostRow& row : result.rows) probes.push_back({row.variant, row.variant, {}});
         for (const std::string& name : options.variants) probes.push_back({name + "-loop", name + "-loop", {}});
-        for (const auto& p : paper) { // the probe runs the paper module with its default's interface
-            const std::filesystem::path spirv = options.scratch / (p->built().name + ".spv");
-            std::ofstream(spirv, std::ios::binary)
-                .write(reinterpret_cast<const char*>(p->built().spirv.data()), std::streamsize(4 * p->built().spirv.size()));
-            probes.push_back({p->built().name, variant_name({p->built().spec.set, p->built().spec.mode,
-                                                              p->built().spec.neighborhood}), spirv});
+        // The probe runs each paper module with its default's interface (built in options.variants' order).
+        std::vector<OutputFile> paper_modules;
+        for (std::size_t i = 0; i < paper.size(); ++i) {
+            paper_modules.push_back(spirv_file(paper[i]->built(), options.scratch));
+            probes.push_back({paper[i]->built().name, options.variants[i], paper_modules.back().path});
         }
+        if (auto ok = write_files_atomically(paper_modules); !ok) return std::unexpected(ok.error());
         CallgrindSetup setup{options.probe, options.scratch, options.callgrind_size, options.device};
         Progress progress("callgrind", probes.size());
         auto counts = callgrind_instructions_per_pixel(setup, probes, options.jobs, progress);

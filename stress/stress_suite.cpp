@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <map>
+
 namespace kdop {
 
 std::size_t StressRun::failing_cells() const {
@@ -24,6 +26,7 @@ Result<StressRun> run_stress(const Context& context, const StressOptions& option
     if (!built) return std::unexpected(built.error());
 
     StressRun run;
+    std::map<std::string, std::vector<StressCase>> cases_by_set;
     run.device_name = context.device_name();
     run.driver_info = context.driver_info();
     for (BuiltVariant& b : *built) {
@@ -32,7 +35,10 @@ Result<StressRun> run_stress(const Context& context, const StressOptions& option
         auto kernel = Kernel::create(context, variant.variant());
         if (!kernel) return std::unexpected(kernel.error());
         const ClipUnderTest clip(spec, options.gamma);
-        const std::vector<StressCase> cases = make_stress_cases(spec.set, options.seed);
+        // Cases depend on the axis set (the parallel rays), so variants of one set share them.
+        auto [found, added] = cases_by_set.try_emplace(spec.set.name);
+        if (added) found->second = make_stress_cases(spec.set, options.seed);
+        const std::vector<StressCase>& cases = found->second;
         if (run.cases.empty())
             for (const StressCase& c : cases) {
                 run.cases.push_back(c.name);
