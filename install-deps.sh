@@ -6,12 +6,15 @@ set -eu
 # glslang-tools: Debian 12's glslang CMake package refers to /usr/bin/glslangValidator, so
 # find_package(glslang) fails without it even though kdop uses glslang only as a library.
 # valgrind and gnuplot-nox: `kdop bench` (and its tests) run callgrind and draw charts with gnuplot.
+# libglpk-dev and libqhull-dev: `kdop accuracy` solves the ideal clip as an exact LP (GLPK) and
+# measures hull and k-DOP volumes (Qhull).
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev
+  libglpk-dev libqhull-dev
   libgtest-dev valgrind gnuplot-nox
   colobot-common-textures
 "
