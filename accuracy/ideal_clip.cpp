@@ -125,8 +125,7 @@ Result<std::vector<double>> ideal_exits(const Image& current, const Image& histo
             std::vector<glm::dvec3> neighborhood(offsets.size());
             for (std::uint32_t y = first; y < current.height; y += step) {
                 for (std::uint32_t x = 0; x < current.width; ++x) {
-                    for (std::size_t i = 0; i < offsets.size(); ++i)
-                        neighborhood[i] = glm::dvec3(current.clamped(int(x) + offsets[i].x, int(y) + offsets[i].y));
+                    gather_neighborhood(current, x, y, offsets, neighborhood);
                     const std::optional<double> t =
                         clipper.exit(neighborhood, glm::dvec3(current.at(x, y)), glm::dvec3(history.at(x, y)));
                     exits[std::size_t(y) * current.width + x] = t.value_or(std::numeric_limits<double>::quiet_NaN());

@@ -54,9 +54,11 @@ private:
 Result<double> hull_volume(std::span<const glm::dvec3> points) {
     std::vector<double> coordinates;
     for (const glm::dvec3& p : points) coordinates.insert(coordinates.end(), {p.x, p.y, p.z});
-    // Qhull needs some extent to set its tolerances; a single repeated point has none.
-    if (points.size() < 4 || std::all_of(points.begin(), points.end(), [&](const glm::dvec3& p) { return p == points[0]; }))
-        return 0.0;
+    // Points in a plane of constant R, G or B (a single repeated point among them) are flat; Qhull
+    // reports those as an input error rather than as singular, so they are decided here.
+    if (points.size() < 4) return 0.0;
+    for (int k = 0; k < 3; ++k)
+        if (std::all_of(points.begin(), points.end(), [&](const glm::dvec3& p) { return p[k] == points[0][k]; })) return 0.0;
     QhullRun qhull;
     // FA: compute the volume. Qt: triangulate the output (coplanar input points merge into facets
     // rather than stopping Qhull).

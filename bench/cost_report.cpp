@@ -1,13 +1,11 @@
 #include "cost_report.h"
 
 #include "bench_inputs.h"
-#include "subprocess.h"
+#include "gnuplot.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
 namespace kdop::bench {
 namespace {
@@ -156,34 +154,6 @@ for dop32 than starting from the first projection.)";
 
 std::string run_ms(double ms, double pixels) { return fmt::format("{:.2f} ms ({:.1f} ns/pixel)", ms, ms * 1e6 / pixels); }
 
-std::string write_data(const std::vector<std::vector<std::string>>& table) {
-    std::string out;
-    for (const auto& row : table) {
-        for (std::size_t i = 0; i < row.size(); ++i) out += (i ? " " : "") + row[i];
-        out += "\n";
-    }
-    return out;
-}
-
-std::string g(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "NaN"; }
-
-Result<void> write_text(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) return fail(fmt::format("{}: cannot write", path.string()));
-    return {};
-}
-
-Result<void> run_gnuplot(const std::filesystem::path& script, const std::filesystem::path& log) {
-    const std::filesystem::path gnuplot = find_program("gnuplot");
-    if (gnuplot.empty()) return fail("gnuplot not found in PATH (Debian: gnuplot-nox)");
-    auto status = run_program({gnuplot.string(), script.string()}, log);
-    if (!status) return std::unexpected(status.error());
-    if (*status != 0) return fail(fmt::format("gnuplot failed on {}:{}", script.string(), log_tail(log, 12)));
-    return {};
-}
-
 constexpr const char* kChartStyle = R"(set terminal pngcairo size 1400,560 font "sans,10"
 set style data histograms
 set style histogram clustered gap 1
@@ -260,10 +230,10 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
     for (const CostRow& r : result.rows) {
         if (!is_clip(r)) continue;
         const double loop_marginal = r.marginal_ms + (r.baseline_ms_median - r.ms_median);
-        clips.push_back({r.variant, g(double(r.float_ops.total())), g(r.analytic_min_ops), g(r.baseline_float_ops),
-                         g(r.instr_per_px), g(r.baseline_instr_per_px), g(r.marginal_ms), g(loop_marginal)});
+        clips.push_back({r.variant, gnuplot_number(double(r.float_ops.total())), gnuplot_number(r.analytic_min_ops), gnuplot_number(r.baseline_float_ops),
+                         gnuplot_number(r.instr_per_px), gnuplot_number(r.baseline_instr_per_px), gnuplot_number(r.marginal_ms), gnuplot_number(loop_marginal)});
     }
-    if (auto ok = write_text(scratch / "clips.dat", write_data(clips)); !ok) return std::unexpected(ok.error());
+    if (auto ok = write_text(scratch / "clips.dat", gnuplot_data(clips)); !ok) return std::unexpected(ok.error());
     const CostRow* gather = find_row(result, "gather-n9");
 
     std::string script = kChartStyle;
@@ -282,7 +252,7 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
         script += fmt::format("plot '{0}' using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n",
                               (scratch / "clips.dat").string(),
                               gather ? fmt::format(", {} with lines dt 2 lw 2 lc rgb 'black' title 'gather-n9 alone'",
-                                                   g(gather->instr_per_px))
+                                                   gnuplot_number(gather->instr_per_px))
                                      : "");
     }
     script += fmt::format("set title '{}: marginal time over the gather-only kernel (median)'\nset ylabel 'ms'\n"
@@ -296,11 +266,11 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
         const SweepResult& s = result.sweep;
         std::vector<std::vector<std::string>> sweep;
         for (std::size_t i = 0; i < s.sizes.size(); ++i) {
-            std::vector<std::string> row{g(double(s.sizes[i].first) * s.sizes[i].second * 1e-6)};
-            for (double ms : s.ms_median[i]) row.push_back(g(ms));
+            std::vector<std::string> row{gnuplot_number(double(s.sizes[i].first) * s.sizes[i].second * 1e-6)};
+            for (double ms : s.ms_median[i]) row.push_back(gnuplot_number(ms));
             sweep.push_back(row);
         }
-        if (auto ok = write_text(scratch / "sweep.dat", write_data(sweep)); !ok) return std::unexpected(ok.error());
+        if (auto ok = write_text(scratch / "sweep.dat", gnuplot_data(sweep)); !ok) return std::unexpected(ok.error());
         script += fmt::format("set terminal pngcairo size 1000,700 font 'sans,10'\nset output '{}'\n",
                               (scratch / names[2]).string());
         script += "set style data linespoints\nset logscale xy\nset xtics rotate by 0 scale 1\nset yrange [*:*]\n"
@@ -311,16 +281,7 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
                                   s.kernels[k]);
         script += "\n";
     }
-    if (auto ok = write_text(scratch / "charts.gp", script); !ok) return std::unexpected(ok.error());
-    if (auto ok = run_gnuplot(scratch / "charts.gp", scratch / "gnuplot.log"); !ok) return std::unexpected(ok.error());
-
-    std::vector<OutputFile> files;
-    for (const std::string& name : names) {
-        std::ifstream in(scratch / name, std::ios::binary);
-        if (!in) return fail(fmt::format("gnuplot did not write {}", (scratch / name).string()));
-        files.push_back({out_dir / name, std::string(std::istreambuf_iterator<char>(in), {})});
-    }
-    return files;
+    return draw_charts(script, names, scratch, out_dir);
 }
 
 } // namespace kdop::bench

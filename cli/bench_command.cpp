@@ -4,6 +4,7 @@
 #include "cost_report.h"
 #include "output_files.h"
 #include "run_info.h"
+#include "scratch_directory.h"
 
 #include <kdop_builtin_variants.h>
 
@@ -34,19 +35,6 @@ std::optional<bench::Size> parse_size(std::string_view text) {
     if (!w || !h) return std::nullopt;
     return bench::Size{*w, *h};
 }
-
-// A private directory for callgrind's and gnuplot's files, removed when the bench ends.
-struct ScratchDirectory {
-    std::filesystem::path path;
-    ScratchDirectory() {
-        std::string pattern = (std::filesystem::temp_directory_path() / "kdop-bench-XXXXXX").string();
-        if (mkdtemp(pattern.data())) path = pattern;
-    }
-    ~ScratchDirectory() {
-        std::error_code ignored;
-        if (!path.empty()) std::filesystem::remove_all(path, ignored);
-    }
-};
 
 } // namespace
 
@@ -108,7 +96,7 @@ Action add_bench_command(CLI::App& app) {
         if (options.callgrind && !std::filesystem::exists(options.probe))
             return report_error(fmt::format("{} is missing (it is built with kdop); or pass --no-callgrind",
                                             options.probe.string()));
-        ScratchDirectory scratch;
+        bench::ScratchDirectory scratch("kdop-bench");
         if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
         options.scratch = scratch.path;
 

@@ -17,6 +17,7 @@ Action add_run_command(CLI::App& app);
 Action add_textures_command(CLI::App& app);
 Action add_bench_command(CLI::App& app);
 Action add_stress_command(CLI::App& app);
+Action add_accuracy_command(CLI::App& app);
 
 // Prints an error message (which already names file/line or argument) to stderr; returns 1.
 int report_error(const std::string& message);

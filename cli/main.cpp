@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
         {"textures", kdop::cli::add_textures_command(app)},
         {"bench", kdop::cli::add_bench_command(app)},
         {"stress", kdop::cli::add_stress_command(app)},
+        {"accuracy", kdop::cli::add_accuracy_command(app)},
     };
     CLI11_PARSE(app, argc, argv);
     for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();

@@ -86,6 +86,12 @@ std::vector<glm::ivec2> reference_offsets(Neighborhood n) {
     return offsets;
 }
 
+void gather_neighborhood(const Image& image, std::uint32_t x, std::uint32_t y, std::span<const glm::ivec2> offsets,
+                         std::span<glm::dvec3> out) {
+    for (std::size_t i = 0; i < offsets.size(); ++i)
+        out[i] = glm::dvec3(image.clamped(int(x) + offsets[i].x, int(y) + offsets[i].y));
+}
+
 Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Image& current, const Image& history,
                         double gamma) {
     const std::vector<glm::dvec3> axes = unit_axes(set);
@@ -95,8 +101,7 @@ Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Ima
         std::vector<glm::dvec3> neighborhood(offsets.size());
         for (std::uint32_t y = first; y < current.height; y += step)
             for (std::uint32_t x = 0; x < current.width; ++x) {
-                for (std::size_t i = 0; i < offsets.size(); ++i)
-                    neighborhood[i] = glm::dvec3(current.clamped(int(x) + offsets[i].x, int(y) + offsets[i].y));
+                gather_neighborhood(current, x, y, offsets, neighborhood);
                 glm::dvec3 r = reference_clip(axes, neighborhood, glm::dvec3(current.at(x, y)),
                                               glm::dvec3(history.at(x, y)), mode, gamma);
                 out.at(x, y) = glm::vec4(glm::vec3(r), 1.0f);

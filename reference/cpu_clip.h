@@ -63,6 +63,10 @@ std::vector<glm::dvec3> unit_axes(const AxisSet& set);
 // Texel offsets of a neighborhood shape (order irrelevant to the result).
 std::vector<glm::ivec2> reference_offsets(Neighborhood n);
 
+// The neighborhood of pixel (x, y) at `offsets`, with clamp-to-edge addressing, into `out`.
+void gather_neighborhood(const Image& image, std::uint32_t x, std::uint32_t y, std::span<const glm::ivec2> offsets,
+                         std::span<glm::dvec3> out);
+
 // Every pixel of an image pair: the neighborhood is gathered from `current` with clamp-to-edge
 // addressing, the current color is the pixel itself. Alpha of the result is 1.
 Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Image& current, const Image& history,

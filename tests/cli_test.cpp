@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <thread>
 
@@ -138,7 +139,7 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures ", "bench ", "stress "}) {
+    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures ", "bench ", "stress ", "accuracy "}) {
         auto r = run(kdop(sub + "--help"));
         EXPECT_EQ(r.exit_code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
@@ -280,6 +281,90 @@ TEST(CliStress, RefusesBadInputAndWritesNothing) {
         EXPECT_NE(r.exit_code, 2) << c.args;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
         EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
+}
+
+} // namespace
+} // namespace kdop
+
+namespace kdop {
+namespace {
+
+// 3x3 pixels: a black left column, white elsewhere; the history red everywhere. With 3x3
+// neighborhoods (clamped), the left two columns see black and white, the gray diagonal: red is
+// off that line, so the ideal keeps the current color (t* = 0). The RGB AABB is the unit cube and
+// keeps red: a distance of |red - black| = 1 in the left column and |red - white| = sqrt 2 in the
+// middle. The right column sees only white: the AABB is a padded point and clips at once.
+struct AccuracyInputs {
+    test::TempDir dir;
+    std::string current = (dir / "current.exr").string(), history = (dir / "history.exr").string(),
+                small = (dir / "small.exr").string(), nan = (dir / "nan.exr").string(), out = (dir / "out").string();
+    AccuracyInputs() {
+        Image c(3, 3, {1, 1, 1, 1}), h(3, 3, {1, 0, 0, 1}), n(3, 3, {1, 1, 1, 1});
+        for (std::uint32_t y = 0; y < 3; ++y) c.at(0, y) = {0, 0, 0, 1};
+        n.at(2, 1) = {0, NAN, 0, 1};
+        EXPECT_TRUE(write_image(current, c));
+        EXPECT_TRUE(write_image(history, h));
+        EXPECT_TRUE(write_image(small, Image(2, 2)));
+        EXPECT_TRUE(write_image(nan, n));
+    }
+};
+
+TEST(CliAccuracy, MeasuresATinyPairAsWorkedOutByHand) {
+    AccuracyInputs in;
+    auto r = run(kdop("accuracy --sets aabb --modes clip --neighborhoods n9 --volume-samples 0 --current " + in.current +
+                      " --history " + in.history + " --out " + in.out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("current: ideal clip n9"), std::string::npos) << "progress on stderr: " << r.err;
+    const auto csv = lines(test::read_file(in.out + "/accuracy.csv"));
+    ASSERT_EQ(csv.size(), 2u);
+    std::vector<std::string> header, values;
+    for (auto [line, into] : {std::pair{&csv[0], &header}, std::pair{&csv[1], &values}}) {
+        std::stringstream fields(*line);
+        for (std::string f; std::getline(fields, f, ',');) into->push_back(f);
+    }
+    ASSERT_EQ(header.size(), values.size());
+    auto value = [&](const std::string& column) {
+        const auto at = std::find(header.begin(), header.end(), column);
+        EXPECT_NE(at, header.end()) << column;
+        return at == header.end() ? NAN : std::stod(values[at - header.begin()]);
+    };
+    EXPECT_EQ(values[0], "aabb-clip-n9");
+    EXPECT_NEAR(value("mean_dist"), (3 * 1 + 3 * std::sqrt(2.0)) / 9, 1e-4); // the right column: about 1e-5
+    EXPECT_NEAR(value("p95_dist"), std::sqrt(2.0), 1e-6);
+    EXPECT_NEAR(value("max_dist"), std::sqrt(2.0), 1e-6);
+    EXPECT_DOUBLE_EQ(value("outside_hull_rate"), 1.0);
+    EXPECT_NEAR(value("false_accept_rate"), 6.0 / 9.0, 1e-6);
+    EXPECT_NEAR(value("ref_mean_dist"), value("mean_dist"), 1e-6);
+    for (const char* file : {"trade.csv", "report.md", "pareto-current.png"})
+        EXPECT_TRUE(fs::exists(in.out + "/" + file)) << file;
+}
+
+TEST(CliAccuracy, RefusesBadInputAndWritesNothing) {
+    AccuracyInputs in;
+    test::write_file(in.dir / "cost.csv", "variant,k\n");
+    struct Case {
+        std::string args, message;
+    };
+    const std::string pair = " --current " + in.current + " --history " + in.history;
+    const Case cases[] = {
+        {"--current " + in.current, "--current requires --history"},
+        {"--images " + in.current + pair, "excludes --images"},
+        {"--current " + in.current + " --history " + in.small, "is 2x2 but --current"},
+        {"--current " + in.nan + " --history " + in.history, in.nan + ": pixel (2, 1) is not finite"},
+        {"--images " + (in.dir / "missing.exr").string(), "missing.exr: cannot read image"},
+        {"--size 16" + pair, "--size: only for the built-in content"},
+        {"--gamma -1" + pair, "--gamma: must be a finite number >= 0, got -1"},
+        {"--baselines" + pair, "--baselines: the gather and copy baselines are not clips"},
+        {"--cost " + (in.dir / "cost.csv").string() + pair, "cost.csv:1: not a kdop bench cost.csv"},
+        {"--cost " + (in.dir / "none.csv").string() + pair, "none.csv: cannot read"},
+        {"--sets dop99" + pair, "--sets: 'dop99' is not a built-in axis set"},
+    };
+    for (const Case& c : cases) {
+        auto r = run(kdop("accuracy --sets aabb --modes clip --neighborhoods n5 --out " + in.out + " " + c.args));
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
+        EXPECT_FALSE(fs::exists(in.out)) << c.args;
     }
 }
 

@@ -142,7 +142,8 @@ TEST(Volume, DegenerateHullsHaveNone) {
     const std::vector<glm::dvec3> square = {{0, 0, 0.5}, {1, 0, 0.5}, {0, 1, 0.5}, {1, 1, 0.5}, {0.5, 0.5, 0.5}};
     const std::vector<glm::dvec3> segment = {{0, 0, 0}, {1, 1, 1}, {0.5, 0.5, 0.5}, {0.25, 0.25, 0.25}};
     const std::vector<glm::dvec3> point(9, glm::dvec3(0.37));
-    for (const auto* points : {&square, &segment, &point}) {
+    const std::vector<glm::dvec3> tilted = {{0, 0, 0}, {1, 1, 0}, {0, 1, 1}, {1, 2, 1}, {0.5, 1, 0.5}}; // x - y + z = 0
+    for (const auto* points : {&square, &segment, &point, &tilted}) {
         auto v = hull_volume(*points);
         ASSERT_TRUE(v) << v.error().message;
         EXPECT_EQ(*v, 0.0);

@@ -1,0 +1,73 @@
+#include "accuracy_inputs.h"
+
+#include "image_io.h"
+#include "test_textures.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace kdop {
+namespace {
+
+// The ideal clip is defined for finite colors only (an unusable history is a stress-suite matter).
+Result<Image> read_finite_image(const std::string& path) {
+    auto image = read_image(path);
+    if (!image) return image;
+    for (std::uint32_t y = 0; y < image->height; ++y)
+        for (std::uint32_t x = 0; x < image->width; ++x) {
+            const glm::vec4& p = image->at(x, y);
+            if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b))
+                return fail(fmt::format("{}: pixel ({}, {}) is not finite ({}, {}, {}); accuracy needs finite colors "
+                                        "(see `kdop stress` for NaN and Inf)",
+                                        path, x, y, p.r, p.g, p.b));
+        }
+    return image;
+}
+
+std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+Image rotated_half_turn(const Image& image) {
+    Image out(image.width, image.height);
+    for (std::uint32_t y = 0; y < image.height; ++y)
+        for (std::uint32_t x = 0; x < image.width; ++x) out.at(x, y) = image.at(image.width - 1 - x, image.height - 1 - y);
+    return out;
+}
+
+} // namespace
+
+std::vector<AccuracyPair> builtin_pairs(std::uint32_t width, std::uint32_t height, std::uint64_t seed) {
+    std::vector<AccuracyPair> pairs;
+    for (TestCase& c : make_test_cases(width, height, seed))
+        if (c.model != HistoryModel::same)
+            pairs.push_back({c.texture, c.name(), std::move(c.current), std::move(c.history)});
+    return pairs;
+}
+
+Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths) {
+    std::vector<AccuracyPair> pairs;
+    for (const std::string& path : paths) {
+        auto current = read_finite_image(path);
+        if (!current) return std::unexpected(current.error());
+        const Image other = rotated_half_turn(*current);
+        for (HistoryModel m : history_models())
+            if (m != HistoryModel::same)
+                pairs.push_back({stem(path), fmt::format("{}/{}", stem(path), to_string(m)), *current,
+                             make_history(*current, m, other)});
+    }
+    return pairs;
+}
+
+Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path) {
+    auto current = read_finite_image(current_path);
+    if (!current) return std::unexpected(current.error());
+    auto history = read_finite_image(history_path);
+    if (!history) return std::unexpected(history.error());
+    if (current->width != history->width || current->height != history->height)
+        return fail(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", history_path, history->width,
+                                history->height, current_path, current->width, current->height));
+    return AccuracyPair{stem(current_path), stem(current_path), std::move(*current), std::move(*history)};
+}
+
+} // namespace kdop

@@ -1,0 +1,444 @@
+#include "accuracy_report.h"
+
+#include "gnuplot.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace kdop {
+namespace {
+
+using bench::gnuplot_number;
+
+std::string field(double value, int digits = 8) {
+    return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : std::string();
+}
+
+std::string cell(double value, int digits = 3) { return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : "–"; }
+
+std::string percent(double share) { return std::isfinite(share) ? fmt::format("{:.1f}%", 100 * share) : "–"; }
+
+std::vector<std::string> families_of(const std::vector<TradeRow>& trade) {
+    std::vector<std::string> families;
+    for (const TradeRow& r : trade)
+        if (std::find(families.begin(), families.end(), r.family) == families.end()) families.push_back(r.family);
+    return families;
+}
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> fields;
+    std::stringstream in(line);
+    for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    return fields;
+}
+
+// Marks the rows (indices into `rows`) on the Pareto front of (cost, mean_dist); rows without the
+// cost take no part.
+template <class Cost, class Mark>
+void mark_front(std::vector<TradeRow>& rows, const std::vector<std::size_t>& family, Cost cost, Mark mark) {
+    for (std::size_t i : family) {
+        if (!std::isfinite(cost(rows[i]))) continue;
+        bool dominated = false;
+        for (std::size_t j : family) {
+            if (j == i || !std::isfinite(cost(rows[j]))) continue;
+            const bool no_worse = cost(rows[j]) <= cost(rows[i]) && rows[j].mean_dist <= rows[i].mean_dist;
+            const bool better = cost(rows[j]) < cost(rows[i]) || rows[j].mean_dist < rows[i].mean_dist;
+            dominated = dominated || (no_worse && better);
+        }
+        mark(rows[i]) = !dominated;
+    }
+}
+
+std::string chart_name(const std::string& family) { return "pareto-" + family + ".png"; }
+
+const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& family, const std::string& variant) {
+    for (const TradeRow& r : trade)
+        if (r.family == family && r.variant == variant) return &r;
+    return nullptr;
+}
+
+} // namespace
+
+std::string accuracy_csv(const AccuracyRun& run) {
+    std::string out = "variant,axis_set,mode,neighborhood,k,rgb_axes,float_ops,family,image,pixels,outside_hull_rate,"
+                      "mean_dist,p95_dist,max_dist,false_accept_rate,ref_mean_dist,ref_p95_dist,ref_max_dist,"
+                      "ref_false_accept_rate,gpu_ref_max_diff,looser_than_aabb,ref_looser_than_aabb,max_excess_over_aabb,"
+                      "ref_max_excess_over_aabb,volume_ratio_median,"
+                      "volume_ratio_mean,volume_pixels\n";
+    for (const AccuracyRow& r : run.rows) {
+        const ClipAccuracy &g = r.gpu, &c = r.reference;
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.variant,
+                           r.axis_set, r.mode, r.neighborhood, r.k, r.rgb_axes ? 1 : 0, r.float_ops, r.family, r.image,
+                           g.pixels, field(g.outside_rate()), field(g.mean_dist), field(g.p95_dist), field(g.max_dist),
+                           field(g.false_accept_rate()), field(c.mean_dist), field(c.p95_dist), field(c.max_dist),
+                           field(c.false_accept_rate()), field(r.gpu_reference_max), field(r.vs_aabb.share),
+                           field(r.reference_vs_aabb.share), field(r.vs_aabb.largest), field(r.reference_vs_aabb.largest),
+                           field(r.volume.median), field(r.volume.mean),
+                           r.volume.pixels);
+    }
+    return out;
+}
+
+Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) return fail(fmt::format("--cost: {}: cannot read", path.string()));
+    std::string line;
+    if (!std::getline(in, line)) return fail(fmt::format("{}:1: empty; expected the header of a kdop bench cost.csv", path.string()));
+    const std::vector<std::string> header = split(line);
+    const auto column = [&](const std::string& name) -> int {
+        const auto it = std::find(header.begin(), header.end(), name);
+        return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+    };
+    const int variant = column("variant"), neighborhood = column("neighborhood"), instr = column("instr_per_px"),
+              marginal = column("marginal_ms");
+    if (variant < 0 || neighborhood < 0 || instr < 0 || marginal < 0)
+        return fail(fmt::format("{}:1: not a kdop bench cost.csv (needs the columns variant, neighborhood, instr_per_px "
+                                "and marginal_ms)",
+                                path.string()));
+    struct Raw {
+        std::string neighborhood;
+        double instr, marginal_ms;
+    };
+    std::map<std::string, Raw> raw;
+    for (int number = 2; std::getline(in, line); ++number) {
+        if (line.empty()) continue;
+        const std::vector<std::string> f = split(line);
+        if (f.size() != header.size())
+            return fail(fmt::format("{}:{}: {} fields, the header has {}", path.string(), number, f.size(), header.size()));
+        const auto value = [&](int i) -> Result<double> {
+            if (f[i].empty()) return NAN; // not measured
+            char* end = nullptr;
+            const double v = std::strtod(f[i].c_str(), &end);
+            if (end != f[i].c_str() + f[i].size())
+                return fail(fmt::format("{}:{}: {} is '{}', not a number", path.string(), number, header[i], f[i]));
+            return v;
+        };
+        auto i = value(instr);
+        if (!i) return std::unexpected(i.error());
+        auto m = value(marginal);
+        if (!m) return std::unexpected(m.error());
+        raw[f[variant]] = {f[neighborhood], *i, *m};
+    }
+    std::map<std::string, LavapipeCost> costs;
+    for (const auto& [name, r] : raw) {
+        const auto gather = raw.find("gather-" + r.neighborhood);
+        costs[name] = {gather == raw.end() ? NAN : r.instr - gather->second.instr, r.marginal_ms};
+    }
+    return costs;
+}
+
+std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::string, LavapipeCost>& costs) {
+    std::vector<TradeRow> rows;
+    std::vector<std::size_t> pairs; // pairs averaged into each row
+    std::vector<std::size_t> outside, accepted;
+    for (const AccuracyRow& a : run.rows) {
+        auto it = std::find_if(rows.begin(), rows.end(),
+                               [&](const TradeRow& t) { return t.family == a.family && t.variant == a.variant; });
+        if (it == rows.end()) {
+            TradeRow t;
+            t.family = a.family, t.variant = a.variant, t.axis_set = a.axis_set, t.mode = a.mode;
+            t.neighborhood = a.neighborhood, t.k = a.k, t.float_ops = double(a.float_ops);
+            if (auto c = costs.find(a.variant); c != costs.end()) t.lavapipe = c->second;
+            t.mean_dist = t.p95_dist = t.max_dist = t.volume_ratio = 0;
+            rows.push_back(t);
+            pairs.push_back(0), outside.push_back(0), accepted.push_back(0);
+            it = rows.end() - 1;
+        }
+        const std::size_t i = static_cast<std::size_t>(it - rows.begin());
+        ++pairs[i];
+        it->mean_dist += a.gpu.mean_dist;
+        it->p95_dist += a.gpu.p95_dist;
+        it->max_dist = std::max(it->max_dist, a.gpu.max_dist);
+        it->volume_ratio += a.volume.median; // NaN (no sample) stays NaN
+        outside[i] += a.gpu.outside;
+        accepted[i] += a.gpu.falsely_accepted;
+    }
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        rows[i].mean_dist /= double(pairs[i]);
+        rows[i].p95_dist /= double(pairs[i]);
+        rows[i].volume_ratio /= double(pairs[i]);
+        rows[i].false_accept_rate = outside[i] ? double(accepted[i]) / double(outside[i]) : NAN;
+    }
+    // n5 and n9 variants are measured against different hulls (of their own neighborhoods), so
+    // each neighborhood has its own front.
+    for (const std::string& family : families_of(rows))
+        for (const char* shape : {"n9", "n5"}) {
+        std::vector<std::size_t> members;
+        for (std::size_t i = 0; i < rows.size(); ++i)
+            if (rows[i].family == family && rows[i].neighborhood == shape) members.push_back(i);
+        mark_front(rows, members, [](const TradeRow& r) { return r.float_ops; },
+                   [](TradeRow& r) -> bool& { return r.front_float_ops; });
+        mark_front(rows, members,
+                   [](const TradeRow& r) {
+                       return std::isfinite(r.lavapipe.marginal_instr_per_px) ? r.lavapipe.marginal_instr_per_px
+                                                                              : r.lavapipe.marginal_ms;
+                   },
+                   [](TradeRow& r) -> bool& { return r.front_lavapipe; });
+        }
+    return rows;
+}
+
+std::string trade_csv(const std::vector<TradeRow>& rows) {
+    std::string out = "family,variant,axis_set,mode,neighborhood,k,float_ops,marginal_instr_per_px,marginal_ms,mean_dist,"
+                      "p95_dist,max_dist,false_accept_rate,volume_ratio,front_float_ops,front_lavapipe\n";
+    for (const TradeRow& r : rows)
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.family, r.variant, r.axis_set, r.mode,
+                           r.neighborhood, r.k, field(r.float_ops), field(r.lavapipe.marginal_instr_per_px),
+                           field(r.lavapipe.marginal_ms), field(r.mean_dist), field(r.p95_dist), field(r.max_dist),
+                           field(r.false_accept_rate), field(r.volume_ratio), r.front_float_ops ? 1 : 0,
+                           r.front_lavapipe ? 1 : 0);
+    return out;
+}
+
+namespace {
+
+// Family names become file names and gnuplot strings: keep letters, digits, '.', '_' and '-'.
+std::string safe_name(const std::string& s) {
+    std::string out = s;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+    return out;
+}
+
+double lavapipe_cost(const TradeRow& r) {
+    return std::isfinite(r.lavapipe.marginal_instr_per_px) ? r.lavapipe.marginal_instr_per_px : r.lavapipe.marginal_ms;
+}
+
+bool has_lavapipe_cost(const std::vector<TradeRow>& trade) {
+    return std::any_of(trade.begin(), trade.end(), [](const TradeRow& r) { return std::isfinite(lavapipe_cost(r)); });
+}
+
+const char* lavapipe_label(const std::vector<TradeRow>& trade) {
+    const bool counted = std::any_of(trade.begin(), trade.end(),
+                                     [](const TradeRow& r) { return std::isfinite(r.lavapipe.marginal_instr_per_px); });
+    return counted ? "lavapipe marginal instructions per pixel (callgrind, over the gather)"
+                   : "lavapipe marginal ms (median, over the gather)";
+}
+
+std::string family_table(const std::vector<TradeRow>& trade, const std::string& family, bool lavapipe) {
+    std::string out = fmt::format("| variant | k | float ops |{} mean dist | p95 dist | max dist | false accept | "
+                                  "k-DOP / hull volume | Pareto front |\n",
+                                  lavapipe ? " lavapipe marginal |" : "");
+    out += fmt::format("|---|--:|--:|{}--:|--:|--:|--:|--:|---|\n", lavapipe ? "--:|" : "");
+    for (const TradeRow& r : trade) {
+        if (r.family != family) continue;
+        std::string front = r.front_float_ops ? "float ops" : "";
+        if (r.front_lavapipe) front += front.empty() ? "lavapipe" : ", lavapipe";
+        out += fmt::format("| {} | {} | {} |{} {} | {} | {} | {} | {} | {} |\n", r.variant, r.k, cell(r.float_ops, 4),
+                           lavapipe ? fmt::format(" {} |", cell(lavapipe_cost(r), 4)) : "", cell(r.mean_dist), cell(r.p95_dist),
+                           cell(r.max_dist), percent(r.false_accept_rate), cell(r.volume_ratio), front.empty() ? "–" : front);
+    }
+    return out;
+}
+
+// The clip-n9 variants' mean distance per family, as columns in selection order, with each over
+// the RGB AABB: what YCoCg and each k-DOP gain on that content.
+std::string clip_n9_summary(const std::vector<TradeRow>& trade) {
+    std::vector<std::string> sets;
+    for (const TradeRow& r : trade)
+        if (r.mode == "clip" && r.neighborhood == "n9" && std::find(sets.begin(), sets.end(), r.axis_set) == sets.end())
+            sets.push_back(r.axis_set);
+    if (sets.empty()) return "No clip-n9 variant was measured.\n";
+    std::string out = "| family |";
+    for (const std::string& s : sets) out += fmt::format(" {} |", s);
+    out += "\n|---|";
+    for (std::size_t i = 0; i < sets.size(); ++i) out += "--:|";
+    out += "\n";
+    for (const std::string& family : families_of(trade)) {
+        const TradeRow* aabb = find(trade, family, "aabb-clip-n9");
+        out += fmt::format("| {} |", family);
+        for (const std::string& s : sets) {
+            const TradeRow* r = find(trade, family, s + "-clip-n9");
+            if (!r) {
+                out += " – |";
+                continue;
+            }
+            const bool relative = aabb && s != "aabb" && aabb->mean_dist > 0;
+            out += fmt::format(" {}{} |", cell(r->mean_dist),
+                               relative ? fmt::format(" ({:.2f}×)", r->mean_dist / aabb->mean_dist) : "");
+        }
+        out += "\n";
+    }
+    return out;
+}
+
+std::string rgb_axes_check(const AccuracyRun& run) {
+    struct Worst {
+        Looser device{0, 0}, reference{0, 0};
+        std::size_t pairs = 0;
+    };
+    std::map<std::string, Worst> worst; // by variant
+    std::vector<std::string> order;
+    for (const AccuracyRow& r : run.rows) {
+        if (!r.rgb_axes || r.axis_set == "aabb" || !std::isfinite(r.reference_vs_aabb.share)) continue;
+        if (!worst.count(r.variant)) order.push_back(r.variant);
+        Worst& w = worst[r.variant];
+        for (auto [into, from] : {std::pair{&w.device, &r.vs_aabb}, std::pair{&w.reference, &r.reference_vs_aabb}}) {
+            into->share = std::max(into->share, from->share);
+            into->largest = std::max(into->largest, from->largest);
+        }
+        ++w.pairs;
+    }
+    if (order.empty()) return "No variant of a set that contains the X, Y and Z axes was measured beside aabb.\n";
+    std::string out = "| variant | pairs | reference: pixels looser | by at most (S) | device: pixels looser | by at most (S) |\n"
+                      "|---|--:|--:|--:|--:|--:|\n";
+    for (const std::string& v : order) {
+        const Worst& w = worst[v];
+        out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", v, w.pairs, percent(w.reference.share),
+                           cell(w.reference.largest), percent(w.device.share), cell(w.device.largest));
+    }
+    return out;
+}
+
+std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
+    std::string out;
+    for (const char* mode : {"clip-n9", "clip-n5", "varclip-n9", "varclip-n5"}) {
+        std::vector<std::string> grass_wins, asphalt_wins;
+        for (const std::string& family : families_of(trade)) {
+            const TradeRow* g = find(trade, family, fmt::format("dop16-grass-{}", mode));
+            const TradeRow* a = find(trade, family, fmt::format("dop16-asphalt-{}", mode));
+            if (!g || !a) continue;
+            (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
+                .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
+                                       cell(std::max(g->mean_dist, a->mean_dist))));
+        }
+        if (grass_wins.empty() && asphalt_wins.empty()) continue;
+        const auto list = [](const std::vector<std::string>& v) {
+            std::string s;
+            for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+            return s.empty() ? std::string("none") : s;
+        };
+        out += fmt::format("- {}: dop16-grass is the tighter 16-DOP on {}; dop16-asphalt on {}.\n", mode, list(grass_wins),
+                           list(asphalt_wins));
+    }
+    return out.empty() ? "Both scene-optimized 16-DOPs were not measured.\n" : out;
+}
+
+} // namespace
+
+std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade,
+                                     const AccuracyReportContext& c) {
+    const bool lavapipe = has_lavapipe_cost(trade);
+    double float_error = 0, gpu_ref_mean_gap = 0;
+    std::set<std::string> pairs;
+    for (const AccuracyRow& r : run.rows) {
+        float_error = std::max(float_error, r.gpu_reference_max);
+        gpu_ref_mean_gap = std::max(gpu_ref_mean_gap, std::abs(r.gpu.mean_dist - r.reference.mean_dist));
+        pairs.insert(r.image);
+    }
+    std::string out = "# kdop accuracy\n\n";
+    out += fmt::format("- date: {}\n- commit: {}\n- machine: {}\n- device: {}\n- driver: {}\n- command: `{}`\n", c.date,
+                       c.commit, c.machine, run.device_name, run.driver_info, c.command);
+    out += fmt::format("- content: {} image pairs in {} families; variance-clip gamma {}; volume ratio on up to {} pixels "
+                       "per pair and neighborhood (seed {})\n",
+                       pairs.size(), families_of(trade).size(), c.gamma, c.volume_samples, c.seed);
+    out += fmt::format("- cost: float ops from the built SPIR-V{}\n\n",
+                       c.cost_source.empty() ? "; no lavapipe figures (pass `--cost` a `kdop bench` cost.csv)"
+                                             : fmt::format("; lavapipe from `{}`", c.cost_source));
+
+    out += "## What the numbers are\n\n"
+           "- **ideal clip**: the largest t in [0, 1] with current + t (history − current) inside the convex hull of the "
+           "neighborhood's colors, an LP solved exactly (GLPK's rational simplex; `accuracy/ideal_clip.h`).\n"
+           "- **dist**: |variant's color − ideal clipped color| / S, Euclidean in linear RGB, per pixel, with S = max(1, "
+           "|current|∞) (so plain linear RGB for content within [0, 1], and HDR highlights relative to their brightness); mean, p95 (nearest "
+           "rank) and max over the pair's pixels. In a family table: the mean of the pairs' means and p95s, the largest max.\n"
+           "- **false accept**: of the histories more than 1e-4 S beyond the hull along the ray, "
+           "the share the variant returned unchanged (within 1e-5 S).\n"
+           "- **k-DOP / hull volume**: the median over sampled pixels whose hull is solid (volume at least 1e-6 of its "
+           "bounding cube), of the padded k-DOP's volume over the hull's (Qhull). Variance clips are not bounding "
+           "volumes: below 1 they cut into the hull.\n"
+           "- **Pareto front**: no other variant of the family and neighborhood is at most as costly and at most as far "
+           "from the ideal (mean dist), and better in one. A variant off the front is never worth it on that content. "
+           "n5 and n9 variants are measured against the hulls of their own neighborhoods, so each has its own front.\n";
+    out += fmt::format("- The figures are the device's. The double-precision CPU reference (`ref_*` in accuracy.csv) "
+                       "gives the same clip without float error: the device differs from it by at most {} S per "
+                       "pixel, and the mean distances by at most {}.\n\n",
+                       cell(float_error), cell(gpu_ref_mean_gap));
+
+    out += "## Findings\n\n### Mean distance of the clip-n9 variants, and over the RGB AABB\n\n" + clip_n9_summary(trade);
+    out += "\n### Scene-optimized 16-DOPs\n\n" + sixteen_dop_check(trade);
+    out += "\n### Sets that contain the RGB axes are never looser than the RGB AABB\n\nTheir k-DOP lies inside the "
+           "AABB, so in exact arithmetic their clip can only be closer to the ideal. The largest share of a pair's pixels where a "
+           "variant was farther from the ideal than aabb of the same mode and neighborhood by more than 1e-6 S, and the "
+           "largest excess, over all pairs. The reference computes in double precision; the device's excess is float32 "
+           "rounding, largest where a ray runs nearly parallel to the slab that stops it. Variance clips have no such "
+           "guarantee: their slabs are not bounds.\n\n" +
+           rgb_axes_check(run);
+
+    out += "\n## By family\n\n";
+    if (lavapipe) out += fmt::format("lavapipe marginal: {}.\n\n", lavapipe_label(trade));
+    for (const std::string& family : families_of(trade)) {
+        out += fmt::format("### {}\n\n![Accuracy against cost on {}]({})\n\n", family, family, chart_name(safe_name(family)));
+        out += family_table(trade, family, lavapipe) + "\n";
+    }
+    return out;
+}
+
+std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade) {
+    std::vector<std::string> names;
+    for (const std::string& family : families_of(trade)) names.push_back(chart_name(safe_name(family)));
+    return names;
+}
+
+Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade, const std::filesystem::path& scratch,
+                                                const std::filesystem::path& out_dir) {
+    const bool lavapipe = has_lavapipe_cost(trade);
+    const std::vector<std::string> families = families_of(trade), names = accuracy_chart_names(trade);
+    std::string script = fmt::format("set terminal pngcairo size {},600 font 'sans,10'\nset grid\nset key top right\n"
+                                     "set ylabel 'mean distance to the ideal clip'\nset yrange [0:*]\n",
+                                     lavapipe ? 1600 : 900);
+    for (std::size_t f = 0; f < families.size(); ++f) {
+        const std::string stem = (scratch / safe_name(families[f])).string();
+        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point per "
+                              "variant; dashed: the Pareto fronts'\n",
+                              (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
+        struct Axis {
+            std::string suffix, label;
+            double (*cost)(const TradeRow&);
+            bool TradeRow::*front;
+        };
+        std::vector<Axis> axes = {{"float", "float ops per pixel (SPIR-V)", [](const TradeRow& r) { return r.float_ops; },
+                                   &TradeRow::front_float_ops}};
+        if (lavapipe) axes.push_back({"lavapipe", lavapipe_label(trade), lavapipe_cost, &TradeRow::front_lavapipe});
+        for (const Axis& axis : axes) {
+            std::string plot;
+            for (const char* group : {"clip-n9", "clip-n5", "varclip-n9", "varclip-n5"}) {
+                std::vector<std::vector<std::string>> points;
+                for (const TradeRow& r : trade)
+                    if (r.family == families[f] && r.mode + "-" + r.neighborhood == group)
+                        points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.axis_set});
+                if (points.empty()) continue;
+                const std::string data = fmt::format("{}-{}-{}.dat", stem, axis.suffix, group);
+                if (auto ok = bench::write_text(data, bench::gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+                plot += fmt::format("{}'{}' using 1:2 with points pt 7 ps 1.3 title '{}', '' using 1:2:3 with labels "
+                                    "offset 0.6,0.6 left font ',7' notitle",
+                                    plot.empty() ? "" : ", ", data, group);
+            }
+            for (const char* shape : {"n9", "n5"}) {
+                std::vector<const TradeRow*> members;
+                for (const TradeRow& r : trade)
+                    if (r.family == families[f] && r.neighborhood == shape && r.*axis.front) members.push_back(&r);
+                if (members.empty()) continue;
+                std::sort(members.begin(), members.end(),
+                          [&](const TradeRow* a, const TradeRow* b) { return axis.cost(*a) < axis.cost(*b); });
+                std::vector<std::vector<std::string>> front;
+                for (const TradeRow* r : members)
+                    front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
+                const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, shape);
+                if (auto ok = bench::write_text(data, bench::gnuplot_data(front)); !ok) return std::unexpected(ok.error());
+                plot += fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'", data,
+                                    shape == std::string("n9") ? 2 : 3, shape);
+            }
+            script += fmt::format("set xlabel '{}'\nplot {}\n", axis.label, plot);
+        }
+        script += "unset multiplot\n";
+    }
+    return bench::draw_charts(script, names, scratch, out_dir);
+}
+
+} // namespace kdop

@@ -1,0 +1,51 @@
+#include "gnuplot.h"
+
+#include "subprocess.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+namespace kdop::bench {
+
+std::string gnuplot_data(const std::vector<std::vector<std::string>>& table) {
+    std::string out;
+    for (const auto& row : table) {
+        for (std::size_t i = 0; i < row.size(); ++i) out += (i ? " " : "") + row[i];
+        out += "\n";
+    }
+    return out;
+}
+
+std::string gnuplot_number(double value) { return std::isfinite(value) ? fmt::format("{:.6g}", value) : "NaN"; }
+
+Result<void> write_text(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) return fail(fmt::format("{}: cannot write", path.string()));
+    return {};
+}
+
+Result<std::vector<OutputFile>> draw_charts(const std::string& script, const std::vector<std::string>& charts,
+                                            const std::filesystem::path& scratch, const std::filesystem::path& out_dir) {
+    const std::filesystem::path script_path = scratch / "charts.gp", log = scratch / "gnuplot.log";
+    if (auto ok = write_text(script_path, script); !ok) return std::unexpected(ok.error());
+    const std::filesystem::path gnuplot = find_program("gnuplot");
+    if (gnuplot.empty()) return fail("gnuplot not found in PATH (Debian: gnuplot-nox)");
+    auto status = run_program({gnuplot.string(), script_path.string()}, log);
+    if (!status) return std::unexpected(status.error());
+    if (*status != 0) return fail(fmt::format("gnuplot failed on {}:{}", script_path.string(), log_tail(log, 12)));
+
+    std::vector<OutputFile> files;
+    for (const std::string& name : charts) {
+        std::ifstream in(scratch / name, std::ios::binary);
+        if (!in) return fail(fmt::format("gnuplot did not write {}", (scratch / name).string()));
+        files.push_back({out_dir / name, std::string(std::istreambuf_iterator<char>(in), {})});
+    }
+    return files;
+}
+
+} // namespace kdop::bench

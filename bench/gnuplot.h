@@ -1,0 +1,27 @@
+// Drawing PNG charts with gnuplot, which runs as a program (it has no library interface). The
+// script and its data files stay in a scratch directory; the charts come back as files to write
+// with the rest of a report, all or nothing.
+#pragma once
+
+#include "output_files.h"
+#include "result.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kdop::bench {
+
+// Whitespace-separated rows for gnuplot's data files.
+std::string gnuplot_data(const std::vector<std::vector<std::string>>& table);
+// A number for a data file; "NaN" (which gnuplot skips) where it is not finite.
+std::string gnuplot_number(double value);
+
+Result<void> write_text(const std::filesystem::path& path, const std::string& text);
+
+// Runs `script` (which writes each of `charts` into `scratch`) and returns the charts as files
+// for `out_dir`, under the same names.
+Result<std::vector<OutputFile>> draw_charts(const std::string& script, const std::vector<std::string>& charts,
+                                            const std::filesystem::path& scratch, const std::filesystem::path& out_dir);
+
+} // namespace kdop::bench

@@ -1,0 +1,124 @@
+#include "commands.h"
+
+#include "accuracy_report.h"
+#include "accuracy_run.h"
+#include "context.h"
+#include "output_files.h"
+#include "progress.h"
+#include "run_info.h"
+#include "scratch_directory.h"
+#include "selection_options.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+namespace kdop::cli {
+
+Action add_accuracy_command(CLI::App& app) {
+    struct Options {
+        std::string out, current, history, cost, device;
+        std::vector<std::string> images;
+        SelectionOptions selection;
+        std::uint32_t size = 128;
+        std::uint64_t seed = 1;
+        std::size_t volume_samples = 256;
+        double gamma = 1.0;
+        bool validation = false;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* accuracy = app.add_subcommand(
+        "accuracy", "Measure how close each variant's clip comes to the ideal clip at the convex hull of the neighborhood "
+                    "(exact LP on the CPU), on given images or on the built-in texture families and ghosting histories; "
+                    "writes accuracy.csv, trade.csv, report.md and a Pareto chart per family");
+    accuracy->add_option("--out", o->out, "Output directory (created if missing)")->required();
+    auto* current = accuracy->add_option("--current", o->current, "Current frame (needs --history)");
+    auto* history = accuracy->add_option("--history", o->history, "History of the same size as --current");
+    current->needs(history);
+    history->needs(current);
+    accuracy->add_option("--images", o->images,
+                         "Current frames, each measured against the built-in ghosting histories (shifted, moved-object, "
+                         "other-texture: the image rotated by 180 degrees)")
+        ->excludes(current)
+        ->excludes(history);
+    accuracy->add_option("--size", o->size,
+                         "Without --current or --images: the built-in content's size NxN [default: 128]")
+        ->check(CLI::Range(8u, 4096u));
+    accuracy->add_option("--cost", o->cost,
+                         "A `kdop bench` cost.csv: adds lavapipe's marginal cost to the trade table and charts");
+    o->selection.add_to(*accuracy);
+    accuracy->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]");
+    accuracy->add_option("--seed", o->seed, "Seed of the built-in content and the volume sample [default: 1]");
+    accuracy->add_option("--volume-samples", o->volume_samples,
+                         "Pixels per pair and neighborhood for the k-DOP/hull volume ratio; 0 skips it [default: 256]");
+    accuracy->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    accuracy->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
+
+    return [o, accuracy] {
+        if (o->selection.baselines) return report_error("--baselines: the gather and copy baselines are not clips; they have no accuracy");
+        if (!std::isfinite(o->gamma) || o->gamma < 0)
+            return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", o->gamma));
+        const bool builtin = o->current.empty() && o->images.empty();
+        if (!builtin && accuracy->count("--size"))
+            return report_error("--size: only for the built-in content; --current and --images are measured at their own size");
+        auto specs = o->selection.select();
+        if (!specs) return report_error(specs.error().message);
+        std::map<std::string, LavapipeCost> costs;
+        if (!o->cost.empty()) {
+            auto read = read_bench_costs(o->cost);
+            if (!read) return report_error(read.error().message);
+            costs = std::move(*read);
+        }
+
+        std::vector<AccuracyPair> pairs;
+        if (builtin) {
+            pairs = builtin_pairs(o->size, o->size, o->seed);
+        } else if (!o->images.empty()) {
+            auto read = image_pairs(o->images);
+            if (!read) return report_error(read.error().message);
+            pairs = std::move(*read);
+        } else {
+            auto read = given_pair(o->current, o->history);
+            if (!read) return report_error(read.error().message);
+            pairs.push_back(std::move(*read));
+        }
+
+        bench::ScratchDirectory scratch("kdop-accuracy");
+        if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
+        auto context = Context::create({o->device, o->validation});
+        if (!context) return report_error(context.error().message);
+
+        AccuracyOptions options{*specs, static_cast<float>(o->gamma), o->volume_samples, o->seed};
+        AccuracyRun run;
+        {
+            bench::Progress progress(fmt::format("accuracy of {} variants on {},", specs->size(), (*context)->device_name()),
+                                     accuracy_steps(options, pairs.size()));
+            auto measured = run_accuracy(**context, options, pairs, [&](const std::string& step) { progress.advance(step); });
+            if (!measured) return report_error(measured.error().message);
+            run = std::move(*measured);
+        }
+        for (const std::string& message : (*context)->validation_messages()) std::cerr << "validation: " << message << "\n";
+
+        const std::vector<TradeRow> trade = trade_rows(run, costs);
+        const std::filesystem::path dir = o->out;
+        AccuracyReportContext report{bench::utc_now_iso8601(), bench::source_commit(), bench::machine_description(), "",
+                                     o->cost, o->seed, static_cast<float>(o->gamma), o->volume_samples};
+        report.command = fmt::format("kdop accuracy{} ({} variants, {} pairs)",
+                                     builtin ? fmt::format(" --size {} --seed {}", o->size, o->seed) : "", specs->size(),
+                                     pairs.size());
+        auto charts = accuracy_charts(trade, scratch.path, dir);
+        if (!charts) return report_error(charts.error().message);
+        std::vector<OutputFile> files = {{dir / "accuracy.csv", accuracy_csv(run)},
+                                         {dir / "trade.csv", trade_csv(trade)},
+                                         {dir / "report.md", accuracy_report_markdown(run, trade, report)}};
+        files.insert(files.end(), charts->begin(), charts->end());
+        if (auto ok = write_files_atomically(files); !ok) return report_error(ok.error().message);
+        std::cout << fmt::format("kdop accuracy: {} variants x {} pairs on {} ({}): {}\n", specs->size(), pairs.size(),
+                                 run.device_name, run.driver_info, (dir / "report.md").string());
+        return 0;
+    };
+}
+
+} // namespace kdop::cli
