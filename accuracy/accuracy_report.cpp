@@ -380,7 +380,7 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
            rgb_axes_check(run);
 
     out += "\n## By family\n\n";
-    if (lavapipe) out += fmt::format("lavapipe marginal: {}.\n\n", lavapipe_label(trade));
+    if (lavapipe) out += fmt::format("The lavapipe column: {}.\n\n", lavapipe_label(trade));
     for (const std::string& family : families_of(trade)) {
         out += fmt::format("### {}\n\n![Accuracy against cost on {}]({})\n\n", family, family, chart_name(safe_name(family)));
         out += family_table(trade, family, lavapipe) + "\n";

@@ -105,9 +105,9 @@ Action add_accuracy_command(CLI::App& app) {
         const std::filesystem::path dir = o->out;
         AccuracyReportContext report{bench::utc_now_iso8601(), bench::source_commit(), bench::machine_description(), "",
                                      o->cost, o->seed, static_cast<float>(o->gamma), o->volume_samples};
-        report.command = fmt::format("kdop accuracy{} ({} variants, {} pairs)",
-                                     builtin ? fmt::format(" --size {} --seed {}", o->size, o->seed) : "", specs->size(),
-                                     pairs.size());
+        report.command = fmt::format("kdop accuracy{}{} ({} variants, {} pairs)",
+                                     builtin ? fmt::format(" --size {} --seed {}", o->size, o->seed) : "",
+                                     o->cost.empty() ? "" : " --cost " + o->cost, specs->size(), pairs.size());
         auto charts = accuracy_charts(trade, scratch.path, dir);
         if (!charts) return report_error(charts.error().message);
         std::vector<OutputFile> files = {{dir / "accuracy.csv", accuracy_csv(run)},
