@@ -111,12 +111,10 @@ std::optional<double> IdealClipper::exit(std::span<const glm::dvec3> neighborhoo
     }
 }
 
-Result<std::vector<double>> ideal_exits(const Image& current, const Image& history, Neighborhood shape,
-                                        const RowProgress& progress) {
+Result<std::vector<double>> ideal_exits(const Image& current, const Image& history, Neighborhood shape) {
     const std::vector<glm::ivec2> offsets = reference_offsets(shape);
     std::vector<double> exits(current.pixels.size());
     std::mutex mutex;
-    std::uint32_t rows_done = 0;
     std::string failure; // the first pixel the LP failed on
 
     auto rows = [&](std::uint32_t first, std::uint32_t step) {
@@ -135,9 +133,6 @@ Result<std::vector<double>> ideal_exits(const Image& current, const Image& histo
                             failure = fmt::format("ideal clip: GLPK found no optimum at pixel ({}, {})", x, y);
                     }
                 }
-                std::lock_guard lock(mutex);
-                ++rows_done;
-                if (progress) progress(rows_done, current.height);
             }
         }
         glp_free_env(); // GLPK's per-thread memory, once this thread's problem is gone

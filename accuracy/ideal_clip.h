@@ -18,7 +18,6 @@
 
 #include <glm/vec3.hpp>
 
-#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -37,7 +36,9 @@ public:
 
     // The largest t in [0, 1] with current + t (history - current) inside the convex hull of
     // `neighborhood`: 1 when the history lies inside. Empty when `current` itself lies outside the
-    // hull (it never does when it is one of the neighborhood's colors). Every input must be finite.
+    // hull (it never does when it is one of the neighborhood's colors); NaN if GLPK fails (past its
+    // iteration limit, or colors too far apart in magnitude to scale to integers; neither is
+    // known to happen). Every input must be finite.
     std::optional<double> exit(std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
                                const glm::dvec3& history);
 
@@ -46,14 +47,10 @@ private:
     int columns_ = 0; // neighborhood colors the LP has columns for
 };
 
-// Called as rows are finished, from any worker (calls are serialized): rows done so far, of `total`.
-using RowProgress = std::function<void(std::uint32_t done, std::uint32_t total)>;
-
 // The ideal exit of every pixel (row-major), with the neighborhood gathered like the shaders and
 // the CPU reference (clamp-to-edge, the pixel itself included), on one thread per core. Both
 // images must have the same size and finite RGB. Fails, naming the pixel, if an LP has no optimum
 // (which would be a bug: the current color is always in its own neighborhood).
-Result<std::vector<double>> ideal_exits(const Image& current, const Image& history, Neighborhood shape,
-                                const RowProgress& progress = {});
+Result<std::vector<double>> ideal_exits(const Image& current, const Image& history, Neighborhood shape);
 
 } // namespace kdop

@@ -230,8 +230,11 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
     for (const CostRow& r : result.rows) {
         if (!is_clip(r)) continue;
         const double loop_marginal = r.marginal_ms + (r.baseline_ms_median - r.ms_median);
-        clips.push_back({r.variant, gnuplot_number(double(r.float_ops.total())), gnuplot_number(r.analytic_min_ops), gnuplot_number(r.baseline_float_ops),
-                         gnuplot_number(r.instr_per_px), gnuplot_number(r.baseline_instr_per_px), gnuplot_number(r.marginal_ms), gnuplot_number(loop_marginal)});
+        std::vector<std::string> row{r.variant};
+        for (double v : {double(r.float_ops.total()), r.analytic_min_ops, r.baseline_float_ops, r.instr_per_px,
+                         r.baseline_instr_per_px, r.marginal_ms, loop_marginal})
+            row.push_back(gnuplot_number(v));
+        clips.push_back(std::move(row));
     }
     if (auto ok = write_text(scratch / "clips.dat", gnuplot_data(clips)); !ok) return std::unexpected(ok.error());
     const CostRow* gather = find_row(result, "gather-n9");
