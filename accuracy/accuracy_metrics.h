@@ -34,12 +34,16 @@ struct ClipAccuracy {
     double false_accept_rate() const { return outside ? double(falsely_accepted) / double(outside) : NAN; }
 };
 
+// S of a pixel, from its current color.
+double pixel_magnitude(const glm::vec4& current);
+
 // Each pixel's distance from `clipped` to the ideal clipped color, in units of S (row-major).
 std::vector<double> ideal_distances(const Image& current, const Image& history, std::span<const double> ideal_exits,
                                     const Image& clipped);
 
+// The figures of one clipped image; `distances` are its ideal_distances.
 ClipAccuracy measure_accuracy(const Image& current, const Image& history, std::span<const double> ideal_exits,
-                              const Image& clipped);
+                              const Image& clipped, std::span<const double> distances);
 
 // How often, and by how much, one clip is looser than another on the same pair: distances `a`
 // and `b` (from ideal_distances) compared pixel by pixel.

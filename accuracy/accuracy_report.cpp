@@ -54,6 +54,12 @@ void mark_front(std::vector<TradeRow>& rows, const std::vector<std::size_t>& fam
     }
 }
 
+// The lavapipe cost a trade row is placed by: callgrind's marginal count where the bench made
+// one, else the marginal median time.
+double lavapipe_cost(const TradeRow& r) {
+    return std::isfinite(r.lavapipe.marginal_instr_per_px) ? r.lavapipe.marginal_instr_per_px : r.lavapipe.marginal_ms;
+}
+
 std::string chart_name(const std::string& family) { return "pareto-" + family + ".png"; }
 
 const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& family, const std::string& variant) {
@@ -168,17 +174,12 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::str
     // each neighborhood has its own front.
     for (const std::string& family : families_of(rows))
         for (const char* shape : {"n9", "n5"}) {
-        std::vector<std::size_t> members;
-        for (std::size_t i = 0; i < rows.size(); ++i)
-            if (rows[i].family == family && rows[i].neighborhood == shape) members.push_back(i);
-        mark_front(rows, members, [](const TradeRow& r) { return r.float_ops; },
-                   [](TradeRow& r) -> bool& { return r.front_float_ops; });
-        mark_front(rows, members,
-                   [](const TradeRow& r) {
-                       return std::isfinite(r.lavapipe.marginal_instr_per_px) ? r.lavapipe.marginal_instr_per_px
-                                                                              : r.lavapipe.marginal_ms;
-                   },
-                   [](TradeRow& r) -> bool& { return r.front_lavapipe; });
+            std::vector<std::size_t> members;
+            for (std::size_t i = 0; i < rows.size(); ++i)
+                if (rows[i].family == family && rows[i].neighborhood == shape) members.push_back(i);
+            mark_front(rows, members, [](const TradeRow& r) { return r.float_ops; },
+                       [](TradeRow& r) -> bool& { return r.front_float_ops; });
+            mark_front(rows, members, lavapipe_cost, [](TradeRow& r) -> bool& { return r.front_lavapipe; });
         }
     return rows;
 }
@@ -203,10 +204,6 @@ std::string safe_name(const std::string& s) {
     for (char& c : out)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
     return out;
-}
-
-double lavapipe_cost(const TradeRow& r) {
-    return std::isfinite(r.lavapipe.marginal_instr_per_px) ? r.lavapipe.marginal_instr_per_px : r.lavapipe.marginal_ms;
 }
 
 bool has_lavapipe_cost(const std::vector<TradeRow>& trade) {

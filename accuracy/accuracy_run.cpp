@@ -27,11 +27,9 @@ std::set<Neighborhood> shapes_of(const std::vector<VariantSpec>& specs) {
 // The largest |a - b| / S over the pixels.
 double largest_difference(const Image& current, const Image& a, const Image& b) {
     double largest = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::dvec3 c = glm::abs(glm::dvec3(current.pixels[i]));
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
         largest = std::max(largest, glm::distance(glm::dvec3(a.pixels[i]), glm::dvec3(b.pixels[i])) /
-                                        std::max({1.0, c.x, c.y, c.z}));
-    }
+                                        pixel_magnitude(current.pixels[i]));
     return largest;
 }
 
@@ -61,7 +59,16 @@ Result<AccuracyRun> run_accuracy(const Context& context, const AccuracyOptions& 
     if (!built) return std::unexpected(built.error());
     std::vector<std::unique_ptr<RunnableVariant>> variants;
     std::vector<std::unique_ptr<Kernel>> kernels;
+    std::vector<AccuracyRow> described; // what each variant's rows say of the variant itself
     for (BuiltVariant& b : *built) {
+        AccuracyRow& row = described.emplace_back();
+        row.variant = b.name;
+        row.axis_set = b.spec.set.name;
+        row.mode = to_string(b.spec.mode);
+        row.neighborhood = to_string(b.spec.neighborhood);
+        row.k = static_cast<unsigned>(2 * b.spec.set.axes.size());
+        row.rgb_axes = contains_rgb_axes(b.spec.set);
+        row.float_ops = count_float_ops(b.spirv).total();
         variants.push_back(std::make_unique<RunnableVariant>(std::move(b)));
         auto kernel = Kernel::create(context, variants.back()->variant());
         if (!kernel) return std::unexpected(kernel.error());
@@ -89,35 +96,27 @@ Result<AccuracyRun> run_accuracy(const Context& context, const AccuracyOptions& 
         const std::size_t first_row = run.rows.size();
         std::vector<Distances> distances;
         for (std::size_t v = 0; v < variants.size(); ++v) {
-            const BuiltVariant& b = variants[v]->built();
-            const VariantSpec& spec = b.spec;
+            const VariantSpec& spec = variants[v]->built().spec;
             if (auto ok = (*pass)->dispatch(*kernels[v], options.gamma); !ok) return std::unexpected(ok.error());
             auto output = (*pass)->download();
             if (!output) return std::unexpected(output.error());
             const Image reference =
                 reference_rectify(spec.set, spec.mode, spec.neighborhood, pair.current, pair.history, options.gamma);
             const std::vector<double>& exits = ideal[spec.neighborhood];
+            Distances& d = distances.emplace_back(Distances{ideal_distances(pair.current, pair.history, exits, *output),
+                                                            ideal_distances(pair.current, pair.history, exits, reference)});
 
-            AccuracyRow row;
-            row.variant = b.name;
-            row.axis_set = spec.set.name;
-            row.mode = to_string(spec.mode);
-            row.neighborhood = to_string(spec.neighborhood);
-            row.k = static_cast<unsigned>(2 * spec.set.axes.size());
-            row.rgb_axes = contains_rgb_axes(spec.set);
-            row.float_ops = count_float_ops(b.spirv).total();
+            AccuracyRow row = described[v];
             row.family = pair.family;
             row.image = pair.name;
-            row.gpu = measure_accuracy(pair.current, pair.history, exits, *output);
-            row.reference = measure_accuracy(pair.current, pair.history, exits, reference);
+            row.gpu = measure_accuracy(pair.current, pair.history, exits, *output, d.gpu);
+            row.reference = measure_accuracy(pair.current, pair.history, exits, reference, d.reference);
             row.gpu_reference_max = largest_difference(pair.current, *output, reference);
             auto volume = volume_ratio(pair.current, sample[spec.neighborhood], spec.set, spec.mode, spec.neighborhood,
                                        options.gamma);
             if (!volume) return fail(fmt::format("{}: {}", pair.name, volume.error().message));
             row.volume = *volume;
             run.rows.push_back(std::move(row));
-            distances.push_back({ideal_distances(pair.current, pair.history, exits, *output),
-                                 ideal_distances(pair.current, pair.history, exits, reference)});
         }
         // Each variant against the RGB AABB of its mode and neighborhood, when that was selected.
         for (std::size_t v = 0; v < variants.size(); ++v)

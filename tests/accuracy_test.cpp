@@ -30,7 +30,8 @@ TEST(AccuracyMetrics, WorkedOutByHand) {
     const Image history = row_image({red, red, red, red});
     const Image clipped = row_image({red, {0.75f, 0.25f, 0, 1}, red, {4, 4, 4, 1}});
     const std::vector<double> ideal = {0, 0.5, 1, 0};
-    const ClipAccuracy a = measure_accuracy(current, history, ideal, clipped);
+    const ClipAccuracy a =
+        measure_accuracy(current, history, ideal, clipped, ideal_distances(current, history, ideal, clipped));
     EXPECT_EQ(a.pixels, 4u);
     EXPECT_NEAR(a.mean_dist, (1 + 0.25 * std::sqrt(2.0)) / 4, 1e-7);
     EXPECT_NEAR(a.max_dist, 1.0, 1e-7);
