@@ -4,7 +4,7 @@
 #pragma once
 
 #include "accuracy_run.h"
-#include "output_files.h"
+#include "write_files.h"
 
 #include <filesystem>
 #include <map>

@@ -3,7 +3,7 @@
 #include "analytic_cost.h"
 #include "callgrind.h"
 #include "context.h"
-#include "output_files.h"
+#include "variant_files.h"
 #include "progress.h"
 #include "runnable_variant.h"
 #include "spirv_module.h"
@@ -80,7 +80,7 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
     for (const std::string& name : options.variants) {
         const Variant& v = registered(name);
         VariantSpec spec{sets.at(v.axis_set), v.mode, v.neighborhood};
-        spec.style.numerics = EmitStyle::Numerics::paper;
+        spec.numerics = Numerics::paper;
         paper_specs.push_back(spec);
     }
     auto paper_built = build_variants(paper_specs);

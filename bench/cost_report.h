@@ -5,7 +5,7 @@
 #pragma once
 
 #include "cost_bench.h"
-#include "output_files.h"
+#include "write_files.h"
 
 #include <filesystem>
 #include <string>

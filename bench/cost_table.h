@@ -25,7 +25,7 @@ struct CostRow {
     double ms_vs_aabb = NAN;                 // ms_median over aabb's of the same mode and neighborhood (the
                                              // marginal ratio is meaningless where marginals are within the noise)
     double instr_per_px = NAN, baseline_instr_per_px = NAN; // callgrind, one dispatch
-    // The same variant with the paper's numerics (EmitStyle::Numerics::paper): what hardening costs.
+    // The same variant with the paper's numerics (Numerics::paper): what hardening costs.
     double paper_float_ops = NAN, paper_ms_median = NAN, paper_instr_per_px = NAN;
 };
 

@@ -3,7 +3,7 @@
 // with the rest of a report, all or nothing.
 #pragma once
 
-#include "output_files.h"
+#include "write_files.h"
 #include "result.h"
 
 #include <filesystem>

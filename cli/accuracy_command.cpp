@@ -3,7 +3,7 @@
 #include "accuracy_report.h"
 #include "accuracy_run.h"
 #include "context.h"
-#include "output_files.h"
+#include "write_files.h"
 #include "progress.h"
 #include "run_info.h"
 #include "scratch_directory.h"

@@ -2,7 +2,7 @@
 
 #include "cost_bench.h"
 #include "cost_report.h"
-#include "output_files.h"
+#include "write_files.h"
 #include "run_info.h"
 #include "scratch_directory.h"
 
@@ -12,6 +12,7 @@
 #include <fmt/ranges.h>
 
 #include <charconv>
+#include <optional>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>

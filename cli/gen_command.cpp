@@ -1,6 +1,6 @@
 #include "commands.h"
 
-#include "output_files.h"
+#include "variant_files.h"
 #include "selection_options.h"
 #include "spirv_cost.h"
 #include "variant_builder.h"

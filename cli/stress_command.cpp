@@ -1,7 +1,7 @@
 #include "commands.h"
 
 #include "context.h"
-#include "output_files.h"
+#include "write_files.h"
 #include "progress.h"
 #include "run_info.h"
 #include "selection_options.h"

@@ -1,6 +1,7 @@
 # kdop_add_variants(<target>
-#     [SETS <name-or-path>...]          built-in set names (aabb ycocg dop16-grass dop16-asphalt dop22
-#                                       dop32) or paths to .axes files; default: every built-in set
+#     [SETS <name-or-path>...]          built-in set names (the stems of shader_templates/axis_sets/*.axes:
+#                                       aabb ycocg dop16-asphalt dop16-grass dop22 dop32) or paths to .axes
+#                                       files; default: every built-in set
 #     [MODES <clip|varclip>...]         default: both
 #     [NEIGHBORHOODS <n9|n5>...]        default: both
 #     [FORMS <unrolled|loop>...]        default: unrolled; loop is the supplement's form, a baseline
@@ -15,7 +16,9 @@
 # embeds the built-in sets and templates) changes, and at no other time.
 include_guard(GLOBAL)
 
-set(KDOP_BUILTIN_SETS aabb ycocg dop16-grass dop16-asphalt dop22 dop32)
+# The built-in sets are the axis files kdop-gen embeds; the list is read from that folder, not kept
+# here, and inside the function, so it holds wherever kdop_add_variants() is called from.
+set_property(GLOBAL PROPERTY KDOP_AXIS_SET_DIR "${CMAKE_CURRENT_LIST_DIR}/../shader_templates/axis_sets")
 
 function(kdop_add_variants target)
   cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES" "NAMESPACE;HEADER" "SETS;MODES;NEIGHBORHOODS;FORMS")
@@ -40,16 +43,24 @@ function(kdop_add_variants target)
   set(header "${out_dir}/${ARG_HEADER}")
   set(source "${out_dir}/${header_stem}.cpp")
 
+  get_property(axis_set_dir GLOBAL PROPERTY KDOP_AXIS_SET_DIR)
+  file(GLOB builtin_files "${axis_set_dir}/*.axes")
+  set(builtin_sets)
+  foreach(file IN LISTS builtin_files)
+    get_filename_component(name "${file}" NAME_WE)
+    list(APPEND builtin_sets ${name})
+  endforeach()
+
   # User axis files are inputs of their own; built-in sets live inside kdop-gen.
   set(arguments)
   set(depends kdop::kdop-gen)
   foreach(set IN LISTS ARG_SETS)
-    if(set IN_LIST KDOP_BUILTIN_SETS)
+    if(set IN_LIST builtin_sets)
       list(APPEND arguments --sets ${set})
     else()
       get_filename_component(path "${set}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
       if(NOT EXISTS "${path}")
-        message(FATAL_ERROR "kdop_add_variants(${target}): '${set}' is not a built-in axis set (${KDOP_BUILTIN_SETS}) and ${path} does not exist")
+        message(FATAL_ERROR "kdop_add_variants(${target}): '${set}' is not a built-in axis set (${builtin_sets}) and ${path} does not exist")
       endif()
       list(APPEND arguments --sets "${path}")
       list(APPEND depends "${path}")

@@ -111,17 +111,6 @@ bool spans_3d(const std::vector<Axis>& axes) {
 
 } // namespace
 
-bool is_valid_set_name(std::string_view name) {
-    if (name.empty() || name.size() > 48 || !(name[0] >= 'a' && name[0] <= 'z')) return false;
-    char previous = 0;
-    for (char c : name) {
-        bool alnum = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
-        if (!alnum && !(c == '-' && previous != '-')) return false;
-        previous = c;
-    }
-    return previous != '-';
-}
-
 Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
     AxisSet set;
     set.origin = std::string(origin);

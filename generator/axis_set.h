@@ -13,6 +13,7 @@
 #pragma once
 
 #include "result.h"
+#include "variant_key.h" // is_valid_set_name
 
 #include <glm/vec3.hpp>
 
@@ -40,9 +41,5 @@ inline constexpr double kParallelAxisAngle = 1e-5;
 
 // Parses and validates the text of an axis-set file; `origin` names it in error messages.
 Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin);
-
-// True for names of the form [a-z][a-z0-9]*(-[a-z0-9]+)*, which map one-to-one onto GLSL and C++
-// identifiers ('-' becomes '_').
-bool is_valid_set_name(std::string_view name);
 
 } // namespace kdop

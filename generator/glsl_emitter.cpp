@@ -117,14 +117,14 @@ std::string exit_update(std::string_view origin) {
 // write_hardening_prologue): the slab then keeps a width, the ray's origin stays strictly inside it, and
 // a ray parallel to it (inv_d infinite) meets a nonzero distance, never 0 x inf = NaN.
 // `scale` names the per-pixel factor (hardened only).
-std::string dilation(const ScaledAxis& axis, EmitStyle::Numerics numerics, std::string_view scale) {
+std::string dilation(const ScaledAxis& axis, Numerics numerics, std::string_view scale) {
     const std::string padding = float_literal(axis.padding);
-    if (numerics == EmitStyle::Numerics::paper) return fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
+    if (numerics == Numerics::paper) return fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
     return fmt::format("        lo = fma({1}, -{0}, lo);\n        hi = fma({1}, {0}, hi);\n", padding, scale);
 }
 
 // Clip: the slab spans the projections' min..max, dilated by the padding.
-void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
+void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style, Numerics numerics) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
     if (style.extent == EmitStyle::Extent::running) {
         // Starting from +-FLT_MAX rather than from the first projection costs a min and a max but
@@ -140,7 +140,7 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const 
         out += fmt::format("        float lo = {};\n", reduce_tree("min", 0, count));
         out += fmt::format("        float hi = {};\n", reduce_tree("max", 0, count));
     }
-    out += dilation(axis, style.numerics, "pad_scale");
+    out += dilation(axis, numerics, "pad_scale");
     out += fmt::format("        float p = {};\n", proj("current"));
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     out += exit_update("p");
@@ -153,9 +153,9 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const 
 // is to 0. That shift keeps float32 from cancelling the small variance of bright, flat areas away:
 // the supplement's E[q^2] - E[q]^2 gives a sigma of about 3e-4 |q| there, or a negative variance
 // and NaN.
-void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style) {
+void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style, Numerics numerics) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
-    const bool hardened = style.numerics == EmitStyle::Numerics::hardened;
+    const bool hardened = numerics == Numerics::hardened;
     if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj(hardened ? "ray" : "dir")));
     for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
@@ -175,7 +175,7 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, con
         out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
         out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
     }
-    out += dilation(axis, style.numerics, "slab_pad");
+    out += dilation(axis, numerics, "slab_pad");
     out += exit_update(hardened ? "" : "p");
 }
 
@@ -247,7 +247,7 @@ std::string regenerate_command(const VariantSpec& spec) {
     return fmt::format("kdop gen --sets {} --modes {} --neighborhoods {}{}{} --out DIR",
                        builtin ? spec.set.name : origin_file_name(spec.set), to_string(spec.mode),
                        to_string(spec.neighborhood), spec.form == Form::loop ? " --forms loop" : "",
-                       spec.style.numerics == EmitStyle::Numerics::paper ? " --numerics paper" : "");
+                       spec.numerics == Numerics::paper ? " --numerics paper" : "");
 }
 
 namespace {
@@ -275,7 +275,7 @@ std::string function_header(const VariantSpec& spec) {
         out += "// Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a\n";
         out += "// unit component costs no multiply and a zero component nothing.\n";
     }
-    if (spec.style.numerics == EmitStyle::Numerics::paper) {
+    if (spec.numerics == Numerics::paper) {
         out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip. These are the\n";
         out += "// supplement's numerics: HDR values, flat neighborhoods and NaN or Inf history can give NaN\n";
         out += "// or a wrong color (`kdop stress` shows which); use the hardened variant unless measured.\n";
@@ -322,7 +322,7 @@ void write_hardening_prologue(std::string& out, Mode mode) {
 void write_unrolled_body(std::string& out, const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
-    const bool hardened = spec.style.numerics == EmitStyle::Numerics::hardened;
+    const bool hardened = spec.numerics == Numerics::hardened;
     // Hardened, variance clip takes its moments of colors relative to current (write_varclip_slab).
     const bool relative = hardened && spec.mode == Mode::varclip;
     out += "    vec3 dir = history - current;\n";
@@ -340,9 +340,9 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
             out += fmt::format(", scaled by {:.6g} to {}", scaled.factor, vec3_text(scaled.coefficients));
         out += "\n    {\n";
         if (spec.mode == Mode::varclip)
-            write_varclip_slab(out, scaled, count, spec.style);
+            write_varclip_slab(out, scaled, count, spec.style, spec.numerics);
         else
-            write_clip_slab(out, scaled, count, spec.style);
+            write_clip_slab(out, scaled, count, spec.style, spec.numerics);
         out += "    }\n";
     }
     // current + t * dir, written as fma because spirv-opt fuses only scalar multiply-adds.
@@ -359,7 +359,7 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
 void write_loop_body(std::string& out, const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
-    const bool hardened = spec.style.numerics == EmitStyle::Numerics::hardened;
+    const bool hardened = spec.numerics == Numerics::hardened;
     out += fmt::format("    const vec3 axes[{}] = vec3[](\n", axes);
     for (int a = 0; a < axes; ++a) {
         const glm::vec3 v(spec.set.axes[a].direction);

@@ -1,7 +1,7 @@
 // kdop-gen: the build-time half of kdop. kdop_add_variants() runs `kdop-gen registry` to embed
 // variants in a target; the refresh-generated target runs `kdop-gen glsl` to rewrite generated/,
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
-#include "output_files.h"
+#include "variant_files.h"
 #include "registry_writer.h"
 #include "selection_options.h"
 #include "variant_builder.h"

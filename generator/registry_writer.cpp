@@ -97,11 +97,11 @@ RegistrySources write_registry(std::span<const BuiltVariant> variants, std::stri
 
         const auto& ls = v.interface.local_size;
         table += fmt::format(
-            "    {{\"{}\", \"{}\", kdop::Mode::{}, kdop::Neighborhood::{}, kdop::Form::{}, {},\n"
+            "    {{\"{}\", \"{}\", kdop::Mode::{}, kdop::Neighborhood::{}, kdop::Form::{}, kdop::Numerics::{}, {},\n"
             "     {}, {}, 0x{:016x}ull,\n"
             "     \"{}\", {{{}, {}, {}}}, {}, {}, {}, {}, {}}},\n",
             v.name, v.spec.set.name, to_string(v.spec.mode), to_string(v.spec.neighborhood), to_string(v.spec.form),
-            v.spec.set.axes.size(), module,
+            to_string(v.spec.numerics), v.spec.set.axes.size(), module,
             v.spirv.size(), hash, v.interface.entry_point, ls[0], ls[1], ls[2], binding_array,
             v.interface.bindings.size(), push_array, v.interface.push_constants.size(), v.interface.push_constant_size);
     }

@@ -2,6 +2,7 @@
 // describe a selection of variants the same way.
 #pragma once
 
+#include "builtin_sets.h"
 #include "variant_spec.h"
 
 #include <CLI/CLI.hpp>
@@ -18,8 +19,8 @@ struct SelectionOptions {
 
     void add_to(CLI::App& app) {
         app.add_option("--sets", sets,
-                       "Axis sets: built-in names (aabb ycocg dop16-grass dop16-asphalt dop22 dop32) or paths to "
-                       ".axes files [default: every built-in set]");
+                       "Axis sets: built-in names (" + builtin_set_list() +
+                           ") or paths to .axes files [default: every built-in set]");
         app.add_option("--modes", modes, "clip and/or varclip [default: both]");
         app.add_option("--neighborhoods", neighborhoods, "n9 (3x3) and/or n5 (plus) [default: both]");
         app.add_option("--forms", forms,
@@ -42,9 +43,11 @@ struct SelectionOptions {
                            : projection == "full-dot"   ? EmitStyle::Projection::full_dot
                                                         : EmitStyle::Projection::fold_dot;
         style.extent = extent == "running" ? EmitStyle::Extent::running : EmitStyle::Extent::tree;
-        style.numerics = numerics == "paper" ? EmitStyle::Numerics::paper : EmitStyle::Numerics::hardened;
         if (specs)
-            for (VariantSpec& s : *specs) s.style = style;
+            for (VariantSpec& s : *specs) {
+                s.style = style;
+                s.numerics = *parse_numerics(numerics); // checked by CLI11
+            }
         if (specs && baselines)
             for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
         return specs;

@@ -1,6 +1,6 @@
 #include "variant_spec.h"
 
-#include "embedded_files.h"
+#include "builtin_sets.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -13,12 +13,8 @@
 namespace kdop {
 namespace {
 
-constexpr std::string_view kDefaultSets[] = {"aabb", "ycocg", "dop16-grass", "dop16-asphalt", "dop22", "dop32"};
-
 constexpr glm::ivec2 kOffsetsN9[] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 constexpr glm::ivec2 kOffsetsN5[] = {{0, -1}, {-1, 0}, {0, 0}, {1, 0}, {0, 1}};
-
-std::string builtin_path(std::string_view name) { return fmt::format("shader_templates/axis_sets/{}.axes", name); }
 
 template <class T>
 bool contains(std::span<const T> list, const T& value) {
@@ -43,14 +39,6 @@ Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::
 
 } // namespace
 
-std::string variant_name(const VariantSpec& spec) {
-    if (spec.mode == Mode::copy) return "copy";
-    if (spec.mode == Mode::gather) return fmt::format("gather-{}", to_string(spec.neighborhood));
-    return fmt::format("{}-{}-{}{}{}", spec.set.name, to_string(spec.mode), to_string(spec.neighborhood),
-                       spec.form == Form::loop ? "-loop" : "",
-                       spec.style.numerics == EmitStyle::Numerics::paper ? "-paper" : "");
-}
-
 std::vector<VariantSpec> baseline_kernels() {
     return {{{}, Mode::gather, Neighborhood::n9}, {{}, Mode::gather, Neighborhood::n5}, {{}, Mode::copy, Neighborhood::n9}};
 }
@@ -61,12 +49,6 @@ std::vector<VariantSpec> all_builtin_variants() {
     return specs;
 }
 
-std::optional<Form> parse_form(std::string_view s) {
-    for (Form f : {Form::unrolled, Form::loop})
-        if (s == to_string(f)) return f;
-    return std::nullopt;
-}
-
 std::span<const glm::ivec2> neighborhood_offsets(Neighborhood n) {
     if (n == Neighborhood::n9) return kOffsetsN9;
     return kOffsetsN5;
@@ -74,31 +56,12 @@ std::span<const glm::ivec2> neighborhood_offsets(Neighborhood n) {
 
 int neighborhood_center(Neighborhood n) { return n == Neighborhood::n9 ? 4 : 2; }
 
-std::optional<Mode> parse_mode(std::string_view s) {
-    for (Mode m : kAllModes)
-        if (s == to_string(m)) return m;
-    return std::nullopt;
-}
-
-std::optional<Neighborhood> parse_neighborhood(std::string_view s) {
-    for (Neighborhood n : kAllNeighborhoods)
-        if (s == to_string(n)) return n;
-    return std::nullopt;
-}
-
-std::span<const std::string_view> default_set_names() { return kDefaultSets; }
-
 Result<AxisSet> resolve_axis_set(std::string_view name_or_path) {
-    if (contains(default_set_names(), name_or_path)) {
-        std::string path = builtin_path(name_or_path);
-        auto text = find_embedded_file(path);
-        if (!text) return fail(fmt::format("internal error: built-in axis set '{}' is not embedded", path));
-        return parse_axis_set(*text, path);
-    }
+    if (auto text = builtin_set_text(name_or_path)) return parse_axis_set(*text, builtin_set_path(name_or_path));
     std::ifstream file{std::string(name_or_path), std::ios::binary};
     if (!file)
         return fail(fmt::format("--sets: '{}' is not a built-in axis set ({}) nor a readable file",
-                                name_or_path, fmt::join(default_set_names(), ", ")));
+                                name_or_path, builtin_set_list()));
     std::ostringstream text;
     text << file.rdbuf();
     if (file.bad()) return fail(fmt::format("{}: read error", name_or_path));
@@ -110,7 +73,7 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
                                                  const std::vector<std::string>& neighborhood_args,
                                                  const std::vector<std::string>& form_args) {
     std::vector<std::string> set_names(set_args.begin(), set_args.end());
-    if (set_names.empty()) set_names.assign(kDefaultSets, kDefaultSets + std::size(kDefaultSets));
+    if (set_names.empty()) set_names.assign(builtin_set_names().begin(), builtin_set_names().end());
 
     std::vector<AxisSet> sets;
     for (const std::string& arg : set_names) {

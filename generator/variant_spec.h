@@ -4,6 +4,7 @@
 
 #include "axis_set.h"
 #include "result.h"
+#include "variant_key.h"
 
 #include <kdop/variant.h>
 
@@ -33,14 +34,6 @@ struct EmitStyle {
         tree,    // min/max of all projections as balanced trees
         running, // min/max updated neighbor by neighbor from +-FLT_MAX, as the loop form does from +-1e9
     } extent = Extent::running;
-    // What the stress suite (`kdop stress`) found the supplement's formulation needs at the extremes;
-    // applies to both forms. The price is measured by `kdop bench` (cost.csv, hardening_* columns).
-    enum class Numerics {
-        hardened, // padding grows with the pixel's magnitude, variance taken of colors relative to
-                  // the pixel, a history that is NaN, Inf or too far to project is replaced by current
-        paper,    // the supplement's: absolute padding, E[q^2] - E[q]^2, history used as it is;
-                  // named <variant>-paper
-    } numerics = Numerics::hardened;
 };
 
 struct VariantSpec {
@@ -48,30 +41,27 @@ struct VariantSpec {
     Mode mode;
     Neighborhood neighborhood;
     Form form = Form::unrolled;
+    // Applies to both forms. What `kdop stress` found the supplement's formulation needs at the
+    // extremes; its price is measured by `kdop bench` (cost.csv, paper_* columns).
+    Numerics numerics = Numerics::hardened;
     EmitStyle style = {};
+
+    VariantKey key() const { return {set.name, mode, neighborhood, form, numerics}; }
 };
 
-// "<set>-<mode>-<neighborhood>" ("dop16-grass-varclip-n5"), with "-loop" for the loop form;
-// "gather-<neighborhood>" and "copy" for the baselines.
-std::string variant_name(const VariantSpec& spec);
+// The spec's name (variant_key.h): "dop16-grass-varclip-n5", "dop32-clip-n9-loop-paper", "gather-n9".
+inline std::string variant_name(const VariantSpec& spec) { return spec.key().name(); }
 
 // Texel offsets of the neighborhood in the order the generated function receives them.
 std::span<const glm::ivec2> neighborhood_offsets(Neighborhood n);
 // Index of the pixel itself in neighborhood_offsets(n).
 int neighborhood_center(Neighborhood n);
 
-std::optional<Mode> parse_mode(std::string_view s);
-std::optional<Neighborhood> parse_neighborhood(std::string_view s);
-
-// The built-in sets, in the order `kdop list` shows them.
-std::span<const std::string_view> default_set_names();
 inline constexpr Mode kAllModes[] = {Mode::clip, Mode::varclip}; // the clips; see baseline_kernels()
 inline constexpr Neighborhood kAllNeighborhoods[] = {Neighborhood::n9, Neighborhood::n5};
 
 // A built-in set by name, or else an axis-set file by path. Errors name the argument.
 Result<AxisSet> resolve_axis_set(std::string_view name_or_path);
-
-std::optional<Form> parse_form(std::string_view s);
 
 // The cross product sets x modes x neighborhoods x forms, in that nesting order. Empty lists mean
 // "all defaults" (for forms: unrolled only). Unknown names, repeated entries and two different

@@ -10,8 +10,8 @@
 
 namespace kdop {
 
-double reference_padding(const glm::dvec3& current, EmitStyle::Numerics numerics) {
-    if (numerics == EmitStyle::Numerics::paper) return kReferencePadding;
+double reference_padding(const glm::dvec3& current, Numerics numerics) {
+    if (numerics == Numerics::paper) return kReferencePadding;
     const glm::dvec3 size = glm::abs(current);
     return kReferencePadding * std::max({size.x, size.y, size.z, 1.0});
 }
@@ -24,7 +24,7 @@ bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& histo
 
 std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
                                            const glm::dvec3& current, Mode mode, double gamma,
-                                           EmitStyle::Numerics numerics) {
+                                           Numerics numerics) {
     const double n = static_cast<double>(neighborhood.size());
     const double padding = reference_padding(current, numerics);
     std::vector<ReferenceSlab> slabs;

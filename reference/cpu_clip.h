@@ -33,7 +33,7 @@ inline constexpr double kReferencePadding = 1e-5;
 
 // The dilation of every slab around `current`, per unit of axis length: hardened, it grows with
 // the current color's magnitude; with the paper's numerics it is kReferencePadding.
-double reference_padding(const glm::dvec3& current, EmitStyle::Numerics numerics = EmitStyle::Numerics::hardened);
+double reference_padding(const glm::dvec3& current, Numerics numerics = Numerics::hardened);
 
 // Whether the history takes part at all (see above); if not, the result is `current`.
 bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& history);
@@ -47,7 +47,7 @@ struct ReferenceSlab {
 // The padded k-DOP of a neighborhood around `current` (varclip widens each slab to contain it).
 std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
                                            const glm::dvec3& current, Mode mode, double gamma,
-                                           EmitStyle::Numerics numerics = EmitStyle::Numerics::hardened);
+                                           Numerics numerics = Numerics::hardened);
 
 // Where the ray current + t (history - current) leaves the slabs, clamped to [0, 1]: 1 when the
 // history lies inside. Takes the history as given (no usability rule).

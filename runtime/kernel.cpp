@@ -10,8 +10,16 @@
 namespace kdop {
 
 Result<std::unique_ptr<Kernel>> Kernel::create(const Context& context, const Variant& variant) {
-    std::unique_ptr<Kernel> k(new Kernel(context, variant));
+    std::unique_ptr<Kernel> k(new Kernel(context));
     VkDevice device = context.device();
+    k->name_ = variant.name;
+    for (uint32_t i = 0; i < variant.binding_count; ++i)
+        k->bindings_.push_back({variant.bindings[i].binding, variant.bindings[i].type, variant.bindings[i].name});
+    for (uint32_t i = 0; i < variant.push_constant_count; ++i)
+        k->push_constants_.push_back(
+            {variant.push_constants[i].name, variant.push_constants[i].offset, variant.push_constants[i].size});
+    k->push_constant_size_ = variant.push_constant_size;
+    k->local_size_ = {variant.local_size[0], variant.local_size[1], variant.local_size[2]};
 
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     for (uint32_t i = 0; i < variant.binding_count; ++i) {

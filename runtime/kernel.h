@@ -1,13 +1,17 @@
 // A compute pipeline for one registry variant, built from what the registry says about it: its
 // SPIR-V, entry point, descriptor bindings and push-constant range. No guessing, no reflection
-// at run time.
+// at run time. The kernel copies what it needs of the variant, so it may outlive the registry
+// entry (a variant built in-process and dropped before its kernel).
 #pragma once
 
 #include "context.h"
 
 #include <kdop/variant.h>
 
+#include <array>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace kdop {
 
@@ -18,7 +22,21 @@ public:
     Kernel(const Kernel&) = delete;
     Kernel& operator=(const Kernel&) = delete;
 
-    const Variant& variant() const { return variant_; }
+    // The variant's interface, as the registry gave it.
+    struct Binding {
+        std::uint32_t binding;
+        DescriptorType type;
+        std::string name;
+    };
+    struct PushConstant {
+        std::string name;
+        std::uint32_t offset, size;
+    };
+    const std::string& name() const { return name_; }
+    const std::vector<Binding>& bindings() const { return bindings_; }
+    const std::vector<PushConstant>& push_constants() const { return push_constants_; }
+    std::uint32_t push_constant_size() const { return push_constant_size_; }
+    const std::array<std::uint32_t, 3>& local_size() const { return local_size_; }
     VkDescriptorSetLayout set_layout() const { return set_layout_; }
     VkPipelineLayout layout() const { return layout_; }
     VkPipeline pipeline() const { return pipeline_; }
@@ -26,10 +44,14 @@ public:
     double creation_ms() const { return creation_ms_; }
 
 private:
-    Kernel(const Context& context, const Variant& variant) : device_(context.device()), variant_(variant) {}
+    explicit Kernel(const Context& context) : device_(context.device()) {}
 
     VkDevice device_;
-    const Variant& variant_;
+    std::string name_;
+    std::vector<Binding> bindings_;
+    std::vector<PushConstant> push_constants_;
+    std::uint32_t push_constant_size_ = 0;
+    std::array<std::uint32_t, 3> local_size_{};
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;

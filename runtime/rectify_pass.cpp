@@ -210,7 +210,6 @@ Result<void> RectifyPass::upload(const Image& current, const Image& history) {
 Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) {
     if (!uploaded_) return fail("dispatch before upload");
     VkDevice device = context_.device();
-    const Variant& v = kernel.variant();
 
     KDOP_VK_TRY(vkResetDescriptorPool(device, descriptor_pool_, 0));
     VkDescriptorSetLayout layout = kernel.set_layout();
@@ -220,16 +219,23 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
     alloc.pSetLayouts = &layout;
     VkDescriptorSet set = VK_NULL_HANDLE;
     KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &set));
-    // Binding i of the registry is bound to the i-th of current, history, output: the order the
-    // compute-shader template declares them in, which the registry reports.
-    const Texture* textures[] = {&current_, &history_, &output_};
-    std::vector<VkDescriptorImageInfo> infos(v.binding_count);
-    std::vector<VkWriteDescriptorSet> writes(v.binding_count);
-    for (uint32_t i = 0; i < v.binding_count; ++i) {
-        const DescriptorBinding& b = v.bindings[i];
-        if (b.binding > 2) return fail(fmt::format("{}: unexpected binding {} ('{}')", v.name, b.binding, b.name));
-        bool storage = b.type == DescriptorType::storage_image;
-        infos[i] = {storage ? VK_NULL_HANDLE : sampler_, textures[b.binding]->view,
+    // Each binding the registry reports gets the image its name asks for (the names of the
+    // compute-shader template, shader_templates/rectify.comp.in), whatever its binding number.
+    const std::size_t count = kernel.bindings().size();
+    std::vector<VkDescriptorImageInfo> infos(count);
+    std::vector<VkWriteDescriptorSet> writes(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const Kernel::Binding& b = kernel.bindings()[i];
+        const Texture* texture = b.name == "current_frame"       ? &current_
+                                 : b.name == "history_frame"     ? &history_
+                                 : b.name == "rectified_history" ? &output_
+                                                                 : nullptr;
+        const bool storage = b.type == DescriptorType::storage_image;
+        if (!texture || storage != (texture == &output_))
+            return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides (current_frame and "
+                                    "history_frame samplers, rectified_history storage image)",
+                                    kernel.name(), b.binding, b.name, storage ? "storage image" : "sampler"));
+        infos[i] = {storage ? VK_NULL_HANDLE : sampler_, texture->view,
                     storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[i].dstSet = set;
@@ -238,18 +244,27 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
         writes[i].descriptorType = storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         writes[i].pImageInfo = &infos[i];
     }
-    vkUpdateDescriptorSets(device, v.binding_count, writes.data(), 0, nullptr);
+    vkUpdateDescriptorSets(device, static_cast<uint32_t>(count), writes.data(), 0, nullptr);
+    // Push constants by name, as the registry lays them out; the pass knows only gamma.
+    std::vector<std::byte> push(kernel.push_constant_size());
+    for (const Kernel::PushConstant& p : kernel.push_constants()) {
+        if (p.name != "gamma" || p.size != sizeof(float) || p.offset + p.size > push.size())
+            return fail(fmt::format("{}: push constant '{}' ({} bytes at {}) is not one the rectify pass provides (float gamma)",
+                                    kernel.name(), p.name, p.size, p.offset));
+        std::memcpy(push.data() + p.offset, &gamma, sizeof(float));
+    }
 
-    const uint32_t groups_x = (width_ + v.local_size[0] - 1) / v.local_size[0];
-    const uint32_t groups_y = (height_ + v.local_size[1] - 1) / v.local_size[1];
+    const uint32_t groups_x = (width_ + kernel.local_size()[0] - 1) / kernel.local_size()[0];
+    const uint32_t groups_y = (height_ + kernel.local_size()[1] - 1) / kernel.local_size()[1];
     auto wall = submit([&](VkCommandBuffer cb) {
         // The output's previous contents are not needed: every pixel is written.
         image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
         vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout(), 0, 1, &set, 0, nullptr);
-        if (v.push_constant_size >= sizeof(float))
-            vkCmdPushConstants(cb, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(float), &gamma);
+        if (!push.empty())
+            vkCmdPushConstants(cb, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, static_cast<uint32_t>(push.size()),
+                               push.data());
         if (timestamps_) {
             vkCmdResetQueryPool(cb, timestamps_, 0, 2);
             vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 0);

@@ -86,7 +86,7 @@ std::size_t CheckResult::violations() const {
 
 ClipUnderTest::ClipUnderTest(const VariantSpec& spec, double gamma_)
     : unit_axes(kdop::unit_axes(spec.set)), mode(spec.mode), neighborhood(spec.neighborhood), gamma(gamma_),
-      numerics(spec.style.numerics) {
+      numerics(spec.numerics) {
     auto has = [&](glm::dvec3 e) {
         return std::ranges::any_of(unit_axes, [&](const glm::dvec3& a) { return std::abs(glm::dot(a, e)) == 1.0; });
     };

@@ -65,7 +65,7 @@ struct ClipUnderTest {
     Mode mode;
     Neighborhood neighborhood;
     double gamma;
-    EmitStyle::Numerics numerics;
+    Numerics numerics;
 };
 
 // Every pixel of `output`, computed by the variant from `current` and `history`.

@@ -29,7 +29,7 @@ TEST(Cli, ListPrintsEveryDefaultCombinationOncePerLine) {
     auto r = run(kdop("list"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::vector<std::string> expected;
-    for (std::string set : {"aabb", "ycocg", "dop16-grass", "dop16-asphalt", "dop22", "dop32"})
+    for (std::string set : {"aabb", "ycocg", "dop16-asphalt", "dop16-grass", "dop22", "dop32"})
         for (std::string mode : {"clip", "varclip"})
             for (std::string n : {"n9", "n5"}) expected.push_back(set + "-" + mode + "-" + n);
     EXPECT_EQ(lines(r.out), expected);

@@ -1,6 +1,7 @@
 // The stress suite on lavapipe with the validation layer on: every default variant keeps every
 // invariant on every case; the checks can fail; and each hardening fix has a test that the
 // paper's numerics fail, so removing the fix fails it too.
+#include "builtin_sets.h"
 #include "cpu_clip.h"
 #include "glsl_emitter.h"
 #include "gpu_support.h"
@@ -17,10 +18,10 @@
 namespace kdop {
 namespace {
 
-VariantSpec spec_of(const std::string& set, Mode mode, Neighborhood n, EmitStyle::Numerics numerics,
+VariantSpec spec_of(const std::string& set, Mode mode, Neighborhood n, Numerics numerics,
                     Form form = Form::unrolled) {
     VariantSpec spec{*resolve_axis_set(set), mode, n, form};
-    spec.style.numerics = numerics;
+    spec.numerics = numerics;
     return spec;
 }
 
@@ -41,8 +42,8 @@ std::string broken(const StressRun& run, std::size_t v, const std::string& name)
     return codes;
 }
 
-constexpr auto hardened = EmitStyle::Numerics::hardened;
-constexpr auto paper = EmitStyle::Numerics::paper;
+constexpr auto hardened = Numerics::hardened;
+constexpr auto paper = Numerics::paper;
 
 TEST(Stress, EveryDefaultVariantKeepsEveryInvariantOnEveryCase) {
     auto specs = select_variants({}, {}, {});
@@ -173,7 +174,7 @@ TEST(Stress, ColorsNearTheFloatMaximumStayInsideTheKdop) {
 // happens to drop that NaN; hardware whose min propagates it would return NaN). Checked in float
 // arithmetic as the emitter writes it, for every built-in axis: both planes strictly off the origin.
 TEST(Stress, PaddingKeepsTheRayOriginStrictlyInsideEverySlab) {
-    for (std::string_view name : default_set_names()) {
+    for (std::string_view name : builtin_set_names()) {
         const AxisSet set = *resolve_axis_set(name);
         for (float magnitude : {0.37f, 84.0f, 5e4f, 1e6f, 1e30f, 3e37f})
             for (const Axis& axis : set.axes) {
@@ -202,7 +203,7 @@ TEST(Stress, FlatHdrNeighborhoodKeepsItsPadding) {
         const RunnableVariant variant(std::move(*built));
         const Image out = test::run_on_gpu(variant.variant(), current, history);
         const float red = out.at(1, 1).x;
-        if (spec.style.numerics == hardened)
+        if (spec.numerics == hardened)
             EXPECT_EQ(red, 5e4f + 0.25f);
         else
             EXPECT_EQ(red, 5e4f);

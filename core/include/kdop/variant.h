@@ -30,6 +30,16 @@ enum class Form : std::uint8_t {
     loop,
 };
 
+// What a clip computes at the numerical extremes (HDR, flat neighborhoods, NaN or Inf history).
+// Unlike Form, this changes the function: `paper` is the supplement's formulation as written;
+// `hardened` (the default) pads slabs by the pixel's magnitude, takes the variance of colors
+// relative to the pixel and replaces an unusable history by the current color (README, "Numerics
+// at the extremes"). Variants with the paper's numerics are named <variant>-paper.
+enum class Numerics : std::uint8_t {
+    hardened,
+    paper,
+};
+
 enum class Neighborhood : std::uint8_t {
     n9, // 3x3, row-major, the pixel itself at index 4
     n5, // plus shape: up, left, self, right, down (the pixel itself at index 2)
@@ -56,11 +66,12 @@ struct PushConstantMember {
 };
 
 struct Variant {
-    const char* name;     // "<set>-<mode>-<neighborhood>[-loop]", e.g. "dop32-clip-n9"; "gather-n9"; "copy"
+    const char* name;     // "<set>-<mode>-<neighborhood>[-loop][-paper]", e.g. "dop32-clip-n9"; "gather-n9"; "copy"
     const char* axis_set; // e.g. "dop32"; "" for the gather and copy baselines
     Mode mode;
     Neighborhood neighborhood;
     Form form;
+    Numerics numerics;
     std::uint32_t axis_count; // k / 2
 
     const std::uint32_t* spirv;     // optimized, validated SPIR-V words (shared by identical variants)
@@ -101,6 +112,7 @@ inline const char* to_string(Mode mode) {
     return "?";
 }
 inline const char* to_string(Form form) { return form == Form::unrolled ? "unrolled" : "loop"; }
+inline const char* to_string(Numerics numerics) { return numerics == Numerics::hardened ? "hardened" : "paper"; }
 inline const char* to_string(Neighborhood n) { return n == Neighborhood::n9 ? "n9" : "n5"; }
 
 } // namespace kdop

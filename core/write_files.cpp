@@ -1,0 +1,79 @@
+#include "write_files.h"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+#include <unistd.h>
+
+namespace kdop {
+namespace fs = std::filesystem;
+
+namespace {
+
+// "<name>.kdop-partial-<pid>-<n><ext>": unique per process and file, and keeping the extension
+// for tools that look at it.
+fs::path temporary_for(const fs::path& path) {
+    static std::atomic<unsigned> counter{0};
+    fs::path temporary = path;
+    temporary.replace_filename(fmt::format("{}.kdop-partial-{}-{}{}", path.stem().string(), getpid(), counter++,
+                                           path.extension().string()));
+    return temporary;
+}
+
+} // namespace
+
+Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
+    std::vector<fs::path> temporaries, placed;
+    auto abandon = [&](std::string message) {
+        std::error_code ignored;
+        for (const fs::path& p : temporaries) fs::remove(p, ignored);
+        for (const fs::path& p : placed) fs::remove(p, ignored);
+        return fail(std::move(message));
+    };
+    for (const OutputFile& f : files) {
+        std::error_code ec;
+        if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
+        if (ec) return abandon(fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message()));
+        const fs::path temporary = temporary_for(f.path);
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) return abandon(fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));
+        temporaries.push_back(temporary);
+        out.write(f.content.data(), static_cast<std::streamsize>(f.content.size()));
+        out.close();
+        if (!out) return abandon(fmt::format("{}: write failed (disk full?)", f.path.string()));
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        std::error_code ec;
+        fs::rename(temporaries[i], files[i].path, ec);
+        if (ec) return abandon(fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message()));
+        placed.push_back(files[i].path);
+    }
+    return {};
+}
+
+Result<void> check_output_directory(const fs::path& dir, const std::string& option) {
+    std::error_code ec;
+    fs::path existing = fs::absolute(dir, ec);
+    if (ec) return fail(fmt::format("{}: {}: {}", option, dir.string(), ec.message()));
+    while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+        existing = existing.parent_path();
+    if (!fs::is_directory(existing, ec))
+        return fail(fmt::format("{}: {}: {} is not a directory", option, dir.string(), existing.string()));
+    // access() alone is not enough: /proc and read-only mounts can pass it for root. Create and
+    // remove a probe file, which is what writing the outputs will need.
+    const fs::path probe = existing / fmt::format(".kdop-write-probe-{}", getpid());
+    {
+        std::ofstream out(probe, std::ios::binary);
+        if (!out)
+            return fail(fmt::format("{}: {}: cannot create files in {}: {}", option, dir.string(), existing.string(),
+                                    std::strerror(errno)));
+    }
+    fs::remove(probe, ec);
+    return {};
+}
+
+} // namespace kdop

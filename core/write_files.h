@@ -1,0 +1,29 @@
+// Writing a command's outputs as a set, all or nothing: every file is first written next to its
+// destination under a temporary name unique to this process, and only when all of them are
+// complete are they renamed into place. A failure removes the temporaries (and any file of the
+// set already renamed), so a failed run leaves no partial output behind, and two processes
+// writing the same outputs never share a temporary.
+#pragma once
+
+#include "result.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+struct OutputFile {
+    std::filesystem::path path;
+    std::string content; // bytes, written as is
+};
+
+Result<void> write_files_atomically(const std::vector<OutputFile>& files);
+
+// Whether files can be written into `dir` (created later, by write_files_atomically, if missing):
+// its nearest existing ancestor must be a directory this process can create files in. Checked
+// before a long run starts, so a bad --out fails at once instead of after the work. Creates
+// nothing. Errors name `option` and the path.
+Result<void> check_output_directory(const std::filesystem::path& dir, const std::string& option = "--out");
+
+} // namespace kdop

@@ -1,0 +1,18 @@
+// The files a built variant is written as: its GLSL and its SPIR-V, ready for
+// write_files_atomically (core/write_files.h).
+#pragma once
+
+#include "write_files.h"
+#include "variant_builder.h"
+
+#include <filesystem>
+#include <vector>
+
+namespace kdop {
+
+// <dir>/<name>.glsl (includable function) and <dir>/<name>.comp (compute shader).
+std::vector<OutputFile> glsl_files(const BuiltVariant& v, const std::filesystem::path& dir);
+// <dir>/<name>.spv: the optimized module's words as little-endian bytes.
+OutputFile spirv_file(const BuiltVariant& v, const std::filesystem::path& dir);
+
+} // namespace kdop
