@@ -8,12 +8,13 @@ set -eu
 # valgrind and gnuplot-nox: `kdop bench` (and its tests) run callgrind and draw charts with gnuplot.
 # libglpk-dev and libqhull-dev: `kdop accuracy` solves the ideal clip as an exact LP (GLPK) and
 # measures hull and k-DOP volumes (Qhull).
+# nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libopenimageio-dev
-  libglm-dev libfmt-dev libcli11-dev
+  libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libglpk-dev libqhull-dev
   libgtest-dev valgrind gnuplot-nox
   colobot-common-textures

@@ -1,5 +1,6 @@
 #include "accuracy_report.h"
 
+#include "csv_reader.h"
 #include "gnuplot.h"
 
 #include <fmt/format.h>
@@ -11,8 +12,6 @@
 
 namespace kdop {
 namespace {
-
-using bench::gnuplot_number;
 
 std::string field(double value, int digits = 8) {
     return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : std::string();
@@ -27,14 +26,6 @@ std::vector<std::string> families_of(const std::vector<TradeRow>& trade) {
     for (const TradeRow& r : trade)
         if (std::find(families.begin(), families.end(), r.family) == families.end()) families.push_back(r.family);
     return families;
-}
-
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();
-    return fields;
 }
 
 // Marks the rows (indices into `rows`) on the Pareto front of (cost, mean_dist); rows without the
@@ -70,38 +61,52 @@ const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& fami
 
 } // namespace
 
-std::string accuracy_csv(const AccuracyRun& run) {
-    std::string out = "variant,axis_set,mode,neighborhood,k,rgb_axes,float_ops,family,image,pixels,outside_hull_rate,"
-                      "mean_dist,p95_dist,max_dist,false_accept_rate,ref_mean_dist,ref_p95_dist,ref_max_dist,"
-                      "ref_false_accept_rate,gpu_ref_max_diff,looser_than_aabb,ref_looser_than_aabb,max_excess_over_aabb,"
-                      "ref_max_excess_over_aabb,volume_ratio_median,"
-                      "volume_ratio_mean,volume_pixels\n";
+Table accuracy_table(const AccuracyRun& run) {
+    Table table({{"variant", "", Shown::text},
+                 {"axis_set", "", Shown::text},
+                 {"mode", "", Shown::text},
+                 {"neighborhood", "", Shown::text},
+                 {"k", "", Shown::integer},
+                 {"rgb_axes", "", Shown::flag},
+                 {"float_ops", "", Shown::integer},
+                 {"family", "", Shown::text},
+                 {"image", "", Shown::text},
+                 {"pixels", "", Shown::integer},
+                 {"outside_hull_rate", "", Shown::percent},
+                 {"mean_dist", "S"},
+                 {"p95_dist", "S"},
+                 {"max_dist", "S"},
+                 {"false_accept_rate", "", Shown::percent},
+                 {"ref_mean_dist", "S"},
+                 {"ref_p95_dist", "S"},
+                 {"ref_max_dist", "S"},
+                 {"ref_false_accept_rate", "", Shown::percent},
+                 {"gpu_ref_max_diff", "S"},
+                 {"looser_than_aabb", "", Shown::percent},
+                 {"ref_looser_than_aabb", "", Shown::percent},
+                 {"max_excess_over_aabb", "S"},
+                 {"ref_max_excess_over_aabb", "S"},
+                 {"volume_ratio_median"},
+                 {"volume_ratio_mean"},
+                 {"volume_pixels", "", Shown::integer}});
     for (const AccuracyRow& r : run.rows) {
         const ClipAccuracy &g = r.gpu, &c = r.reference;
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.variant,
-                           r.axis_set, r.mode, r.neighborhood, r.k, r.rgb_axes ? 1 : 0, r.float_ops, r.family, r.image,
-                           g.pixels, field(g.outside_rate()), field(g.mean_dist), field(g.p95_dist), field(g.max_dist),
-                           field(g.false_accept_rate()), field(c.mean_dist), field(c.p95_dist), field(c.max_dist),
-                           field(c.false_accept_rate()), field(r.gpu_reference_max), field(r.vs_aabb.share),
-                           field(r.reference_vs_aabb.share), field(r.vs_aabb.largest), field(r.reference_vs_aabb.largest),
-                           field(r.volume.median), field(r.volume.mean),
-                           r.volume.pixels);
+        table.add({r.variant, r.axis_set, r.mode, r.neighborhood, std::int64_t(r.k), r.rgb_axes, std::int64_t(r.float_ops),
+                   r.family, r.image, std::int64_t(g.pixels), maybe(g.outside_rate()), maybe(g.mean_dist),
+                   maybe(g.p95_dist), maybe(g.max_dist), maybe(g.false_accept_rate()), maybe(c.mean_dist),
+                   maybe(c.p95_dist), maybe(c.max_dist), maybe(c.false_accept_rate()), maybe(r.gpu_reference_max),
+                   maybe(r.vs_aabb.share), maybe(r.reference_vs_aabb.share), maybe(r.vs_aabb.largest),
+                   maybe(r.reference_vs_aabb.largest), maybe(r.volume.median), maybe(r.volume.mean),
+                   std::int64_t(r.volume.pixels)});
     }
-    return out;
+    return table;
 }
 
 Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) return fail(fmt::format("--cost: {}: cannot read", path.string()));
-    std::string line;
-    if (!std::getline(in, line)) return fail(fmt::format("{}:1: empty; expected the header of a kdop bench cost.csv", path.string()));
-    const std::vector<std::string> header = split(line);
-    const auto column = [&](const std::string& name) -> int {
-        const auto it = std::find(header.begin(), header.end(), name);
-        return it == header.end() ? -1 : static_cast<int>(it - header.begin());
-    };
-    const int variant = column("variant"), neighborhood = column("neighborhood"), instr = column("instr_per_px"),
-              marginal = column("marginal_ms");
+    auto csv = read_csv(path);
+    if (!csv) return fail("--cost: " + csv.error().message);
+    const int variant = csv->column("variant"), neighborhood = csv->column("neighborhood"),
+              instr = csv->column("instr_per_px"), marginal = csv->column("marginal_ms");
     if (variant < 0 || neighborhood < 0 || instr < 0 || marginal < 0)
         return fail(fmt::format("{}:1: not a kdop bench cost.csv (needs the columns variant, neighborhood, instr_per_px "
                                 "and marginal_ms)",
@@ -111,17 +116,14 @@ Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesyst
         double instr, marginal_ms;
     };
     std::map<std::string, Raw> raw;
-    for (int number = 2; std::getline(in, line); ++number) {
-        if (line.empty()) continue;
-        const std::vector<std::string> f = split(line);
-        if (f.size() != header.size())
-            return fail(fmt::format("{}:{}: {} fields, the header has {}", path.string(), number, f.size(), header.size()));
+    for (std::size_t r = 0; r < csv->rows.size(); ++r) {
+        const std::vector<std::string>& f = csv->rows[r];
         const auto value = [&](int i) -> Result<double> {
             if (f[i].empty()) return NAN; // not measured
             char* end = nullptr;
             const double v = std::strtod(f[i].c_str(), &end);
             if (end != f[i].c_str() + f[i].size())
-                return fail(fmt::format("{}:{}: {} is '{}', not a number", path.string(), number, header[i], f[i]));
+                return fail(fmt::format("{}:{}: {} is '{}', not a number", path.string(), csv->lines[r], csv->header[i], f[i]));
             return v;
         };
         auto i = value(instr);
@@ -184,16 +186,29 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::str
     return rows;
 }
 
-std::string trade_csv(const std::vector<TradeRow>& rows) {
-    std::string out = "family,variant,axis_set,mode,neighborhood,k,float_ops,marginal_instr_per_px,marginal_ms,mean_dist,"
-                      "p95_dist,max_dist,false_accept_rate,volume_ratio,front_float_ops,front_lavapipe\n";
+Table trade_table(const std::vector<TradeRow>& rows) {
+    Table table({{"family", "", Shown::text},
+                 {"variant", "", Shown::text},
+                 {"axis_set", "", Shown::text},
+                 {"mode", "", Shown::text},
+                 {"neighborhood", "", Shown::text},
+                 {"k", "", Shown::integer},
+                 {"float_ops", "", Shown::integer},
+                 {"marginal_instr_per_px", "instr/px", Shown::significant, 4},
+                 {"marginal_ms", "ms", Shown::fixed, 2},
+                 {"mean_dist", "S"},
+                 {"p95_dist", "S"},
+                 {"max_dist", "S"},
+                 {"false_accept_rate", "", Shown::percent},
+                 {"volume_ratio"},
+                 {"front_float_ops", "", Shown::flag},
+                 {"front_lavapipe", "", Shown::flag}});
     for (const TradeRow& r : rows)
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.family, r.variant, r.axis_set, r.mode,
-                           r.neighborhood, r.k, field(r.float_ops), field(r.lavapipe.marginal_instr_per_px),
-                           field(r.lavapipe.marginal_ms), field(r.mean_dist), field(r.p95_dist), field(r.max_dist),
-                           field(r.false_accept_rate), field(r.volume_ratio), r.front_float_ops ? 1 : 0,
-                           r.front_lavapipe ? 1 : 0);
-    return out;
+        table.add({r.family, r.variant, r.axis_set, r.mode, r.neighborhood, std::int64_t(r.k), maybe(r.float_ops),
+                   maybe(r.lavapipe.marginal_instr_per_px), maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist),
+                   maybe(r.p95_dist), maybe(r.max_dist), maybe(r.false_accept_rate), maybe(r.volume_ratio),
+                   r.front_float_ops, r.front_lavapipe});
+    return table;
 }
 
 namespace {
@@ -323,8 +338,8 @@ std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
 
 } // namespace
 
-std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade,
-                                     const AccuracyReportContext& c) {
+std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade, const RunMetadata& run_info,
+                                     const AccuracyReportSettings& c) {
     const bool lavapipe = has_lavapipe_cost(trade);
     double float_error = 0, gpu_ref_mean_gap = 0;
     std::string float_error_at;
@@ -335,12 +350,10 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
         gpu_ref_mean_gap = std::max(gpu_ref_mean_gap, std::abs(r.gpu.mean_dist - r.reference.mean_dist));
         pairs.insert(r.image);
     }
-    std::string out = "# kdop accuracy\n\n";
-    out += fmt::format("- date: {}\n- commit: {}\n- machine: {}\n- device: {}\n- driver: {}\n- command: `{}`\n", c.date,
-                       c.commit, c.machine, run.device_name, run.driver_info, c.command);
+    std::string out = "# kdop accuracy\n\n" + metadata_markdown(run_info);
     out += fmt::format("- content: {} image pairs in {} families; variance-clip gamma {}; volume ratio on up to {} pixels "
-                       "per pair and neighborhood (seed {})\n",
-                       pairs.size(), families_of(trade).size(), c.gamma, c.volume_samples, c.seed);
+                       "per pair and neighborhood\n",
+                       pairs.size(), families_of(trade).size(), c.gamma, c.volume_samples);
     out += fmt::format("- cost: float ops from the built SPIR-V{}\n\n",
                        c.cost_source.empty() ? "; no lavapipe figures (pass `--cost` a `kdop bench` cost.csv)"
                                              : fmt::format("; lavapipe from `{}`", c.cost_source));
@@ -379,7 +392,8 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
     out += "\n## By family\n\n";
     if (lavapipe) out += fmt::format("The lavapipe column: {}.\n\n", lavapipe_label(trade));
     for (const std::string& family : families_of(trade)) {
-        out += fmt::format("### {}\n\n![Accuracy against cost on {}]({})\n\n", family, family, chart_name(safe_name(family)));
+        out += fmt::format("### {}\n\n", family);
+        if (c.charts) out += fmt::format("![Accuracy against cost on {}]({})\n\n", family, chart_name(safe_name(family)));
         out += family_table(trade, family, lavapipe) + "\n";
     }
     return out;
@@ -420,7 +434,7 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                         points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.axis_set});
                 if (points.empty()) continue;
                 const std::string data = fmt::format("{}-{}-{}.dat", stem, axis.suffix, group);
-                if (auto ok = bench::write_text(data, bench::gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+                if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
                 plot += fmt::format("{}'{}' using 1:2 with points pt 7 ps 1.3 title '{}', '' using 1:2:3 with labels "
                                     "offset 0.6,0.6 left font ',7' notitle",
                                     plot.empty() ? "" : ", ", data, group);
@@ -436,7 +450,7 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                 for (const TradeRow* r : members)
                     front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
                 const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, shape);
-                if (auto ok = bench::write_text(data, bench::gnuplot_data(front)); !ok) return std::unexpected(ok.error());
+                if (auto ok = write_text(data, gnuplot_data(front)); !ok) return std::unexpected(ok.error());
                 plot += fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'", data,
                                     shape == std::string("n9") ? 2 : 3, shape);
             }
@@ -444,7 +458,7 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
         }
         script += "unset multiplot\n";
     }
-    return bench::draw_charts(script, names, scratch, out_dir);
+    return draw_charts(script, names, scratch, out_dir);
 }
 
 } // namespace kdop

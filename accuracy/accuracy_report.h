@@ -1,9 +1,12 @@
-// What `kdop accuracy` writes: accuracy.csv (one row per variant and image pair), trade.csv and
-// report.md (accuracy per texture family beside the cost the bench measured, with the Pareto
-// front marked), and one Pareto chart per family (gnuplot).
+// What `kdop accuracy` writes: the accuracy table (one row per variant and image pair), the trade
+// table and report.md (accuracy per texture family beside the cost the bench measured, with the
+// Pareto front marked), and one Pareto chart per family (gnuplot). Tables are harness Tables,
+// written as CSV and JSON by the output set.
 #pragma once
 
 #include "accuracy_run.h"
+#include "run_metadata.h"
+#include "table.h"
 #include "write_files.h"
 
 #include <filesystem>
@@ -13,7 +16,7 @@
 
 namespace kdop {
 
-std::string accuracy_csv(const AccuracyRun& run);
+Table accuracy_table(const AccuracyRun& run);
 
 // What `kdop bench` measured on lavapipe for a variant, beyond its gather-only baseline.
 struct LavapipeCost {
@@ -39,18 +42,18 @@ struct TradeRow {
 };
 
 std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::string, LavapipeCost>& costs);
-std::string trade_csv(const std::vector<TradeRow>& rows);
+Table trade_table(const std::vector<TradeRow>& rows);
 
-struct AccuracyReportContext {
-    std::string date, commit, machine, command;
+struct AccuracyReportSettings {
     std::string cost_source; // the bench cost.csv used, or empty
-    std::uint64_t seed = 1;
     float gamma = 1.0f;
     std::size_t volume_samples = 0;
+    bool charts = true; // whether the Pareto charts were drawn (and so can be shown)
 };
 
-std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade,
-                                     const AccuracyReportContext& context);
+// `run_info` carries the seed.
+std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade, const RunMetadata& run_info,
+                                     const AccuracyReportSettings& settings);
 
 // pareto-<family>.png for each family, in the order the report shows them.
 std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade);

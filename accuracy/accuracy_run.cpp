@@ -2,9 +2,6 @@
 
 #include "cpu_clip.h"
 #include "ideal_clip.h"
-#include "kernel.h"
-#include "rectify_pass.h"
-#include "runnable_variant.h"
 #include "spirv_cost.h"
 
 #include <fmt/format.h>
@@ -18,9 +15,9 @@
 namespace kdop {
 namespace {
 
-std::set<Neighborhood> shapes_of(const std::vector<VariantSpec>& specs) {
+std::set<Neighborhood> shapes_of(const std::vector<VariantKey>& keys) {
     std::set<Neighborhood> shapes;
-    for (const VariantSpec& s : specs) shapes.insert(s.neighborhood);
+    for (const VariantKey& k : keys) shapes.insert(k.neighborhood);
     return shapes;
 }
 
@@ -47,81 +44,75 @@ struct Distances {
 } // namespace
 
 std::size_t accuracy_steps(const AccuracyOptions& options, std::size_t pairs) {
-    return pairs * (shapes_of(options.specs).size() + 1);
+    return pairs * (shapes_of(options.variants).size() + 1);
 }
 
-Result<AccuracyRun> run_accuracy(const Context& context, const AccuracyOptions& options,
-                                 const std::vector<AccuracyPair>& pairs, const AccuracyProgress& progress) {
-    for (const VariantSpec& spec : options.specs)
-        if (spec.mode != Mode::clip && spec.mode != Mode::varclip)
-            return fail(fmt::format("{}: only clip variants have an accuracy", variant_name(spec)));
-    auto built = build_variants(options.specs);
-    if (!built) return std::unexpected(built.error());
-    std::vector<std::unique_ptr<RunnableVariant>> variants;
-    std::vector<std::unique_ptr<Kernel>> kernels;
+Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, const AccuracyOptions& options,
+                                 const std::vector<AccuracyPair>& pairs, Progress* progress) {
+    for (const VariantKey& key : options.variants)
+        if (!key.is_clip()) return fail(fmt::format("{}: only clip variants have an accuracy", key.name()));
+    auto variants = catalog.find_all(options.variants, "--sets");
+    if (!variants) return std::unexpected(variants.error());
+    std::vector<VariantSpec> specs;     // what the reference and the volumes need of each variant
     std::vector<AccuracyRow> described; // what each variant's rows say of the variant itself
-    for (BuiltVariant& b : *built) {
+    for (std::size_t v = 0; v < options.variants.size(); ++v) {
+        const VariantKey& key = options.variants[v];
+        auto set = catalog.set(key.set, "--sets");
+        if (!set) return std::unexpected(set.error());
+        specs.push_back({*set, key.mode, key.neighborhood, key.form, key.numerics});
         AccuracyRow& row = described.emplace_back();
-        row.variant = b.name;
-        row.axis_set = b.spec.set.name;
-        row.mode = to_string(b.spec.mode);
-        row.neighborhood = to_string(b.spec.neighborhood);
-        row.k = static_cast<unsigned>(2 * b.spec.set.axes.size());
-        row.rgb_axes = contains_rgb_axes(b.spec.set);
-        row.float_ops = count_float_ops(b.spirv).total();
-        variants.push_back(std::make_unique<RunnableVariant>(std::move(b)));
-        auto kernel = Kernel::create(context, variants.back()->variant());
-        if (!kernel) return std::unexpected(kernel.error());
-        kernels.push_back(std::move(*kernel));
+        row.variant = key.name();
+        row.axis_set = key.set;
+        row.mode = to_string(key.mode);
+        row.neighborhood = to_string(key.neighborhood);
+        row.k = static_cast<unsigned>(2 * set->axes.size());
+        row.rgb_axes = contains_rgb_axes(*set);
+        row.float_ops = count_float_ops({(*variants)[v]->spirv, (*variants)[v]->spirv_word_count}).total();
     }
 
-    AccuracyRun run{{}, context.device_name(), context.driver_info()};
+    AccuracyRun run;
     for (const AccuracyPair& pair : pairs) {
         std::map<Neighborhood, std::vector<double>> ideal;
         std::map<Neighborhood, std::vector<SolidPixel>> sample;
-        for (Neighborhood shape : shapes_of(options.specs)) {
-            if (progress) progress(fmt::format("{}: ideal clip {}", pair.name, to_string(shape)));
+        for (Neighborhood shape : shapes_of(options.variants)) {
             auto exits = ideal_exits(pair.current, pair.history, shape);
             if (!exits) return fail(fmt::format("{}: {}", pair.name, exits.error().message));
             ideal[shape] = std::move(*exits);
             auto solid = sample_solid_pixels(pair.current, shape, options.volume_samples, options.seed);
             if (!solid) return fail(fmt::format("{}: {}", pair.name, solid.error().message));
             sample[shape] = std::move(*solid);
+            if (progress) progress->advance(fmt::format("{}: ideal clip {}", pair.name, to_string(shape)));
         }
 
-        if (progress) progress(fmt::format("{}: {} variants", pair.name, variants.size()));
-        auto pass = RectifyPass::create(context, pair.current.width, pair.current.height, TextureFormat::rgba32f);
-        if (!pass) return std::unexpected(pass.error());
-        if (auto ok = (*pass)->upload(pair.current, pair.history); !ok) return std::unexpected(ok.error());
         const std::size_t first_row = run.rows.size();
         std::vector<Distances> distances;
-        for (std::size_t v = 0; v < variants.size(); ++v) {
-            const VariantSpec& spec = variants[v]->built().spec;
-            if (auto ok = (*pass)->dispatch(*kernels[v], options.gamma); !ok) return std::unexpected(ok.error());
-            auto output = (*pass)->download();
-            if (!output) return std::unexpected(output.error());
+        auto ran = runner.run(pair.current, pair.history, TextureFormat::rgba32f, *variants, options.gamma,
+                              [&](std::size_t v, const Image& output) -> Result<void> {
+            const VariantSpec& spec = specs[v];
             const Image reference =
                 reference_rectify(spec.set, spec.mode, spec.neighborhood, pair.current, pair.history, options.gamma);
             const std::vector<double>& exits = ideal[spec.neighborhood];
-            Distances& d = distances.emplace_back(Distances{ideal_distances(pair.current, pair.history, exits, *output),
+            Distances& d = distances.emplace_back(Distances{ideal_distances(pair.current, pair.history, exits, output),
                                                             ideal_distances(pair.current, pair.history, exits, reference)});
-
             AccuracyRow row = described[v];
             row.family = pair.family;
             row.image = pair.name;
-            row.gpu = measure_accuracy(pair.current, pair.history, exits, *output, d.gpu);
+            row.gpu = measure_accuracy(pair.current, pair.history, exits, output, d.gpu);
             row.reference = measure_accuracy(pair.current, pair.history, exits, reference, d.reference);
-            row.gpu_reference_max = largest_difference(pair.current, *output, reference);
+            row.gpu_reference_max = largest_difference(pair.current, output, reference);
             auto volume = volume_ratio(pair.current, sample[spec.neighborhood], spec.set, spec.mode, spec.neighborhood,
                                        options.gamma);
             if (!volume) return fail(fmt::format("{}: {}", pair.name, volume.error().message));
             row.volume = *volume;
             run.rows.push_back(std::move(row));
-        }
+            return {};
+        });
+        if (!ran) return std::unexpected(ran.error());
+        if (progress) progress->advance(fmt::format("{}: {} variants", pair.name, specs.size()));
         // Each variant against the RGB AABB of its mode and neighborhood, when that was selected.
-        for (std::size_t v = 0; v < variants.size(); ++v)
-            for (std::size_t a = 0; a < variants.size(); ++a) {
-                const VariantSpec &spec = variants[v]->built().spec, &aabb = variants[a]->built().spec;
+        for (std::size_t v = 0; v < specs.size(); ++v)
+            for (std::size_t a = 0; a < specs.size(); ++a) {
+                const VariantSpec &spec = specs[v], &aabb = specs[a];
                 if (aabb.set.name != "aabb" || aabb.mode != spec.mode || aabb.neighborhood != spec.neighborhood) continue;
                 AccuracyRow& row = run.rows[first_row + v];
                 row.vs_aabb = compare_distances(distances[v].gpu, distances[a].gpu);

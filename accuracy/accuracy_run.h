@@ -1,23 +1,23 @@
-// The accuracy measurement (`kdop accuracy`): every selected variant, built in-process, run on the
-// device over every image pair and in the CPU reference, each compared pixel by pixel with the
-// ideal clip at the convex hull; plus k-DOP over hull volume on a sample of pixels.
+// The accuracy measurement (`kdop accuracy`): every selected variant run on the device over every
+// image pair (through the harness's device runner) and in the CPU reference, each compared pixel
+// by pixel with the ideal clip at the convex hull; plus k-DOP over hull volume on a sample of pixels.
 #pragma once
 
 #include "accuracy_inputs.h"
 #include "accuracy_metrics.h"
-#include "context.h"
-#include "variant_spec.h"
+#include "device_runner.h"
+#include "progress.h"
+#include "variant_catalog.h"
 #include "volume_ratio.h"
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 namespace kdop {
 
 struct AccuracyOptions {
-    std::vector<VariantSpec> specs; // clips only
+    std::vector<VariantKey> variants; // clips only
     float gamma = 1.0f;             // for variance clips
     std::size_t volume_samples = 256; // pixels per pair and neighborhood; 0: no volumes
     std::uint64_t seed = 1;           // of the volume sample
@@ -38,14 +38,11 @@ struct AccuracyRow {
 
 struct AccuracyRun {
     std::vector<AccuracyRow> rows; // pair-major, variants in selection order
-    std::string device_name, driver_info;
 };
 
-// Called as each step starts: the pair, and what is being done ("ideal n9", "variants").
-using AccuracyProgress = std::function<void(const std::string& step)>;
-
-Result<AccuracyRun> run_accuracy(const Context& context, const AccuracyOptions& options,
-                                 const std::vector<AccuracyPair>& pairs, const AccuracyProgress& progress = {});
+// Progress advances as each step ends: per pair, the ideal clip of each neighborhood, then the variants.
+Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, const AccuracyOptions& options,
+                                 const std::vector<AccuracyPair>& pairs, Progress* progress = nullptr);
 
 // How many progress steps run_accuracy reports for these options and pairs.
 std::size_t accuracy_steps(const AccuracyOptions& options, std::size_t pairs);

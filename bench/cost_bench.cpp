@@ -2,139 +2,157 @@
 
 #include "analytic_cost.h"
 #include "callgrind.h"
-#include "context.h"
-#include "variant_files.h"
 #include "progress.h"
-#include "runnable_variant.h"
 #include "spirv_module.h"
 #include "statistics.h"
 #include "timing.h"
-#include "variant_builder.h"
-#include "variant_spec.h"
-
-#include <kdop_builtin_variants.h>
+#include "write_files.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <map>
-#include <memory>
 
 namespace kdop::bench {
 namespace {
 
-const Variant& registered(const std::string& name) {
-    const Variant* v = builtin::variants().find(name.c_str());
-    if (!v) throw std::logic_error("kdop bench: no built-in variant " + name); // names are checked by the caller
-    return *v;
-}
-
 std::span<const std::uint32_t> words(const Variant& v) { return {v.spirv, v.spirv_word_count}; }
 
-std::string gather_of(const Variant& v) { return fmt::format("gather-{}", to_string(v.neighborhood)); }
+const std::vector<VariantKey> kBaselines{gather_key(Neighborhood::n9), gather_key(Neighborhood::n5), copy_key()};
 
-CostRow static_row(const Variant& v) {
+CostRow static_row(const VariantKey& key, const Variant& v) {
     CostRow row;
-    row.variant = v.name;
-    row.axis_set = v.axis_set;
-    row.mode = to_string(v.mode);
-    row.neighborhood = v.mode == Mode::copy ? "" : to_string(v.neighborhood);
+    row.key = key;
     row.k = 2 * v.axis_count;
     row.spirv_instructions = count_spirv(words(v)).instructions;
     row.float_ops = count_float_ops(words(v));
     return row;
 }
 
+Timing timing_of(const std::vector<double>& samples) {
+    return {median(samples), quantile(samples, 0.25), quantile(samples, 0.75)};
+}
+
+// The kernels every row needs: itself, its loop form and its paper twin where it has them.
+struct Kernels {
+    std::vector<VariantKey> keys;
+    std::vector<const Variant*> variants;
+    std::size_t index(const VariantKey& key) const {
+        return static_cast<std::size_t>(std::ranges::find(keys, key) - keys.begin());
+    }
+    bool has(const VariantKey& key) const { return index(key) < keys.size(); }
+};
+
+std::optional<VariantKey> loop_of(const VariantKey& key) {
+    if (!key.is_clip()) return std::nullopt;
+    return key.with(Form::loop);
+}
+std::optional<VariantKey> paper_of(const VariantKey& key) {
+    if (!key.is_clip() || key.numerics == Numerics::paper) return std::nullopt;
+    return key.with(Numerics::paper);
+}
+
+// A kernel for the callgrind probe, which runs in its own process: an embedded variant by name;
+// any other by its module, written to the scratch directory, with the interface of the embedded
+// variant of the same mode and neighborhood (every clip of one mode and neighborhood has the same
+// bindings and push constants, and the probe binds them by name).
+Result<ProbeKernel> probe_kernel(const VariantKey& key, const Variant& v, VariantCatalog& catalog,
+                                 const std::filesystem::path& scratch) {
+    if (VariantCatalog::is_embedded(v)) return ProbeKernel{key.name(), key.name(), {}};
+    const VariantKey donor_key{"aabb", key.mode, key.neighborhood, Form::unrolled, Numerics::hardened};
+    auto donor = catalog.find(donor_key);
+    if (!donor) return std::unexpected(donor.error());
+    if ((*donor)->binding_count != v.binding_count || (*donor)->push_constant_size != v.push_constant_size)
+        return fail(fmt::format("{}: its interface differs from {}'s; the callgrind probe cannot run it", key.name(),
+                                donor_key.name()));
+    static_assert(std::endian::native == std::endian::little, "SPIR-V files are written little-endian");
+    std::string bytes(v.spirv_word_count * sizeof(std::uint32_t), '\0');
+    std::memcpy(bytes.data(), v.spirv, bytes.size());
+    const std::filesystem::path module = scratch / (key.name() + ".spv");
+    if (auto ok = write_files_atomically({{module, std::move(bytes)}}); !ok) return std::unexpected(ok.error());
+    return ProbeKernel{key.name(), donor_key.name(), module};
+}
+
 } // namespace
 
-std::vector<std::string> sweep_kernels(const std::vector<std::string>& variants) {
-    std::vector<std::string> kernels{"gather-n9", "copy"};
-    for (const std::string& name : variants)
-        if (name.ends_with("-clip-n9")) kernels.push_back(name);
-    if (std::ranges::find(variants, "dop32-clip-n9") != variants.end()) kernels.push_back("dop32-clip-n9-loop");
+std::vector<VariantKey> sweep_kernels(const std::vector<VariantKey>& variants, const VariantCatalog& catalog) {
+    std::vector<VariantKey> kernels{gather_key(Neighborhood::n9), copy_key()};
+    std::optional<VariantKey> largest;
+    std::size_t largest_axes = 0;
+    for (const VariantKey& key : variants) {
+        if (key.mode != Mode::clip || key.neighborhood != Neighborhood::n9) continue;
+        kernels.push_back(key);
+        auto set = catalog.set(key.set, "--variants");
+        if (set && set->axes.size() > largest_axes) {
+            largest = key;
+            largest_axes = set->axes.size();
+        }
+    }
+    if (largest) kernels.push_back(largest->with(Form::loop));
     return kernels;
 }
 
-Result<BenchResult> run_cost_bench(const BenchOptions& options) {
+Result<BenchResult> run_cost_bench(const Context& context, VariantCatalog& catalog, const BenchOptions& options) {
     BenchResult result;
-    const std::vector<std::string> baselines{"gather-n9", "gather-n5", "copy"};
+    Kernels all;
+    for (const VariantKey& key : options.variants) all.keys.push_back(key);
+    for (const VariantKey& key : kBaselines) all.keys.push_back(key);
+    for (const VariantKey& key : options.variants) {
+        if (auto loop = loop_of(key)) all.keys.push_back(*loop);
+        if (auto paper = paper_of(key)) all.keys.push_back(*paper);
+    }
+    auto found = catalog.find_all(all.keys, "--variants");
+    if (!found) return std::unexpected(found.error());
+    all.variants = std::move(*found);
 
     // Static cost, and the analytic minimum from the set's axes.
-    std::map<std::string, AxisSet> sets;
-    for (const std::string& name : options.variants) {
-        const Variant& v = registered(name);
-        if (!sets.contains(v.axis_set)) {
-            auto set = resolve_axis_set(v.axis_set);
+    for (std::size_t i = 0; i < options.variants.size() + kBaselines.size(); ++i) {
+        const VariantKey& key = all.keys[i];
+        CostRow row = static_row(key, *all.variants[i]);
+        if (key.is_clip()) {
+            auto set = catalog.set(key.set, "--variants");
             if (!set) return std::unexpected(set.error());
-            sets.emplace(v.axis_set, *set);
+            row.analytic_min_ops = double(analytic_min_float_ops(*set, key.mode, key.neighborhood));
+            row.loop_float_ops = double(count_float_ops(words(*all.variants[all.index(*loop_of(key))])).total());
+            if (auto paper = paper_of(key))
+                row.paper_float_ops = double(count_float_ops(words(*all.variants[all.index(*paper)])).total());
         }
-        CostRow row = static_row(v);
-        row.baseline_float_ops = double(count_float_ops(words(registered(name + "-loop"))).total());
-        row.analytic_min_ops = double(analytic_min_float_ops(sets.at(v.axis_set), v.mode, v.neighborhood));
         result.rows.push_back(row);
     }
-    for (const std::string& name : baselines) result.rows.push_back(static_row(registered(name)));
 
-    // The same variants with the paper's numerics, built here: what the hardening costs.
-    std::vector<VariantSpec> paper_specs;
-    for (const std::string& name : options.variants) {
-        const Variant& v = registered(name);
-        VariantSpec spec{sets.at(v.axis_set), v.mode, v.neighborhood};
-        spec.numerics = Numerics::paper;
-        paper_specs.push_back(spec);
-    }
-    auto paper_built = build_variants(paper_specs);
-    if (!paper_built) return std::unexpected(paper_built.error());
-    std::vector<std::unique_ptr<RunnableVariant>> paper;
-    for (std::size_t i = 0; i < paper_built->size(); ++i) {
-        paper.push_back(std::make_unique<RunnableVariant>(std::move((*paper_built)[i])));
-        result.rows[i].paper_float_ops = double(count_float_ops(paper.back()->built().spirv).total());
-    }
-
-    // Every kernel at the timing size, interleaved: variants, their loop forms, the baselines.
-    std::vector<const Variant*> kernels;
-    for (const std::string& name : options.variants) kernels.push_back(&registered(name));
-    for (const std::string& name : options.variants) kernels.push_back(&registered(name + "-loop"));
-    for (const std::string& name : baselines) kernels.push_back(&registered(name));
-    for (const auto& p : paper) kernels.push_back(&p->variant());
-
-    auto context = Context::create({options.device, false});
-    if (!context) return std::unexpected(context.error());
-    result.device_name = (*context)->device_name();
-    result.driver_info = (*context)->driver_info();
+    // Every kernel at the timing size, interleaved.
     {
-        Progress progress(fmt::format("timing {} kernels,", kernels.size()), options.rounds);
-        auto run = time_interleaved(**context, kernels, options.timing_size.first, options.timing_size.second,
+        Progress progress(fmt::format("timing {} kernels,", all.variants.size()), options.rounds);
+        auto run = time_interleaved(context, all.variants, options.timing_size.first, options.timing_size.second,
                                     options.rounds, progress);
         if (!run) return std::unexpected(run.error());
         result.device_clock = run->device_clock;
-        std::map<std::string, std::vector<double>> samples;
-        for (std::size_t k = 0; k < kernels.size(); ++k) samples[kernels[k]->name] = run->ms[k];
+        const auto timing = [&](const VariantKey& key) { return timing_of(run->ms[all.index(key)]); };
         for (CostRow& row : result.rows) {
-            row.ms_median = median(samples.at(row.variant));
-            row.ms_spread = interquartile_range(samples.at(row.variant));
-            if (samples.contains(row.variant + "-loop")) row.baseline_ms_median = median(samples.at(row.variant + "-loop"));
-            if (samples.contains(row.variant + "-paper")) row.paper_ms_median = median(samples.at(row.variant + "-paper"));
-            if (!row.axis_set.empty())
-                row.marginal_ms = row.ms_median - median(samples.at(gather_of(registered(row.variant))));
+            row.ms = timing(row.key);
+            if (!row.key.is_clip()) continue;
+            row.loop_ms = timing(*loop_of(row.key));
+            row.gather_ms = timing(gather_key(row.key.neighborhood));
+            if (auto paper = paper_of(row.key)) row.paper_ms = timing(*paper);
         }
         for (CostRow& row : result.rows) {
-            auto aabb = std::ranges::find_if(result.rows, [&](const CostRow& r) {
-                return r.axis_set == "aabb" && r.mode == row.mode && r.neighborhood == row.neighborhood;
-            });
-            if (!row.axis_set.empty() && aabb != result.rows.end()) row.ms_vs_aabb = row.ms_median / aabb->ms_median;
+            const VariantKey aabb{"aabb", row.key.mode, row.key.neighborhood, row.key.form, row.key.numerics};
+            if (row.key.is_clip() && all.has(aabb)) row.ms_vs_aabb = row.ms.median / timing(aabb).median;
         }
     }
 
     if (!options.sweep_sizes.empty()) {
         SweepResult& sweep = result.sweep;
-        sweep.kernels = sweep_kernels(options.variants);
+        const std::vector<VariantKey> keys = sweep_kernels(options.variants, catalog);
+        auto swept = catalog.find_all(keys, "--variants");
+        if (!swept) return std::unexpected(swept.error());
+        for (const VariantKey& key : keys) sweep.kernels.push_back(key.name());
         sweep.sizes = options.sweep_sizes;
-        std::vector<const Variant*> swept;
-        for (const std::string& name : sweep.kernels) swept.push_back(&registered(name));
-        Progress progress(fmt::format("size sweep of {} kernels,", swept.size()), sweep.sizes.size() * options.sweep_rounds);
+        Progress progress(fmt::format("size sweep of {} kernels,", swept->size()), sweep.sizes.size() * options.sweep_rounds);
         for (const Size& size : sweep.sizes) {
-            auto run = time_interleaved(**context, swept, size.first, size.second, options.sweep_rounds, progress);
+            auto run = time_interleaved(context, *swept, size.first, size.second, options.sweep_rounds, progress);
             if (!run) return std::unexpected(run.error());
             std::vector<double> medians;
             for (const auto& ms : run->ms) medians.push_back(median(ms));
@@ -144,25 +162,21 @@ Result<BenchResult> run_cost_bench(const BenchOptions& options) {
 
     if (options.callgrind) {
         std::vector<ProbeKernel> probes;
-        for (const CostRow& row : result.rows) probes.push_back({row.variant, row.variant, {}});
-        for (const std::string& name : options.variants) probes.push_back({name + "-loop", name + "-loop", {}});
-        // The probe runs each paper module with its default's interface (built in options.variants' order).
-        std::vector<OutputFile> paper_modules;
-        for (std::size_t i = 0; i < paper.size(); ++i) {
-            paper_modules.push_back(spirv_file(paper[i]->built(), options.scratch));
-            probes.push_back({paper[i]->built().name, options.variants[i], paper_modules.back().path});
+        for (std::size_t i = 0; i < all.keys.size(); ++i) {
+            auto probe = probe_kernel(all.keys[i], *all.variants[i], catalog, options.scratch);
+            if (!probe) return std::unexpected(probe.error());
+            probes.push_back(std::move(*probe));
         }
-        if (auto ok = write_files_atomically(paper_modules); !ok) return std::unexpected(ok.error());
         CallgrindSetup setup{options.probe, options.scratch, options.callgrind_size, options.device};
         Progress progress("callgrind", probes.size());
         auto counts = callgrind_instructions_per_pixel(setup, probes, options.jobs, progress);
         if (!counts) return std::unexpected(counts.error());
-        std::map<std::string, double> per_pixel;
-        for (std::size_t i = 0; i < probes.size(); ++i) per_pixel[probes[i].name] = (*counts)[i];
+        const auto count = [&](const VariantKey& key) { return (*counts)[all.index(key)]; };
         for (CostRow& row : result.rows) {
-            row.instr_per_px = per_pixel.at(row.variant);
-            if (per_pixel.contains(row.variant + "-loop")) row.baseline_instr_per_px = per_pixel.at(row.variant + "-loop");
-            if (per_pixel.contains(row.variant + "-paper")) row.paper_instr_per_px = per_pixel.at(row.variant + "-paper");
+            row.instr_per_px = count(row.key);
+            if (!row.key.is_clip()) continue;
+            row.loop_instr_per_px = count(*loop_of(row.key));
+            if (auto paper = paper_of(row.key)) row.paper_instr_per_px = count(*paper);
         }
     }
     return result;

@@ -10,20 +10,22 @@
 namespace kdop::bench {
 namespace {
 
-std::string number(double value, int decimals) {
-    return std::isfinite(value) ? fmt::format("{:.{}f}", value, decimals) : "–";
-}
+const char* const kStaticColumns[] = {"variant",  "k",          "spirv_instructions", "float_ops",      "mul",
+                                     "add_sub",  "fma",        "min_max",            "div",            "compare_select",
+                                     "other_float", "loop_float_ops", "float_ops_vs_loop", "analytic_min_ops",
+                                     "float_ops_vs_min"};
+const char* const kMeasuredColumns[] = {"variant",          "ms_median",         "ms_q1",           "ms_q3",
+                                        "loop_ms_median",   "vs_loop_ms_noise",  "marginal_ms",     "marginal_ms_noise",
+                                        "ms_vs_aabb",       "instr_per_px",      "loop_instr_per_px", "instr_vs_loop",
+                                        "marginal_instr_per_px"};
+const char* const kHardeningColumns[] = {"variant",         "float_ops",    "paper_float_ops",   "instr_per_px",
+                                         "paper_instr_per_px", "instr_vs_paper", "ms_median",      "paper_ms_median"};
 
-std::string ratio(double value, double base) {
-    const double r = value / base;
-    return std::isfinite(r) ? fmt::format("{:.2f}×", r) : "–";
-}
+std::vector<std::string> names(std::span<const char* const> columns) { return {columns.begin(), columns.end()}; }
 
-bool is_clip(const CostRow& row) { return !row.axis_set.empty(); }
-
-const CostRow* find_row(const BenchResult& result, std::string_view name) {
+const CostRow* find_row(const BenchResult& result, const VariantKey& key) {
     for (const CostRow& row : result.rows)
-        if (row.variant == name) return &row;
+        if (row.key == key) return &row;
     return nullptr;
 }
 
@@ -31,105 +33,17 @@ bool measured_callgrind(const BenchResult& result) {
     return !result.rows.empty() && std::isfinite(result.rows.front().instr_per_px);
 }
 
-std::string static_table(const BenchResult& result) {
-    std::string out = "| variant | k | SPIR-V instructions | float ops | mul | add/sub | fma | min/max | div | cmp/sel | other "
-                      "| loop form | vs loop | analytic min | vs min |\n";
-    out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
-    for (const CostRow& r : result.rows) {
-        const FloatOps& f = r.float_ops;
-        out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.variant,
-                           r.k ? std::to_string(r.k) : "–", r.spirv_instructions, f.total(), f.mul, f.add_sub, f.fma,
-                           f.min_max, f.div, f.compare_select, f.other, number(r.baseline_float_ops, 0),
-                           ratio(double(f.total()), r.baseline_float_ops), number(r.analytic_min_ops, 0),
-                           ratio(double(f.total()), r.analytic_min_ops));
-    }
-    return out;
-}
-
-std::string measured_table(const BenchResult& result) {
-    std::string out = "| variant | median ms | IQR ms | marginal ms | ms vs aabb | loop form ms | loop marginal ms "
-                      "| instr/px | loop instr/px | vs loop |\n";
-    out += "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
-    for (const CostRow& r : result.rows) {
-        const double loop_marginal = r.marginal_ms + (r.baseline_ms_median - r.ms_median);
-        out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.variant, number(r.ms_median, 2),
-                           number(r.ms_spread, 2), number(r.marginal_ms, 2), number(r.ms_vs_aabb, 2),
-                           number(r.baseline_ms_median, 2), number(loop_marginal, 2), number(r.instr_per_px, 1),
-                           number(r.baseline_instr_per_px, 1), ratio(r.instr_per_px, r.baseline_instr_per_px));
-    }
-    return out;
-}
-
-// Hardened numerics (the default) against the paper's, per variant.
-std::string hardening_table(const BenchResult& result) {
-    std::string out = "| variant | float ops | paper | ratio | instr/px | paper | ratio | median ms | paper ms |\n"
-                      "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
-    for (const CostRow& r : result.rows) {
-        if (!std::isfinite(r.paper_float_ops)) continue;
-        const double ops = double(r.float_ops.total());
-        out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.variant, ops, r.paper_float_ops,
-                           ratio(ops, r.paper_float_ops), number(r.instr_per_px, 1), number(r.paper_instr_per_px, 1),
-                           ratio(r.instr_per_px, r.paper_instr_per_px), number(r.ms_median, 2), number(r.paper_ms_median, 2));
-    }
-    return out;
-}
-
-std::string sweep_table(const BenchResult& result) {
-    const SweepResult& s = result.sweep;
-    std::string header = "| size | Mpixel |", rule = "|---|--:|";
-    for (const std::string& k : s.kernels) {
-        header += fmt::format(" {} ms |", k);
-        rule += "--:|";
-    }
-    std::string out = header + "\n" + rule + "\n";
+Table sweep_table(const SweepResult& s) {
+    std::vector<Column> columns{{"size", "", Shown::text}, {"mpixel", "", Shown::fixed, 2, "Mpixel"}};
+    for (const std::string& k : s.kernels) columns.push_back({k, "ms", Shown::fixed, 2});
+    Table table(std::move(columns));
     for (std::size_t i = 0; i < s.sizes.size(); ++i) {
-        const double mpixel = double(s.sizes[i].first) * s.sizes[i].second * 1e-6;
-        out += fmt::format("| {}x{} | {:.2f} |", s.sizes[i].first, s.sizes[i].second, mpixel);
-        for (double ms : s.ms_median[i]) out += fmt::format(" {:.2f} |", ms);
-        out += "\n";
+        std::vector<Value> row{fmt::format("{}x{}", s.sizes[i].first, s.sizes[i].second),
+                               double(s.sizes[i].first) * s.sizes[i].second * 1e-6};
+        for (double ms : s.ms_median[i]) row.push_back(ms);
+        table.add(std::move(row));
     }
-    return out;
-}
-
-// The targets set for the cost work (issue 4), each evaluated on this run's numbers.
-std::string targets(const BenchResult& result) {
-    std::string out;
-    auto line = [&](bool met, const std::string& text) { out += fmt::format("- **{}**: {}\n", met ? "met" : "missed", text); };
-    if (const CostRow* dop32 = find_row(result, "dop32-clip-n9")) {
-        const double r = double(dop32->float_ops.total()) / dop32->baseline_float_ops;
-        line(r <= 0.55, fmt::format("dop32-clip-n9 at ≤ 0.55× the loop form's float ops: {} / {} = {:.3f}×",
-                                    dop32->float_ops.total(), dop32->baseline_float_ops, r));
-    }
-    std::string over;
-    double worst = 0;
-    for (const CostRow& r : result.rows) {
-        if (!is_clip(r)) continue;
-        const double x = double(r.float_ops.total()) / r.analytic_min_ops;
-        worst = std::max(worst, x);
-        if (x > 1.05) over += fmt::format(" {} ({:.3f}×)", r.variant, x);
-    }
-    line(over.empty(), fmt::format("every variant within 5% of its analytic minimum: worst {:.3f}×{}", worst,
-                                   over.empty() ? "" : "; over:" + over));
-    if (measured_callgrind(result)) {
-        std::string above, not_below;
-        for (const CostRow& r : result.rows) {
-            if (!is_clip(r)) continue;
-            if (r.instr_per_px > r.baseline_instr_per_px) above += " " + r.variant;
-            if (r.k >= 16 && !(r.instr_per_px < r.baseline_instr_per_px)) not_below += " " + r.variant;
-        }
-        line(above.empty(), "no variant's callgrind instructions per pixel above its loop form's" +
-                                (above.empty() ? std::string() : "; above:" + above));
-        line(not_below.empty(), "16-, 22- and 32-DOP strictly below their loop forms" +
-                                    (not_below.empty() ? std::string() : "; not below:" + not_below));
-        if (const CostRow* dop32 = find_row(result, "dop32-clip-n9"); dop32 && find_row(result, "gather-n9")) {
-            const double gather = find_row(result, "gather-n9")->instr_per_px;
-            out += fmt::format("- dop32-clip-n9's marginal cost over the gather, in instructions per pixel: {:.1f} against "
-                               "the loop form's {:.1f} ({:.2f}×)\n",
-                               dop32->instr_per_px - gather, dop32->baseline_instr_per_px - gather,
-                               (dop32->instr_per_px - gather) / (dop32->baseline_instr_per_px - gather));
-        }
-    }
-    return out;
+    return table;
 }
 
 constexpr const char* kDerivation = R"(The fewest scalar float operations kdop's formulation needs, from each axis's
@@ -174,114 +88,112 @@ std::vector<std::string> cost_chart_names(const BenchResult& result) {
     return names;
 }
 
-std::string cost_report_markdown(const BenchResult& result, const ReportContext& c) {
-    const BenchOptions& o = c.options;
+std::string cost_report_markdown(const BenchResult& result, const RunMetadata& run, const ReportSettings& settings) {
+    const BenchOptions& o = settings.options;
+    const Table table = cost_table(result.rows);
     const double timing_pixels = double(o.timing_size.first) * o.timing_size.second;
-    std::string out = "# kdop cost bench\n\n";
-    out += fmt::format("- date: {}\n- commit: {}\n- machine: {}\n- device: {}\n- driver: {}\n- command: `{}`\n", c.date, c.commit,
-                       c.machine, result.device_name, result.driver_info, c.command);
+    const auto chart = [&](std::size_t i, const char* text) {
+        return i < settings.charts.size() ? fmt::format("![{}]({})\n\n", text, settings.charts[i]) : std::string();
+    };
+    std::string out = "# kdop cost bench\n\n" + metadata_markdown(run);
     out += fmt::format("- content: current = grass texture (seed {}), history = asphalt texture (seed {}), so every "
                        "pixel is clipped\n\n",
                        kCurrentSeed, kHistorySeed);
-    const auto charts = cost_chart_names(result);
-    out += "## Targets\n\n" + targets(result) + "\n";
-    out += fmt::format("![Float operations per variant against the loop form and the analytic minimum]({})\n\n", charts[0]);
-    out += fmt::format("![Measured cost on the device: callgrind instructions per pixel and marginal time]({})\n\n",
-                       charts[1]);
+    out += chart(0, "Float operations per variant against the loop form and the analytic minimum");
+    out += chart(1, "Measured cost on the device: callgrind instructions per pixel and time with its spread");
 
-    out += "## Static cost\n\nFrom the optimized SPIR-V that ships (`generator/spirv_cost.h`): scalar float operations, vector "
+    out += "## Static cost\n\nFrom the optimized SPIR-V (`generator/spirv_cost.h`): scalar float operations, vector "
            "operations once per component, `OpDot` of N as 2N − 1, `Fma` as 1. The loop form is the supplement's listing, "
            "compiled and optimized the same way.\n\n";
-    out += static_table(result) + "\n";
+    out += table.markdown(names(kStaticColumns)) + "\n";
     out += "### The analytic minimum\n\n" + std::string(kDerivation) + "\n\n";
 
     out += fmt::format("## Measured cost\n\n{} rounds at {}x{}; every round dispatches each kernel once, in an order "
-                       "rotated round to round. Times are {}; median and interquartile range (IQR). Marginal = the "
-                       "variant minus the gather-only kernel of its neighborhood (same loads and store, no clip).\n\n",
+                       "rotated round to round. Times are {}: median, first and third quartile (Q1, Q3). Marginal = the "
+                       "variant minus the gather-only kernel of its neighborhood (same loads and store, no clip). A "
+                       "difference smaller than the larger interquartile range of the two is *within noise*: it is not "
+                       "a saving or a loss this run can show.\n\n",
                        o.rounds, o.timing_size.first, o.timing_size.second,
                        result.device_clock ? "GPU timestamps around the dispatch" : "submit-to-fence wall times");
     if (o.callgrind)
-        out += fmt::format("instr/px: CPU instructions lavapipe executes per pixel for one {0}x{0} dispatch, counted by "
+        out += fmt::format("callgrind: CPU instructions lavapipe executes per pixel for one {0}x{0} dispatch, counted by "
                            "callgrind around the dispatch alone (`LP_NUM_THREADS=0`, `bench/kdop-dispatch-probe`). It "
                            "repeats from run to run, so it is the number to compare where times are noisy.\n\n",
                            o.callgrind_size);
-    out += measured_table(result) + "\n";
-    if (const CostRow* gather = find_row(result, "gather-n9"); gather && std::isfinite(gather->ms_median))
-        out += fmt::format("gather-n9 alone: {}; copy: {}.\n\n", run_ms(gather->ms_median, timing_pixels),
-                           run_ms(find_row(result, "copy")->ms_median, timing_pixels));
+    out += table.markdown(names(kMeasuredColumns)) + "\n";
+    const CostRow* gather = find_row(result, gather_key(Neighborhood::n9));
+    const CostRow* copy = find_row(result, copy_key());
+    if (gather && copy && std::isfinite(gather->ms.median))
+        out += fmt::format("gather-n9 alone: {}; copy: {}.\n\n", run_ms(gather->ms.median, timing_pixels),
+                           run_ms(copy->ms.median, timing_pixels));
 
-    out += "## Cost of hardening\n\nThe default variants against the same variants with the paper's numerics "
-           "(`kdop gen --numerics paper`), which `kdop stress` shows returning NaN or colors outside the k-DOP on "
-           "extreme input. Both were timed in the same interleaved rounds and counted by callgrind alike.\n\n";
-    out += hardening_table(result) + "\n";
+    const Table hardened = table.rows_where([&](std::size_t r) { return std::isfinite(result.rows[r].paper_float_ops); });
+    if (!hardened.rows().empty()) {
+        out += "## Cost of hardening\n\nThe variants against the same variants with the paper's numerics "
+               "(`--numerics paper`), which `kdop stress` shows returning NaN or colors outside the k-DOP on "
+               "extreme input. Both were timed in the same interleaved rounds and counted by callgrind alike.\n\n";
+        out += hardened.markdown(names(kHardeningColumns)) + "\n";
+    }
 
     if (!result.sweep.sizes.empty()) {
         out += fmt::format("## Size sweep\n\nMedian of {} interleaved rounds per size.\n\n", o.sweep_rounds);
-        out += sweep_table(result) + "\n";
-        out += fmt::format("![Time against pixel count]({})\n\n", charts[2]);
+        out += sweep_table(result.sweep).markdown() + "\n";
+        out += chart(2, "Time against pixel count");
     }
     return out;
 }
 
-Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std::filesystem::path& scratch,
-                                            const std::filesystem::path& out_dir) {
+
+Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std::string& device,
+                                            const std::filesystem::path& scratch, const std::filesystem::path& out_dir) {
     const auto names = cost_chart_names(result);
-    std::vector<std::vector<std::string>> clips;
-    for (const CostRow& r : result.rows) {
-        if (!is_clip(r)) continue;
-        const double loop_marginal = r.marginal_ms + (r.baseline_ms_median - r.ms_median);
-        std::vector<std::string> row{r.variant};
-        for (double v : {double(r.float_ops.total()), r.analytic_min_ops, r.baseline_float_ops, r.instr_per_px,
-                         r.baseline_instr_per_px, r.marginal_ms, loop_marginal})
-            row.push_back(gnuplot_number(v));
-        clips.push_back(std::move(row));
-    }
-    if (auto ok = write_text(scratch / "clips.dat", gnuplot_data(clips)); !ok) return std::unexpected(ok.error());
-    const CostRow* gather = find_row(result, "gather-n9");
+    const Table table = cost_table(result.rows);
+    const Table clips = table.rows_where([&](std::size_t r) { return result.rows[r].key.is_clip(); });
+    const std::string data = (scratch / "clips.dat").string();
+    const std::vector<std::string> columns{"variant",      "float_ops",     "analytic_min_ops", "loop_float_ops",
+                                           "instr_per_px", "loop_instr_per_px", "ms_median",    "ms_q1",
+                                           "ms_q3",        "loop_ms_median", "vs_loop_ms_noise"};
+    if (auto ok = write_text(data, clips.gnuplot(columns)); !ok) return std::unexpected(ok.error());
+    const CostRow* gather = find_row(result, gather_key(Neighborhood::n9));
 
     std::string script = kChartStyle;
     script += fmt::format("set output '{}'\n", (scratch / names[0]).string());
     script += "set title 'Static cost: scalar float operations per pixel (optimized SPIR-V)'\nset ylabel 'float ops'\n";
     script += fmt::format("plot '{0}' using 2:xtic(1) title 'emitted (kdop)', '' using 3 title 'analytic minimum', "
                           "'' using 4 title 'loop form (supplement)'\n",
-                          (scratch / "clips.dat").string());
-    // Measured cost: callgrind's instructions (when counted) above the marginal time.
+                          data);
+    // Measured cost: callgrind's instructions (when counted) above the times, drawn as medians with
+    // their interquartile range; variants whose time is within noise of their loop form say so.
     const bool counted = measured_callgrind(result);
     script += fmt::format("set output '{}'\nset terminal pngcairo size 1400,{} font 'sans,10'\nset multiplot layout {},1\n",
                           (scratch / names[1]).string(), counted ? 1000 : 560, counted ? 2 : 1);
     if (counted) {
-        script += fmt::format("set title 'lavapipe: CPU instructions per pixel of one dispatch (callgrind)'\n"
-                              "set ylabel 'instructions / pixel'\n");
-        script += fmt::format("plot '{0}' using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n",
-                              (scratch / "clips.dat").string(),
+        script += "set title 'lavapipe: CPU instructions per pixel of one dispatch (callgrind, repeats exactly)'\n"
+                  "set ylabel 'instructions / pixel'\n";
+        script += fmt::format("plot '{0}' using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n", data,
                               gather ? fmt::format(", {} with lines dt 2 lw 2 lc rgb 'black' title 'gather-n9 alone'",
                                                    gnuplot_number(gather->instr_per_px))
                                      : "");
     }
-    script += fmt::format("set title '{}: marginal time over the gather-only kernel (median)'\nset ylabel 'ms'\n"
-                          "set yrange [*:*]\n",
-                          result.device_name);
-    script += fmt::format("plot '{0}' using 7:xtic(1) title 'emitted (kdop)', '' using 8 title 'loop form'\n"
+    script += fmt::format("set title '{}: dispatch time, median with Q1..Q3; \"noise\": within the spread of its loop "
+                          "form'\nset ylabel 'ms'\nset style histogram errorbars gap 1 lw 1\n",
+                          device);
+    script += fmt::format("plot '{0}' using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:10:10 title 'loop form', "
+                          "'' using 0:(column(11) > 0 ? column(7) : 1/0):(\"noise\") with labels offset 0,1.5 notitle\n"
                           "unset multiplot\n",
-                          (scratch / "clips.dat").string());
+                          data);
 
     if (!result.sweep.sizes.empty()) {
         const SweepResult& s = result.sweep;
-        std::vector<std::vector<std::string>> sweep;
-        for (std::size_t i = 0; i < s.sizes.size(); ++i) {
-            std::vector<std::string> row{gnuplot_number(double(s.sizes[i].first) * s.sizes[i].second * 1e-6)};
-            for (double ms : s.ms_median[i]) row.push_back(gnuplot_number(ms));
-            sweep.push_back(row);
-        }
-        if (auto ok = write_text(scratch / "sweep.dat", gnuplot_data(sweep)); !ok) return std::unexpected(ok.error());
+        const std::string sweep_data = (scratch / "sweep.dat").string();
+        if (auto ok = write_text(sweep_data, sweep_table(s).gnuplot({})); !ok) return std::unexpected(ok.error());
         script += fmt::format("set terminal pngcairo size 1000,700 font 'sans,10'\nset output '{}'\n",
                               (scratch / names[2]).string());
         script += "set style data linespoints\nset logscale xy\nset xtics rotate by 0 scale 1\nset yrange [*:*]\n"
                   "set xlabel 'Mpixel'\nset ylabel 'ms (median)'\nset title 'Dispatch time against pixel count'\n";
         script += "plot ";
         for (std::size_t k = 0; k < s.kernels.size(); ++k)
-            script += fmt::format("{}'{}' using 1:{} title '{}'", k ? ", " : "", (scratch / "sweep.dat").string(), k + 2,
-                                  s.kernels[k]);
+            script += fmt::format("{}'{}' using 2:{} title '{}'", k ? ", " : "", sweep_data, k + 3, s.kernels[k]);
         script += "\n";
     }
     return draw_charts(script, names, scratch, out_dir);

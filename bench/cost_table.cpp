@@ -1,34 +1,77 @@
 #include "cost_table.h"
 
-#include <fmt/format.h>
-
-#include <cmath>
-
 namespace kdop::bench {
 namespace {
 
-std::string field(double value, int decimals) {
-    return std::isfinite(value) ? fmt::format("{:.{}f}", value, decimals) : std::string();
-}
+double ratio(double a, double b) { return std::isfinite(a) && std::isfinite(b) && b != 0 ? a / b : NAN; }
 
 } // namespace
 
-std::string cost_csv(const std::vector<CostRow>& rows) {
-    std::string out = "variant,axis_set,mode,neighborhood,k,spirv_instructions,float_ops,mul,add_sub,fma,min_max,div,"
-                      "compare_select,other_float,baseline_float_ops,analytic_min_ops,ms_median,ms_spread,"
-                      "baseline_ms_median,marginal_ms,ms_vs_aabb,instr_per_px,baseline_instr_per_px,paper_float_ops,"
-                      "paper_ms_median,paper_instr_per_px\n";
+bool within_noise(const Timing& a, const Timing& b) {
+    return std::abs(a.median - b.median) <= std::max(a.spread(), b.spread());
+}
+
+Table cost_table(const std::vector<CostRow>& rows) {
+    Table table({
+        {"variant", "", Shown::text},
+        {"axis_set", "", Shown::text},
+        {"mode", "", Shown::text},
+        {"neighborhood", "", Shown::text},
+        {"numerics", "", Shown::text},
+        {"k", "", Shown::integer},
+        {"spirv_instructions", "", Shown::integer, 0, "SPIR-V instructions"},
+        {"float_ops", "", Shown::integer, 0, "float ops"},
+        {"mul", "", Shown::integer},
+        {"add_sub", "", Shown::integer, 0, "add/sub"},
+        {"fma", "", Shown::integer},
+        {"min_max", "", Shown::integer, 0, "min/max"},
+        {"div", "", Shown::integer},
+        {"compare_select", "", Shown::integer, 0, "cmp/sel"},
+        {"other_float", "", Shown::integer, 0, "other"},
+        {"loop_float_ops", "", Shown::integer, 0, "loop form"},
+        {"float_ops_vs_loop", "", Shown::ratio, 2, "vs loop"},
+        {"analytic_min_ops", "", Shown::integer, 0, "analytic min"},
+        {"float_ops_vs_min", "", Shown::ratio, 3, "vs min"},
+        {"ms_median", "ms", Shown::fixed, 2, "median"},
+        {"ms_q1", "ms", Shown::fixed, 2, "Q1"},
+        {"ms_q3", "ms", Shown::fixed, 2, "Q3"},
+        {"loop_ms_median", "ms", Shown::fixed, 2, "loop form"},
+        {"vs_loop_ms_noise", "", Shown::flag, 0, "vs loop within noise"},
+        {"marginal_ms", "ms", Shown::fixed, 2, "marginal"},
+        {"marginal_ms_noise", "", Shown::flag, 0, "marginal within noise"},
+        {"ms_vs_aabb", "", Shown::ratio, 2, "vs aabb"},
+        {"instr_per_px", "instr/px", Shown::fixed, 1, "callgrind"},
+        {"loop_instr_per_px", "instr/px", Shown::fixed, 1, "loop form"},
+        {"instr_vs_loop", "", Shown::ratio, 2, "vs loop"},
+        {"marginal_instr_per_px", "instr/px", Shown::fixed, 1, "marginal"},
+        {"paper_float_ops", "", Shown::integer, 0, "paper float ops"},
+        {"paper_ms_median", "ms", Shown::fixed, 2, "paper median"},
+        {"paper_instr_per_px", "instr/px", Shown::fixed, 1, "paper callgrind"},
+        {"instr_vs_paper", "", Shown::ratio, 3, "vs paper"},
+    });
     for (const CostRow& r : rows) {
         const FloatOps& f = r.float_ops;
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.variant, r.axis_set,
-                           r.mode, r.neighborhood, r.k ? std::to_string(r.k) : "", r.spirv_instructions, f.total(), f.mul,
-                           f.add_sub, f.fma, f.min_max, f.div, f.compare_select, f.other, field(r.baseline_float_ops, 0),
-                           field(r.analytic_min_ops, 0), field(r.ms_median, 3), field(r.ms_spread, 3),
-                           field(r.baseline_ms_median, 3), field(r.marginal_ms, 3), field(r.ms_vs_aabb, 3),
-                           field(r.instr_per_px, 1), field(r.baseline_instr_per_px, 1), field(r.paper_float_ops, 0),
-                           field(r.paper_ms_median, 3), field(r.paper_instr_per_px, 1));
+        const bool clip = r.key.is_clip();
+        const double ops = double(f.total());
+        double gather_instr = NAN;
+        for (const CostRow& g : rows)
+            if (g.key == gather_key(r.key.neighborhood)) gather_instr = g.instr_per_px;
+        table.add({r.key.name(), r.key.set, to_string(r.key.mode), r.key.mode == Mode::copy ? "" : to_string(r.key.neighborhood),
+                   clip ? Value(to_string(r.key.numerics)) : Value(), clip ? Value(std::int64_t(r.k)) : Value(),
+                   std::int64_t(r.spirv_instructions), std::int64_t(f.total()), std::int64_t(f.mul), std::int64_t(f.add_sub),
+                   std::int64_t(f.fma), std::int64_t(f.min_max), std::int64_t(f.div), std::int64_t(f.compare_select),
+                   std::int64_t(f.other), maybe(r.loop_float_ops), maybe(ratio(ops, r.loop_float_ops)),
+                   maybe(r.analytic_min_ops), maybe(ratio(ops, r.analytic_min_ops)), maybe(r.ms.median), maybe(r.ms.q1),
+                   maybe(r.ms.q3), maybe(r.loop_ms.median),
+                   std::isfinite(r.loop_ms.median) ? Value(within_noise(r.ms, r.loop_ms)) : Value(),
+                   clip ? maybe(r.ms.median - r.gather_ms.median) : Value(),
+                   clip && std::isfinite(r.gather_ms.median) ? Value(within_noise(r.ms, r.gather_ms)) : Value(),
+                   maybe(r.ms_vs_aabb), maybe(r.instr_per_px), maybe(r.loop_instr_per_px),
+                   maybe(ratio(r.instr_per_px, r.loop_instr_per_px)), clip ? maybe(r.instr_per_px - gather_instr) : Value(),
+                   maybe(r.paper_float_ops), maybe(r.paper_ms.median), maybe(r.paper_instr_per_px),
+                   maybe(ratio(r.instr_per_px, r.paper_instr_per_px))});
     }
-    return out;
+    return table;
 }
 
 } // namespace kdop::bench

@@ -3,11 +3,14 @@
 #include "accuracy_report.h"
 #include "accuracy_run.h"
 #include "context.h"
-#include "write_files.h"
+#include "device_runner.h"
+#include "gnuplot.h"
+#include "output_set.h"
 #include "progress.h"
-#include "run_info.h"
+#include "run_metadata.h"
 #include "scratch_directory.h"
 #include "selection_options.h"
+#include "variant_catalog.h"
 
 #include <fmt/format.h>
 
@@ -26,13 +29,13 @@ Action add_accuracy_command(CLI::App& app) {
         std::uint64_t seed = 1;
         std::size_t volume_samples = 256;
         double gamma = 1.0;
-        bool validation = false;
+        bool validation = false, no_charts = false;
     };
     auto o = std::make_shared<Options>();
     CLI::App* accuracy = app.add_subcommand(
         "accuracy", "Measure how close each variant's clip comes to the ideal clip at the convex hull of the neighborhood "
                     "(exact LP on the CPU), on given images or on the built-in texture families and ghosting histories; "
-                    "writes accuracy.csv, trade.csv, report.md and a Pareto chart per family");
+                    "writes accuracy.csv, trade.csv (each also as JSON), report.md and a Pareto chart per family");
     accuracy->add_option("--out", o->out, "Output directory (created if missing)")->required();
     auto* current = accuracy->add_option("--current", o->current, "Current frame (needs --history)");
     auto* history = accuracy->add_option("--history", o->history, "History of the same size as --current");
@@ -55,6 +58,7 @@ Action add_accuracy_command(CLI::App& app) {
                          "Pixels per pair and neighborhood for the k-DOP/hull volume ratio; 0 skips it [default: 256]");
     accuracy->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     accuracy->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
+    accuracy->add_flag("--no-charts", o->no_charts, "Write the tables and report without the Pareto charts");
 
     return [o, accuracy] {
         if (o->selection.baselines) return report_error("--baselines: the gather and copy baselines are not clips; they have no accuracy");
@@ -63,8 +67,12 @@ Action add_accuracy_command(CLI::App& app) {
         const bool builtin = o->current.empty() && o->images.empty();
         if (!builtin && accuracy->count("--size"))
             return report_error("--size: only for the built-in content; --current and --images are measured at their own size");
+        auto outputs = OutputSet::prepare(o->out);
+        if (!outputs) return report_error(outputs.error().message);
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
+        auto catalog = VariantCatalog::create(o->selection.sets);
+        if (!catalog) return report_error(catalog.error().message);
         std::map<std::string, LavapipeCost> costs;
         if (!o->cost.empty()) {
             auto read = read_bench_costs(o->cost);
@@ -85,38 +93,37 @@ Action add_accuracy_command(CLI::App& app) {
             pairs.push_back(std::move(*read));
         }
 
-        bench::ScratchDirectory scratch("kdop-accuracy");
+        const bool charts = charts_available(!o->no_charts);
+        ScratchDirectory scratch("kdop-accuracy");
         if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
 
-        AccuracyOptions options{*specs, static_cast<float>(o->gamma), o->volume_samples, o->seed};
-        AccuracyRun run;
-        {
-            bench::Progress progress(fmt::format("accuracy of {} variants on {},", specs->size(), (*context)->device_name()),
-                                     accuracy_steps(options, pairs.size()));
-            auto measured = run_accuracy(**context, options, pairs, [&](const std::string& step) { progress.advance(step); });
-            if (!measured) return report_error(measured.error().message);
-            run = std::move(*measured);
-        }
+        AccuracyOptions options{{}, static_cast<float>(o->gamma), o->volume_samples, o->seed};
+        for (const VariantSpec& spec : *specs) options.variants.push_back(spec.key());
+        DeviceRunner runner(**context);
+        Progress progress(fmt::format("accuracy of {} variants on {},", specs->size(), (*context)->device_name()),
+                          accuracy_steps(options, pairs.size()));
+        auto run = run_accuracy(runner, *catalog, options, pairs, &progress);
+        progress.finish();
+        if (!run) return report_error(run.error().message);
         for (const std::string& message : (*context)->validation_messages()) std::cerr << "validation: " << message << "\n";
 
-        const std::vector<TradeRow> trade = trade_rows(run, costs);
-        const std::filesystem::path dir = o->out;
-        AccuracyReportContext report{bench::utc_now_iso8601(), bench::source_commit(), bench::machine_description(), "",
-                                     o->cost, o->seed, static_cast<float>(o->gamma), o->volume_samples};
-        report.command = fmt::format("kdop accuracy{}{} ({} variants, {} pairs)",
-                                     builtin ? fmt::format(" --size {} --seed {}", o->size, o->seed) : "",
-                                     o->cost.empty() ? "" : " --cost " + o->cost, specs->size(), pairs.size());
-        auto charts = accuracy_charts(trade, scratch.path, dir);
-        if (!charts) return report_error(charts.error().message);
-        std::vector<OutputFile> files = {{dir / "accuracy.csv", accuracy_csv(run)},
-                                         {dir / "trade.csv", trade_csv(trade)},
-                                         {dir / "report.md", accuracy_report_markdown(run, trade, report)}};
-        files.insert(files.end(), charts->begin(), charts->end());
-        if (auto ok = write_files_atomically(files); !ok) return report_error(ok.error().message);
+        RunMetadata run_info = describe_run(**context);
+        run_info.seed = o->seed;
+        const std::vector<TradeRow> trade = trade_rows(*run, costs);
+        if (charts) {
+            auto drawn = accuracy_charts(trade, scratch.path, outputs->dir());
+            if (!drawn) return report_error(drawn.error().message);
+            outputs->add(std::move(*drawn));
+        }
+        outputs->add_table("accuracy", accuracy_table(*run), run_info);
+        outputs->add_table("trade", trade_table(trade), run_info);
+        outputs->add("report.md", accuracy_report_markdown(*run, trade, run_info,
+                                                           {o->cost, static_cast<float>(o->gamma), o->volume_samples, charts}));
+        if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop accuracy: {} variants x {} pairs on {} ({}): {}\n", specs->size(), pairs.size(),
-                                 run.device_name, run.driver_info, (dir / "report.md").string());
+                                 run_info.device, run_info.driver, (outputs->dir() / "report.md").string());
         return 0;
     };
 }

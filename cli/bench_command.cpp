@@ -2,21 +2,20 @@
 
 #include "cost_bench.h"
 #include "cost_report.h"
-#include "write_files.h"
-#include "run_info.h"
+#include "gnuplot.h"
+#include "memory_budget.h"
+#include "output_set.h"
+#include "run_metadata.h"
 #include "scratch_directory.h"
-
-#include <kdop_builtin_variants.h>
+#include "variant_catalog.h"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <charconv>
-#include <optional>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
 
 namespace kdop::cli {
@@ -37,55 +36,85 @@ std::optional<bench::Size> parse_size(std::string_view text) {
     return bench::Size{*w, *h};
 }
 
+Result<bench::Size> size_option(const std::string& option, const std::string& text) {
+    auto size = parse_size(text);
+    if (!size) return fail(fmt::format("{}: '{}' is not WIDTHxHEIGHT with sides 8..16384", option, text));
+    if (auto ok = check_memory(fmt::format("{} {}", option, text), rectify_pass_bytes(size->first, size->second)); !ok)
+        return std::unexpected(ok.error());
+    return *size;
+}
+
 } // namespace
 
 Action add_bench_command(CLI::App& app) {
     struct Options {
-        std::string out, size = "1920x1080", device;
-        std::vector<std::string> variants, sweep_sizes{"256x256", "512x512", "1024x1024", "1920x1080", "2560x1440", "3840x2160"};
+        std::string out, size = "1920x1080", device, numerics = "hardened";
+        std::vector<std::string> variants, sets,
+            sweep_sizes{"256x256", "512x512", "1024x1024", "1920x1080", "2560x1440", "3840x2160"};
         unsigned repeat = 15, sweep_repeat = 5, callgrind_size = 256, jobs = std::max(1u, std::thread::hardware_concurrency());
-        bool no_sweep = false, no_callgrind = false;
+        bool no_sweep = false, no_callgrind = false, no_charts = false;
     };
     auto o = std::make_shared<Options>();
     CLI::App* bench = app.add_subcommand(
         "bench", "Measure what each variant costs: static float-op counts against the loop form and the analytic minimum, "
-                 "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, report.md and charts");
+                 "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, cost.json, "
+                 "report.md and charts");
     bench->add_option("--out", o->out, "Output directory (created if missing)")->required();
-    bench->add_option("--variants", o->variants, "Unrolled default variants to measure, with their loop forms [default: all 24]");
+    bench->add_option("--sets", o->sets,
+                      "Axis sets to measure: built-in names or .axes files [default: every built-in set]; with "
+                      "--variants, the files whose sets they name");
+    bench->add_option("--variants", o->variants,
+                      "Clip variants to measure by name (e.g. dop32-clip-n9, my-set-varclip-n5); their loop forms and "
+                      "paper twins come along [default: every clip of --sets]");
+    bench->add_option("--numerics", o->numerics, "Numerics of the default selection: hardened or paper")
+        ->check(CLI::IsMember({"hardened", "paper"}));
     bench->add_option("--size", o->size, "Timing size WIDTHxHEIGHT [default: 1920x1080]");
     bench->add_option("--repeat", o->repeat, "Dispatches per kernel at the timing size (interleaved rounds) [default: 15]")
         ->check(CLI::Range(1u, 10000u));
-    bench->add_option("--sweep-sizes", o->sweep_sizes, "Sizes of the size sweep [default: 256x256 ... 3840x2160]");
-    bench->add_option("--sweep-repeat", o->sweep_repeat, "Rounds per sweep size [default: 5]")->check(CLI::Range(1u, 10000u));
-    bench->add_flag("--no-sweep", o->no_sweep, "Skip the size sweep");
-    bench->add_option("--callgrind-size", o->callgrind_size, "Callgrind dispatch size N (NxN pixels) [default: 256]")
-        ->check(CLI::Range(8u, 4096u));
-    bench->add_flag("--no-callgrind", o->no_callgrind, "Skip the callgrind instruction counts");
-    bench->add_option("--jobs", o->jobs, "Callgrind runs at a time [default: one per core]")->check(CLI::Range(1u, 256u));
+    auto* sweep_sizes = bench->add_option("--sweep-sizes", o->sweep_sizes, "Sizes of the size sweep [default: 256x256 ... 3840x2160]");
+    auto* sweep_repeat = bench->add_option("--sweep-repeat", o->sweep_repeat, "Rounds per sweep size [default: 5]")
+                             ->check(CLI::Range(1u, 10000u));
+    bench->add_flag("--no-sweep", o->no_sweep, "Skip the size sweep")->excludes(sweep_sizes)->excludes(sweep_repeat);
+    auto* callgrind_size = bench->add_option("--callgrind-size", o->callgrind_size,
+                                             "Callgrind dispatch size N (NxN pixels) [default: 256]")
+                               ->check(CLI::Range(8u, 4096u));
+    auto* jobs = bench->add_option("--jobs", o->jobs, "Callgrind runs at a time [default: one per core]")->check(CLI::Range(1u, 256u));
+    bench->add_flag("--no-callgrind", o->no_callgrind, "Skip the callgrind instruction counts")
+        ->excludes(callgrind_size)
+        ->excludes(jobs);
+    bench->add_flag("--no-charts", o->no_charts, "Write the table and report without charts");
     bench->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
 
-    return [o] {
+    return [o, bench] {
+        auto outputs = OutputSet::prepare(o->out);
+        if (!outputs) return report_error(outputs.error().message);
+        auto catalog = VariantCatalog::create(o->sets);
+        if (!catalog) return report_error(catalog.error().message);
+        if (!o->variants.empty() && bench->count("--numerics"))
+            return report_error("--numerics: only for the default selection; name paper variants in --variants instead");
+
         bench::BenchOptions options;
-        if (o->variants.empty())
-            for (const Variant& v : builtin::variants())
-                if (v.form == Form::unrolled && (v.mode == Mode::clip || v.mode == Mode::varclip))
-                    options.variants.push_back(v.name);
+        if (o->variants.empty()) options.variants = catalog->clip_keys(*parse_numerics(o->numerics));
         for (const std::string& name : o->variants) {
-            const Variant* v = builtin::variants().find(name.c_str());
-            if (!v || v->form != Form::unrolled || (v->mode != Mode::clip && v->mode != Mode::varclip))
-                return report_error(fmt::format("--variants: '{}' is not a default clip variant (see `kdop list`)", name));
-            if (std::ranges::find(options.variants, name) != options.variants.end())
+            auto key = parse_variant_key(name, "--variants");
+            if (!key) return report_error(key.error().message);
+            if (!key->is_clip() || key->form != Form::unrolled)
+                return report_error(fmt::format("--variants: '{}' is not a clip in its unrolled form; loop forms and the "
+                                                "gather and copy baselines are measured beside every clip",
+                                                name));
+            if (std::ranges::find(options.variants, *key) != options.variants.end())
                 return report_error(fmt::format("--variants: '{}' is given twice", name));
-            options.variants.push_back(name);
+            if (auto set = catalog->set(key->set, "--variants"); !set) return report_error(set.error().message);
+            options.variants.push_back(*key);
         }
-        auto size = parse_size(o->size);
-        if (!size) return report_error(fmt::format("--size: '{}' is not WIDTHxHEIGHT with sides 8..16384", o->size));
+        auto size = size_option("--size", o->size);
+        if (!size) return report_error(size.error().message);
         options.timing_size = *size;
         options.rounds = o->repeat;
         if (!o->no_sweep)
             for (const std::string& text : o->sweep_sizes) {
-                auto s = parse_size(text);
-                if (!s) return report_error(fmt::format("--sweep-sizes: '{}' is not WIDTHxHEIGHT with sides 8..16384", text));
+                auto s = size_option("--sweep-sizes", text);
+                if (!s) return report_error(s.error().message);
                 options.sweep_sizes.push_back(*s);
             }
         options.sweep_rounds = o->sweep_repeat;
@@ -97,29 +126,29 @@ Action add_bench_command(CLI::App& app) {
         if (options.callgrind && !std::filesystem::exists(options.probe))
             return report_error(fmt::format("{} is missing (it is built with kdop); or pass --no-callgrind",
                                             options.probe.string()));
-        bench::ScratchDirectory scratch("kdop-bench");
+        const bool charts = charts_available(!o->no_charts);
+        ScratchDirectory scratch("kdop-bench");
         if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
         options.scratch = scratch.path;
+        auto context = Context::create({o->device, false});
+        if (!context) return report_error(context.error().message);
 
-        auto result = bench::run_cost_bench(options);
+        auto result = bench::run_cost_bench(**context, *catalog, options);
         if (!result) return report_error(result.error().message);
 
-        bench::ReportContext context{bench::utc_now_iso8601(), bench::source_commit(), bench::machine_description(),
-                                     "", options};
-        context.command = fmt::format("kdop bench --out {} --size {}x{} --repeat {}{}{}{}", o->out, size->first,
-                                      size->second, o->repeat,
-                                      o->variants.empty() ? "" : fmt::format(" --variants {}", fmt::join(o->variants, " ")),
-                                      o->no_sweep ? " --no-sweep" : fmt::format(" --sweep-repeat {}", o->sweep_repeat),
-                                      o->no_callgrind ? " --no-callgrind" : fmt::format(" --callgrind-size {}", o->callgrind_size));
-        const std::filesystem::path dir = o->out;
-        auto charts = bench::cost_charts(*result, scratch.path, dir);
-        if (!charts) return report_error(charts.error().message);
-        std::vector<OutputFile> files{{dir / "cost.csv", bench::cost_csv(result->rows)},
-                                      {dir / "report.md", bench::cost_report_markdown(*result, context)}};
-        files.insert(files.end(), charts->begin(), charts->end());
-        if (auto ok = write_files_atomically(files); !ok) return report_error(ok.error().message);
-        std::cout << fmt::format("wrote {} files to {} ({} variants on {})\n", files.size(), o->out, options.variants.size(),
-                                 result->device_name);
+        const RunMetadata run_info = describe_run(**context);
+        bench::ReportSettings settings{options, {}};
+        if (charts) {
+            auto drawn = bench::cost_charts(*result, run_info.device, scratch.path, outputs->dir());
+            if (!drawn) return report_error(drawn.error().message);
+            settings.charts = bench::cost_chart_names(*result);
+            outputs->add(std::move(*drawn));
+        }
+        outputs->add_table("cost", bench::cost_table(result->rows), run_info);
+        outputs->add("report.md", bench::cost_report_markdown(*result, run_info, settings));
+        if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
+        std::cout << fmt::format("wrote {} files to {} ({} variants on {})\n", outputs->size(), o->out,
+                                 options.variants.size(), run_info.device);
         return 0;
     };
 }

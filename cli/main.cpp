@@ -1,10 +1,15 @@
 // kdop: generate, run and measure k-DOP neighborhood-clipping variants. See README.md.
 #include "commands.h"
 
+#include "run_metadata.h"
+
+#include <exception>
 #include <iostream>
 #include <map>
+#include <new>
 
 int main(int argc, char** argv) {
+    kdop::record_command_line(argc, argv);
     CLI::App app{"kdop: k-DOP neighborhood clipping for temporal antialiasing: generate shader variants, run them, "
                  "measure them"};
     app.require_subcommand(1);
@@ -19,6 +24,14 @@ int main(int argc, char** argv) {
         {"accuracy", kdop::cli::add_accuracy_command(app)},
     };
     CLI11_PARSE(app, argc, argv);
-    for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();
+    // Errors are values throughout kdop; an exception reaching here is a failure of the system
+    // (memory, a library), reported as an error with a non-zero exit rather than an abort.
+    try {
+        for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();
+    } catch (const std::bad_alloc&) {
+        std::cerr << "kdop: out of memory\n";
+    } catch (const std::exception& e) {
+        std::cerr << "kdop: " << e.what() << "\n";
+    }
     return 1;
 }

@@ -5,8 +5,7 @@
 #include "kernel.h"
 #include "rectify_pass.h"
 #include "statistics.h"
-
-#include <kdop_builtin_variants.h>
+#include "variant_catalog.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -20,13 +19,20 @@ namespace kdop::cli {
 
 Action add_run_command(CLI::App& app) {
     struct Options {
-        std::string variant, current, history, out, format = "rgba32f", device;
+        std::string variant, current, history, out, format = "rgba32f", device, numerics;
+        std::vector<std::string> sets;
         std::optional<double> gamma;
         unsigned repeat = 1;
     };
     auto o = std::make_shared<Options>();
     CLI::App* run = app.add_subcommand("run", "Run one variant on a current frame and a history on the GPU, write the rectified history");
-    run->add_option("--variant", o->variant, "Variant name (see `kdop list --all`)")->required();
+    run->add_option("--variant", o->variant,
+                    "Variant name (see `kdop list --all`), of a built-in set or of one given with --sets")
+        ->required();
+    run->add_option("--sets", o->sets, "Axis-set files whose variants --variant may name");
+    run->add_option("--numerics", o->numerics,
+                    "hardened, or paper: the variant with the supplement's numerics (the same as naming <variant>-paper)")
+        ->check(CLI::IsMember({"hardened", "paper"}));
     run->add_option("--current", o->current, "Current frame (any OpenImageIO format; RGB from the first three channels)")->required();
     run->add_option("--history", o->history, "History, the same size as the current frame")->required();
     run->add_option("--out", o->out, "Rectified history to write (EXR keeps floats; PNG clamps to 8 bits)")->required();
@@ -37,8 +43,20 @@ Action add_run_command(CLI::App& app) {
         ->check(CLI::Range(1u, 100000u));
 
     return [o] {
-        const Variant* variant = builtin::variants().find(o->variant.c_str());
-        if (!variant) return report_error(fmt::format("--variant: unknown variant '{}' (see `kdop list --all`)", o->variant));
+        auto key = parse_variant_key(o->variant);
+        if (!key) return report_error(key.error().message);
+        if (!o->numerics.empty()) {
+            const Numerics numerics = *parse_numerics(o->numerics);
+            if (key->numerics == Numerics::paper && numerics != Numerics::paper)
+                return report_error(fmt::format("--numerics: {} conflicts with the variant's own -paper", o->numerics));
+            if (!key->is_clip()) return report_error(fmt::format("--numerics: {} is not a clip", o->variant));
+            key = key->with(numerics);
+        }
+        auto catalog = VariantCatalog::create(o->sets);
+        if (!catalog) return report_error(catalog.error().message);
+        auto found = catalog->find(*key);
+        if (!found) return report_error(found.error().message);
+        const Variant* variant = *found;
         auto format = parse_texture_format(o->format);
         if (!format) return report_error(fmt::format("--format: '{}' is not rgba32f or rgba16f", o->format));
         if (o->gamma && variant->mode != Mode::varclip)
@@ -78,7 +96,7 @@ Action add_run_command(CLI::App& app) {
                                  current->height, to_string(*format), o->out);
         if (o->repeat > 1) {
             const double pixels = double(current->width) * current->height;
-            const double wall = bench::median(wall_ms), device = bench::median(device_ms);
+            const double wall = median(wall_ms), device = median(device_ms);
             // The first dispatch is reported apart: drivers may finish compiling the pipeline there.
             std::cout << fmt::format("pipeline creation {:.1f} ms, first dispatch {:.2f} ms; {} dispatches: median "
                                      "{:.2f} ms wall ({:.1f} Mpixel/s), {:.2f} ms device\n",

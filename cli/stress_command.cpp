@@ -1,18 +1,21 @@
 #include "commands.h"
 
 #include "context.h"
-#include "write_files.h"
+#include "device_runner.h"
+#include "output_set.h"
 #include "progress.h"
-#include "run_info.h"
+#include "run_metadata.h"
 #include "selection_options.h"
 #include "stress_report.h"
 #include "stress_suite.h"
+#include "variant_catalog.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace kdop::cli {
 
@@ -29,7 +32,8 @@ Action add_stress_command(CLI::App& app) {
         "stress", "Run variants over extreme inputs (HDR up to FLT_MAX, denormals, flat and gray neighborhoods, rays "
                   "parallel to a slab, NaN and Inf history or neighbors, rgba16f) and check every pixel against the "
                   "double-precision reference; prints a table of variants x cases. Exits 2 if an invariant broke");
-    stress->add_option("--out", o->out, "Also write stress.csv and report.md to this directory (created if missing)");
+    stress->add_option("--out", o->out,
+                       "Also write stress.csv, stress.json and report.md to this directory (created if missing)");
     stress->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     o->selection.add_to(*stress);
     stress->add_option("--seed", o->seed, "Seed of the random colors [default: 1]");
@@ -40,31 +44,37 @@ Action add_stress_command(CLI::App& app) {
         if (o->selection.baselines) return report_error("--baselines: the gather and copy baselines are not clips; nothing to stress");
         if (!std::isfinite(o->gamma) || o->gamma < 0)
             return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", o->gamma));
+        std::optional<OutputSet> outputs;
+        if (!o->out.empty()) {
+            auto prepared = OutputSet::prepare(o->out);
+            if (!prepared) return report_error(prepared.error().message);
+            outputs = std::move(*prepared);
+        }
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
+        auto catalog = VariantCatalog::create(o->selection.sets);
+        if (!catalog) return report_error(catalog.error().message);
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
 
-        StressOptions options{*specs, o->seed, static_cast<float>(o->gamma)};
-        bench::Progress progress(fmt::format("stress on {},", (*context)->device_name()), specs->size());
-        auto run = run_stress(**context, options, [&](std::size_t, std::size_t, const std::string& name) {
-            progress.advance(name);
-        });
+        StressOptions options{{}, o->seed, static_cast<float>(o->gamma)};
+        for (const VariantSpec& spec : *specs) options.variants.push_back(spec.key());
+        DeviceRunner runner(**context);
+        Progress progress(fmt::format("stress on {},", (*context)->device_name()), stress_steps(options));
+        auto run = run_stress(runner, *catalog, options, &progress);
+        progress.finish();
         if (!run) return report_error(run.error().message);
         for (const std::string& message : (*context)->validation_messages()) std::cerr << "validation: " << message << "\n";
 
-        if (!o->out.empty()) {
-            StressReportContext report{bench::utc_now_iso8601(), bench::source_commit(), bench::machine_description(),
-                                       "", o->seed, static_cast<float>(o->gamma)};
-            report.command = fmt::format("kdop stress --seed {} --gamma {} ({} variants)", o->seed, o->gamma, specs->size());
-            const std::filesystem::path dir = o->out;
-            if (auto ok = write_files_atomically({{dir / "stress.csv", stress_csv(*run)},
-                                                  {dir / "report.md", stress_report_markdown(*run, report)}});
-                !ok)
-                return report_error(ok.error().message);
+        RunMetadata run_info = describe_run(**context);
+        run_info.seed = o->seed;
+        if (outputs) {
+            outputs->add_table("stress", stress_table(*run), run_info);
+            outputs->add("report.md", stress_report_markdown(*run, run_info, static_cast<float>(o->gamma)));
+            if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         }
         std::cout << fmt::format("kdop stress: {} variants x {} cases on {} ({}), seed {}\n\n", run->variants.size(),
-                                 run->cases.size(), run->device_name, run->driver_info, o->seed)
+                                 run->cases.size(), run_info.device, run_info.driver, o->seed)
                   << stress_table_text(*run);
         return run->failing_cells() ? 2 : 0;
     };

@@ -1,6 +1,8 @@
 #include "commands.h"
 
 #include "image_io.h"
+#include "memory_budget.h"
+#include "write_files.h"
 #include "test_textures.h"
 
 #include <fmt/format.h>
@@ -29,8 +31,16 @@ Action add_textures_command(CLI::App& app) {
     textures->add_flag("--no-real", o->no_real, "Leave out the real textures (colobot-common-textures)");
 
     return [o] {
+        if (auto ok = check_output_directory(o->out); !ok) return report_error(ok.error().message);
+        // Every texture and history is made before the first is written: about 48 images at once.
+        if (auto ok = check_memory(fmt::format("--width {} --height {}", o->width, o->height),
+                                   48 * image_bytes(o->width, o->height));
+            !ok)
+            return report_error(ok.error().message);
         std::cout << fmt::format("seed {}, {}x{}\n", o->seed, o->width, o->height);
-        std::filesystem::create_directories(o->out);
+        std::error_code error;
+        std::filesystem::create_directories(o->out, error);
+        if (error) return report_error(fmt::format("--out: {}: {}", o->out, error.message()));
         std::string last_texture;
         int files = 0;
         for (const TestCase& c : make_test_cases(o->width, o->height, o->seed, !o->no_real)) {

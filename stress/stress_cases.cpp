@@ -292,6 +292,8 @@ const std::vector<CaseMaker>& case_makers() {
 
 } // namespace
 
+std::size_t stress_case_count() { return case_makers().size(); }
+
 std::vector<StressCase> make_stress_cases(const AxisSet& set, std::uint64_t seed) {
     std::vector<StressCase> cases;
     std::uint64_t stream = 0;

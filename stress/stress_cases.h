@@ -25,5 +25,6 @@ struct StressCase {
 // set's own slabs. Random colors come from `seed`, and each case has its own stream, so a case's
 // content does not depend on which cases come before it.
 std::vector<StressCase> make_stress_cases(const AxisSet& set, std::uint64_t seed);
+std::size_t stress_case_count();
 
 } // namespace kdop

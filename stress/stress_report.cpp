@@ -55,37 +55,42 @@ std::string stress_table_text(const StressRun& run) {
     return out + legend(run, false) + summary(run);
 }
 
-std::string stress_csv(const StressRun& run) {
-    std::string out = "variant,case,pixels";
-    for (Invariant i : kInvariants)
-        out += fmt::format(",{0}_checked,{0}_violated,{0}_worst", invariant_name(i));
-    out += "\n";
+Table stress_table(const StressRun& run) {
+    std::vector<Column> columns{{"variant", "", Shown::text}, {"case", "", Shown::text}, {"pixels", "", Shown::integer}};
+    for (Invariant i : kInvariants) {
+        const std::string name = invariant_name(i);
+        columns.push_back({name + "_checked", "", Shown::integer});
+        columns.push_back({name + "_violated", "", Shown::integer});
+        columns.push_back({name + "_worst", "S", Shown::significant});
+    }
+    Table table(std::move(columns));
     for (std::size_t v = 0; v < run.variants.size(); ++v)
         for (std::size_t c = 0; c < run.cases.size(); ++c) {
             const CheckResult& r = run.results[v][c];
-            out += fmt::format("{},{},{}", run.variants[v], run.cases[c], r.pixels);
-            for (Invariant i : kInvariants) out += fmt::format(",{},{},{:.3g}", r[i].checked, r[i].violated, r[i].worst);
-            out += "\n";
+            std::vector<Value> row{run.variants[v], run.cases[c], std::int64_t(r.pixels)};
+            for (Invariant i : kInvariants) {
+                row.push_back(std::int64_t(r[i].checked));
+                row.push_back(std::int64_t(r[i].violated));
+                row.push_back(r[i].worst);
+            }
+            table.add(std::move(row));
         }
-    return out;
+    return table;
 }
 
-std::string stress_report_markdown(const StressRun& run, const StressReportContext& context) {
-    std::string out = "# kdop stress report\n\n";
-    out += fmt::format("- Device: {} ({})\n- Machine: {}\n- Date: {}\n- Source: {}\n- Command: `{}`\n", run.device_name,
-                       run.driver_info, context.machine, context.date, context.commit, context.command);
-    out += fmt::format("- Seed: {}; gamma (variance clips): {}; tolerance: {:g} of the pixel's magnitude S\n\n",
-                       context.seed, context.gamma, kStressTolerance);
-    out += summary(run) + "\n| variant |";
-    for (const std::string& c : run.cases) out += fmt::format(" {} |", c);
-    out += "\n|---|";
-    for (std::size_t c = 0; c < run.cases.size(); ++c) out += "---|";
-    out += "\n";
+std::string stress_report_markdown(const StressRun& run, const RunMetadata& run_info, float gamma) {
+    std::string out = "# kdop stress report\n\n" + metadata_markdown(run_info);
+    out += fmt::format("- gamma (variance clips): {}; tolerance: {:g} of the pixel's magnitude S\n\n", gamma, kStressTolerance);
+    // The matrix of variants x cases, as a table of text columns.
+    std::vector<Column> columns{{"variant", "", Shown::text}};
+    for (const std::string& c : run.cases) columns.push_back({c, "", Shown::text});
+    Table matrix(std::move(columns));
     for (std::size_t v = 0; v < run.variants.size(); ++v) {
-        out += fmt::format("| {} |", run.variants[v]);
-        for (const CheckResult& r : run.results[v]) out += fmt::format(" {} |", cell_text(r));
-        out += "\n";
+        std::vector<Value> row{run.variants[v]};
+        for (const CheckResult& r : run.results[v]) row.push_back(cell_text(r));
+        matrix.add(std::move(row));
     }
+    out += summary(run) + "\n" + matrix.markdown();
     out += legend(run, true);
     // The largest distance seen per invariant, over all cells: how close the passing ones came.
     out += "\nLargest distance seen (units of S), over every variant and case:\n\n";

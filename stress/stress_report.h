@@ -1,9 +1,11 @@
 // What `kdop stress` prints and writes: the table of variants x cases (a cell is "ok" or the codes
-// of the invariants that failed there), stress.csv with every tally, and report.md with the
-// table, the legends and the first violation of each failing cell.
+// of the invariants that failed there), the stress table (stress.csv and stress.json) with every
+// tally, and report.md with the table, the legends and the first violation of each failing cell.
 #pragma once
 
+#include "run_metadata.h"
 #include "stress_suite.h"
+#include "table.h"
 
 #include <string>
 
@@ -13,14 +15,9 @@ namespace kdop {
 std::string stress_table_text(const StressRun& run);
 
 // One row per variant and case: pixels, and per invariant checked, violated and worst distance.
-std::string stress_csv(const StressRun& run);
+Table stress_table(const StressRun& run);
 
-struct StressReportContext {
-    std::string date, commit, machine, command;
-    std::uint64_t seed;
-    float gamma;
-};
-
-std::string stress_report_markdown(const StressRun& run, const StressReportContext& context);
+// `run_info` carries the seed; `gamma` is the variance clips'.
+std::string stress_report_markdown(const StressRun& run, const RunMetadata& run_info, float gamma);
 
 } // namespace kdop

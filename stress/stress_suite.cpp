@@ -1,15 +1,24 @@
 #include "stress_suite.h"
 
-#include "kernel.h"
-#include "rectify_pass.h"
-#include "runnable_variant.h"
 #include "stress_cases.h"
 
 #include <fmt/format.h>
 
-#include <map>
+#include <algorithm>
 
 namespace kdop {
+namespace {
+
+// The selected sets in order of first appearance: cases are built per set (the parallel rays
+// follow its slabs), and all variants of a set run on them together.
+std::vector<std::string> sets_of(const std::vector<VariantKey>& keys) {
+    std::vector<std::string> sets;
+    for (const VariantKey& k : keys)
+        if (std::ranges::find(sets, k.set) == sets.end()) sets.push_back(k.set);
+    return sets;
+}
+
+} // namespace
 
 std::size_t StressRun::failing_cells() const {
     std::size_t n = 0;
@@ -18,44 +27,48 @@ std::size_t StressRun::failing_cells() const {
     return n;
 }
 
-Result<StressRun> run_stress(const Context& context, const StressOptions& options, const StressProgress& progress) {
-    for (const VariantSpec& spec : options.specs)
-        if (spec.mode != Mode::clip && spec.mode != Mode::varclip)
-            return fail(fmt::format("{}: only clip variants can be stressed", variant_name(spec)));
-    auto built = build_variants(options.specs);
-    if (!built) return std::unexpected(built.error());
+std::size_t stress_steps(const StressOptions& options) {
+    return sets_of(options.variants).size() * stress_case_count();
+}
+
+Result<StressRun> run_stress(DeviceRunner& runner, VariantCatalog& catalog, const StressOptions& options,
+                             Progress* progress) {
+    for (const VariantKey& key : options.variants)
+        if (!key.is_clip()) return fail(fmt::format("{}: only clip variants can be stressed", key.name()));
+    auto variants = catalog.find_all(options.variants, "--sets");
+    if (!variants) return std::unexpected(variants.error());
 
     StressRun run;
-    std::map<std::string, std::vector<StressCase>> cases_by_set;
-    run.device_name = context.device_name();
-    run.driver_info = context.driver_info();
-    for (BuiltVariant& b : *built) {
-        const RunnableVariant variant(std::move(b));
-        const VariantSpec& spec = variant.built().spec;
-        auto kernel = Kernel::create(context, variant.variant());
-        if (!kernel) return std::unexpected(kernel.error());
-        const ClipUnderTest clip(spec, options.gamma);
-        // Cases depend on the axis set (the parallel rays), so variants of one set share them.
-        auto [found, added] = cases_by_set.try_emplace(spec.set.name);
-        if (added) found->second = make_stress_cases(spec.set, options.seed);
-        const std::vector<StressCase>& cases = found->second;
+    for (const VariantKey& key : options.variants) run.variants.push_back(key.name());
+    run.results.resize(options.variants.size());
+    for (const std::string& set_name : sets_of(options.variants)) {
+        auto set = catalog.set(set_name, "--sets");
+        if (!set) return std::unexpected(set.error());
+        std::vector<std::size_t> members; // indices into options.variants
+        std::vector<const Variant*> kernels;
+        std::vector<ClipUnderTest> clips;
+        for (std::size_t v = 0; v < options.variants.size(); ++v) {
+            const VariantKey& key = options.variants[v];
+            if (key.set != set_name) continue;
+            members.push_back(v);
+            kernels.push_back((*variants)[v]);
+            clips.emplace_back(VariantSpec{*set, key.mode, key.neighborhood, key.form, key.numerics}, options.gamma);
+        }
+        const std::vector<StressCase> cases = make_stress_cases(*set, options.seed);
         if (run.cases.empty())
             for (const StressCase& c : cases) {
                 run.cases.push_back(c.name);
                 run.case_descriptions.push_back(c.description);
             }
-        std::vector<CheckResult>& row = run.results.emplace_back();
         for (const StressCase& c : cases) {
-            auto pass = RectifyPass::create(context, c.current.width, c.current.height, c.format);
-            if (!pass) return std::unexpected(pass.error());
-            if (auto ok = (*pass)->upload(c.current, c.history); !ok) return std::unexpected(ok.error());
-            if (auto ok = (*pass)->dispatch(**kernel, options.gamma); !ok) return std::unexpected(ok.error());
-            auto output = (*pass)->download();
-            if (!output) return std::unexpected(output.error());
-            row.push_back(check_invariants(clip, c.current, c.history, *output));
+            auto ran = runner.run(c.current, c.history, c.format, kernels, options.gamma,
+                                  [&](std::size_t i, const Image& output) -> Result<void> {
+                                      run.results[members[i]].push_back(check_invariants(clips[i], c.current, c.history, output));
+                                      return {};
+                                  });
+            if (!ran) return fail(fmt::format("stress case {}: {}", c.name, ran.error().message));
+            if (progress) progress->advance(fmt::format("{} on {}", set_name, c.name));
         }
-        run.variants.push_back(variant.built().name);
-        if (progress) progress(run.variants.size(), options.specs.size(), run.variants.back());
     }
     return run;
 }

@@ -1,37 +1,38 @@
-// The stress suite (`kdop stress`): every selected variant, built in-process, run on the device
-// over every stress case (stress_cases.h), each output checked pixel by pixel against the
-// reference (stress_check.h).
+// The stress suite (`kdop stress`): every selected variant run on the device over every stress
+// case (stress_cases.h) through the harness's device runner, each output checked pixel by pixel
+// against the reference (stress_check.h). What runs and how is the harness's; the cases and the
+// invariants are this folder's.
 #pragma once
 
-#include "context.h"
+#include "device_runner.h"
+#include "progress.h"
 #include "stress_check.h"
-#include "variant_spec.h"
+#include "variant_catalog.h"
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 namespace kdop {
 
 struct StressOptions {
-    std::vector<VariantSpec> specs; // clips only
+    std::vector<VariantKey> variants; // clips only
     std::uint64_t seed = 1;
-    float gamma = 1.0f;             // for variance clips
+    float gamma = 1.0f;               // for variance clips
 };
 
 struct StressRun {
-    std::vector<std::string> variants;                       // rows
-    std::vector<std::string> cases, case_descriptions;       // columns
-    std::vector<std::vector<CheckResult>> results;           // [variant][case]
-    std::string device_name, driver_info;
+    std::vector<std::string> variants;                 // rows
+    std::vector<std::string> cases, case_descriptions; // columns
+    std::vector<std::vector<CheckResult>> results;     // [variant][case]
 
     std::size_t failing_cells() const;
 };
 
-// Called after each variant: how many are done, and the one just finished.
-using StressProgress = std::function<void(std::size_t done, std::size_t total, const std::string& variant)>;
+// Progress advances once per axis set and case.
+std::size_t stress_steps(const StressOptions& options);
 
-Result<StressRun> run_stress(const Context& context, const StressOptions& options, const StressProgress& progress = {});
+Result<StressRun> run_stress(DeviceRunner& runner, VariantCatalog& catalog, const StressOptions& options,
+                             Progress* progress = nullptr);
 
 } // namespace kdop

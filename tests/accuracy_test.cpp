@@ -88,7 +88,8 @@ TEST(AccuracyTrade, AveragesPairsAndMarksTheFrontPerNeighborhood) {
     EXPECT_FALSE(trade[0].front_lavapipe);
     EXPECT_TRUE(trade[1].front_lavapipe);
     EXPECT_FALSE(trade[2].front_lavapipe);
-    EXPECT_NE(trade_csv(trade).find("f,b-clip-n9,b,clip,n9,6,300,40,,0.04,"), std::string::npos) << trade_csv(trade);
+    const std::string csv = trade_table(trade).csv();
+    EXPECT_NE(csv.find("f,b-clip-n9,b,clip,n9,6,300,40,,0.04,"), std::string::npos) << csv;
 }
 
 TEST(AccuracyTrade, ReadsABenchCostCsvAndNamesTheLineOfBadOnes) {
@@ -118,12 +119,12 @@ TEST(AccuracyRun, OnTheDeviceAgreesWithTheReferenceAndKeepsTheAabbBound) {
     AccuracyOptions options;
     auto specs = select_variants({"aabb", "ycocg", "dop22", "dop32"}, {}, {"n9"}, {});
     ASSERT_TRUE(specs) << specs.error().message;
-    options.specs = *specs;
+    for (const VariantSpec& spec : *specs) options.variants.push_back(spec.key());
     options.volume_samples = 8;
     const auto pairs = builtin_pairs(16, 16, 5);
-    auto run = run_accuracy(test::gpu(), options, pairs);
+    auto run = run_accuracy(test::runner(), test::catalog(), options, pairs);
     ASSERT_TRUE(run) << run.error().message;
-    ASSERT_EQ(run->rows.size(), pairs.size() * options.specs.size());
+    ASSERT_EQ(run->rows.size(), pairs.size() * options.variants.size());
     std::size_t outside = 0;
     for (const AccuracyRow& r : run->rows) {
         SCOPED_TRACE(r.variant + " on " + r.image);

@@ -3,6 +3,7 @@
 // with bad input refused before anything is measured or written.
 #include "callgrind.h"
 #include "cost_table.h"
+#include "progress.h"
 #include "statistics.h"
 #include "test_support.h"
 
@@ -33,14 +34,15 @@ TEST(BenchStatistics, MedianQuartilesAndSpreadOfHandData) {
     EXPECT_TRUE(std::isnan(median({})));
 }
 
-TEST(BenchCsv, HasTheRequiredColumnsAndLeavesUnmeasuredFieldsEmpty) {
+TEST(BenchTable, HasTheRequiredColumnsAndLeavesUnmeasuredFieldsEmpty) {
     CostRow row;
-    row.variant = "dop32-clip-n9";
+    row.key = *parse_variant_key("dop32-clip-n9");
     row.float_ops.fma = 10;
     row.float_ops.min_max = 4;
-    row.baseline_float_ops = 30;
-    row.ms_median = 1.25;
-    const auto lines = split(cost_csv({row}), '\n');
+    row.loop_float_ops = 30;
+    row.ms = {1.25, 1.0, 1.5};
+    row.loop_ms = {1.4, 1.3, 1.6};
+    const auto lines = split(cost_table({row}).csv(), '\n');
     ASSERT_EQ(lines.size(), 3u); // header, the row, and nothing after the final newline
     EXPECT_EQ(lines[2], "");
     const auto header = split(lines[0], ','), fields = split(lines[1], ',');
@@ -51,15 +53,24 @@ TEST(BenchCsv, HasTheRequiredColumnsAndLeavesUnmeasuredFieldsEmpty) {
         ADD_FAILURE() << "no column " << column;
         return std::string("?");
     };
-    for (const char* column : {"variant", "spirv_instructions", "float_ops", "baseline_float_ops", "analytic_min_ops",
-                               "ms_median", "ms_spread", "marginal_ms", "instr_per_px", "baseline_instr_per_px"})
+    // accuracy --cost reads variant, neighborhood, instr_per_px and marginal_ms.
+    for (const char* column : {"variant", "neighborhood", "spirv_instructions", "float_ops", "loop_float_ops",
+                               "analytic_min_ops", "ms_median", "ms_q1", "ms_q3", "marginal_ms", "instr_per_px",
+                               "loop_instr_per_px"})
         value(column);
     EXPECT_EQ(value("variant"), "dop32-clip-n9");
+    EXPECT_EQ(value("numerics"), "hardened");
     EXPECT_EQ(value("float_ops"), "14");
-    EXPECT_EQ(value("baseline_float_ops"), "30");
-    EXPECT_EQ(value("ms_median"), "1.250");
-    EXPECT_EQ(value("marginal_ms"), ""); // not measured: empty, not zero
+    EXPECT_EQ(value("loop_float_ops"), "30");
+    EXPECT_EQ(value("ms_median"), "1.25");
+    EXPECT_EQ(value("vs_loop_ms_noise"), "1"); // 1.25 against 1.4 with IQRs of 0.5 and 0.3
+    EXPECT_EQ(value("marginal_ms"), "");       // no gather was measured: empty, not zero
     EXPECT_EQ(value("instr_per_px"), "");
+}
+
+TEST(BenchTable, ADifferenceWithinTheSpreadIsNoise) {
+    EXPECT_TRUE(within_noise({10, 9, 11}, {10.5, 10, 11}));
+    EXPECT_FALSE(within_noise({10, 9.9, 10.1}, {12, 11.9, 12.2}));
 }
 
 TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
@@ -84,7 +95,7 @@ TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
 
 std::string kdop(const std::string& args) { return test::kdop_binary() + " " + args; }
 
-TEST(CliBench, WritesCsvReportAndCharts) {
+TEST(CliBench, WritesTablesReportAndCharts) {
     test::TempDir dir;
     const fs::path out = dir / "bench";
     auto r = test::run(kdop("bench --out " + out.string() +
@@ -94,13 +105,16 @@ TEST(CliBench, WritesCsvReportAndCharts) {
     const auto lines = split(test::read_file(out / "cost.csv"), '\n');
     // Header, the two variants, gather-n9, gather-n5, copy, and the final newline.
     ASSERT_EQ(lines.size(), 7u);
-    EXPECT_TRUE(lines[1].starts_with("aabb-clip-n9,aabb,clip,n9,6,"));
-    EXPECT_TRUE(lines[2].starts_with("dop16-grass-varclip-n5,dop16-grass,varclip,n5,16,"));
+    EXPECT_TRUE(lines[1].starts_with("aabb-clip-n9,aabb,clip,n9,hardened,6,")) << lines[1];
+    EXPECT_TRUE(lines[2].starts_with("dop16-grass-varclip-n5,dop16-grass,varclip,n5,hardened,16,")) << lines[2];
     EXPECT_TRUE(lines[5].starts_with("copy,"));
     const std::string report = test::read_file(out / "report.md");
-    for (const char* part : {"- commit: ", "- driver: ", "## Targets", "### The analytic minimum", "## Size sweep",
-                             "| aabb-clip-n9 | 6 |", "![", "64x64", "## Cost of hardening", "| aabb-clip-n9 | 100 | 85 |"})
+    for (const char* part : {"- kdop: 0.1.0 (commit ", "- device: ", "### The analytic minimum", "## Size sweep",
+                             "| aabb-clip-n9 | 6 |", "![", "64x64", "## Cost of hardening", "| aabb-clip-n9 | 100 | 85 |",
+                             "- command: `"})
         EXPECT_NE(report.find(part), std::string::npos) << part;
+    EXPECT_EQ(report.find("Targets"), std::string::npos) << "no project-internal targets in a user's report";
+    EXPECT_NE(test::read_file(out / "cost.json").find("\"paper_float_ops\": 85"), std::string::npos);
     for (const char* chart : {"static_cost.png", "measured_cost.png", "size_sweep.png"}) {
         const std::string png = test::read_file(out / chart);
         EXPECT_EQ(png.substr(0, 4), "\x89PNG") << chart;
@@ -128,9 +142,14 @@ TEST(CliBench, RefusesBadInputAndWritesNothing) {
         {"--size 1920", "--size: '1920' is not WIDTHxHEIGHT with sides 8..16384"},
         {"--size 4x4", "--size: '4x4' is not WIDTHxHEIGHT"},
         {"--sweep-sizes 64x64 big", "--sweep-sizes: 'big' is not WIDTHxHEIGHT"},
-        {"--variants dop99-clip-n9", "--variants: 'dop99-clip-n9' is not a default clip variant"},
-        {"--variants dop32-clip-n9-loop", "--variants: 'dop32-clip-n9-loop' is not a default clip variant"},
-        {"--variants gather-n9", "--variants: 'gather-n9' is not a default clip variant"},
+        {"--variants dop99-clip-n9", "--variants: no axis set is named 'dop99'"},
+        {"--variants dop32-clip-n9-loop", "--variants: 'dop32-clip-n9-loop' is not a clip in its unrolled form"},
+        {"--variants gather-n9", "--variants: 'gather-n9' is not a clip in its unrolled form"},
+        {"--variants dop32-clamp-n9", "--variants: 'dop32-clamp-n9' is not a variant name"},
+        {"--variants dop32-clip-n9 --numerics paper", "--numerics: only for the default selection"},
+        {"--no-sweep --sweep-sizes 64x64", "--sweep-sizes excludes --no-sweep"},
+        {"--no-callgrind --jobs 2", "--jobs excludes --no-callgrind"},
+        {"--size 16384x16384", "--size 16384x16384: needs about 32.0 GiB of memory"},
         {"--variants aabb-clip-n9 aabb-clip-n9", "--variants: 'aabb-clip-n9' is given twice"},
         {"--repeat 0", "--repeat"},
         {"--variants aabb-clip-n9 --size 16x16 --no-sweep --no-callgrind --device NoSuchGpu",
@@ -142,6 +161,36 @@ TEST(CliBench, RefusesBadInputAndWritesNothing) {
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
         EXPECT_FALSE(fs::exists(out)) << c.args;
     }
+}
+
+// A user's own axis set is measured like a built-in one: loop form, paper twin and callgrind count
+// (its module runs in the probe with the interface of the built-in variant of its mode).
+TEST(CliBench, MeasuresAUserSetWithItsLoopFormAndPaperTwin) {
+    test::TempDir dir;
+    test::write_file(dir / "my.axes", "name: my-set\nprovenance: a test\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
+    auto r = test::run(kdop("bench --out " + (dir / "bench").string() + " --sets " + (dir / "my.axes").string() +
+                            " --variants my-set-clip-n9 --size 32x32 --repeat 1 --no-sweep --callgrind-size 16 --no-charts"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = split(test::read_file(dir / "bench" / "cost.csv"), '\n');
+    ASSERT_GE(lines.size(), 2u);
+    const auto header = split(lines[0], ','), row = split(lines[1], ',');
+    ASSERT_EQ(header.size(), row.size());
+    auto column = [&](std::string_view name) { return row[std::ranges::find(header, name) - header.begin()]; };
+    EXPECT_EQ(column("variant"), "my-set-clip-n9");
+    EXPECT_EQ(column("k"), "8");
+    for (const char* measured : {"loop_float_ops", "paper_float_ops", "instr_per_px", "loop_instr_per_px", "paper_instr_per_px"})
+        EXPECT_FALSE(column(measured).empty()) << measured;
+    EXPECT_FALSE(fs::exists(dir / "bench" / "static_cost.png")) << "--no-charts";
+    EXPECT_EQ(test::read_file(dir / "bench" / "report.md").find("!["), std::string::npos);
+}
+
+// A bad --out is found before anything is measured, not after a ten-minute run.
+TEST(CliBench, AnUnwritableOutputFailsBeforeTheWork) {
+    auto r = test::run(kdop("bench --out /proc/kdop-bench"));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("--out: /proc/kdop-bench: cannot create files in /proc"), std::string::npos) << r.err;
+    // No progress line: the check came before any work (a wall time would be noise, this is not).
+    EXPECT_EQ(r.err.find("timing"), std::string::npos) << r.err;
 }
 
 } // namespace

@@ -1,8 +1,10 @@
 // The kdop command line, run as a user runs it: list, gen and show, bad input refused with a
 // message naming the file/line or argument, a non-zero exit and nothing written.
+#include "cpu_clip.h"
 #include "image_io.h"
 #include "test_support.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -135,7 +137,16 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
 
     r = run(kdop("show dop32-clamp-n9"));
     EXPECT_NE(r.exit_code, 0);
-    EXPECT_NE(r.err.find("show: unknown variant 'dop32-clamp-n9'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("show: 'dop32-clamp-n9' is not a variant name"), std::string::npos) << r.err;
+    r = run(kdop("show tiny-clip-n9"));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("show: no axis set is named 'tiny'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--sets FILE"), std::string::npos) << r.err;
+    // Paper twins are shown like any other variant, by name or with --numerics.
+    r = run(kdop("show dop32-clip-n9 --numerics paper"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, run(kdop("show dop32-clip-n9-paper")).out);
+    EXPECT_NE(r.out, run(kdop("show dop32-clip-n9")).out);
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
@@ -186,13 +197,44 @@ TEST(CliRun, WritesTheRectifiedHistory) {
     EXPECT_EQ(run(kdop(in.args("dop22-varclip-n5", "--gamma 0.5 --format rgba16f"))).exit_code, 0);
 }
 
+// Every variant runs, not only the embedded ones: a user's set (built in-process) and a paper twin
+// each give what the double-precision reference computes for them.
+TEST(CliRun, RunsAUserSetAndPaperNumericsAsTheReferenceComputesThem) {
+    RunInputs in;
+    const auto current = read_image(in.current), history = read_image(in.history);
+    ASSERT_TRUE(current && history);
+    struct Case {
+        std::string args;
+        VariantSpec spec;
+    };
+    const Case cases[] = {
+        {in.args("tiny-clip-n9", "--sets " + test::data_path("tiny.axes")),
+         {*resolve_axis_set(test::data_path("tiny.axes")), Mode::clip, Neighborhood::n9}},
+        {in.args("dop32-clip-n5", "--numerics paper"), {*resolve_axis_set("dop32"), Mode::clip, Neighborhood::n5}},
+    };
+    for (const Case& c : cases) {
+        auto r = run(kdop(c.args));
+        ASSERT_EQ(r.exit_code, 0) << c.args << "\n" << r.err;
+        auto out = read_image(in.out);
+        ASSERT_TRUE(out) << out.error().message;
+        const Image reference = reference_rectify(c.spec.set, c.spec.mode, c.spec.neighborhood, *current, *history, 1.0);
+        for (std::size_t i = 0; i < out->pixels.size(); ++i)
+            ASSERT_NEAR(glm::distance(glm::vec3(out->pixels[i]), glm::vec3(reference.pixels[i])), 0.0, 1e-5)
+                << c.args << " at pixel " << i;
+    }
+    EXPECT_NE(run(kdop(in.args("dop32-clip-n9", "--numerics paper"))).out.find("dop32-clip-n9-paper on "),
+              std::string::npos);
+}
+
 TEST(CliRun, RefusesBadInputAndWritesNothing) {
     RunInputs in;
     struct Case {
         std::string args, message;
     };
     const Case cases[] = {
-        {in.args("dop99-clip-n9"), "--variant: unknown variant 'dop99-clip-n9'"},
+        {in.args("dop99-clip-n9"), "--variant: no axis set is named 'dop99'"},
+        {in.args("dop32-clamp-n9"), "--variant: 'dop32-clamp-n9' is not a variant name"},
+        {in.args("dop32-clip-n9-paper", "--numerics hardened"), "--numerics: hardened conflicts with the variant's own -paper"},
         {in.args("dop32-clip-n9", "--gamma 1"), "--gamma: dop32-clip-n9 is not a variance clip and takes no gamma"},
         {in.args("dop32-varclip-n9", "--gamma -1"), "--gamma: must be a finite number >= 0, got -1"},
         {in.args("dop32-varclip-n9", "--gamma nan"), "--gamma"},
@@ -252,8 +294,9 @@ TEST(CliStress, PrintsTheTableWritesItsFilesAndExitsByTheResult) {
     EXPECT_NE(r.out.find("aabb-clip-n5 "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("All 18 variant-case pairs kept every invariant."), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("seed 3"), std::string::npos) << r.out;
-    EXPECT_NE(r.err.find("aabb-clip-n5"), std::string::npos) << "progress on stderr: " << r.err;
+    EXPECT_NE(r.err.find("[18/18] stress on "), std::string::npos) << "progress on stderr: " << r.err;
     EXPECT_EQ(lines(test::read_file(out + "/stress.csv")).size(), 1u + 18u);
+    EXPECT_NE(test::read_file(out + "/stress.json").find("\"seed\": 3"), std::string::npos);
     EXPECT_NE(test::read_file(out + "/report.md").find("| aabb-clip-n5 | ok |"), std::string::npos);
     // The paper's numerics break invariants: the table says which, and the exit status is 2.
     auto paper = run(kdop("stress --sets aabb --modes clip --neighborhoods n5 --numerics paper"));

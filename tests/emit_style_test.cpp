@@ -3,6 +3,7 @@
 #include "cpu_clip.h"
 #include "glsl_emitter.h"
 #include "gpu_support.h"
+#include "runnable_variant.h"
 #include "test_textures.h"
 #include "variant_builder.h"
 
@@ -23,10 +24,9 @@ TEST(EmitStyle, EveryStyleMatchesTheReference) {
                 spec.style = {projection, extent};
                 auto built = build_variant(spec);
                 ASSERT_TRUE(built) << built.error().message;
-                Variant variant = registered; // same interface, this style's module
-                variant.spirv = built->spirv.data();
-                variant.spirv_word_count = built->spirv.size();
-                variant.name = "style-under-test"; // a kernel of its own in the test's pipeline cache
+                // The runner keeps pipelines by name and module, so this style's module gets its own.
+                const RunnableVariant runnable(std::move(*built));
+                const Variant& variant = runnable.variant();
                 SCOPED_TRACE(std::string(name) + " projection " + std::to_string(int(projection)) + " extent " +
                              std::to_string(int(extent)));
                 for (const TestCase& c : cases) {
@@ -34,7 +34,6 @@ TEST(EmitStyle, EveryStyleMatchesTheReference) {
                     Image ref = reference_rectify(spec.set, spec.mode, spec.neighborhood, c.current, c.history, 1.0);
                     EXPECT_LE(test::relative_error(gpu, ref, c.current, c.history).max_relative, kTolerance) << c.name();
                 }
-                test::forget_kernel("style-under-test");
             }
 }
 

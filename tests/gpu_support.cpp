@@ -29,39 +29,31 @@ const Variant& builtin_variant(const std::string& name) {
     return *v;
 }
 
-namespace {
-std::map<std::string, std::unique_ptr<Kernel>>& kernels() {
-    static std::map<std::string, std::unique_ptr<Kernel>> cache;
-    return cache;
+DeviceRunner& runner() {
+    static DeviceRunner instance(gpu());
+    return instance;
 }
-} // namespace
 
-void forget_kernel(const std::string& name) { kernels().erase(name); }
+VariantCatalog& catalog() {
+    static VariantCatalog instance = *VariantCatalog::create({});
+    return instance;
+}
 
 Image run_on_gpu(const Variant& variant, const Image& current, const Image& history, TextureFormat format, float gamma) {
-    auto& kernel = kernels()[variant.name];
-    if (!kernel) {
-        auto created = Kernel::create(gpu(), variant);
-        EXPECT_TRUE(created) << created.error().message;
-        if (!created) return {};
-        kernel = std::move(*created);
-    }
-    auto pass = RectifyPass::create(gpu(), current.width, current.height, format);
-    EXPECT_TRUE(pass) << pass.error().message;
-    if (!pass) return {};
-    auto uploaded = (*pass)->upload(current, history);
-    EXPECT_TRUE(uploaded) << uploaded.error().message;
-    auto dispatched = (*pass)->dispatch(*kernel, gamma);
-    EXPECT_TRUE(dispatched) << dispatched.error().message;
-    auto out = (*pass)->download();
-    EXPECT_TRUE(out) << out.error().message;
-    return out ? *out : Image{};
+    Image out;
+    const Variant* variants[] = {&variant};
+    auto ran = runner().run(current, history, format, variants, gamma, [&](std::size_t, const Image& output) -> Result<void> {
+        out = output;
+        return {};
+    });
+    EXPECT_TRUE(ran) << ran.error().message;
+    return out;
 }
 
 VariantSpec builtin_spec(const Variant& variant) {
     auto set = resolve_axis_set(variant.axis_set);
     EXPECT_TRUE(set) << set.error().message;
-    return {set ? *set : AxisSet{}, variant.mode, variant.neighborhood, variant.form};
+    return {set ? *set : AxisSet{}, variant.mode, variant.neighborhood, variant.form, variant.numerics};
 }
 
 ErrorReport relative_error(const Image& a, const Image& b, const Image& current, const Image& history) {

@@ -1,11 +1,14 @@
-// GPU test helpers: one validated Vulkan context for the whole test binary, pipelines cached by
-// variant, and the comparison of images against the CPU reference.
+// GPU test helpers: one validated Vulkan context for the whole test binary, the harness's device
+// runner on it (pipelines created once per variant and module), and the comparison of images
+// against the CPU reference.
 #pragma once
 
 #include "context.h"
+#include "device_runner.h"
 #include "image.h"
 #include "kernel.h"
 #include "rectify_pass.h"
+#include "variant_catalog.h"
 #include "variant_spec.h"
 
 #include <kdop/variant.h>
@@ -21,12 +24,13 @@ Context& gpu();
 // The built-in registry entry called `name` (fails the test when missing).
 const Variant& builtin_variant(const std::string& name);
 
-// Runs `variant` once on the pair.
+// One device runner on gpu() and one variant catalog (the built-in sets) for the test binary.
+DeviceRunner& runner();
+VariantCatalog& catalog();
+
+// Runs `variant` once on the pair (through runner(), so its pipeline is created once).
 Image run_on_gpu(const Variant& variant, const Image& current, const Image& history,
                  TextureFormat format = TextureFormat::rgba32f, float gamma = 1.0f);
-
-// Drops the cached pipeline of `name` (for tests that reuse one name for different modules).
-void forget_kernel(const std::string& name);
 
 // The spec (axis set, mode, neighborhood) of a built-in clip variant, for the CPU reference.
 VariantSpec builtin_spec(const Variant& variant);

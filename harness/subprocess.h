@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace kdop::bench {
+namespace kdop {
 
 // The path of `name` in PATH, or empty.
 std::filesystem::path find_program(const std::string& name);
@@ -20,4 +20,4 @@ Result<int> run_program(const std::vector<std::string>& argv, const std::filesys
 // The last `count` lines of a log, indented, for an error message.
 std::string log_tail(const std::filesystem::path& log, int count);
 
-} // namespace kdop::bench
+} // namespace kdop

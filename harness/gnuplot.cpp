@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iterator>
 
-namespace kdop::bench {
+namespace kdop {
 
 std::string gnuplot_data(const std::vector<std::vector<std::string>>& table) {
     std::string out;
@@ -20,6 +20,14 @@ std::string gnuplot_data(const std::vector<std::vector<std::string>>& table) {
 }
 
 std::string gnuplot_number(double value) { return std::isfinite(value) ? fmt::format("{:.6g}", value) : "NaN"; }
+
+bool charts_available(bool wanted) {
+    if (!wanted) return false;
+    if (!find_program("gnuplot").empty()) return true;
+    fmt::print(stderr, "warning: gnuplot not found in PATH (Debian: gnuplot-nox): the data and report are written "
+                       "without charts\n");
+    return false;
+}
 
 Result<void> write_text(const std::filesystem::path& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
@@ -48,4 +56,4 @@ Result<std::vector<OutputFile>> draw_charts(const std::string& script, const std
     return files;
 }
 
-} // namespace kdop::bench
+} // namespace kdop

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-namespace kdop::bench {
+namespace kdop {
 
 // The q-quantile (0..1) by linear interpolation between order statistics; NaN for no samples.
 inline double quantile(std::vector<double> samples, double q) {
@@ -25,4 +25,4 @@ inline double interquartile_range(const std::vector<double>& samples) {
     return quantile(samples, 0.75) - quantile(samples, 0.25);
 }
 
-} // namespace kdop::bench
+} // namespace kdop

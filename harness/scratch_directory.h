@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-namespace kdop::bench {
+namespace kdop {
 
 struct ScratchDirectory {
     std::filesystem::path path; // empty if it could not be created
@@ -23,4 +23,4 @@ struct ScratchDirectory {
     ScratchDirectory& operator=(const ScratchDirectory&) = delete;
 };
 
-} // namespace kdop::bench
+} // namespace kdop

@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace kdop::bench {
+namespace kdop {
 
 std::filesystem::path find_program(const std::string& name) {
     const char* path = std::getenv("PATH");
@@ -68,4 +68,4 @@ std::string log_tail(const std::filesystem::path& log, int count) {
     return out;
 }
 
-} // namespace kdop::bench
+} // namespace kdop

@@ -1,0 +1,37 @@
+// A command's outputs: the directory is checked before any work starts (so a bad --out fails at
+// once, not after a ten-minute run), files and tables are collected as the run goes, and all of
+// them are written together at the end, all or nothing (core/write_files.h). Tables are written
+// as <stem>.csv and as <stem>.json, the JSON carrying the run's metadata and the columns' units.
+#pragma once
+
+#include "result.h"
+#include "run_metadata.h"
+#include "table.h"
+#include "write_files.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+class OutputSet {
+public:
+    // Fails, naming `option`, when `dir` cannot be written.
+    static Result<OutputSet> prepare(const std::filesystem::path& dir, const std::string& option = "--out");
+
+    const std::filesystem::path& dir() const { return dir_; }
+    void add(const std::string& name, std::string content);
+    void add(std::vector<OutputFile> files); // paths already in dir(), e.g. drawn charts
+    void add_table(const std::string& stem, const Table& table, const RunMetadata& run);
+    std::size_t size() const { return files_.size(); }
+
+    Result<void> write() const;
+
+private:
+    explicit OutputSet(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    std::filesystem::path dir_;
+    std::vector<OutputFile> files_;
+};
+
+} // namespace kdop

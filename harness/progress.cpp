@@ -1,0 +1,38 @@
+#include "progress.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <unistd.h>
+
+namespace kdop {
+
+std::string clock_text(double seconds) {
+    const long s = std::lround(std::max(seconds, 0.0));
+    if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
+    return fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+Progress::Progress(std::string step, std::size_t total)
+    : step_(std::move(step)), total_(total), terminal_(isatty(fileno(stderr)) != 0), start_(std::chrono::steady_clock::now()) {}
+
+void Progress::finish() {
+    if (finished_) return;
+    finished_ = true;
+    if (terminal_ && done_ > 0) fmt::print(stderr, "\r\033[K");
+    std::fflush(stderr);
+}
+
+void Progress::advance(const std::string& item) {
+    ++done_;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const std::string eta =
+        done_ < total_ ? fmt::format(", about {} left", clock_text(elapsed / double(done_) * double(total_ - done_))) : "";
+    const int width = static_cast<int>(fmt::format("{}", total_).size());
+    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_, step_, item,
+               clock_text(elapsed), eta, terminal_ ? "" : "\n");
+    std::fflush(stderr);
+}
+
+} // namespace kdop

@@ -1,0 +1,35 @@
+// Progress of a long step on stderr: "[ 12/51] timing dop32-clip-n9  0:42 elapsed, about 1:13 left".
+// On a terminal the line is rewritten in place and cleared when the step ends, so it never runs
+// into a table printed afterwards; otherwise (a log, CI) each step is one line, so nothing is lost.
+// The estimate assumes the remaining steps take as long as the finished ones did on average.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace kdop {
+
+class Progress {
+public:
+    Progress(std::string step, std::size_t total);
+    ~Progress() { finish(); }
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    // One more item is done.
+    void advance(const std::string& item);
+    // Clears the line on a terminal; called by the destructor.
+    void finish();
+
+private:
+    std::string step_;
+    std::size_t total_, done_ = 0;
+    bool terminal_, finished_ = false;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// "1:05", "12:30", "1:02:03": a duration for a progress line.
+std::string clock_text(double seconds);
+
+} // namespace kdop
