@@ -103,9 +103,17 @@ TEST(Emitter, TemplateErrorsNameTheLine) {
               "t.in:3: unterminated placeholder (a '@' without its closing '@')");
 }
 
+// The output depends on the spec alone: a set parsed afresh, after other variants were emitted,
+// gives the same bytes (no state carried between calls), and changing one axis changes them.
 TEST(Emitter, OutputIsAPureFunctionOfTheSpec) {
-    auto s = spec("dop32", Mode::varclip, Neighborhood::n9);
-    EXPECT_EQ(emit_function(s), emit_function(s));
+    const std::string first = emit_function(spec("dop32", Mode::varclip, Neighborhood::n9));
+    const auto others = select_variants({"aabb", "dop22"}, {}, {});
+    ASSERT_TRUE(others);
+    for (const VariantSpec& other : *others) emit_function(other);
+    EXPECT_EQ(emit_function(spec("dop32", Mode::varclip, Neighborhood::n9)), first);
+    VariantSpec changed = spec("dop32", Mode::varclip, Neighborhood::n9);
+    changed.set.axes.back().direction.x += 0.125;
+    EXPECT_NE(emit_function(changed), first);
 }
 
 } // namespace
