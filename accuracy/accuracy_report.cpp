@@ -13,10 +13,6 @@
 namespace kdop {
 namespace {
 
-std::string field(double value, int digits = 8) {
-    return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : std::string();
-}
-
 std::string cell(double value, int digits = 3) { return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : "–"; }
 
 std::string percent(double share) { return std::isfinite(share) ? fmt::format("{:.1f}%", 100 * share) : "–"; }
@@ -53,9 +49,9 @@ double lavapipe_cost(const TradeRow& r) {
 
 std::string chart_name(const std::string& family) { return "pareto-" + family + ".png"; }
 
-const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& family, const std::string& variant) {
+const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& family, const VariantKey& key) {
     for (const TradeRow& r : trade)
-        if (r.family == family && r.variant == variant) return &r;
+        if (r.family == family && r.key == key) return &r;
     return nullptr;
 }
 
@@ -91,7 +87,8 @@ Table accuracy_table(const AccuracyRun& run) {
                  {"volume_pixels", "", Shown::integer}});
     for (const AccuracyRow& r : run.rows) {
         const ClipAccuracy &g = r.gpu, &c = r.reference;
-        table.add({r.variant, r.axis_set, r.mode, r.neighborhood, std::int64_t(r.k), r.rgb_axes, std::int64_t(r.float_ops),
+        table.add({r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood), std::int64_t(r.k), r.rgb_axes,
+                   std::int64_t(r.float_ops),
                    r.family, r.image, std::int64_t(g.pixels), maybe(g.outside_rate()), maybe(g.mean_dist),
                    maybe(g.p95_dist), maybe(g.max_dist), maybe(g.false_accept_rate()), maybe(c.mean_dist),
                    maybe(c.p95_dist), maybe(c.max_dist), maybe(c.false_accept_rate()), maybe(r.gpu_reference_max),
@@ -134,7 +131,8 @@ Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesyst
     }
     std::map<std::string, LavapipeCost> costs;
     for (const auto& [name, r] : raw) {
-        const auto gather = raw.find("gather-" + r.neighborhood);
+        const auto neighborhood = parse_neighborhood(r.neighborhood);
+        const auto gather = neighborhood ? raw.find(gather_key(*neighborhood).name()) : raw.end();
         costs[name] = {gather == raw.end() ? NAN : r.instr - gather->second.instr, r.marginal_ms};
     }
     return costs;
@@ -146,12 +144,11 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::str
     std::vector<std::size_t> outside, accepted;
     for (const AccuracyRow& a : run.rows) {
         auto it = std::find_if(rows.begin(), rows.end(),
-                               [&](const TradeRow& t) { return t.family == a.family && t.variant == a.variant; });
+                               [&](const TradeRow& t) { return t.family == a.family && t.key == a.key; });
         if (it == rows.end()) {
             TradeRow t;
-            t.family = a.family, t.variant = a.variant, t.axis_set = a.axis_set, t.mode = a.mode;
-            t.neighborhood = a.neighborhood, t.k = a.k, t.float_ops = double(a.float_ops);
-            if (auto c = costs.find(a.variant); c != costs.end()) t.lavapipe = c->second;
+            t.family = a.family, t.key = a.key, t.k = a.k, t.float_ops = double(a.float_ops);
+            if (auto c = costs.find(a.key.name()); c != costs.end()) t.lavapipe = c->second;
             t.mean_dist = t.p95_dist = t.max_dist = t.volume_ratio = 0;
             rows.push_back(t);
             pairs.push_back(0), outside.push_back(0), accepted.push_back(0);
@@ -175,10 +172,10 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::str
     // n5 and n9 variants are measured against different hulls (of their own neighborhoods), so
     // each neighborhood has its own front.
     for (const std::string& family : families_of(rows))
-        for (const char* shape : {"n9", "n5"}) {
+        for (Neighborhood shape : kAllNeighborhoods) {
             std::vector<std::size_t> members;
             for (std::size_t i = 0; i < rows.size(); ++i)
-                if (rows[i].family == family && rows[i].neighborhood == shape) members.push_back(i);
+                if (rows[i].family == family && rows[i].key.neighborhood == shape) members.push_back(i);
             mark_front(rows, members, [](const TradeRow& r) { return r.float_ops; },
                        [](TradeRow& r) -> bool& { return r.front_float_ops; });
             mark_front(rows, members, lavapipe_cost, [](TradeRow& r) -> bool& { return r.front_lavapipe; });
@@ -193,18 +190,19 @@ Table trade_table(const std::vector<TradeRow>& rows) {
                  {"mode", "", Shown::text},
                  {"neighborhood", "", Shown::text},
                  {"k", "", Shown::integer},
-                 {"float_ops", "", Shown::integer},
-                 {"marginal_instr_per_px", "instr/px", Shown::significant, 4},
-                 {"marginal_ms", "ms", Shown::fixed, 2},
-                 {"mean_dist", "S"},
-                 {"p95_dist", "S"},
-                 {"max_dist", "S"},
-                 {"false_accept_rate", "", Shown::percent},
-                 {"volume_ratio"},
-                 {"front_float_ops", "", Shown::flag},
-                 {"front_lavapipe", "", Shown::flag}});
+                 {"float_ops", "", Shown::integer, 0, "float ops"},
+                 {"marginal_instr_per_px", "instr/px", Shown::significant, 4, "lavapipe marginal"},
+                 {"marginal_ms", "ms", Shown::fixed, 2, "lavapipe marginal"},
+                 {"mean_dist", "S", Shown::significant, 3, "mean dist"},
+                 {"p95_dist", "S", Shown::significant, 3, "p95 dist"},
+                 {"max_dist", "S", Shown::significant, 3, "max dist"},
+                 {"false_accept_rate", "", Shown::percent, 1, "false accept"},
+                 {"volume_ratio", "", Shown::significant, 3, "k-DOP / hull volume"},
+                 {"front_float_ops", "", Shown::flag, 0, "front (float ops)"},
+                 {"front_lavapipe", "", Shown::flag, 0, "front (lavapipe)"}});
     for (const TradeRow& r : rows)
-        table.add({r.family, r.variant, r.axis_set, r.mode, r.neighborhood, std::int64_t(r.k), maybe(r.float_ops),
+        table.add({r.family, r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood), std::int64_t(r.k),
+                   maybe(r.float_ops),
                    maybe(r.lavapipe.marginal_instr_per_px), maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist),
                    maybe(r.p95_dist), maybe(r.max_dist), maybe(r.false_accept_rate), maybe(r.volume_ratio),
                    r.front_float_ops, r.front_lavapipe});
@@ -232,20 +230,17 @@ const char* lavapipe_label(const std::vector<TradeRow>& trade) {
                    : "lavapipe marginal ms (median, over the gather)";
 }
 
+// A family's rows of the trade table, with the lavapipe cost the bench measured where it did.
 std::string family_table(const std::vector<TradeRow>& trade, const std::string& family, bool lavapipe) {
-    std::string out = fmt::format("| variant | k | float ops |{} mean dist | p95 dist | max dist | false accept | "
-                                  "k-DOP / hull volume | Pareto front |\n",
-                                  lavapipe ? " lavapipe marginal |" : "");
-    out += fmt::format("|---|--:|--:|{}--:|--:|--:|--:|--:|---|\n", lavapipe ? "--:|" : "");
-    for (const TradeRow& r : trade) {
-        if (r.family != family) continue;
-        std::string front = r.front_float_ops ? "float ops" : "";
-        if (r.front_lavapipe) front += front.empty() ? "lavapipe" : ", lavapipe";
-        out += fmt::format("| {} | {} | {} |{} {} | {} | {} | {} | {} | {} |\n", r.variant, r.k, cell(r.float_ops, 4),
-                           lavapipe ? fmt::format(" {} |", cell(lavapipe_cost(r), 4)) : "", cell(r.mean_dist), cell(r.p95_dist),
-                           cell(r.max_dist), percent(r.false_accept_rate), cell(r.volume_ratio), front.empty() ? "–" : front);
-    }
-    return out;
+    const Table table = trade_table(trade).rows_where([&](std::size_t r) { return trade[r].family == family; });
+    const bool counted = std::any_of(trade.begin(), trade.end(),
+                                     [](const TradeRow& r) { return std::isfinite(r.lavapipe.marginal_instr_per_px); });
+    std::vector<std::string> columns{"variant", "k", "float_ops"};
+    if (lavapipe) columns.push_back(counted ? "marginal_instr_per_px" : "marginal_ms");
+    for (const char* c : {"mean_dist", "p95_dist", "max_dist", "false_accept_rate", "volume_ratio", "front_float_ops"})
+        columns.push_back(c);
+    if (lavapipe) columns.push_back("front_lavapipe");
+    return table.markdown(columns);
 }
 
 // The clip-n9 variants' mean distance per family, as columns in selection order, with each over
@@ -253,8 +248,9 @@ std::string family_table(const std::vector<TradeRow>& trade, const std::string& 
 std::string clip_n9_summary(const std::vector<TradeRow>& trade) {
     std::vector<std::string> sets;
     for (const TradeRow& r : trade)
-        if (r.mode == "clip" && r.neighborhood == "n9" && std::find(sets.begin(), sets.end(), r.axis_set) == sets.end())
-            sets.push_back(r.axis_set);
+        if (r.key.mode == Mode::clip && r.key.neighborhood == Neighborhood::n9 &&
+            std::find(sets.begin(), sets.end(), r.key.set) == sets.end())
+            sets.push_back(r.key.set);
     if (sets.empty()) return "No clip-n9 variant was measured.\n";
     std::string out = "| family |";
     for (const std::string& s : sets) out += fmt::format(" {} |", s);
@@ -262,10 +258,11 @@ std::string clip_n9_summary(const std::vector<TradeRow>& trade) {
     for (std::size_t i = 0; i < sets.size(); ++i) out += "--:|";
     out += "\n";
     for (const std::string& family : families_of(trade)) {
-        const TradeRow* aabb = find(trade, family, "aabb-clip-n9");
+        const VariantKey clip_n9{"aabb", Mode::clip, Neighborhood::n9};
+        const TradeRow* aabb = find(trade, family, clip_n9);
         out += fmt::format("| {} |", family);
         for (const std::string& s : sets) {
-            const TradeRow* r = find(trade, family, s + "-clip-n9");
+            const TradeRow* r = find(trade, family, clip_n9.with_set(s));
             if (!r) {
                 out += " – |";
                 continue;
@@ -288,10 +285,10 @@ std::string rgb_axes_check(const AccuracyRun& run) {
     std::vector<std::string> order;
     std::set<std::string> device_looser; // images where a clip was, on the device
     for (const AccuracyRow& r : run.rows) {
-        if (!r.rgb_axes || r.axis_set == "aabb" || !std::isfinite(r.reference_vs_aabb.share)) continue;
-        if (!worst.count(r.variant)) order.push_back(r.variant);
-        if (r.mode == "clip" && r.vs_aabb.share > 0) device_looser.insert(r.image);
-        Worst& w = worst[r.variant];
+        if (!r.rgb_axes || r.key.set == "aabb" || !std::isfinite(r.reference_vs_aabb.share)) continue;
+        if (!worst.count(r.key.name())) order.push_back(r.key.name());
+        if (r.key.mode == Mode::clip && r.vs_aabb.share > 0) device_looser.insert(r.image);
+        Worst& w = worst[r.key.name()];
         for (auto [into, from] : {std::pair{&w.device, &r.vs_aabb}, std::pair{&w.reference, &r.reference_vs_aabb}}) {
             into->share = std::max(into->share, from->share);
             into->largest = std::max(into->largest, from->largest);
@@ -314,11 +311,14 @@ std::string rgb_axes_check(const AccuracyRun& run) {
 
 std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
     std::string out;
-    for (const char* mode : {"clip-n9", "clip-n5", "varclip-n9", "varclip-n5"}) {
+    for (Mode mode : kAllModes)
+        for (Neighborhood n : kAllNeighborhoods) {
+        const VariantKey grass{"dop16-grass", mode, n}, asphalt{"dop16-asphalt", mode, n};
+        const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
         std::vector<std::string> grass_wins, asphalt_wins;
         for (const std::string& family : families_of(trade)) {
-            const TradeRow* g = find(trade, family, fmt::format("dop16-grass-{}", mode));
-            const TradeRow* a = find(trade, family, fmt::format("dop16-asphalt-{}", mode));
+            const TradeRow* g = find(trade, family, grass);
+            const TradeRow* a = find(trade, family, asphalt);
             if (!g || !a) continue;
             (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
                 .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
@@ -330,7 +330,7 @@ std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
             for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
             return s.empty() ? std::string("none") : s;
         };
-        out += fmt::format("- {}: dop16-grass is the tighter 16-DOP on {}; dop16-asphalt on {}.\n", mode, list(grass_wins),
+        out += fmt::format("- {}: dop16-grass is the tighter 16-DOP on {}; dop16-asphalt on {}.\n", group, list(grass_wins),
                            list(asphalt_wins));
     }
     return out.empty() ? "Both scene-optimized 16-DOPs were not measured.\n" : out;
@@ -345,7 +345,7 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
     std::string float_error_at;
     std::set<std::string> pairs;
     for (const AccuracyRow& r : run.rows) {
-        if (r.gpu_reference_max > float_error) float_error_at = r.variant + " on " + r.image;
+        if (r.gpu_reference_max > float_error) float_error_at = r.key.name() + " on " + r.image;
         float_error = std::max(float_error, r.gpu_reference_max);
         gpu_ref_mean_gap = std::max(gpu_ref_mean_gap, std::abs(r.gpu.mean_dist - r.reference.mean_dist));
         pairs.insert(r.image);
@@ -427,11 +427,13 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
         if (lavapipe) axes.push_back({"lavapipe", lavapipe_label(trade), lavapipe_cost, &TradeRow::front_lavapipe});
         for (const Axis& axis : axes) {
             std::string plot;
-            for (const char* group : {"clip-n9", "clip-n5", "varclip-n9", "varclip-n5"}) {
+            for (Mode mode : kAllModes)
+                for (Neighborhood n : kAllNeighborhoods) {
+                const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
                 std::vector<std::vector<std::string>> points;
                 for (const TradeRow& r : trade)
-                    if (r.family == families[f] && r.mode + "-" + r.neighborhood == group)
-                        points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.axis_set});
+                    if (r.family == families[f] && r.key.mode == mode && r.key.neighborhood == n)
+                        points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.key.set});
                 if (points.empty()) continue;
                 const std::string data = fmt::format("{}-{}-{}.dat", stem, axis.suffix, group);
                 if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
@@ -439,20 +441,20 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                                     "offset 0.6,0.6 left font ',7' notitle",
                                     plot.empty() ? "" : ", ", data, group);
             }
-            for (const char* shape : {"n9", "n5"}) {
+            for (Neighborhood shape : kAllNeighborhoods) {
                 std::vector<const TradeRow*> members;
                 for (const TradeRow& r : trade)
-                    if (r.family == families[f] && r.neighborhood == shape && r.*axis.front) members.push_back(&r);
+                    if (r.family == families[f] && r.key.neighborhood == shape && r.*axis.front) members.push_back(&r);
                 if (members.empty()) continue;
                 std::sort(members.begin(), members.end(),
                           [&](const TradeRow* a, const TradeRow* b) { return axis.cost(*a) < axis.cost(*b); });
                 std::vector<std::vector<std::string>> front;
                 for (const TradeRow* r : members)
                     front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
-                const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, shape);
+                const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, to_string(shape));
                 if (auto ok = write_text(data, gnuplot_data(front)); !ok) return std::unexpected(ok.error());
                 plot += fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'", data,
-                                    shape == std::string("n9") ? 2 : 3, shape);
+                                    shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
             }
             script += fmt::format("set xlabel '{}'\nplot {}\n", axis.label, plot);
         }

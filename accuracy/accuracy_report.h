@@ -28,7 +28,8 @@ Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesyst
 
 // One variant on one family: its accuracy averaged over the family's pairs, beside its cost.
 struct TradeRow {
-    std::string family, variant, axis_set, mode, neighborhood;
+    std::string family;
+    VariantKey key;
     unsigned k = 0;
     double float_ops = NAN;
     LavapipeCost lavapipe;

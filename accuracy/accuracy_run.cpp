@@ -61,10 +61,7 @@ Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, 
         if (!set) return std::unexpected(set.error());
         specs.push_back({*set, key.mode, key.neighborhood, key.form, key.numerics});
         AccuracyRow& row = described.emplace_back();
-        row.variant = key.name();
-        row.axis_set = key.set;
-        row.mode = to_string(key.mode);
-        row.neighborhood = to_string(key.neighborhood);
+        row.key = key;
         row.k = static_cast<unsigned>(2 * set->axes.size());
         row.rgb_axes = contains_rgb_axes(*set);
         row.float_ops = count_float_ops({(*variants)[v]->spirv, (*variants)[v]->spirv_word_count}).total();
@@ -112,8 +109,7 @@ Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, 
         // Each variant against the RGB AABB of its mode and neighborhood, when that was selected.
         for (std::size_t v = 0; v < specs.size(); ++v)
             for (std::size_t a = 0; a < specs.size(); ++a) {
-                const VariantSpec &spec = specs[v], &aabb = specs[a];
-                if (aabb.set.name != "aabb" || aabb.mode != spec.mode || aabb.neighborhood != spec.neighborhood) continue;
+                if (options.variants[a] != options.variants[v].with_set("aabb")) continue;
                 AccuracyRow& row = run.rows[first_row + v];
                 row.vs_aabb = compare_distances(distances[v].gpu, distances[a].gpu);
                 row.reference_vs_aabb = compare_distances(distances[v].reference, distances[a].reference);

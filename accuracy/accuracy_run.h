@@ -24,7 +24,7 @@ struct AccuracyOptions {
 };
 
 struct AccuracyRow {
-    std::string variant, axis_set, mode, neighborhood;
+    VariantKey key;
     unsigned k = 0;
     bool rgb_axes = false;     // the set contains the X, Y and Z axes, so its k-DOP lies inside the RGB AABB
     std::size_t float_ops = 0; // static cost of the built SPIR-V (spirv_cost.h)

@@ -61,7 +61,7 @@ std::optional<VariantKey> paper_of(const VariantKey& key) {
 Result<ProbeKernel> probe_kernel(const VariantKey& key, const Variant& v, VariantCatalog& catalog,
                                  const std::filesystem::path& scratch) {
     if (VariantCatalog::is_embedded(v)) return ProbeKernel{key.name(), key.name(), {}};
-    const VariantKey donor_key{"aabb", key.mode, key.neighborhood, Form::unrolled, Numerics::hardened};
+    const VariantKey donor_key = key.with_set("aabb").with(Form::unrolled).with(Numerics::hardened);
     auto donor = catalog.find(donor_key);
     if (!donor) return std::unexpected(donor.error());
     if ((*donor)->binding_count != v.binding_count || (*donor)->push_constant_size != v.push_constant_size)
@@ -138,7 +138,7 @@ Result<BenchResult> run_cost_bench(const Context& context, VariantCatalog& catal
             if (auto paper = paper_of(row.key)) row.paper_ms = timing(*paper);
         }
         for (CostRow& row : result.rows) {
-            const VariantKey aabb{"aabb", row.key.mode, row.key.neighborhood, row.key.form, row.key.numerics};
+            const VariantKey aabb = row.key.with_set("aabb");
             if (row.key.is_clip() && all.has(aabb)) row.ms_vs_aabb = row.ms.median / timing(aabb).median;
         }
     }

@@ -24,6 +24,12 @@ VariantKey VariantKey::with(Numerics n) const {
     return k;
 }
 
+VariantKey VariantKey::with_set(std::string other) const {
+    VariantKey k = *this;
+    k.set = std::move(other);
+    return k;
+}
+
 VariantKey key_of(const Variant& v) {
     if (v.mode == Mode::copy) return copy_key();
     if (v.mode == Mode::gather) return gather_key(v.neighborhood);

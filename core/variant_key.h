@@ -30,6 +30,8 @@ struct VariantKey {
     // The same variant in another form or with other numerics: its loop-form baseline, its paper twin.
     VariantKey with(Form f) const;
     VariantKey with(Numerics n) const;
+    // The same mode, neighborhood, form and numerics with another set, e.g. the RGB AABB to compare with.
+    VariantKey with_set(std::string other) const;
 
     friend auto operator<=>(const VariantKey&, const VariantKey&) = default;
 };

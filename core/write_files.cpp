@@ -12,19 +12,14 @@
 namespace kdop {
 namespace fs = std::filesystem;
 
-namespace {
-
-// "<name>.kdop-partial-<pid>-<n><ext>": unique per process and file, and keeping the extension
-// for tools that look at it.
-fs::path temporary_for(const fs::path& path) {
+// "<name>.kdop-partial-<pid>-<n><ext>".
+fs::path temporary_path_for(const fs::path& path) {
     static std::atomic<unsigned> counter{0};
     fs::path temporary = path;
     temporary.replace_filename(fmt::format("{}.kdop-partial-{}-{}{}", path.stem().string(), getpid(), counter++,
                                            path.extension().string()));
     return temporary;
 }
-
-} // namespace
 
 Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
     std::vector<fs::path> temporaries, placed;
@@ -38,7 +33,7 @@ Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
         std::error_code ec;
         if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
         if (ec) return abandon(fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message()));
-        const fs::path temporary = temporary_for(f.path);
+        const fs::path temporary = temporary_path_for(f.path);
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) return abandon(fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));
         temporaries.push_back(temporary);

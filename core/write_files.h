@@ -20,6 +20,10 @@ struct OutputFile {
 
 Result<void> write_files_atomically(const std::vector<OutputFile>& files);
 
+// The temporary a file is written under before it is renamed to `path`: next to it, unique to
+// this process and call, keeping the extension (which tells image libraries the format).
+std::filesystem::path temporary_path_for(const std::filesystem::path& path);
+
 // Whether files can be written into `dir` (created later, by write_files_atomically, if missing):
 // its nearest existing ancestor must be a directory this process can create files in. Checked
 // before a long run starts, so a bad --out fails at once instead of after the work. Creates

@@ -31,9 +31,13 @@ enum class Shown {
 struct Column {
     std::string name;  // the CSV and JSON key: lowercase with underscores, "mean_dist"
     std::string unit;  // "ms", "instr/px", "S" (the pixel's magnitude); empty for counts, names and ratios
-    Shown shown = Shown::significant;
-    int digits = 3;
+    Shown shown;
+    int digits;
     std::string title; // the Markdown header; empty: the name
+
+    Column(std::string name_, std::string unit_ = "", Shown shown_ = Shown::significant, int digits_ = 3,
+           std::string title_ = "")
+        : name(std::move(name_)), unit(std::move(unit_)), shown(shown_), digits(digits_), title(std::move(title_)) {}
 };
 
 using Value = std::variant<std::monostate, std::string, std::int64_t, double, bool>;

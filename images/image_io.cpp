@@ -1,5 +1,7 @@
 #include "image_io.h"
 
+#include "write_files.h"
+
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
@@ -36,7 +38,7 @@ Result<void> write_image(const std::string& path, const Image& image) {
     namespace fs = std::filesystem;
     fs::path final_path(path);
     // The temporary keeps the extension, which tells OpenImageIO the format.
-    fs::path temporary = final_path.parent_path() / (final_path.stem().string() + ".kdop-partial" + final_path.extension().string());
+    const fs::path temporary = temporary_path_for(final_path);
     auto out = OIIO::ImageOutput::create(temporary.string());
     if (!out) return fail(fmt::format("{}: no image format for this extension: {}", path, OIIO::geterror()));
 
@@ -55,8 +57,9 @@ Result<void> write_image(const std::string& path, const Image& image) {
     }
     fs::rename(temporary, final_path, ec);
     if (ec) {
+        const std::string reason = ec.message(); // before remove() reuses ec
         fs::remove(temporary, ec);
-        return fail(fmt::format("{}: cannot move into place: {}", path, ec.message()));
+        return fail(fmt::format("{}: cannot move into place: {}", path, reason));
     }
     return {};
 }

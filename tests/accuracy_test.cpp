@@ -57,7 +57,7 @@ TEST(AccuracyMetrics, CompareDistancesCountsOnlyRealExcess) {
 AccuracyRow row(const std::string& family, const std::string& set, const std::string& n, std::size_t float_ops,
                 double mean, std::size_t outside, std::size_t accepted) {
     AccuracyRow r;
-    r.variant = set + "-clip-" + n, r.axis_set = set, r.mode = "clip", r.neighborhood = n;
+    r.key = {set, Mode::clip, *parse_neighborhood(n)};
     r.family = family, r.image = family + "/x", r.float_ops = float_ops, r.k = 6;
     r.gpu.mean_dist = mean, r.gpu.p95_dist = 2 * mean, r.gpu.max_dist = 3 * mean;
     r.gpu.pixels = 100, r.gpu.outside = outside, r.gpu.falsely_accepted = accepted;
@@ -127,7 +127,7 @@ TEST(AccuracyRun, OnTheDeviceAgreesWithTheReferenceAndKeepsTheAabbBound) {
     ASSERT_EQ(run->rows.size(), pairs.size() * options.variants.size());
     std::size_t outside = 0;
     for (const AccuracyRow& r : run->rows) {
-        SCOPED_TRACE(r.variant + " on " + r.image);
+        SCOPED_TRACE(r.key.name() + " on " + r.image);
         outside += r.gpu.outside;
         // The device computes the same clips as the reference, up to float32 rounding.
         EXPECT_EQ(r.gpu.outside, r.reference.outside);
@@ -136,12 +136,12 @@ TEST(AccuracyRun, OnTheDeviceAgreesWithTheReferenceAndKeepsTheAabbBound) {
             EXPECT_LT(r.gpu_reference_max, 1e-4);
         }
         // A clip k-DOP contains the hull: its volume is never below the hull's.
-        if (r.mode == "clip" && r.volume.pixels) {
+        if (r.key.mode == Mode::clip && r.volume.pixels) {
             EXPECT_GE(r.volume.median, 1.0 - 1e-9);
         }
         // Sets that contain X, Y and Z lie inside the RGB AABB: never looser, exactly.
-        EXPECT_EQ(r.rgb_axes, r.axis_set == "aabb" || r.axis_set == "dop22" || r.axis_set == "dop32");
-        if (r.rgb_axes && r.mode == "clip") {
+        EXPECT_EQ(r.rgb_axes, r.key.set == "aabb" || r.key.set == "dop22" || r.key.set == "dop32");
+        if (r.rgb_axes && r.key.mode == Mode::clip) {
             EXPECT_EQ(r.reference_vs_aabb.share, 0.0);
         }
     }
