@@ -8,6 +8,7 @@ set -eu
 # valgrind and gnuplot-nox: `kdop bench` (and its tests) run callgrind and draw charts with gnuplot.
 # libglpk-dev and libqhull-dev: `kdop accuracy` solves the ideal clip as an exact LP (GLPK) and
 # measures hull and k-DOP volumes (Qhull).
+# clang-format: the test format_is_applied checks the tree against .clang-format.
 # nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
 packages="
   build-essential cmake ninja-build pkg-config
@@ -16,7 +17,7 @@ packages="
   libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libglpk-dev libqhull-dev
-  libgtest-dev valgrind gnuplot-nox
+  libgtest-dev valgrind gnuplot-nox clang-format
   colobot-common-textures
 "
 

@@ -31,7 +31,8 @@ std::string stem(const std::string& path) { return std::filesystem::path(path).s
 Image rotated_half_turn(const Image& image) {
     Image out(image.width, image.height);
     for (std::uint32_t y = 0; y < image.height; ++y)
-        for (std::uint32_t x = 0; x < image.width; ++x) out.at(x, y) = image.at(image.width - 1 - x, image.height - 1 - y);
+        for (std::uint32_t x = 0; x < image.width; ++x)
+            out.at(x, y) = image.at(image.width - 1 - x, image.height - 1 - y);
     return out;
 }
 
@@ -54,7 +55,7 @@ Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& pa
         for (HistoryModel m : history_models())
             if (m != HistoryModel::same)
                 pairs.push_back({stem(path), fmt::format("{}/{}", stem(path), to_string(m)), *current,
-                             make_history(*current, m, other)});
+                                 make_history(*current, m, other)});
     }
     return pairs;
 }

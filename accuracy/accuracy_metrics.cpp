@@ -21,7 +21,8 @@ std::vector<double> ideal_distances(const Image& current, const Image& history, 
     std::vector<double> distances(current.pixels.size());
     for (std::size_t i = 0; i < distances.size(); ++i) {
         const glm::dvec3 c = rgb(current.pixels[i]), h = rgb(history.pixels[i]);
-        distances[i] = glm::distance(rgb(clipped.pixels[i]), c + ideal_exits[i] * (h - c)) / pixel_magnitude(current.pixels[i]);
+        distances[i] =
+            glm::distance(rgb(clipped.pixels[i]), c + ideal_exits[i] * (h - c)) / pixel_magnitude(current.pixels[i]);
     }
     return distances;
 }

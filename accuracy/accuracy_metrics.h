@@ -20,14 +20,14 @@
 
 namespace kdop {
 
-inline constexpr double kOutsideHull = 1e-4;   // times S, see above
-inline constexpr double kUnchanged = 1e-5;     // times S
-inline constexpr double kSameDistance = 1e-6;  // times S: distances closer than this are a tie
+inline constexpr double kOutsideHull = 1e-4;  // times S, see above
+inline constexpr double kUnchanged = 1e-5;    // times S
+inline constexpr double kSameDistance = 1e-6; // times S: distances closer than this are a tie
 
 struct ClipAccuracy {
     double mean_dist = NAN, p95_dist = NAN, max_dist = NAN; // p95: nearest rank, ceil(0.95 n)-th smallest
     std::size_t pixels = 0;
-    std::size_t outside = 0;         // histories outside the hull
+    std::size_t outside = 0;          // histories outside the hull
     std::size_t falsely_accepted = 0; // of those, returned unchanged
     double outside_rate() const { return pixels ? double(outside) / double(pixels) : NAN; }
     // The share of histories outside the hull that were returned unchanged; NaN where none was outside.
@@ -48,8 +48,8 @@ ClipAccuracy measure_accuracy(const Image& current, const Image& history, std::s
 // How often, and by how much, one clip is looser than another on the same pair: distances `a`
 // and `b` (from ideal_distances) compared pixel by pixel.
 struct Looser {
-    double share = NAN;      // of the pixels where a exceeds b by more than kSameDistance
-    double largest = NAN;    // the largest excess a - b (units of S), 0 if a never exceeds b
+    double share = NAN;   // of the pixels where a exceeds b by more than kSameDistance
+    double largest = NAN; // the largest excess a - b (units of S), 0 if a never exceeds b
 };
 Looser compare_distances(std::span<const double> a, std::span<const double> b);
 

@@ -13,7 +13,9 @@
 namespace kdop {
 namespace {
 
-std::string cell(double value, int digits = 3) { return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : "–"; }
+std::string cell(double value, int digits = 3) {
+    return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : "–";
+}
 
 std::string percent(double share) { return std::isfinite(share) ? fmt::format("{:.1f}%", 100 * share) : "–"; }
 
@@ -87,13 +89,32 @@ Table accuracy_table(const AccuracyRun& run) {
                  {"volume_pixels", "", Shown::integer}});
     for (const AccuracyRow& r : run.rows) {
         const ClipAccuracy &g = r.gpu, &c = r.reference;
-        table.add({r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood), std::int64_t(r.k), r.rgb_axes,
+        table.add({r.key.name(),
+                   r.key.set,
+                   to_string(r.key.mode),
+                   to_string(r.key.neighborhood),
+                   std::int64_t(r.k),
+                   r.rgb_axes,
                    std::int64_t(r.float_ops),
-                   r.family, r.image, std::int64_t(g.pixels), maybe(g.outside_rate()), maybe(g.mean_dist),
-                   maybe(g.p95_dist), maybe(g.max_dist), maybe(g.false_accept_rate()), maybe(c.mean_dist),
-                   maybe(c.p95_dist), maybe(c.max_dist), maybe(c.false_accept_rate()), maybe(r.gpu_reference_max),
-                   maybe(r.vs_aabb.share), maybe(r.reference_vs_aabb.share), maybe(r.vs_aabb.largest),
-                   maybe(r.reference_vs_aabb.largest), maybe(r.volume.median), maybe(r.volume.mean),
+                   r.family,
+                   r.image,
+                   std::int64_t(g.pixels),
+                   maybe(g.outside_rate()),
+                   maybe(g.mean_dist),
+                   maybe(g.p95_dist),
+                   maybe(g.max_dist),
+                   maybe(g.false_accept_rate()),
+                   maybe(c.mean_dist),
+                   maybe(c.p95_dist),
+                   maybe(c.max_dist),
+                   maybe(c.false_accept_rate()),
+                   maybe(r.gpu_reference_max),
+                   maybe(r.vs_aabb.share),
+                   maybe(r.reference_vs_aabb.share),
+                   maybe(r.vs_aabb.largest),
+                   maybe(r.reference_vs_aabb.largest),
+                   maybe(r.volume.median),
+                   maybe(r.volume.mean),
                    std::int64_t(r.volume.pixels)});
     }
     return table;
@@ -105,9 +126,10 @@ Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesyst
     const int variant = csv->column("variant"), neighborhood = csv->column("neighborhood"),
               instr = csv->column("instr_per_px"), marginal = csv->column("marginal_ms");
     if (variant < 0 || neighborhood < 0 || instr < 0 || marginal < 0)
-        return fail(fmt::format("{}:1: not a kdop bench cost.csv (needs the columns variant, neighborhood, instr_per_px "
-                                "and marginal_ms)",
-                                path.string()));
+        return fail(
+            fmt::format("{}:1: not a kdop bench cost.csv (needs the columns variant, neighborhood, instr_per_px "
+                        "and marginal_ms)",
+                        path.string()));
     struct Raw {
         std::string neighborhood;
         double instr, marginal_ms;
@@ -120,7 +142,8 @@ Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesyst
             char* end = nullptr;
             const double v = std::strtod(f[i].c_str(), &end);
             if (end != f[i].c_str() + f[i].size())
-                return fail(fmt::format("{}:{}: {} is '{}', not a number", path.string(), csv->lines[r], csv->header[i], f[i]));
+                return fail(
+                    fmt::format("{}:{}: {} is '{}', not a number", path.string(), csv->lines[r], csv->header[i], f[i]));
             return v;
         };
         auto i = value(instr);
@@ -176,8 +199,9 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::str
             std::vector<std::size_t> members;
             for (std::size_t i = 0; i < rows.size(); ++i)
                 if (rows[i].family == family && rows[i].key.neighborhood == shape) members.push_back(i);
-            mark_front(rows, members, [](const TradeRow& r) { return r.float_ops; },
-                       [](TradeRow& r) -> bool& { return r.front_float_ops; });
+            mark_front(
+                rows, members, [](const TradeRow& r) { return r.float_ops; },
+                [](TradeRow& r) -> bool& { return r.front_float_ops; });
             mark_front(rows, members, lavapipe_cost, [](TradeRow& r) -> bool& { return r.front_lavapipe; });
         }
     return rows;
@@ -201,11 +225,10 @@ Table trade_table(const std::vector<TradeRow>& rows) {
                  {"front_float_ops", "", Shown::flag, 0, "front (float ops)"},
                  {"front_lavapipe", "", Shown::flag, 0, "front (lavapipe)"}});
     for (const TradeRow& r : rows)
-        table.add({r.family, r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood), std::int64_t(r.k),
-                   maybe(r.float_ops),
-                   maybe(r.lavapipe.marginal_instr_per_px), maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist),
-                   maybe(r.p95_dist), maybe(r.max_dist), maybe(r.false_accept_rate), maybe(r.volume_ratio),
-                   r.front_float_ops, r.front_lavapipe});
+        table.add({r.family, r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood),
+                   std::int64_t(r.k), maybe(r.float_ops), maybe(r.lavapipe.marginal_instr_per_px),
+                   maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist), maybe(r.p95_dist), maybe(r.max_dist),
+                   maybe(r.false_accept_rate), maybe(r.volume_ratio), r.front_float_ops, r.front_lavapipe});
     return table;
 }
 
@@ -296,8 +319,9 @@ std::string rgb_axes_check(const AccuracyRun& run) {
         ++w.pairs;
     }
     if (order.empty()) return "No variant of a set that contains the X, Y and Z axes was measured beside aabb.\n";
-    std::string out = "| variant | pairs | reference: pixels looser | by at most (S) | device: pixels looser | by at most (S) |\n"
-                      "|---|--:|--:|--:|--:|--:|\n";
+    std::string out =
+        "| variant | pairs | reference: pixels looser | by at most (S) | device: pixels looser | by at most (S) |\n"
+        "|---|--:|--:|--:|--:|--:|\n";
     for (const std::string& v : order) {
         const Worst& w = worst[v];
         out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", v, w.pairs, percent(w.reference.share),
@@ -313,33 +337,33 @@ std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
     std::string out;
     for (Mode mode : kAllModes)
         for (Neighborhood n : kAllNeighborhoods) {
-        const VariantKey grass{"dop16-grass", mode, n}, asphalt{"dop16-asphalt", mode, n};
-        const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
-        std::vector<std::string> grass_wins, asphalt_wins;
-        for (const std::string& family : families_of(trade)) {
-            const TradeRow* g = find(trade, family, grass);
-            const TradeRow* a = find(trade, family, asphalt);
-            if (!g || !a) continue;
-            (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
-                .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
-                                       cell(std::max(g->mean_dist, a->mean_dist))));
+            const VariantKey grass{"dop16-grass", mode, n}, asphalt{"dop16-asphalt", mode, n};
+            const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
+            std::vector<std::string> grass_wins, asphalt_wins;
+            for (const std::string& family : families_of(trade)) {
+                const TradeRow* g = find(trade, family, grass);
+                const TradeRow* a = find(trade, family, asphalt);
+                if (!g || !a) continue;
+                (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
+                    .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
+                                           cell(std::max(g->mean_dist, a->mean_dist))));
+            }
+            if (grass_wins.empty() && asphalt_wins.empty()) continue;
+            const auto list = [](const std::vector<std::string>& v) {
+                std::string s;
+                for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+                return s.empty() ? std::string("none") : s;
+            };
+            out += fmt::format("- {}: dop16-grass is the tighter 16-DOP on {}; dop16-asphalt on {}.\n", group,
+                               list(grass_wins), list(asphalt_wins));
         }
-        if (grass_wins.empty() && asphalt_wins.empty()) continue;
-        const auto list = [](const std::vector<std::string>& v) {
-            std::string s;
-            for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
-            return s.empty() ? std::string("none") : s;
-        };
-        out += fmt::format("- {}: dop16-grass is the tighter 16-DOP on {}; dop16-asphalt on {}.\n", group, list(grass_wins),
-                           list(asphalt_wins));
-    }
     return out.empty() ? "Both scene-optimized 16-DOPs were not measured.\n" : out;
 }
 
 } // namespace
 
-std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade, const RunMetadata& run_info,
-                                     const AccuracyReportSettings& c) {
+std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade,
+                                     const RunMetadata& run_info, const AccuracyReportSettings& c) {
     const bool lavapipe = has_lavapipe_cost(trade);
     double float_error = 0, gpu_ref_mean_gap = 0;
     std::string float_error_at;
@@ -351,49 +375,57 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
         pairs.insert(r.image);
     }
     std::string out = "# kdop accuracy\n\n" + metadata_markdown(run_info);
-    out += fmt::format("- content: {} image pairs in {} families; variance-clip gamma {}; volume ratio on up to {} pixels "
-                       "per pair and neighborhood\n",
-                       pairs.size(), families_of(trade).size(), c.gamma, c.volume_samples);
+    out +=
+        fmt::format("- content: {} image pairs in {} families; variance-clip gamma {}; volume ratio on up to {} pixels "
+                    "per pair and neighborhood\n",
+                    pairs.size(), families_of(trade).size(), c.gamma, c.volume_samples);
     out += fmt::format("- cost: float ops from the built SPIR-V{}\n\n",
                        c.cost_source.empty() ? "; no lavapipe figures (pass `--cost` a `kdop bench` cost.csv)"
                                              : fmt::format("; lavapipe from `{}`", c.cost_source));
 
-    out += "## What the numbers are\n\n"
-           "- **ideal clip**: the largest t in [0, 1] with current + t (history − current) inside the convex hull of the "
-           "neighborhood's colors, an LP solved exactly (GLPK's rational simplex; `accuracy/ideal_clip.h`).\n"
-           "- **dist**: |variant's color − ideal clipped color| / S, Euclidean in linear RGB, per pixel, with S = max(1, "
-           "|current|∞) (so plain linear RGB for content within [0, 1], and HDR highlights relative to their brightness); mean, p95 (nearest "
-           "rank) and max over the pair's pixels. In a family table: the mean of the pairs' means and p95s, the largest max.\n"
-           "- **false accept**: of the histories more than 1e-4 S beyond the hull along the ray, "
-           "the share the variant returned unchanged (within 1e-5 S).\n"
-           "- **k-DOP / hull volume**: the median over sampled pixels whose hull is solid (volume at least 1e-6 of its "
-           "bounding cube), of the padded k-DOP's volume over the hull's (Qhull). Variance clips are not bounding "
-           "volumes: below 1 they cut into the hull.\n"
-           "- **Pareto front**: no other variant of the family and neighborhood is at most as costly and at most as far "
-           "from the ideal (mean dist), and better in one. A variant off the front is never worth it on that content. "
-           "n5 and n9 variants are measured against the hulls of their own neighborhoods, so each has its own front.\n";
+    out +=
+        "## What the numbers are\n\n"
+        "- **ideal clip**: the largest t in [0, 1] with current + t (history − current) inside the convex hull of the "
+        "neighborhood's colors, an LP solved exactly (GLPK's rational simplex; `accuracy/ideal_clip.h`).\n"
+        "- **dist**: |variant's color − ideal clipped color| / S, Euclidean in linear RGB, per pixel, with S = max(1, "
+        "|current|∞) (so plain linear RGB for content within [0, 1], and HDR highlights relative to their brightness); "
+        "mean, p95 (nearest "
+        "rank) and max over the pair's pixels. In a family table: the mean of the pairs' means and p95s, the largest "
+        "max.\n"
+        "- **false accept**: of the histories more than 1e-4 S beyond the hull along the ray, "
+        "the share the variant returned unchanged (within 1e-5 S).\n"
+        "- **k-DOP / hull volume**: the median over sampled pixels whose hull is solid (volume at least 1e-6 of its "
+        "bounding cube), of the padded k-DOP's volume over the hull's (Qhull). Variance clips are not bounding "
+        "volumes: below 1 they cut into the hull.\n"
+        "- **Pareto front**: no other variant of the family and neighborhood is at most as costly and at most as far "
+        "from the ideal (mean dist), and better in one. A variant off the front is never worth it on that content. "
+        "n5 and n9 variants are measured against the hulls of their own neighborhoods, so each has its own front.\n";
     out += fmt::format("- The figures are the device's. The double-precision CPU reference (`ref_*` in accuracy.csv) "
                        "gives the same clip without float error: the device differs from it by at most {} S per "
                        "pixel ({}), and the mean distances by at most {}.\n\n",
                        cell(float_error), float_error_at, cell(gpu_ref_mean_gap));
 
-    out += "## Findings\n\n### Mean distance of the clip-n9 variants, and over the RGB AABB\n\n" + clip_n9_summary(trade);
+    out +=
+        "## Findings\n\n### Mean distance of the clip-n9 variants, and over the RGB AABB\n\n" + clip_n9_summary(trade);
     out += "\n### Scene-optimized 16-DOPs\n\n" + sixteen_dop_check(trade);
-    out += "\n### Sets that contain the RGB axes are never looser than the RGB AABB\n\nTheir k-DOP lies inside the "
-           "AABB, so in exact arithmetic their clip can only be closer to the ideal. The largest share of a pair's pixels where a "
-           "variant was farther from the ideal than aabb of the same mode and neighborhood by more than 1e-6 S, and the "
-           "largest excess, over all pairs. The reference computes in double precision; the device's excess is float32 "
-           "rounding: a slab bound carries an error relative to the brightest color projected on it, a ray nearly "
-           "parallel to the slab turns that into a long step, and the padding, which follows the pixel's own "
-           "magnitude, cannot cover it where a dim pixel neighbors a bright one. Variance clips have no such "
-           "guarantee: their slabs are not bounds.\n\n" +
-           rgb_axes_check(run);
+    out +=
+        "\n### Sets that contain the RGB axes are never looser than the RGB AABB\n\nTheir k-DOP lies inside the "
+        "AABB, so in exact arithmetic their clip can only be closer to the ideal. The largest share of a pair's pixels "
+        "where a "
+        "variant was farther from the ideal than aabb of the same mode and neighborhood by more than 1e-6 S, and the "
+        "largest excess, over all pairs. The reference computes in double precision; the device's excess is float32 "
+        "rounding: a slab bound carries an error relative to the brightest color projected on it, a ray nearly "
+        "parallel to the slab turns that into a long step, and the padding, which follows the pixel's own "
+        "magnitude, cannot cover it where a dim pixel neighbors a bright one. Variance clips have no such "
+        "guarantee: their slabs are not bounds.\n\n" +
+        rgb_axes_check(run);
 
     out += "\n## By family\n\n";
     if (lavapipe) out += fmt::format("The lavapipe column: {}.\n\n", lavapipe_label(trade));
     for (const std::string& family : families_of(trade)) {
         out += fmt::format("### {}\n\n", family);
-        if (c.charts) out += fmt::format("![Accuracy against cost on {}]({})\n\n", family, chart_name(safe_name(family)));
+        if (c.charts)
+            out += fmt::format("![Accuracy against cost on {}]({})\n\n", family, chart_name(safe_name(family)));
         out += family_table(trade, family, lavapipe) + "\n";
     }
     return out;
@@ -405,7 +437,8 @@ std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade
     return names;
 }
 
-Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade, const std::filesystem::path& scratch,
+Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade,
+                                                const std::filesystem::path& scratch,
                                                 const std::filesystem::path& out_dir) {
     const bool lavapipe = has_lavapipe_cost(trade);
     const std::vector<std::string> families = families_of(trade), names = accuracy_chart_names(trade);
@@ -414,33 +447,35 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                                      lavapipe ? 1600 : 900);
     for (std::size_t f = 0; f < families.size(); ++f) {
         const std::string stem = (scratch / safe_name(families[f])).string();
-        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point per "
-                              "variant; dashed: the Pareto fronts'\n",
-                              (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
+        script +=
+            fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point per "
+                        "variant; dashed: the Pareto fronts'\n",
+                        (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
         struct Axis {
             std::string suffix, label;
             double (*cost)(const TradeRow&);
             bool TradeRow::*front;
         };
-        std::vector<Axis> axes = {{"float", "float ops per pixel (SPIR-V)", [](const TradeRow& r) { return r.float_ops; },
-                                   &TradeRow::front_float_ops}};
+        std::vector<Axis> axes = {{"float", "float ops per pixel (SPIR-V)",
+                                   [](const TradeRow& r) { return r.float_ops; }, &TradeRow::front_float_ops}};
         if (lavapipe) axes.push_back({"lavapipe", lavapipe_label(trade), lavapipe_cost, &TradeRow::front_lavapipe});
         for (const Axis& axis : axes) {
             std::string plot;
             for (Mode mode : kAllModes)
                 for (Neighborhood n : kAllNeighborhoods) {
-                const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
-                std::vector<std::vector<std::string>> points;
-                for (const TradeRow& r : trade)
-                    if (r.family == families[f] && r.key.mode == mode && r.key.neighborhood == n)
-                        points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.key.set});
-                if (points.empty()) continue;
-                const std::string data = fmt::format("{}-{}-{}.dat", stem, axis.suffix, group);
-                if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
-                plot += fmt::format("{}'{}' using 1:2 with points pt 7 ps 1.3 title '{}', '' using 1:2:3 with labels "
+                    const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
+                    std::vector<std::vector<std::string>> points;
+                    for (const TradeRow& r : trade)
+                        if (r.family == families[f] && r.key.mode == mode && r.key.neighborhood == n)
+                            points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.key.set});
+                    if (points.empty()) continue;
+                    const std::string data = fmt::format("{}-{}-{}.dat", stem, axis.suffix, group);
+                    if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+                    plot +=
+                        fmt::format("{}'{}' using 1:2 with points pt 7 ps 1.3 title '{}', '' using 1:2:3 with labels "
                                     "offset 0.6,0.6 left font ',7' notitle",
                                     plot.empty() ? "" : ", ", data, group);
-            }
+                }
             for (Neighborhood shape : kAllNeighborhoods) {
                 std::vector<const TradeRow*> members;
                 for (const TradeRow& r : trade)
@@ -453,8 +488,8 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                     front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
                 const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, to_string(shape));
                 if (auto ok = write_text(data, gnuplot_data(front)); !ok) return std::unexpected(ok.error());
-                plot += fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'", data,
-                                    shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
+                plot += fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
+                                    data, shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
             }
             script += fmt::format("set xlabel '{}'\nplot {}\n", axis.label, plot);
         }

@@ -53,12 +53,13 @@ struct AccuracyReportSettings {
 };
 
 // `run_info` carries the seed.
-std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade, const RunMetadata& run_info,
-                                     const AccuracyReportSettings& settings);
+std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<TradeRow>& trade,
+                                     const RunMetadata& run_info, const AccuracyReportSettings& settings);
 
 // pareto-<family>.png for each family, in the order the report shows them.
 std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade);
-Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade, const std::filesystem::path& scratch,
+Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade,
+                                                const std::filesystem::path& scratch,
                                                 const std::filesystem::path& out_dir);
 
 } // namespace kdop

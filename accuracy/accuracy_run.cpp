@@ -85,25 +85,27 @@ Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, 
         std::vector<Distances> distances;
         auto ran = runner.run(pair.current, pair.history, TextureFormat::rgba32f, *variants, options.gamma,
                               [&](std::size_t v, const Image& output) -> Result<void> {
-            const VariantSpec& spec = specs[v];
-            const Image reference =
-                reference_rectify(spec.set, spec.mode, spec.neighborhood, pair.current, pair.history, options.gamma);
-            const std::vector<double>& exits = ideal[spec.neighborhood];
-            Distances& d = distances.emplace_back(Distances{ideal_distances(pair.current, pair.history, exits, output),
-                                                            ideal_distances(pair.current, pair.history, exits, reference)});
-            AccuracyRow row = described[v];
-            row.family = pair.family;
-            row.image = pair.name;
-            row.gpu = measure_accuracy(pair.current, pair.history, exits, output, d.gpu);
-            row.reference = measure_accuracy(pair.current, pair.history, exits, reference, d.reference);
-            row.gpu_reference_max = largest_difference(pair.current, output, reference);
-            auto volume = volume_ratio(pair.current, sample[spec.neighborhood], spec.set, spec.mode, spec.neighborhood,
-                                       options.gamma);
-            if (!volume) return fail(fmt::format("{}: {}", pair.name, volume.error().message));
-            row.volume = *volume;
-            run.rows.push_back(std::move(row));
-            return {};
-        });
+                                  const VariantSpec& spec = specs[v];
+                                  const Image reference = reference_rectify(spec.set, spec.mode, spec.neighborhood,
+                                                                            pair.current, pair.history, options.gamma);
+                                  const std::vector<double>& exits = ideal[spec.neighborhood];
+                                  Distances& d = distances.emplace_back(
+                                      Distances{ideal_distances(pair.current, pair.history, exits, output),
+                                                ideal_distances(pair.current, pair.history, exits, reference)});
+                                  AccuracyRow row = described[v];
+                                  row.family = pair.family;
+                                  row.image = pair.name;
+                                  row.gpu = measure_accuracy(pair.current, pair.history, exits, output, d.gpu);
+                                  row.reference =
+                                      measure_accuracy(pair.current, pair.history, exits, reference, d.reference);
+                                  row.gpu_reference_max = largest_difference(pair.current, output, reference);
+                                  auto volume = volume_ratio(pair.current, sample[spec.neighborhood], spec.set,
+                                                             spec.mode, spec.neighborhood, options.gamma);
+                                  if (!volume) return fail(fmt::format("{}: {}", pair.name, volume.error().message));
+                                  row.volume = *volume;
+                                  run.rows.push_back(std::move(row));
+                                  return {};
+                              });
         if (!ran) return std::unexpected(ran.error());
         if (progress) progress->advance(fmt::format("{}: {} variants", pair.name, specs.size()));
         // Each variant against the RGB AABB of its mode and neighborhood, when that was selected.

@@ -18,7 +18,7 @@ namespace kdop {
 
 struct AccuracyOptions {
     std::vector<VariantKey> variants; // clips only
-    float gamma = 1.0f;             // for variance clips
+    float gamma = 1.0f;               // for variance clips
     std::size_t volume_samples = 256; // pixels per pair and neighborhood; 0: no volumes
     std::uint64_t seed = 1;           // of the volume sample
 };
@@ -29,8 +29,8 @@ struct AccuracyRow {
     bool rgb_axes = false;     // the set contains the X, Y and Z axes, so its k-DOP lies inside the RGB AABB
     std::size_t float_ops = 0; // static cost of the built SPIR-V (spirv_cost.h)
     std::string family, image;
-    ClipAccuracy gpu, reference;       // the device's output and the double-precision reference's
-    double gpu_reference_max = NAN;    // the largest |device - reference| / S: the device's float error
+    ClipAccuracy gpu, reference;    // the device's output and the double-precision reference's
+    double gpu_reference_max = NAN; // the largest |device - reference| / S: the device's float error
     // Against the RGB AABB of the same mode and neighborhood (NaN where aabb was not selected).
     Looser vs_aabb, reference_vs_aabb;
     VolumeRatio volume;

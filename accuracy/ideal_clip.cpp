@@ -2,8 +2,8 @@
 
 #include "cpu_clip.h"
 
-#include <glpk.h>
 #include <fmt/format.h>
+#include <glpk.h>
 
 #include <algorithm>
 #include <bit>
@@ -37,7 +37,8 @@ std::optional<int> integer_scale(std::span<const glm::dvec3> neighborhood, const
     };
     for (const glm::dvec3& p : neighborhood) visit(p.x), visit(p.y), visit(p.z);
     for (const glm::dvec3* p : {&current, &history}) visit(p->x), visit(p->y), visit(p->z);
-    if (top != std::numeric_limits<int>::min() && top + scale > std::numeric_limits<double>::max_exponent) return std::nullopt;
+    if (top != std::numeric_limits<int>::min() && top + scale > std::numeric_limits<double>::max_exponent)
+        return std::nullopt;
     return scale;
 }
 

@@ -32,8 +32,8 @@ public:
 
     // Returns Qhull's exit code (qh_ERRnone on success). `coordinates` stays Qhull's to read.
     int run(int dimension, std::vector<double>& coordinates, std::string flags) {
-        return qh_new_qhull(&qh_, dimension, static_cast<int>(coordinates.size()) / dimension, coordinates.data(), False,
-                            flags.data(), nullptr, errors_);
+        return qh_new_qhull(&qh_, dimension, static_cast<int>(coordinates.size()) / dimension, coordinates.data(),
+                            False, flags.data(), nullptr, errors_);
     }
     qhT* qh() { return &qh_; }
     std::string error() {
@@ -58,7 +58,8 @@ Result<double> hull_volume(std::span<const glm::dvec3> points) {
     // reports those as an input error rather than as singular, so they are decided here.
     if (points.size() < 4) return 0.0;
     for (int k = 0; k < 3; ++k)
-        if (std::all_of(points.begin(), points.end(), [&](const glm::dvec3& p) { return p[k] == points[0][k]; })) return 0.0;
+        if (std::all_of(points.begin(), points.end(), [&](const glm::dvec3& p) { return p[k] == points[0][k]; }))
+            return 0.0;
     QhullRun qhull;
     // FA: compute the volume. Qt: triangulate the output (coplanar input points merge into facets
     // rather than stopping Qhull).

@@ -36,8 +36,8 @@ Result<std::vector<SolidPixel>> sample_solid_pixels(const Image& current, Neighb
     return sample;
 }
 
-Result<VolumeRatio> volume_ratio(const Image& current, std::span<const SolidPixel> sample, const AxisSet& set, Mode mode,
-                                 Neighborhood shape, double gamma) {
+Result<VolumeRatio> volume_ratio(const Image& current, std::span<const SolidPixel> sample, const AxisSet& set,
+                                 Mode mode, Neighborhood shape, double gamma) {
     const std::vector<glm::dvec3> axes = unit_axes(set);
     const std::vector<glm::ivec2> offsets = reference_offsets(shape);
     std::vector<glm::dvec3> neighborhood(offsets.size());

@@ -35,7 +35,7 @@ struct VolumeRatio {
 };
 
 // The padded k-DOP of the variant (as the CPU reference builds it) over the hull, at each sampled pixel.
-Result<VolumeRatio> volume_ratio(const Image& current, std::span<const SolidPixel> sample, const AxisSet& set, Mode mode,
-                                 Neighborhood shape, double gamma);
+Result<VolumeRatio> volume_ratio(const Image& current, std::span<const SolidPixel> sample, const AxisSet& set,
+                                 Mode mode, Neighborhood shape, double gamma);
 
 } // namespace kdop

@@ -13,18 +13,28 @@
 namespace kdop::bench {
 namespace {
 
-Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::path& valgrind, const ProbeKernel& kernel) {
+Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::path& valgrind,
+                           const ProbeKernel& kernel) {
     const std::string& variant = kernel.name;
     const std::filesystem::path out = setup.scratch / (variant + ".callgrind");
     const std::filesystem::path log = setup.scratch / (variant + ".log");
-    std::vector<std::string> argv{valgrind.string(), "--tool=callgrind", "--instr-atstart=no",
-                                  "--callgrind-out-file=" + out.string(), setup.probe.string(), "--variant", kernel.variant,
-                                  "--width", std::to_string(setup.size), "--height", std::to_string(setup.size)};
+    std::vector<std::string> argv{valgrind.string(),
+                                  "--tool=callgrind",
+                                  "--instr-atstart=no",
+                                  "--callgrind-out-file=" + out.string(),
+                                  setup.probe.string(),
+                                  "--variant",
+                                  kernel.variant,
+                                  "--width",
+                                  std::to_string(setup.size),
+                                  "--height",
+                                  std::to_string(setup.size)};
     if (!kernel.spirv.empty()) argv.insert(argv.end(), {"--spirv", kernel.spirv.string()});
     if (!setup.device.empty()) argv.insert(argv.end(), {"--device", setup.device});
     auto status = run_program(argv, log, {"LP_NUM_THREADS=0"});
     if (!status) return std::unexpected(status.error());
-    if (*status != 0) return fail(fmt::format("callgrind run of {} exited with {}:{}", variant, *status, log_tail(log, 8)));
+    if (*status != 0)
+        return fail(fmt::format("callgrind run of {} exited with {}:{}", variant, *status, log_tail(log, 8)));
     // The probe dumps once, at the end of the dispatch: <out>.1 holds exactly its instructions.
     std::ifstream dump(out.string() + ".1");
     for (std::string line; std::getline(dump, line);)

@@ -150,7 +150,8 @@ Result<BenchResult> run_cost_bench(const Context& context, VariantCatalog& catal
         if (!swept) return std::unexpected(swept.error());
         for (const VariantKey& key : keys) sweep.kernels.push_back(key.name());
         sweep.sizes = options.sweep_sizes;
-        Progress progress(fmt::format("size sweep of {} kernels,", swept->size()), sweep.sizes.size() * options.sweep_rounds);
+        Progress progress(fmt::format("size sweep of {} kernels,", swept->size()),
+                          sweep.sizes.size() * options.sweep_rounds);
         for (const Size& size : sweep.sizes) {
             auto run = time_interleaved(context, *swept, size.first, size.second, options.sweep_rounds, progress);
             if (!run) return std::unexpected(run.error());

@@ -22,15 +22,15 @@ using Size = std::pair<std::uint32_t, std::uint32_t>; // width, height
 struct BenchOptions {
     std::vector<VariantKey> variants; // clips, unrolled; their loop forms and paper twins come along
     Size timing_size{1920, 1080};
-    unsigned rounds = 15;             // dispatches per kernel at timing_size
-    std::vector<Size> sweep_sizes;    // empty: no sweep
+    unsigned rounds = 15;          // dispatches per kernel at timing_size
+    std::vector<Size> sweep_sizes; // empty: no sweep
     unsigned sweep_rounds = 5;
     bool callgrind = true;
     std::uint32_t callgrind_size = 256;
-    unsigned jobs = 1;                // callgrind processes at a time
-    std::string device;               // empty: lavapipe
-    std::filesystem::path probe;      // kdop-dispatch-probe
-    std::filesystem::path scratch;    // private working directory
+    unsigned jobs = 1;             // callgrind processes at a time
+    std::string device;            // empty: lavapipe
+    std::filesystem::path probe;   // kdop-dispatch-probe
+    std::filesystem::path scratch; // private working directory
 };
 
 struct SweepResult {

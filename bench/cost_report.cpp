@@ -10,16 +10,37 @@
 namespace kdop::bench {
 namespace {
 
-const char* const kStaticColumns[] = {"variant",  "k",          "spirv_instructions", "float_ops",      "mul",
-                                     "add_sub",  "fma",        "min_max",            "div",            "compare_select",
-                                     "other_float", "loop_float_ops", "float_ops_vs_loop", "analytic_min_ops",
-                                     "float_ops_vs_min"};
-const char* const kMeasuredColumns[] = {"variant",          "ms_median",         "ms_q1",           "ms_q3",
-                                        "loop_ms_median",   "vs_loop_ms_noise",  "marginal_ms",     "marginal_ms_noise",
-                                        "ms_vs_aabb",       "instr_per_px",      "loop_instr_per_px", "instr_vs_loop",
+const char* const kStaticColumns[] = {"variant",
+                                      "k",
+                                      "spirv_instructions",
+                                      "float_ops",
+                                      "mul",
+                                      "add_sub",
+                                      "fma",
+                                      "min_max",
+                                      "div",
+                                      "compare_select",
+                                      "other_float",
+                                      "loop_float_ops",
+                                      "float_ops_vs_loop",
+                                      "analytic_min_ops",
+                                      "float_ops_vs_min"};
+const char* const kMeasuredColumns[] = {"variant",
+                                        "ms_median",
+                                        "ms_q1",
+                                        "ms_q3",
+                                        "loop_ms_median",
+                                        "vs_loop_ms_noise",
+                                        "marginal_ms",
+                                        "marginal_ms_noise",
+                                        "ms_vs_aabb",
+                                        "instr_per_px",
+                                        "loop_instr_per_px",
+                                        "instr_vs_loop",
                                         "marginal_instr_per_px"};
-const char* const kHardeningColumns[] = {"variant",         "float_ops",    "paper_float_ops",   "instr_per_px",
-                                         "paper_instr_per_px", "instr_vs_paper", "ms_median",      "paper_ms_median"};
+const char* const kHardeningColumns[] = {"variant",      "float_ops",          "paper_float_ops",
+                                         "instr_per_px", "paper_instr_per_px", "instr_vs_paper",
+                                         "ms_median",    "paper_ms_median"};
 
 std::vector<std::string> names(std::span<const char* const> columns) { return {columns.begin(), columns.end()}; }
 
@@ -66,7 +87,9 @@ min and max start from ±FLT_MAX. The formulation does not need those, but with 
 compiled code drops its NaN handling down the chain, which measured about 8% fewer instructions per pixel
 for dop32 than starting from the first projection.)";
 
-std::string run_ms(double ms, double pixels) { return fmt::format("{:.2f} ms ({:.1f} ns/pixel)", ms, ms * 1e6 / pixels); }
+std::string run_ms(double ms, double pixels) {
+    return fmt::format("{:.2f} ms ({:.1f} ns/pixel)", ms, ms * 1e6 / pixels);
+}
 
 constexpr const char* kChartStyle = R"(set terminal pngcairo size 1400,560 font "sans,10"
 set style data histograms
@@ -102,24 +125,27 @@ std::string cost_report_markdown(const BenchResult& result, const RunMetadata& r
     out += chart(0, "Float operations per variant against the loop form and the analytic minimum");
     out += chart(1, "Measured cost on the device: callgrind instructions per pixel and time with its spread");
 
-    out += "## Static cost\n\nFrom the optimized SPIR-V (`generator/spirv_cost.h`): scalar float operations, vector "
-           "operations once per component, `OpDot` of N as 2N − 1, `Fma` as 1. The loop form is the supplement's listing, "
-           "compiled and optimized the same way.\n\n";
+    out +=
+        "## Static cost\n\nFrom the optimized SPIR-V (`generator/spirv_cost.h`): scalar float operations, vector "
+        "operations once per component, `OpDot` of N as 2N − 1, `Fma` as 1. The loop form is the supplement's listing, "
+        "compiled and optimized the same way.\n\n";
     out += table.markdown(names(kStaticColumns)) + "\n";
     out += "### The analytic minimum\n\n" + std::string(kDerivation) + "\n\n";
 
-    out += fmt::format("## Measured cost\n\n{} rounds at {}x{}; every round dispatches each kernel once, in an order "
-                       "rotated round to round. Times are {}: median, first and third quartile (Q1, Q3). Marginal = the "
-                       "variant minus the gather-only kernel of its neighborhood (same loads and store, no clip). A "
-                       "difference smaller than the larger interquartile range of the two is *within noise*: it is not "
-                       "a saving or a loss this run can show.\n\n",
-                       o.rounds, o.timing_size.first, o.timing_size.second,
-                       result.device_clock ? "GPU timestamps around the dispatch" : "submit-to-fence wall times");
+    out +=
+        fmt::format("## Measured cost\n\n{} rounds at {}x{}; every round dispatches each kernel once, in an order "
+                    "rotated round to round. Times are {}: median, first and third quartile (Q1, Q3). Marginal = the "
+                    "variant minus the gather-only kernel of its neighborhood (same loads and store, no clip). A "
+                    "difference smaller than the larger interquartile range of the two is *within noise*: it is not "
+                    "a saving or a loss this run can show.\n\n",
+                    o.rounds, o.timing_size.first, o.timing_size.second,
+                    result.device_clock ? "GPU timestamps around the dispatch" : "submit-to-fence wall times");
     if (o.callgrind)
-        out += fmt::format("callgrind: CPU instructions lavapipe executes per pixel for one {0}x{0} dispatch, counted by "
-                           "callgrind around the dispatch alone (`LP_NUM_THREADS=0`, `bench/kdop-dispatch-probe`). It "
-                           "repeats from run to run, so it is the number to compare where times are noisy.\n\n",
-                           o.callgrind_size);
+        out +=
+            fmt::format("callgrind: CPU instructions lavapipe executes per pixel for one {0}x{0} dispatch, counted by "
+                        "callgrind around the dispatch alone (`LP_NUM_THREADS=0`, `bench/kdop-dispatch-probe`). It "
+                        "repeats from run to run, so it is the number to compare where times are noisy.\n\n",
+                        o.callgrind_size);
     out += table.markdown(names(kMeasuredColumns)) + "\n";
     const CostRow* gather = find_row(result, gather_key(Neighborhood::n9));
     const CostRow* copy = find_row(result, copy_key());
@@ -127,7 +153,8 @@ std::string cost_report_markdown(const BenchResult& result, const RunMetadata& r
         out += fmt::format("gather-n9 alone: {}; copy: {}.\n\n", run_ms(gather->ms.median, timing_pixels),
                            run_ms(copy->ms.median, timing_pixels));
 
-    const Table hardened = table.rows_where([&](std::size_t r) { return std::isfinite(result.rows[r].paper_float_ops); });
+    const Table hardened =
+        table.rows_where([&](std::size_t r) { return std::isfinite(result.rows[r].paper_float_ops); });
     if (!hardened.rows().empty()) {
         out += "## Cost of hardening\n\nThe variants against the same variants with the paper's numerics "
                "(`--numerics paper`), which `kdop stress` shows returning NaN or colors outside the k-DOP on "
@@ -143,16 +170,16 @@ std::string cost_report_markdown(const BenchResult& result, const RunMetadata& r
     return out;
 }
 
-
 Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std::string& device,
-                                            const std::filesystem::path& scratch, const std::filesystem::path& out_dir) {
+                                            const std::filesystem::path& scratch,
+                                            const std::filesystem::path& out_dir) {
     const auto names = cost_chart_names(result);
     const Table table = cost_table(result.rows);
     const Table clips = table.rows_where([&](std::size_t r) { return result.rows[r].key.is_clip(); });
     const std::string data = (scratch / "clips.dat").string();
-    const std::vector<std::string> columns{"variant",      "float_ops",     "analytic_min_ops", "loop_float_ops",
-                                           "instr_per_px", "loop_instr_per_px", "ms_median",    "ms_q1",
-                                           "ms_q3",        "loop_ms_median", "vs_loop_ms_noise"};
+    const std::vector<std::string> columns{"variant",      "float_ops",         "analytic_min_ops", "loop_float_ops",
+                                           "instr_per_px", "loop_instr_per_px", "ms_median",        "ms_q1",
+                                           "ms_q3",        "loop_ms_median",    "vs_loop_ms_noise"};
     if (auto ok = write_text(data, clips.gnuplot(columns)); !ok) return std::unexpected(ok.error());
     const CostRow* gather = find_row(result, gather_key(Neighborhood::n9));
 
@@ -165,23 +192,26 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
     // Measured cost: callgrind's instructions (when counted) above the times, drawn as medians with
     // their interquartile range; variants whose time is within noise of their loop form say so.
     const bool counted = measured_callgrind(result);
-    script += fmt::format("set output '{}'\nset terminal pngcairo size 1400,{} font 'sans,10'\nset multiplot layout {},1\n",
-                          (scratch / names[1]).string(), counted ? 1000 : 560, counted ? 2 : 1);
+    script +=
+        fmt::format("set output '{}'\nset terminal pngcairo size 1400,{} font 'sans,10'\nset multiplot layout {},1\n",
+                    (scratch / names[1]).string(), counted ? 1000 : 560, counted ? 2 : 1);
     if (counted) {
         script += "set title 'lavapipe: CPU instructions per pixel of one dispatch (callgrind, repeats exactly)'\n"
                   "set ylabel 'instructions / pixel'\n";
-        script += fmt::format("plot '{0}' using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n", data,
-                              gather ? fmt::format(", {} with lines dt 2 lw 2 lc rgb 'black' title 'gather-n9 alone'",
-                                                   gnuplot_number(gather->instr_per_px))
-                                     : "");
+        script +=
+            fmt::format("plot '{0}' using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n", data,
+                        gather ? fmt::format(", {} with lines dt 2 lw 2 lc rgb 'black' title 'gather-n9 alone'",
+                                             gnuplot_number(gather->instr_per_px))
+                               : "");
     }
     script += fmt::format("set title '{}: dispatch time, median with Q1..Q3; \"noise\": within the spread of its loop "
                           "form'\nset ylabel 'ms'\nset style histogram errorbars gap 1 lw 1\n",
                           device);
-    script += fmt::format("plot '{0}' using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:10:10 title 'loop form', "
-                          "'' using 0:(column(11) > 0 ? column(7) : 1/0):(\"noise\") with labels offset 0,1.5 notitle\n"
-                          "unset multiplot\n",
-                          data);
+    script += fmt::format(
+        "plot '{0}' using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:10:10 title 'loop form', "
+        "'' using 0:(column(11) > 0 ? column(7) : 1/0):(\"noise\") with labels offset 0,1.5 notitle\n"
+        "unset multiplot\n",
+        data);
 
     if (!result.sweep.sizes.empty()) {
         const SweepResult& s = result.sweep;

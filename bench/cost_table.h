@@ -16,7 +16,7 @@ namespace kdop::bench {
 
 // A median time with its spread, from one interleaved run.
 struct Timing {
-    double median = NAN, q1 = NAN, q3 = NAN; // ms
+    double median = NAN, q1 = NAN, q3 = NAN;  // ms
     double spread() const { return q3 - q1; } // interquartile range
 };
 
@@ -25,10 +25,10 @@ struct CostRow {
     unsigned k = 0; // 0 for gather and copy
     std::size_t spirv_instructions = 0;
     FloatOps float_ops;
-    double loop_float_ops = NAN;   // the loop form's, compiled the same way
-    double analytic_min_ops = NAN; // see generator/analytic_cost.h
-    Timing ms, loop_ms, gather_ms; // gather_ms: the gather-only kernel of the same neighborhood
-    double ms_vs_aabb = NAN;       // median over aabb's of the same mode and neighborhood
+    double loop_float_ops = NAN;                        // the loop form's, compiled the same way
+    double analytic_min_ops = NAN;                      // see generator/analytic_cost.h
+    Timing ms, loop_ms, gather_ms;                      // gather_ms: the gather-only kernel of the same neighborhood
+    double ms_vs_aabb = NAN;                            // median over aabb's of the same mode and neighborhood
     double instr_per_px = NAN, loop_instr_per_px = NAN; // callgrind, one dispatch
     // The same variant with the paper's numerics: what hardening costs (hardened rows only).
     double paper_float_ops = NAN, paper_instr_per_px = NAN;

@@ -3,10 +3,10 @@
 // lavapipe executes for it and nothing else (context, upload, pipeline compile and one warm-up
 // dispatch stay outside). Run with LP_NUM_THREADS=0 so the dispatch runs on this thread.
 // The bench (kdop bench) starts it; it is not meant to be run by hand.
+#include "bench_inputs.h"
 #include "context.h"
 #include "kernel.h"
 #include "rectify_pass.h"
-#include "bench_inputs.h"
 
 #include <kdop_builtin_variants.h>
 
@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
     std::string name;
     std::uint32_t width = 256, height = 256;
     std::string spirv_path, device;
-    app.add_option("--variant", name, "Registry variant to run (its interface, and its SPIR-V unless --spirv)")->required();
+    app.add_option("--variant", name, "Registry variant to run (its interface, and its SPIR-V unless --spirv)")
+        ->required();
     app.add_option("--spirv", spirv_path, "Run this SPIR-V module instead, with the variant's interface");
     app.add_option("--width", width)->check(CLI::Range(8u, 8192u));
     app.add_option("--height", height)->check(CLI::Range(8u, 8192u));
@@ -51,7 +52,8 @@ int main(int argc, char** argv) {
     auto [current, history] = bench::bench_inputs(width, height);
     auto context = Context::create({device, false});
     auto kernel = context ? Kernel::create(**context, *variant) : std::unexpected(context.error());
-    auto pass = context ? RectifyPass::create(**context, width, height, TextureFormat::rgba32f) : std::unexpected(context.error());
+    auto pass = context ? RectifyPass::create(**context, width, height, TextureFormat::rgba32f)
+                        : std::unexpected(context.error());
     if (!kernel || !pass) {
         std::cerr << (kernel ? pass.error() : kernel.error()).message << '\n';
         return 1;

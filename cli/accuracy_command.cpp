@@ -5,6 +5,7 @@
 #include "context.h"
 #include "device_runner.h"
 #include "gnuplot.h"
+#include "memory_budget.h"
 #include "output_set.h"
 #include "progress.h"
 #include "run_metadata.h"
@@ -33,21 +34,23 @@ Action add_accuracy_command(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* accuracy = app.add_subcommand(
-        "accuracy", "Measure how close each variant's clip comes to the ideal clip at the convex hull of the neighborhood "
-                    "(exact LP on the CPU), on given images or on the built-in texture families and ghosting histories; "
-                    "writes accuracy.csv, trade.csv (each also as JSON), report.md and a Pareto chart per family");
+        "accuracy",
+        "Measure how close each variant's clip comes to the ideal clip at the convex hull of the neighborhood "
+        "(exact LP on the CPU), on given images or on the built-in texture families and ghosting histories; "
+        "writes accuracy.csv, trade.csv (each also as JSON), report.md and a Pareto chart per family");
     accuracy->add_option("--out", o->out, "Output directory (created if missing)")->required();
     auto* current = accuracy->add_option("--current", o->current, "Current frame (needs --history)");
     auto* history = accuracy->add_option("--history", o->history, "History of the same size as --current");
     current->needs(history);
     history->needs(current);
-    accuracy->add_option("--images", o->images,
-                         "Current frames, each measured against the built-in ghosting histories (shifted, moved-object, "
-                         "other-texture: the image rotated by 180 degrees)")
+    accuracy
+        ->add_option("--images", o->images,
+                     "Current frames, each measured against the built-in ghosting histories (shifted, moved-object, "
+                     "other-texture: the image rotated by 180 degrees)")
         ->excludes(current)
         ->excludes(history);
-    accuracy->add_option("--size", o->size,
-                         "Without --current or --images: the built-in content's size NxN [default: 128]")
+    accuracy
+        ->add_option("--size", o->size, "Without --current or --images: the built-in content's size NxN [default: 128]")
         ->check(CLI::Range(8u, 4096u));
     accuracy->add_option("--cost", o->cost,
                          "A `kdop bench` cost.csv: adds lavapipe's marginal cost to the trade table and charts");
@@ -56,17 +59,20 @@ Action add_accuracy_command(CLI::App& app) {
     accuracy->add_option("--seed", o->seed, "Seed of the built-in content and the volume sample [default: 1]");
     accuracy->add_option("--volume-samples", o->volume_samples,
                          "Pixels per pair and neighborhood for the k-DOP/hull volume ratio; 0 skips it [default: 256]");
-    accuracy->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    accuracy->add_option("--device", o->device,
+                         "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     accuracy->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
     accuracy->add_flag("--no-charts", o->no_charts, "Write the tables and report without the Pareto charts");
 
     return [o, accuracy] {
-        if (o->selection.baselines) return report_error("--baselines: the gather and copy baselines are not clips; they have no accuracy");
+        if (o->selection.baselines)
+            return report_error("--baselines: the gather and copy baselines are not clips; they have no accuracy");
         if (!std::isfinite(o->gamma) || o->gamma < 0)
             return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", o->gamma));
         const bool builtin = o->current.empty() && o->images.empty();
         if (!builtin && accuracy->count("--size"))
-            return report_error("--size: only for the built-in content; --current and --images are measured at their own size");
+            return report_error(
+                "--size: only for the built-in content; --current and --images are measured at their own size");
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
         auto specs = o->selection.select();
@@ -81,6 +87,11 @@ Action add_accuracy_command(CLI::App& app) {
         }
 
         std::vector<AccuracyPair> pairs;
+        // The built-in content is made whole before the run: 27 pairs of images, and the textures
+        // they are made from.
+        if (auto ok = check_memory(fmt::format("--size {}", o->size), 64 * image_bytes(o->size, o->size));
+            builtin && !ok)
+            return report_error(ok.error().message);
         if (builtin) {
             pairs = builtin_pairs(o->size, o->size, o->seed);
         } else if (!o->images.empty()) {
@@ -107,7 +118,8 @@ Action add_accuracy_command(CLI::App& app) {
         auto run = run_accuracy(runner, *catalog, options, pairs, &progress);
         progress.finish();
         if (!run) return report_error(run.error().message);
-        for (const std::string& message : (*context)->validation_messages()) std::cerr << "validation: " << message << "\n";
+        for (const std::string& message : (*context)->validation_messages())
+            std::cerr << "validation: " << message << "\n";
 
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;
@@ -119,8 +131,9 @@ Action add_accuracy_command(CLI::App& app) {
         }
         outputs->add_table("accuracy", accuracy_table(*run), run_info);
         outputs->add_table("trade", trade_table(trade), run_info);
-        outputs->add("report.md", accuracy_report_markdown(*run, trade, run_info,
-                                                           {o->cost, static_cast<float>(o->gamma), o->volume_samples, charts}));
+        outputs->add("report.md",
+                     accuracy_report_markdown(*run, trade, run_info,
+                                              {o->cost, static_cast<float>(o->gamma), o->volume_samples, charts}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop accuracy: {} variants x {} pairs on {} ({}): {}\n", specs->size(), pairs.size(),
                                  run_info.device, run_info.driver, (outputs->dir() / "report.md").string());

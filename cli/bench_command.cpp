@@ -51,14 +51,16 @@ Action add_bench_command(CLI::App& app) {
         std::string out, size = "1920x1080", device, numerics = "hardened";
         std::vector<std::string> variants, sets,
             sweep_sizes{"256x256", "512x512", "1024x1024", "1920x1080", "2560x1440", "3840x2160"};
-        unsigned repeat = 15, sweep_repeat = 5, callgrind_size = 256, jobs = std::max(1u, std::thread::hardware_concurrency());
+        unsigned repeat = 15, sweep_repeat = 5, callgrind_size = 256,
+                 jobs = std::max(1u, std::thread::hardware_concurrency());
         bool no_sweep = false, no_callgrind = false, no_charts = false;
     };
     auto o = std::make_shared<Options>();
     CLI::App* bench = app.add_subcommand(
-        "bench", "Measure what each variant costs: static float-op counts against the loop form and the analytic minimum, "
-                 "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, cost.json, "
-                 "report.md and charts");
+        "bench",
+        "Measure what each variant costs: static float-op counts against the loop form and the analytic minimum, "
+        "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, cost.json, "
+        "report.md and charts");
     bench->add_option("--out", o->out, "Output directory (created if missing)")->required();
     bench->add_option("--sets", o->sets,
                       "Axis sets to measure: built-in names or .axes files [default: every built-in set]; with "
@@ -69,21 +71,27 @@ Action add_bench_command(CLI::App& app) {
     bench->add_option("--numerics", o->numerics, "Numerics of the default selection: hardened or paper")
         ->check(CLI::IsMember({"hardened", "paper"}));
     bench->add_option("--size", o->size, "Timing size WIDTHxHEIGHT [default: 1920x1080]");
-    bench->add_option("--repeat", o->repeat, "Dispatches per kernel at the timing size (interleaved rounds) [default: 15]")
+    bench
+        ->add_option("--repeat", o->repeat,
+                     "Dispatches per kernel at the timing size (interleaved rounds) [default: 15]")
         ->check(CLI::Range(1u, 10000u));
-    auto* sweep_sizes = bench->add_option("--sweep-sizes", o->sweep_sizes, "Sizes of the size sweep [default: 256x256 ... 3840x2160]");
+    auto* sweep_sizes =
+        bench->add_option("--sweep-sizes", o->sweep_sizes, "Sizes of the size sweep [default: 256x256 ... 3840x2160]");
     auto* sweep_repeat = bench->add_option("--sweep-repeat", o->sweep_repeat, "Rounds per sweep size [default: 5]")
                              ->check(CLI::Range(1u, 10000u));
     bench->add_flag("--no-sweep", o->no_sweep, "Skip the size sweep")->excludes(sweep_sizes)->excludes(sweep_repeat);
-    auto* callgrind_size = bench->add_option("--callgrind-size", o->callgrind_size,
-                                             "Callgrind dispatch size N (NxN pixels) [default: 256]")
-                               ->check(CLI::Range(8u, 4096u));
-    auto* jobs = bench->add_option("--jobs", o->jobs, "Callgrind runs at a time [default: one per core]")->check(CLI::Range(1u, 256u));
+    auto* callgrind_size =
+        bench
+            ->add_option("--callgrind-size", o->callgrind_size, "Callgrind dispatch size N (NxN pixels) [default: 256]")
+            ->check(CLI::Range(8u, 4096u));
+    auto* jobs = bench->add_option("--jobs", o->jobs, "Callgrind runs at a time [default: one per core]")
+                     ->check(CLI::Range(1u, 256u));
     bench->add_flag("--no-callgrind", o->no_callgrind, "Skip the callgrind instruction counts")
         ->excludes(callgrind_size)
         ->excludes(jobs);
     bench->add_flag("--no-charts", o->no_charts, "Write the table and report without charts");
-    bench->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    bench->add_option("--device", o->device,
+                      "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
 
     return [o, bench] {
         auto outputs = OutputSet::prepare(o->out);
@@ -91,7 +99,8 @@ Action add_bench_command(CLI::App& app) {
         auto catalog = VariantCatalog::create(o->sets);
         if (!catalog) return report_error(catalog.error().message);
         if (!o->variants.empty() && bench->count("--numerics"))
-            return report_error("--numerics: only for the default selection; name paper variants in --variants instead");
+            return report_error(
+                "--numerics: only for the default selection; name paper variants in --variants instead");
 
         bench::BenchOptions options;
         if (o->variants.empty()) options.variants = catalog->clip_keys(*parse_numerics(o->numerics));
@@ -99,9 +108,10 @@ Action add_bench_command(CLI::App& app) {
             auto key = parse_variant_key(name, "--variants");
             if (!key) return report_error(key.error().message);
             if (!key->is_clip() || key->form != Form::unrolled)
-                return report_error(fmt::format("--variants: '{}' is not a clip in its unrolled form; loop forms and the "
-                                                "gather and copy baselines are measured beside every clip",
-                                                name));
+                return report_error(
+                    fmt::format("--variants: '{}' is not a clip in its unrolled form; loop forms and the "
+                                "gather and copy baselines are measured beside every clip",
+                                name));
             if (std::ranges::find(options.variants, *key) != options.variants.end())
                 return report_error(fmt::format("--variants: '{}' is given twice", name));
             if (auto set = catalog->set(key->set, "--variants"); !set) return report_error(set.error().message);
@@ -124,8 +134,8 @@ Action add_bench_command(CLI::App& app) {
         options.device = o->device;
         options.probe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe";
         if (options.callgrind && !std::filesystem::exists(options.probe))
-            return report_error(fmt::format("{} is missing (it is built with kdop); or pass --no-callgrind",
-                                            options.probe.string()));
+            return report_error(
+                fmt::format("{} is missing (it is built with kdop); or pass --no-callgrind", options.probe.string()));
         const bool charts = charts_available(!o->no_charts);
         ScratchDirectory scratch("kdop-bench");
         if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");

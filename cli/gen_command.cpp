@@ -1,17 +1,16 @@
 #include "commands.h"
 
-#include "variant_files.h"
+#include "progress.h"
 #include "selection_options.h"
 #include "spirv_cost.h"
 #include "variant_builder.h"
+#include "variant_files.h"
 
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cstdio>
 #include <iostream>
 #include <memory>
-#include <unistd.h>
 
 namespace kdop::cli {
 namespace {
@@ -20,9 +19,9 @@ void print_table(const std::vector<BuiltVariant>& built) {
     std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {}\n", "variant", "k", "spirv_bytes",
                              "instructions", "code_instructions", "float_ops", "spirv_hash");
     for (const BuiltVariant& v : built)
-        std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {:016x}\n", v.name, 2 * v.spec.set.axes.size(),
-                                 4 * v.spirv.size(), v.counts.instructions, v.counts.function_instructions,
-                                 count_float_ops(v.spirv).total(), spirv_hash(v.spirv));
+        std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {:016x}\n", v.name,
+                                 2 * v.spec.set.axes.size(), 4 * v.spirv.size(), v.counts.instructions,
+                                 v.counts.function_instructions, count_float_ops(v.spirv).total(), spirv_hash(v.spirv));
 }
 
 } // namespace
@@ -46,11 +45,10 @@ Action add_gen_command(CLI::App& app) {
         auto specs = options->selection.select();
         if (!specs) return report_error(specs.error().message);
 
-        const bool tty = isatty(fileno(stderr));
-        auto built = build_variants(*specs, options->threads, [tty](std::size_t done, std::size_t total, const std::string& name) {
-            if (tty) std::cerr << fmt::format("\r\033[K[{}/{}] {}", done, total, name) << std::flush;
-        });
-        if (tty) std::cerr << "\r\033[K";
+        Progress progress("built", specs->size());
+        auto built = build_variants(*specs, options->threads,
+                                    [&](std::size_t, std::size_t, const std::string& name) { progress.advance(name); });
+        progress.finish();
         if (!built) return report_error(built.error().message);
 
         std::vector<OutputFile> files;

@@ -14,14 +14,10 @@ int main(int argc, char** argv) {
                  "measure them"};
     app.require_subcommand(1);
     std::map<std::string, kdop::cli::Action> actions{
-        {"list", kdop::cli::add_list_command(app)},
-        {"gen", kdop::cli::add_gen_command(app)},
-        {"show", kdop::cli::add_show_command(app)},
-        {"run", kdop::cli::add_run_command(app)},
-        {"textures", kdop::cli::add_textures_command(app)},
-        {"bench", kdop::cli::add_bench_command(app)},
-        {"stress", kdop::cli::add_stress_command(app)},
-        {"accuracy", kdop::cli::add_accuracy_command(app)},
+        {"list", kdop::cli::add_list_command(app)},         {"gen", kdop::cli::add_gen_command(app)},
+        {"show", kdop::cli::add_show_command(app)},         {"run", kdop::cli::add_run_command(app)},
+        {"textures", kdop::cli::add_textures_command(app)}, {"bench", kdop::cli::add_bench_command(app)},
+        {"stress", kdop::cli::add_stress_command(app)},     {"accuracy", kdop::cli::add_accuracy_command(app)},
     };
     CLI11_PARSE(app, argc, argv);
     // Errors are values throughout kdop; an exception reaching here is a failure of the system

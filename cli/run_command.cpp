@@ -25,21 +25,28 @@ Action add_run_command(CLI::App& app) {
         unsigned repeat = 1;
     };
     auto o = std::make_shared<Options>();
-    CLI::App* run = app.add_subcommand("run", "Run one variant on a current frame and a history on the GPU, write the rectified history");
+    CLI::App* run = app.add_subcommand(
+        "run", "Run one variant on a current frame and a history on the GPU, write the rectified history");
     run->add_option("--variant", o->variant,
                     "Variant name (see `kdop list --all`), of a built-in set or of one given with --sets")
         ->required();
     run->add_option("--sets", o->sets, "Axis-set files whose variants --variant may name");
-    run->add_option("--numerics", o->numerics,
-                    "hardened, or paper: the variant with the supplement's numerics (the same as naming <variant>-paper)")
+    run->add_option(
+           "--numerics", o->numerics,
+           "hardened, or paper: the variant with the supplement's numerics (the same as naming <variant>-paper)")
         ->check(CLI::IsMember({"hardened", "paper"}));
-    run->add_option("--current", o->current, "Current frame (any OpenImageIO format; RGB from the first three channels)")->required();
+    run->add_option("--current", o->current,
+                    "Current frame (any OpenImageIO format; RGB from the first three channels)")
+        ->required();
     run->add_option("--history", o->history, "History, the same size as the current frame")->required();
     run->add_option("--out", o->out, "Rectified history to write (EXR keeps floats; PNG clamps to 8 bits)")->required();
-    run->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]");
+    run->add_option("--gamma", o->gamma,
+                    "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]");
     run->add_option("--format", o->format, "Texture format the inputs are uploaded in: rgba32f or rgba16f");
-    run->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
-    run->add_option("--repeat", o->repeat, "Dispatch this many times and report pipeline creation and median dispatch time")
+    run->add_option("--device", o->device,
+                    "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    run->add_option("--repeat", o->repeat,
+                    "Dispatch this many times and report pipeline creation and median dispatch time")
         ->check(CLI::Range(1u, 100000u));
 
     return [o] {
@@ -72,8 +79,9 @@ Action add_run_command(CLI::App& app) {
         auto history = read_image(o->history);
         if (!history) return report_error(history.error().message);
         if (current->width != history->width || current->height != history->height)
-            return report_error(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", o->history, history->width,
-                                            history->height, o->current, current->width, current->height));
+            return report_error(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", o->history,
+                                            history->width, history->height, o->current, current->width,
+                                            current->height));
 
         auto context = Context::create({o->device, false});
         if (!context) return report_error(context.error().message);
@@ -100,7 +108,8 @@ Action add_run_command(CLI::App& app) {
             // The first dispatch is reported apart: drivers may finish compiling the pipeline there.
             std::cout << fmt::format("pipeline creation {:.1f} ms, first dispatch {:.2f} ms; {} dispatches: median "
                                      "{:.2f} ms wall ({:.1f} Mpixel/s), {:.2f} ms device\n",
-                                     (*kernel)->creation_ms(), wall_ms.front(), o->repeat, wall, pixels / wall * 1e-3, device);
+                                     (*kernel)->creation_ms(), wall_ms.front(), o->repeat, wall, pixels / wall * 1e-3,
+                                     device);
         }
         return 0;
     };

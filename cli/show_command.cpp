@@ -19,11 +19,13 @@ Action add_show_command(CLI::App& app) {
         bool compute = false;
     };
     auto options = std::make_shared<Options>();
-    CLI::App* show = app.add_subcommand("show", "Print a variant's GLSL function (or, with --compute, its compute shader)");
+    CLI::App* show =
+        app.add_subcommand("show", "Print a variant's GLSL function (or, with --compute, its compute shader)");
     show->add_option("NAME", options->name, "Variant name, e.g. dop32-clip-n9 (see `kdop list --all`)")->required();
     show->add_option("--sets", options->sets, "Axis-set files to look in besides the built-in sets");
-    show->add_option("--numerics", options->numerics,
-                     "hardened, or paper: the variant with the supplement's numerics (the same as naming <variant>-paper)")
+    show->add_option(
+            "--numerics", options->numerics,
+            "hardened, or paper: the variant with the supplement's numerics (the same as naming <variant>-paper)")
         ->check(CLI::IsMember({"hardened", "paper"}));
     show->add_flag("--compute", options->compute, "Print the whole compute shader instead of the includable function");
 
@@ -33,7 +35,8 @@ Action add_show_command(CLI::App& app) {
         if (!options->numerics.empty()) {
             if (!key->is_clip()) return report_error(fmt::format("--numerics: {} is not a clip", options->name));
             if (key->numerics == Numerics::paper && options->numerics != "paper")
-                return report_error(fmt::format("--numerics: {} conflicts with the variant's own -paper", options->numerics));
+                return report_error(
+                    fmt::format("--numerics: {} conflicts with the variant's own -paper", options->numerics));
             key = key->with(*parse_numerics(options->numerics));
         }
         auto catalog = VariantCatalog::create(options->sets);

@@ -34,14 +34,16 @@ Action add_stress_command(CLI::App& app) {
                   "double-precision reference; prints a table of variants x cases. Exits 2 if an invariant broke");
     stress->add_option("--out", o->out,
                        "Also write stress.csv, stress.json and report.md to this directory (created if missing)");
-    stress->add_option("--device", o->device, "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    stress->add_option("--device", o->device,
+                       "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     o->selection.add_to(*stress);
     stress->add_option("--seed", o->seed, "Seed of the random colors [default: 1]");
     stress->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]");
     stress->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
 
     return [o] {
-        if (o->selection.baselines) return report_error("--baselines: the gather and copy baselines are not clips; nothing to stress");
+        if (o->selection.baselines)
+            return report_error("--baselines: the gather and copy baselines are not clips; nothing to stress");
         if (!std::isfinite(o->gamma) || o->gamma < 0)
             return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", o->gamma));
         std::optional<OutputSet> outputs;
@@ -64,7 +66,8 @@ Action add_stress_command(CLI::App& app) {
         auto run = run_stress(runner, *catalog, options, &progress);
         progress.finish();
         if (!run) return report_error(run.error().message);
-        for (const std::string& message : (*context)->validation_messages()) std::cerr << "validation: " << message << "\n";
+        for (const std::string& message : (*context)->validation_messages())
+            std::cerr << "validation: " << message << "\n";
 
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;

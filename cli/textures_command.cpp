@@ -2,8 +2,8 @@
 
 #include "image_io.h"
 #include "memory_budget.h"
-#include "write_files.h"
 #include "test_textures.h"
+#include "write_files.h"
 
 #include <fmt/format.h>
 
@@ -46,7 +46,8 @@ Action add_textures_command(CLI::App& app) {
         for (const TestCase& c : make_test_cases(o->width, o->height, o->seed, !o->no_real)) {
             std::filesystem::path dir(o->out);
             if (c.texture != last_texture) {
-                if (auto ok = write_image((dir / (c.texture + ".exr")).string(), c.current); !ok) return report_error(ok.error().message);
+                if (auto ok = write_image((dir / (c.texture + ".exr")).string(), c.current); !ok)
+                    return report_error(ok.error().message);
                 last_texture = c.texture;
                 ++files;
             }

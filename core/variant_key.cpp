@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-
 namespace kdop {
 
 std::string VariantKey::name() const {

@@ -45,10 +45,10 @@ VariantKey copy_key();
 // Parses a variant name; the error names `option` and says what was expected.
 Result<VariantKey> parse_variant_key(std::string_view name, std::string_view option = "--variant");
 
-std::optional<Mode> parse_mode(std::string_view s);             // clip, varclip
+std::optional<Mode> parse_mode(std::string_view s);                 // clip, varclip
 std::optional<Neighborhood> parse_neighborhood(std::string_view s); // n9, n5
-std::optional<Form> parse_form(std::string_view s);             // unrolled, loop
-std::optional<Numerics> parse_numerics(std::string_view s);     // hardened, paper
+std::optional<Form> parse_form(std::string_view s);                 // unrolled, loop
+std::optional<Numerics> parse_numerics(std::string_view s);         // hardened, paper
 
 // Whether `name` can name an axis set: lowercase letters and digits, starting with a letter, single
 // '-' between words, at most 48 characters.

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 fs::path temporary_path_for(const fs::path& path) {
     static std::atomic<unsigned> counter{0};
     fs::path temporary = path;
-    temporary.replace_filename(fmt::format("{}.kdop-partial-{}-{}{}", path.stem().string(), getpid(), counter++,
-                                           path.extension().string()));
+    temporary.replace_filename(
+        fmt::format("{}.kdop-partial-{}-{}{}", path.stem().string(), getpid(), counter++, path.extension().string()));
     return temporary;
 }
 
@@ -32,7 +32,8 @@ Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
     for (const OutputFile& f : files) {
         std::error_code ec;
         if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
-        if (ec) return abandon(fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message()));
+        if (ec)
+            return abandon(fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message()));
         const fs::path temporary = temporary_path_for(f.path);
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) return abandon(fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));

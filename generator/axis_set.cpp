@@ -32,7 +32,8 @@ Result<double> parse_number(std::string_view token, const std::string& where) {
     std::string_view digits = token.starts_with('+') ? token.substr(1) : token;
     double value = 0;
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (ec == std::errc::result_out_of_range) return fail(fmt::format("{}'{}' is out of range for a double", where, token));
+    if (ec == std::errc::result_out_of_range)
+        return fail(fmt::format("{}'{}' is out of range for a double", where, token));
     if (ec != std::errc() || end != digits.data() + digits.size())
         return fail(fmt::format("{}'{}' is not a number", where, token));
     return value;
@@ -62,14 +63,12 @@ Result<glm::dvec3> parse_axis_line(std::string_view line, const std::string& whe
     if (line.ends_with(',')) line = trim(line.substr(0, line.size() - 1));
     if (line.starts_with("vec3")) {
         std::string_view inner = trim(line.substr(4));
-        if (!inner.starts_with('(') || !inner.ends_with(')'))
-            return fail(where + "expected vec3(x, y, z)");
+        if (!inner.starts_with('(') || !inner.ends_with(')')) return fail(where + "expected vec3(x, y, z)");
         line = trim(inner.substr(1, inner.size() - 2));
     }
     auto tokens = split_numbers(line, where);
     if (!tokens) return std::unexpected(tokens.error());
-    if (tokens->size() != 3)
-        return fail(fmt::format("{}expected 3 numbers (x y z), found {}", where, tokens->size()));
+    if (tokens->size() != 3) return fail(fmt::format("{}expected 3 numbers (x y z), found {}", where, tokens->size()));
     glm::dvec3 v;
     for (int c = 0; c < 3; ++c) {
         auto number = parse_number((*tokens)[c], where);
@@ -92,8 +91,8 @@ std::optional<Error> check_axis(const Axis& axis, const std::vector<Axis>& earli
         if (glm::length(glm::cross(unit, other_unit)) >= kParallelAxisAngle) continue;
         if (glm::dot(unit, other_unit) > 0)
             return Error{fmt::format("{}axis duplicates the axis on line {}", where, other.line)};
-        return Error{fmt::format("{}axis is antiparallel to the axis on line {} (both bound the same slab)",
-                                 where, other.line)};
+        return Error{
+            fmt::format("{}axis is antiparallel to the axis on line {} (both bound the same slab)", where, other.line)};
     }
     return std::nullopt;
 }
@@ -139,9 +138,10 @@ Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
             *seen = line_number;
             if (key == "name") {
                 if (!is_valid_set_name(value))
-                    return fail(fmt::format("{}set name '{}' is not valid: use lowercase letters and digits, "
-                                            "starting with a letter, with single '-' between words (at most 48 characters)",
-                                            where, value));
+                    return fail(
+                        fmt::format("{}set name '{}' is not valid: use lowercase letters and digits, "
+                                    "starting with a letter, with single '-' between words (at most 48 characters)",
+                                    where, value));
                 set.name = std::string(value);
             } else {
                 set.provenance = std::string(value);

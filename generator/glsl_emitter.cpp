@@ -153,7 +153,8 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const 
 // is to 0. That shift keeps float32 from cancelling the small variance of bright, flat areas away:
 // the supplement's E[q^2] - E[q]^2 gives a sigma of about 3e-4 |q| there, or a negative variance
 // and NaN.
-void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style, Numerics numerics) {
+void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style,
+                        Numerics numerics) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
     const bool hardened = numerics == Numerics::hardened;
     if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
@@ -170,8 +171,8 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, con
         out += "        float lo = min(fma(-gamma, sigma, mean), 0.0);\n";
         out += "        float hi = max(fma(gamma, sigma, mean), 0.0);\n";
     } else {
-        out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", sum(count, "q{0} * q{0}"),
-                           count);
+        out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n",
+                           sum(count, "q{0} * q{0}"), count);
         out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
         out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
     }
@@ -189,7 +190,8 @@ std::string neighborhood_description(Neighborhood n) {
 std::string mode_description(Mode m) {
     switch (m) {
     case Mode::clip: return "k-DOP clip (Ikkala et al. 2024): slabs span the neighborhood's min..max";
-    case Mode::varclip: return "k-DOP variance clip (Ikkala et al. 2024, after Salvi 2016): slabs span mean +- gamma * sigma";
+    case Mode::varclip:
+        return "k-DOP variance clip (Ikkala et al. 2024, after Salvi 2016): slabs span mean +- gamma * sigma";
     case Mode::gather: return "gather only: reads the neighborhood and history like a clip, writes their sum";
     case Mode::copy: return "copy: writes the history as it is";
     }
@@ -267,7 +269,8 @@ std::string function_header(const VariantSpec& spec) {
     out += fmt::format("// that k-DOP; normally it is the pixel's own color, neighborhood[{}].\n",
                        neighborhood_center(spec.neighborhood));
     out += fmt::format("// neighborhood[]: {}.\n", neighborhood_description(spec.neighborhood));
-    if (spec.mode == Mode::varclip) out += "// gamma: slab half-width in standard deviations (1 is the usual choice).\n";
+    if (spec.mode == Mode::varclip)
+        out += "// gamma: slab half-width in standard deviations (1 is the usual choice).\n";
     if (spec.form == Form::loop) {
         out += "// Written in the supplement's loop form, as a baseline for tests and benchmarks; it needs\n";
         out += "// GL_EXT_control_flow_attributes for [[unroll]].\n";
@@ -290,7 +293,8 @@ std::string function_header(const VariantSpec& spec) {
 
 std::string signature(const VariantSpec& spec) {
     return fmt::format("vec3 {}(vec3 current, vec3 history, {}vec3 neighborhood[{}])", glsl_function_name(spec),
-                       spec.mode == Mode::varclip ? "float gamma, " : "", neighborhood_offsets(spec.neighborhood).size());
+                       spec.mode == Mode::varclip ? "float gamma, " : "",
+                       neighborhood_offsets(spec.neighborhood).size());
 }
 
 // Hardened numerics, shared by both forms: the padding's scale, and whether the history can be used.
@@ -379,7 +383,8 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
     out += fmt::format("        float inv_dir = 1.0 / dot({}, axis);\n", relative ? "ray" : "dir");
     if (spec.mode == Mode::clip) {
         // The supplement starts from +-1e9, which caps the slab of any neighborhood brighter than 1e9.
-        out += hardened ? "        vec2 extent = vec2(3.40282347e38, -3.40282347e38);\n" : "        vec2 extent = vec2(1e9, -1e9);\n";
+        out += hardened ? "        vec2 extent = vec2(3.40282347e38, -3.40282347e38);\n"
+                        : "        vec2 extent = vec2(1e9, -1e9);\n";
         out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
         out += "            float t = dot(neighborhood[n], axis);\n";
         out += "            extent.x = min(t, extent.x);\n";
@@ -395,21 +400,25 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
         out += fmt::format("        moments /= vec2({}.0);\n", count);
         if (hardened) {
             out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
-            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
+            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, "
+                   "0.0));\n";
         } else {
             out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
-            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * sigma, proj_pos));\n";
+            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
+                   "sigma, proj_pos));\n";
         }
     }
-    out += fmt::format("        extent += vec2(-epsilon, epsilon) * length(axis){};\n",
-                       !hardened ? "" : relative ? " * slab_pad" : " * pad_scale");
+    out += fmt::format("        extent += vec2(-epsilon, epsilon) * length(axis){};\n", !hardened  ? ""
+                                                                                        : relative ? " * slab_pad"
+                                                                                                   : " * pad_scale");
     const std::string origin = relative ? "" : " - proj_pos";
     out += fmt::format("        float t0 = (extent.x{}) * inv_dir;\n", origin);
     out += fmt::format("        float t1 = (extent.y{}) * inv_dir;\n", origin);
     out += "        near = max(near, min(t0, t1));\n";
     out += "        far = min(far, max(t0, t1));\n";
     out += "    }\n";
-    out += fmt::format("    if ({}near <= far && (near > 0.0 || far > 0.0))\n    {{\n", hardened ? "history_usable && " : "");
+    out += fmt::format("    if ({}near <= far && (near > 0.0 || far > 0.0))\n    {{\n",
+                       hardened ? "history_usable && " : "");
     out += "        float t = clamp(near > 0.0 ? near : far, 0.0, 1.0);\n";
     out += "        return current + t * dir;\n";
     out += "    }\n";
@@ -419,7 +428,8 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
 std::string emit_baseline_function(const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     std::string out = fmt::format("// {}: {}.\n", variant_name(spec), mode_description(spec.mode));
-    out += fmt::format("// Generated by kdop {} (generator/glsl_emitter.cpp). A cost baseline, not a clip.\n", KDOP_VERSION);
+    out += fmt::format("// Generated by kdop {} (generator/glsl_emitter.cpp). A cost baseline, not a clip.\n",
+                       KDOP_VERSION);
     out += fmt::format("{}\n{{\n", signature(spec));
     if (spec.mode == Mode::copy) {
         out += "    return history;\n";

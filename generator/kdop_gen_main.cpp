@@ -1,10 +1,10 @@
 // kdop-gen: the build-time half of kdop. kdop_add_variants() runs `kdop-gen registry` to embed
 // variants in a target; the refresh-generated target runs `kdop-gen glsl` to rewrite generated/,
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
-#include "variant_files.h"
 #include "registry_writer.h"
 #include "selection_options.h"
 #include "variant_builder.h"
+#include "variant_files.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -62,8 +62,8 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
             ++stale;
         }
         if (stale)
-            std::cerr << fmt::format("{} generated file(s) out of date; run `cmake --build build --target refresh-generated`\n",
-                                     stale);
+            std::cerr << fmt::format(
+                "{} generated file(s) out of date; run `cmake --build build --target refresh-generated`\n", stale);
         return stale ? 1 : 0;
     }
     if (auto ok = write_files_atomically(files); !ok) return report(ok.error());
@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
 
     SelectionOptions selection;
     std::string header, source, cpp_namespace;
-    CLI::App* registry = app.add_subcommand("registry", "Write a C++ registry (header + source) of the selected variants");
+    CLI::App* registry =
+        app.add_subcommand("registry", "Write a C++ registry (header + source) of the selected variants");
     selection.add_to(*registry);
     registry->add_option("--header", header, "Header file to write")->required();
     registry->add_option("--source", source, "Source file to write")->required();
@@ -95,7 +96,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     if (*registry && !is_valid_cpp_namespace(cpp_namespace))
-        return report({fmt::format("--namespace: '{}' is not a C++ namespace (identifiers separated by ::)", cpp_namespace)});
+        return report(
+            {fmt::format("--namespace: '{}' is not a C++ namespace (identifiers separated by ::)", cpp_namespace)});
 
     auto specs = *registry ? selection.select() : select_variants({}, {}, {});
     if (!specs) return report(specs.error());

@@ -26,7 +26,8 @@ struct SelectionOptions {
         app.add_option("--forms", forms,
                        "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]");
         app.add_flag("--baselines", baselines, "Also the cost baselines gather-n9, gather-n5 and copy");
-        app.add_option("--projection", projection, "How unrolled projections are written: fold-dot, multiply-add or full-dot")
+        app.add_option("--projection", projection,
+                       "How unrolled projections are written: fold-dot, multiply-add or full-dot")
             ->check(CLI::IsMember({"fold-dot", "multiply-add", "full-dot"}));
         app.add_option("--extent", extent, "How unrolled slab extents are reduced: tree or running")
             ->check(CLI::IsMember({"tree", "running"}));

@@ -13,7 +13,7 @@ namespace kdop {
 FloatOps count_float_ops(std::span<const std::uint32_t> words) {
     // Component count of every float scalar or vector type, and the type of every float result.
     std::map<std::uint32_t, std::uint32_t> float_width; // type id -> components
-    std::map<std::uint32_t, std::uint32_t> result_type;  // result id -> type id
+    std::map<std::uint32_t, std::uint32_t> result_type; // result id -> type id
     std::uint32_t glsl_std = 0;
     FloatOps ops;
     bool in_function = false;

@@ -114,9 +114,7 @@ Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t>
         case spv::OpTypeImage:
         case spv::OpTypeSampledImage:
         case spv::OpTypeStruct:
-        case spv::OpTypePointer:
-            types[op[0]] = {inst.opcode, {op.begin() + 1, op.end()}};
-            break;
+        case spv::OpTypePointer: types[op[0]] = {inst.opcode, {op.begin() + 1, op.end()}}; break;
         case spv::OpVariable: variables.emplace_back(op[0], op[1]); break;
         default: break;
         }
@@ -161,8 +159,9 @@ Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t>
             return fail(fmt::format("buffer '{}' is not reflected by kdop", name));
         }
     }
-    std::sort(interface.bindings.begin(), interface.bindings.end(),
-              [](const BindingInfo& a, const BindingInfo& b) { return std::tie(a.set, a.binding) < std::tie(b.set, b.binding); });
+    std::sort(interface.bindings.begin(), interface.bindings.end(), [](const BindingInfo& a, const BindingInfo& b) {
+        return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
+    });
     return interface;
 }
 

@@ -35,7 +35,8 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec) {
 
     auto compiled = compile_glsl_compute(v.compute_glsl, file);
     if (!compiled) return std::unexpected(compiled.error());
-    if (auto ok = validate_spirv(*compiled, v.compute_glsl, file, "glslang output"); !ok) return std::unexpected(ok.error());
+    if (auto ok = validate_spirv(*compiled, v.compute_glsl, file, "glslang output"); !ok)
+        return std::unexpected(ok.error());
 
     auto optimized = optimize_spirv(*compiled, file);
     if (!optimized) return std::unexpected(optimized.error());
@@ -48,7 +49,8 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec) {
 
     auto stripped = strip_debug_info(*optimized, file);
     if (!stripped) return std::unexpected(stripped.error());
-    if (auto ok = validate_spirv(*stripped, v.compute_glsl, file, "shipped module"); !ok) return std::unexpected(ok.error());
+    if (auto ok = validate_spirv(*stripped, v.compute_glsl, file, "shipped module"); !ok)
+        return std::unexpected(ok.error());
     v.spirv = std::move(*stripped);
 
     v.counts = count_spirv(v.spirv);

@@ -18,8 +18,8 @@ namespace kdop {
 struct BuiltVariant {
     VariantSpec spec;
     std::string name;
-    std::string function_glsl;       // the includable function (.glsl)
-    std::string compute_glsl;        // the compute shader (.comp)
+    std::string function_glsl;        // the includable function (.glsl)
+    std::string compute_glsl;         // the compute shader (.comp)
     std::vector<std::uint32_t> spirv; // optimized, validated, stripped (.spv)
     ShaderInterface interface;
     SpirvCounts counts;

@@ -2,8 +2,8 @@
 // write_files_atomically (core/write_files.h).
 #pragma once
 
-#include "write_files.h"
 #include "variant_builder.h"
+#include "write_files.h"
 
 #include <filesystem>
 #include <vector>

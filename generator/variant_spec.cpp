@@ -23,9 +23,9 @@ bool contains(std::span<const T> list, const T& value) {
 
 // Parses option values naming enum choices; no values means all of them.
 template <class T>
-Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::string_view option, std::string_view what,
-                                     std::string_view expected, std::optional<T> (*parse)(std::string_view),
-                                     std::span<const T> all) {
+Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::string_view option,
+                                     std::string_view what, std::string_view expected,
+                                     std::optional<T> (*parse)(std::string_view), std::span<const T> all) {
     std::vector<T> choices;
     for (const std::string& arg : args) {
         auto choice = parse(arg);
@@ -40,7 +40,8 @@ Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::
 } // namespace
 
 std::vector<VariantSpec> baseline_kernels() {
-    return {{{}, Mode::gather, Neighborhood::n9}, {{}, Mode::gather, Neighborhood::n5}, {{}, Mode::copy, Neighborhood::n9}};
+    return {
+        {{}, Mode::gather, Neighborhood::n9}, {{}, Mode::gather, Neighborhood::n5}, {{}, Mode::copy, Neighborhood::n9}};
 }
 
 std::vector<VariantSpec> all_builtin_variants() {
@@ -60,8 +61,8 @@ Result<AxisSet> resolve_axis_set(std::string_view name_or_path) {
     if (auto text = builtin_set_text(name_or_path)) return parse_axis_set(*text, builtin_set_path(name_or_path));
     std::ifstream file{std::string(name_or_path), std::ios::binary};
     if (!file)
-        return fail(fmt::format("--sets: '{}' is not a built-in axis set ({}) nor a readable file",
-                                name_or_path, builtin_set_list()));
+        return fail(fmt::format("--sets: '{}' is not a built-in axis set ({}) nor a readable file", name_or_path,
+                                builtin_set_list()));
     std::ostringstream text;
     text << file.rdbuf();
     if (file.bad()) return fail(fmt::format("{}: read error", name_or_path));
@@ -81,10 +82,9 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
         if (!set) return std::unexpected(set.error());
         for (const AxisSet& other : sets)
             if (other.name == set->name)
-                return fail(other.origin == set->origin
-                                ? fmt::format("--sets: '{}' is given twice", arg)
-                                : fmt::format("--sets: two axis sets are named '{}': {} and {}", set->name, other.origin,
-                                              set->origin));
+                return fail(other.origin == set->origin ? fmt::format("--sets: '{}' is given twice", arg)
+                                                        : fmt::format("--sets: two axis sets are named '{}': {} and {}",
+                                                                      set->name, other.origin, set->origin));
         sets.push_back(std::move(*set));
     }
 

@@ -27,8 +27,8 @@ Result<RectifyPass*> DeviceRunner::pass(std::uint32_t width, std::uint32_t heigh
 Result<void> DeviceRunner::run(const Image& current, const Image& history, TextureFormat format,
                                std::span<const Variant* const> variants, float gamma, const Each& each) {
     if (current.width != history.width || current.height != history.height)
-        return fail(fmt::format("current frame is {}x{} but history is {}x{}", current.width, current.height, history.width,
-                                history.height));
+        return fail(fmt::format("current frame is {}x{} but history is {}x{}", current.width, current.height,
+                                history.width, history.height));
     auto target = pass(current.width, current.height, format);
     if (!target) return std::unexpected(target.error());
     if (auto ok = (*target)->upload(current, history); !ok) return ok;

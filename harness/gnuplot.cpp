@@ -38,7 +38,8 @@ Result<void> write_text(const std::filesystem::path& path, const std::string& te
 }
 
 Result<std::vector<OutputFile>> draw_charts(const std::string& script, const std::vector<std::string>& charts,
-                                            const std::filesystem::path& scratch, const std::filesystem::path& out_dir) {
+                                            const std::filesystem::path& scratch,
+                                            const std::filesystem::path& out_dir) {
     const std::filesystem::path script_path = scratch / "charts.gp", log = scratch / "gnuplot.log";
     if (auto ok = write_text(script_path, script); !ok) return std::unexpected(ok.error());
     const std::filesystem::path gnuplot = find_program("gnuplot");

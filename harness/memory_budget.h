@@ -18,7 +18,9 @@ std::uint64_t available_memory();
 Result<void> check_memory(const std::string& what, std::uint64_t bytes);
 
 // Bytes one RGBA float image of width x height takes.
-inline std::uint64_t image_bytes(std::uint32_t width, std::uint32_t height) { return std::uint64_t(width) * height * 16; }
+inline std::uint64_t image_bytes(std::uint32_t width, std::uint32_t height) {
+    return std::uint64_t(width) * height * 16;
+}
 
 // A rectification on the device (lavapipe's device memory is this process's memory): the two
 // input images on the host, three rgba32f textures, the upload and read-back buffers.

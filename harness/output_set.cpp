@@ -9,7 +9,9 @@ Result<OutputSet> OutputSet::prepare(const std::filesystem::path& dir, const std
     return OutputSet(dir);
 }
 
-void OutputSet::add(const std::string& name, std::string content) { files_.push_back({dir_ / name, std::move(content)}); }
+void OutputSet::add(const std::string& name, std::string content) {
+    files_.push_back({dir_ / name, std::move(content)});
+}
 
 void OutputSet::add(std::vector<OutputFile> files) {
     for (OutputFile& f : files) files_.push_back(std::move(f));

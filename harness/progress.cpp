@@ -15,7 +15,8 @@ std::string clock_text(double seconds) {
 }
 
 Progress::Progress(std::string step, std::size_t total)
-    : step_(std::move(step)), total_(total), terminal_(isatty(fileno(stderr)) != 0), start_(std::chrono::steady_clock::now()) {}
+    : step_(std::move(step)), total_(total), terminal_(isatty(fileno(stderr)) != 0),
+      start_(std::chrono::steady_clock::now()) {}
 
 void Progress::finish() {
     if (finished_) return;
@@ -28,10 +29,11 @@ void Progress::advance(const std::string& item) {
     ++done_;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const std::string eta =
-        done_ < total_ ? fmt::format(", about {} left", clock_text(elapsed / double(done_) * double(total_ - done_))) : "";
+        done_ < total_ ? fmt::format(", about {} left", clock_text(elapsed / double(done_) * double(total_ - done_)))
+                       : "";
     const int width = static_cast<int>(fmt::format("{}", total_).size());
-    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_, step_, item,
-               clock_text(elapsed), eta, terminal_ ? "" : "\n");
+    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_, step_,
+               item, clock_text(elapsed), eta, terminal_ ? "" : "\n");
     std::fflush(stderr);
 }
 

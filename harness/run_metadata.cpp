@@ -24,7 +24,8 @@ std::string& command_line() {
 }
 
 std::string utc_now_iso8601() {
-    return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now()));
+    return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}",
+                       std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now()));
 }
 
 // CPU model and core count, from /proc/cpuinfo.
@@ -85,8 +86,11 @@ std::string metadata_markdown(const RunMetadata& run) {
 }
 
 nlohmann::json metadata_json(const RunMetadata& run) {
-    nlohmann::json j = {{"command", run.command}, {"kdop_version", run.version}, {"commit", run.commit},
-                        {"date", run.date},       {"machine", run.machine}};
+    nlohmann::json j = {{"command", run.command},
+                        {"kdop_version", run.version},
+                        {"commit", run.commit},
+                        {"date", run.date},
+                        {"machine", run.machine}};
     j["device"] = run.device.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device);
     j["driver"] = run.driver.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.driver);
     j["seed"] = run.seed ? nlohmann::json(*run.seed) : nlohmann::json(nullptr);

@@ -14,11 +14,11 @@ namespace kdop {
 class Context;
 
 struct RunMetadata {
-    std::string version; // kdop's, e.g. "0.1.0"
-    std::string commit;  // git describe of the source tree when kdop was configured; "unknown" outside git
-    std::string command; // the process's argv, shell-quoted
-    std::string date;    // UTC, ISO 8601
-    std::string machine; // CPU model and core count
+    std::string version;        // kdop's, e.g. "0.1.0"
+    std::string commit;         // git describe of the source tree when kdop was configured; "unknown" outside git
+    std::string command;        // the process's argv, shell-quoted
+    std::string date;           // UTC, ISO 8601
+    std::string machine;        // CPU model and core count
     std::string device, driver; // empty where no device took part
     std::optional<std::uint64_t> seed;
 };

@@ -16,7 +16,8 @@ struct Overloaded : F... {
 };
 
 bool missing(const Value& v) {
-    return std::holds_alternative<std::monostate>(v) || (std::holds_alternative<double>(v) && std::isnan(std::get<double>(v)));
+    return std::holds_alternative<std::monostate>(v) ||
+           (std::holds_alternative<double>(v) && std::isnan(std::get<double>(v)));
 }
 
 double as_number(const Value& v) {
@@ -40,9 +41,12 @@ std::string significant(double d, int digits) {
 std::string markdown_escape(std::string text) {
     std::string out;
     for (char c : text) {
-        if (c == '|') out += "\\|";
-        else if (c == '\n' || c == '\r') out += ' ';
-        else out += c;
+        if (c == '|')
+            out += "\\|";
+        else if (c == '\n' || c == '\r')
+            out += ' ';
+        else
+            out += c;
     }
     return out;
 }
@@ -99,7 +103,8 @@ std::string Table::csv() const {
             if (missing(row[c])) continue;
             out += std::visit(Overloaded{[](std::monostate) { return std::string(); },
                                          [](const std::string& s) { return csv_field(s); },
-                                         [](std::int64_t i) { return std::to_string(i); }, [](double d) { return exact(d); },
+                                         [](std::int64_t i) { return std::to_string(i); },
+                                         [](double d) { return exact(d); },
                                          [](bool b) { return std::string(b ? "1" : "0"); }},
                               row[c]);
         }
@@ -117,7 +122,8 @@ std::string Table::shown(std::size_t row, std::size_t c) const {
     const double d = as_number(v);
     switch (column.shown) {
     case Shown::text:
-    case Shown::integer: return std::holds_alternative<std::int64_t>(v) ? std::to_string(std::get<std::int64_t>(v)) : exact(d);
+    case Shown::integer:
+        return std::holds_alternative<std::int64_t>(v) ? std::to_string(std::get<std::int64_t>(v)) : exact(d);
     case Shown::fixed: return std::isfinite(d) ? fmt::format("{:.{}f}", d, column.digits) : significant(d, 1);
     case Shown::significant: return significant(d, column.digits);
     case Shown::percent: return std::isfinite(d) ? fmt::format("{:.1f}%", 100 * d) : significant(d, 1);
@@ -177,11 +183,17 @@ nlohmann::json Table::json() const {
         for (std::size_t c = 0; c < row.size(); ++c) {
             const Value& v = row[c];
             nlohmann::json& field = object[columns_[c].name];
-            if (missing(v)) field = nullptr;
-            else if (const auto* s = std::get_if<std::string>(&v)) field = *s;
-            else if (const auto* i = std::get_if<std::int64_t>(&v)) field = *i;
-            else if (const auto* b = std::get_if<bool>(&v)) field = *b;
-            else field = std::isfinite(std::get<double>(v)) ? nlohmann::json(std::get<double>(v)) : nlohmann::json(nullptr);
+            if (missing(v))
+                field = nullptr;
+            else if (const auto* s = std::get_if<std::string>(&v))
+                field = *s;
+            else if (const auto* i = std::get_if<std::int64_t>(&v))
+                field = *i;
+            else if (const auto* b = std::get_if<bool>(&v))
+                field = *b;
+            else
+                field =
+                    std::isfinite(std::get<double>(v)) ? nlohmann::json(std::get<double>(v)) : nlohmann::json(nullptr);
         }
         rows.push_back(std::move(object));
     }

@@ -29,8 +29,8 @@ enum class Shown {
 };
 
 struct Column {
-    std::string name;  // the CSV and JSON key: lowercase with underscores, "mean_dist"
-    std::string unit;  // "ms", "instr/px", "S" (the pixel's magnitude); empty for counts, names and ratios
+    std::string name; // the CSV and JSON key: lowercase with underscores, "mean_dist"
+    std::string unit; // "ms", "instr/px", "S" (the pixel's magnitude); empty for counts, names and ratios
     Shown shown;
     int digits;
     std::string title; // the Markdown header; empty: the name

@@ -34,8 +34,9 @@ Result<AxisSet> VariantCatalog::set(std::string_view name, std::string_view opti
     if (is_builtin_set(name)) return resolve_axis_set(name);
     for (const AxisSet& s : user_sets_)
         if (s.name == name) return s;
-    return fail(fmt::format("{}: no axis set is named '{}': the built-in sets are {}; give a file of yours with --sets FILE",
-                            option, name, builtin_set_list()));
+    return fail(
+        fmt::format("{}: no axis set is named '{}': the built-in sets are {}; give a file of yours with --sets FILE",
+                    option, name, builtin_set_list()));
 }
 
 bool VariantCatalog::is_embedded(const Variant& variant) {
@@ -60,7 +61,8 @@ Result<const Variant*> VariantCatalog::find(const VariantKey& key, std::string_v
     return found->front();
 }
 
-Result<std::vector<const Variant*>> VariantCatalog::find_all(std::span<const VariantKey> keys, std::string_view option) {
+Result<std::vector<const Variant*>> VariantCatalog::find_all(std::span<const VariantKey> keys,
+                                                             std::string_view option) {
     // What the registry lacks is built, all at once (build_variants runs on every core).
     std::vector<VariantSpec> to_build;
     for (const VariantKey& key : keys) {
@@ -86,8 +88,10 @@ Result<std::vector<const Variant*>> VariantCatalog::find_all(std::span<const Var
     }
     std::vector<const Variant*> found;
     for (const VariantKey& key : keys) {
-        if (auto it = built_.find(key); it != built_.end()) found.push_back(&it->second->variant());
-        else found.push_back(builtin::variants().find(key.name().c_str()));
+        if (auto it = built_.find(key); it != built_.end())
+            found.push_back(&it->second->variant());
+        else
+            found.push_back(builtin::variants().find(key.name().c_str()));
     }
     return found;
 }

@@ -16,7 +16,8 @@ struct Image {
     std::vector<glm::vec4> pixels; // row-major
 
     Image() = default;
-    Image(std::uint32_t w, std::uint32_t h, glm::vec4 fill = {0, 0, 0, 1}) : width(w), height(h), pixels(std::size_t(w) * h, fill) {}
+    Image(std::uint32_t w, std::uint32_t h, glm::vec4 fill = {0, 0, 0, 1})
+        : width(w), height(h), pixels(std::size_t(w) * h, fill) {}
 
     glm::vec4& at(std::uint32_t x, std::uint32_t y) { return pixels[std::size_t(y) * width + x]; }
     const glm::vec4& at(std::uint32_t x, std::uint32_t y) const { return pixels[std::size_t(y) * width + x]; }

@@ -46,8 +46,7 @@ Result<void> write_image(const std::string& path, const Image& image) {
     // OpenImageIO stamps EXR files with the time of writing unless told a time. The time is not an
     // input, so, as reproducible builds do, record the epoch: same pixels, same bytes.
     spec.attribute("DateTime", "1970:01:01 00:00:00");
-    if (!out->open(temporary.string(), spec))
-        return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    if (!out->open(temporary.string(), spec)) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
     ok = out->close() && ok;
     std::error_code ec;

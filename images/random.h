@@ -29,7 +29,8 @@ private:
 
 // A hash of lattice coordinates and a seed to [0, 1): stateless randomness for noise functions.
 inline double hash_to_unit(std::int64_t x, std::int64_t y, std::uint64_t seed) {
-    Random r(seed ^ (static_cast<std::uint64_t>(x) * 0x8cb92ba72f3d8dd7ull) ^ (static_cast<std::uint64_t>(y) * 0xd6e8feb86659fd93ull));
+    Random r(seed ^ (static_cast<std::uint64_t>(x) * 0x8cb92ba72f3d8dd7ull) ^
+             (static_cast<std::uint64_t>(y) * 0xd6e8feb86659fd93ull));
     return r.uniform();
 }
 

@@ -13,8 +13,8 @@
 namespace kdop {
 namespace {
 
-constexpr TextureFamily kFamilies[] = {TextureFamily::grass, TextureFamily::edges, TextureFamily::asphalt,
-                                       TextureFamily::gradient, TextureFamily::flat, TextureFamily::hdr};
+constexpr TextureFamily kFamilies[] = {TextureFamily::grass,    TextureFamily::edges, TextureFamily::asphalt,
+                                       TextureFamily::gradient, TextureFamily::flat,  TextureFamily::hdr};
 constexpr HistoryModel kModels[] = {HistoryModel::same, HistoryModel::shifted, HistoryModel::moved_object,
                                     HistoryModel::other_texture};
 
@@ -42,7 +42,7 @@ Image grass(std::uint32_t w, std::uint32_t h, std::uint64_t seed) {
     Random grain(seed);
     const glm::dvec3 yellow(0.40, 0.50, 0.06), deep(0.05, 0.30, 0.08), blue(0.04, 0.22, 0.16);
     return shade(w, h, [&](double x, double y) {
-        double blade = value_noise(x * 0.7, y * 0.12, seed + 1);   // blades: narrow across, long down
+        double blade = value_noise(x * 0.7, y * 0.12, seed + 1); // blades: narrow across, long down
         double gaps = value_noise(x * 0.45, y * 0.3, seed + 2);
         double hue = 0.7 * value_noise(x * 0.2, y * 0.05, seed + 3) + 0.3 * grain.uniform();
         double luma = (0.25 + 0.9 * blade) * (0.7 + 0.6 * grain.uniform());
@@ -178,7 +178,8 @@ Image make_history(const Image& current, HistoryModel model, const Image& other)
                 history.at(x, y) = current.clamped(x - 1, y);
                 double dx = x - cx, dy = y - cy;
                 if (dx * dx + dy * dy < r * r)
-                    history.at(x, y) = dy > r * 0.55 ? glm::vec4(0.02f, 0.02f, 0.02f, 1) : glm::vec4(0.60f, 0.03f, 0.02f, 1);
+                    history.at(x, y) =
+                        dy > r * 0.55 ? glm::vec4(0.02f, 0.02f, 0.02f, 1) : glm::vec4(0.60f, 0.03f, 0.02f, 1);
             }
         break;
     }

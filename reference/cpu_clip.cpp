@@ -22,9 +22,9 @@ bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& histo
     return std::isfinite(sum) && sum <= double(std::numeric_limits<float>::max());
 }
 
-std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
-                                           const glm::dvec3& current, Mode mode, double gamma,
-                                           Numerics numerics) {
+std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes,
+                                           std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
+                                           Mode mode, double gamma, Numerics numerics) {
     const double n = static_cast<double>(neighborhood.size());
     const double padding = reference_padding(current, numerics);
     std::vector<ReferenceSlab> slabs;
@@ -42,7 +42,8 @@ std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes
             for (const glm::dvec3& c : neighborhood) mean += glm::dot(c, axis);
             mean /= n;
             double variance = 0; // two passes: exact enough in double for any input
-            for (const glm::dvec3& c : neighborhood) variance += (glm::dot(c, axis) - mean) * (glm::dot(c, axis) - mean);
+            for (const glm::dvec3& c : neighborhood)
+                variance += (glm::dot(c, axis) - mean) * (glm::dot(c, axis) - mean);
             const double sigma = std::sqrt(variance / n);
             const double p = glm::dot(current, axis);
             lo = std::min(mean - gamma * sigma, p);

@@ -45,9 +45,9 @@ struct ReferenceSlab {
 };
 
 // The padded k-DOP of a neighborhood around `current` (varclip widens each slab to contain it).
-std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
-                                           const glm::dvec3& current, Mode mode, double gamma,
-                                           Numerics numerics = Numerics::hardened);
+std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes,
+                                           std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
+                                           Mode mode, double gamma, Numerics numerics = Numerics::hardened);
 
 // Where the ray current + t (history - current) leaves the slabs, clamped to [0, 1]: 1 when the
 // history lies inside. Takes the history as given (no usability rule).

@@ -26,9 +26,9 @@ bool has_layer(const char* name) {
 } // namespace
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                               VkDebugUtilsMessageTypeFlagsEXT,
-                                                               const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                               void* self) {
+                                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                              void* self) {
     auto* context = static_cast<Context*>(self);
     std::lock_guard lock(context->messages_mutex_);
     context->messages_.emplace_back(data->pMessage ? data->pMessage : "(no message)");
@@ -70,7 +70,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     messenger_info.messageSeverity =
         VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                 VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                                  VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     messenger_info.pfnUserCallback = &Context::on_validation_message;
     messenger_info.pUserData = c.get();
@@ -106,7 +107,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(d, &p);
         names.emplace_back(p.deviceName);
-        bool match = wanted.empty() ? p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU : names.back().find(wanted) != std::string::npos;
+        bool match = wanted.empty() ? p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
+                                    : names.back().find(wanted) != std::string::npos;
         if (match && !c->physical_) {
             c->physical_ = d;
             c->properties_ = p;
@@ -115,10 +117,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     }
     if (!c->physical_) {
         std::string available = names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
-        return fail(wanted.empty()
-                        ? fmt::format("no CPU Vulkan device (lavapipe; Debian: mesa-vulkan-drivers); available devices: {}",
-                                      available)
-                        : fmt::format("no Vulkan device whose name contains '{}'; available devices: {}", wanted, available));
+        return fail(
+            wanted.empty()
+                ? fmt::format("no CPU Vulkan device (lavapipe; Debian: mesa-vulkan-drivers); available devices: {}",
+                              available)
+                : fmt::format("no Vulkan device whose name contains '{}'; available devices: {}", wanted, available));
     }
 
     c->driver_info_ = driver_description(c->physical_, c->properties_);

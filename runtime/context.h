@@ -36,7 +36,9 @@ public:
     uint32_t queue_family() const { return queue_family_; }
     VkCommandPool command_pool() const { return command_pool_; }
     const std::string& device_name() const { return device_name_; }
-    const std::string& driver_info() const { return driver_info_; } // e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6), Vulkan 1.3.230"
+    const std::string& driver_info() const {
+        return driver_info_;
+    } // e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6), Vulkan 1.3.230"
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
 
     // A memory type allowed by `type_bits` with all of `flags`.
@@ -48,9 +50,9 @@ public:
 private:
     Context() = default;
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                                 VkDebugUtilsMessageTypeFlagsEXT types,
-                                                                 const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                                 void* self);
+                                                                VkDebugUtilsMessageTypeFlagsEXT types,
+                                                                const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                                void* self);
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

@@ -25,8 +25,8 @@ Result<std::unique_ptr<Kernel>> Kernel::create(const Context& context, const Var
     for (uint32_t i = 0; i < variant.binding_count; ++i) {
         const DescriptorBinding& b = variant.bindings[i];
         if (b.set != 0)
-            return fail(fmt::format("{}: binding '{}' is in descriptor set {}; the runtime binds set 0 only", variant.name,
-                                    b.name, b.set));
+            return fail(fmt::format("{}: binding '{}' is in descriptor set {}; the runtime binds set 0 only",
+                                    variant.name, b.name, b.set));
         bindings.push_back({b.binding,
                             b.type == DescriptorType::storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
                                                                     : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,

@@ -51,7 +51,8 @@ std::optional<TextureFormat> parse_texture_format(std::string_view s) {
 
 const char* to_string(TextureFormat format) { return format == TextureFormat::rgba16f ? "rgba16f" : "rgba32f"; }
 
-Result<void> RectifyPass::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory) {
+Result<void> RectifyPass::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
+                                   VkDeviceMemory& memory) {
     auto type = context_.memory_type(req.memoryTypeBits, flags);
     if (!type) return std::unexpected(type.error());
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -114,7 +115,9 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     const VkImageUsageFlags input_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     for (Texture* t : {&p->current_, &p->history_})
         if (auto ok = p->create_texture(*t, vk_format(format), input_usage); !ok) return std::unexpected(ok.error());
-    if (auto ok = p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT); !ok)
+    if (auto ok =
+            p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        !ok)
         return std::unexpected(ok.error());
     if (auto ok = p->create_buffer(p->upload_, 2 * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT); !ok)
         return std::unexpected(ok.error());
@@ -127,7 +130,8 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &p->sampler_));
 
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool.maxSets = 1;
     pool.poolSizeCount = 2;
@@ -193,7 +197,8 @@ Result<void> RectifyPass::upload(const Image& current, const Image& history) {
         VkDeviceSize offset = 0;
         for (const Texture* t : {&current_, &history_}) {
             image_barrier(cb, t->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT);
             VkBufferImageCopy copy = whole_image(width_, height_, offset);
             vkCmdCopyBufferToImage(cb, upload_.buffer, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
             image_barrier(cb, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
@@ -241,7 +246,8 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
         writes[i].dstSet = set;
         writes[i].dstBinding = b.binding;
         writes[i].descriptorCount = 1;
-        writes[i].descriptorType = storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[i].descriptorType =
+            storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         writes[i].pImageInfo = &infos[i];
     }
     vkUpdateDescriptorSets(device, static_cast<uint32_t>(count), writes.data(), 0, nullptr);
@@ -249,8 +255,9 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
     std::vector<std::byte> push(kernel.push_constant_size());
     for (const Kernel::PushConstant& p : kernel.push_constants()) {
         if (p.name != "gamma" || p.size != sizeof(float) || p.offset + p.size > push.size())
-            return fail(fmt::format("{}: push constant '{}' ({} bytes at {}) is not one the rectify pass provides (float gamma)",
-                                    kernel.name(), p.name, p.size, p.offset));
+            return fail(fmt::format(
+                "{}: push constant '{}' ({} bytes at {}) is not one the rectify pass provides (float gamma)",
+                kernel.name(), p.name, p.size, p.offset));
         std::memcpy(push.data() + p.offset, &gamma, sizeof(float));
     }
 
@@ -259,7 +266,8 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
     auto wall = submit([&](VkCommandBuffer cb) {
         // The output's previous contents are not needed: every pixel is written.
         image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
-                      VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
         vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout(), 0, 1, &set, 0, nullptr);
         if (!push.empty())
@@ -299,7 +307,8 @@ Result<Image> RectifyPass::download() {
         host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         host.buffer = readback_.buffer;
         host.size = VK_WHOLE_SIZE;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0, nullptr);
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
+                             nullptr);
     });
     if (!copied) return std::unexpected(copied.error());
     dispatched_ = false; // the output left the GENERAL layout; the next dispatch starts it afresh

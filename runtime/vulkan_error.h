@@ -21,7 +21,8 @@ std::unexpected<Error> vk_failure(std::string_view call, VkResult result);
 
 // Evaluates a Vulkan call and returns its failure from the enclosing function (which returns a
 // Result) unless it returned VK_SUCCESS.
-#define KDOP_VK_TRY(call)                                                                                                \
-    do {                                                                                                                 \
-        if (VkResult kdop_vk_result_ = (call); kdop_vk_result_ != VK_SUCCESS) return ::kdop::vk_failure(#call, kdop_vk_result_); \
+#define KDOP_VK_TRY(call)                                                                                              \
+    do {                                                                                                               \
+        if (VkResult kdop_vk_result_ = (call); kdop_vk_result_ != VK_SUCCESS)                                          \
+            return ::kdop::vk_failure(#call, kdop_vk_result_);                                                         \
     } while (0)

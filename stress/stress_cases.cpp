@@ -151,11 +151,18 @@ StressCase magnitude_case(std::string name, std::string description, double lo, 
 
 const std::vector<CaseMaker>& case_makers() {
     static const std::vector<CaseMaker> makers = {
-        [](const AxisSet&, Random& r) { return magnitude_case("hdr-1e3", "HDR colors, channels in [0, 1e3]", 0, 1e3, r); },
-        [](const AxisSet&, Random& r) { return magnitude_case("hdr-6e4", "HDR colors, channels in [0, 6e4]", 0, 6e4, r); },
-        [](const AxisSet&, Random& r) { return magnitude_case("hdr-1e6", "HDR colors, channels in [0, 1e6]", 0, 1e6, r); },
         [](const AxisSet&, Random& r) {
-            return magnitude_case("near-max", "channels in [1e37, 1e38]: projections near the float maximum", 1e37, 1e38, r);
+            return magnitude_case("hdr-1e3", "HDR colors, channels in [0, 1e3]", 0, 1e3, r);
+        },
+        [](const AxisSet&, Random& r) {
+            return magnitude_case("hdr-6e4", "HDR colors, channels in [0, 6e4]", 0, 6e4, r);
+        },
+        [](const AxisSet&, Random& r) {
+            return magnitude_case("hdr-1e6", "HDR colors, channels in [0, 1e6]", 0, 1e6, r);
+        },
+        [](const AxisSet&, Random& r) {
+            return magnitude_case("near-max", "channels in [1e37, 1e38]: projections near the float maximum", 1e37,
+                                  1e38, r);
         },
         [](const AxisSet&, Random& r) {
             CaseBuilder b("float-max", "channels of either sign up to FLT_MAX: sums and differences overflow");
@@ -223,7 +230,7 @@ const std::vector<CaseMaker>& case_makers() {
         },
         [](const AxisSet& set, Random& r) {
             CaseBuilder b("parallel", "history - current exactly perpendicular to one of the set's axes (dot = 0), "
-                                       "flat and varied neighborhoods");
+                                      "flat and varied neighborhoods");
             Colors varied = random_colors(r, 0, 1);
             for (glm::vec3& c : varied) c = glm::round(c * 4096.0f) / 4096.0f; // exact sums with power-of-two steps
             for (const Colors& colors : {flat(glm::vec3(0.375f)), flat(glm::vec3(5e4f)), varied})
@@ -273,8 +280,10 @@ const std::vector<CaseMaker>& case_makers() {
             return std::move(b).finish();
         },
         [](const AxisSet&, Random& r) {
-            CaseBuilder b("rgba16f", "half-float textures: channels up to 65504, some exactly 65504, histories up to "
-                                      "7e4 (Inf in half)", TextureFormat::rgba16f);
+            CaseBuilder b("rgba16f",
+                          "half-float textures: channels up to 65504, some exactly 65504, histories up to "
+                          "7e4 (Inf in half)",
+                          TextureFormat::rgba16f);
             for (int i = 0; i < 4; ++i) {
                 Colors c = random_colors(r, 0, kHalfMax);
                 for (glm::vec3& color : c)

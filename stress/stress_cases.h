@@ -18,7 +18,7 @@ struct StressCase {
     std::string name;        // short, a column of the table: "hdr-6e4"
     std::string description; // what it holds
     TextureFormat format = TextureFormat::rgba32f;
-    Image current, history;  // as the shader reads them: rgba16f cases are already rounded to half
+    Image current, history; // as the shader reads them: rgba16f cases are already rounded to half
 };
 
 // The cases for variants of `set`, in table order; one of them aims rays exactly parallel to the

@@ -69,7 +69,8 @@ const char* invariant_name(Invariant i) {
 const char* invariant_description(Invariant i) {
     switch (i) {
     case Invariant::finite: return "finite current gives a finite output, whatever the history or a neighbor holds";
-    case Invariant::defined: return "a history with NaN or Inf, or too far out to project, gives exactly the current color";
+    case Invariant::defined:
+        return "a history with NaN or Inf, or too far out to project, gives exactly the current color";
     case Invariant::segment: return "the output lies on the segment current..history";
     case Invariant::inside: return "the output lies inside every padded slab of the k-DOP";
     case Invariant::range: return "clips with X, Y, Z axes: every channel within the neighborhood's padded range";
@@ -93,7 +94,8 @@ ClipUnderTest::ClipUnderTest(const VariantSpec& spec, double gamma_)
     has_xyz = has({1, 0, 0}) && has({0, 1, 0}) && has({0, 0, 1});
 }
 
-CheckResult check_invariants(const ClipUnderTest& clip, const Image& current, const Image& history, const Image& output) {
+CheckResult check_invariants(const ClipUnderTest& clip, const Image& current, const Image& history,
+                             const Image& output) {
     const std::vector<glm::ivec2> offsets = reference_offsets(clip.neighborhood);
     const double tol = kStressTolerance;
     CheckResult result;
@@ -113,8 +115,8 @@ CheckResult check_invariants(const ClipUnderTest& clip, const Image& current, co
                 else
                     neighbors_finite = false;
             }
-            const std::string context = fmt::format("at ({}, {}): current {}, history {}, output {}", x, y, text(cur),
-                                                    text(hist), text(out));
+            const std::string context =
+                fmt::format("at ({}, {}): current {}, history {}, output {}", x, y, text(cur), text(hist), text(out));
 
             record(result[Invariant::finite], !finite(out), 0, context);
             if (!reference_history_usable(cur, hist)) {

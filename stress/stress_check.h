@@ -35,7 +35,7 @@ inline constexpr double kStressTolerance = 1e-6;
 enum class Invariant { finite, defined, segment, inside, range, classify };
 inline constexpr std::size_t kInvariantCount = 6;
 inline constexpr Invariant kInvariants[] = {Invariant::finite, Invariant::defined, Invariant::segment,
-                                            Invariant::inside, Invariant::range, Invariant::classify};
+                                            Invariant::inside, Invariant::range,   Invariant::classify};
 
 const char* invariant_code(Invariant i);        // "N", "D", "S", "K", "R", "C"
 const char* invariant_name(Invariant i);        // "finite", ...
@@ -69,6 +69,7 @@ struct ClipUnderTest {
 };
 
 // Every pixel of `output`, computed by the variant from `current` and `history`.
-CheckResult check_invariants(const ClipUnderTest& clip, const Image& current, const Image& history, const Image& output);
+CheckResult check_invariants(const ClipUnderTest& clip, const Image& current, const Image& history,
+                             const Image& output);
 
 } // namespace kdop

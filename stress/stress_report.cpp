@@ -21,8 +21,9 @@ std::string legend(const StressRun& run, bool markdown) {
                         : fmt::format("  {:>2} {:<20} {}\n", c + 1, run.cases[c], run.case_descriptions[c]);
     out += markdown ? "\n| code | invariant |\n|---|---|\n" : "invariants (a cell lists those that failed):\n";
     for (Invariant i : kInvariants)
-        out += markdown ? fmt::format("| {} | {}: {} |\n", invariant_code(i), invariant_name(i), invariant_description(i))
-                        : fmt::format("  {} {:<9} {}\n", invariant_code(i), invariant_name(i), invariant_description(i));
+        out += markdown
+                   ? fmt::format("| {} | {}: {} |\n", invariant_code(i), invariant_name(i), invariant_description(i))
+                   : fmt::format("  {} {:<9} {}\n", invariant_code(i), invariant_name(i), invariant_description(i));
     return out;
 }
 
@@ -49,14 +50,16 @@ std::string stress_table_text(const StressRun& run) {
     out += "\n";
     for (std::size_t v = 0; v < run.variants.size(); ++v) {
         out += fmt::format("{:<{}}", run.variants[v], name_width);
-        for (std::size_t c = 0; c < run.cases.size(); ++c) out += fmt::format(" {:>{}}", cell_text(run.results[v][c]), widths[c]);
+        for (std::size_t c = 0; c < run.cases.size(); ++c)
+            out += fmt::format(" {:>{}}", cell_text(run.results[v][c]), widths[c]);
         out += "\n";
     }
     return out + legend(run, false) + summary(run);
 }
 
 Table stress_table(const StressRun& run) {
-    std::vector<Column> columns{{"variant", "", Shown::text}, {"case", "", Shown::text}, {"pixels", "", Shown::integer}};
+    std::vector<Column> columns{
+        {"variant", "", Shown::text}, {"case", "", Shown::text}, {"pixels", "", Shown::integer}};
     for (Invariant i : kInvariants) {
         const std::string name = invariant_name(i);
         columns.push_back({name + "_checked", "", Shown::integer});
@@ -80,7 +83,8 @@ Table stress_table(const StressRun& run) {
 
 std::string stress_report_markdown(const StressRun& run, const RunMetadata& run_info, float gamma) {
     std::string out = "# kdop stress report\n\n" + metadata_markdown(run_info);
-    out += fmt::format("- gamma (variance clips): {}; tolerance: {:g} of the pixel's magnitude S\n\n", gamma, kStressTolerance);
+    out += fmt::format("- gamma (variance clips): {}; tolerance: {:g} of the pixel's magnitude S\n\n", gamma,
+                       kStressTolerance);
     // The matrix of variants x cases, as a table of text columns.
     std::vector<Column> columns{{"variant", "", Shown::text}};
     for (const std::string& c : run.cases) columns.push_back({c, "", Shown::text});

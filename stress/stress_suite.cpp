@@ -63,7 +63,8 @@ Result<StressRun> run_stress(DeviceRunner& runner, VariantCatalog& catalog, cons
         for (const StressCase& c : cases) {
             auto ran = runner.run(c.current, c.history, c.format, kernels, options.gamma,
                                   [&](std::size_t i, const Image& output) -> Result<void> {
-                                      run.results[members[i]].push_back(check_invariants(clips[i], c.current, c.history, output));
+                                      run.results[members[i]].push_back(
+                                          check_invariants(clips[i], c.current, c.history, output));
                                       return {};
                                   });
             if (!ran) return fail(fmt::format("stress case {}: {}", c.name, ran.error().message));

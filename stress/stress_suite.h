@@ -18,7 +18,7 @@ namespace kdop {
 struct StressOptions {
     std::vector<VariantKey> variants; // clips only
     std::uint64_t seed = 1;
-    float gamma = 1.0f;               // for variance clips
+    float gamma = 1.0f; // for variance clips
 };
 
 struct StressRun {

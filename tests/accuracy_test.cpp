@@ -76,9 +76,9 @@ TEST(AccuracyTrade, AveragesPairsAndMarksTheFrontPerNeighborhood) {
     std::map<std::string, LavapipeCost> costs{{"a-clip-n9", {50, NAN}}, {"b-clip-n9", {40, NAN}}};
     const auto trade = trade_rows(run, costs);
     ASSERT_EQ(trade.size(), 4u);
-    EXPECT_DOUBLE_EQ(trade[0].mean_dist, 0.08);  // (0.04 + 0.12) / 2
-    EXPECT_DOUBLE_EQ(trade[0].max_dist, 0.36);   // the larger max
-    EXPECT_DOUBLE_EQ(trade[0].false_accept_rate, 0.5); // 10 of 20
+    EXPECT_DOUBLE_EQ(trade[0].mean_dist, 0.08);          // (0.04 + 0.12) / 2
+    EXPECT_DOUBLE_EQ(trade[0].max_dist, 0.36);           // the larger max
+    EXPECT_DOUBLE_EQ(trade[0].false_accept_rate, 0.5);   // 10 of 20
     EXPECT_TRUE(std::isnan(trade[3].false_accept_rate)); // nothing outside
     EXPECT_TRUE(trade[0].front_float_ops);
     EXPECT_TRUE(trade[1].front_float_ops);

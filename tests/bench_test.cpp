@@ -54,9 +54,9 @@ TEST(BenchTable, HasTheRequiredColumnsAndLeavesUnmeasuredFieldsEmpty) {
         return std::string("?");
     };
     // accuracy --cost reads variant, neighborhood, instr_per_px and marginal_ms.
-    for (const char* column : {"variant", "neighborhood", "spirv_instructions", "float_ops", "loop_float_ops",
-                               "analytic_min_ops", "ms_median", "ms_q1", "ms_q3", "marginal_ms", "instr_per_px",
-                               "loop_instr_per_px"})
+    for (const char* column :
+         {"variant", "neighborhood", "spirv_instructions", "float_ops", "loop_float_ops", "analytic_min_ops",
+          "ms_median", "ms_q1", "ms_q3", "marginal_ms", "instr_per_px", "loop_instr_per_px"})
         value(column);
     EXPECT_EQ(value("variant"), "dop32-clip-n9");
     EXPECT_EQ(value("numerics"), "hardened");
@@ -78,9 +78,11 @@ TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
     // 128x128: large enough that the per-pixel work, not the dispatch's fixed cost, decides the count.
     CallgrindSetup setup{fs::path(test::kdop_binary()).parent_path() / "kdop-dispatch-probe", scratch.path(), 128, ""};
     Progress progress("callgrind", 3);
-    auto counts = callgrind_instructions_per_pixel(
-        setup, {{"aabb-clip-n9", "aabb-clip-n9", {}}, {"aabb-again", "aabb-clip-n9", {}}, {"dop32-clip-n9", "dop32-clip-n9", {}}}, 3,
-        progress);
+    auto counts = callgrind_instructions_per_pixel(setup,
+                                                   {{"aabb-clip-n9", "aabb-clip-n9", {}},
+                                                    {"aabb-again", "aabb-clip-n9", {}},
+                                                    {"dop32-clip-n9", "dop32-clip-n9", {}}},
+                                                   3, progress);
     ASSERT_TRUE(counts) << counts.error().message;
     EXPECT_GT((*counts)[0], 0.0);
     EXPECT_NEAR((*counts)[0], (*counts)[1], 1e-3 * (*counts)[0]); // deterministic, unlike a timing
@@ -109,9 +111,9 @@ TEST(CliBench, WritesTablesReportAndCharts) {
     EXPECT_TRUE(lines[2].starts_with("dop16-grass-varclip-n5,dop16-grass,varclip,n5,hardened,16,")) << lines[2];
     EXPECT_TRUE(lines[5].starts_with("copy,"));
     const std::string report = test::read_file(out / "report.md");
-    for (const char* part : {"- kdop: 0.1.0 (commit ", "- device: ", "### The analytic minimum", "## Size sweep",
-                             "| aabb-clip-n9 | 6 |", "![", "64x64", "## Cost of hardening", "| aabb-clip-n9 | 100 | 85 |",
-                             "- command: `"})
+    for (const char* part :
+         {"- kdop: 0.1.0 (commit ", "- device: ", "### The analytic minimum", "## Size sweep", "| aabb-clip-n9 | 6 |",
+          "![", "64x64", "## Cost of hardening", "| aabb-clip-n9 | 100 | 85 |", "- command: `"})
         EXPECT_NE(report.find(part), std::string::npos) << part;
     EXPECT_EQ(report.find("Targets"), std::string::npos) << "no project-internal targets in a user's report";
     EXPECT_NE(test::read_file(out / "cost.json").find("\"paper_float_ops\": 85"), std::string::npos);
@@ -168,8 +170,9 @@ TEST(CliBench, RefusesBadInputAndWritesNothing) {
 TEST(CliBench, MeasuresAUserSetWithItsLoopFormAndPaperTwin) {
     test::TempDir dir;
     test::write_file(dir / "my.axes", "name: my-set\nprovenance: a test\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
-    auto r = test::run(kdop("bench --out " + (dir / "bench").string() + " --sets " + (dir / "my.axes").string() +
-                            " --variants my-set-clip-n9 --size 32x32 --repeat 1 --no-sweep --callgrind-size 16 --no-charts"));
+    auto r = test::run(
+        kdop("bench --out " + (dir / "bench").string() + " --sets " + (dir / "my.axes").string() +
+             " --variants my-set-clip-n9 --size 32x32 --repeat 1 --no-sweep --callgrind-size 16 --no-charts"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto lines = split(test::read_file(dir / "bench" / "cost.csv"), '\n');
     ASSERT_GE(lines.size(), 2u);
@@ -178,7 +181,8 @@ TEST(CliBench, MeasuresAUserSetWithItsLoopFormAndPaperTwin) {
     auto column = [&](std::string_view name) { return row[std::ranges::find(header, name) - header.begin()]; };
     EXPECT_EQ(column("variant"), "my-set-clip-n9");
     EXPECT_EQ(column("k"), "8");
-    for (const char* measured : {"loop_float_ops", "paper_float_ops", "instr_per_px", "loop_instr_per_px", "paper_instr_per_px"})
+    for (const char* measured :
+         {"loop_float_ops", "paper_float_ops", "instr_per_px", "loop_instr_per_px", "paper_instr_per_px"})
         EXPECT_FALSE(column(measured).empty()) << measured;
     EXPECT_FALSE(fs::exists(dir / "bench" / "static_cost.png")) << "--no-charts";
     EXPECT_EQ(test::read_file(dir / "bench" / "report.md").find("!["), std::string::npos);

@@ -7,9 +7,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <thread>
 
@@ -43,7 +43,8 @@ TEST(Cli, GenWritesGlslCompAndSpvPerVariantAndPrintsATable) {
                       " --modes clip --neighborhoods n9 n5"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (std::string name : {"dop22-clip-n9", "dop22-clip-n5", "tiny-clip-n9", "tiny-clip-n5"})
-        for (std::string ext : {".glsl", ".comp", ".spv"}) EXPECT_TRUE(fs::exists(dir / "out" / (name + ext))) << name + ext;
+        for (std::string ext : {".glsl", ".comp", ".spv"})
+            EXPECT_TRUE(fs::exists(dir / "out" / (name + ext))) << name + ext;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 12);
     EXPECT_NE(r.out.find("variant"), std::string::npos);
     EXPECT_NE(r.out.find("instructions"), std::string::npos);
@@ -119,7 +120,8 @@ TEST(Cli, GenRefusesUnknownNamesAndBadOptionsAndWritesNothing) {
 TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
     auto r = run(kdop("show dop32-clip-n9"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])"), std::string::npos);
+    EXPECT_NE(r.out.find("vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])"),
+              std::string::npos);
     EXPECT_EQ(r.out.find("void main()"), std::string::npos);
 
     r = run(kdop("show dop22-varclip-n5 --compute"));
@@ -169,17 +171,20 @@ namespace {
 struct RunInputs {
     test::TempDir dir;
     std::string current = (dir / "current.exr").string(), history = (dir / "history.exr").string(),
-                small = (dir / "small.exr").string(), text = (dir / "notes.exr").string(), out = (dir / "out.exr").string();
+                small = (dir / "small.exr").string(), text = (dir / "notes.exr").string(),
+                out = (dir / "out.exr").string();
     RunInputs() {
         Image c(16, 16), h(16, 16, {2.0f, 0.0f, 0.5f, 1.0f}), s(8, 8);
-        for (std::uint32_t i = 0; i < c.pixels.size(); ++i) c.pixels[i] = glm::vec4(0.1f * (i % 7), 0.05f * (i % 5), 0.3f, 1);
+        for (std::uint32_t i = 0; i < c.pixels.size(); ++i)
+            c.pixels[i] = glm::vec4(0.1f * (i % 7), 0.05f * (i % 5), 0.3f, 1);
         EXPECT_TRUE(write_image(current, c));
         EXPECT_TRUE(write_image(history, h));
         EXPECT_TRUE(write_image(small, s));
         test::write_file(text, "not an image");
     }
     std::string args(const std::string& variant, const std::string& extra = "") const {
-        return "run --variant " + variant + " --current " + current + " --history " + history + " --out " + out + " " + extra;
+        return "run --variant " + variant + " --current " + current + " --history " + history + " --out " + out + " " +
+               extra;
     }
 };
 
@@ -217,7 +222,8 @@ TEST(CliRun, RunsAUserSetAndPaperNumericsAsTheReferenceComputesThem) {
         ASSERT_EQ(r.exit_code, 0) << c.args << "\n" << r.err;
         auto out = read_image(in.out);
         ASSERT_TRUE(out) << out.error().message;
-        const Image reference = reference_rectify(c.spec.set, c.spec.mode, c.spec.neighborhood, *current, *history, 1.0);
+        const Image reference =
+            reference_rectify(c.spec.set, c.spec.mode, c.spec.neighborhood, *current, *history, 1.0);
         for (std::size_t i = 0; i < out->pixels.size(); ++i)
             ASSERT_NEAR(glm::distance(glm::vec3(out->pixels[i]), glm::vec3(reference.pixels[i])), 0.0, 1e-5)
                 << c.args << " at pixel " << i;
@@ -234,7 +240,8 @@ TEST(CliRun, RefusesBadInputAndWritesNothing) {
     const Case cases[] = {
         {in.args("dop99-clip-n9"), "--variant: no axis set is named 'dop99'"},
         {in.args("dop32-clamp-n9"), "--variant: 'dop32-clamp-n9' is not a variant name"},
-        {in.args("dop32-clip-n9-paper", "--numerics hardened"), "--numerics: hardened conflicts with the variant's own -paper"},
+        {in.args("dop32-clip-n9-paper", "--numerics hardened"),
+         "--numerics: hardened conflicts with the variant's own -paper"},
         {in.args("dop32-clip-n9", "--gamma 1"), "--gamma: dop32-clip-n9 is not a variance clip and takes no gamma"},
         {in.args("dop32-varclip-n9", "--gamma -1"), "--gamma: must be a finite number >= 0, got -1"},
         {in.args("dop32-varclip-n9", "--gamma nan"), "--gamma"},
@@ -245,7 +252,8 @@ TEST(CliRun, RefusesBadInputAndWritesNothing) {
          in.text + ": cannot read image"},
         {"run --variant aabb-clip-n9 --current " + in.current + " --history /nonexistent.exr --out " + in.out,
          "/nonexistent.exr: cannot read image"},
-        {"run --variant aabb-clip-n9 --current " + in.current + " --history " + in.history + " --out " + in.out + ".xyz",
+        {"run --variant aabb-clip-n9 --current " + in.current + " --history " + in.history + " --out " + in.out +
+             ".xyz",
          "--out: " + in.out + ".xyz: no image format for this extension"},
         {in.args("aabb-clip-n9", "--device NoSuchGpu"), "no Vulkan device whose name contains 'NoSuchGpu'"},
     };
@@ -256,7 +264,8 @@ TEST(CliRun, RefusesBadInputAndWritesNothing) {
         EXPECT_FALSE(fs::exists(in.out)) << c.args;
     }
     size_t leftovers = 0;
-    for (const auto& entry : fs::directory_iterator(in.dir.path())) leftovers += entry.path().string().find("partial") != std::string::npos;
+    for (const auto& entry : fs::directory_iterator(in.dir.path()))
+        leftovers += entry.path().string().find("partial") != std::string::npos;
     EXPECT_EQ(leftovers, 0u);
 }
 
@@ -275,9 +284,23 @@ TEST(CliTextures, WritesEveryTextureAndHistoryAndReportsTheSeed) {
     }
     // Same seed, same bytes, also a second later (no time stamp in the files).
     std::this_thread::sleep_for(std::chrono::milliseconds(1100));
-    ASSERT_EQ(run(kdop("textures --no-real --width 32 --height 24 --seed 5 --out " + (dir / "u").string())).exit_code, 0);
+    ASSERT_EQ(run(kdop("textures --no-real --width 32 --height 24 --seed 5 --out " + (dir / "u").string())).exit_code,
+              0);
     EXPECT_EQ(test::read_file(dir / "t" / "grass.exr"), test::read_file(dir / "u" / "grass.exr"));
     EXPECT_NE(run(kdop("textures --width 3 --out " + (dir / "v").string())).exit_code, 0);
+}
+
+// Errors, never an abort: an unwritable folder and a size whose images cannot fit in memory are
+// refused before anything is made, with a message and exit status 1.
+TEST(CliTextures, RefusesWhatItCannotWriteOrHoldAndNeverAborts) {
+    test::TempDir dir;
+    auto r = run(kdop("textures --out /proc/kdop-textures"));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("--out: /proc/kdop-textures: cannot create files in /proc"), std::string::npos) << r.err;
+    r = run(kdop("textures --width 16384 --height 16384 --out " + (dir / "t").string()));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("--width 16384 --height 16384: needs about 192.0 GiB of memory"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "t"));
 }
 
 } // namespace
@@ -355,8 +378,8 @@ struct AccuracyInputs {
 
 TEST(CliAccuracy, MeasuresATinyPairAsWorkedOutByHand) {
     AccuracyInputs in;
-    auto r = run(kdop("accuracy --sets aabb --modes clip --neighborhoods n9 --volume-samples 0 --current " + in.current +
-                      " --history " + in.history + " --out " + in.out));
+    auto r = run(kdop("accuracy --sets aabb --modes clip --neighborhoods n9 --volume-samples 0 --current " +
+                      in.current + " --history " + in.history + " --out " + in.out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("current: ideal clip n9"), std::string::npos) << "progress on stderr: " << r.err;
     const auto csv = lines(test::read_file(in.out + "/accuracy.csv"));
@@ -409,6 +432,11 @@ TEST(CliAccuracy, RefusesBadInputAndWritesNothing) {
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\nstderr was: " << r.err;
         EXPECT_FALSE(fs::exists(in.out)) << c.args;
     }
+    // A bad --out is found before the work: no progress line was printed.
+    auto r = run(kdop("accuracy --sets aabb --modes clip --neighborhoods n5 --out /proc/kdop-accuracy"));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("--out: /proc/kdop-accuracy: cannot create files in /proc"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("ideal clip"), std::string::npos) << r.err;
 }
 
 } // namespace

@@ -92,7 +92,8 @@ TEST(WriteFiles, OutputDirectoryIsCheckedBeforeAnyWork) {
     EXPECT_NE(not_dir.error().message.find("is not a directory"), std::string::npos) << not_dir.error().message;
     auto proc = check_output_directory("/proc/x", "--out");
     ASSERT_FALSE(proc);
-    EXPECT_EQ(proc.error().message.rfind("--out: /proc/x: cannot create files in /proc", 0), 0u) << proc.error().message;
+    EXPECT_EQ(proc.error().message.rfind("--out: /proc/x: cannot create files in /proc", 0), 0u)
+        << proc.error().message;
 }
 
 } // namespace

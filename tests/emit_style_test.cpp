@@ -16,7 +16,8 @@ constexpr double kTolerance = 2e-4;
 
 TEST(EmitStyle, EveryStyleMatchesTheReference) {
     const auto cases = make_test_cases(32, 32, 11, false);
-    for (auto projection : {EmitStyle::Projection::fold_dot, EmitStyle::Projection::multiply_add, EmitStyle::Projection::full_dot})
+    for (auto projection :
+         {EmitStyle::Projection::fold_dot, EmitStyle::Projection::multiply_add, EmitStyle::Projection::full_dot})
         for (auto extent : {EmitStyle::Extent::tree, EmitStyle::Extent::running})
             for (const char* name : {"dop22-clip-n9", "dop22-varclip-n5"}) {
                 const Variant& registered = test::builtin_variant(name);
@@ -32,7 +33,8 @@ TEST(EmitStyle, EveryStyleMatchesTheReference) {
                 for (const TestCase& c : cases) {
                     Image gpu = test::run_on_gpu(variant, c.current, c.history);
                     Image ref = reference_rectify(spec.set, spec.mode, spec.neighborhood, c.current, c.history, 1.0);
-                    EXPECT_LE(test::relative_error(gpu, ref, c.current, c.history).max_relative, kTolerance) << c.name();
+                    EXPECT_LE(test::relative_error(gpu, ref, c.current, c.history).max_relative, kTolerance)
+                        << c.name();
                 }
             }
 }
@@ -45,8 +47,9 @@ TEST(EmitStyle, ProjectionsAreWrittenAsAsked) {
     EXPECT_NE(ma.find("float q0 = c0.x + c0.y * "), std::string::npos);
     spec.style.projection = EmitStyle::Projection::full_dot;
     std::string fd = emit_function(spec);
-    EXPECT_NE(fd.find("float q0 = dot(c0, vec3(1.0, 0.5569"), std::string::npos); // axis 4: (0.820081, 0.456727, -0.344773)
-    EXPECT_NE(fd.find("float q0 = c0.x;"), std::string::npos);                        // axis 1: X
+    EXPECT_NE(fd.find("float q0 = dot(c0, vec3(1.0, 0.5569"),
+              std::string::npos);                              // axis 4: (0.820081, 0.456727, -0.344773)
+    EXPECT_NE(fd.find("float q0 = c0.x;"), std::string::npos); // axis 1: X
     spec.style.extent = EmitStyle::Extent::running;
     std::string running = emit_function(spec);
     EXPECT_NE(running.find("float lo = 3.40282347e38, hi = -3.40282347e38;"), std::string::npos);

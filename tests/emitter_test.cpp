@@ -44,7 +44,7 @@ TEST(Emitter, ScalesEachAxisSoItsLargestComponentIsPlusOne) {
 TEST(Emitter, FoldsZeroAndUnitComponents) {
     std::string text = emit_function(tiny(Mode::clip, Neighborhood::n9));
     EXPECT_NE(text.find("float q0 = c0.x;"), std::string::npos);
-    EXPECT_NE(text.find("float q0 = c0.y;"), std::string::npos);       // (0, -2, 0) flipped and scaled
+    EXPECT_NE(text.find("float q0 = c0.y;"), std::string::npos);        // (0, -2, 0) flipped and scaled
     EXPECT_NE(text.find("float q0 = c0.x - c0.z;"), std::string::npos); // (0.5, 0, -0.5)
     EXPECT_NE(text.find("float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;"), std::string::npos);
     EXPECT_NE(text.find("float q0 = c0.z + c0.y * -0.75;"), std::string::npos);
@@ -64,7 +64,8 @@ void expect_fully_folded_and_unrolled(const std::string& name, const std::string
         << "multiply by a 0 or 1 literal";
     std::smatch vector;
     std::regex constant_vector(R"(vec[234]\(([-0-9.e, ]+)\))");
-    for (auto it = std::sregex_iterator(code.begin(), code.end(), constant_vector); it != std::sregex_iterator(); ++it) {
+    for (auto it = std::sregex_iterator(code.begin(), code.end(), constant_vector); it != std::sregex_iterator();
+         ++it) {
         std::string components = (*it)[1];
         EXPECT_FALSE(std::regex_search(components, std::regex(R"((^|,)\s*)" + zero_or_unit + R"(\s*(,|$))")))
             << "constant vector with a 0 or +-1 component: " << it->str();
@@ -93,7 +94,8 @@ TEST(Emitter, ComputeShaderFillsEveryPlaceholderAndCallsTheFunction) {
     auto templ = "@VARIANT@|@NEIGHBOR_COUNT@|@CALL@";
     auto text = emit_compute_shader(spec("aabb", Mode::varclip, Neighborhood::n5), templ, "t.in");
     ASSERT_TRUE(text) << text.error().message;
-    EXPECT_EQ(*text, "aabb-varclip-n5|5|kdop_aabb_varclip_n5(neighborhood[2], history, parameters.gamma, neighborhood)");
+    EXPECT_EQ(*text,
+              "aabb-varclip-n5|5|kdop_aabb_varclip_n5(neighborhood[2], history, parameters.gamma, neighborhood)");
 }
 
 TEST(Emitter, TemplateErrorsNameTheLine) {

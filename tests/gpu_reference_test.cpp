@@ -86,7 +86,8 @@ TEST_F(Gpu, Rgba16fInputsMatchTheReferenceOnHalfRoundedInputs) {
             Image gpu = test::run_on_gpu(v, c.current, c.history, TextureFormat::rgba16f, kGamma);
             Image ref = reference_rectify(spec.set, spec.mode, spec.neighborhood, current, history, kGamma);
             auto e = test::relative_error(gpu, ref, current, history);
-            EXPECT_LE(e.max_relative, kTolerance) << name << " (rgba16f) on " << c.name() << " at " << e.x << "," << e.y;
+            EXPECT_LE(e.max_relative, kTolerance)
+                << name << " (rgba16f) on " << c.name() << " at " << e.x << "," << e.y;
         }
     }
 }
@@ -108,7 +109,8 @@ TEST_F(Gpu, HistoryInsideTheKdopComesBackUnchanged) {
                     mean.at(x, y) = glm::vec4(glm::vec3(sum / double(offsets.size())), 1);
                 }
             Image same = test::run_on_gpu(v, c.current, c.current, TextureFormat::rgba32f, kGamma);
-            EXPECT_EQ(test::relative_error(same, c.current, c.current, c.current).max_relative, 0.0) << name << " " << c.texture;
+            EXPECT_EQ(test::relative_error(same, c.current, c.current, c.current).max_relative, 0.0)
+                << name << " " << c.texture;
             Image inside = test::run_on_gpu(v, c.current, mean, TextureFormat::rgba32f, kGamma);
             auto e = test::relative_error(inside, mean, c.current, mean);
             EXPECT_LE(e.max_relative, kTolerance) << name << " on " << c.texture << " at " << e.x << "," << e.y;
@@ -126,7 +128,8 @@ TEST_F(Gpu, OutputLiesOnTheSegmentFromCurrentToHistory) {
                 glm::dvec3 cur(c.current.pixels[i]), dir = glm::dvec3(c.history.pixels[i]) - cur, o(out.pixels[i]);
                 double len2 = glm::dot(dir, dir);
                 double s = len2 > 0 ? std::clamp(glm::dot(o - cur, dir) / len2, 0.0, 1.0) : 0.0;
-                worst = std::max(worst, glm::length(o - (cur + s * dir)) / magnitude(c.current.pixels[i], c.history.pixels[i]));
+                worst = std::max(worst, glm::length(o - (cur + s * dir)) /
+                                            magnitude(c.current.pixels[i], c.history.pixels[i]));
             }
             EXPECT_LE(worst, kTolerance) << name << " on " << c.name();
         }
@@ -137,7 +140,8 @@ TEST_F(Gpu, ClipsWithXyzAxesStayInTheNeighborhoodsChannelRange) {
     // aabb, dop22 and dop32 contain the X, Y and Z axes, so their k-DOP lies inside the padded
     // per-channel box of the neighborhood. (Variance clips are exempt: mean - sigma can fall below
     // the minimum, e.g. eight zeros and a one.)
-    for (std::string name : {"aabb-clip-n9", "aabb-clip-n5", "dop22-clip-n9", "dop22-clip-n5", "dop32-clip-n9", "dop32-clip-n5"}) {
+    for (std::string name :
+         {"aabb-clip-n9", "aabb-clip-n5", "dop22-clip-n9", "dop22-clip-n5", "dop32-clip-n9", "dop32-clip-n5"}) {
         const Variant& v = test::builtin_variant(name);
         auto offsets = reference_offsets(v.neighborhood);
         for (const TestCase& c : cases()) {
@@ -150,10 +154,13 @@ TEST_F(Gpu, ClipsWithXyzAxesStayInTheNeighborhoodsChannelRange) {
                         lo = glm::min(lo, n);
                         hi = glm::max(hi, n);
                     }
-                    const double slack = reference_padding(glm::dvec3(c.current.at(x, y))) + kTolerance * magnitude(c.current.at(x, y), c.history.at(x, y));
+                    const double slack = reference_padding(glm::dvec3(c.current.at(x, y))) +
+                                         kTolerance * magnitude(c.current.at(x, y), c.history.at(x, y));
                     for (int ch = 0; ch < 3; ++ch) {
-                        ASSERT_GE(out.at(x, y)[ch], lo[ch] - slack) << name << " on " << c.name() << " at " << x << "," << y;
-                        ASSERT_LE(out.at(x, y)[ch], hi[ch] + slack) << name << " on " << c.name() << " at " << x << "," << y;
+                        ASSERT_GE(out.at(x, y)[ch], lo[ch] - slack)
+                            << name << " on " << c.name() << " at " << x << "," << y;
+                        ASSERT_LE(out.at(x, y)[ch], hi[ch] + slack)
+                            << name << " on " << c.name() << " at " << x << "," << y;
                     }
                 }
         }

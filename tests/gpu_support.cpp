@@ -39,13 +39,15 @@ VariantCatalog& catalog() {
     return instance;
 }
 
-Image run_on_gpu(const Variant& variant, const Image& current, const Image& history, TextureFormat format, float gamma) {
+Image run_on_gpu(const Variant& variant, const Image& current, const Image& history, TextureFormat format,
+                 float gamma) {
     Image out;
     const Variant* variants[] = {&variant};
-    auto ran = runner().run(current, history, format, variants, gamma, [&](std::size_t, const Image& output) -> Result<void> {
-        out = output;
-        return {};
-    });
+    auto ran =
+        runner().run(current, history, format, variants, gamma, [&](std::size_t, const Image& output) -> Result<void> {
+            out = output;
+            return {};
+        });
     EXPECT_TRUE(ran) << ran.error().message;
     return out;
 }

@@ -29,9 +29,9 @@ std::vector<glm::dvec3> cube() {
 TEST(IdealClip, CubeStopsAtTheFaceItCrosses) {
     const auto n = cube();
     const glm::dvec3 c(0.5, 0.5, 0.5);
-    EXPECT_DOUBLE_EQ(exit_of(n, c, {2, 0.5, 0.5}), 1.0 / 3.0);  // x = 1 at t = 0.5 / 1.5
-    EXPECT_DOUBLE_EQ(exit_of(n, c, {0.5, -4.5, 0.5}), 0.1);     // y = 0 at t = 0.5 / 5
-    EXPECT_DOUBLE_EQ(exit_of(n, c, {1.5, 1.5, 1.5}), 0.5);      // through the corner (1, 1, 1)
+    EXPECT_DOUBLE_EQ(exit_of(n, c, {2, 0.5, 0.5}), 1.0 / 3.0); // x = 1 at t = 0.5 / 1.5
+    EXPECT_DOUBLE_EQ(exit_of(n, c, {0.5, -4.5, 0.5}), 0.1);    // y = 0 at t = 0.5 / 5
+    EXPECT_DOUBLE_EQ(exit_of(n, c, {1.5, 1.5, 1.5}), 0.5);     // through the corner (1, 1, 1)
 }
 
 TEST(IdealClip, HistoryInsideTheHullIsKept) {
@@ -67,7 +67,7 @@ TEST(IdealClip, SegmentKeepsOnlyItsOwnLine) {
     const glm::dvec3 c(0.25, 0.25, 0.25);
     EXPECT_DOUBLE_EQ(exit_of(n, c, {3.25, 3.25, 3.25}), 0.25); // along the line: stops at white
     EXPECT_EQ(exit_of(n, c, {0.5, 0.5, 0.5}), 1.0);
-    EXPECT_EQ(exit_of(n, c, {0.5, 0.5, 0.4}), 0.0);            // off the line
+    EXPECT_EQ(exit_of(n, c, {0.5, 0.5, 0.4}), 0.0); // off the line
 }
 
 TEST(IdealClip, SinglePointKeepsNothingElse) {
@@ -98,7 +98,9 @@ TEST(IdealClip, AgreesWithTheAabbWhereTheHullIsTheBox) {
     const auto n = cube();
     const glm::dvec3 c(0.5, 0.5, 0.5);
     std::uint64_t state = 7;
-    auto next = [&] { return double((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 11) * 0x1.0p-53; };
+    auto next = [&] {
+        return double((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 11) * 0x1.0p-53;
+    };
     for (int i = 0; i < 200; ++i) {
         const glm::dvec3 h(next() * 4 - 1.5, next() * 4 - 1.5, next() * 4 - 1.5);
         double t = 1;

@@ -26,7 +26,8 @@ TEST(Reference, AabbClipStopsAtThePaddedFace) {
     expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.5, 0.5}, Mode::clip, 0), {1 + e, 0.5, 0.5});
     // Diagonal toward (2, 0.75, 0.5): x limits first, at t = (0.5 + e) / 1.5.
     double t = (0.5 + e) / 1.5;
-    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.75, 0.5}, Mode::clip, 0), kCenter + t * glm::dvec3(1.5, 0.25, 0));
+    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.75, 0.5}, Mode::clip, 0),
+                kCenter + t * glm::dvec3(1.5, 0.25, 0));
 }
 
 TEST(Reference, HistoryInsideIsKept) {

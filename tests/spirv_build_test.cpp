@@ -29,7 +29,8 @@ TEST(SpirvBuild, EveryDefaultVariantValidatesAndHasNoLoop) {
     ASSERT_EQ(default_variants().size(), 24u);
     spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
     std::string messages;
-    tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t&, const char* m) { messages += m; });
+    tools.SetMessageConsumer(
+        [&](spv_message_level_t, const char*, const spv_position_t&, const char* m) { messages += m; });
     for (const BuiltVariant& v : default_variants()) {
         SCOPED_TRACE(v.name);
         EXPECT_TRUE(tools.Validate(v.spirv)) << messages;
@@ -117,13 +118,15 @@ TEST(SpirvBuild, RegistryStoresIdenticalModulesOnce) {
 }
 
 TEST(SpirvBuild, CompilerErrorsNameTheGlslLine) {
-    const std::string source = "#version 450\nlayout(local_size_x = 1) in;\nvoid main()\n{\n    float x = undefined_thing;\n}\n";
+    const std::string source =
+        "#version 450\nlayout(local_size_x = 1) in;\nvoid main()\n{\n    float x = undefined_thing;\n}\n";
     auto result = compile_glsl_compute(source, "broken.comp");
     ASSERT_FALSE(result);
     EXPECT_NE(result.error().message.find("broken.comp:5: error: 'undefined_thing' : undeclared identifier"),
               std::string::npos)
         << result.error().message;
-    EXPECT_NE(result.error().message.find("    float x = undefined_thing;"), std::string::npos) << result.error().message;
+    EXPECT_NE(result.error().message.find("    float x = undefined_thing;"), std::string::npos)
+        << result.error().message;
 }
 
 TEST(SpirvBuild, ValidatorMessagesMapToTheGlslLineOfTheInstruction) {

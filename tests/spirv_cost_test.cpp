@@ -9,10 +9,11 @@ namespace kdop {
 namespace {
 
 FloatOps count(const std::string& body) {
-    const std::string source = "#version 450\nlayout(local_size_x = 1) in;\n"
-                               "layout(set = 0, binding = 0) buffer B { vec3 a; vec3 b; vec3 c; float s; vec3 r; } io;\n"
-                               "void main()\n{\n    vec3 a = io.a, b = io.b, c = io.c; float s = io.s;\n" +
-                               body + "\n}\n";
+    const std::string source =
+        "#version 450\nlayout(local_size_x = 1) in;\n"
+        "layout(set = 0, binding = 0) buffer B { vec3 a; vec3 b; vec3 c; float s; vec3 r; } io;\n"
+        "void main()\n{\n    vec3 a = io.a, b = io.b, c = io.c; float s = io.s;\n" +
+        body + "\n}\n";
     auto words = compile_glsl_compute(source, "cost.comp");
     EXPECT_TRUE(words) << words.error().message;
     return words ? count_float_ops(*words) : FloatOps{};
@@ -23,8 +24,8 @@ TEST(FloatOps, CountsVectorOperationsPerComponent) {
     EXPECT_EQ(ops.mul, 3u);
     EXPECT_EQ(ops.add_sub, 6u);
     EXPECT_EQ(ops.total(), 9u);
-    EXPECT_EQ(count("io.r = a * s;").mul, 3u);        // OpVectorTimesScalar
-    EXPECT_EQ(count("io.r = -a;").add_sub, 3u);       // OpFNegate
+    EXPECT_EQ(count("io.r = a * s;").mul, 3u);  // OpVectorTimesScalar
+    EXPECT_EQ(count("io.r = -a;").add_sub, 3u); // OpFNegate
     EXPECT_EQ(count("io.r = a / b;").div, 3u);
 }
 

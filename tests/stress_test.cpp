@@ -18,8 +18,7 @@
 namespace kdop {
 namespace {
 
-VariantSpec spec_of(const std::string& set, Mode mode, Neighborhood n, Numerics numerics,
-                    Form form = Form::unrolled) {
+VariantSpec spec_of(const std::string& set, Mode mode, Neighborhood n, Numerics numerics, Form form = Form::unrolled) {
     VariantSpec spec{*resolve_axis_set(set), mode, n, form};
     spec.numerics = numerics;
     return spec;
@@ -59,11 +58,12 @@ TEST(Stress, EveryDefaultVariantKeepsEveryInvariantOnEveryCase) {
             for (Invariant i : kInvariants) {
                 const InvariantTally& t = run.results[v][c][i];
                 checked[std::size_t(i)] += t.checked;
-                EXPECT_EQ(t.violated, 0u) << run.variants[v] << " on " << run.cases[c] << ", " << invariant_name(i)
-                                          << ": " << t.example;
+                EXPECT_EQ(t.violated, 0u)
+                    << run.variants[v] << " on " << run.cases[c] << ", " << invariant_name(i) << ": " << t.example;
             }
         }
-    for (Invariant i : kInvariants) EXPECT_GT(checked[std::size_t(i)], 1000u) << invariant_name(i) << " was hardly checked";
+    for (Invariant i : kInvariants)
+        EXPECT_GT(checked[std::size_t(i)], 1000u) << invariant_name(i) << " was hardly checked";
     for (const std::string& message : test::gpu().validation_messages()) ADD_FAILURE() << "validation: " << message;
 }
 
@@ -129,7 +129,8 @@ TEST(Stress, ChecksCatchWhatTheyAreFor) {
     EXPECT_NEAR(outside[Invariant::inside].worst, 0.1 - 1e-5, 1e-7);
     // Accepting a history far outside, or clipping one well inside, is a misclassification.
     EXPECT_EQ(check_center(glm::vec3(1, 0.5, 0.5), glm::vec3(1, 0.5, 0.5))[Invariant::classify].violated, 1u);
-    EXPECT_EQ(check_center(glm::vec3(0.47f, 0.5f, 0.5f), glm::vec3(0.45f, 0.5f, 0.5f))[Invariant::classify].violated, 1u);
+    EXPECT_EQ(check_center(glm::vec3(0.47f, 0.5f, 0.5f), glm::vec3(0.45f, 0.5f, 0.5f))[Invariant::classify].violated,
+              1u);
     // A NaN history must give exactly the current color.
     EXPECT_EQ(check_center(glm::vec3(0.5f), glm::vec3(nan))[Invariant::defined].violated, 0u);
     EXPECT_EQ(check_center(glm::vec3(0.4f), glm::vec3(nan))[Invariant::defined].violated, 1u);
@@ -182,7 +183,8 @@ TEST(Stress, PaddingKeepsTheRayOriginStrictlyInsideEverySlab) {
             for (const Axis& axis : set.axes) {
                 const ScaledAxis scaled = scale_axis(axis.direction);
                 const glm::vec3 color(magnitude);
-                const float q = std::fma(color.z, scaled.coefficients.z, std::fma(color.y, scaled.coefficients.y, color.x * scaled.coefficients.x));
+                const float q = std::fma(color.z, scaled.coefficients.z,
+                                         std::fma(color.y, scaled.coefficients.y, color.x * scaled.coefficients.x));
                 const float pad_scale = std::max(magnitude, 1.0f);
                 EXPECT_GT(std::fma(pad_scale, scaled.padding, q) - q, 0.0f) << name << " at " << magnitude;
                 EXPECT_LT(std::fma(pad_scale, -scaled.padding, q) - q, 0.0f) << name << " at " << magnitude;

@@ -74,9 +74,9 @@ struct Variant {
     Numerics numerics;
     std::uint32_t axis_count; // k / 2
 
-    const std::uint32_t* spirv;     // optimized, validated SPIR-V words (shared by identical variants)
+    const std::uint32_t* spirv; // optimized, validated SPIR-V words (shared by identical variants)
     std::size_t spirv_word_count;
-    std::uint64_t spirv_hash;       // FNV-1a 64 of the SPIR-V bytes: equal hashes, same module
+    std::uint64_t spirv_hash; // FNV-1a 64 of the SPIR-V bytes: equal hashes, same module
 
     const char* entry_point;
     std::uint32_t local_size[3];
