@@ -177,9 +177,9 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
     const Table table = cost_table(result.rows);
     const Table clips = table.rows_where([&](std::size_t r) { return result.rows[r].key.is_clip(); });
     const std::string data = (scratch / "clips.dat").string();
-    const std::vector<std::string> columns{"variant",      "float_ops",         "analytic_min_ops", "loop_float_ops",
-                                           "instr_per_px", "loop_instr_per_px", "ms_median",        "ms_q1",
-                                           "ms_q3",        "loop_ms_median",    "vs_loop_ms_noise"};
+    const std::vector<std::string> columns{
+        "variant", "float_ops", "analytic_min_ops", "loop_float_ops", "instr_per_px", "loop_instr_per_px", "ms_median",
+        "ms_q1",   "ms_q3",     "loop_ms_median",   "loop_ms_q1",     "loop_ms_q3",   "vs_loop_ms_noise"};
     if (auto ok = write_text(data, clips.gnuplot(columns)); !ok) return std::unexpected(ok.error());
     const CostRow* gather = find_row(result, gather_key(Neighborhood::n9));
 
@@ -208,8 +208,8 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
                           "form'\nset ylabel 'ms'\nset style histogram errorbars gap 1 lw 1\n",
                           device);
     script += fmt::format(
-        "plot '{0}' using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:10:10 title 'loop form', "
-        "'' using 0:(column(11) > 0 ? column(7) : 1/0):(\"noise\") with labels offset 0,1.5 notitle\n"
+        "plot '{0}' using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:11:12 title 'loop form, Q1..Q3', "
+        "'' using 0:(column(13) > 0 ? column(7) : 1/0):(\"noise\") with labels offset 0,1.5 notitle\n"
         "unset multiplot\n",
         data);
 
