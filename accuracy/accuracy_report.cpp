@@ -13,11 +13,9 @@
 namespace kdop {
 namespace {
 
-std::string cell(double value, int digits = 3) {
-    return std::isfinite(value) ? fmt::format("{:.{}g}", value, digits) : "–";
-}
-
-std::string percent(double share) { return std::isfinite(share) ? fmt::format("{:.1f}%", 100 * share) : "–"; }
+// Numbers in the report's sentences, as the tables show them.
+std::string cell(double value) { return format_value(value, Shown::significant, 3); }
+std::string percent(double share) { return format_value(share, Shown::percent, 1); }
 
 std::vector<std::string> families_of(const std::vector<TradeRow>& trade) {
     std::vector<std::string> families;
@@ -319,14 +317,17 @@ std::string rgb_axes_check(const AccuracyRun& run) {
         ++w.pairs;
     }
     if (order.empty()) return "No variant of a set that contains the X, Y and Z axes was measured beside aabb.\n";
-    std::string out =
-        "| variant | pairs | reference: pixels looser | by at most (S) | device: pixels looser | by at most (S) |\n"
-        "|---|--:|--:|--:|--:|--:|\n";
+    Table table({{"variant", "", Shown::text},
+                 {"pairs", "", Shown::integer},
+                 {"reference_looser", "", Shown::percent, 1, "reference: pixels looser"},
+                 {"reference_excess", "S", Shown::significant, 3, "by at most"},
+                 {"device_looser", "", Shown::percent, 1, "device: pixels looser"},
+                 {"device_excess", "S", Shown::significant, 3, "by at most"}});
     for (const std::string& v : order) {
         const Worst& w = worst[v];
-        out += fmt::format("| {} | {} | {} | {} | {} | {} |\n", v, w.pairs, percent(w.reference.share),
-                           cell(w.reference.largest), percent(w.device.share), cell(w.device.largest));
+        table.add({v, std::int64_t(w.pairs), w.reference.share, w.reference.largest, w.device.share, w.device.largest});
     }
+    std::string out = table.markdown();
     std::string images;
     for (const std::string& i : device_looser) images += (images.empty() ? "" : ", ") + i;
     out += fmt::format("\nClips looser than aabb on the device: {}.\n", images.empty() ? "none" : images);

@@ -1,5 +1,7 @@
 #include "table.h"
 
+#include "gnuplot.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -119,15 +121,21 @@ std::string Table::shown(std::size_t row, std::size_t c) const {
     if (const auto* s = std::get_if<std::string>(&v)) return *s;
     if (const auto* b = std::get_if<bool>(&v)) return *b ? "yes" : "no";
     const Column& column = columns_[c];
-    const double d = as_number(v);
-    switch (column.shown) {
+    if (const auto* i = std::get_if<std::int64_t>(&v);
+        i && (column.shown == Shown::integer || column.shown == Shown::text))
+        return std::to_string(*i);
+    return format_value(as_number(v), column.shown, column.digits);
+}
+
+std::string format_value(double d, Shown shown, int digits) {
+    if (std::isnan(d)) return "–";
+    switch (shown) {
     case Shown::text:
-    case Shown::integer:
-        return std::holds_alternative<std::int64_t>(v) ? std::to_string(std::get<std::int64_t>(v)) : exact(d);
-    case Shown::fixed: return std::isfinite(d) ? fmt::format("{:.{}f}", d, column.digits) : significant(d, 1);
-    case Shown::significant: return significant(d, column.digits);
+    case Shown::integer: return exact(d);
+    case Shown::fixed: return std::isfinite(d) ? fmt::format("{:.{}f}", d, digits) : significant(d, 1);
+    case Shown::significant: return significant(d, digits);
     case Shown::percent: return std::isfinite(d) ? fmt::format("{:.1f}%", 100 * d) : significant(d, 1);
-    case Shown::ratio: return std::isfinite(d) ? fmt::format("{:.{}f}×", d, column.digits) : significant(d, 1);
+    case Shown::ratio: return std::isfinite(d) ? fmt::format("{:.{}f}×", d, digits) : significant(d, 1);
     case Shown::flag: return d != 0 ? "yes" : "no";
     }
     return exact(d);
@@ -164,8 +172,7 @@ std::string Table::gnuplot(std::span<const std::string> only) const {
                 for (char ch : *s) field += ch == '"' ? '\'' : ch;
                 field += "\"";
             } else {
-                const double d = as_number(v);
-                field = std::isfinite(d) ? fmt::format("{:.6g}", d) : "NaN";
+                field = gnuplot_number(as_number(v));
             }
             if (i) out += ' ';
             out += field;

@@ -86,6 +86,9 @@ private:
     std::vector<std::vector<Value>> rows_;
 };
 
+// A number as Markdown shows it in a column of that kind: "–" where it is NaN (not measured).
+std::string format_value(double value, Shown shown, int digits);
+
 // An optional number: a double where measured, else empty.
 inline Value maybe(double value) { return value == value ? Value(value) : Value(); }
 
