@@ -1,14 +1,13 @@
 #include "accuracy_report.h"
 
+#include "builtin_sets.h"
 #include "csv_reader.h"
 #include "gnuplot.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 namespace kdop {
 namespace {
@@ -226,7 +225,8 @@ Table trade_table(const std::vector<TradeRow>& rows) {
         table.add({r.family, r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood),
                    std::int64_t(r.k), maybe(r.float_ops), maybe(r.lavapipe.marginal_instr_per_px),
                    maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist), maybe(r.p95_dist), maybe(r.max_dist),
-                   maybe(r.false_accept_rate), maybe(r.volume_ratio), r.front_float_ops, r.front_lavapipe});
+                   maybe(r.false_accept_rate), maybe(r.volume_ratio), r.front_float_ops,
+                   std::isfinite(lavapipe_cost(r)) ? Value(r.front_lavapipe) : Value()});
     return table;
 }
 
@@ -267,34 +267,33 @@ std::string family_table(const std::vector<TradeRow>& trade, const std::string& 
 // The clip-n9 variants' mean distance per family, as columns in selection order, with each over
 // the RGB AABB: what YCoCg and each k-DOP gain on that content.
 std::string clip_n9_summary(const std::vector<TradeRow>& trade) {
-    std::vector<std::string> sets;
+    // One column per clip-n9 variant measured (of any form and numerics), in selection order.
+    std::vector<VariantKey> keys;
     for (const TradeRow& r : trade)
         if (r.key.mode == Mode::clip && r.key.neighborhood == Neighborhood::n9 &&
-            std::find(sets.begin(), sets.end(), r.key.set) == sets.end())
-            sets.push_back(r.key.set);
-    if (sets.empty()) return "No clip-n9 variant was measured.\n";
-    std::string out = "| family |";
-    for (const std::string& s : sets) out += fmt::format(" {} |", s);
-    out += "\n|---|";
-    for (std::size_t i = 0; i < sets.size(); ++i) out += "--:|";
-    out += "\n";
+            std::ranges::find(keys, r.key) == keys.end())
+            keys.push_back(r.key);
+    if (keys.empty()) return "No clip-n9 variant was measured.\n";
+    const bool plain = std::ranges::all_of(
+        keys, [](const VariantKey& k) { return k.form == Form::unrolled && k.numerics == Numerics::hardened; });
+    std::vector<Column> columns{{"family", "", Shown::text}};
+    for (const VariantKey& k : keys) columns.push_back({plain ? k.set : k.name(), "", Shown::text});
+    Table table(std::move(columns));
     for (const std::string& family : families_of(trade)) {
-        const VariantKey clip_n9{"aabb", Mode::clip, Neighborhood::n9};
-        const TradeRow* aabb = find(trade, family, clip_n9);
-        out += fmt::format("| {} |", family);
-        for (const std::string& s : sets) {
-            const TradeRow* r = find(trade, family, clip_n9.with_set(s));
-            if (!r) {
-                out += " – |";
-                continue;
-            }
-            const bool relative = aabb && s != "aabb" && aabb->mean_dist > 0;
-            out += fmt::format(" {}{} |", cell(r->mean_dist),
-                               relative ? fmt::format(" ({:.2f}×)", r->mean_dist / aabb->mean_dist) : "");
+        std::vector<Value> row{family};
+        for (const VariantKey& k : keys) {
+            const TradeRow* r = find(trade, family, k);
+            const TradeRow* aabb = find(trade, family, k.with_set(kRgbBox));
+            const bool relative = r && aabb && k.set != kRgbBox && aabb->mean_dist > 0;
+            row.push_back(!r ? Value()
+                             : Value(cell(r->mean_dist) +
+                                     (relative ? fmt::format(" ({})", format_value(r->mean_dist / aabb->mean_dist,
+                                                                                   Shown::ratio, 2))
+                                               : "")));
         }
-        out += "\n";
+        table.add(std::move(row));
     }
-    return out;
+    return table.markdown();
 }
 
 std::string rgb_axes_check(const AccuracyRun& run) {
@@ -306,7 +305,7 @@ std::string rgb_axes_check(const AccuracyRun& run) {
     std::vector<std::string> order;
     std::set<std::string> device_looser; // images where a clip was, on the device
     for (const AccuracyRow& r : run.rows) {
-        if (!r.rgb_axes || r.key.set == "aabb" || !std::isfinite(r.reference_vs_aabb.share)) continue;
+        if (!r.rgb_axes || r.key.set == kRgbBox || !std::isfinite(r.reference_vs_aabb.share)) continue;
         if (!worst.count(r.key.name())) order.push_back(r.key.name());
         if (r.key.mode == Mode::clip && r.vs_aabb.share > 0) device_looser.insert(r.image);
         Worst& w = worst[r.key.name()];
@@ -336,28 +335,29 @@ std::string rgb_axes_check(const AccuracyRun& run) {
 
 std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
     std::string out;
-    for (Mode mode : kAllModes)
-        for (Neighborhood n : kAllNeighborhoods) {
-            const VariantKey grass{"dop16-grass", mode, n}, asphalt{"dop16-asphalt", mode, n};
-            const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
-            std::vector<std::string> grass_wins, asphalt_wins;
-            for (const std::string& family : families_of(trade)) {
-                const TradeRow* g = find(trade, family, grass);
-                const TradeRow* a = find(trade, family, asphalt);
-                if (!g || !a) continue;
-                (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
-                    .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
-                                           cell(std::max(g->mean_dist, a->mean_dist))));
-            }
-            if (grass_wins.empty() && asphalt_wins.empty()) continue;
-            const auto list = [](const std::vector<std::string>& v) {
-                std::string s;
-                for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
-                return s.empty() ? std::string("none") : s;
-            };
-            out += fmt::format("- {}: dop16-grass is the tighter 16-DOP on {}; dop16-asphalt on {}.\n", group,
-                               list(grass_wins), list(asphalt_wins));
+    std::vector<VariantKey> seen;
+    for (const TradeRow& row : trade) {
+        const VariantKey grass = row.key.with_set("dop16-grass"), asphalt = row.key.with_set("dop16-asphalt");
+        if (row.key != grass || std::ranges::find(seen, grass) != seen.end()) continue;
+        seen.push_back(grass);
+        std::vector<std::string> grass_wins, asphalt_wins;
+        for (const std::string& family : families_of(trade)) {
+            const TradeRow* g = find(trade, family, grass);
+            const TradeRow* a = find(trade, family, asphalt);
+            if (!g || !a) continue;
+            (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
+                .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
+                                       cell(std::max(g->mean_dist, a->mean_dist))));
         }
+        if (grass_wins.empty() && asphalt_wins.empty()) continue;
+        const auto list = [](const std::vector<std::string>& v) {
+            std::string s;
+            for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+            return s.empty() ? std::string("none") : s;
+        };
+        out += fmt::format("- {} and {}: dop16-grass is the tighter on {}; dop16-asphalt on {}.\n", grass.name(),
+                           asphalt.name(), list(grass_wins), list(asphalt_wins));
+    }
     return out.empty() ? "Both scene-optimized 16-DOPs were not measured.\n" : out;
 }
 

@@ -1,5 +1,6 @@
 #include "accuracy_run.h"
 
+#include "builtin_sets.h"
 #include "cpu_clip.h"
 #include "ideal_clip.h"
 #include "spirv_cost.h"
@@ -9,7 +10,6 @@
 
 #include <algorithm>
 #include <map>
-#include <memory>
 #include <set>
 
 namespace kdop {
@@ -57,13 +57,13 @@ Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, 
     std::vector<AccuracyRow> described; // what each variant's rows say of the variant itself
     for (std::size_t v = 0; v < options.variants.size(); ++v) {
         const VariantKey& key = options.variants[v];
-        auto set = catalog.set(key.set, "--sets");
-        if (!set) return std::unexpected(set.error());
-        specs.push_back({*set, key.mode, key.neighborhood, key.form, key.numerics});
+        auto spec = catalog.spec(key, "--sets");
+        if (!spec) return std::unexpected(spec.error());
+        specs.push_back(std::move(*spec));
         AccuracyRow& row = described.emplace_back();
         row.key = key;
-        row.k = static_cast<unsigned>(2 * set->axes.size());
-        row.rgb_axes = contains_rgb_axes(*set);
+        row.k = static_cast<unsigned>(2 * specs.back().set.axes.size());
+        row.rgb_axes = contains_rgb_axes(specs.back().set);
         row.float_ops = count_float_ops({(*variants)[v]->spirv, (*variants)[v]->spirv_word_count}).total();
     }
 
@@ -111,7 +111,7 @@ Result<AccuracyRun> run_accuracy(DeviceRunner& runner, VariantCatalog& catalog, 
         // Each variant against the RGB AABB of its mode and neighborhood, when that was selected.
         for (std::size_t v = 0; v < specs.size(); ++v)
             for (std::size_t a = 0; a < specs.size(); ++a) {
-                if (options.variants[a] != options.variants[v].with_set("aabb")) continue;
+                if (options.variants[a] != options.variants[v].with_set(kRgbBox)) continue;
                 AccuracyRow& row = run.rows[first_row + v];
                 row.vs_aabb = compare_distances(distances[v].gpu, distances[a].gpu);
                 row.reference_vs_aabb = compare_distances(distances[v].reference, distances[a].reference);

@@ -1,19 +1,18 @@
 #include "cost_bench.h"
 
 #include "analytic_cost.h"
+#include "builtin_sets.h"
 #include "callgrind.h"
 #include "progress.h"
 #include "spirv_module.h"
 #include "statistics.h"
 #include "timing.h"
+#include "variant_files.h"
 #include "write_files.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
-#include <cstring>
-#include <map>
 
 namespace kdop::bench {
 namespace {
@@ -61,17 +60,14 @@ std::optional<VariantKey> paper_of(const VariantKey& key) {
 Result<ProbeKernel> probe_kernel(const VariantKey& key, const Variant& v, VariantCatalog& catalog,
                                  const std::filesystem::path& scratch) {
     if (VariantCatalog::is_embedded(v)) return ProbeKernel{key.name(), key.name(), {}};
-    const VariantKey donor_key = key.with_set("aabb").with(Form::unrolled).with(Numerics::hardened);
+    const VariantKey donor_key = key.with_set(kRgbBox).with(Form::unrolled).with(Numerics::hardened);
     auto donor = catalog.find(donor_key);
     if (!donor) return std::unexpected(donor.error());
     if ((*donor)->binding_count != v.binding_count || (*donor)->push_constant_size != v.push_constant_size)
         return fail(fmt::format("{}: its interface differs from {}'s; the callgrind probe cannot run it", key.name(),
                                 donor_key.name()));
-    static_assert(std::endian::native == std::endian::little, "SPIR-V files are written little-endian");
-    std::string bytes(v.spirv_word_count * sizeof(std::uint32_t), '\0');
-    std::memcpy(bytes.data(), v.spirv, bytes.size());
     const std::filesystem::path module = scratch / (key.name() + ".spv");
-    if (auto ok = write_files_atomically({{module, std::move(bytes)}}); !ok) return std::unexpected(ok.error());
+    if (auto ok = write_files_atomically({{module, spirv_bytes(words(v))}}); !ok) return std::unexpected(ok.error());
     return ProbeKernel{key.name(), donor_key.name(), module};
 }
 
@@ -99,10 +95,10 @@ Result<BenchResult> run_cost_bench(const Context& context, VariantCatalog& catal
     Kernels all;
     for (const VariantKey& key : options.variants) all.keys.push_back(key);
     for (const VariantKey& key : kBaselines) all.keys.push_back(key);
-    for (const VariantKey& key : options.variants) {
-        if (auto loop = loop_of(key)) all.keys.push_back(*loop);
-        if (auto paper = paper_of(key)) all.keys.push_back(*paper);
-    }
+    for (const VariantKey& key : options.variants)
+        for (const auto& companion : {loop_of(key), paper_of(key)})
+            // A companion may be selected itself (dop32-clip-n9 and dop32-clip-n9-paper): once.
+            if (companion && !all.has(*companion)) all.keys.push_back(*companion);
     auto found = catalog.find_all(all.keys, "--variants");
     if (!found) return std::unexpected(found.error());
     all.variants = std::move(*found);
@@ -138,7 +134,7 @@ Result<BenchResult> run_cost_bench(const Context& context, VariantCatalog& catal
             if (auto paper = paper_of(row.key)) row.paper_ms = timing(*paper);
         }
         for (CostRow& row : result.rows) {
-            const VariantKey aabb = row.key.with_set("aabb");
+            const VariantKey aabb = row.key.with_set(kRgbBox);
             if (row.key.is_clip() && all.has(aabb)) row.ms_vs_aabb = row.ms.median / timing(aabb).median;
         }
     }

@@ -77,7 +77,7 @@ Action add_accuracy_command(CLI::App& app) {
         if (!outputs) return report_error(outputs.error().message);
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
-        auto catalog = VariantCatalog::create(o->selection.sets);
+        auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
         std::map<std::string, LavapipeCost> costs;
         if (!o->cost.empty()) {
@@ -124,16 +124,17 @@ Action add_accuracy_command(CLI::App& app) {
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;
         const std::vector<TradeRow> trade = trade_rows(*run, costs);
-        if (charts) {
-            auto drawn = accuracy_charts(trade, scratch.path, outputs->dir());
-            if (!drawn) return report_error(drawn.error().message);
-            outputs->add(std::move(*drawn));
-        }
+        // A chart that fails costs the charts, not the run: the data and report are still written.
+        auto drawn = charts ? accuracy_charts(trade, scratch.path, outputs->dir())
+                            : Result<std::vector<OutputFile>>(std::vector<OutputFile>{});
+        if (!drawn) warn_no_charts(drawn.error().message);
+        const bool drew = charts && drawn;
+        if (drew) outputs->add(std::move(*drawn));
         outputs->add_table("accuracy", accuracy_table(*run), run_info);
         outputs->add_table("trade", trade_table(trade), run_info);
         outputs->add("report.md",
                      accuracy_report_markdown(*run, trade, run_info,
-                                              {o->cost, static_cast<float>(o->gamma), o->volume_samples, charts}));
+                                              {o->cost, static_cast<float>(o->gamma), o->volume_samples, drew}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop accuracy: {} variants x {} pairs on {} ({}): {}\n", specs->size(), pairs.size(),
                                  run_info.device, run_info.driver, (outputs->dir() / "report.md").string());

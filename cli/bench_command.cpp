@@ -149,10 +149,14 @@ Action add_bench_command(CLI::App& app) {
         const RunMetadata run_info = describe_run(**context);
         bench::ReportSettings settings{options, {}};
         if (charts) {
+            // A chart that fails costs the chart, not the run: the data and report are still written.
             auto drawn = bench::cost_charts(*result, run_info.device, scratch.path, outputs->dir());
-            if (!drawn) return report_error(drawn.error().message);
-            settings.charts = bench::cost_chart_names(*result);
-            outputs->add(std::move(*drawn));
+            if (drawn) {
+                settings.charts = bench::cost_chart_names(*result);
+                outputs->add(std::move(*drawn));
+            } else {
+                warn_no_charts(drawn.error().message);
+            }
         }
         outputs->add_table("cost", bench::cost_table(result->rows), run_info);
         outputs->add("report.md", bench::cost_report_markdown(*result, run_info, settings));

@@ -6,11 +6,14 @@
 #include "rectify_pass.h"
 #include "statistics.h"
 #include "variant_catalog.h"
+#include "variant_option.h"
+#include "write_files.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -50,15 +53,8 @@ Action add_run_command(CLI::App& app) {
         ->check(CLI::Range(1u, 100000u));
 
     return [o] {
-        auto key = parse_variant_key(o->variant);
+        auto key = variant_option(o->variant, o->numerics, "--variant");
         if (!key) return report_error(key.error().message);
-        if (!o->numerics.empty()) {
-            const Numerics numerics = *parse_numerics(o->numerics);
-            if (key->numerics == Numerics::paper && numerics != Numerics::paper)
-                return report_error(fmt::format("--numerics: {} conflicts with the variant's own -paper", o->numerics));
-            if (!key->is_clip()) return report_error(fmt::format("--numerics: {} is not a clip", o->variant));
-            key = key->with(numerics);
-        }
         auto catalog = VariantCatalog::create(o->sets);
         if (!catalog) return report_error(catalog.error().message);
         auto found = catalog->find(*key);
@@ -73,6 +69,8 @@ Action add_run_command(CLI::App& app) {
             return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", gamma));
         if (!OIIO::ImageOutput::create(o->out))
             return report_error(fmt::format("--out: {}: no image format for this extension", o->out));
+        if (auto ok = check_output_directory(std::filesystem::path(o->out).parent_path(), "--out"); !ok)
+            return report_error(ok.error().message);
 
         auto current = read_image(o->current);
         if (!current) return report_error(current.error().message);

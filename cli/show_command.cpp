@@ -3,6 +3,7 @@
 #include "glsl_emitter.h"
 #include "variant_builder.h"
 #include "variant_catalog.h"
+#include "variant_option.h"
 
 #include <fmt/format.h>
 
@@ -30,28 +31,17 @@ Action add_show_command(CLI::App& app) {
     show->add_flag("--compute", options->compute, "Print the whole compute shader instead of the includable function");
 
     return [options] {
-        auto key = parse_variant_key(options->name, "show");
+        auto key = variant_option(options->name, options->numerics, "show");
         if (!key) return report_error(key.error().message);
-        if (!options->numerics.empty()) {
-            if (!key->is_clip()) return report_error(fmt::format("--numerics: {} is not a clip", options->name));
-            if (key->numerics == Numerics::paper && options->numerics != "paper")
-                return report_error(
-                    fmt::format("--numerics: {} conflicts with the variant's own -paper", options->numerics));
-            key = key->with(*parse_numerics(options->numerics));
-        }
         auto catalog = VariantCatalog::create(options->sets);
         if (!catalog) return report_error(catalog.error().message);
-        VariantSpec spec{{}, key->mode, key->neighborhood, key->form, key->numerics};
-        if (key->is_clip()) {
-            auto set = catalog->set(key->set, "show");
-            if (!set) return report_error(set.error().message);
-            spec.set = std::move(*set);
-        }
+        auto spec = catalog->spec(*key, "show");
+        if (!spec) return report_error(spec.error().message);
         if (!options->compute) {
-            std::cout << emit_function(spec);
+            std::cout << emit_function(*spec);
             return 0;
         }
-        auto built = build_variant(spec); // builds, so the shader shown is one that compiles
+        auto built = build_variant(*spec); // builds, so the shader shown is one that compiles
         if (!built) return report_error(built.error().message);
         std::cout << built->compute_glsl;
         return 0;

@@ -54,7 +54,7 @@ Action add_stress_command(CLI::App& app) {
         }
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
-        auto catalog = VariantCatalog::create(o->selection.sets);
+        auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);

@@ -10,6 +10,10 @@
 
 namespace kdop {
 
+// The RGB box, the baseline every other set is compared with (time and accuracy relative to it,
+// "looser than the RGB AABB"), and the set whose interface stands in for a variant's in the probe.
+inline constexpr const char* kRgbBox = "aabb";
+
 // Ordered by axis count, then by name: the boxes first, the 32-DOP last. That order is the order
 // of `kdop list`, of every default selection and of every report.
 std::span<const std::string> builtin_set_names();

@@ -29,12 +29,6 @@ VariantKey VariantKey::with_set(std::string other) const {
     return k;
 }
 
-VariantKey key_of(const Variant& v) {
-    if (v.mode == Mode::copy) return copy_key();
-    if (v.mode == Mode::gather) return gather_key(v.neighborhood);
-    return {v.axis_set, v.mode, v.neighborhood, v.form, v.numerics};
-}
-
 VariantKey gather_key(Neighborhood n) { return {"", Mode::gather, n, Form::unrolled, Numerics::hardened}; }
 VariantKey copy_key() { return {"", Mode::copy, Neighborhood::n9, Form::unrolled, Numerics::hardened}; }
 

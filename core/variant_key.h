@@ -36,8 +36,6 @@ struct VariantKey {
     friend auto operator<=>(const VariantKey&, const VariantKey&) = default;
 };
 
-VariantKey key_of(const Variant& variant);
-
 // The gather-only baseline of a neighborhood: the same loads and store as its clips, no clip.
 VariantKey gather_key(Neighborhood n);
 VariantKey copy_key();

@@ -13,6 +13,7 @@ RunnableVariant::RunnableVariant(BuiltVariant built) : built_(std::move(built)) 
     variant_.mode = spec.mode;
     variant_.neighborhood = spec.neighborhood;
     variant_.form = spec.form;
+    variant_.numerics = spec.numerics;
     variant_.axis_count = static_cast<std::uint32_t>(spec.set.axes.size());
     variant_.spirv = built_.spirv.data();
     variant_.spirv_word_count = built_.spirv.size();

@@ -37,16 +37,21 @@ struct SelectionOptions {
             ->check(CLI::IsMember({"hardened", "paper"}));
     }
 
-    Result<std::vector<VariantSpec>> select() const {
-        auto specs = select_variants(sets, modes, neighborhoods, forms);
+    // --projection and --extent.
+    EmitStyle style() const {
         EmitStyle style;
         style.projection = projection == "multiply-add" ? EmitStyle::Projection::multiply_add
                            : projection == "full-dot"   ? EmitStyle::Projection::full_dot
                                                         : EmitStyle::Projection::fold_dot;
         style.extent = extent == "running" ? EmitStyle::Extent::running : EmitStyle::Extent::tree;
+        return style;
+    }
+
+    Result<std::vector<VariantSpec>> select() const {
+        auto specs = select_variants(sets, modes, neighborhoods, forms);
         if (specs)
             for (VariantSpec& s : *specs) {
-                s.style = style;
+                s.style = style();
                 s.numerics = *parse_numerics(numerics); // checked by CLI11
             }
         if (specs && baselines)

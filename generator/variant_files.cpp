@@ -1,11 +1,7 @@
 #include "variant_files.h"
 
-#include <fmt/format.h>
-
 #include <bit>
 #include <cstring>
-#include <fstream>
-#include <system_error>
 
 namespace kdop {
 namespace fs = std::filesystem;
@@ -14,11 +10,15 @@ std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {
     return {{dir / (v.name + ".glsl"), v.function_glsl}, {dir / (v.name + ".comp"), v.compute_glsl}};
 }
 
-OutputFile spirv_file(const BuiltVariant& v, const fs::path& dir) {
+std::string spirv_bytes(std::span<const std::uint32_t> words) {
     static_assert(std::endian::native == std::endian::little, "SPIR-V files are written little-endian");
-    std::string bytes(v.spirv.size() * sizeof(std::uint32_t), '\0');
-    std::memcpy(bytes.data(), v.spirv.data(), bytes.size());
-    return {dir / (v.name + ".spv"), std::move(bytes)};
+    std::string bytes(words.size() * sizeof(std::uint32_t), '\0');
+    std::memcpy(bytes.data(), words.data(), bytes.size());
+    return bytes;
+}
+
+OutputFile spirv_file(const BuiltVariant& v, const fs::path& dir) {
+    return {dir / (v.name + ".spv"), spirv_bytes(v.spirv)};
 }
 
 } // namespace kdop

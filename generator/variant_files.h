@@ -5,14 +5,19 @@
 #include "variant_builder.h"
 #include "write_files.h"
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace kdop {
 
 // <dir>/<name>.glsl (includable function) and <dir>/<name>.comp (compute shader).
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const std::filesystem::path& dir);
-// <dir>/<name>.spv: the optimized module's words as little-endian bytes.
+// A module's words as the little-endian bytes of a .spv file.
+std::string spirv_bytes(std::span<const std::uint32_t> words);
+// <dir>/<name>.spv: the optimized module's bytes.
 OutputFile spirv_file(const BuiltVariant& v, const std::filesystem::path& dir);
 
 } // namespace kdop

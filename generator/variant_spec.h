@@ -34,6 +34,8 @@ struct EmitStyle {
         tree,    // min/max of all projections as balanced trees
         running, // min/max updated neighbor by neighbor from +-FLT_MAX, as the loop form does from +-1e9
     } extent = Extent::running;
+
+    friend bool operator==(const EmitStyle&, const EmitStyle&) = default;
 };
 
 struct VariantSpec {

@@ -29,6 +29,8 @@ bool charts_available(bool wanted) {
     return false;
 }
 
+void warn_no_charts(const std::string& reason) { fmt::print(stderr, "warning: the charts are left out: {}\n", reason); }
+
 Result<void> write_text(const std::filesystem::path& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
     out << text;

@@ -21,6 +21,8 @@ std::string gnuplot_number(double value);
 // Whether to draw charts: `wanted` (no --no-charts) and gnuplot in PATH. Where gnuplot is
 // missing it says so on stderr, once, when called (before the work, so the user knows early).
 bool charts_available(bool wanted);
+// Says on stderr that the charts are left out because drawing them failed with `reason`.
+void warn_no_charts(const std::string& reason);
 
 Result<void> write_text(const std::filesystem::path& path, const std::string& text);
 

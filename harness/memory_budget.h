@@ -23,7 +23,8 @@ inline std::uint64_t image_bytes(std::uint32_t width, std::uint32_t height) {
 }
 
 // A rectification on the device (lavapipe's device memory is this process's memory): the two
-// input images on the host, three rgba32f textures, the upload and read-back buffers.
+// input images on the host (2), three rgba32f textures (3), the upload buffer for both inputs (2)
+// and the read-back buffer (1).
 inline std::uint64_t rectify_pass_bytes(std::uint32_t width, std::uint32_t height) {
     return image_bytes(width, height) * 8;
 }

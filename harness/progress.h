@@ -1,4 +1,4 @@
-// Progress of a long step on stderr: "[ 12/51] timing dop32-clip-n9  0:42 elapsed, about 1:13 left".
+// Progress of a long step on stderr: "[12/51] timing dop32-clip-n9  0:42 elapsed, about 1:13 left".
 // On a terminal the line is rewritten in place and cleared when the step ends, so it never runs
 // into a table printed afterwards; otherwise (a log, CI) each step is one line, so nothing is lost.
 // The estimate assumes the remaining steps take as long as the finished ones did on average.

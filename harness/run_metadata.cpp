@@ -1,6 +1,7 @@
 #include "run_metadata.h"
 
 #include "context.h"
+#include "kdop_commit.h"
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -9,7 +10,6 @@
 #include <chrono>
 #include <fstream>
 #include <thread>
-#include <vector>
 
 #if !defined(KDOP_VERSION) || !defined(KDOP_COMMIT)
 #error "KDOP_VERSION and KDOP_COMMIT must be defined by the build"

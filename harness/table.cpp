@@ -72,11 +72,6 @@ std::size_t Table::column(std::string_view name) const {
 
 double Table::number(std::size_t row, std::string_view name) const { return as_number(rows_.at(row)[column(name)]); }
 
-std::string Table::text(std::size_t row, std::string_view name) const {
-    const Value& v = rows_.at(row)[column(name)];
-    return std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : shown(row, column(name));
-}
-
 std::vector<std::size_t> Table::indices(std::span<const std::string> only) const {
     std::vector<std::size_t> out;
     if (only.empty())

@@ -63,7 +63,6 @@ public:
     }
     // A row's number in column `name`; NaN where it is empty or not a number.
     double number(std::size_t row, std::string_view name) const;
-    std::string text(std::size_t row, std::string_view name) const;
 
     // A header line of column names, then one line per row, '\n'-terminated. Numbers keep every
     // digit (shortest form that reads back exactly); fields with a comma, quote or line break are

@@ -12,8 +12,9 @@
 
 namespace kdop {
 
-Result<VariantCatalog> VariantCatalog::create(const std::vector<std::string>& sets) {
+Result<VariantCatalog> VariantCatalog::create(const std::vector<std::string>& sets, const EmitStyle& style) {
     VariantCatalog catalog;
+    catalog.style_ = style;
     for (const std::string& arg : sets) {
         auto set = resolve_axis_set(arg);
         if (!set) return std::unexpected(set.error());
@@ -39,6 +40,16 @@ Result<AxisSet> VariantCatalog::set(std::string_view name, std::string_view opti
                     option, name, builtin_set_list()));
 }
 
+Result<VariantSpec> VariantCatalog::spec(const VariantKey& key, std::string_view option) const {
+    VariantSpec spec{{}, key.mode, key.neighborhood, key.form, key.numerics, style_};
+    if (key.is_clip()) {
+        auto found = set(key.set, option);
+        if (!found) return std::unexpected(found.error());
+        spec.set = std::move(*found);
+    }
+    return spec;
+}
+
 bool VariantCatalog::is_embedded(const Variant& variant) {
     for (const Variant& v : builtin::variants())
         if (&v == &variant) return true;
@@ -55,6 +66,13 @@ std::vector<VariantKey> VariantCatalog::clip_keys(Numerics numerics) const {
     return keys;
 }
 
+const Variant* VariantCatalog::registered(const VariantKey& key) const {
+    // The registry holds the built-in sets' variants written in the default style; user sets never
+    // take a built-in name (create()), so a registry name is the built-in variant.
+    if (!(style_ == EmitStyle{})) return nullptr;
+    return builtin::variants().find(key.name().c_str());
+}
+
 Result<const Variant*> VariantCatalog::find(const VariantKey& key, std::string_view option) {
     auto found = find_all(std::span(&key, 1), option);
     if (!found) return std::unexpected(found.error());
@@ -66,17 +84,11 @@ Result<std::vector<const Variant*>> VariantCatalog::find_all(std::span<const Var
     // What the registry lacks is built, all at once (build_variants runs on every core).
     std::vector<VariantSpec> to_build;
     for (const VariantKey& key : keys) {
-        // User sets never take a built-in name (create()), so a registry name is the built-in variant.
-        const bool registered = builtin::variants().find(key.name().c_str()) != nullptr;
-        if (registered || built_.contains(key)) continue;
+        if (registered(key) || built_.contains(key)) continue;
         if (std::ranges::any_of(to_build, [&](const VariantSpec& s) { return s.key() == key; })) continue;
-        VariantSpec spec{{}, key.mode, key.neighborhood, key.form, key.numerics};
-        if (key.is_clip()) {
-            auto set = this->set(key.set, option);
-            if (!set) return std::unexpected(set.error());
-            spec.set = std::move(*set);
-        }
-        to_build.push_back(std::move(spec));
+        auto spec = this->spec(key, option);
+        if (!spec) return std::unexpected(spec.error());
+        to_build.push_back(std::move(*spec));
     }
     if (!to_build.empty()) {
         auto built = build_variants(to_build);

@@ -11,6 +11,7 @@
 #include "result.h"
 #include "runnable_variant.h"
 #include "variant_key.h"
+#include "variant_spec.h"
 
 #include <kdop/variant.h>
 
@@ -27,11 +28,17 @@ class VariantCatalog {
 public:
     // `sets`: what a --sets option gave: built-in names (nothing to add) and axis-set files, whose
     // sets become known by their `name:`. Errors name the file and line, or the clash of two names.
-    static Result<VariantCatalog> create(const std::vector<std::string>& sets);
+    // `style`: how built variants are written (`kdop stress --projection ...`); with any but the
+    // default, every variant is built, none taken from the registry.
+    static Result<VariantCatalog> create(const std::vector<std::string>& sets, const EmitStyle& style = {});
 
     // The set called `name`: built-in, or from a file given to create(). The error names `option`
     // and says how to make a user's set known.
     Result<AxisSet> set(std::string_view name, std::string_view option) const;
+
+    // What the generator, the reference and the volumes need to know of `key`: its set's axes and
+    // this catalog's style.
+    Result<VariantSpec> spec(const VariantKey& key, std::string_view option) const;
 
     // The variant of `key`, built if the registry lacks it.
     Result<const Variant*> find(const VariantKey& key, std::string_view option = "--variant");
@@ -41,11 +48,15 @@ public:
     // Whether `variant` is the embedded registry's (so another process can find it by name).
     static bool is_embedded(const Variant& variant);
 
-    // The keys of every clip variant of `sets` (names as create() took them; empty: every built-in set)
-    // x modes x neighborhoods, unrolled, with `numerics`: a command's default selection.
+    // The keys of every clip variant of the sets given to create() (every built-in set if none), in
+    // that order, x modes x neighborhoods, unrolled, with `numerics`: a command's default selection.
     std::vector<VariantKey> clip_keys(Numerics numerics) const;
 
 private:
+    // The embedded registry's entry for `key`, or nullptr.
+    const Variant* registered(const VariantKey& key) const;
+
+    EmitStyle style_;
     std::vector<AxisSet> user_sets_;
     std::vector<std::string> selected_; // set names in the order given; empty: the built-in sets
     std::map<VariantKey, std::unique_ptr<RunnableVariant>> built_;

@@ -67,9 +67,10 @@ double reference_exit(std::span<const ReferenceSlab> slabs, const glm::dvec3& cu
 }
 
 glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
-                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma) {
-    if (!reference_history_usable(current, history)) return current;
-    const auto slabs = reference_slabs(unit_axes, neighborhood, current, mode, gamma);
+                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma,
+                          Numerics numerics) {
+    if (numerics == Numerics::hardened && !reference_history_usable(current, history)) return current;
+    const auto slabs = reference_slabs(unit_axes, neighborhood, current, mode, gamma, numerics);
     return current + reference_exit(slabs, current, history) * (history - current);
 }
 
@@ -94,7 +95,7 @@ void gather_neighborhood(const Image& image, std::uint32_t x, std::uint32_t y, s
 }
 
 Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Image& current, const Image& history,
-                        double gamma) {
+                        double gamma, Numerics numerics) {
     const std::vector<glm::dvec3> axes = unit_axes(set);
     const std::vector<glm::ivec2> offsets = reference_offsets(n);
     Image out(current.width, current.height);
@@ -104,7 +105,7 @@ Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Ima
             for (std::uint32_t x = 0; x < current.width; ++x) {
                 gather_neighborhood(current, x, y, offsets, neighborhood);
                 glm::dvec3 r = reference_clip(axes, neighborhood, glm::dvec3(current.at(x, y)),
-                                              glm::dvec3(history.at(x, y)), mode, gamma);
+                                              glm::dvec3(history.at(x, y)), mode, gamma, numerics);
                 out.at(x, y) = glm::vec4(glm::vec3(r), 1.0f);
             }
     };

@@ -53,10 +53,12 @@ std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes
 // history lies inside. Takes the history as given (no usability rule).
 double reference_exit(std::span<const ReferenceSlab> slabs, const glm::dvec3& current, const glm::dvec3& history);
 
-// One pixel: current + reference_exit(...) * (history - current), or current where the history is
-// not usable. `unit_axes` must be normalized; `mode` is clip or varclip.
+// One pixel: current + reference_exit(...) * (history - current), or, hardened, current where the
+// history is not usable (the paper's numerics use any history as it is). `unit_axes` must be
+// normalized; `mode` is clip or varclip.
 glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const glm::dvec3> neighborhood,
-                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma);
+                          const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma,
+                          Numerics numerics = Numerics::hardened);
 
 std::vector<glm::dvec3> unit_axes(const AxisSet& set);
 
@@ -70,6 +72,6 @@ void gather_neighborhood(const Image& image, std::uint32_t x, std::uint32_t y, s
 // Every pixel of an image pair: the neighborhood is gathered from `current` with clamp-to-edge
 // addressing, the current color is the pixel itself. Alpha of the result is 1.
 Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Image& current, const Image& history,
-                        double gamma);
+                        double gamma, Numerics numerics = Numerics::hardened);
 
 } // namespace kdop

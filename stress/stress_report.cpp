@@ -74,7 +74,9 @@ Table stress_table(const StressRun& run) {
             for (Invariant i : kInvariants) {
                 row.push_back(std::int64_t(r[i].checked));
                 row.push_back(std::int64_t(r[i].violated));
-                row.push_back(r[i].worst);
+                // N and D are yes/no; a distance exists only for the others, and only where checked.
+                const bool measured = r[i].checked > 0 && i != Invariant::finite && i != Invariant::defined;
+                row.push_back(measured ? Value(r[i].worst) : Value());
             }
             table.add(std::move(row));
         }

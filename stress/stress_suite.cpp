@@ -52,7 +52,9 @@ Result<StressRun> run_stress(DeviceRunner& runner, VariantCatalog& catalog, cons
             if (key.set != set_name) continue;
             members.push_back(v);
             kernels.push_back((*variants)[v]);
-            clips.emplace_back(VariantSpec{*set, key.mode, key.neighborhood, key.form, key.numerics}, options.gamma);
+            auto spec = catalog.spec(key, "--sets");
+            if (!spec) return std::unexpected(spec.error());
+            clips.emplace_back(*spec, options.gamma);
         }
         const std::vector<StressCase> cases = make_stress_cases(*set, options.seed);
         if (run.cases.empty())
