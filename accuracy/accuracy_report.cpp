@@ -117,48 +117,48 @@ Table accuracy_table(const AccuracyRun& run) {
     return table;
 }
 
-Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesystem::path& path) {
+Result<std::map<VariantKey, LavapipeCost>> read_bench_costs(const std::filesystem::path& path) {
     auto csv = read_csv(path);
     if (!csv) return fail("--cost: " + csv.error().message);
-    const int variant = csv->column("variant"), neighborhood = csv->column("neighborhood"),
-              instr = csv->column("instr_per_px"), marginal = csv->column("marginal_ms");
-    if (variant < 0 || neighborhood < 0 || instr < 0 || marginal < 0)
+    const int variant = csv->column("variant"), instr = csv->column("instr_per_px"),
+              marginal = csv->column("marginal_ms");
+    if (variant < 0 || instr < 0 || marginal < 0)
         return fail(
-            fmt::format("{}:1: not a kdop bench cost.csv (needs the columns variant, neighborhood, instr_per_px "
-                        "and marginal_ms)",
+            fmt::format("{}:1: not a kdop bench cost.csv (needs the columns variant, instr_per_px and marginal_ms)",
                         path.string()));
     struct Raw {
-        std::string neighborhood;
         double instr, marginal_ms;
     };
-    std::map<std::string, Raw> raw;
+    std::map<VariantKey, Raw> raw;
     for (std::size_t r = 0; r < csv->rows.size(); ++r) {
         const std::vector<std::string>& f = csv->rows[r];
+        const std::string where = fmt::format("{}:{}", path.string(), csv->lines[r]);
         const auto value = [&](int i) -> Result<double> {
             if (f[i].empty()) return NAN; // not measured
             char* end = nullptr;
             const double v = std::strtod(f[i].c_str(), &end);
             if (end != f[i].c_str() + f[i].size())
-                return fail(
-                    fmt::format("{}:{}: {} is '{}', not a number", path.string(), csv->lines[r], csv->header[i], f[i]));
+                return fail(fmt::format("{}: {} is '{}', not a number", where, csv->header[i], f[i]));
             return v;
         };
+        auto key = parse_variant_key(f[variant], where);
+        if (!key) return std::unexpected(key.error());
         auto i = value(instr);
         if (!i) return std::unexpected(i.error());
         auto m = value(marginal);
         if (!m) return std::unexpected(m.error());
-        raw[f[variant]] = {f[neighborhood], *i, *m};
+        raw[*key] = {*i, *m};
     }
-    std::map<std::string, LavapipeCost> costs;
-    for (const auto& [name, r] : raw) {
-        const auto neighborhood = parse_neighborhood(r.neighborhood);
-        const auto gather = neighborhood ? raw.find(gather_key(*neighborhood).name()) : raw.end();
-        costs[name] = {gather == raw.end() ? NAN : r.instr - gather->second.instr, r.marginal_ms};
+    std::map<VariantKey, LavapipeCost> costs;
+    for (const auto& [key, r] : raw) {
+        if (!key.is_clip()) continue;
+        const auto gather = raw.find(gather_key(key.neighborhood));
+        costs[key] = {gather == raw.end() ? NAN : r.instr - gather->second.instr, r.marginal_ms};
     }
     return costs;
 }
 
-std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::string, LavapipeCost>& costs) {
+std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<VariantKey, LavapipeCost>& costs) {
     std::vector<TradeRow> rows;
     std::vector<std::size_t> pairs; // pairs averaged into each row
     std::vector<std::size_t> outside, accepted;
@@ -168,7 +168,7 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::str
         if (it == rows.end()) {
             TradeRow t;
             t.family = a.family, t.key = a.key, t.k = a.k, t.float_ops = double(a.float_ops);
-            if (auto c = costs.find(a.key.name()); c != costs.end()) t.lavapipe = c->second;
+            if (auto c = costs.find(a.key); c != costs.end()) t.lavapipe = c->second;
             t.mean_dist = t.p95_dist = t.max_dist = t.volume_ratio = 0;
             rows.push_back(t);
             pairs.push_back(0), outside.push_back(0), accepted.push_back(0);

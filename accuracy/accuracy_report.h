@@ -24,7 +24,7 @@ struct LavapipeCost {
     double marginal_ms = NAN;           // marginal_ms (a median: noisy)
 };
 // Reads a bench cost.csv (bench/README.md). Errors name the file and line.
-Result<std::map<std::string, LavapipeCost>> read_bench_costs(const std::filesystem::path& cost_csv);
+Result<std::map<VariantKey, LavapipeCost>> read_bench_costs(const std::filesystem::path& cost_csv);
 
 // One variant on one family: its accuracy averaged over the family's pairs, beside its cost.
 struct TradeRow {
@@ -42,7 +42,7 @@ struct TradeRow {
     bool front_float_ops = false, front_lavapipe = false;
 };
 
-std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<std::string, LavapipeCost>& costs);
+std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<VariantKey, LavapipeCost>& costs);
 Table trade_table(const std::vector<TradeRow>& rows);
 
 struct AccuracyReportSettings {

@@ -79,7 +79,7 @@ Action add_accuracy_command(CLI::App& app) {
         if (!specs) return report_error(specs.error().message);
         auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
-        std::map<std::string, LavapipeCost> costs;
+        std::map<VariantKey, LavapipeCost> costs;
         if (!o->cost.empty()) {
             auto read = read_bench_costs(o->cost);
             if (!read) return report_error(read.error().message);

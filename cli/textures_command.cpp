@@ -38,23 +38,18 @@ Action add_textures_command(CLI::App& app) {
             !ok)
             return report_error(ok.error().message);
         std::cout << fmt::format("seed {}, {}x{}\n", o->seed, o->width, o->height);
-        std::error_code error;
-        std::filesystem::create_directories(o->out, error);
-        if (error) return report_error(fmt::format("--out: {}: {}", o->out, error.message()));
-        std::string last_texture;
-        int files = 0;
-        for (const TestCase& c : make_test_cases(o->width, o->height, o->seed, !o->no_real)) {
-            std::filesystem::path dir(o->out);
-            if (c.texture != last_texture) {
-                if (auto ok = write_image((dir / (c.texture + ".exr")).string(), c.current); !ok)
-                    return report_error(ok.error().message);
-                last_texture = c.texture;
-                ++files;
-            }
-            auto path = dir / fmt::format("{}-history-{}.exr", c.texture, to_string(c.model));
-            if (auto ok = write_image(path.string(), c.history); !ok) return report_error(ok.error().message);
-            ++files;
+        // Written as a set: a failure halfway leaves none of them.
+        const std::vector<TestCase> cases = make_test_cases(o->width, o->height, o->seed, !o->no_real);
+        const std::filesystem::path dir(o->out);
+        std::vector<ImageFile> images;
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            const TestCase& c = cases[i];
+            if (i == 0 || c.texture != cases[i - 1].texture) // a texture's first case: its image
+                images.push_back({dir / (c.texture + ".exr"), &c.current});
+            images.push_back({dir / fmt::format("{}-history-{}.exr", c.texture, to_string(c.model)), &c.history});
         }
+        if (auto ok = write_images(images); !ok) return report_error(ok.error().message);
+        const std::size_t files = images.size();
         std::cout << fmt::format("wrote {} images to {}\n", files, o->out);
         return 0;
     };

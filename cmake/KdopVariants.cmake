@@ -11,7 +11,7 @@
 #     [PUBLIC])                         also give <target>'s users the header (for a library target)
 #
 # Generates, at build time, a header and source holding the variants' optimized SPIR-V and their
-# registry (see generator/include/kdop/variant.h), adds them to <target>, and lets <target>
+# registry (see core/include/kdop/variant.h), adds them to <target>, and lets <target>
 # include the header by its file name. Generation reruns when a user axis file or kdop-gen (which
 # embeds the built-in sets and templates) changes, and at no other time.
 include_guard(GLOBAL)

@@ -63,4 +63,29 @@ Result<void> write_image(const std::string& path, const Image& image) {
     return {};
 }
 
+Result<void> write_images(const std::vector<ImageFile>& files) {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> temporaries;
+    auto abandon = [&](Error error) -> Result<void> {
+        std::error_code ignored;
+        for (const fs::path& p : temporaries) fs::remove(p, ignored);
+        return std::unexpected(std::move(error));
+    };
+    for (const ImageFile& f : files) {
+        std::error_code ec;
+        if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
+        if (ec)
+            return abandon(
+                {fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message())});
+        temporaries.push_back(temporary_path_for(f.path));
+        if (auto ok = write_image(temporaries.back().string(), *f.image); !ok) return abandon(ok.error());
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        std::error_code ec;
+        fs::rename(temporaries[i], files[i].path, ec);
+        if (ec) return abandon({fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message())});
+    }
+    return {};
+}
+
 } // namespace kdop

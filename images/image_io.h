@@ -7,7 +7,9 @@
 #include "image.h"
 #include "result.h"
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace kdop {
 
@@ -16,5 +18,13 @@ Result<Image> read_image(const std::string& path);
 // The format follows the extension. EXR and HDR keep 32-bit floats; 8-bit formats such as PNG
 // store the values clamped to [0, 1] (OpenImageIO's conversion), so use EXR for data.
 Result<void> write_image(const std::string& path, const Image& image);
+
+// Several images as a set, all or nothing: each is written under a temporary name next to its
+// destination, and all are renamed into place only when every one was written.
+struct ImageFile {
+    std::filesystem::path path;
+    const Image* image;
+};
+Result<void> write_images(const std::vector<ImageFile>& files);
 
 } // namespace kdop

@@ -73,7 +73,8 @@ TEST(AccuracyTrade, AveragesPairsAndMarksTheFrontPerNeighborhood) {
         run.rows.push_back(row("f", "c", "n9", 400, 0.05 * scale, 10, 0));
         run.rows.push_back(row("f", "c", "n5", 400, 0.09 * scale, 0, 0)); // alone in n5: on its front
     }
-    std::map<std::string, LavapipeCost> costs{{"a-clip-n9", {50, NAN}}, {"b-clip-n9", {40, NAN}}};
+    std::map<VariantKey, LavapipeCost> costs{{*parse_variant_key("a-clip-n9"), {50, NAN}},
+                                             {*parse_variant_key("b-clip-n9"), {40, NAN}}};
     const auto trade = trade_rows(run, costs);
     ASSERT_EQ(trade.size(), 4u);
     EXPECT_DOUBLE_EQ(trade[0].mean_dist, 0.08);          // (0.04 + 0.12) / 2
@@ -99,10 +100,19 @@ TEST(AccuracyTrade, ReadsABenchCostCsvAndNamesTheLineOfBadOnes) {
                            "dop32-clip-n5,n5,,2.25\ngather-n9,n9,307.25,\ngather-n5,n5,200,\n");
     auto costs = read_bench_costs(path);
     ASSERT_TRUE(costs) << costs.error().message;
-    EXPECT_DOUBLE_EQ(costs->at("aabb-clip-n9").marginal_instr_per_px, 324.5 - 307.25);
-    EXPECT_DOUBLE_EQ(costs->at("aabb-clip-n9").marginal_ms, 1.5);
-    EXPECT_TRUE(std::isnan(costs->at("dop32-clip-n5").marginal_instr_per_px)); // not counted
-    EXPECT_DOUBLE_EQ(costs->at("dop32-clip-n5").marginal_ms, 2.25);
+    const VariantKey aabb = *parse_variant_key("aabb-clip-n9"), dop32 = *parse_variant_key("dop32-clip-n5");
+    EXPECT_DOUBLE_EQ(costs->at(aabb).marginal_instr_per_px, 324.5 - 307.25);
+    EXPECT_DOUBLE_EQ(costs->at(aabb).marginal_ms, 1.5);
+    EXPECT_TRUE(std::isnan(costs->at(dop32).marginal_instr_per_px)); // not counted
+    EXPECT_DOUBLE_EQ(costs->at(dop32).marginal_ms, 2.25);
+    EXPECT_FALSE(costs->contains(gather_key(Neighborhood::n9))) << "baselines have no accuracy";
+
+    test::write_file(path, "variant,instr_per_px,marginal_ms\ndop32-clamp-n9,1,1\n");
+    auto unnamed = read_bench_costs(path);
+    ASSERT_FALSE(unnamed);
+    EXPECT_NE(unnamed.error().message.find(path.string() + ":2: 'dop32-clamp-n9' is not a variant name"),
+              std::string::npos)
+        << unnamed.error().message;
 
     test::write_file(path, "variant,neighborhood,instr_per_px,marginal_ms\naabb-clip-n9,n9,lots,1\n");
     auto bad = read_bench_costs(path);
