@@ -111,15 +111,14 @@ Action add_accuracy_command(CLI::App& app) {
         if (!context) return report_error(context.error().message);
 
         AccuracyOptions options{{}, static_cast<float>(o->gamma), o->volume_samples, o->seed};
-        for (const VariantSpec& spec : *specs) options.variants.push_back(spec.key());
+        options.variants = keys_of(*specs);
         DeviceRunner runner(**context);
         Progress progress(fmt::format("accuracy of {} variants on {},", specs->size(), (*context)->device_name()),
                           accuracy_steps(options, pairs.size()));
         auto run = run_accuracy(runner, *catalog, options, pairs, &progress);
         progress.finish();
         if (!run) return report_error(run.error().message);
-        for (const std::string& message : (*context)->validation_messages())
-            std::cerr << "validation: " << message << "\n";
+        report_validation_messages(**context);
 
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;

@@ -2,6 +2,8 @@
 // action to run when that subcommand was chosen; the action returns the process exit code.
 #pragma once
 
+#include "context.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -21,5 +23,8 @@ Action add_accuracy_command(CLI::App& app);
 
 // Prints an error message (which already names file/line or argument) to stderr; returns 1.
 int report_error(const std::string& message);
+
+// Prints what the validation layer reported on `context` (nothing when it was off) to stderr.
+void report_validation_messages(const Context& context);
 
 } // namespace kdop::cli

@@ -9,4 +9,8 @@ int report_error(const std::string& message) {
     return 1;
 }
 
+void report_validation_messages(const Context& context) {
+    for (const std::string& message : context.validation_messages()) std::cerr << "validation: " << message << "\n";
+}
+
 } // namespace kdop::cli

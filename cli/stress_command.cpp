@@ -60,14 +60,13 @@ Action add_stress_command(CLI::App& app) {
         if (!context) return report_error(context.error().message);
 
         StressOptions options{{}, o->seed, static_cast<float>(o->gamma)};
-        for (const VariantSpec& spec : *specs) options.variants.push_back(spec.key());
+        options.variants = keys_of(*specs);
         DeviceRunner runner(**context);
         Progress progress(fmt::format("stress on {},", (*context)->device_name()), stress_steps(options));
         auto run = run_stress(runner, *catalog, options, &progress);
         progress.finish();
         if (!run) return report_error(run.error().message);
-        for (const std::string& message : (*context)->validation_messages())
-            std::cerr << "validation: " << message << "\n";
+        report_validation_messages(**context);
 
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;

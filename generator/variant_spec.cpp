@@ -39,6 +39,12 @@ Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::
 
 } // namespace
 
+std::vector<VariantKey> keys_of(const std::vector<VariantSpec>& specs) {
+    std::vector<VariantKey> keys;
+    for (const VariantSpec& spec : specs) keys.push_back(spec.key());
+    return keys;
+}
+
 std::vector<VariantSpec> baseline_kernels() {
     return {
         {{}, Mode::gather, Neighborhood::n9}, {{}, Mode::gather, Neighborhood::n5}, {{}, Mode::copy, Neighborhood::n9}};

@@ -73,6 +73,9 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
                                                  const std::vector<std::string>& neighborhoods,
                                                  const std::vector<std::string>& forms = {});
 
+// The keys of `specs`, in order.
+std::vector<VariantKey> keys_of(const std::vector<VariantSpec>& specs);
+
 // The cost baselines: gather-n9, gather-n5 and copy.
 std::vector<VariantSpec> baseline_kernels();
 

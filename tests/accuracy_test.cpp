@@ -129,7 +129,7 @@ TEST(AccuracyRun, OnTheDeviceAgreesWithTheReferenceAndKeepsTheAabbBound) {
     AccuracyOptions options;
     auto specs = select_variants({"aabb", "ycocg", "dop22", "dop32"}, {}, {"n9"}, {});
     ASSERT_TRUE(specs) << specs.error().message;
-    for (const VariantSpec& spec : *specs) options.variants.push_back(spec.key());
+    options.variants = keys_of(*specs);
     options.volume_samples = 8;
     const auto pairs = builtin_pairs(16, 16, 5);
     auto run = run_accuracy(test::runner(), test::catalog(), options, pairs);

@@ -26,7 +26,7 @@ VariantSpec spec_of(const std::string& set, Mode mode, Neighborhood n, Numerics 
 
 StressRun stress(const std::vector<VariantSpec>& specs) {
     StressOptions options{{}, 1, 1.0f};
-    for (const VariantSpec& spec : specs) options.variants.push_back(spec.key());
+    options.variants = keys_of(specs);
     auto run = run_stress(test::runner(), test::catalog(), options);
     EXPECT_TRUE(run) << run.error().message;
     return run ? *run : StressRun{};
