@@ -402,8 +402,22 @@ TEST(CliAccuracy, MeasuresATinyPairAsWorkedOutByHand) {
     EXPECT_DOUBLE_EQ(value("outside_hull_rate"), 1.0);
     EXPECT_NEAR(value("false_accept_rate"), 6.0 / 9.0, 1e-6);
     EXPECT_NEAR(value("ref_mean_dist"), value("mean_dist"), 1e-6);
-    for (const char* file : {"trade.csv", "report.md", "pareto-current.png"})
+    for (const char* file : {"trade.csv", "report.md", "pareto-current.png", "accuracy.json", "trade.json"})
         EXPECT_TRUE(fs::exists(in.out + "/" + file)) << file;
+}
+
+// Charts are optional: without gnuplot (an empty PATH here) the run warns and still writes its
+// tables and its report, which then shows no chart.
+TEST(CliAccuracy, WithoutGnuplotWritesEverythingButTheCharts) {
+    AccuracyInputs in;
+    auto r = run("PATH=/nonexistent " + kdop("accuracy --sets aabb --modes clip --neighborhoods n9 --volume-samples 0 "
+                                             "--current " +
+                                             in.current + " --history " + in.history + " --out " + in.out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: gnuplot not found"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(in.out + "/accuracy.csv"));
+    EXPECT_FALSE(fs::exists(in.out + "/pareto-current.png"));
+    EXPECT_EQ(test::read_file(in.out + "/report.md").find("!["), std::string::npos);
 }
 
 TEST(CliAccuracy, RefusesBadInputAndWritesNothing) {
