@@ -21,17 +21,38 @@ fs::path temporary_path_for(const fs::path& path) {
     return temporary;
 }
 
+namespace {
+
+// Creates `dir` and its missing ancestors, adding each one it creates to `created` (outermost first).
+std::error_code create_directories(const fs::path& dir, std::vector<fs::path>& created) {
+    std::error_code ec;
+    std::vector<fs::path> missing;
+    for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+        if (!fs::create_directory(*it, ec) && ec) return ec;
+        created.push_back(*it);
+    }
+    return ec;
+}
+
+} // namespace
+
 Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
-    std::vector<fs::path> temporaries, placed;
+    std::vector<fs::path> temporaries, placed, created;
     auto abandon = [&](std::string message) {
         std::error_code ignored;
         for (const fs::path& p : temporaries) fs::remove(p, ignored);
         for (const fs::path& p : placed) fs::remove(p, ignored);
+        // The folders made for the set go too (innermost first; one that holds anything else stays).
+        for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, ignored);
         return fail(std::move(message));
     };
     for (const OutputFile& f : files) {
         std::error_code ec;
-        if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
+        if (f.path.has_parent_path()) ec = create_directories(f.path.parent_path(), created);
         if (ec)
             return abandon(fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message()));
         const fs::path temporary = temporary_path_for(f.path);

@@ -1,7 +1,7 @@
 // Writing a command's outputs as a set, all or nothing: every file is first written next to its
 // destination under a temporary name unique to this process, and only when all of them are
 // complete are they renamed into place. A failure removes the temporaries (and any file of the
-// set already renamed), so a failed run leaves no partial output behind, and two processes
+// set already renamed, and the folders made for it), so a failed run leaves no partial output behind, and two processes
 // writing the same outputs never share a temporary. One limit: a rename that fails after others
 // succeeded (a full disk cannot cause it; renames do not allocate) leaves the earlier files of the
 // set removed, and the files they replaced are gone too.

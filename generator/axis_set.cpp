@@ -3,11 +3,18 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
 
 namespace kdop {
+
+glm::dvec3 unit_direction(const glm::dvec3& direction) {
+    const double largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
+    return glm::normalize(direction / largest);
+}
+
 namespace {
 
 // Beyond this the generated shader grows past anything worth shipping (a 128-DOP unrolled over a
@@ -28,15 +35,39 @@ std::string_view trim(std::string_view s) {
 
 bool is_space(char c) { return c == ' ' || c == '\t'; }
 
+// A token as messages quote it: at most 40 characters, bytes that are not printable ASCII as \xNN,
+// so whatever a file holds, the terminal shows text, not escape sequences or a 100 KB line.
+std::string quoted(std::string_view token) {
+    std::string out;
+    for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
+        const unsigned char c = static_cast<unsigned char>(token[i]);
+        out += c >= 0x20 && c < 0x7f ? std::string(1, char(c)) : fmt::format("\\x{:02x}", c);
+    }
+    return "'" + out + (token.size() > 40 ? "'…" : "'");
+}
+
 Result<double> parse_number(std::string_view token, const std::string& where) {
+    // from_chars takes no '+'; one is allowed here, but only in front of digits ("+-1" is not a number).
     std::string_view digits = token.starts_with('+') ? token.substr(1) : token;
+    if (token.starts_with('+') && (digits.starts_with('+') || digits.starts_with('-')))
+        return fail(fmt::format("{}{} is not a number", where, quoted(token)));
     double value = 0;
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec == std::errc::result_out_of_range)
-        return fail(fmt::format("{}'{}' is out of range for a double", where, token));
+        return fail(fmt::format("{}{} is out of range for a double", where, quoted(token)));
     if (ec != std::errc() || end != digits.data() + digits.size())
-        return fail(fmt::format("{}'{}' is not a number", where, token));
+        return fail(fmt::format("{}{} is not a number", where, quoted(token)));
     return value;
+}
+
+// The first byte of `line` that is a control character (tab aside), or -1. Such a byte would end
+// the comment a name or provenance is copied into in generated code, and has no place in a number.
+int control_character(std::string_view line) {
+    for (char ch : line) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && c != '\t') || c == 0x7f) return c;
+    }
+    return -1;
 }
 
 // Splits "x y z", "x, y, z" or "x,y,z" into number tokens; an empty field ("1,,0") is an error.
@@ -83,11 +114,12 @@ std::optional<Error> check_axis(const Axis& axis, const std::vector<Axis>& earli
         if (std::isnan(axis.direction[c])) return Error{where + "axis component is NaN"};
         if (std::isinf(axis.direction[c])) return Error{where + "axis component is infinite"};
     }
-    double length = glm::length(axis.direction);
-    if (length == 0) return Error{where + "axis has zero length"};
-    glm::dvec3 unit = axis.direction / length;
+    // Directions are compared as unit vectors, normalized after scaling by the largest component so
+    // that neither 1e200 (whose square overflows) nor 1e-200 (whose square underflows) is misread.
+    if (axis.direction == glm::dvec3(0)) return Error{where + "axis has zero length"};
+    const glm::dvec3 unit = unit_direction(axis.direction);
     for (const Axis& other : earlier) {
-        glm::dvec3 other_unit = glm::normalize(other.direction);
+        const glm::dvec3 other_unit = unit_direction(other.direction);
         if (glm::length(glm::cross(unit, other_unit)) >= kParallelAxisAngle) continue;
         if (glm::dot(unit, other_unit) > 0)
             return Error{fmt::format("{}axis duplicates the axis on line {}", where, other.line)};
@@ -101,8 +133,8 @@ bool spans_3d(const std::vector<Axis>& axes) {
     for (size_t i = 0; i < axes.size(); ++i)
         for (size_t j = i + 1; j < axes.size(); ++j)
             for (size_t k = j + 1; k < axes.size(); ++k) {
-                glm::dvec3 a = glm::normalize(axes[i].direction), b = glm::normalize(axes[j].direction),
-                           c = glm::normalize(axes[k].direction);
+                glm::dvec3 a = unit_direction(axes[i].direction), b = unit_direction(axes[j].direction),
+                           c = unit_direction(axes[k].direction);
                 if (std::abs(glm::dot(a, glm::cross(b, c))) >= kMinSpanDeterminant) return true;
             }
     return false;
@@ -115,12 +147,16 @@ Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
     set.origin = std::string(origin);
     int name_line = 0, provenance_line = 0;
     int line_number = 0;
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3); // a UTF-8 byte-order mark some editors write
     while (!text.empty()) {
         size_t eol = text.find('\n');
         std::string_view raw = text.substr(0, eol);
         text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
         ++line_number;
         std::string where = fmt::format("{}:{}: ", origin, line_number);
+        if (raw.ends_with('\r')) raw.remove_suffix(1); // CRLF line ends
+        if (int c = control_character(raw); c >= 0)
+            return fail(fmt::format("{}control character 0x{:02x}; axis files are plain text", where, c));
 
         std::string_view line = trim(raw.substr(0, raw.find('#')));
         if (line.empty()) continue;
@@ -139,9 +175,9 @@ Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
             if (key == "name") {
                 if (!is_valid_set_name(value))
                     return fail(
-                        fmt::format("{}set name '{}' is not valid: use lowercase letters and digits, "
+                        fmt::format("{}set name {} is not valid: use lowercase letters and digits, "
                                     "starting with a letter, with single '-' between words (at most 48 characters)",
-                                    where, value));
+                                    where, quoted(value)));
                 set.name = std::string(value);
             } else {
                 set.provenance = std::string(value);

@@ -39,6 +39,10 @@ struct AxisSet {
 // printed to 6 decimals, so axes meant to be equal can differ by about 1e-6 in direction.
 inline constexpr double kParallelAxisAngle = 1e-5;
 
+// `direction` at unit length, for any finite nonzero direction: scaled by its largest component
+// first, so that 1e200 does not overflow and 1e-200 does not underflow on the way.
+glm::dvec3 unit_direction(const glm::dvec3& direction);
+
 // Parses and validates the text of an axis-set file; `origin` names it in error messages.
 Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin);
 

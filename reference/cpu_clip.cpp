@@ -76,7 +76,7 @@ glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const
 
 std::vector<glm::dvec3> unit_axes(const AxisSet& set) {
     std::vector<glm::dvec3> axes;
-    for (const Axis& a : set.axes) axes.push_back(glm::normalize(a.direction));
+    for (const Axis& a : set.axes) axes.push_back(unit_direction(a.direction));
     return axes;
 }
 

@@ -105,6 +105,12 @@ Result<void> RectifyPass::create_buffer(Buffer& b, VkDeviceSize size, VkBufferUs
 Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
                                                          TextureFormat format) {
     if (width == 0 || height == 0) return fail(fmt::format("cannot rectify an empty {}x{} image", width, height));
+    // Checked here rather than left to vkCreateImage, which is undefined (and a validation error)
+    // beyond the limit.
+    const uint32_t limit = context.properties().limits.maxImageDimension2D;
+    if (width > limit || height > limit)
+        return fail(fmt::format("a {}x{} image is larger than {} allows: at most {} pixels on a side", width, height,
+                                context.device_name(), limit));
     std::unique_ptr<RectifyPass> p(new RectifyPass(context));
     p->width_ = width;
     p->height_ = height;

@@ -118,6 +118,38 @@ TEST(AxisSet, RefusesMissingOrBadHeaderLines) {
     EXPECT_NE(error_of("name: My_Set\n").find("t.axes:1: set name 'My_Set' is not valid"), std::string::npos);
 }
 
+// What the adversarial run found: each is now accepted as meant or refused with a message that
+// says what is wrong, at the right line, without echoing raw bytes.
+TEST(AxisSet, ByteOrderMarksLineEndsSignsAndControlCharacters) {
+    auto bom = parse_axis_set("\xEF\xBB\xBFname: a\r\nprovenance: x\r\n1 0 0\r\n0 1 0\r\n0 0 1\r\n", "t.axes");
+    ASSERT_TRUE(bom) << bom.error().message; // a byte-order mark and CRLF line ends are a plain file
+    EXPECT_EQ(bom->name, "a");
+    EXPECT_EQ(bom->provenance, "x");
+    EXPECT_EQ(error_of("name: a\nprovenance: x\rlayout(binding = 9) buffer B { float b; };\n"),
+              "t.axes:2: control character 0x0d; axis files are plain text");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 0\n0 1 \x1b[31m0\n"),
+              "t.axes:4: control character 0x1b; axis files are plain text");
+    EXPECT_EQ(error_of(std::string(kHeader) + "+-1 0 0\n"), "t.axes:3: '+-1' is not a number");
+    EXPECT_EQ(error_of(std::string(kHeader) + "++1 0 0\n"), "t.axes:3: '++1' is not a number");
+    const std::string long_token(100000, '7');
+    const std::string message = error_of(std::string(kHeader) + "1 0 x" + long_token + "\n");
+    EXPECT_EQ(message, "t.axes:3: 'x777777777777777777777777777777777777777'… is not a number");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 \xff\n"), "t.axes:3: '\\xff' is not a number");
+}
+
+// Components far from 1 are directions like any other: compared and spanned after scaling, so
+// 1e200 neither overflows into "antiparallel" nor 1e-200 underflows into "zero length".
+TEST(AxisSet, HugeAndTinyComponentsAreDirectionsLikeAnyOther) {
+    auto huge = parse(std::string("1e200 0 0\n0 2e300 0\n0 0 1e-300\n1e200 1e200 0\n"));
+    ASSERT_TRUE(huge) << huge.error().message;
+    EXPECT_EQ(huge->axes.size(), 4u);
+    EXPECT_EQ(unit_direction({0, 0, 1e-300}), glm::dvec3(0, 0, 1));
+    EXPECT_EQ(error_of(std::string(kHeader) + "1e200 0 0\n-2e300 0 0\n"),
+              "t.axes:4: axis is antiparallel to the axis on line 3 (both bound the same slab)");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1e-300 1e-300 0\n3 3 0\n"),
+              "t.axes:4: axis duplicates the axis on line 3");
+}
+
 TEST(AxisSet, SetNamesMapOneToOneOntoIdentifiers) {
     for (const char* good : {"a", "dop16-grass", "x2-y3", "k9"}) EXPECT_TRUE(is_valid_set_name(good)) << good;
     for (const char* bad : {"", "A", "9a", "a_b", "a--b", "a-", "-a", "a b", "a.b"})

@@ -89,7 +89,7 @@ TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
     // shader repeat exactly, the dispatch around them moves by a few per pixel on a loaded machine
     // (0.39 of 338 measured under load; DESIGN.md: whole-dispatch totals move by up to 10).
     EXPECT_NEAR((*counts)[0], (*counts)[1], 0.03 * (*counts)[0]);
-    EXPECT_GT((*counts)[2], (*counts)[0]);                        // 16 slabs do more work than 3
+    EXPECT_GT((*counts)[2], (*counts)[0]); // 16 slabs do more work than 3
 
     Progress second("callgrind", 1);
     auto missing = callgrind_instructions_per_pixel(setup, {{"no-such-variant", "no-such-variant", {}}}, 1, second);

@@ -74,7 +74,7 @@ TEST(WriteFiles, WritesEveryFileOrNone) {
     auto failed = write_files_atomically({{dir / "out" / "a.csv", "a"}, {dir / "blocker" / "b.csv", "b"}});
     ASSERT_FALSE(failed);
     EXPECT_NE(failed.error().message.find("blocker"), std::string::npos) << failed.error().message;
-    EXPECT_FALSE(fs::exists(dir / "out" / "a.csv"));
+    EXPECT_FALSE(fs::exists(dir / "out")) << "the folder made for the set goes with it";
     for (const auto& entry : fs::recursive_directory_iterator(dir.path()))
         EXPECT_EQ(entry.path().string().find("kdop-partial"), std::string::npos) << entry.path();
 

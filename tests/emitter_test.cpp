@@ -2,6 +2,7 @@
 // properties of the real sets' text (no loops, no run-time indexing, zeros and units folded).
 #include "glsl_emitter.h"
 #include "test_support.h"
+#include "variant_builder.h"
 #include "variant_spec.h"
 
 #include <fmt/format.h>
@@ -103,6 +104,43 @@ TEST(Emitter, TemplateErrorsNameTheLine) {
     EXPECT_EQ(emit_compute_shader(s, "a\nb @NOPE@\n", "t.in").error().message, "t.in:2: unknown placeholder @NOPE@");
     EXPECT_EQ(emit_compute_shader(s, "a\n\nb @VARIANT\n", "t.in").error().message,
               "t.in:3: unterminated placeholder (a '@' without its closing '@')");
+}
+
+// Text from outside reaches generated code only inside comments, and cannot end them: a file name
+// with a line break (the parser refuses control characters in a file's text, not in its name).
+TEST(Emitter, FileNamesCannotEndTheCommentsTheyAreQuotedIn) {
+    VariantSpec s = tiny(Mode::clip, Neighborhood::n9);
+    s.set.origin = "evil\nlayout(binding = 9) buffer B { float b; };\n.axes";
+    for (const std::string& text : {emit_function(s), emit_function([&] {
+                                        VariantSpec loop = s;
+                                        loop.form = Form::loop;
+                                        return loop;
+                                    }())})
+        for (std::size_t start = 0, end; start < text.size(); start = end + 1) {
+            end = text.find('\n', start);
+            const std::string line = text.substr(start, end - start);
+            EXPECT_TRUE(line.find("binding = 9") == std::string::npos || line.find("//") < line.find("binding = 9"))
+                << "code outside a comment: " << line;
+        }
+}
+
+// Every form takes the axes at the same scale: a set of tiny axes (1e-50, whose float32 is 0) and
+// one of huge axes (1e39, whose float32 is infinite) give finite, nonzero literals in the loop form
+// as in the unrolled one.
+TEST(Emitter, AxesFarFromUnitLengthReachEveryFormScaled) {
+    for (const char* axes :
+         {"1e-50 2e-50 3e-50\n-1e-50 1e-50 0\n0 0 1e-50\n", "1e39 2e39 3e39\n-1e39 1e39 0\n0 0 1e39\n"}) {
+        auto set = parse_axis_set(std::string("name: far\nprovenance: test\n") + axes, "far.axes");
+        ASSERT_TRUE(set) << set.error().message;
+        for (Form form : {Form::unrolled, Form::loop}) {
+            VariantSpec spec{*set, Mode::clip, Neighborhood::n9, form};
+            const std::string text = emit_function(spec);
+            EXPECT_EQ(text.find("vec3(0.0, 0.0, 0.0)"), std::string::npos) << axes << to_string(form) << text;
+            EXPECT_EQ(text.find("inf"), std::string::npos) << axes << to_string(form);
+            auto built = build_variant(spec);
+            EXPECT_TRUE(built) << axes << to_string(form) << ": " << built.error().message;
+        }
+    }
 }
 
 // The output depends on the spec alone: a set parsed afresh, after other variants were emitted,

@@ -11,6 +11,7 @@
 #include "gpu_support.h"
 #include "test_textures.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <glm/common.hpp>
@@ -165,6 +166,16 @@ TEST_F(Gpu, ClipsWithXyzAxesStayInTheNeighborhoodsChannelRange) {
                 }
         }
     }
+}
+
+// A size past the device's limit is refused by kdop, naming the limit, before Vulkan sees it (the
+// fixture fails the test on any validation message).
+TEST_F(Gpu, ImagesLargerThanTheDeviceAllowsAreRefused) {
+    const uint32_t limit = test::gpu().properties().limits.maxImageDimension2D;
+    auto pass = RectifyPass::create(test::gpu(), limit + 1, 1, TextureFormat::rgba32f);
+    ASSERT_FALSE(pass);
+    EXPECT_NE(pass.error().message.find(fmt::format("at most {} pixels on a side", limit)), std::string::npos)
+        << pass.error().message;
 }
 
 TEST_F(Gpu, BaselineKernelsDoWhatTheySay) {

@@ -8,7 +8,9 @@
 #include "runnable_variant.h"
 #include "stress_cases.h"
 #include "stress_check.h"
+#include "stress_report.h"
 #include "stress_suite.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -65,6 +67,22 @@ TEST(Stress, EveryDefaultVariantKeepsEveryInvariantOnEveryCase) {
     for (Invariant i : kInvariants)
         EXPECT_GT(checked[std::size_t(i)], 1000u) << invariant_name(i) << " was hardly checked";
     for (const std::string& message : test::gpu().validation_messages()) ADD_FAILURE() << "validation: " << message;
+}
+
+// A user's set of tiny axes (1e-50: zero in float32 as written) keeps every invariant in both
+// forms: the loop form takes the axes at unit length, as the unrolled form scales them.
+TEST(Stress, AUserSetOfTinyAxesKeepsEveryInvariantInBothForms) {
+    test::TempDir dir;
+    test::write_file(dir / "tiny-axes.axes", "name: tiny-axes\nprovenance: test\n1e-50 2e-50 3e-50\n-1e-50 1e-50 0\n"
+                                             "0 0 1e-50\n1e-50 0 0\n");
+    auto catalog = VariantCatalog::create({(dir / "tiny-axes.axes").string()});
+    ASSERT_TRUE(catalog) << catalog.error().message;
+    StressOptions options{{}, 1, 1.0f};
+    for (Form form : {Form::unrolled, Form::loop})
+        options.variants.push_back({"tiny-axes", Mode::clip, Neighborhood::n9, form});
+    auto run = run_stress(test::runner(), *catalog, options);
+    ASSERT_TRUE(run) << run.error().message;
+    EXPECT_EQ(run->failing_cells(), 0u) << stress_table_text(*run);
 }
 
 TEST(Stress, EveryCaseHoldsWhatItSays) {
