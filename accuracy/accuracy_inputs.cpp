@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 
@@ -49,13 +51,20 @@ std::vector<AccuracyPair> builtin_pairs(std::uint32_t width, std::uint32_t heigh
 Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths) {
     std::vector<AccuracyPair> pairs;
     for (const std::string& path : paths) {
+        // An image is its family, named by its file's stem, or by the path as given where two files
+        // share a stem (frame.exr from two folders): rows and charts must not merge them.
+        const bool shared_stem =
+            std::ranges::count_if(paths, [&](const std::string& p) { return stem(p) == stem(path); }) > 1;
+        if (shared_stem && std::ranges::count(paths, path) > 1)
+            return fail(fmt::format("--images: {} is given twice", path));
+        const std::string family = shared_stem ? path : stem(path);
         auto current = read_finite_image(path);
         if (!current) return std::unexpected(current.error());
         const Image other = rotated_half_turn(*current);
         for (HistoryModel m : history_models())
             if (m != HistoryModel::same)
-                pairs.push_back({stem(path), fmt::format("{}/{}", stem(path), to_string(m)), *current,
-                                 make_history(*current, m, other)});
+                pairs.push_back(
+                    {family, fmt::format("{}/{}", family, to_string(m)), *current, make_history(*current, m, other)});
     }
     return pairs;
 }

@@ -72,17 +72,18 @@ Action add_run_command(CLI::App& app) {
         if (auto ok = check_output_directory(std::filesystem::path(o->out).parent_path(), "--out"); !ok)
             return report_error(ok.error().message);
 
-        auto current = read_image(o->current);
+        // The device first: its size limit is checked on each image's header, before its pixels.
+        auto context = Context::create({o->device, false});
+        if (!context) return report_error(context.error().message);
+        const std::uint32_t max_side = (*context)->properties().limits.maxImageDimension2D;
+        auto current = read_image(o->current, max_side);
         if (!current) return report_error(current.error().message);
-        auto history = read_image(o->history);
+        auto history = read_image(o->history, max_side);
         if (!history) return report_error(history.error().message);
         if (current->width != history->width || current->height != history->height)
             return report_error(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", o->history,
                                             history->width, history->height, o->current, current->width,
                                             current->height));
-
-        auto context = Context::create({o->device, false});
-        if (!context) return report_error(context.error().message);
         auto kernel = Kernel::create(**context, *variant);
         if (!kernel) return report_error(kernel.error().message);
         auto pass = RectifyPass::create(**context, current->width, current->height, *format);

@@ -1,5 +1,6 @@
 #include "image_io.h"
 
+#include "memory_budget.h"
 #include "write_files.h"
 
 #include <OpenImageIO/imageio.h>
@@ -11,7 +12,7 @@
 
 namespace kdop {
 
-Result<Image> read_image(const std::string& path) {
+Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string reason = OIIO::geterror();
@@ -23,7 +24,15 @@ Result<Image> read_image(const std::string& path) {
     if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
         return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
 
+    if (max_side && (std::uint64_t(spec.width) > max_side || std::uint64_t(spec.height) > max_side))
+        return fail(fmt::format("{}: {}x{} is larger than the device allows: at most {} pixels on a side", path,
+                                spec.width, spec.height, max_side));
     const int channels = std::min(spec.nchannels, 4);
+    // The decoded pixels and the image made of them, both float.
+    const std::uint64_t bytes =
+        image_bytes(spec.width, spec.height) + std::uint64_t(spec.width) * spec.height * channels * 4;
+    if (auto ok = check_memory(fmt::format("{}: a {}x{} image", path, spec.width, spec.height), bytes); !ok)
+        return std::unexpected(ok.error());
     std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         return fail(fmt::format("{}: cannot read pixels: {}", path, in->geterror()));

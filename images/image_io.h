@@ -13,7 +13,10 @@
 
 namespace kdop {
 
-Result<Image> read_image(const std::string& path);
+// The header is checked before any pixel is read or allocated: sides beyond `max_side` (a device's
+// maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory are refused,
+// so a small file claiming an enormous image is an error, not an allocation failure.
+Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0);
 
 // The format follows the extension. EXR and HDR keep 32-bit floats; 8-bit formats such as PNG
 // store the values clamped to [0, 1] (OpenImageIO's conversion), so use EXR for data.

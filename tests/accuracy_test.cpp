@@ -4,11 +4,14 @@
 #include "accuracy_report.h"
 #include "accuracy_run.h"
 #include "gpu_support.h"
+#include "image_io.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <set>
 
 namespace kdop {
 namespace {
@@ -123,6 +126,24 @@ TEST(AccuracyTrade, ReadsABenchCostCsvAndNamesTheLineOfBadOnes) {
     bad = read_bench_costs(path);
     ASSERT_FALSE(bad);
     EXPECT_NE(bad.error().message.find(":1: not a kdop bench cost.csv"), std::string::npos) << bad.error().message;
+}
+
+// Two frames with one file name in different folders stay two families, not one merged row.
+TEST(AccuracyInputs, ImagesThatShareAFileNameStayApart) {
+    test::TempDir dir;
+    std::filesystem::create_directories(dir / "a");
+    std::filesystem::create_directories(dir / "b");
+    const std::string a = (dir / "a" / "frame.exr").string(), b = (dir / "b" / "frame.exr").string(),
+                      c = (dir / "other.exr").string();
+    for (const std::string& path : {a, b, c}) ASSERT_TRUE(write_image(path, Image(4, 4, {0.5f, 0.25f, 0.125f, 1})));
+    auto pairs = image_pairs({a, b, c});
+    ASSERT_TRUE(pairs) << pairs.error().message;
+    std::set<std::string> families;
+    for (const AccuracyPair& p : *pairs) families.insert(p.family);
+    EXPECT_EQ(families, (std::set<std::string>{a, b, "other"}));
+    auto twice = image_pairs({a, a});
+    ASSERT_FALSE(twice);
+    EXPECT_EQ(twice.error().message, "--images: " + a + " is given twice");
 }
 
 TEST(AccuracyRun, OnTheDeviceAgreesWithTheReferenceAndKeepsTheAabbBound) {

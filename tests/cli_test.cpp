@@ -256,6 +256,13 @@ TEST(CliRun, RefusesBadInputAndWritesNothing) {
              ".xyz",
          "--out: " + in.out + ".xyz: no image format for this extension"},
         {in.args("aabb-clip-n9", "--device NoSuchGpu"), "no Vulkan device whose name contains 'NoSuchGpu'"},
+        // 65-byte files whose headers claim what no device or memory holds: refused from the header.
+        {"run --variant aabb-clip-n9 --current " + test::data_path("huge-100000x100000.png") + " --history " +
+             in.history + " --out " + in.out,
+         "huge-100000x100000.png: 100000x100000 is larger than the device allows: at most"},
+        {"run --variant aabb-clip-n9 --current " + test::data_path("wide-20000x1.png") + " --history " + in.history +
+             " --out " + in.out,
+         "wide-20000x1.png: 20000x1 is larger than the device allows"},
     };
     for (const Case& c : cases) {
         auto r = run(kdop(c.args));
@@ -439,6 +446,7 @@ TEST(CliAccuracy, RefusesBadInputAndWritesNothing) {
         {"--cost " + (in.dir / "cost.csv").string() + pair, "cost.csv:1: not a kdop bench cost.csv"},
         {"--cost " + (in.dir / "none.csv").string() + pair, "none.csv: cannot read"},
         {"--sets dop99" + pair, "--sets: 'dop99' is not a built-in axis set"},
+        {"--images " + test::data_path("huge-100000x100000.png"), "a 100000x100000 image: needs about"},
     };
     for (const Case& c : cases) {
         auto r = run(kdop("accuracy --sets aabb --modes clip --neighborhoods n5 --out " + in.out + " " + c.args));
