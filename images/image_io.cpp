@@ -6,6 +6,8 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -43,6 +45,63 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
     return image;
 }
 
+namespace {
+
+// Formats that would not give back the values written: kdop writes data, not pictures. JPEG also
+// ends the process on a write error (libjpeg's error handler exits) instead of reporting it.
+bool is_lossy(std::string_view format) {
+    return format == "jpeg" || format == "webp" || format == "heif" || format == "gif";
+}
+
+// What a channel value becomes when stored as `type` (as OpenImageIO converts it), and how far the
+// read-back value may be from it.
+struct Expected {
+    float value, tolerance;
+};
+Expected stored(float v, OIIO::TypeDesc type) {
+    if (type == OIIO::TypeDesc::UINT8 || type == OIIO::TypeDesc::UINT16) {
+        const float levels = type == OIIO::TypeDesc::UINT8 ? 255.0f : 65535.0f;
+        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+        return {std::round(clamped * levels) / levels, 1.01f / levels};
+    }
+    if (type == OIIO::TypeDesc::HALF) return {v, std::max(std::abs(v) * 1e-3f, 1e-7f)};
+    return {v, 0.0f};
+}
+
+// Reads the file just written back and compares it with `image`, so a writer that reports success
+// on a full disk (OpenImageIO's PNG, BMP and TGA writers do) cannot leave a short or wrong file.
+Result<void> verify_written(const std::string& file, const Image& image, const std::string& path) {
+    auto in = OIIO::ImageInput::open(file);
+    if (!in) return fail(fmt::format("{}: written, but cannot be read back: {}", path, OIIO::geterror()));
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != int(image.width) || spec.height != int(image.height))
+        return fail(
+            fmt::format("{}: written as {}x{}, not {}x{}", path, spec.width, spec.height, image.width, image.height));
+    const int channels = std::min(spec.nchannels, 4);
+    std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        return fail(fmt::format("{}: written, but does not read back whole (disk full?): {}", path, in->geterror()));
+    const bool shared_exponent = std::string_view(in->format_name()) == "hdr";
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec4& p = image.pixels[i];
+        // RGBE keeps about 8 bits of the largest channel's magnitude for all three.
+        const float rgbe = std::max({std::abs(p.r), std::abs(p.g), std::abs(p.b)}) / 64.0f;
+        for (int c = 0; c < channels; ++c) {
+            const float read = data[i * channels + c];
+            const Expected e = stored(p[c], spec.format);
+            const float tolerance = shared_exponent && c < 3 ? rgbe : e.tolerance;
+            const bool same =
+                std::isnan(e.value) ? std::isnan(read) : std::abs(read - e.value) <= tolerance || read == e.value;
+            if (!same)
+                return fail(fmt::format("{}: written, but pixel ({}, {}) reads back as {} instead of {} (disk full?)",
+                                        path, i % image.width, i / image.width, read, e.value));
+        }
+    }
+    return {};
+}
+
+} // namespace
+
 Result<void> write_image(const std::string& path, const Image& image) {
     namespace fs = std::filesystem;
     fs::path final_path(path);
@@ -51,17 +110,28 @@ Result<void> write_image(const std::string& path, const Image& image) {
     auto out = OIIO::ImageOutput::create(temporary.string());
     if (!out) return fail(fmt::format("{}: no image format for this extension: {}", path, OIIO::geterror()));
 
-    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 4, OIIO::TypeDesc::FLOAT);
+    if (is_lossy(out->format_name()))
+        return fail(fmt::format("{}: {} is lossy and would not keep the values; write EXR (or PNG for a picture)", path,
+                                out->format_name()));
+
+    // RGBA where the format has alpha, else RGB (Radiance HDR stores three channels only).
+    const int channels = out->supports("alpha") ? 4 : 3;
+    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), channels,
+                         OIIO::TypeDesc::FLOAT);
     // OpenImageIO stamps EXR files with the time of writing unless told a time. The time is not an
     // input, so, as reproducible builds do, record the epoch: same pixels, same bytes.
     spec.attribute("DateTime", "1970:01:01 00:00:00");
     if (!out->open(temporary.string(), spec)) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
-    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
     std::error_code ec;
     if (!ok) {
         fs::remove(temporary, ec);
         return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    }
+    if (auto verified = verify_written(temporary.string(), image, path); !verified) {
+        fs::remove(temporary, ec);
+        return verified;
     }
     fs::rename(temporary, final_path, ec);
     if (ec) {

@@ -4,6 +4,7 @@
 #include "image_io.h"
 #include "test_support.h"
 
+#include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
@@ -230,6 +231,33 @@ TEST(CliRun, RunsAUserSetAndPaperNumericsAsTheReferenceComputesThem) {
     }
     EXPECT_NE(run(kdop(in.args("dop32-clip-n9", "--numerics paper"))).out.find("dop32-clip-n9-paper on "),
               std::string::npos);
+}
+
+// Several runs at once, to one output and to outputs of their own: each writes under a temporary
+// name of its own and renames it into place, so every run succeeds and every file is whole.
+TEST(CliRun, ConcurrentRunsToTheSameAndToOtherOutputsAllSucceed) {
+    RunInputs in;
+    const fs::path dir = in.dir.path();
+    std::string script;
+    for (int i = 0; i < 4; ++i) {
+        const std::string same = "run --variant dop22-clip-n9 --current " + in.current + " --history " + in.history +
+                                 " --out " + (dir / "same.exr").string();
+        const std::string own = "run --variant dop22-clip-n9 --current " + in.current + " --history " + in.history +
+                                " --out " + (dir / ("own" + std::to_string(i) + ".exr")).string();
+        script += fmt::format("({} > /dev/null 2>&1; echo $? > {}/same{}.rc) & ", kdop(same), dir.string(), i);
+        script += fmt::format("({} > /dev/null 2>&1; echo $? > {}/own{}.rc) & ", kdop(own), dir.string(), i);
+    }
+    ASSERT_EQ(run(script + "wait").exit_code, 0);
+    const std::string expected = test::read_file(dir / "own0.exr");
+    ASSERT_FALSE(expected.empty());
+    for (int i = 0; i < 4; ++i) {
+        for (const char* kind : {"same", "own"})
+            EXPECT_EQ(test::read_file(dir / fmt::format("{}{}.rc", kind, i)), "0\n") << kind << i;
+        EXPECT_EQ(test::read_file(dir / ("own" + std::to_string(i) + ".exr")), expected) << i;
+    }
+    EXPECT_EQ(test::read_file(dir / "same.exr"), expected) << "the same bytes, whichever run renamed last";
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().string().find("kdop-partial"), std::string::npos) << entry.path();
 }
 
 TEST(CliRun, RefusesBadInputAndWritesNothing) {

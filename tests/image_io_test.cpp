@@ -1,0 +1,96 @@
+// Writing images: what is written reads back as written, or the write is an error and leaves no
+// file. A full disk (a 64 KiB tmpfs, where the system lets the test mount one) used to pass
+// silently through OpenImageIO's PNG, BMP and TGA writers.
+#include "image_io.h"
+#include "random.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace kdop {
+namespace {
+namespace fs = std::filesystem;
+
+// Noise, so no format compresses it below the 64 KiB the full-disk test leaves room for.
+Image noise(std::uint32_t size, float scale) {
+    Image image(size, size);
+    Random random(7);
+    for (glm::vec4& p : image.pixels)
+        p = {float(random.uniform()) * scale, float(random.uniform()) * scale, float(random.uniform()) * scale, 1};
+    return image;
+}
+
+// A 64 KiB tmpfs mounted for the test's lifetime; empty where mounting is not allowed here.
+struct SmallDisk {
+    test::TempDir dir;
+    fs::path path = dir / "small";
+    bool mounted = false;
+    SmallDisk() {
+        fs::create_directories(path);
+        mounted = test::run("mount -t tmpfs -o size=64k tmpfs " + path.string() + " 2>/dev/null").exit_code == 0;
+    }
+    ~SmallDisk() {
+        if (mounted) test::run("umount " + path.string());
+    }
+};
+
+TEST(ImageIo, AFullDiskIsAnErrorAndLeavesNoFile) {
+    SmallDisk disk;
+    if (!disk.mounted) GTEST_SKIP() << "cannot mount a tmpfs here (needs root); the full-disk check did not run";
+    const Image image = noise(256, 1.0f); // 1 MiB as floats, 192-256 KiB in 8-bit formats
+    for (const char* ext : {"png", "bmp", "tga", "exr", "tif"}) {
+        const fs::path out = disk.path / (std::string("out.") + ext);
+        auto written = write_image(out.string(), image);
+        EXPECT_FALSE(written) << ext << " reported success on a full disk";
+        if (!written)
+            EXPECT_NE(written.error().message.find(out.string()), std::string::npos) << written.error().message;
+        EXPECT_TRUE(fs::is_empty(disk.path)) << ext << " left a file behind";
+    }
+}
+
+TEST(ImageIo, WhatIsWrittenReadsBackAsWritten) {
+    test::TempDir dir;
+    const Image ldr = noise(16, 1.0f), hdr = noise(16, 6e4f);
+    struct Case {
+        const char* ext;
+        const Image& image;
+        double tolerance; // absolute for 8-bit, relative for the float formats
+    };
+    for (const Case& c : {Case{"exr", hdr, 0.0}, Case{"tif", hdr, 0.0}, Case{"hdr", hdr, 1.0 / 64},
+                          Case{"png", ldr, 0.51 / 255}, Case{"bmp", ldr, 0.51 / 255}, Case{"tga", ldr, 0.51 / 255}}) {
+        const std::string path = (dir / (std::string("round.") + c.ext)).string();
+        auto written = write_image(path, c.image);
+        ASSERT_TRUE(written) << c.ext << ": " << written.error().message;
+        auto read = read_image(path);
+        ASSERT_TRUE(read) << read.error().message;
+        const std::string ext = c.ext;
+        double worst = 0;
+        for (std::size_t i = 0; i < read->pixels.size(); ++i) {
+            const glm::vec4& p = c.image.pixels[i];
+            for (int ch = 0; ch < 3; ++ch) {
+                const double expected = p[ch], got = read->pixels[i][ch];
+                // 8-bit: absolute; float: relative to the value; RGBE: to the pixel's largest channel.
+                const double scale = ext == "png" || ext == "bmp" || ext == "tga" ? 1.0
+                                     : ext == "hdr"                               ? double(std::max({p.r, p.g, p.b}))
+                                                                                  : std::max(1.0, std::abs(expected));
+                worst = std::max(worst, std::abs(got - expected) / scale);
+            }
+        }
+        EXPECT_LE(worst, c.tolerance) << c.ext;
+    }
+}
+
+TEST(ImageIo, LossyFormatsAreRefusedBeforeAnythingIsWritten) {
+    test::TempDir dir;
+    auto written = write_image((dir / "out.jpg").string(), noise(8, 1.0f));
+    ASSERT_FALSE(written);
+    EXPECT_NE(written.error().message.find("jpeg is lossy"), std::string::npos) << written.error().message;
+    EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+} // namespace
+} // namespace kdop
