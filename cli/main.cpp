@@ -1,12 +1,10 @@
 // kdop: generate, run and measure k-DOP neighborhood-clipping variants. See README.md.
 #include "commands.h"
 
+#include "command_line.h"
 #include "run_metadata.h"
 
-#include <exception>
-#include <iostream>
 #include <map>
-#include <new>
 
 int main(int argc, char** argv) {
     kdop::record_command_line(argc, argv);
@@ -19,15 +17,8 @@ int main(int argc, char** argv) {
         {"textures", kdop::cli::add_textures_command(app)}, {"bench", kdop::cli::add_bench_command(app)},
         {"stress", kdop::cli::add_stress_command(app)},     {"accuracy", kdop::cli::add_accuracy_command(app)},
     };
-    CLI11_PARSE(app, argc, argv);
-    // Errors are values throughout kdop; an exception reaching here is a failure of the system
-    // (memory, a library), reported as an error with a non-zero exit rather than an abort.
-    try {
+    return kdop::run_command_line(app, "kdop", argc, argv, [&] {
         for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();
-    } catch (const std::bad_alloc&) {
-        std::cerr << "kdop: out of memory\n";
-    } catch (const std::exception& e) {
-        std::cerr << "kdop: " << e.what() << "\n";
-    }
-    return 1;
+        return 1;
+    });
 }

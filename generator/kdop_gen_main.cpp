@@ -1,6 +1,7 @@
 // kdop-gen: the build-time half of kdop. kdop_add_variants() runs `kdop-gen registry` to embed
 // variants in a target; the refresh-generated target runs `kdop-gen glsl` to rewrite generated/,
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
+#include "command_line.h"
 #include "registry_writer.h"
 #include "selection_options.h"
 #include "variant_builder.h"
@@ -93,21 +94,21 @@ int main(int argc, char** argv) {
     glsl->add_option("--out", glsl_dir, "Directory (normally generated/)")->required();
     glsl->add_flag("--check", check, "Write nothing; fail if any file in the directory is stale");
 
-    CLI11_PARSE(app, argc, argv);
+    return run_command_line(app, "kdop-gen", argc, argv, [&] {
+        if (*registry && !is_valid_cpp_namespace(cpp_namespace))
+            return report(
+                {fmt::format("--namespace: '{}' is not a C++ namespace (identifiers separated by ::)", cpp_namespace)});
 
-    if (*registry && !is_valid_cpp_namespace(cpp_namespace))
-        return report(
-            {fmt::format("--namespace: '{}' is not a C++ namespace (identifiers separated by ::)", cpp_namespace)});
+        auto specs = *registry ? selection.select() : select_variants({}, {}, {});
+        if (!specs) return report(specs.error());
+        auto built = build_variants(*specs);
+        if (!built) return report(built.error());
 
-    auto specs = *registry ? selection.select() : select_variants({}, {}, {});
-    if (!specs) return report(specs.error());
-    auto built = build_variants(*specs);
-    if (!built) return report(built.error());
+        if (*glsl) return glsl_directory(*built, glsl_dir, check);
 
-    if (*glsl) return glsl_directory(*built, glsl_dir, check);
-
-    auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
-    if (auto ok = write_files_atomically({{header, sources.header}, {source, sources.source}}); !ok)
-        return report(ok.error());
-    return 0;
+        auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
+        if (auto ok = write_files_atomically({{header, sources.header}, {source, sources.source}}); !ok)
+            return report(ok.error());
+        return 0;
+    });
 }

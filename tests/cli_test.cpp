@@ -162,6 +162,16 @@ TEST(Cli, EverySubcommandHasHelp) {
     EXPECT_NE(r.exit_code, 0);
 }
 
+// Exit statuses a script can rely on: 0 done, 1 failed (with a message), 2 the command line is wrong.
+TEST(Cli, ExitStatusSaysUsageErrorsApartFromFailures) {
+    EXPECT_EQ(run(kdop("list --no-such-option")).exit_code, 2);
+    EXPECT_EQ(run(kdop("run --variant aabb-clip-n9")).exit_code, 2); // --current and others missing
+    EXPECT_EQ(run(kdop("bench --out x --repeat 0")).exit_code, 2);
+    EXPECT_EQ(run(test::kdop_gen_binary() + " glsl").exit_code, 2);
+    EXPECT_EQ(run(kdop("show dop99-clip-n9")).exit_code, 1);
+    EXPECT_EQ(run(kdop("list --help")).exit_code, 0);
+}
+
 } // namespace
 } // namespace kdop
 
