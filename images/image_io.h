@@ -1,7 +1,9 @@
 // Reading and writing images through OpenImageIO, in any format it knows (EXR, HDR, PNG, ...).
 // Reading takes RGB from the first three channels as stored (no color conversion, no clamping)
 // and alpha from the fourth if there is one. Writing is all-or-nothing: the file appears complete
-// or not at all; and deterministic: the same image gives the same bytes.
+// or not at all (it is read back and compared before it is renamed into place, because some of
+// OpenImageIO's writers report success on a full disk); and deterministic: the same image gives the
+// same bytes.
 #pragma once
 
 #include "image.h"
@@ -18,8 +20,10 @@ namespace kdop {
 // so a small file claiming an enormous image is an error, not an allocation failure.
 Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0);
 
-// The format follows the extension. EXR and HDR keep 32-bit floats; 8-bit formats such as PNG
-// store the values clamped to [0, 1] (OpenImageIO's conversion), so use EXR for data.
+// The format follows the extension. EXR and TIFF keep 32-bit floats; Radiance HDR keeps RGB with
+// about 8 bits relative to each pixel's brightest channel; 8-bit formats such as PNG store the
+// values clamped to [0, 1] (OpenImageIO's conversion), so use EXR for data. Lossy formats (JPEG,
+// WebP, HEIF, GIF) are refused: they would not give back what was written.
 Result<void> write_image(const std::string& path, const Image& image);
 
 // Several images as a set, all or nothing: each is written under a temporary name next to its
