@@ -4,8 +4,12 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <charconv>
+#include <cctype>
+#include <cerrno>
+#include <clocale>
 #include <cmath>
+#include <cstdlib>
+#include <locale.h>
 #include <optional>
 
 namespace kdop {
@@ -47,16 +51,25 @@ std::string quoted(std::string_view token) {
 }
 
 Result<double> parse_number(std::string_view token, const std::string& where) {
-    // from_chars takes no '+'; one is allowed here, but only in front of digits ("+-1" is not a number).
+    // One leading '+' is allowed, in front of digits only ("+-1" is not a number).
     std::string_view digits = token.starts_with('+') ? token.substr(1) : token;
     if (token.starts_with('+') && (digits.starts_with('+') || digits.starts_with('-')))
         return fail(fmt::format("{}{} is not a number", where, quoted(token)));
-    double value = 0;
-    auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (ec == std::errc::result_out_of_range)
-        return fail(fmt::format("{}{} is out of range for a double", where, quoted(token)));
-    if (ec != std::errc() || end != digits.data() + digits.size())
+    // strtod in the "C" locale: the same in every program that links kdop, whatever locale it set
+    // (std::from_chars for double is missing from libc++ 16, which the fuzzing build uses). Hex
+    // floats, which strtod would take, are not a spelling axis files have.
+    static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", locale_t(0));
+    const std::string text(digits);
+    if (text.empty() || text.find_first_of("xX") != std::string::npos ||
+        std::isspace(static_cast<unsigned char>(text[0])))
         return fail(fmt::format("{}{} is not a number", where, quoted(token)));
+    char* end = nullptr;
+    errno = 0;
+    const double value = strtod_l(text.c_str(), &end, c_locale);
+    if (end != text.c_str() + text.size()) return fail(fmt::format("{}{} is not a number", where, quoted(token)));
+    // ERANGE also marks a denormal, which is a number; only overflow and underflow to 0 are out of range.
+    if (errno == ERANGE && (std::isinf(value) || value == 0))
+        return fail(fmt::format("{}{} is out of range for a double", where, quoted(token)));
     return value;
 }
 

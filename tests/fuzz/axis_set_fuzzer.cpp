@@ -1,0 +1,63 @@
+// libFuzzer target: any bytes as an axis-set file, with the emitter behind the parser. Whatever
+// the parser accepts must emit every mode, neighborhood and form of GLSL in which no text from the
+// file leaves a comment (the injection the adversarial run found) and no axis became zero or
+// infinite (the loop form's raw axes). Everything it refuses must be refused with a message that
+// names the file and holds no raw control bytes. Any violation aborts, which libFuzzer reports.
+#include "axis_set.h"
+#include "glsl_emitter.h"
+#include "variant_spec.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+namespace {
+
+void require(bool condition, const char* what, const std::string& text) {
+    if (condition) return;
+    std::fprintf(stderr, "axis_set_fuzzer: %s\n%s\n", what, text.c_str());
+    std::abort();
+}
+
+bool has_control_bytes(std::string_view text, bool allow_newlines) {
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && c != '\t' && !(allow_newlines && c == '\n')) || c == 0x7f) return true;
+    }
+    return false;
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    auto set = kdop::parse_axis_set(text, "fuzz.axes");
+    if (!set) {
+        const std::string& message = set.error().message;
+        require(message.rfind("fuzz.axes", 0) == 0, "an error that does not name the file", message);
+        require(!has_control_bytes(message, false), "an error that echoes control bytes", message);
+        return 0;
+    }
+    for (kdop::Mode mode : kdop::kAllModes)
+        for (kdop::Neighborhood n : kdop::kAllNeighborhoods)
+            for (kdop::Form form : {kdop::Form::unrolled, kdop::Form::loop}) {
+                const std::string glsl = kdop::emit_function({*set, mode, n, form});
+                // Text from the file stands only in comments, so with no control byte in the output
+                // (a line break ends a `//` comment) none of it can become code.
+                require(!has_control_bytes(glsl, true), "generated code with a control byte", glsl);
+                for (std::size_t start = 0; start < glsl.size();) {
+                    const std::size_t end = std::min(glsl.find('\n', start), glsl.size());
+                    const std::string_view line = std::string_view(glsl).substr(start, end - start);
+                    const std::string_view code = line.substr(0, line.find("//"));
+                    require(code.find("inf") == std::string_view::npos && code.find("nan") == std::string_view::npos,
+                            "a non-finite literal in generated code", glsl);
+                    require(code.find("vec3(0.0, 0.0, 0.0)") == std::string_view::npos, "an axis that became zero",
+                            glsl);
+                    start = end + 1;
+                }
+            }
+    return 0;
+}
