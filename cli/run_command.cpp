@@ -3,6 +3,7 @@
 #include "context.h"
 #include "image_io.h"
 #include "kernel.h"
+#include "memory_budget.h"
 #include "rectify_pass.h"
 #include "statistics.h"
 #include "variant_catalog.h"
@@ -86,6 +87,11 @@ Action add_run_command(CLI::App& app) {
             return report_error(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", o->history,
                                             history->width, history->height, o->current, current->width,
                                             current->height));
+        if (auto ok = check_memory(
+                fmt::format("--current {}: a {}x{} rectification", o->current, current->width, current->height),
+                rectify_pass_bytes(current->width, current->height));
+            !ok)
+            return report_error(ok.error().message);
         auto kernel = Kernel::create(**context, *variant);
         if (!kernel) return report_error(kernel.error().message);
         auto pass = RectifyPass::create(**context, current->width, current->height, *format);

@@ -31,7 +31,7 @@ Action add_stress_command(CLI::App& app) {
     CLI::App* stress = app.add_subcommand(
         "stress", "Run variants over extreme inputs (HDR up to FLT_MAX, denormals, flat and gray neighborhoods, rays "
                   "parallel to a slab, NaN and Inf history or neighbors, rgba16f) and check every pixel against the "
-                  "double-precision reference; prints a table of variants x cases. Exits 2 if an invariant broke");
+                  "double-precision reference; prints a table of variants x cases. Exits 3 if an invariant broke");
     stress->add_option("--out", o->out,
                        "Also write stress.csv, stress.json and report.md to this directory (created if missing)");
     stress->add_option("--device", o->device,
@@ -78,7 +78,8 @@ Action add_stress_command(CLI::App& app) {
         std::cout << fmt::format("kdop stress: {} variants x {} cases on {} ({}), seed {}\n\n", run->variants.size(),
                                  run->cases.size(), run_info.device, run_info.driver, o->seed)
                   << stress_table_text(*run);
-        return run->failing_cells() ? 2 : 0;
+        // 3, not 1 (failed to run) or 2 (usage): the run worked and found broken invariants.
+        return run->failing_cells() ? 3 : 0;
     };
 }
 

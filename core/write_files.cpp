@@ -32,44 +32,57 @@ std::error_code create_directories(const fs::path& dir, std::vector<fs::path>& c
         if (p == p.parent_path()) break;
     }
     for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-        if (!fs::create_directory(*it, ec) && ec) return ec;
-        created.push_back(*it);
+        // Only folders this call made are this set's to remove: another process may make one first.
+        if (fs::create_directory(*it, ec)) created.push_back(*it);
+        if (ec) return ec;
     }
     return ec;
 }
 
 } // namespace
 
-Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
+Result<void> write_atomically(const std::vector<OutputWriter>& files) {
     std::vector<fs::path> temporaries, placed, created;
-    auto abandon = [&](std::string message) {
+    auto abandon = [&](Error error) -> Result<void> {
         std::error_code ignored;
         for (const fs::path& p : temporaries) fs::remove(p, ignored);
         for (const fs::path& p : placed) fs::remove(p, ignored);
         // The folders made for the set go too (innermost first; one that holds anything else stays).
         for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, ignored);
-        return fail(std::move(message));
+        return std::unexpected(std::move(error));
     };
-    for (const OutputFile& f : files) {
+    for (const OutputWriter& f : files) {
         std::error_code ec;
         if (f.path.has_parent_path()) ec = create_directories(f.path.parent_path(), created);
         if (ec)
-            return abandon(fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message()));
-        const fs::path temporary = temporary_path_for(f.path);
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) return abandon(fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));
-        temporaries.push_back(temporary);
-        out.write(f.content.data(), static_cast<std::streamsize>(f.content.size()));
-        out.close();
-        if (!out) return abandon(fmt::format("{}: write failed (disk full?)", f.path.string()));
+            return abandon(
+                {fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message())});
+        temporaries.push_back(temporary_path_for(f.path));
+        if (auto ok = f.write(temporaries.back()); !ok) return abandon(ok.error());
     }
     for (std::size_t i = 0; i < files.size(); ++i) {
         std::error_code ec;
         fs::rename(temporaries[i], files[i].path, ec);
-        if (ec) return abandon(fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message()));
+        if (ec) return abandon({fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message())});
         placed.push_back(files[i].path);
     }
     return {};
+}
+
+Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
+    std::vector<OutputWriter> writers;
+    for (const OutputFile& f : files)
+        writers.push_back({f.path, [&f](const fs::path& temporary) -> Result<void> {
+                               std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+                               if (!out)
+                                   return fail(
+                                       fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));
+                               out.write(f.content.data(), static_cast<std::streamsize>(f.content.size()));
+                               out.close();
+                               if (!out) return fail(fmt::format("{}: write failed (disk full?)", f.path.string()));
+                               return {};
+                           }});
+    return write_atomically(writers);
 }
 
 Result<void> check_output_directory(const fs::path& dir, const std::string& option) {

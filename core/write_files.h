@@ -10,6 +10,7 @@
 #include "result.h"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,14 @@ struct OutputFile {
 };
 
 Result<void> write_files_atomically(const std::vector<OutputFile>& files);
+
+// The same for files another library writes (an image writer): `write` is given the temporary
+// path to write to and reports failure as an error that names `path`.
+struct OutputWriter {
+    std::filesystem::path path;
+    std::function<Result<void>(const std::filesystem::path& temporary)> write;
+};
+Result<void> write_atomically(const std::vector<OutputWriter>& files);
 
 // The temporary a file is written under before it is renamed to `path`: next to it, unique to
 // this process and call, keeping the extension (which tells image libraries the format).

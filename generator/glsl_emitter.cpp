@@ -242,11 +242,13 @@ ScaledAxis scale_axis(const glm::dvec3& axis) {
         if (std::abs(axis[c]) > std::abs(axis[largest])) largest = c;
     ScaledAxis scaled;
     scaled.factor = 1.0 / axis[largest];
-    for (int c = 0; c < 3; ++c) scaled.coefficients[c] = static_cast<float>(axis[c] * scaled.factor) + 0.0f; // -0 -> +0
+    // Divided rather than multiplied by the factor, which is infinite for a denormal largest component.
+    const glm::dvec3 unit_largest = axis / axis[largest];
+    for (int c = 0; c < 3; ++c) scaled.coefficients[c] = static_cast<float>(unit_largest[c]) + 0.0f; // -0 -> +0
     scaled.coefficients[largest] = 1.0f;
     // |axis| * |factor| as the length of the scaled axis, which is at most sqrt(3): no overflow for
     // an axis of 1e200, no underflow for one of 1e-200.
-    scaled.padding = static_cast<float>(kSlabPadding * glm::length(axis * scaled.factor));
+    scaled.padding = static_cast<float>(kSlabPadding * glm::length(unit_largest));
     return scaled;
 }
 
@@ -356,7 +358,9 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
         out += fmt::format("\n    // Slab {} of {}: axis {} from {}:{}", a + 1, axes, vec3_text(axis.direction),
                            origin_file_name(spec.set), axis.line);
         if (scaled.factor != 1.0)
-            out += fmt::format(", scaled by {:.6g} to {}", scaled.factor, vec3_text(scaled.coefficients));
+            out += std::isfinite(scaled.factor)
+                       ? fmt::format(", scaled by {:.6g} to {}", scaled.factor, vec3_text(scaled.coefficients))
+                       : fmt::format(", scaled to {}", vec3_text(scaled.coefficients));
         out += "\n    {\n";
         if (spec.mode == Mode::varclip)
             write_varclip_slab(out, scaled, count, spec.style, spec.numerics);

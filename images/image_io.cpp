@@ -15,7 +15,11 @@
 namespace kdop {
 
 Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
-    auto in = OIIO::ImageInput::open(path);
+    // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
+    // multiply it by alpha.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
     if (!in) {
         std::string reason = OIIO::geterror();
         return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
@@ -71,7 +75,9 @@ Expected stored(float v, OIIO::TypeDesc type) {
 // Reads the file just written back and compares it with `image`, so a writer that reports success
 // on a full disk (OpenImageIO's PNG, BMP and TGA writers do) cannot leave a short or wrong file.
 Result<void> verify_written(const std::string& file, const Image& image, const std::string& path) {
-    auto in = OIIO::ImageInput::open(file);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1); // as written: color not multiplied by alpha
+    auto in = OIIO::ImageInput::open(file, &config);
     if (!in) return fail(fmt::format("{}: written, but cannot be read back: {}", path, OIIO::geterror()));
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width != int(image.width) || spec.height != int(image.height))
@@ -84,8 +90,9 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
     const bool shared_exponent = std::string_view(in->format_name()) == "hdr";
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         const glm::vec4& p = image.pixels[i];
-        // RGBE keeps about 8 bits of the largest channel's magnitude for all three.
-        const float rgbe = std::max({std::abs(p.r), std::abs(p.g), std::abs(p.b)}) / 64.0f;
+        // RGBE keeps about 8 bits of the largest channel's magnitude for all three, and no pixel
+        // dimmer than about 1e-32.
+        const float rgbe = std::max({std::abs(p.r), std::abs(p.g), std::abs(p.b)}) / 64.0f + 1e-32f;
         for (int c = 0; c < channels; ++c) {
             const float read = data[i * channels + c];
             const Expected e = stored(p[c], spec.format);
@@ -93,8 +100,8 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
             const bool same =
                 std::isnan(e.value) ? std::isnan(read) : std::abs(read - e.value) <= tolerance || read == e.value;
             if (!same)
-                return fail(fmt::format("{}: written, but pixel ({}, {}) reads back as {} instead of {} (disk full?)",
-                                        path, i % image.width, i / image.width, read, e.value));
+                return fail(fmt::format("{}: written, but pixel ({}, {}) reads back as {} instead of {}", path,
+                                        i % image.width, i / image.width, read, e.value));
         }
     }
     return {};
@@ -102,17 +109,27 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
 
 } // namespace
 
-Result<void> write_image(const std::string& path, const Image& image) {
-    namespace fs = std::filesystem;
-    fs::path final_path(path);
-    // The temporary keeps the extension, which tells OpenImageIO the format.
-    const fs::path temporary = temporary_path_for(final_path);
-    auto out = OIIO::ImageOutput::create(temporary.string());
-    if (!out) return fail(fmt::format("{}: no image format for this extension: {}", path, OIIO::geterror()));
+namespace {
 
-    if (is_lossy(out->format_name()))
+// Whether Radiance HDR (RGBE: a shared exponent, no sign) can hold every RGB value of `image`.
+bool fits_rgbe(const Image& image) {
+    for (const glm::vec4& p : image.pixels)
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(p[c]) || p[c] < 0) return false;
+    return true;
+}
+
+// Writes `image` to `file` (a temporary) and checks it; errors name `path`, the file's final name.
+Result<void> write_checked(const std::filesystem::path& file, const std::string& path, const Image& image) {
+    // The temporary keeps the extension, which tells OpenImageIO the format.
+    auto out = OIIO::ImageOutput::create(file.string());
+    if (!out) return fail(fmt::format("{}: no image format for this extension: {}", path, OIIO::geterror()));
+    const std::string_view format = out->format_name();
+    if (is_lossy(format))
         return fail(fmt::format("{}: {} is lossy and would not keep the values; write EXR (or PNG for a picture)", path,
-                                out->format_name()));
+                                format));
+    if (format == "hdr" && !fits_rgbe(image))
+        return fail(fmt::format("{}: Radiance HDR cannot hold negative or non-finite values; write EXR", path));
 
     // RGBA where the format has alpha, else RGB (Radiance HDR stores three channels only).
     const int channels = out->supports("alpha") ? 4 : 3;
@@ -121,50 +138,30 @@ Result<void> write_image(const std::string& path, const Image& image) {
     // OpenImageIO stamps EXR files with the time of writing unless told a time. The time is not an
     // input, so, as reproducible builds do, record the epoch: same pixels, same bytes.
     spec.attribute("DateTime", "1970:01:01 00:00:00");
-    if (!out->open(temporary.string(), spec)) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    // Color and alpha are stored as they are: PNG and TGA writers would otherwise divide color by
+    // alpha (and the readers multiply it back), which changes any pixel that is not opaque.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (!out->open(file.string(), spec)) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
-    std::error_code ec;
-    if (!ok) {
-        fs::remove(temporary, ec);
-        return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
-    }
-    if (auto verified = verify_written(temporary.string(), image, path); !verified) {
-        fs::remove(temporary, ec);
-        return verified;
-    }
-    fs::rename(temporary, final_path, ec);
-    if (ec) {
-        const std::string reason = ec.message(); // before remove() reuses ec
-        fs::remove(temporary, ec);
-        return fail(fmt::format("{}: cannot move into place: {}", path, reason));
-    }
-    return {};
+    if (!ok) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    return verify_written(file.string(), image, path);
+}
+
+} // namespace
+
+Result<void> write_image(const std::string& path, const Image& image) {
+    return write_atomically(
+        {{path, [&](const std::filesystem::path& file) { return write_checked(file, path, image); }}});
 }
 
 Result<void> write_images(const std::vector<ImageFile>& files) {
-    namespace fs = std::filesystem;
-    std::vector<fs::path> temporaries;
-    auto abandon = [&](Error error) -> Result<void> {
-        std::error_code ignored;
-        for (const fs::path& p : temporaries) fs::remove(p, ignored);
-        return std::unexpected(std::move(error));
-    };
-    for (const ImageFile& f : files) {
-        std::error_code ec;
-        if (f.path.has_parent_path()) fs::create_directories(f.path.parent_path(), ec);
-        if (ec)
-            return abandon(
-                {fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message())});
-        temporaries.push_back(temporary_path_for(f.path));
-        if (auto ok = write_image(temporaries.back().string(), *f.image); !ok) return abandon(ok.error());
-    }
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        std::error_code ec;
-        fs::rename(temporaries[i], files[i].path, ec);
-        if (ec) return abandon({fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message())});
-    }
-    return {};
+    std::vector<OutputWriter> writers;
+    for (const ImageFile& f : files)
+        writers.push_back({f.path, [&f](const std::filesystem::path& file) {
+                               return write_checked(file, f.path.string(), *f.image);
+                           }});
+    return write_atomically(writers);
 }
 
 } // namespace kdop

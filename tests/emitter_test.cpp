@@ -129,14 +129,16 @@ TEST(Emitter, FileNamesCannotEndTheCommentsTheyAreQuotedIn) {
 // as in the unrolled one.
 TEST(Emitter, AxesFarFromUnitLengthReachEveryFormScaled) {
     for (const char* axes :
-         {"1e-50 2e-50 3e-50\n-1e-50 1e-50 0\n0 0 1e-50\n", "1e39 2e39 3e39\n-1e39 1e39 0\n0 0 1e39\n"}) {
+         {"1e-50 2e-50 3e-50\n-1e-50 1e-50 0\n0 0 1e-50\n", "1e39 2e39 3e39\n-1e39 1e39 0\n0 0 1e39\n",
+          "1 0 0\n0 1 0\n0 0 1e-310\n2e-310 1e-310 0\n"}) { // and denormal components
         auto set = parse_axis_set(std::string("name: far\nprovenance: test\n") + axes, "far.axes");
         ASSERT_TRUE(set) << set.error().message;
         for (Form form : {Form::unrolled, Form::loop}) {
             VariantSpec spec{*set, Mode::clip, Neighborhood::n9, form};
             const std::string text = emit_function(spec);
             EXPECT_EQ(text.find("vec3(0.0, 0.0, 0.0)"), std::string::npos) << axes << to_string(form) << text;
-            EXPECT_EQ(text.find("inf"), std::string::npos) << axes << to_string(form);
+            EXPECT_EQ(text.find("inf"), std::string::npos) << axes << to_string(form) << text;
+            EXPECT_EQ(text.find("nan"), std::string::npos) << axes << to_string(form) << text;
             auto built = build_variant(spec);
             EXPECT_TRUE(built) << axes << to_string(form) << ": " << built.error().message;
         }

@@ -84,6 +84,38 @@ TEST(ImageIo, WhatIsWrittenReadsBackAsWritten) {
     }
 }
 
+// Transparency, negative and non-finite values survive where the format can hold them: color is
+// stored unassociated (not divided by alpha), so PNG and TGA give back what was written, clamped;
+// EXR and TIFF give back everything, NaN and infinity included.
+TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
+    test::TempDir dir;
+    Image image(4, 1);
+    image.pixels = {{0.5f, 0.25f, 0.75f, 0.0f},
+                    {0.8f, 0.6f, 0.4f, 0.5f},
+                    {-2.0f, 3e4f, 0.1f, 1.0f},
+                    {NAN, INFINITY, -INFINITY, 1.0f}};
+    for (const char* ext : {"exr", "tif", "png", "tga"}) {
+        const std::string path = (dir / (std::string("alpha.") + ext)).string();
+        auto written = write_image(path, image);
+        ASSERT_TRUE(written) << ext << ": " << written.error().message;
+        auto read = read_image(path);
+        ASSERT_TRUE(read) << read.error().message;
+        const bool floats = std::string(ext) == "exr" || std::string(ext) == "tif";
+        for (std::size_t i = 0; i < 2; ++i) // the transparent pixels keep their color
+            for (int c = 0; c < 4; ++c)
+                EXPECT_NEAR(read->pixels[i][c], image.pixels[i][c], floats ? 0.0 : 0.51 / 255) << ext << " " << i;
+        if (floats) {
+            EXPECT_EQ(read->pixels[2], image.pixels[2]) << ext;
+            EXPECT_TRUE(std::isnan(read->pixels[3].r)) << ext;
+            EXPECT_EQ(read->pixels[3].g, INFINITY) << ext;
+        }
+    }
+    auto hdr = write_image((dir / "signed.hdr").string(), image);
+    ASSERT_FALSE(hdr);
+    EXPECT_NE(hdr.error().message.find("Radiance HDR cannot hold negative or non-finite values"), std::string::npos)
+        << hdr.error().message;
+}
+
 TEST(ImageIo, LossyFormatsAreRefusedBeforeAnythingIsWritten) {
     test::TempDir dir;
     auto written = write_image((dir / "out.jpg").string(), noise(8, 1.0f));

@@ -8,6 +8,7 @@
 #include "variant_spec.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,17 @@ void require(bool condition, const char* what, const std::string& text) {
     if (condition) return;
     std::fprintf(stderr, "axis_set_fuzzer: %s\n%s\n", what, text.c_str());
     std::abort();
+}
+
+// Whether `word` stands in `code` as a token of its own ("inf", not the "inf" of a set named "tinf").
+bool has_token(std::string_view code, std::string_view word) {
+    const auto identifier = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = code.find(word); at != std::string_view::npos; at = code.find(word, at + 1)) {
+        const bool starts = at == 0 || !identifier(code[at - 1]);
+        const bool ends = at + word.size() == code.size() || !identifier(code[at + word.size()]);
+        if (starts && ends) return true;
+    }
+    return false;
 }
 
 bool has_control_bytes(std::string_view text, bool allow_newlines) {
@@ -52,7 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                     const std::size_t end = std::min(glsl.find('\n', start), glsl.size());
                     const std::string_view line = std::string_view(glsl).substr(start, end - start);
                     const std::string_view code = line.substr(0, line.find("//"));
-                    require(code.find("inf") == std::string_view::npos && code.find("nan") == std::string_view::npos,
+                    require(!has_token(code, "inf") && !has_token(code, "nan") && !has_token(code, "-nan"),
                             "a non-finite literal in generated code", glsl);
                     require(code.find("vec3(0.0, 0.0, 0.0)") == std::string_view::npos, "an axis that became zero",
                             glsl);
