@@ -1,6 +1,7 @@
 #!/bin/sh
 # Installs the Debian 12 packages kdop needs to build, test and run, skipping those already
-# installed. Run as root (the README's Quick start calls it first).
+# installed. Run as root (the README's Quick start calls it first). Given package names, installs
+# those instead (CI's sanitizer stage uses it for clang and libc++).
 set -eu
 
 # glslang-tools: Debian 12's glslang CMake package refers to /usr/bin/glslangValidator, so
@@ -20,6 +21,10 @@ packages="
   libgtest-dev valgrind gnuplot-nox clang-format
   colobot-common-textures
 "
+
+if [ "$#" -gt 0 ]; then
+  packages="$*"
+fi
 
 missing=""
 for package in $packages; do

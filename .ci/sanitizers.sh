@@ -1,22 +1,11 @@
 #!/bin/sh
 # CI after the Quick start's tests: the fast tests under AddressSanitizer and
-# UndefinedBehaviorSanitizer, and the libFuzzer targets on their committed corpora for a bounded
-# time. Any sanitizer report or fuzzing finding fails the run. Run from the repository root as root
-# (it installs clang and libc++ for the fuzzers when they are missing).
+# UndefinedBehaviorSanitizer, and the libFuzzer targets on their committed corpora for a fixed
+# number of inputs. Any sanitizer report or fuzzing finding fails the run. Run from the repository
+# root as root (it installs clang and libc++ for the fuzzers when they are missing).
 set -eu
 
-packages="clang-16 libclang-rt-16-dev libc++-16-dev libc++abi-16-dev"
-missing=""
-for package in $packages; do
-  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing="$missing $package"
-done
-if [ -n "$missing" ]; then
-  echo "sanitizers.sh: installing$missing"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  # shellcheck disable=SC2086 # word splitting of the package list is intended
-  apt-get install -y -qq --no-install-recommends $missing
-fi
+./install-deps.sh clang-16 libclang-rt-16-dev libc++-16-dev libc++abi-16-dev
 
 # Debian's glslang is built without RTTI, so the vptr check cannot run; every other UBSan check
 # stops the test that trips it.
