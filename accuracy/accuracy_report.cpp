@@ -3,6 +3,7 @@
 #include "builtin_sets.h"
 #include "csv_reader.h"
 #include "gnuplot.h"
+#include "variant_columns.h"
 
 #include <fmt/format.h>
 
@@ -57,62 +58,54 @@ const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& fami
 } // namespace
 
 Table accuracy_table(const AccuracyRun& run) {
-    Table table({{"variant", "", Shown::text},
-                 {"axis_set", "", Shown::text},
-                 {"mode", "", Shown::text},
-                 {"neighborhood", "", Shown::text},
-                 {"k", "", Shown::integer},
-                 {"rgb_axes", "", Shown::flag},
-                 {"float_ops", "", Shown::integer},
-                 {"family", "", Shown::text},
-                 {"image", "", Shown::text},
-                 {"pixels", "", Shown::integer},
-                 {"outside_hull_rate", "", Shown::percent},
-                 {"mean_dist", "S"},
-                 {"p95_dist", "S"},
-                 {"max_dist", "S"},
-                 {"false_accept_rate", "", Shown::percent},
-                 {"ref_mean_dist", "S"},
-                 {"ref_p95_dist", "S"},
-                 {"ref_max_dist", "S"},
-                 {"ref_false_accept_rate", "", Shown::percent},
-                 {"gpu_ref_max_diff", "S"},
-                 {"looser_than_aabb", "", Shown::percent},
-                 {"ref_looser_than_aabb", "", Shown::percent},
-                 {"max_excess_over_aabb", "S"},
-                 {"ref_max_excess_over_aabb", "S"},
-                 {"volume_ratio_median"},
-                 {"volume_ratio_mean"},
-                 {"volume_pixels", "", Shown::integer}});
+    Table table(joined(variant_columns(), {{"k", "", Shown::integer},
+                                           {"rgb_axes", "", Shown::flag},
+                                           {"float_ops", "", Shown::integer},
+                                           {"family", "", Shown::text},
+                                           {"image", "", Shown::text},
+                                           {"pixels", "", Shown::integer},
+                                           {"outside_hull_rate", "", Shown::percent},
+                                           {"mean_dist", "S"},
+                                           {"p95_dist", "S"},
+                                           {"max_dist", "S"},
+                                           {"false_accept_rate", "", Shown::percent},
+                                           {"ref_mean_dist", "S"},
+                                           {"ref_p95_dist", "S"},
+                                           {"ref_max_dist", "S"},
+                                           {"ref_false_accept_rate", "", Shown::percent},
+                                           {"gpu_ref_max_diff", "S"},
+                                           {"looser_than_aabb", "", Shown::percent},
+                                           {"ref_looser_than_aabb", "", Shown::percent},
+                                           {"max_excess_over_aabb", "S"},
+                                           {"ref_max_excess_over_aabb", "S"},
+                                           {"volume_ratio_median"},
+                                           {"volume_ratio_mean"},
+                                           {"volume_pixels", "", Shown::integer}}));
     for (const AccuracyRow& r : run.rows) {
         const ClipAccuracy &g = r.gpu, &c = r.reference;
-        table.add({r.key.name(),
-                   r.key.set,
-                   to_string(r.key.mode),
-                   to_string(r.key.neighborhood),
-                   std::int64_t(r.k),
-                   r.rgb_axes,
-                   std::int64_t(r.float_ops),
-                   r.family,
-                   r.image,
-                   std::int64_t(g.pixels),
-                   maybe(g.outside_rate()),
-                   maybe(g.mean_dist),
-                   maybe(g.p95_dist),
-                   maybe(g.max_dist),
-                   maybe(g.false_accept_rate()),
-                   maybe(c.mean_dist),
-                   maybe(c.p95_dist),
-                   maybe(c.max_dist),
-                   maybe(c.false_accept_rate()),
-                   maybe(r.gpu_reference_max),
-                   maybe(r.vs_aabb.share),
-                   maybe(r.reference_vs_aabb.share),
-                   maybe(r.vs_aabb.largest),
-                   maybe(r.reference_vs_aabb.largest),
-                   maybe(r.volume.median),
-                   maybe(r.volume.mean),
-                   std::int64_t(r.volume.pixels)});
+        table.add(joined(variant_values(r.key), {std::int64_t(r.k),
+                                                 r.rgb_axes,
+                                                 std::int64_t(r.float_ops),
+                                                 r.family,
+                                                 r.image,
+                                                 std::int64_t(g.pixels),
+                                                 maybe(g.outside_rate()),
+                                                 maybe(g.mean_dist),
+                                                 maybe(g.p95_dist),
+                                                 maybe(g.max_dist),
+                                                 maybe(g.false_accept_rate()),
+                                                 maybe(c.mean_dist),
+                                                 maybe(c.p95_dist),
+                                                 maybe(c.max_dist),
+                                                 maybe(c.false_accept_rate()),
+                                                 maybe(r.gpu_reference_max),
+                                                 maybe(r.vs_aabb.share),
+                                                 maybe(r.reference_vs_aabb.share),
+                                                 maybe(r.vs_aabb.largest),
+                                                 maybe(r.reference_vs_aabb.largest),
+                                                 maybe(r.volume.median),
+                                                 maybe(r.volume.mean),
+                                                 std::int64_t(r.volume.pixels)}));
     }
     return table;
 }
@@ -205,28 +198,26 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<VariantK
 }
 
 Table trade_table(const std::vector<TradeRow>& rows) {
-    Table table({{"family", "", Shown::text},
-                 {"variant", "", Shown::text},
-                 {"axis_set", "", Shown::text},
-                 {"mode", "", Shown::text},
-                 {"neighborhood", "", Shown::text},
-                 {"k", "", Shown::integer},
-                 {"float_ops", "", Shown::integer, 0, "float ops"},
-                 {"marginal_instr_per_px", "instr/px", Shown::significant, 4, "lavapipe marginal"},
-                 {"marginal_ms", "ms", Shown::fixed, 2, "lavapipe marginal"},
-                 {"mean_dist", "S", Shown::significant, 3, "mean dist"},
-                 {"p95_dist", "S", Shown::significant, 3, "p95 dist"},
-                 {"max_dist", "S", Shown::significant, 3, "max dist"},
-                 {"false_accept_rate", "", Shown::percent, 1, "false accept"},
-                 {"volume_ratio", "", Shown::significant, 3, "k-DOP / hull volume"},
-                 {"front_float_ops", "", Shown::flag, 0, "front (float ops)"},
-                 {"front_lavapipe", "", Shown::flag, 0, "front (lavapipe)"}});
+    Table table(joined(
+        {{"family", "", Shown::text}},
+        joined(variant_columns(), {{"k", "", Shown::integer},
+                                   {"float_ops", "", Shown::integer, 0, "float ops"},
+                                   {"marginal_instr_per_px", "instr/px", Shown::significant, 4, "lavapipe marginal"},
+                                   {"marginal_ms", "ms", Shown::fixed, 2, "lavapipe marginal"},
+                                   {"mean_dist", "S", Shown::significant, 3, "mean dist"},
+                                   {"p95_dist", "S", Shown::significant, 3, "p95 dist"},
+                                   {"max_dist", "S", Shown::significant, 3, "max dist"},
+                                   {"false_accept_rate", "", Shown::percent, 1, "false accept"},
+                                   {"volume_ratio", "", Shown::significant, 3, "k-DOP / hull volume"},
+                                   {"front_float_ops", "", Shown::flag, 0, "front (float ops)"},
+                                   {"front_lavapipe", "", Shown::flag, 0, "front (lavapipe)"}})));
     for (const TradeRow& r : rows)
-        table.add({r.family, r.key.name(), r.key.set, to_string(r.key.mode), to_string(r.key.neighborhood),
-                   std::int64_t(r.k), maybe(r.float_ops), maybe(r.lavapipe.marginal_instr_per_px),
-                   maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist), maybe(r.p95_dist), maybe(r.max_dist),
-                   maybe(r.false_accept_rate), maybe(r.volume_ratio), r.front_float_ops,
-                   std::isfinite(lavapipe_cost(r)) ? Value(r.front_lavapipe) : Value()});
+        table.add(joined(
+            {r.family}, joined(variant_values(r.key),
+                               {std::int64_t(r.k), maybe(r.float_ops), maybe(r.lavapipe.marginal_instr_per_px),
+                                maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist), maybe(r.p95_dist), maybe(r.max_dist),
+                                maybe(r.false_accept_rate), maybe(r.volume_ratio), r.front_float_ops,
+                                std::isfinite(lavapipe_cost(r)) ? Value(r.front_lavapipe) : Value()})));
     return table;
 }
 

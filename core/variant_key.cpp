@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <initializer_list>
+
 namespace kdop {
 
 std::string VariantKey::name() const {
@@ -32,28 +34,25 @@ VariantKey VariantKey::with_set(std::string other) const {
 VariantKey gather_key(Neighborhood n) { return {"", Mode::gather, n, Form::unrolled, Numerics::hardened}; }
 VariantKey copy_key() { return {"", Mode::copy, Neighborhood::n9, Form::unrolled, Numerics::hardened}; }
 
-std::optional<Mode> parse_mode(std::string_view s) {
-    for (Mode m : {Mode::clip, Mode::varclip})
-        if (s == to_string(m)) return m;
+namespace {
+
+// The choice among `all` whose name (to_string) is `s`.
+template <class T>
+std::optional<T> parse_choice(std::string_view s, std::initializer_list<T> all) {
+    for (T choice : all)
+        if (s == to_string(choice)) return choice;
     return std::nullopt;
 }
 
+} // namespace
+
+std::optional<Mode> parse_mode(std::string_view s) { return parse_choice(s, {Mode::clip, Mode::varclip}); }
 std::optional<Neighborhood> parse_neighborhood(std::string_view s) {
-    for (Neighborhood n : {Neighborhood::n9, Neighborhood::n5})
-        if (s == to_string(n)) return n;
-    return std::nullopt;
+    return parse_choice(s, {Neighborhood::n9, Neighborhood::n5});
 }
-
-std::optional<Form> parse_form(std::string_view s) {
-    for (Form f : {Form::unrolled, Form::loop})
-        if (s == to_string(f)) return f;
-    return std::nullopt;
-}
-
+std::optional<Form> parse_form(std::string_view s) { return parse_choice(s, {Form::unrolled, Form::loop}); }
 std::optional<Numerics> parse_numerics(std::string_view s) {
-    for (Numerics n : {Numerics::hardened, Numerics::paper})
-        if (s == to_string(n)) return n;
-    return std::nullopt;
+    return parse_choice(s, {Numerics::hardened, Numerics::paper});
 }
 
 bool is_valid_set_name(std::string_view name) {
