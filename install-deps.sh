@@ -1,7 +1,7 @@
 #!/bin/sh
 # Installs the Debian 12 packages kdop needs to build, test and run, skipping those already
 # installed. Run as root (the README's Quick start calls it first). Given package names, installs
-# those instead (CI's sanitizer stage uses it for clang and libc++).
+# those instead (CI's sanitizer stage uses it for clang and LLVM).
 set -eu
 
 # glslang-tools: Debian 12's glslang CMake package refers to /usr/bin/glslangValidator, so

@@ -14,6 +14,28 @@
 
 namespace kdop {
 
+namespace {
+
+// An error from OpenImageIO (or the codec library under it) as one line of text: it may span lines
+// ("PNG read error: ...\nPNG library error") and, from a damaged file, hold control bytes, which
+// are shown as \xNN rather than sent to the terminal.
+std::string library_message(std::string_view text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+    std::string out;
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (c == '\n')
+            out += "; ";
+        else if (c < 0x20 || c == 0x7f)
+            out += fmt::format("\\x{:02x}", c);
+        else
+            out += ch;
+    }
+    return out;
+}
+
+} // namespace
+
 Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
     // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
     // multiply it by alpha.
@@ -21,7 +43,7 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) {
-        std::string reason = OIIO::geterror();
+        const std::string reason = library_message(OIIO::geterror());
         return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
     }
     const OIIO::ImageSpec& spec = in->spec();
@@ -41,7 +63,7 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
         return std::unexpected(ok.error());
     std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
-        return fail(fmt::format("{}: cannot read pixels: {}", path, in->geterror()));
+        return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in->geterror())));
 
     Image image(spec.width, spec.height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
@@ -78,7 +100,8 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1); // as written: color not multiplied by alpha
     auto in = OIIO::ImageInput::open(file, &config);
-    if (!in) return fail(fmt::format("{}: written, but cannot be read back: {}", path, OIIO::geterror()));
+    if (!in)
+        return fail(fmt::format("{}: written, but cannot be read back: {}", path, library_message(OIIO::geterror())));
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width != int(image.width) || spec.height != int(image.height))
         return fail(
@@ -86,7 +109,8 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
     const int channels = std::min(spec.nchannels, 4);
     std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
-        return fail(fmt::format("{}: written, but does not read back whole (disk full?): {}", path, in->geterror()));
+        return fail(fmt::format("{}: written, but does not read back whole (disk full?): {}", path,
+                                library_message(in->geterror())));
     const bool shared_exponent = std::string_view(in->format_name()) == "hdr";
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         const glm::vec4& p = image.pixels[i];
@@ -123,7 +147,8 @@ bool fits_rgbe(const Image& image) {
 Result<void> write_checked(const std::filesystem::path& file, const std::string& path, const Image& image) {
     // The temporary keeps the extension, which tells OpenImageIO the format.
     auto out = OIIO::ImageOutput::create(file.string());
-    if (!out) return fail(fmt::format("{}: no image format for this extension: {}", path, OIIO::geterror()));
+    if (!out)
+        return fail(fmt::format("{}: no image format for this extension: {}", path, library_message(OIIO::geterror())));
     const std::string_view format = out->format_name();
     if (is_lossy(format))
         return fail(fmt::format("{}: {} is lossy and would not keep the values; write EXR (or PNG for a picture)", path,
@@ -141,10 +166,11 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     // Color and alpha are stored as they are: PNG and TGA writers would otherwise divide color by
     // alpha (and the readers multiply it back), which changes any pixel that is not opaque.
     spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (!out->open(file.string(), spec)) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    if (!out->open(file.string(), spec))
+        return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
-    if (!ok) return fail(fmt::format("{}: cannot write: {}", path, out->geterror()));
+    if (!ok) return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
     return verify_written(file.string(), image, path);
 }
 

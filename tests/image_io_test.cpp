@@ -46,8 +46,9 @@ TEST(ImageIo, AFullDiskIsAnErrorAndLeavesNoFile) {
         const fs::path out = disk.path / (std::string("out.") + ext);
         auto written = write_image(out.string(), image);
         EXPECT_FALSE(written) << ext << " reported success on a full disk";
-        if (!written)
+        if (!written) {
             EXPECT_NE(written.error().message.find(out.string()), std::string::npos) << written.error().message;
+        }
         EXPECT_TRUE(fs::is_empty(disk.path)) << ext << " left a file behind";
     }
 }
@@ -114,6 +115,16 @@ TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
     ASSERT_FALSE(hdr);
     EXPECT_NE(hdr.error().message.find("Radiance HDR cannot hold negative or non-finite values"), std::string::npos)
         << hdr.error().message;
+}
+
+// The image fuzzer's first finding: libpng's error for a damaged stream spans two lines.
+TEST(ImageIo, AReadersErrorIsOneLineOfPrintableText) {
+    auto image = read_image(test::data_path("damaged-idat.png"));
+    ASSERT_FALSE(image);
+    const std::string& message = image.error().message;
+    EXPECT_NE(message.find("damaged-idat.png: cannot read pixels: PNG read error"), std::string::npos) << message;
+    EXPECT_TRUE(std::none_of(message.begin(), message.end(), [](char c) { return (unsigned char)c < 0x20; }))
+        << message;
 }
 
 TEST(ImageIo, LossyFormatsAreRefusedBeforeAnythingIsWritten) {

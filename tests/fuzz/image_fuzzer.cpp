@@ -1,0 +1,84 @@
+// libFuzzer target: any bytes as an image file, through kdop's read_image (OpenImageIO picks the
+// reader from the content). Whatever is refused must be refused with a message that names the file
+// and holds no raw control bytes; whatever is read must be within the side limit it was given, and
+// must write to EXR and read back bit for bit (NaN and infinity included), so nothing read is
+// something kdop cannot keep. Any violation aborts, which libFuzzer reports; so does any sanitizer
+// report or an allocation beyond libFuzzer's limit (a header claiming more than it holds).
+// The corpus: 4x4 images in each format kdop reads (oiiotool --pattern ... -d uint8|uint16|half|float)
+// and the two oversized headers of tests/data.
+#include "image_io.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#include <unistd.h>
+
+namespace {
+
+// A device's side limit, small enough that any image within it decodes in libFuzzer's memory limit.
+constexpr std::uint32_t kMaxSide = 1024;
+
+void require(bool condition, const char* what, const std::string& text) {
+    if (condition) return;
+    std::fprintf(stderr, "image_fuzzer: %s\n%s\n", what, text.c_str());
+    std::abort();
+}
+
+bool has_control_bytes(std::string_view text) {
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && c != '\t') || c == 0x7f) return true;
+    }
+    return false;
+}
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
+
+// A folder of this process's own, removed at exit: the input is written there under a name with no
+// extension, so the reader is chosen by what the bytes are.
+struct Scratch {
+    std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("kdop-image-fuzzer-" + std::to_string(::getpid()));
+    Scratch() { std::filesystem::create_directories(folder); }
+    ~Scratch() { std::filesystem::remove_all(folder); }
+};
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static const Scratch scratch;
+    const std::string input = (scratch.folder / "input").string();
+    std::ofstream(input, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), size);
+
+    auto image = kdop::read_image(input, kMaxSide);
+    if (!image) {
+        const std::string& message = image.error().message;
+        require(message.rfind(input, 0) == 0, "an error that does not name the file", message);
+        require(!has_control_bytes(message), "an error that echoes control bytes", message);
+        return 0;
+    }
+    const std::string shape = std::to_string(image->width) + "x" + std::to_string(image->height);
+    require(image->width > 0 && image->height > 0 && image->width <= kMaxSide && image->height <= kMaxSide,
+            "an image read beyond the side limit", shape);
+    require(image->pixels.size() == std::size_t(image->width) * image->height, "pixels that do not fill the image",
+            shape);
+
+    const std::string copy = (scratch.folder / "copy.exr").string();
+    auto written = kdop::write_image(copy, *image);
+    require(written.has_value(), "an image read that cannot be written as EXR",
+            written ? shape : written.error().message);
+    auto back = kdop::read_image(copy);
+    require(back.has_value(), "an EXR written that cannot be read", back ? shape : back.error().message);
+    require(back->width == image->width && back->height == image->height, "an EXR read back in another shape", shape);
+    for (std::size_t i = 0; i < image->pixels.size(); ++i)
+        for (int c = 0; c < 4; ++c)
+            require(same_bits(back->pixels[i][c], image->pixels[i][c]), "an EXR read back with other values", shape);
+    return 0;
+}
