@@ -34,9 +34,7 @@ std::string library_message(std::string_view text) {
     return out;
 }
 
-} // namespace
-
-Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
+Result<Image> read_checked(const std::string& path, std::uint32_t max_side) {
     // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
     // multiply it by alpha.
     OIIO::ImageSpec config;
@@ -69,6 +67,19 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < channels; ++c) image.pixels[i][c] = data[i * channels + c];
     return image;
+}
+
+} // namespace
+
+Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
+    // Some of OpenImageIO's readers throw on a damaged file instead of reporting it (its BMP reader
+    // lets std::length_error out of open() for an RLE image claiming billions of rows; found by
+    // tests/fuzz/image_fuzzer.cpp), so that is a read error of this file too.
+    try {
+        return read_checked(path, max_side);
+    } catch (const std::exception& e) {
+        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
+    }
 }
 
 namespace {

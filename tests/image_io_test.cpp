@@ -127,6 +127,15 @@ TEST(ImageIo, AReadersErrorIsOneLineOfPrintableText) {
         << message;
 }
 
+// The image fuzzer's second finding: OpenImageIO's BMP reader throws std::length_error from open()
+// for this 58-byte RLE file, which reached the command line as "kdop: vector::_M_default_append".
+TEST(ImageIo, AReaderThatThrowsIsAnErrorNamingTheFile) {
+    auto image = read_image(test::data_path("bmp-rle-overrun.bmp"));
+    ASSERT_FALSE(image);
+    EXPECT_NE(image.error().message.find("bmp-rle-overrun.bmp: cannot read image: "), std::string::npos)
+        << image.error().message;
+}
+
 TEST(ImageIo, LossyFormatsAreRefusedBeforeAnythingIsWritten) {
     test::TempDir dir;
     auto written = write_image((dir / "out.jpg").string(), noise(8, 1.0f));

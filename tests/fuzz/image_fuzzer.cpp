@@ -8,6 +8,8 @@
 // and the two oversized headers of tests/data.
 #include "image_io.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -42,10 +44,11 @@ bool has_control_bytes(std::string_view text) {
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
 
 // A folder of this process's own, removed at exit: the input is written there under a name with no
-// extension, so the reader is chosen by what the bytes are.
+// extension, so the reader is chosen by what the bytes are. The process id is padded so the path,
+// which the messages quote, has the same length in every run: the same inputs from the same seed.
 struct Scratch {
     std::filesystem::path folder =
-        std::filesystem::temp_directory_path() / ("kdop-image-fuzzer-" + std::to_string(::getpid()));
+        std::filesystem::temp_directory_path() / fmt::format("kdop-image-fuzzer-{:010}", ::getpid());
     Scratch() { std::filesystem::create_directories(folder); }
     ~Scratch() { std::filesystem::remove_all(folder); }
 };
