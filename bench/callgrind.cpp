@@ -31,7 +31,9 @@ Result<double> measure_one(const CallgrindSetup& setup, const std::filesystem::p
                                   std::to_string(setup.size)};
     if (!kernel.spirv.empty()) argv.insert(argv.end(), {"--spirv", kernel.spirv.string()});
     if (!setup.device.empty()) argv.insert(argv.end(), {"--device", setup.device});
-    auto status = run_program(argv, log, {"LP_NUM_THREADS=0"});
+    // Without Mesa's shader cache: on a miss its writer thread runs inside the counted dispatch and
+    // adds tens of instructions per pixel, so the count would depend on what ran before.
+    auto status = run_program(argv, log, {"LP_NUM_THREADS=0", "MESA_SHADER_CACHE_DISABLE=true"});
     if (!status) return std::unexpected(status.error());
     if (*status != 0)
         return fail(fmt::format("callgrind run of {} exited with {}:{}", variant, *status, log_tail(log, 8)));

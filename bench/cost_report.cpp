@@ -67,25 +67,25 @@ Table sweep_table(const SweepResult& s) {
     return table;
 }
 
-constexpr const char* kDerivation = R"(The fewest scalar float operations kdop's formulation needs, from each axis's
-nonzero components (`generator/analytic_cost.h`; a multiply-add counts 1, as in the float-op count).
-Per slab, for an axis with m nonzero components and N neighborhood colors (the pixel's own among them):
+constexpr const char* kDerivation = R"(A lower bound on the scalar float operations of kdop's hardened clip, from each
+axis's nonzero components (`generator/analytic_cost.h`, where the derivation is; a multiply-add counts 1,
+as in the float-op count; lavapipe has no fused multiply-add, so there each is two instructions). Each
+slab spans the neighbors' extent joined with a margin around the current color, which stands for the
+center pixel; the ray leaves through the plane it heads for. For an axis with m nonzero components and
+N neighborhood colors, in whichever frame is cheaper:
 
-| part | clip | varclip | why |
-|---|---|---|---|
-| projections | (N + 1)(m − 1) | (N + 1)(m − 1) | the N colors and the ray direction; the axis is scaled so one component is exactly 1, so a projection is m − 1 multiply-adds; the pixel's projection is the ray origin's |
-| extent | 2(N − 1) | 2N + 9 | min and max of N values; for varclip: the mean (N − 1 adds, a scale), the second moment (N multiply-adds), the variance (a scale, a multiply-add, a scale), its clamp at 0 and sqrt (2), mean ∓ γσ (2), widening to contain the origin (2) |
-| dilation | 2 | 2 | lo − padding · scale, hi + padding · scale (a multiply-add each) |
-| exit | 6 | 5 | reciprocal of the direction's projection, compare and select of the plane the ray heads for, minus the origin (clip only), times the reciprocal, min into t |
+| part | relative frame (colors − current) | absolute frame |
+|---|---|---|
+| per pixel | 18 + 3(N − 1) | 18 |
+| clip slab | N(m − 1) + 2(N − 1) + 3 | (N + 1)(m − 1) + 2N + 3 |
+| varclip (always relative) | per pixel 18 + 3(N − 1) + 11, per slab N(m − 1) + 2N + 11 | |
 
-Per pixel: the ray direction (3); the padding scale, max(1, |current| channels) (6); whether the history
-is usable, |dir|₁ + |current|₁ ≤ FLT_MAX (9); current + max(t, 0) · dir (4). For varclip also −γ (1),
-its power-of-two-scaled frame (10) and the N colors relative to current (3N multiply-adds).
-
-The emitted clips spend exactly 2 operations per slab more than this (a test holds them to it): their running
-min and max start from ±FLT_MAX. The formulation does not need those, but with them lavapipe's
-compiled code drops its NaN handling down the chain, which measured about 8% fewer instructions per pixel
-for dop32 than starting from the first projection.)";
+Per pixel: the ray direction (3); whether the history is usable, |dir|₁ + |current|₁ ≤ FLT_MAX (12);
+current + t · dir (3). Per clip slab: the projections of the N − 1 other neighbors and of the ray (and,
+absolute, of the current color); min and max with the margin; the exit (a select, a division, a min).
+The emitted clips spend exactly this in their frame (a test holds them to it), plus, in the absolute
+frame, 2 per slab for running min and max that start from ±FLT_MAX: with them lavapipe's compiled code
+drops its NaN handling down the chain.)";
 
 std::string run_ms(double ms, double pixels) {
     return fmt::format("{:.2f} ms ({:.1f} ns/pixel)", ms, ms * 1e6 / pixels);
@@ -122,7 +122,7 @@ std::string cost_report_markdown(const BenchResult& result, const RunMetadata& r
     out += fmt::format("- content: current = grass texture (seed {}), history = asphalt texture (seed {}), so every "
                        "pixel is clipped\n\n",
                        kCurrentSeed, kHistorySeed);
-    out += chart(0, "Float operations per variant against the loop form and the analytic minimum");
+    out += chart(0, "Float operations per variant against the loop form and the analytic lower bound");
     out += chart(1, "Measured cost on the device: callgrind instructions per pixel and time with its spread");
 
     out +=
@@ -130,7 +130,7 @@ std::string cost_report_markdown(const BenchResult& result, const RunMetadata& r
         "operations once per component, `OpDot` of N as 2N − 1, `Fma` as 1. The loop form is the supplement's listing, "
         "compiled and optimized the same way.\n\n";
     out += table.markdown(names(kStaticColumns)) + "\n";
-    out += "### The analytic minimum\n\n" + std::string(kDerivation) + "\n\n";
+    out += "### The analytic lower bound\n\n" + std::string(kDerivation) + "\n\n";
 
     out +=
         fmt::format("## Measured cost\n\n{} rounds at {}x{}; every round dispatches each kernel once, in an order "
@@ -186,7 +186,7 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
     std::string script = kChartStyle;
     script += fmt::format("set output '{}'\n", (scratch / names[0]).string());
     script += "set title 'Static cost: scalar float operations per pixel (optimized SPIR-V)'\nset ylabel 'float ops'\n";
-    script += fmt::format("plot '{0}' using 2:xtic(1) title 'emitted (kdop)', '' using 3 title 'analytic minimum', "
+    script += fmt::format("plot '{0}' using 2:xtic(1) title 'emitted (kdop)', '' using 3 title 'analytic lower bound', "
                           "'' using 4 title 'loop form (supplement)'\n",
                           data);
     // Measured cost: callgrind's instructions (when counted) above the times, drawn as medians with

@@ -4,235 +4,193 @@
 // Do not edit; regenerate with `kdop gen --sets dop16-asphalt --modes clip --neighborhoods n5 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 16-DOP (8 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[2].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[2], which is not read.
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_ASPHALT_CLIP_N5_GLSL
 #define KDOP_DOP16_ASPHALT_CLIP_N5_GLSL
 
 vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
+    vec3 c0 = neighborhood[0] - current;
+    vec3 c1 = neighborhood[1] - current;
+    vec3 c3 = neighborhood[3] - current;
+    vec3 c4 = neighborhood[4] - current;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 8: axis (0.997167, -0.05482, 0.0515) from dop16-asphalt.axes:5, scaled by 1.00284 to (1, -0.054975748, 0.051646315)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.054975748 + c0.z * 0.051646315;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.054975748 + c1.z * 0.051646315;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * -0.054975748 + c2.z * 0.051646315;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.054975748 + c3.z * 0.051646315;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * -0.054975748 + c4.z * 0.051646315;
+        float lo = -1.0028408e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.0028408e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.0028408e-05, lo);
-        hi = fma(pad_scale, 1.0028408e-05, hi);
-        float p = current.x + current.y * -0.054975748 + current.z * 0.051646315;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.054975748 + dir.z * 0.051646315);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.054975748 + dir.z * 0.051646315;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 8: axis (0.043682, -0.727663, 0.684542) from dop16-asphalt.axes:6, scaled by -1.37426 to (-0.060030535, 1, -0.9407404)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.060030535 + c0.z * -0.9407404;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.060030535 + c1.z * -0.9407404;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * -0.060030535 + c2.z * -0.9407404;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.060030535 + c3.z * -0.9407404;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * -0.060030535 + c4.z * -0.9407404;
+        float lo = -1.37426205e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.37426205e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.37426205e-05, lo);
-        hi = fma(pad_scale, 1.37426205e-05, hi);
-        float p = current.y + current.x * -0.060030535 + current.z * -0.9407404;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.060030535 + dir.z * -0.9407404);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.060030535 + dir.z * -0.9407404;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 8: axis (-0.451553, 0.808335, -0.377751) from dop16-asphalt.axes:7, scaled by 1.23711 to (-0.5586211, 1, -0.46731988)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.5586211 + c0.z * -0.46731988;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.5586211 + c1.z * -0.46731988;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * -0.5586211 + c2.z * -0.46731988;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.5586211 + c3.z * -0.46731988;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * -0.5586211 + c4.z * -0.46731988;
+        float lo = -1.2371117e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2371117e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2371117e-05, lo);
-        hi = fma(pad_scale, 1.2371117e-05, hi);
-        float p = current.y + current.x * -0.5586211 + current.z * -0.46731988;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.5586211 + dir.z * -0.46731988);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.5586211 + dir.z * -0.46731988;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 8: axis (-0.003001, 0.615645, -0.788018) from dop16-asphalt.axes:8, scaled by -1.26901 to (0.0038082886, -0.7812575, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.0038082886 + c0.y * -0.7812575;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.0038082886 + c1.y * -0.7812575;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * 0.0038082886 + c2.y * -0.7812575;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.0038082886 + c3.y * -0.7812575;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * 0.0038082886 + c4.y * -0.7812575;
+        float lo = -1.2690067e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2690067e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2690067e-05, lo);
-        hi = fma(pad_scale, 1.2690067e-05, hi);
-        float p = current.z + current.x * 0.0038082886 + current.y * -0.7812575;
-        float inv_d = 1.0 / (dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 8: axis (0.130192, -0.063137, -0.989476) from dop16-asphalt.axes:9, scaled by -1.01064 to (-0.13157672, 0.06380852, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.13157672 + c0.y * 0.06380852;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.13157672 + c1.y * 0.06380852;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * -0.13157672 + c2.y * 0.06380852;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.13157672 + c3.y * 0.06380852;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * -0.13157672 + c4.y * 0.06380852;
+        float lo = -1.0106354e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.0106354e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.0106354e-05, lo);
-        hi = fma(pad_scale, 1.0106354e-05, hi);
-        float p = current.z + current.x * -0.13157672 + current.y * 0.06380852;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.13157672 + dir.y * 0.06380852);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.13157672 + dir.y * 0.06380852;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 8: axis (0.775079, -0.584236, -0.240668) from dop16-asphalt.axes:10, scaled by 1.29019 to (1, -0.7537761, -0.3105077)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.7537761 + c0.z * -0.3105077;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.7537761 + c1.z * -0.3105077;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * -0.7537761 + c2.z * -0.3105077;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.7537761 + c3.z * -0.3105077;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * -0.7537761 + c4.z * -0.3105077;
+        float lo = -1.2901913e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2901913e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2901913e-05, lo);
-        hi = fma(pad_scale, 1.2901913e-05, hi);
-        float p = current.x + current.y * -0.7537761 + current.z * -0.3105077;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.7537761 + dir.z * -0.3105077);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.7537761 + dir.z * -0.3105077;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 8: axis (0.589837, 0.171644, -0.78907) from dop16-asphalt.axes:11, scaled by -1.26731 to (-0.7475091, -0.21752696, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.7475091 + c0.y * -0.21752696;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.7475091 + c1.y * -0.21752696;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * -0.7475091 + c2.y * -0.21752696;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.7475091 + c3.y * -0.21752696;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * -0.7475091 + c4.y * -0.21752696;
+        float lo = -1.2673152e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2673152e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2673152e-05, lo);
-        hi = fma(pad_scale, 1.2673152e-05, hi);
-        float p = current.z + current.x * -0.7475091 + current.y * -0.21752696;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.7475091 + dir.y * -0.21752696);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.7475091 + dir.y * -0.21752696;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 8: axis (0.89801, -0.436338, -0.056459) from dop16-asphalt.axes:12, scaled by 1.11357 to (1, -0.48589435, -0.06287124)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.48589435 + c0.z * -0.06287124;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.48589435 + c1.z * -0.06287124;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * -0.48589435 + c2.z * -0.06287124;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.48589435 + c3.z * -0.06287124;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * -0.48589435 + c4.z * -0.06287124;
+        float lo = -1.1135736e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.1135736e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.1135736e-05, lo);
-        hi = fma(pad_scale, 1.1135736e-05, hi);
-        float p = current.x + current.y * -0.48589435 + current.z * -0.06287124;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.48589435 + dir.z * -0.06287124);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.48589435 + dir.z * -0.06287124;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP16_ASPHALT_CLIP_N5_GLSL

@@ -25,194 +25,175 @@ layout(push_constant) uniform Parameters
 // Do not edit; regenerate with `kdop gen --sets dop16-asphalt --modes varclip --neighborhoods n5 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 16-DOP (8 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[2].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[2], which is not read.
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_ASPHALT_VARCLIP_N5_GLSL
 #define KDOP_DOP16_ASPHALT_VARCLIP_N5_GLSL
 
 vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighborhood[5])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     // Moments of colors relative to current, scaled so squares of HDR differences stay finite.
-    bool huge = pad_scale > 1.1529215e+18; // 2^60
+    bool huge = max(max(current_size.x, current_size.y), current_size.z) > 1.1529215e+18; // 2^60
     float scale = huge ? 7.888609e-31 : 1.0; // 2^-100
     vec3 origin = current * (huge ? -7.888609e-31 : -1.0);
     vec3 ray = dir * scale;
-    float slab_pad = pad_scale * scale;
     vec3 c0 = fma(neighborhood[0], vec3(scale), origin);
     vec3 c1 = fma(neighborhood[1], vec3(scale), origin);
-    vec3 c2 = fma(neighborhood[2], vec3(scale), origin);
     vec3 c3 = fma(neighborhood[3], vec3(scale), origin);
     vec3 c4 = fma(neighborhood[4], vec3(scale), origin);
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 8: axis (0.997167, -0.05482, 0.0515) from dop16-asphalt.axes:5, scaled by 1.00284 to (1, -0.054975748, 0.051646315)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.054975748 + ray.z * 0.051646315);
         float q0 = c0.x + c0.y * -0.054975748 + c0.z * 0.051646315;
         float q1 = c1.x + c1.y * -0.054975748 + c1.z * 0.051646315;
-        float q2 = c2.x + c2.y * -0.054975748 + c2.z * 0.051646315;
         float q3 = c3.x + c3.y * -0.054975748 + c3.z * 0.051646315;
         float q4 = c4.x + c4.y * -0.054975748 + c4.z * 0.051646315;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.0028408e-05, lo);
-        hi = fma(slab_pad, 1.0028408e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.0028408e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.054975748 + ray.z * 0.051646315;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 8: axis (0.043682, -0.727663, 0.684542) from dop16-asphalt.axes:6, scaled by -1.37426 to (-0.060030535, 1, -0.9407404)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.060030535 + ray.z * -0.9407404);
         float q0 = c0.y + c0.x * -0.060030535 + c0.z * -0.9407404;
         float q1 = c1.y + c1.x * -0.060030535 + c1.z * -0.9407404;
-        float q2 = c2.y + c2.x * -0.060030535 + c2.z * -0.9407404;
         float q3 = c3.y + c3.x * -0.060030535 + c3.z * -0.9407404;
         float q4 = c4.y + c4.x * -0.060030535 + c4.z * -0.9407404;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.37426205e-05, lo);
-        hi = fma(slab_pad, 1.37426205e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.37426205e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.060030535 + ray.z * -0.9407404;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 8: axis (-0.451553, 0.808335, -0.377751) from dop16-asphalt.axes:7, scaled by 1.23711 to (-0.5586211, 1, -0.46731988)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.5586211 + ray.z * -0.46731988);
         float q0 = c0.y + c0.x * -0.5586211 + c0.z * -0.46731988;
         float q1 = c1.y + c1.x * -0.5586211 + c1.z * -0.46731988;
-        float q2 = c2.y + c2.x * -0.5586211 + c2.z * -0.46731988;
         float q3 = c3.y + c3.x * -0.5586211 + c3.z * -0.46731988;
         float q4 = c4.y + c4.x * -0.5586211 + c4.z * -0.46731988;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2371117e-05, lo);
-        hi = fma(slab_pad, 1.2371117e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2371117e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.5586211 + ray.z * -0.46731988;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 8: axis (-0.003001, 0.615645, -0.788018) from dop16-asphalt.axes:8, scaled by -1.26901 to (0.0038082886, -0.7812575, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * 0.0038082886 + ray.y * -0.7812575);
         float q0 = c0.z + c0.x * 0.0038082886 + c0.y * -0.7812575;
         float q1 = c1.z + c1.x * 0.0038082886 + c1.y * -0.7812575;
-        float q2 = c2.z + c2.x * 0.0038082886 + c2.y * -0.7812575;
         float q3 = c3.z + c3.x * 0.0038082886 + c3.y * -0.7812575;
         float q4 = c4.z + c4.x * 0.0038082886 + c4.y * -0.7812575;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2690067e-05, lo);
-        hi = fma(slab_pad, 1.2690067e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2690067e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * 0.0038082886 + ray.y * -0.7812575;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 8: axis (0.130192, -0.063137, -0.989476) from dop16-asphalt.axes:9, scaled by -1.01064 to (-0.13157672, 0.06380852, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * -0.13157672 + ray.y * 0.06380852);
         float q0 = c0.z + c0.x * -0.13157672 + c0.y * 0.06380852;
         float q1 = c1.z + c1.x * -0.13157672 + c1.y * 0.06380852;
-        float q2 = c2.z + c2.x * -0.13157672 + c2.y * 0.06380852;
         float q3 = c3.z + c3.x * -0.13157672 + c3.y * 0.06380852;
         float q4 = c4.z + c4.x * -0.13157672 + c4.y * 0.06380852;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.0106354e-05, lo);
-        hi = fma(slab_pad, 1.0106354e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.0106354e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * -0.13157672 + ray.y * 0.06380852;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 8: axis (0.775079, -0.584236, -0.240668) from dop16-asphalt.axes:10, scaled by 1.29019 to (1, -0.7537761, -0.3105077)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.7537761 + ray.z * -0.3105077);
         float q0 = c0.x + c0.y * -0.7537761 + c0.z * -0.3105077;
         float q1 = c1.x + c1.y * -0.7537761 + c1.z * -0.3105077;
-        float q2 = c2.x + c2.y * -0.7537761 + c2.z * -0.3105077;
         float q3 = c3.x + c3.y * -0.7537761 + c3.z * -0.3105077;
         float q4 = c4.x + c4.y * -0.7537761 + c4.z * -0.3105077;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2901913e-05, lo);
-        hi = fma(slab_pad, 1.2901913e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2901913e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.7537761 + ray.z * -0.3105077;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 8: axis (0.589837, 0.171644, -0.78907) from dop16-asphalt.axes:11, scaled by -1.26731 to (-0.7475091, -0.21752696, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * -0.7475091 + ray.y * -0.21752696);
         float q0 = c0.z + c0.x * -0.7475091 + c0.y * -0.21752696;
         float q1 = c1.z + c1.x * -0.7475091 + c1.y * -0.21752696;
-        float q2 = c2.z + c2.x * -0.7475091 + c2.y * -0.21752696;
         float q3 = c3.z + c3.x * -0.7475091 + c3.y * -0.21752696;
         float q4 = c4.z + c4.x * -0.7475091 + c4.y * -0.21752696;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2673152e-05, lo);
-        hi = fma(slab_pad, 1.2673152e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2673152e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * -0.7475091 + ray.y * -0.21752696;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 8: axis (0.89801, -0.436338, -0.056459) from dop16-asphalt.axes:12, scaled by 1.11357 to (1, -0.48589435, -0.06287124)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.48589435 + ray.z * -0.06287124);
         float q0 = c0.x + c0.y * -0.48589435 + c0.z * -0.06287124;
         float q1 = c1.x + c1.y * -0.48589435 + c1.z * -0.06287124;
-        float q2 = c2.x + c2.y * -0.48589435 + c2.z * -0.06287124;
         float q3 = c3.x + c3.y * -0.48589435 + c3.z * -0.06287124;
         float q4 = c4.x + c4.y * -0.48589435 + c4.z * -0.06287124;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.1135736e-05, lo);
-        hi = fma(slab_pad, 1.1135736e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.1135736e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.48589435 + ray.z * -0.06287124;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP16_ASPHALT_VARCLIP_N5_GLSL

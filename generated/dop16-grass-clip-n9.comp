@@ -22,335 +22,293 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // Do not edit; regenerate with `kdop gen --sets dop16-grass --modes clip --neighborhoods n9 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 16-DOP (8 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[4].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[4], which is not read.
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_GRASS_CLIP_N9_GLSL
 #define KDOP_DOP16_GRASS_CLIP_N9_GLSL
 
 vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
-    vec3 c5 = neighborhood[5];
-    vec3 c6 = neighborhood[6];
-    vec3 c7 = neighborhood[7];
-    vec3 c8 = neighborhood[8];
+    vec3 c0 = neighborhood[0] - current;
+    vec3 c1 = neighborhood[1] - current;
+    vec3 c2 = neighborhood[2] - current;
+    vec3 c3 = neighborhood[3] - current;
+    vec3 c5 = neighborhood[5] - current;
+    vec3 c6 = neighborhood[6] - current;
+    vec3 c7 = neighborhood[7] - current;
+    vec3 c8 = neighborhood[8] - current;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 8: axis (-0.663315, 0.729578, -0.166518) from dop16-grass.axes:6, scaled by 1.37066 to (-0.9091763, 1, -0.22823879)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.9091763 + c0.z * -0.22823879;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.9091763 + c1.z * -0.22823879;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y + c2.x * -0.9091763 + c2.z * -0.22823879;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.9091763 + c3.z * -0.22823879;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y + c4.x * -0.9091763 + c4.z * -0.22823879;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y + c5.x * -0.9091763 + c5.z * -0.22823879;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y + c6.x * -0.9091763 + c6.z * -0.22823879;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y + c7.x * -0.9091763 + c7.z * -0.22823879;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y + c8.x * -0.9091763 + c8.z * -0.22823879;
+        float lo = -1.3706547e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.3706547e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.3706547e-05, lo);
-        hi = fma(pad_scale, 1.3706547e-05, hi);
-        float p = current.y + current.x * -0.9091763 + current.z * -0.22823879;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.9091763 + dir.z * -0.22823879);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.9091763 + dir.z * -0.22823879;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.70663214 + c0.y * 0.10394432;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.70663214 + c1.y * 0.10394432;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.x * -0.70663214 + c2.y * 0.10394432;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.70663214 + c3.y * 0.10394432;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.x * -0.70663214 + c4.y * 0.10394432;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.x * -0.70663214 + c5.y * 0.10394432;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.x * -0.70663214 + c6.y * 0.10394432;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.x * -0.70663214 + c7.y * 0.10394432;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.x * -0.70663214 + c8.y * 0.10394432;
+        float lo = -1.2288749e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.2288749e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.2288749e-05, lo);
-        hi = fma(pad_scale, 1.2288749e-05, hi);
-        float p = current.z + current.x * -0.70663214 + current.y * 0.10394432;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.70663214 + dir.y * 0.10394432);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.70663214 + dir.y * 0.10394432;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.18454187 + c0.y * -0.57063365;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.18454187 + c1.y * -0.57063365;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.x * 0.18454187 + c2.y * -0.57063365;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.18454187 + c3.y * -0.57063365;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.x * 0.18454187 + c4.y * -0.57063365;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.x * 0.18454187 + c5.y * -0.57063365;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.x * 0.18454187 + c6.y * -0.57063365;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.x * 0.18454187 + c7.y * -0.57063365;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.x * 0.18454187 + c8.y * -0.57063365;
+        float lo = -1.1660525e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.1660525e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.1660525e-05, lo);
-        hi = fma(pad_scale, 1.1660525e-05, hi);
-        float p = current.z + current.x * 0.18454187 + current.y * -0.57063365;
-        float inv_d = 1.0 / (dir.z + dir.x * 0.18454187 + dir.y * -0.57063365);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * 0.18454187 + dir.y * -0.57063365;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.2652209 + c0.y * 0.040031724;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.2652209 + c1.y * 0.040031724;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.x * -0.2652209 + c2.y * 0.040031724;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.2652209 + c3.y * 0.040031724;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.x * -0.2652209 + c4.y * 0.040031724;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.x * -0.2652209 + c5.y * 0.040031724;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.x * -0.2652209 + c6.y * 0.040031724;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.x * -0.2652209 + c7.y * 0.040031724;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.x * -0.2652209 + c8.y * 0.040031724;
+        float lo = -1.0353476e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.0353476e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.0353476e-05, lo);
-        hi = fma(pad_scale, 1.0353476e-05, hi);
-        float p = current.z + current.x * -0.2652209 + current.y * 0.040031724;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.2652209 + dir.y * 0.040031724);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.2652209 + dir.y * 0.040031724;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.6816266 + c0.z * -0.9873084;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.6816266 + c1.z * -0.9873084;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x + c2.y * -0.6816266 + c2.z * -0.9873084;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.6816266 + c3.z * -0.9873084;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x + c4.y * -0.6816266 + c4.z * -0.9873084;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x + c5.y * -0.6816266 + c5.z * -0.9873084;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x + c6.y * -0.6816266 + c6.z * -0.9873084;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x + c7.y * -0.6816266 + c7.z * -0.9873084;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x + c8.y * -0.6816266 + c8.z * -0.9873084;
+        float lo = -1.5618556e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.5618556e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.5618556e-05, lo);
-        hi = fma(pad_scale, 1.5618556e-05, hi);
-        float p = current.x + current.y * -0.6816266 + current.z * -0.9873084;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.6816266 + dir.z * -0.9873084);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.6816266 + dir.z * -0.9873084;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.5726 + c0.z * -0.42632;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.5726 + c1.z * -0.42632;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x + c2.y * -0.5726 + c2.z * -0.42632;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.5726 + c3.z * -0.42632;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x + c4.y * -0.5726 + c4.z * -0.42632;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x + c5.y * -0.5726 + c5.z * -0.42632;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x + c6.y * -0.5726 + c6.z * -0.42632;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x + c7.y * -0.5726 + c7.z * -0.42632;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x + c8.y * -0.5726 + c8.z * -0.42632;
+        float lo = -1.2286658e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.2286658e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.2286658e-05, lo);
-        hi = fma(pad_scale, 1.2286658e-05, hi);
-        float p = current.x + current.y * -0.5726 + current.z * -0.42632;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.5726 + dir.z * -0.42632);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.5726 + dir.z * -0.42632;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * 0.25867906 + c0.z * 0.61571217;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * 0.25867906 + c1.z * 0.61571217;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x + c2.y * 0.25867906 + c2.z * 0.61571217;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * 0.25867906 + c3.z * 0.61571217;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x + c4.y * 0.25867906 + c4.z * 0.61571217;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x + c5.y * 0.25867906 + c5.z * 0.61571217;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x + c6.y * 0.25867906 + c6.z * 0.61571217;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x + c7.y * 0.25867906 + c7.z * 0.61571217;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x + c8.y * 0.25867906 + c8.z * 0.61571217;
+        float lo = -1.20250415e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.20250415e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.20250415e-05, lo);
-        hi = fma(pad_scale, 1.20250415e-05, hi);
-        float p = current.x + current.y * 0.25867906 + current.z * 0.61571217;
-        float inv_d = 1.0 / (dir.x + dir.y * 0.25867906 + dir.z * 0.61571217);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * 0.25867906 + dir.z * 0.61571217;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.6007664 + c0.z * -0.39173308;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.6007664 + c1.z * -0.39173308;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y + c2.x * -0.6007664 + c2.z * -0.39173308;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.6007664 + c3.z * -0.39173308;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y + c4.x * -0.6007664 + c4.z * -0.39173308;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y + c5.x * -0.6007664 + c5.z * -0.39173308;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y + c6.x * -0.6007664 + c6.z * -0.39173308;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y + c7.x * -0.6007664 + c7.z * -0.39173308;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y + c8.x * -0.6007664 + c8.z * -0.39173308;
+        float lo = -1.23059945e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.23059945e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.23059945e-05, lo);
-        hi = fma(pad_scale, 1.23059945e-05, hi);
-        float p = current.y + current.x * -0.6007664 + current.z * -0.39173308;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.6007664 + dir.z * -0.39173308);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.6007664 + dir.z * -0.39173308;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP16_GRASS_CLIP_N9_GLSL

@@ -4,39 +4,36 @@
 // Do not edit; regenerate with `kdop gen --sets dop16-grass --modes varclip --neighborhoods n9 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 16-DOP (8 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[4].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[4], which is not read.
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_GRASS_VARCLIP_N9_GLSL
 #define KDOP_DOP16_GRASS_VARCLIP_N9_GLSL
 
 vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighborhood[9])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     // Moments of colors relative to current, scaled so squares of HDR differences stay finite.
-    bool huge = pad_scale > 1.1529215e+18; // 2^60
+    bool huge = max(max(current_size.x, current_size.y), current_size.z) > 1.1529215e+18; // 2^60
     float scale = huge ? 7.888609e-31 : 1.0; // 2^-100
     vec3 origin = current * (huge ? -7.888609e-31 : -1.0);
     vec3 ray = dir * scale;
-    float slab_pad = pad_scale * scale;
     vec3 c0 = fma(neighborhood[0], vec3(scale), origin);
     vec3 c1 = fma(neighborhood[1], vec3(scale), origin);
     vec3 c2 = fma(neighborhood[2], vec3(scale), origin);
     vec3 c3 = fma(neighborhood[3], vec3(scale), origin);
-    vec3 c4 = fma(neighborhood[4], vec3(scale), origin);
     vec3 c5 = fma(neighborhood[5], vec3(scale), origin);
     vec3 c6 = fma(neighborhood[6], vec3(scale), origin);
     vec3 c7 = fma(neighborhood[7], vec3(scale), origin);
@@ -45,189 +42,173 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
 
     // Slab 1 of 8: axis (-0.663315, 0.729578, -0.166518) from dop16-grass.axes:6, scaled by 1.37066 to (-0.9091763, 1, -0.22823879)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.9091763 + ray.z * -0.22823879);
         float q0 = c0.y + c0.x * -0.9091763 + c0.z * -0.22823879;
         float q1 = c1.y + c1.x * -0.9091763 + c1.z * -0.22823879;
         float q2 = c2.y + c2.x * -0.9091763 + c2.z * -0.22823879;
         float q3 = c3.y + c3.x * -0.9091763 + c3.z * -0.22823879;
-        float q4 = c4.y + c4.x * -0.9091763 + c4.z * -0.22823879;
         float q5 = c5.y + c5.x * -0.9091763 + c5.z * -0.22823879;
         float q6 = c6.y + c6.x * -0.9091763 + c6.z * -0.22823879;
         float q7 = c7.y + c7.x * -0.9091763 + c7.z * -0.22823879;
         float q8 = c8.y + c8.x * -0.9091763 + c8.z * -0.22823879;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.3706547e-05, lo);
-        hi = fma(slab_pad, 1.3706547e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.3706547e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.9091763 + ray.z * -0.22823879;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 8: axis (0.575024, -0.084585, -0.813753) from dop16-grass.axes:7, scaled by -1.22887 to (-0.70663214, 0.10394432, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * -0.70663214 + ray.y * 0.10394432);
         float q0 = c0.z + c0.x * -0.70663214 + c0.y * 0.10394432;
         float q1 = c1.z + c1.x * -0.70663214 + c1.y * 0.10394432;
         float q2 = c2.z + c2.x * -0.70663214 + c2.y * 0.10394432;
         float q3 = c3.z + c3.x * -0.70663214 + c3.y * 0.10394432;
-        float q4 = c4.z + c4.x * -0.70663214 + c4.y * 0.10394432;
         float q5 = c5.z + c5.x * -0.70663214 + c5.y * 0.10394432;
         float q6 = c6.z + c6.x * -0.70663214 + c6.y * 0.10394432;
         float q7 = c7.z + c7.x * -0.70663214 + c7.y * 0.10394432;
         float q8 = c8.z + c8.x * -0.70663214 + c8.y * 0.10394432;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2288749e-05, lo);
-        hi = fma(slab_pad, 1.2288749e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2288749e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * -0.70663214 + ray.y * 0.10394432;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 8: axis (-0.158262, 0.489372, -0.857594) from dop16-grass.axes:8, scaled by -1.16605 to (0.18454187, -0.57063365, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * 0.18454187 + ray.y * -0.57063365);
         float q0 = c0.z + c0.x * 0.18454187 + c0.y * -0.57063365;
         float q1 = c1.z + c1.x * 0.18454187 + c1.y * -0.57063365;
         float q2 = c2.z + c2.x * 0.18454187 + c2.y * -0.57063365;
         float q3 = c3.z + c3.x * 0.18454187 + c3.y * -0.57063365;
-        float q4 = c4.z + c4.x * 0.18454187 + c4.y * -0.57063365;
         float q5 = c5.z + c5.x * 0.18454187 + c5.y * -0.57063365;
         float q6 = c6.z + c6.x * 0.18454187 + c6.y * -0.57063365;
         float q7 = c7.z + c7.x * 0.18454187 + c7.y * -0.57063365;
         float q8 = c8.z + c8.x * 0.18454187 + c8.y * -0.57063365;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.1660525e-05, lo);
-        hi = fma(slab_pad, 1.1660525e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.1660525e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * 0.18454187 + ray.y * -0.57063365;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 8: axis (0.256166, -0.038665, -0.965859) from dop16-grass.axes:9, scaled by -1.03535 to (-0.2652209, 0.040031724, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * -0.2652209 + ray.y * 0.040031724);
         float q0 = c0.z + c0.x * -0.2652209 + c0.y * 0.040031724;
         float q1 = c1.z + c1.x * -0.2652209 + c1.y * 0.040031724;
         float q2 = c2.z + c2.x * -0.2652209 + c2.y * 0.040031724;
         float q3 = c3.z + c3.x * -0.2652209 + c3.y * 0.040031724;
-        float q4 = c4.z + c4.x * -0.2652209 + c4.y * 0.040031724;
         float q5 = c5.z + c5.x * -0.2652209 + c5.y * 0.040031724;
         float q6 = c6.z + c6.x * -0.2652209 + c6.y * 0.040031724;
         float q7 = c7.z + c7.x * -0.2652209 + c7.y * 0.040031724;
         float q8 = c8.z + c8.x * -0.2652209 + c8.y * 0.040031724;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.0353476e-05, lo);
-        hi = fma(slab_pad, 1.0353476e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.0353476e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * -0.2652209 + ray.y * 0.040031724;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 8: axis (0.640264, -0.436421, -0.632138) from dop16-grass.axes:10, scaled by 1.56186 to (1, -0.6816266, -0.9873084)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.6816266 + ray.z * -0.9873084);
         float q0 = c0.x + c0.y * -0.6816266 + c0.z * -0.9873084;
         float q1 = c1.x + c1.y * -0.6816266 + c1.z * -0.9873084;
         float q2 = c2.x + c2.y * -0.6816266 + c2.z * -0.9873084;
         float q3 = c3.x + c3.y * -0.6816266 + c3.z * -0.9873084;
-        float q4 = c4.x + c4.y * -0.6816266 + c4.z * -0.9873084;
         float q5 = c5.x + c5.y * -0.6816266 + c5.z * -0.9873084;
         float q6 = c6.x + c6.y * -0.6816266 + c6.z * -0.9873084;
         float q7 = c7.x + c7.y * -0.6816266 + c7.z * -0.9873084;
         float q8 = c8.x + c8.y * -0.6816266 + c8.z * -0.9873084;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.5618556e-05, lo);
-        hi = fma(slab_pad, 1.5618556e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.5618556e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.6816266 + ray.z * -0.9873084;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 8: axis (-0.813891, 0.466034, 0.346978) from dop16-grass.axes:11, scaled by -1.22867 to (1, -0.5726, -0.42632)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.5726 + ray.z * -0.42632);
         float q0 = c0.x + c0.y * -0.5726 + c0.z * -0.42632;
         float q1 = c1.x + c1.y * -0.5726 + c1.z * -0.42632;
         float q2 = c2.x + c2.y * -0.5726 + c2.z * -0.42632;
         float q3 = c3.x + c3.y * -0.5726 + c3.z * -0.42632;
-        float q4 = c4.x + c4.y * -0.5726 + c4.z * -0.42632;
         float q5 = c5.x + c5.y * -0.5726 + c5.z * -0.42632;
         float q6 = c6.x + c6.y * -0.5726 + c6.z * -0.42632;
         float q7 = c7.x + c7.y * -0.5726 + c7.z * -0.42632;
         float q8 = c8.x + c8.y * -0.5726 + c8.z * -0.42632;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2286658e-05, lo);
-        hi = fma(slab_pad, 1.2286658e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2286658e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.5726 + ray.z * -0.42632;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 8: axis (-0.831598, -0.215117, -0.512025) from dop16-grass.axes:12, scaled by -1.2025 to (1, 0.25867906, 0.61571217)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * 0.25867906 + ray.z * 0.61571217);
         float q0 = c0.x + c0.y * 0.25867906 + c0.z * 0.61571217;
         float q1 = c1.x + c1.y * 0.25867906 + c1.z * 0.61571217;
         float q2 = c2.x + c2.y * 0.25867906 + c2.z * 0.61571217;
         float q3 = c3.x + c3.y * 0.25867906 + c3.z * 0.61571217;
-        float q4 = c4.x + c4.y * 0.25867906 + c4.z * 0.61571217;
         float q5 = c5.x + c5.y * 0.25867906 + c5.z * 0.61571217;
         float q6 = c6.x + c6.y * 0.25867906 + c6.z * 0.61571217;
         float q7 = c7.x + c7.y * 0.25867906 + c7.z * 0.61571217;
         float q8 = c8.x + c8.y * 0.25867906 + c8.z * 0.61571217;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.20250415e-05, lo);
-        hi = fma(slab_pad, 1.20250415e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.20250415e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * 0.25867906 + ray.z * 0.61571217;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 8: axis (0.48819, -0.812612, 0.318327) from dop16-grass.axes:13, scaled by -1.2306 to (-0.6007664, 1, -0.39173308)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.6007664 + ray.z * -0.39173308);
         float q0 = c0.y + c0.x * -0.6007664 + c0.z * -0.39173308;
         float q1 = c1.y + c1.x * -0.6007664 + c1.z * -0.39173308;
         float q2 = c2.y + c2.x * -0.6007664 + c2.z * -0.39173308;
         float q3 = c3.y + c3.x * -0.6007664 + c3.z * -0.39173308;
-        float q4 = c4.y + c4.x * -0.6007664 + c4.z * -0.39173308;
         float q5 = c5.y + c5.x * -0.6007664 + c5.z * -0.39173308;
         float q6 = c6.y + c6.x * -0.6007664 + c6.z * -0.39173308;
         float q7 = c7.y + c7.x * -0.6007664 + c7.z * -0.39173308;
         float q8 = c8.y + c8.x * -0.6007664 + c8.z * -0.39173308;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.23059945e-05, lo);
-        hi = fma(slab_pad, 1.23059945e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.23059945e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.6007664 + ray.z * -0.39173308;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP16_GRASS_VARCLIP_N9_GLSL

@@ -4,446 +4,389 @@
 // Do not edit; regenerate with `kdop gen --sets dop22 --modes clip --neighborhoods n9 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 22-DOP (11 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[4].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[4], which is not read.
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_CLIP_N9_GLSL
 #define KDOP_DOP22_CLIP_N9_GLSL
 
 vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
-    vec3 c5 = neighborhood[5];
-    vec3 c6 = neighborhood[6];
-    vec3 c7 = neighborhood[7];
-    vec3 c8 = neighborhood[8];
+    vec3 c0 = neighborhood[0] - current;
+    vec3 c1 = neighborhood[1] - current;
+    vec3 c2 = neighborhood[2] - current;
+    vec3 c3 = neighborhood[3] - current;
+    vec3 c5 = neighborhood[5] - current;
+    vec3 c6 = neighborhood[6] - current;
+    vec3 c7 = neighborhood[7] - current;
+    vec3 c8 = neighborhood[8] - current;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 11: axis (1, 0, 0) from dop22.axes:5
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x;
+        float lo = -1e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1e-05, lo);
-        hi = fma(pad_scale, 1e-05, hi);
-        float p = current.x;
-        float inv_d = 1.0 / dir.x;
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 11: axis (0, 1, 0) from dop22.axes:6
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y;
+        float lo = -1e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1e-05, lo);
-        hi = fma(pad_scale, 1e-05, hi);
-        float p = current.y;
-        float inv_d = 1.0 / dir.y;
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 11: axis (0, 0, 1) from dop22.axes:7
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z;
+        float lo = -1e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1e-05, lo);
-        hi = fma(pad_scale, 1e-05, hi);
-        float p = current.z;
-        float inv_d = 1.0 / dir.z;
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 11: axis (0, 0.664104, -0.74764) from dop22.axes:8, scaled by -1.33754 to (0, -0.8882671, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.y * -0.8882671;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.y * -0.8882671;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.y * -0.8882671;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.y * -0.8882671;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.y * -0.8882671;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.y * -0.8882671;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.y * -0.8882671;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.y * -0.8882671;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.y * -0.8882671;
+        float lo = -1.3375419e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.3375419e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.3375419e-05, lo);
-        hi = fma(pad_scale, 1.3375419e-05, hi);
-        float p = current.z + current.y * -0.8882671;
-        float inv_d = 1.0 / (dir.z + dir.y * -0.8882671);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.y * -0.8882671;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 11: axis (-0.656496, -0.656139, 0.372149) from dop22.axes:9, scaled by -1.52324 to (1, 0.9994562, -0.5668717)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * 0.9994562 + c0.z * -0.5668717;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * 0.9994562 + c1.z * -0.5668717;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x + c2.y * 0.9994562 + c2.z * -0.5668717;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * 0.9994562 + c3.z * -0.5668717;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x + c4.y * 0.9994562 + c4.z * -0.5668717;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x + c5.y * 0.9994562 + c5.z * -0.5668717;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x + c6.y * 0.9994562 + c6.z * -0.5668717;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x + c7.y * 0.9994562 + c7.z * -0.5668717;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x + c8.y * 0.9994562 + c8.z * -0.5668717;
+        float lo = -1.5232387e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.5232387e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.5232387e-05, lo);
-        hi = fma(pad_scale, 1.5232387e-05, hi);
-        float p = current.x + current.y * 0.9994562 + current.z * -0.5668717;
-        float inv_d = 1.0 / (dir.x + dir.y * 0.9994562 + dir.z * -0.5668717);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * 0.9994562 + dir.z * -0.5668717;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 11: axis (-0.664251, 0, -0.747509) from dop22.axes:10, scaled by -1.33778 to (0.8886194, 0, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.8886194;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.8886194;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.x * 0.8886194;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.8886194;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.x * 0.8886194;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.x * 0.8886194;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.x * 0.8886194;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.x * 0.8886194;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.x * 0.8886194;
+        float lo = -1.3377759e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.3377759e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.3377759e-05, lo);
-        hi = fma(pad_scale, 1.3377759e-05, hi);
-        float p = current.z + current.x * 0.8886194;
-        float inv_d = 1.0 / (dir.z + dir.x * 0.8886194);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * 0.8886194;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 11: axis (-0.664672, 0, 0.747135) from dop22.axes:11, scaled by 1.33845 to (-0.8896277, 0, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.8896277;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.8896277;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.x * -0.8896277;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.8896277;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.x * -0.8896277;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.x * -0.8896277;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.x * -0.8896277;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.x * -0.8896277;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.x * -0.8896277;
+        float lo = -1.3384459e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.3384459e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.3384459e-05, lo);
-        hi = fma(pad_scale, 1.3384459e-05, hi);
-        float p = current.z + current.x * -0.8896277;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.8896277);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.8896277;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 11: axis (0, 0.664287, 0.747478) from dop22.axes:12, scaled by 1.33783 to (0, 0.8887044, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.y * 0.8887044;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.y * 0.8887044;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.z + c2.y * 0.8887044;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.y * 0.8887044;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.z + c4.y * 0.8887044;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.z + c5.y * 0.8887044;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.z + c6.y * 0.8887044;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.z + c7.y * 0.8887044;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.z + c8.y * 0.8887044;
+        float lo = -1.3378324e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.3378324e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.3378324e-05, lo);
-        hi = fma(pad_scale, 1.3378324e-05, hi);
-        float p = current.z + current.y * 0.8887044;
-        float inv_d = 1.0 / (dir.z + dir.y * 0.8887044);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.y * 0.8887044;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 9 of 11: axis (0.657415, -0.657637, -0.367857) from dop22.axes:13, scaled by -1.5206 to (-0.9996624, 1, 0.55936176)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.9996624 + c0.z * 0.55936176;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.9996624 + c1.z * 0.55936176;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y + c2.x * -0.9996624 + c2.z * 0.55936176;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.9996624 + c3.z * 0.55936176;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y + c4.x * -0.9996624 + c4.z * 0.55936176;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y + c5.x * -0.9996624 + c5.z * 0.55936176;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y + c6.x * -0.9996624 + c6.z * 0.55936176;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y + c7.x * -0.9996624 + c7.z * 0.55936176;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y + c8.x * -0.9996624 + c8.z * 0.55936176;
+        float lo = -1.5205955e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.5205955e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.5205955e-05, lo);
-        hi = fma(pad_scale, 1.5205955e-05, hi);
-        float p = current.y + current.x * -0.9996624 + current.z * 0.55936176;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.9996624 + dir.z * 0.55936176);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.9996624 + dir.z * 0.55936176;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 10 of 11: axis (-0.656571, -0.657954, -0.368796) from dop22.axes:14, scaled by -1.51986 to (0.99789804, 1, 0.56051946)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * 0.99789804 + c0.z * 0.56051946;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * 0.99789804 + c1.z * 0.56051946;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y + c2.x * 0.99789804 + c2.z * 0.56051946;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * 0.99789804 + c3.z * 0.56051946;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y + c4.x * 0.99789804 + c4.z * 0.56051946;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y + c5.x * 0.99789804 + c5.z * 0.56051946;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y + c6.x * 0.99789804 + c6.z * 0.56051946;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y + c7.x * 0.99789804 + c7.z * 0.56051946;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y + c8.x * 0.99789804 + c8.z * 0.56051946;
+        float lo = -1.5198627e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.5198627e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.5198627e-05, lo);
-        hi = fma(pad_scale, 1.5198627e-05, hi);
-        float p = current.y + current.x * 0.99789804 + current.z * 0.56051946;
-        float inv_d = 1.0 / (dir.y + dir.x * 0.99789804 + dir.z * 0.56051946);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * 0.99789804 + dir.z * 0.56051946;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 11 of 11: axis (0.6568, -0.655635, 0.372501) from dop22.axes:15, scaled by 1.52253 to (1, -0.9982262, 0.5671452)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.9982262 + c0.z * 0.5671452;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.9982262 + c1.z * 0.5671452;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x + c2.y * -0.9982262 + c2.z * 0.5671452;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.9982262 + c3.z * 0.5671452;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x + c4.y * -0.9982262 + c4.z * 0.5671452;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x + c5.y * -0.9982262 + c5.z * 0.5671452;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x + c6.y * -0.9982262 + c6.z * 0.5671452;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x + c7.y * -0.9982262 + c7.z * 0.5671452;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x + c8.y * -0.9982262 + c8.z * 0.5671452;
+        float lo = -1.5225339e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = 1.5225339e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.5225339e-05, lo);
-        hi = fma(pad_scale, 1.5225339e-05, hi);
-        float p = current.x + current.y * -0.9982262 + current.z * 0.5671452;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.9982262 + dir.z * 0.5671452);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.9982262 + dir.z * 0.5671452;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP22_CLIP_N9_GLSL

@@ -4,435 +4,353 @@
 // Do not edit; regenerate with `kdop gen --sets dop32 --modes clip --neighborhoods n5 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 32-DOP (16 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[2].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[2], which is not read.
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_CLIP_N5_GLSL
 #define KDOP_DOP32_CLIP_N5_GLSL
 
 vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
+    vec3 c0 = neighborhood[0] - current;
+    vec3 c1 = neighborhood[1] - current;
+    vec3 c3 = neighborhood[3] - current;
+    vec3 c4 = neighborhood[4] - current;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 16: axis (1, 0, 0) from dop32.axes:5
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x;
+        float lo = -1e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1e-05, lo);
-        hi = fma(pad_scale, 1e-05, hi);
-        float p = current.x;
-        float inv_d = 1.0 / dir.x;
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 16: axis (0, 1, 0) from dop32.axes:6
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y;
+        float lo = -1e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1e-05, lo);
-        hi = fma(pad_scale, 1e-05, hi);
-        float p = current.y;
-        float inv_d = 1.0 / dir.y;
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 16: axis (0, 0, 1) from dop32.axes:7
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z;
+        float lo = -1e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1e-05, lo);
-        hi = fma(pad_scale, 1e-05, hi);
-        float p = current.z;
-        float inv_d = 1.0 / dir.z;
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 16: axis (0.820081, 0.456727, -0.344773) from dop32.axes:8, scaled by 1.21939 to (1, 0.5569291, -0.42041335)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * 0.5569291 + c0.z * -0.42041335;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * 0.5569291 + c1.z * -0.42041335;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * 0.5569291 + c2.z * -0.42041335;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * 0.5569291 + c3.z * -0.42041335;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * 0.5569291 + c4.z * -0.42041335;
+        float lo = -1.2193923e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2193923e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2193923e-05, lo);
-        hi = fma(pad_scale, 1.2193923e-05, hi);
-        float p = current.x + current.y * 0.5569291 + current.z * -0.42041335;
-        float inv_d = 1.0 / (dir.x + dir.y * 0.5569291 + dir.z * -0.42041335);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * 0.5569291 + dir.z * -0.42041335;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 16: axis (0.540295, 0.829202, 0.143195) from dop32.axes:9, scaled by 1.20598 to (0.65158427, 1, 0.17269012)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * 0.65158427 + c0.z * 0.17269012;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * 0.65158427 + c1.z * 0.17269012;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * 0.65158427 + c2.z * 0.17269012;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * 0.65158427 + c3.z * 0.17269012;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * 0.65158427 + c4.z * 0.17269012;
+        float lo = -1.2059784e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2059784e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2059784e-05, lo);
-        hi = fma(pad_scale, 1.2059784e-05, hi);
-        float p = current.y + current.x * 0.65158427 + current.z * 0.17269012;
-        float inv_d = 1.0 / (dir.y + dir.x * 0.65158427 + dir.z * 0.17269012);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * 0.65158427 + dir.z * 0.17269012;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 16: axis (0.2558, 0.841084, -0.476597) from dop32.axes:10, scaled by 1.18894 to (0.30413133, 1, -0.56664616)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * 0.30413133 + c0.z * -0.56664616;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * 0.30413133 + c1.z * -0.56664616;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * 0.30413133 + c2.z * -0.56664616;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * 0.30413133 + c3.z * -0.56664616;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * 0.30413133 + c4.z * -0.56664616;
+        float lo = -1.1889422e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.1889422e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.1889422e-05, lo);
-        hi = fma(pad_scale, 1.1889422e-05, hi);
-        float p = current.y + current.x * 0.30413133 + current.z * -0.56664616;
-        float inv_d = 1.0 / (dir.y + dir.x * 0.30413133 + dir.z * -0.56664616);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * 0.30413133 + dir.z * -0.56664616;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 16: axis (-0.406935, -0.389062, 0.826459) from dop32.axes:11, scaled by 1.20998 to (-0.49238378, -0.47075778, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.49238378 + c0.y * -0.47075778;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.49238378 + c1.y * -0.47075778;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * -0.49238378 + c2.y * -0.47075778;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.49238378 + c3.y * -0.47075778;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * -0.49238378 + c4.y * -0.47075778;
+        float lo = -1.2099813e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2099813e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2099813e-05, lo);
-        hi = fma(pad_scale, 1.2099813e-05, hi);
-        float p = current.z + current.x * -0.49238378 + current.y * -0.47075778;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.49238378 + dir.y * -0.47075778);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.49238378 + dir.y * -0.47075778;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 16: axis (-0.826708, -0.382923, -0.412219) from dop32.axes:12, scaled by -1.20962 to (1, 0.46319014, 0.4986271)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * 0.46319014 + c0.z * 0.4986271;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * 0.46319014 + c1.z * 0.4986271;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * 0.46319014 + c2.z * 0.4986271;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * 0.46319014 + c3.z * 0.4986271;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * 0.46319014 + c4.z * 0.4986271;
+        float lo = -1.2096173e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2096173e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2096173e-05, lo);
-        hi = fma(pad_scale, 1.2096173e-05, hi);
-        float p = current.x + current.y * 0.46319014 + current.z * 0.4986271;
-        float inv_d = 1.0 / (dir.x + dir.y * 0.46319014 + dir.z * 0.4986271);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * 0.46319014 + dir.z * 0.4986271;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 9 of 16: axis (0.260942, -0.577482, 0.773578) from dop32.axes:13, scaled by 1.29269 to (0.33731827, -0.74650776, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.33731827 + c0.y * -0.74650776;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.33731827 + c1.y * -0.74650776;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * 0.33731827 + c2.y * -0.74650776;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.33731827 + c3.y * -0.74650776;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * 0.33731827 + c4.y * -0.74650776;
+        float lo = -1.2926939e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2926939e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2926939e-05, lo);
-        hi = fma(pad_scale, 1.2926939e-05, hi);
-        float p = current.z + current.x * 0.33731827 + current.y * -0.74650776;
-        float inv_d = 1.0 / (dir.z + dir.x * 0.33731827 + dir.y * -0.74650776);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * 0.33731827 + dir.y * -0.74650776;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 10 of 16: axis (0.254398, 0.637821, 0.726957) from dop32.axes:14, scaled by 1.3756 to (0.34994918, 0.8773848, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.34994918 + c0.y * 0.8773848;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.34994918 + c1.y * 0.8773848;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * 0.34994918 + c2.y * 0.8773848;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.34994918 + c3.y * 0.8773848;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * 0.34994918 + c4.y * 0.8773848;
+        float lo = -1.3755975e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.3755975e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.3755975e-05, lo);
-        hi = fma(pad_scale, 1.3755975e-05, hi);
-        float p = current.z + current.x * 0.34994918 + current.y * 0.8773848;
-        float inv_d = 1.0 / (dir.z + dir.x * 0.34994918 + dir.y * 0.8773848);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * 0.34994918 + dir.y * 0.8773848;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 11 of 16: axis (0.3109, -0.728083, -0.61093) from dop32.axes:15, scaled by -1.37347 to (-0.42701176, 1, 0.8390939)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.42701176 + c0.z * 0.8390939;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.42701176 + c1.z * 0.8390939;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * -0.42701176 + c2.z * 0.8390939;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.42701176 + c3.z * 0.8390939;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * -0.42701176 + c4.z * 0.8390939;
+        float lo = -1.37346915e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.37346915e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.37346915e-05, lo);
-        hi = fma(pad_scale, 1.37346915e-05, hi);
-        float p = current.y + current.x * -0.42701176 + current.z * 0.8390939;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.42701176 + dir.z * 0.8390939);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.42701176 + dir.z * 0.8390939;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 12 of 16: axis (0.798513, -0.556827, -0.228738) from dop32.axes:16, scaled by 1.25233 to (1, -0.69732994, -0.28645495)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.69732994 + c0.z * -0.28645495;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.69732994 + c1.z * -0.28645495;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * -0.69732994 + c2.z * -0.28645495;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.69732994 + c3.z * -0.28645495;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * -0.69732994 + c4.z * -0.28645495;
+        float lo = -1.252328e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.252328e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.252328e-05, lo);
-        hi = fma(pad_scale, 1.252328e-05, hi);
-        float p = current.x + current.y * -0.69732994 + current.z * -0.28645495;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.69732994 + dir.z * -0.28645495);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.69732994 + dir.z * -0.28645495;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 13 of 16: axis (0.673383, -0.163602, -0.720964) from dop32.axes:17, scaled by -1.38703 to (-0.93400365, 0.22692117, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * -0.93400365 + c0.y * 0.22692117;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * -0.93400365 + c1.y * 0.22692117;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * -0.93400365 + c2.y * 0.22692117;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * -0.93400365 + c3.y * 0.22692117;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * -0.93400365 + c4.y * 0.22692117;
+        float lo = -1.38703135e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.38703135e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.38703135e-05, lo);
-        hi = fma(pad_scale, 1.38703135e-05, hi);
-        float p = current.z + current.x * -0.93400365 + current.y * 0.22692117;
-        float inv_d = 1.0 / (dir.z + dir.x * -0.93400365 + dir.y * 0.22692117);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * -0.93400365 + dir.y * 0.22692117;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 14 of 16: axis (-0.813922, 0.369658, -0.448201) from dop32.axes:18, scaled by -1.22862 to (1, -0.45416883, 0.55066824)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x + c0.y * -0.45416883 + c0.z * 0.55066824;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x + c1.y * -0.45416883 + c1.z * 0.55066824;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x + c2.y * -0.45416883 + c2.z * 0.55066824;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x + c3.y * -0.45416883 + c3.z * 0.55066824;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x + c4.y * -0.45416883 + c4.z * 0.55066824;
+        float lo = -1.2286191e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2286191e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2286191e-05, lo);
-        hi = fma(pad_scale, 1.2286191e-05, hi);
-        float p = current.x + current.y * -0.45416883 + current.z * 0.55066824;
-        float inv_d = 1.0 / (dir.x + dir.y * -0.45416883 + dir.z * 0.55066824);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x + dir.y * -0.45416883 + dir.z * 0.55066824;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 15 of 16: axis (0.47765, -0.853722, 0.207384) from dop32.axes:19, scaled by -1.17134 to (-0.5594913, 1, -0.24291748)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.5594913 + c0.z * -0.24291748;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.5594913 + c1.z * -0.24291748;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * -0.5594913 + c2.z * -0.24291748;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.5594913 + c3.z * -0.24291748;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * -0.5594913 + c4.z * -0.24291748;
+        float lo = -1.1713409e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.1713409e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.1713409e-05, lo);
-        hi = fma(pad_scale, 1.1713409e-05, hi);
-        float p = current.y + current.x * -0.5594913 + current.z * -0.24291748;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.5594913 + dir.z * -0.24291748);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.5594913 + dir.z * -0.24291748;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 16 of 16: axis (-0.554854, -0.04155, -0.83091) from dop32.axes:20, scaled by -1.2035 to (0.6677667, 0.050005417, 1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.z + c0.x * 0.6677667 + c0.y * 0.050005417;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.z + c1.x * 0.6677667 + c1.y * 0.050005417;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.z + c2.x * 0.6677667 + c2.y * 0.050005417;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.z + c3.x * 0.6677667 + c3.y * 0.050005417;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.z + c4.x * 0.6677667 + c4.y * 0.050005417;
+        float lo = -1.2035002e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.2035002e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.2035002e-05, lo);
-        hi = fma(pad_scale, 1.2035002e-05, hi);
-        float p = current.z + current.x * 0.6677667 + current.y * 0.050005417;
-        float inv_d = 1.0 / (dir.z + dir.x * 0.6677667 + dir.y * 0.050005417);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.z + dir.x * 0.6677667 + dir.y * 0.050005417;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP32_CLIP_N5_GLSL

@@ -4,346 +4,311 @@
 // Do not edit; regenerate with `kdop gen --sets dop32 --modes varclip --neighborhoods n5 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 32-DOP (16 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[2].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[2], which is not read.
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_VARCLIP_N5_GLSL
 #define KDOP_DOP32_VARCLIP_N5_GLSL
 
 vec3 kdop_dop32_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighborhood[5])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     // Moments of colors relative to current, scaled so squares of HDR differences stay finite.
-    bool huge = pad_scale > 1.1529215e+18; // 2^60
+    bool huge = max(max(current_size.x, current_size.y), current_size.z) > 1.1529215e+18; // 2^60
     float scale = huge ? 7.888609e-31 : 1.0; // 2^-100
     vec3 origin = current * (huge ? -7.888609e-31 : -1.0);
     vec3 ray = dir * scale;
-    float slab_pad = pad_scale * scale;
     vec3 c0 = fma(neighborhood[0], vec3(scale), origin);
     vec3 c1 = fma(neighborhood[1], vec3(scale), origin);
-    vec3 c2 = fma(neighborhood[2], vec3(scale), origin);
     vec3 c3 = fma(neighborhood[3], vec3(scale), origin);
     vec3 c4 = fma(neighborhood[4], vec3(scale), origin);
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 16: axis (1, 0, 0) from dop32.axes:5
     {
-        float inv_d = 1.0 / ray.x;
         float q0 = c0.x;
         float q1 = c1.x;
-        float q2 = c2.x;
         float q3 = c3.x;
         float q4 = c4.x;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1e-05, lo);
-        hi = fma(slab_pad, 1e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 16: axis (0, 1, 0) from dop32.axes:6
     {
-        float inv_d = 1.0 / ray.y;
         float q0 = c0.y;
         float q1 = c1.y;
-        float q2 = c2.y;
         float q3 = c3.y;
         float q4 = c4.y;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1e-05, lo);
-        hi = fma(slab_pad, 1e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 16: axis (0, 0, 1) from dop32.axes:7
     {
-        float inv_d = 1.0 / ray.z;
         float q0 = c0.z;
         float q1 = c1.z;
-        float q2 = c2.z;
         float q3 = c3.z;
         float q4 = c4.z;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1e-05, lo);
-        hi = fma(slab_pad, 1e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 16: axis (0.820081, 0.456727, -0.344773) from dop32.axes:8, scaled by 1.21939 to (1, 0.5569291, -0.42041335)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * 0.5569291 + ray.z * -0.42041335);
         float q0 = c0.x + c0.y * 0.5569291 + c0.z * -0.42041335;
         float q1 = c1.x + c1.y * 0.5569291 + c1.z * -0.42041335;
-        float q2 = c2.x + c2.y * 0.5569291 + c2.z * -0.42041335;
         float q3 = c3.x + c3.y * 0.5569291 + c3.z * -0.42041335;
         float q4 = c4.x + c4.y * 0.5569291 + c4.z * -0.42041335;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2193923e-05, lo);
-        hi = fma(slab_pad, 1.2193923e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2193923e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * 0.5569291 + ray.z * -0.42041335;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 5 of 16: axis (0.540295, 0.829202, 0.143195) from dop32.axes:9, scaled by 1.20598 to (0.65158427, 1, 0.17269012)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * 0.65158427 + ray.z * 0.17269012);
         float q0 = c0.y + c0.x * 0.65158427 + c0.z * 0.17269012;
         float q1 = c1.y + c1.x * 0.65158427 + c1.z * 0.17269012;
-        float q2 = c2.y + c2.x * 0.65158427 + c2.z * 0.17269012;
         float q3 = c3.y + c3.x * 0.65158427 + c3.z * 0.17269012;
         float q4 = c4.y + c4.x * 0.65158427 + c4.z * 0.17269012;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2059784e-05, lo);
-        hi = fma(slab_pad, 1.2059784e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2059784e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * 0.65158427 + ray.z * 0.17269012;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 6 of 16: axis (0.2558, 0.841084, -0.476597) from dop32.axes:10, scaled by 1.18894 to (0.30413133, 1, -0.56664616)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * 0.30413133 + ray.z * -0.56664616);
         float q0 = c0.y + c0.x * 0.30413133 + c0.z * -0.56664616;
         float q1 = c1.y + c1.x * 0.30413133 + c1.z * -0.56664616;
-        float q2 = c2.y + c2.x * 0.30413133 + c2.z * -0.56664616;
         float q3 = c3.y + c3.x * 0.30413133 + c3.z * -0.56664616;
         float q4 = c4.y + c4.x * 0.30413133 + c4.z * -0.56664616;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.1889422e-05, lo);
-        hi = fma(slab_pad, 1.1889422e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.1889422e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * 0.30413133 + ray.z * -0.56664616;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 7 of 16: axis (-0.406935, -0.389062, 0.826459) from dop32.axes:11, scaled by 1.20998 to (-0.49238378, -0.47075778, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * -0.49238378 + ray.y * -0.47075778);
         float q0 = c0.z + c0.x * -0.49238378 + c0.y * -0.47075778;
         float q1 = c1.z + c1.x * -0.49238378 + c1.y * -0.47075778;
-        float q2 = c2.z + c2.x * -0.49238378 + c2.y * -0.47075778;
         float q3 = c3.z + c3.x * -0.49238378 + c3.y * -0.47075778;
         float q4 = c4.z + c4.x * -0.49238378 + c4.y * -0.47075778;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2099813e-05, lo);
-        hi = fma(slab_pad, 1.2099813e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2099813e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * -0.49238378 + ray.y * -0.47075778;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 8 of 16: axis (-0.826708, -0.382923, -0.412219) from dop32.axes:12, scaled by -1.20962 to (1, 0.46319014, 0.4986271)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * 0.46319014 + ray.z * 0.4986271);
         float q0 = c0.x + c0.y * 0.46319014 + c0.z * 0.4986271;
         float q1 = c1.x + c1.y * 0.46319014 + c1.z * 0.4986271;
-        float q2 = c2.x + c2.y * 0.46319014 + c2.z * 0.4986271;
         float q3 = c3.x + c3.y * 0.46319014 + c3.z * 0.4986271;
         float q4 = c4.x + c4.y * 0.46319014 + c4.z * 0.4986271;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2096173e-05, lo);
-        hi = fma(slab_pad, 1.2096173e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2096173e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * 0.46319014 + ray.z * 0.4986271;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 9 of 16: axis (0.260942, -0.577482, 0.773578) from dop32.axes:13, scaled by 1.29269 to (0.33731827, -0.74650776, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * 0.33731827 + ray.y * -0.74650776);
         float q0 = c0.z + c0.x * 0.33731827 + c0.y * -0.74650776;
         float q1 = c1.z + c1.x * 0.33731827 + c1.y * -0.74650776;
-        float q2 = c2.z + c2.x * 0.33731827 + c2.y * -0.74650776;
         float q3 = c3.z + c3.x * 0.33731827 + c3.y * -0.74650776;
         float q4 = c4.z + c4.x * 0.33731827 + c4.y * -0.74650776;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2926939e-05, lo);
-        hi = fma(slab_pad, 1.2926939e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2926939e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * 0.33731827 + ray.y * -0.74650776;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 10 of 16: axis (0.254398, 0.637821, 0.726957) from dop32.axes:14, scaled by 1.3756 to (0.34994918, 0.8773848, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * 0.34994918 + ray.y * 0.8773848);
         float q0 = c0.z + c0.x * 0.34994918 + c0.y * 0.8773848;
         float q1 = c1.z + c1.x * 0.34994918 + c1.y * 0.8773848;
-        float q2 = c2.z + c2.x * 0.34994918 + c2.y * 0.8773848;
         float q3 = c3.z + c3.x * 0.34994918 + c3.y * 0.8773848;
         float q4 = c4.z + c4.x * 0.34994918 + c4.y * 0.8773848;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.3755975e-05, lo);
-        hi = fma(slab_pad, 1.3755975e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.3755975e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * 0.34994918 + ray.y * 0.8773848;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 11 of 16: axis (0.3109, -0.728083, -0.61093) from dop32.axes:15, scaled by -1.37347 to (-0.42701176, 1, 0.8390939)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.42701176 + ray.z * 0.8390939);
         float q0 = c0.y + c0.x * -0.42701176 + c0.z * 0.8390939;
         float q1 = c1.y + c1.x * -0.42701176 + c1.z * 0.8390939;
-        float q2 = c2.y + c2.x * -0.42701176 + c2.z * 0.8390939;
         float q3 = c3.y + c3.x * -0.42701176 + c3.z * 0.8390939;
         float q4 = c4.y + c4.x * -0.42701176 + c4.z * 0.8390939;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.37346915e-05, lo);
-        hi = fma(slab_pad, 1.37346915e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.37346915e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.42701176 + ray.z * 0.8390939;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 12 of 16: axis (0.798513, -0.556827, -0.228738) from dop32.axes:16, scaled by 1.25233 to (1, -0.69732994, -0.28645495)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.69732994 + ray.z * -0.28645495);
         float q0 = c0.x + c0.y * -0.69732994 + c0.z * -0.28645495;
         float q1 = c1.x + c1.y * -0.69732994 + c1.z * -0.28645495;
-        float q2 = c2.x + c2.y * -0.69732994 + c2.z * -0.28645495;
         float q3 = c3.x + c3.y * -0.69732994 + c3.z * -0.28645495;
         float q4 = c4.x + c4.y * -0.69732994 + c4.z * -0.28645495;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.252328e-05, lo);
-        hi = fma(slab_pad, 1.252328e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.252328e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.69732994 + ray.z * -0.28645495;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 13 of 16: axis (0.673383, -0.163602, -0.720964) from dop32.axes:17, scaled by -1.38703 to (-0.93400365, 0.22692117, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * -0.93400365 + ray.y * 0.22692117);
         float q0 = c0.z + c0.x * -0.93400365 + c0.y * 0.22692117;
         float q1 = c1.z + c1.x * -0.93400365 + c1.y * 0.22692117;
-        float q2 = c2.z + c2.x * -0.93400365 + c2.y * 0.22692117;
         float q3 = c3.z + c3.x * -0.93400365 + c3.y * 0.22692117;
         float q4 = c4.z + c4.x * -0.93400365 + c4.y * 0.22692117;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.38703135e-05, lo);
-        hi = fma(slab_pad, 1.38703135e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.38703135e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * -0.93400365 + ray.y * 0.22692117;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 14 of 16: axis (-0.813922, 0.369658, -0.448201) from dop32.axes:18, scaled by -1.22862 to (1, -0.45416883, 0.55066824)
     {
-        float inv_d = 1.0 / (ray.x + ray.y * -0.45416883 + ray.z * 0.55066824);
         float q0 = c0.x + c0.y * -0.45416883 + c0.z * 0.55066824;
         float q1 = c1.x + c1.y * -0.45416883 + c1.z * 0.55066824;
-        float q2 = c2.x + c2.y * -0.45416883 + c2.z * 0.55066824;
         float q3 = c3.x + c3.y * -0.45416883 + c3.z * 0.55066824;
         float q4 = c4.x + c4.y * -0.45416883 + c4.z * 0.55066824;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2286191e-05, lo);
-        hi = fma(slab_pad, 1.2286191e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2286191e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x + ray.y * -0.45416883 + ray.z * 0.55066824;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 15 of 16: axis (0.47765, -0.853722, 0.207384) from dop32.axes:19, scaled by -1.17134 to (-0.5594913, 1, -0.24291748)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.5594913 + ray.z * -0.24291748);
         float q0 = c0.y + c0.x * -0.5594913 + c0.z * -0.24291748;
         float q1 = c1.y + c1.x * -0.5594913 + c1.z * -0.24291748;
-        float q2 = c2.y + c2.x * -0.5594913 + c2.z * -0.24291748;
         float q3 = c3.y + c3.x * -0.5594913 + c3.z * -0.24291748;
         float q4 = c4.y + c4.x * -0.5594913 + c4.z * -0.24291748;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.1713409e-05, lo);
-        hi = fma(slab_pad, 1.1713409e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.1713409e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.5594913 + ray.z * -0.24291748;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 16 of 16: axis (-0.554854, -0.04155, -0.83091) from dop32.axes:20, scaled by -1.2035 to (0.6677667, 0.050005417, 1)
     {
-        float inv_d = 1.0 / (ray.z + ray.x * 0.6677667 + ray.y * 0.050005417);
         float q0 = c0.z + c0.x * 0.6677667 + c0.y * 0.050005417;
         float q1 = c1.z + c1.x * 0.6677667 + c1.y * 0.050005417;
-        float q2 = c2.z + c2.x * 0.6677667 + c2.y * 0.050005417;
         float q3 = c3.z + c3.x * 0.6677667 + c3.y * 0.050005417;
         float q4 = c4.z + c4.x * 0.6677667 + c4.y * 0.050005417;
-        float sum = q0 + q1 + q2 + q3 + q4;
+        float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
-        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
+        float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.2035002e-05, lo);
-        hi = fma(slab_pad, 1.2035002e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.2035002e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.z + ray.x * 0.6677667 + ray.y * 0.050005417;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_DOP32_VARCLIP_N5_GLSL

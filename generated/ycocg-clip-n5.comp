@@ -22,110 +22,93 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // Do not edit; regenerate with `kdop gen --sets ycocg --modes clip --neighborhoods n5 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 6-DOP (3 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[2].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[2], which is not read.
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_YCOCG_CLIP_N5_GLSL
 #define KDOP_YCOCG_CLIP_N5_GLSL
 
 vec3 kdop_ycocg_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
-    vec3 c0 = neighborhood[0];
-    vec3 c1 = neighborhood[1];
-    vec3 c2 = neighborhood[2];
-    vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
+    vec3 c0 = neighborhood[0] - current;
+    vec3 c1 = neighborhood[1] - current;
+    vec3 c3 = neighborhood[3] - current;
+    vec3 c4 = neighborhood[4] - current;
     float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * 0.5 + c0.z * 0.5;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * 0.5 + c1.z * 0.5;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * 0.5 + c2.z * 0.5;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * 0.5 + c3.z * 0.5;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * 0.5 + c4.z * 0.5;
+        float lo = -1.22474485e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.22474485e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.22474485e-05, lo);
-        hi = fma(pad_scale, 1.22474485e-05, hi);
-        float p = current.y + current.x * 0.5 + current.z * 0.5;
-        float inv_d = 1.0 / (dir.y + dir.x * 0.5 + dir.z * 0.5);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * 0.5 + dir.z * 0.5;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x - c0.z;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x - c1.z;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.x - c2.z;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x - c3.z;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.x - c4.z;
+        float lo = -1.4142136e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.4142136e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.4142136e-05, lo);
-        hi = fma(pad_scale, 1.4142136e-05, hi);
-        float p = current.x - current.z;
-        float inv_d = 1.0 / (dir.x - dir.z);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.x - dir.z;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
-        float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
         float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5;
+        float lo = -1.22474485e-05;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q3);
         lo = min(lo, q4);
+        float hi = 1.22474485e-05;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q3);
         hi = max(hi, q4);
-        lo = fma(pad_scale, -1.22474485e-05, lo);
-        hi = fma(pad_scale, 1.22474485e-05, hi);
-        float p = current.y + current.x * -0.5 + current.z * -0.5;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        float d = dir.y + dir.x * -0.5 + dir.z * -0.5;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_YCOCG_CLIP_N5_GLSL

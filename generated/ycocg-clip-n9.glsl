@@ -4,32 +4,30 @@
 // Do not edit; regenerate with `kdop gen --sets ycocg --modes clip --neighborhoods n9 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 6-DOP (3 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[4].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[4], which is not read.
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_YCOCG_CLIP_N9_GLSL
 #define KDOP_YCOCG_CLIP_N9_GLSL
 
 vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     vec3 c0 = neighborhood[0];
     vec3 c1 = neighborhood[1];
     vec3 c2 = neighborhood[2];
     vec3 c3 = neighborhood[3];
-    vec3 c4 = neighborhood[4];
     vec3 c5 = neighborhood[5];
     vec3 c6 = neighborhood[6];
     vec3 c7 = neighborhood[7];
@@ -38,116 +36,110 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * 0.5 + c0.z * 0.5;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * 0.5 + c1.z * 0.5;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y + c2.x * 0.5 + c2.z * 0.5;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * 0.5 + c3.z * 0.5;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y + c4.x * 0.5 + c4.z * 0.5;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y + c5.x * 0.5 + c5.z * 0.5;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y + c6.x * 0.5 + c6.z * 0.5;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y + c7.x * 0.5 + c7.z * 0.5;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y + c8.x * 0.5 + c8.z * 0.5;
+        float lo = 3.40282347e38;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = -3.40282347e38;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.22474485e-05, lo);
-        hi = fma(pad_scale, 1.22474485e-05, hi);
         float p = current.y + current.x * 0.5 + current.z * 0.5;
-        float inv_d = 1.0 / (dir.y + dir.x * 0.5 + dir.z * 0.5);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        lo = min(lo - p, -1.22474485e-05);
+        hi = max(hi - p, 1.22474485e-05);
+        float d = dir.y + dir.x * 0.5 + dir.z * 0.5;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.x - c0.z;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.x - c1.z;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.x - c2.z;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.x - c3.z;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.x - c4.z;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.x - c5.z;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.x - c6.z;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.x - c7.z;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.x - c8.z;
+        float lo = 3.40282347e38;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = -3.40282347e38;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.4142136e-05, lo);
-        hi = fma(pad_scale, 1.4142136e-05, hi);
         float p = current.x - current.z;
-        float inv_d = 1.0 / (dir.x - dir.z);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        lo = min(lo - p, -1.4142136e-05);
+        hi = max(hi - p, 1.4142136e-05);
+        float d = dir.x - dir.z;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float lo = 3.40282347e38, hi = -3.40282347e38;
         float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
-        lo = min(lo, q0);
-        hi = max(hi, q0);
         float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
-        lo = min(lo, q1);
-        hi = max(hi, q1);
         float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5;
-        lo = min(lo, q2);
-        hi = max(hi, q2);
         float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
-        lo = min(lo, q3);
-        hi = max(hi, q3);
-        float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5;
-        lo = min(lo, q4);
-        hi = max(hi, q4);
         float q5 = c5.y + c5.x * -0.5 + c5.z * -0.5;
-        lo = min(lo, q5);
-        hi = max(hi, q5);
         float q6 = c6.y + c6.x * -0.5 + c6.z * -0.5;
-        lo = min(lo, q6);
-        hi = max(hi, q6);
         float q7 = c7.y + c7.x * -0.5 + c7.z * -0.5;
-        lo = min(lo, q7);
-        hi = max(hi, q7);
         float q8 = c8.y + c8.x * -0.5 + c8.z * -0.5;
+        float lo = 3.40282347e38;
+        lo = min(lo, q0);
+        lo = min(lo, q1);
+        lo = min(lo, q2);
+        lo = min(lo, q3);
+        lo = min(lo, q5);
+        lo = min(lo, q6);
+        lo = min(lo, q7);
         lo = min(lo, q8);
+        float hi = -3.40282347e38;
+        hi = max(hi, q0);
+        hi = max(hi, q1);
+        hi = max(hi, q2);
+        hi = max(hi, q3);
+        hi = max(hi, q5);
+        hi = max(hi, q6);
+        hi = max(hi, q7);
         hi = max(hi, q8);
-        lo = fma(pad_scale, -1.22474485e-05, lo);
-        hi = fma(pad_scale, 1.22474485e-05, hi);
         float p = current.y + current.x * -0.5 + current.z * -0.5;
-        float inv_d = 1.0 / (dir.y + dir.x * -0.5 + dir.z * -0.5);
-        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);
+        lo = min(lo - p, -1.22474485e-05);
+        hi = max(hi - p, 1.22474485e-05);
+        float d = dir.y + dir.x * -0.5 + dir.z * -0.5;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_YCOCG_CLIP_N9_GLSL

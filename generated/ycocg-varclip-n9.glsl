@@ -4,39 +4,36 @@
 // Do not edit; regenerate with `kdop gen --sets ycocg --modes varclip --neighborhoods n9 --out DIR`.
 //
 // Returns where the ray from `current` to `history` leaves the 6-DOP (3 slabs) around the
-// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside
-// that k-DOP; normally it is the pixel's own color, neighborhood[4].
+// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's
+// own color and stands for neighborhood[4], which is not read.
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of
-// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN
-// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,
-// current is returned. `kdop stress` checks these promises on a device.
+// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
+// around current, measured from current: the ray starts strictly inside at any magnitude,
+// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
+// `kdop stress` checks these promises on a device.
 #ifndef KDOP_YCOCG_VARCLIP_N9_GLSL
 #define KDOP_YCOCG_VARCLIP_N9_GLSL
 
 vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighborhood[9])
 {
     vec3 dir = history - current;
-    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).
-    vec3 current_size = abs(current);
-    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));
     // A history with NaN or Inf, or too far out to project without overflow, is not used.
+    vec3 current_size = abs(current);
     vec3 reach = abs(dir) + current_size;
     bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;
     // Moments of colors relative to current, scaled so squares of HDR differences stay finite.
-    bool huge = pad_scale > 1.1529215e+18; // 2^60
+    bool huge = max(max(current_size.x, current_size.y), current_size.z) > 1.1529215e+18; // 2^60
     float scale = huge ? 7.888609e-31 : 1.0; // 2^-100
     vec3 origin = current * (huge ? -7.888609e-31 : -1.0);
     vec3 ray = dir * scale;
-    float slab_pad = pad_scale * scale;
     vec3 c0 = fma(neighborhood[0], vec3(scale), origin);
     vec3 c1 = fma(neighborhood[1], vec3(scale), origin);
     vec3 c2 = fma(neighborhood[2], vec3(scale), origin);
     vec3 c3 = fma(neighborhood[3], vec3(scale), origin);
-    vec3 c4 = fma(neighborhood[4], vec3(scale), origin);
     vec3 c5 = fma(neighborhood[5], vec3(scale), origin);
     vec3 c6 = fma(neighborhood[6], vec3(scale), origin);
     vec3 c7 = fma(neighborhood[7], vec3(scale), origin);
@@ -45,74 +42,68 @@ vec3 kdop_ycocg_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * 0.5 + ray.z * 0.5);
         float q0 = c0.y + c0.x * 0.5 + c0.z * 0.5;
         float q1 = c1.y + c1.x * 0.5 + c1.z * 0.5;
         float q2 = c2.y + c2.x * 0.5 + c2.z * 0.5;
         float q3 = c3.y + c3.x * 0.5 + c3.z * 0.5;
-        float q4 = c4.y + c4.x * 0.5 + c4.z * 0.5;
         float q5 = c5.y + c5.x * 0.5 + c5.z * 0.5;
         float q6 = c6.y + c6.x * 0.5 + c6.z * 0.5;
         float q7 = c7.y + c7.x * 0.5 + c7.z * 0.5;
         float q8 = c8.y + c8.x * 0.5 + c8.z * 0.5;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.22474485e-05, lo);
-        hi = fma(slab_pad, 1.22474485e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.22474485e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * 0.5 + ray.z * 0.5;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 2 of 3: axis (0.5, 0, -0.5) from ycocg.axes:9, scaled by 2 to (1, 0, -1)
     {
-        float inv_d = 1.0 / (ray.x - ray.z);
         float q0 = c0.x - c0.z;
         float q1 = c1.x - c1.z;
         float q2 = c2.x - c2.z;
         float q3 = c3.x - c3.z;
-        float q4 = c4.x - c4.z;
         float q5 = c5.x - c5.z;
         float q6 = c6.x - c6.z;
         float q7 = c7.x - c7.z;
         float q8 = c8.x - c8.z;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.4142136e-05, lo);
-        hi = fma(slab_pad, 1.4142136e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.4142136e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.x - ray.z;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float inv_d = 1.0 / (ray.y + ray.x * -0.5 + ray.z * -0.5);
         float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
         float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
         float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5;
         float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
-        float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5;
         float q5 = c5.y + c5.x * -0.5 + c5.z * -0.5;
         float q6 = c6.y + c6.x * -0.5 + c6.z * -0.5;
         float q7 = c7.y + c7.x * -0.5 + c7.z * -0.5;
         float q8 = c8.y + c8.x * -0.5 + c8.z * -0.5;
-        float sum = q0 + q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8;
+        float sum = q0 + q1 + q2 + q3 + q5 + q6 + q7 + q8;
         float mean = sum * (1.0 / 9.0);
-        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q4 * q4 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
+        float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float lo = min(fma(-gamma, sigma, mean), 0.0);
-        float hi = max(fma(gamma, sigma, mean), 0.0);
-        lo = fma(slab_pad, -1.22474485e-05, lo);
-        hi = fma(slab_pad, 1.22474485e-05, hi);
-        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);
+        float margin = 1.22474485e-05 * scale;
+        float lo = min(fma(-gamma, sigma, mean), -margin);
+        float hi = max(fma(gamma, sigma, mean), margin);
+        float d = ray.y + ray.x * -0.5 + ray.z * -0.5;
+        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
-    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;
+    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1
 }
 
 #endif // KDOP_YCOCG_VARCLIP_N9_GLSL

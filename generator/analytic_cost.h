@@ -1,32 +1,43 @@
-// The fewest scalar float operations kdop's clip formulation (hardened numerics, see EmitStyle)
-// needs for an axis set: the yardstick the cost bench holds each emitted variant against
-// (analytic_min_ops in cost.csv). Counted like count_float_ops(): a multiply-add is one operation,
-// a vector operation one per component.
+// A lower bound on the scalar float operations of kdop's hardened clip for an axis set: the
+// yardstick the cost bench holds each emitted variant against (analytic_min_ops in cost.csv).
+// Counted like count_float_ops(): a multiply-add is one operation, a vector operation one per
+// component, a select one, integer operations (the sign-bit test) none. Lavapipe emits no fused
+// multiply-add, so there each Fma becomes a multiply and an add: the counts here and lavapipe's
+// instructions disagree by the number of Fmas, beyond its 8 pixels per SIMD instruction.
 //
-// Per slab, for an axis with m nonzero components and a neighborhood of N colors (the pixel's own
-// among them):
-//   projections   (N + 1)(m - 1)  the N colors and the ray direction; scaled so one component is
-//                                 exactly 1, an axis costs m - 1 multiply-adds per projection, and
-//                                 the pixel's projection doubles as the ray origin's
-//   clip extent   2(N - 1)        min and max over N projections
-//   varclip slab  2N + 9          N - 1 adds and a scale for the mean, N multiply-adds, a scale, a
-//                                 multiply-add and a scale for the variance, its clamp at 0 and
-//                                 sqrt, mean -/+ gamma * sigma (2), and widening to contain the
-//                                 origin (2)
-//   dilation      2               lo - padding * scale, hi + padding * scale (one multiply-add each)
-//   exit          6 (clip)        reciprocal of the direction's projection, compare and select
-//                 5 (varclip)     for the plane the ray heads for, minus the origin (clip only),
-//                                 times the reciprocal, min into t
-// Per pixel: the ray direction (3 subtracts); the padding scale, max(1, |current| channels) (3
-// abs, 3 max); whether the history is usable, |dir|_1 + |current|_1 <= FLT_MAX (3 abs, 3 + 2
-// adds, a compare); current + max(t, 0) * dir (a max and 3 multiply-adds; the unusable case
-// returns current through a branch, no select); for varclip -gamma (1), the power-of-two scale
-// of the relative frame (a compare, two selects, -current * scale (3), the ray (3) and the
-// padding (1) scaled) and the colors relative to current (3N multiply-adds).
+// The function: per slab, the extent of the neighbors' projections (or mean +- gamma * sigma of
+// them), joined with a margin around the current color, which stands for the center pixel; the
+// ray's exit through the plane it heads for. For an axis with m nonzero components (scaled so one
+// is exactly 1, each projection costs m - 1 multiply-adds) and a neighborhood of N colors:
 //
-// Not counted, because the formulation does not need them: starting the running extents from
-// +-FLT_MAX (2 per clip slab), which the emitter does on purpose because it measured cheaper on
-// lavapipe; see write_clip_slab() in glsl_emitter.cpp.
+//   per pixel     18 + 3(N - 1)   ray direction (3); whether the history is usable,
+//                 (relative)      |dir|_1 + |current|_1 <= FLT_MAX (3 + 3 abs, 3 + 2 adds, a
+//                                 compare); current + t * dir (3 multiply-adds; the unusable case
+//                                 returns current through a branch); and, relative, the N - 1
+//                                 neighbors minus current
+//                 18 (absolute)
+//   clip slab     N(m - 1) + 2(N - 1) + 3          relative: the N - 1 neighbors' and the ray's
+//                                                  projections; min and max of the neighbors and
+//                                                  the margin; the exit (a select of the plane, a
+//                                                  division, a min into t)
+//                 (N + 1)(m - 1) + 2N + 3          absolute: the current color's projection too;
+//                                                  min and max of N - 1 projections (2(N - 2)),
+//                                                  minus that projection (2), joined with the
+//                                                  margin (2); the exit
+//   varclip       per pixel 18 + 3(N - 1) + 11     the power-of-two scale of the relative frame
+//                                                  (the largest |current| channel by 2 max, a
+//                                                  compare, two selects, origin and ray scaled)
+//                 per slab N(m - 1) + 2N + 11      the N - 1 projections and the ray's; the sum
+//                                                  (N - 2 adds) and the mean (1); the variance
+//                                                  (N - 1 squares, 3 more) and sigma (max, sqrt);
+//                                                  the margin scaled (1); mean -/+ gamma * sigma
+//                                                  joined with it (4); the exit
+//
+// The bound is the cheaper frame. The emitted variance clip spends up to 1 per slab more (spirv-opt
+// writes the margin's negation as a second multiply by the scale, and the negation of gamma where it
+// does not fold), which the tests allow for and no more. The emitter takes the cheaper one too (hardened_frame in
+// glsl_emitter.h), but starts the absolute frame's running extents from +-FLT_MAX (2 per slab more),
+// which it does on purpose because it measured cheaper on lavapipe; see write_clip_slab().
 #pragma once
 
 #include "axis_set.h"
@@ -38,7 +49,11 @@
 namespace kdop {
 
 // Only for the clips (Mode::clip, Mode::varclip); either form computes the same function, so the
-// minimum does not depend on the form.
+// bound does not depend on the form.
 std::size_t analytic_min_float_ops(const AxisSet& set, Mode mode, Neighborhood neighborhood);
+
+// The same count in one frame (a clip's varclip is always relative), without the emitter's
+// deliberate constant starts.
+std::size_t frame_float_ops(const AxisSet& set, Mode mode, Neighborhood neighborhood, bool relative);
 
 } // namespace kdop

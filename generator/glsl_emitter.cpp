@@ -82,12 +82,13 @@ std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projectio
     return units + scaled + negative_units;
 }
 
-// min() or max() over q[first, last) as a balanced tree: the same operation count as a chain,
-// but a dependency depth of log2(n) instead of n - 1.
-std::string reduce_tree(std::string_view op, int first, int last) {
-    if (last - first == 1) return fmt::format("q{}", first);
+// min() or max() over the projections q<n> of neighbors[first, last) as a balanced tree: the same
+// operation count as a chain, but a dependency depth of log2(n) instead of n - 1.
+std::string reduce_tree(std::string_view op, const std::vector<int>& neighbors, int first, int last) {
+    if (last - first == 1) return fmt::format("q{}", neighbors[first]);
     int middle = first + (last - first) / 2;
-    return fmt::format("{}({}, {})", op, reduce_tree(op, first, middle), reduce_tree(op, middle, last));
+    return fmt::format("{}({}, {})", op, reduce_tree(op, neighbors, first, middle),
+                       reduce_tree(op, neighbors, middle, last));
 }
 
 std::string reciprocal(const std::string& expression) {
@@ -105,79 +106,118 @@ std::string sum(int count, std::string_view term_format) {
 // projection grows, lo where it shrinks. Choosing by the sign of inv_d rather than of d keeps a ray
 // parallel to the slab (d = +-0, inv_d = +-inf) from stopping at it: the chosen plane's distance
 // then has inv_d's sign and the exit is +inf. A compare and a select cost one float op less than
-// computing both crossings and taking the larger.
-// `origin` is the ray origin's projection, or empty where lo and hi are already relative to it.
-std::string exit_update(std::string_view origin) {
-    if (origin.empty()) return "        t = min(t, (inv_d > 0.0 ? hi : lo) * inv_d);\n";
-    return fmt::format("        t = min(t, ((inv_d > 0.0 ? hi : lo) - {}) * inv_d);\n", origin);
+// computing both crossings and taking the larger. (The paper's numerics.)
+std::string paper_exit_update() { return "        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);\n"; }
+
+// Hardened, lo and hi are relative to the ray's origin and hold its margin: lo <= -padding < 0 <
+// padding <= hi, however float rounds. The plane the ray heads for is chosen by d's sign bit,
+// which tells -0 from +0: a parallel ray (d = +-0) divides a distance of the same sign by it and
+// gets +inf, never 0 / 0; and every exit is positive, so t stays in (0, 1]. One division instead
+// of a reciprocal and a multiply.
+constexpr char kHardenedExit[] = "        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);\n";
+
+// The paper's slab dilation, 1e-5 per unit of axis length, on both sides.
+std::string paper_dilation(const ScaledAxis& axis) {
+    return fmt::format("        lo -= {0};\n        hi += {0};\n", float_literal(axis.padding));
 }
 
-// The slab's dilation. The paper's 1e-5 per unit of axis length is below float32 spacing for values
-// above about 84, so hardened it grows with the pixel's magnitude (pad_scale, see
-// write_hardening_prologue): the slab then keeps a width, the ray's origin stays strictly inside it, and
-// a ray parallel to it (inv_d infinite) meets a nonzero distance, never 0 x inf = NaN.
-// `scale` names the per-pixel factor (hardened only).
-std::string dilation(const ScaledAxis& axis, Numerics numerics, std::string_view scale) {
-    const std::string padding = float_literal(axis.padding);
-    if (numerics == Numerics::paper) return fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
-    return fmt::format("        lo = fma({1}, -{0}, lo);\n        hi = fma({1}, {0}, hi);\n", padding, scale);
-}
-
-// Clip: the slab spans the projections' min..max, dilated by the padding.
-void write_clip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style, Numerics numerics) {
-    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
-    if (style.extent == EmitStyle::Extent::running) {
-        // Starting from +-FLT_MAX rather than from the first projection costs a min and a max but
-        // measured 8% fewer lavapipe instructions per pixel for dop32 (the driver can drop its NaN
-        // handling down the chain once a constant operand makes the result non-NaN); a NaN
-        // neighbor also drops out instead of poisoning the extent.
-        out += "        float lo = 3.40282347e38, hi = -3.40282347e38;\n";
-        for (int n = 0; n < count; ++n)
-            out += fmt::format("        float q{} = {};\n        lo = min(lo, q{});\n        hi = max(hi, q{});\n", n,
-                               proj(fmt::format("c{}", n)), n, n);
-    } else {
-        for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
-        out += fmt::format("        float lo = {};\n", reduce_tree("min", 0, count));
-        out += fmt::format("        float hi = {};\n", reduce_tree("max", 0, count));
+// `float <name> = ...;`: the min() or max() (`op`) of `start` (if any) and the projections q<n> of
+// `neighbors`, updated neighbor by neighbor from `start`, or as a balanced tree joined with it.
+void write_extent(std::string& out, std::string_view name, std::string_view op, std::string_view start,
+                  const std::vector<int>& neighbors, EmitStyle::Extent extent) {
+    if (extent == EmitStyle::Extent::running) {
+        out += fmt::format("        float {} = {};\n", name, start);
+        for (int n : neighbors) out += fmt::format("        {0} = {1}({0}, q{2});\n", name, op, n);
+        return;
     }
-    out += dilation(axis, numerics, "pad_scale");
-    out += fmt::format("        float p = {};\n", proj("current"));
-    out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
-    out += exit_update("p");
+    const std::string tree = reduce_tree(op, neighbors, 0, static_cast<int>(neighbors.size()));
+    out += start.empty() ? fmt::format("        float {} = {};\n", name, tree)
+                         : fmt::format("        float {} = {}({}, {});\n", name, op, tree, start);
 }
 
-// Variance clip (Salvi 2016): the slab spans mean +- gamma * sigma of the projections, widened to
-// include the current color so the ray still starts inside.
+// Clip: the slab spans the projections' min..max.
+// With the paper's numerics that is every neighbor's projection, dilated by the padding, and the
+// exit is measured from the current color's projection p.
+// Hardened, `current` stands for the center pixel (whose projection is the ray's origin), and the
+// slab spans the other neighbors' projections and a margin of the padding around the origin, in
+// coordinates relative to the origin. In the relative frame the colors already are relative to
+// current (write_unrolled_body), so the margin is where lo and hi start; in the absolute frame p is
+// subtracted once per slab and the margin joined after, so that neither float rounding (p - padding
+// is p above ~84) nor a flat neighborhood can put the origin on a plane.
+// Starting the running extents from constants rather than from the first projection measured 8%
+// fewer lavapipe instructions per pixel for dop32 (the driver can drop its NaN handling down the
+// chain once a constant operand makes the result non-NaN); a NaN neighbor also drops out instead of
+// poisoning the extent.
+void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector<int>& neighbors,
+                     const EmitStyle& style, Numerics numerics, Frame frame) {
+    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
+    for (int n : neighbors) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
+    const std::string padding = float_literal(axis.padding);
+    const bool running = style.extent == EmitStyle::Extent::running;
+    if (numerics == Numerics::paper) {
+        write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
+        write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
+        out += paper_dilation(axis);
+        out += fmt::format("        float p = {};\n", proj("current"));
+        out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
+        out += paper_exit_update();
+        return;
+    }
+    if (frame == Frame::relative) {
+        write_extent(out, "lo", "min", "-" + padding, neighbors, style.extent);
+        write_extent(out, "hi", "max", padding, neighbors, style.extent);
+    } else {
+        write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
+        write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
+        out += fmt::format("        float p = {};\n", proj("current"));
+        out += fmt::format("        lo = min(lo - p, -{});\n", padding);
+        out += fmt::format("        hi = max(hi - p, {});\n", padding);
+    }
+    out += fmt::format("        float d = {};\n", proj("dir"));
+    out += kHardenedExit;
+}
+
+// Variance clip (Salvi 2016): the slab spans mean +- gamma * sigma of the projections.
+// With the paper's numerics it is widened to include the current color's projection p, so the ray
+// starts inside, and dilated by the padding.
 // Hardened, the colors and the ray arrive relative to current and scaled (see
-// write_hardening_prologue), so the projections are relative to the ray's origin and the widening
-// is to 0. That shift keeps float32 from cancelling the small variance of bright, flat areas away:
-// the supplement's E[q^2] - E[q]^2 gives a sigma of about 3e-4 |q| there, or a negative variance
-// and NaN.
-void write_varclip_slab(std::string& out, const ScaledAxis& axis, int count, const EmitStyle& style,
-                        Numerics numerics) {
+// write_hardening_prologue), so the projections are relative to the ray's origin; as in the clip,
+// `current` stands for the center pixel (projection 0, so it adds nothing to the sums) and the slab
+// is widened to a margin of the padding around the origin. The shift keeps float32 from cancelling
+// the small variance of bright, flat areas away: the supplement's E[q^2] - E[q]^2 gives a sigma of
+// about 3e-4 |q| there, or a negative variance and NaN.
+void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vector<int>& neighbors, int count,
+                        const EmitStyle& style, Numerics numerics) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
     const bool hardened = numerics == Numerics::hardened;
     if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
-    out += fmt::format("        float inv_d = {};\n", reciprocal(proj(hardened ? "ray" : "dir")));
-    for (int n = 0; n < count; ++n) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
-    out += fmt::format("        float sum = {};\n", sum(count, "q{}"));
+    for (int n : neighbors) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
+    std::string sum, squares;
+    for (int n : neighbors) {
+        sum += fmt::format("{}q{}", sum.empty() ? "" : " + ", n);
+        squares += fmt::format("{0}q{1} * q{1}", squares.empty() ? "" : " + ", n);
+    }
+    out += fmt::format("        float sum = {};\n", sum);
     out += fmt::format("        float mean = sum * (1.0 / {}.0);\n", count);
     if (hardened) {
         // Written so every multiply-add fuses without a negation: the variance is
         // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
         out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
-                           sum(count, "q{0} * q{0}"));
+                           squares);
         out += "        float sigma = sqrt(max(variance, 0.0));\n";
-        out += "        float lo = min(fma(-gamma, sigma, mean), 0.0);\n";
-        out += "        float hi = max(fma(gamma, sigma, mean), 0.0);\n";
-    } else {
-        out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n",
-                           sum(count, "q{0} * q{0}"), count);
-        out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
-        out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
+        out += fmt::format("        float margin = {} * scale;\n", float_literal(axis.padding));
+        out += "        float lo = min(fma(-gamma, sigma, mean), -margin);\n";
+        out += "        float hi = max(fma(gamma, sigma, mean), margin);\n";
+        out += fmt::format("        float d = {};\n", proj("ray"));
+        out += kHardenedExit;
+        return;
     }
-    out += dilation(axis, numerics, "slab_pad");
-    out += exit_update(hardened ? "" : "p");
+    out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", squares, count);
+    out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
+    out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
+    out += paper_dilation(axis);
+    out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
+    out += paper_exit_update();
 }
 
 // Text from outside (a file's name, its provenance line) as it may stand in a `//` comment: a
@@ -252,6 +292,20 @@ ScaledAxis scale_axis(const glm::dvec3& axis) {
     return scaled;
 }
 
+Frame hardened_frame(const AxisSet& set, Mode mode, Neighborhood neighborhood) {
+    if (mode == Mode::varclip) return Frame::relative;
+    // Relative costs 3 subtracts per neighbor but the center; absolute costs, per slab, the current
+    // color's projection (nonzero components - 1 multiply-adds), subtracting it from lo and hi, and
+    // joining the margin to both (float_ops counts alike; analytic_cost.h).
+    const std::size_t others = neighborhood_offsets(neighborhood).size() - 1;
+    std::size_t absolute_extra = 0;
+    for (const Axis& axis : set.axes) {
+        const glm::vec3 k = scale_axis(axis.direction).coefficients;
+        absolute_extra += (k.x != 0.0f) + (k.y != 0.0f) + (k.z != 0.0f) + 3;
+    }
+    return 3 * others < absolute_extra ? Frame::relative : Frame::absolute;
+}
+
 std::string glsl_function_name(const VariantSpec& spec) {
     std::string name = "kdop_" + variant_name(spec);
     std::replace(name.begin(), name.end(), '-', '_');
@@ -282,9 +336,15 @@ std::string function_header(const VariantSpec& spec) {
     out += "//\n";
     out += fmt::format("// Returns where the ray from `current` to `history` leaves the {}-DOP ({} slabs) around the\n",
                        2 * axes, axes);
-    out += "// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside\n";
-    out += fmt::format("// that k-DOP; normally it is the pixel's own color, neighborhood[{}].\n",
-                       neighborhood_center(spec.neighborhood));
+    if (spec.numerics == Numerics::paper) {
+        out += "// neighborhood's colors, or `history` itself when it lies inside. `current` must lie inside\n";
+        out += fmt::format("// that k-DOP; normally it is the pixel's own color, neighborhood[{}].\n",
+                           neighborhood_center(spec.neighborhood));
+    } else {
+        out += "// neighborhood's colors, or `history` itself when it lies inside. `current` is the pixel's\n";
+        out += fmt::format("// own color and stands for neighborhood[{}], which is not read.\n",
+                           neighborhood_center(spec.neighborhood));
+    }
     out += fmt::format("// neighborhood[]: {}.\n", neighborhood_description(spec.neighborhood));
     if (spec.mode == Mode::varclip)
         out += "// gamma: slab half-width in standard deviations (1 is the usual choice).\n";
@@ -300,10 +360,11 @@ std::string function_header(const VariantSpec& spec) {
         out += "// supplement's numerics: HDR values, flat neighborhoods and NaN or Inf history can give NaN\n";
         out += "// or a wrong color (`kdop stress` shows which); use the hardened variant unless measured.\n";
     } else {
-        out += "// Slabs are dilated by 1e-5 per unit of axis length, times max(1, largest |channel| of\n";
-        out += "// current), so the dilation survives float rounding at HDR magnitudes. If history has a NaN\n";
-        out += "// or Inf channel, or |history - current| + |current| (channels summed) exceeds FLT_MAX,\n";
-        out += "// current is returned. `kdop stress` checks these promises on a device.\n";
+        out += "// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length\n";
+        out += "// around current, measured from current: the ray starts strictly inside at any magnitude,\n";
+        out += "// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or\n";
+        out += "// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.\n";
+        out += "// `kdop stress` checks these promises on a device.\n";
     }
     return out;
 }
@@ -314,43 +375,56 @@ std::string signature(const VariantSpec& spec) {
                        neighborhood_offsets(spec.neighborhood).size());
 }
 
-// Hardened numerics, shared by both forms: the padding's scale, and whether the history can be used.
-// A history with a NaN or Inf channel, or so far out that a projection of the ray could overflow,
-// is replaced by current; the sum below is then NaN or above FLT_MAX, and the compare is false for
-// NaN. Below that bound no projection of current or of the ray overflows: each is at most the
-// vector's channel magnitudes summed, as no scaled or unit axis component exceeds 1.
+// Hardened numerics, shared by both forms: whether the history can be used. A history with a NaN or
+// Inf channel, or so far out that a projection of the ray could overflow, is replaced by current;
+// the sum below is then NaN or above FLT_MAX, and the compare is false for NaN. Below that bound no
+// projection of current or of the ray overflows: each is at most the vector's channel magnitudes
+// summed, as no scaled or unit axis component exceeds 1.
 // Variance clip also gets `scale`, a power of two that brings colors relative to current into a
 // range whose squares neither overflow nor underflow: 1, or 2^-100 once the pixel exceeds 2^60.
 // A power of two scales exactly, so fma(c, scale, -current * scale) is (c - current) * scale
 // rounded once, as the plain difference would be.
 void write_hardening_prologue(std::string& out, Mode mode) {
-    out += "    // Slab padding grows with the pixel's magnitude (1e-5 absolute vanishes in float32 above ~84).\n";
-    out += "    vec3 current_size = abs(current);\n";
-    out += "    float pad_scale = max(max(current_size.x, current_size.y), max(current_size.z, 1.0));\n";
     out += "    // A history with NaN or Inf, or too far out to project without overflow, is not used.\n";
+    out += "    vec3 current_size = abs(current);\n";
     out += "    vec3 reach = abs(dir) + current_size;\n";
     out += "    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;\n";
     if (mode != Mode::varclip) return;
     out += "    // Moments of colors relative to current, scaled so squares of HDR differences stay finite.\n";
     const std::string threshold = float_literal(std::ldexp(1.0f, 60)), small = float_literal(std::ldexp(1.0f, -100));
-    out += fmt::format("    bool huge = pad_scale > {}; // 2^60\n", threshold);
+    out += fmt::format("    bool huge = max(max(current_size.x, current_size.y), current_size.z) > {}; // 2^60\n",
+                       threshold);
     out += fmt::format("    float scale = huge ? {} : 1.0; // 2^-100\n", small);
     out += fmt::format("    vec3 origin = current * (huge ? -{} : -1.0);\n", small);
     out += "    vec3 ray = dir * scale;\n";
-    out += "    float slab_pad = pad_scale * scale;\n";
+}
+
+// The neighbors a slab reads: all of them with the paper's numerics; hardened, all but the center,
+// for which `current` stands (its projection is the ray's origin, or 0 relative to it).
+std::vector<int> slab_neighbors(const VariantSpec& spec) {
+    const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
+    std::vector<int> neighbors;
+    for (int n = 0; n < count; ++n)
+        if (spec.numerics == Numerics::paper || n != neighborhood_center(spec.neighborhood)) neighbors.push_back(n);
+    return neighbors;
 }
 
 void write_unrolled_body(std::string& out, const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
     const bool hardened = spec.numerics == Numerics::hardened;
-    // Hardened, variance clip takes its moments of colors relative to current (write_varclip_slab).
-    const bool relative = hardened && spec.mode == Mode::varclip;
+    const Frame frame = hardened ? hardened_frame(spec.set, spec.mode, spec.neighborhood) : Frame::absolute;
+    const std::vector<int> neighbors = slab_neighbors(spec);
     out += "    vec3 dir = history - current;\n";
     if (hardened) write_hardening_prologue(out, spec.mode);
-    for (int n = 0; n < count; ++n)
-        out += relative ? fmt::format("    vec3 c{0} = fma(neighborhood[{0}], vec3(scale), origin);\n", n)
-                        : fmt::format("    vec3 c{0} = neighborhood[{0}];\n", n);
+    for (int n : neighbors) {
+        if (frame == Frame::absolute)
+            out += fmt::format("    vec3 c{0} = neighborhood[{0}];\n", n);
+        else if (spec.mode == Mode::varclip)
+            out += fmt::format("    vec3 c{0} = fma(neighborhood[{0}], vec3(scale), origin);\n", n);
+        else
+            out += fmt::format("    vec3 c{0} = neighborhood[{0}] - current;\n", n);
+    }
     out += "    float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n";
     for (int a = 0; a < axes; ++a) {
         const Axis& axis = spec.set.axes[a];
@@ -363,26 +437,64 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
                        : fmt::format(", scaled to {}", vec3_text(scaled.coefficients));
         out += "\n    {\n";
         if (spec.mode == Mode::varclip)
-            write_varclip_slab(out, scaled, count, spec.style, spec.numerics);
+            write_varclip_slab(out, scaled, neighbors, count, spec.style, spec.numerics);
         else
-            write_clip_slab(out, scaled, count, spec.style, spec.numerics);
+            write_clip_slab(out, scaled, neighbors, spec.style, spec.numerics, frame);
         out += "    }\n";
     }
     // current + t * dir, written as fma because spirv-opt fuses only scalar multiply-adds.
     out += "\n";
     if (hardened)
-        out += "    return history_usable ? fma(vec3(max(t, 0.0)), dir, current) : current;\n";
+        out += "    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1\n";
     else
         out += "    return fma(vec3(max(t, 0.0)), dir, current);\n";
 }
 
+// The hardened function in the loop form, relative to current as the unrolled form's relative frame
+// is (the axes at unit length, so the padding is epsilon itself).
+void write_hardened_loop(std::string& out, Mode mode, int count, int center, int axes) {
+    write_hardening_prologue(out, mode);
+    out += "    float t = 1.0;\n";
+    out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
+    out += "        vec3 axis = axes[a];\n";
+    if (mode == Mode::clip) {
+        out += fmt::format("        vec2 extent = vec2(-epsilon, epsilon); // current stands for neighborhood[{}]\n",
+                           center);
+        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+        // A guarded body rather than `continue`, which keeps spirv-opt from unrolling the loop.
+        out += fmt::format("            if (n != {})\n            {{\n", center);
+        out += "                float q = dot(neighborhood[n] - current, axis);\n";
+        out += "                extent = vec2(min(q, extent.x), max(q, extent.y));\n";
+        out += "            }\n";
+        out += "        }\n";
+        out += "        float d = dot(dir, axis);\n";
+    } else {
+        out += "        vec2 moments = vec2(0.0);\n";
+        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+        out += fmt::format("            if (n != {}) // current stands for it: 0 relative to itself\n            {{\n",
+                           center);
+        out += "                float q = dot(fma(neighborhood[n], vec3(scale), origin), axis);\n";
+        out += "                moments += vec2(q, q * q);\n";
+        out += "            }\n";
+        out += "        }\n";
+        out += fmt::format("        moments /= vec2({}.0);\n", count);
+        out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
+        out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, -epsilon * scale),\n";
+        out += "                           max(moments.x + gamma * sigma, epsilon * scale));\n";
+        out += "        float d = dot(ray, axis);\n";
+    }
+    out += "        t = min(t, (floatBitsToInt(d) < 0 ? extent.x : extent.y) / d);\n";
+    out += "    }\n";
+    out += "    return history_usable ? current + t * dir : current;\n";
+}
+
 // The supplement's listing: the axes at unit length (as the supplement lists them; a user's file
-// need not), in a constant array; loops over axes and neighbors; entry and exit bounds. With paper numerics it is the
-// listing itself (the epsilon intent fixed); hardened, it computes the same function as the hardened unrolled form.
+// need not), in a constant array; loops over axes and neighbors; entry and exit bounds. With paper
+// numerics it is the listing itself (the epsilon intent fixed); hardened, it computes the same
+// function as the hardened unrolled form, in the listing's loops.
 void write_loop_body(std::string& out, const VariantSpec& spec) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
-    const bool hardened = spec.numerics == Numerics::hardened;
     out += fmt::format("    const vec3 axes[{}] = vec3[](\n", axes);
     for (int a = 0; a < axes; ++a) {
         const glm::vec3 v(unit_direction(spec.set.axes[a].direction));
@@ -392,52 +504,37 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
     out += "    );\n";
     out += "    const float epsilon = 1e-5;\n";
     out += "    vec3 dir = history - current;\n";
-    if (hardened) write_hardening_prologue(out, spec.mode);
+    if (spec.numerics == Numerics::hardened) {
+        write_hardened_loop(out, spec.mode, count, neighborhood_center(spec.neighborhood), axes);
+        return;
+    }
     out += "    float near = -1e9, far = 1e9;\n";
     out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
     out += "        vec3 axis = axes[a];\n";
-    // Hardened variance slabs are relative to the pixel's projection and scaled, like the ray.
-    const bool relative = hardened && spec.mode == Mode::varclip;
-    if (!relative) out += "        float proj_pos = dot(current, axis);\n";
-    out += fmt::format("        float inv_dir = 1.0 / dot({}, axis);\n", relative ? "ray" : "dir");
+    out += "        float proj_pos = dot(current, axis);\n";
+    out += "        float inv_dir = 1.0 / dot(dir, axis);\n";
+    out += spec.mode == Mode::clip ? "        vec2 extent = vec2(1e9, -1e9);\n" : "        vec2 moments = vec2(0.0);\n";
+    out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+    out += "            float t = dot(neighborhood[n], axis);\n";
     if (spec.mode == Mode::clip) {
-        // The supplement starts from +-1e9, which caps the slab of any neighborhood brighter than 1e9.
-        out += hardened ? "        vec2 extent = vec2(3.40282347e38, -3.40282347e38);\n"
-                        : "        vec2 extent = vec2(1e9, -1e9);\n";
-        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
-        out += "            float t = dot(neighborhood[n], axis);\n";
         out += "            extent.x = min(t, extent.x);\n";
         out += "            extent.y = max(t, extent.y);\n";
         out += "        }\n";
     } else {
-        out += "        vec2 moments = vec2(0.0);\n";
-        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
-        out += relative ? "            float t = dot(fma(neighborhood[n], vec3(scale), origin), axis);\n"
-                        : "            float t = dot(neighborhood[n], axis);\n";
         out += "            moments += vec2(t, t * t);\n";
         out += "        }\n";
         out += fmt::format("        moments /= vec2({}.0);\n", count);
-        if (hardened) {
-            out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
-            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, "
-                   "0.0));\n";
-        } else {
-            out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
-            out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
-                   "sigma, proj_pos));\n";
-        }
+        out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
+        out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
+               "sigma, proj_pos));\n";
     }
-    out += fmt::format("        extent += vec2(-epsilon, epsilon) * length(axis){};\n", !hardened  ? ""
-                                                                                        : relative ? " * slab_pad"
-                                                                                                   : " * pad_scale");
-    const std::string origin = relative ? "" : " - proj_pos";
-    out += fmt::format("        float t0 = (extent.x{}) * inv_dir;\n", origin);
-    out += fmt::format("        float t1 = (extent.y{}) * inv_dir;\n", origin);
+    out += "        extent += vec2(-epsilon, epsilon) * length(axis);\n";
+    out += "        float t0 = (extent.x - proj_pos) * inv_dir;\n";
+    out += "        float t1 = (extent.y - proj_pos) * inv_dir;\n";
     out += "        near = max(near, min(t0, t1));\n";
     out += "        far = min(far, max(t0, t1));\n";
     out += "    }\n";
-    out += fmt::format("    if ({}near <= far && (near > 0.0 || far > 0.0))\n    {{\n",
-                       hardened ? "history_usable && " : "");
+    out += "    if (near <= far && (near > 0.0 || far > 0.0))\n    {\n";
     out += "        float t = clamp(near > 0.0 ? near : far, 0.0, 1.0);\n";
     out += "        return current + t * dir;\n";
     out += "    }\n";

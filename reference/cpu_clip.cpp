@@ -10,12 +10,6 @@
 
 namespace kdop {
 
-double reference_padding(const glm::dvec3& current, Numerics numerics) {
-    if (numerics == Numerics::paper) return kReferencePadding;
-    const glm::dvec3 size = glm::abs(current);
-    return kReferencePadding * std::max({size.x, size.y, size.z, 1.0});
-}
-
 bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& history) {
     const glm::dvec3 reach = glm::abs(history - current) + glm::abs(current);
     const double sum = reach.x + reach.y + reach.z;
@@ -26,9 +20,10 @@ std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes
                                            std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
                                            Mode mode, double gamma, Numerics numerics) {
     const double n = static_cast<double>(neighborhood.size());
-    const double padding = reference_padding(current, numerics);
+    const double e = kReferencePadding;
     std::vector<ReferenceSlab> slabs;
     for (const glm::dvec3& axis : unit_axes) {
+        const double p = glm::dot(current, axis);
         double lo, hi;
         if (mode == Mode::clip) {
             lo = std::numeric_limits<double>::infinity();
@@ -45,11 +40,15 @@ std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes
             for (const glm::dvec3& c : neighborhood)
                 variance += (glm::dot(c, axis) - mean) * (glm::dot(c, axis) - mean);
             const double sigma = std::sqrt(variance / n);
-            const double p = glm::dot(current, axis);
-            lo = std::min(mean - gamma * sigma, p);
-            hi = std::max(mean + gamma * sigma, p);
+            lo = mean - gamma * sigma;
+            hi = mean + gamma * sigma;
         }
-        slabs.push_back({axis, lo - padding, hi + padding});
+        if (numerics == Numerics::hardened)
+            slabs.push_back({axis, std::min(lo, p - e), std::max(hi, p + e)});
+        else if (mode == Mode::clip)
+            slabs.push_back({axis, lo - e, hi + e});
+        else
+            slabs.push_back({axis, std::min(lo, p) - e, std::max(hi, p) + e});
     }
     return slabs;
 }

@@ -1,17 +1,20 @@
 // The CPU reference of k-DOP clipping, in double precision, written from the paper's definitions
 // and independently of the generator's emitter: GPU results are checked against it.
 //
-// Clip: each axis a (normalized) gives a slab [min q - e, max q + e] of the neighborhood's
-// projections q = c . a. The dilation e is the paper's 1e-5, times the current color's largest
-// channel magnitude where that exceeds 1 (kdop's hardened numerics; the paper's absolute 1e-5
-// vanishes in float32 above about 84). The ray from the current color toward the history leaves
-// the k-DOP at the smallest exit parameter over the slabs; the result is
+// Clip: each axis a (normalized) gives a slab of the neighborhood's projections q = c . a, from
+// min q to max q; variance clip: from mean - gamma * sigma to mean + gamma * sigma of them
+// (population variance). With the paper's numerics the clip slab is dilated by e = 1e-5 on both
+// sides, and the variance slab is widened to contain the current color's projection p, then
+// dilated by e. With kdop's hardened numerics either slab is widened to contain [p - e, p + e]
+// instead: a margin around the ray's origin, which is what keeps the ray strictly inside at every
+// magnitude (the paper's padding of the whole slab vanishes in float32 above about 84), and which
+// changes no slab by more than e. The ray from the current color toward the history leaves the
+// k-DOP at the smallest exit parameter over the slabs; the result is
 // current + clamp(t, 0, 1) * (history - current). A slab the ray runs parallel to never limits t.
-// Variance clip: the slab is mean +- gamma * sigma of the projections (population variance),
-// widened to contain the current color's projection, then dilated by e like a clip slab.
 // A history that is not usable is replaced by the current color: one with a NaN or Inf channel,
 // or one where |history - current|_1 + |current|_1 exceeds FLT_MAX (past which float32
 // projections of the ray could overflow; the generated shaders promise no more).
+// The current color is the neighborhood's center pixel, as the generated shaders take it.
 #pragma once
 
 #include "axis_set.h"
@@ -28,12 +31,8 @@
 
 namespace kdop {
 
-// The paper's slab dilation, per unit of axis length, for colors up to 1 in magnitude.
+// The paper's slab dilation, per unit of axis length: e above.
 inline constexpr double kReferencePadding = 1e-5;
-
-// The dilation of every slab around `current`, per unit of axis length: hardened, it grows with
-// the current color's magnitude; with the paper's numerics it is kReferencePadding.
-double reference_padding(const glm::dvec3& current, Numerics numerics = Numerics::hardened);
 
 // Whether the history takes part at all (see above); if not, the result is `current`.
 bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& history);
@@ -44,7 +43,7 @@ struct ReferenceSlab {
     double lo, hi;
 };
 
-// The padded k-DOP of a neighborhood around `current` (varclip widens each slab to contain it).
+// The padded k-DOP of a neighborhood around `current` (each slab contains current; see above).
 std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes,
                                            std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
                                            Mode mode, double gamma, Numerics numerics = Numerics::hardened);

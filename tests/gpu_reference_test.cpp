@@ -155,8 +155,8 @@ TEST_F(Gpu, ClipsWithXyzAxesStayInTheNeighborhoodsChannelRange) {
                         lo = glm::min(lo, n);
                         hi = glm::max(hi, n);
                     }
-                    const double slack = reference_padding(glm::dvec3(c.current.at(x, y))) +
-                                         kTolerance * magnitude(c.current.at(x, y), c.history.at(x, y));
+                    const double slack =
+                        kReferencePadding + kTolerance * magnitude(c.current.at(x, y), c.history.at(x, y));
                     for (int ch = 0; ch < 3; ++ch) {
                         ASSERT_GE(out.at(x, y)[ch], lo[ch] - slack)
                             << name << " on " << c.name() << " at " << x << "," << y;
