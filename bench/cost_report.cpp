@@ -70,22 +70,23 @@ Table sweep_table(const SweepResult& s) {
 constexpr const char* kDerivation = R"(A lower bound on the scalar float operations of kdop's hardened clip, from each
 axis's nonzero components (`generator/analytic_cost.h`, where the derivation is; a multiply-add counts 1,
 as in the float-op count; lavapipe has no fused multiply-add, so there each is two instructions). Each
-slab spans the neighbors' extent joined with a margin around the current color, which stands for the
-center pixel; the ray leaves through the plane it heads for. For an axis with m nonzero components and
-N neighborhood colors, in whichever frame is cheaper:
+slab spans the neighbors' extent, measured from the current color (which stands for the center pixel)
+and then padded by 1e-5 per unit of axis length; the ray leaves through the plane it heads for. For an
+axis with m nonzero components and N neighborhood colors, in whichever frame is cheaper:
 
 | part | relative frame (colors − current) | absolute frame |
 |---|---|---|
 | per pixel | 18 + 3(N − 1) | 18 |
-| clip slab | N(m − 1) + 2(N − 1) + 3 | (N + 1)(m − 1) + 2N + 3 |
+| clip slab | N(m − 1) + 2N + 3 | (N + 1)(m − 1) + 2N + 5 |
 | varclip (always relative) | per pixel 18 + 3(N − 1) + 11, per slab N(m − 1) + 2N + 11 | |
 
 Per pixel: the ray direction (3); whether the history is usable, |dir|₁ + |current|₁ ≤ FLT_MAX (12);
 current + t · dir (3). Per clip slab: the projections of the N − 1 other neighbors and of the ray (and,
-absolute, of the current color); min and max with the margin; the exit (a select, a division, a min).
-The emitted clips spend exactly this in their frame (a test holds them to it), plus, in the absolute
-frame, 2 per slab for running min and max that start from ±FLT_MAX: with them lavapipe's compiled code
-drops its NaN handling down the chain.)";
+absolute, of the current color); min and max with the center; the padding (2); the exit (a select, a
+division, a min). Two scaled components of one magnitude (YCoCg's Y and Cg) cost one multiply-add on
+their sum, which axes with the same pair share. The emitted clips spend exactly this in their frame (a
+test holds them to it), plus, in the absolute frame, 2 per slab for running min and max that start from
+±FLT_MAX: with them lavapipe's compiled code drops its NaN handling down the chain.)";
 
 std::string run_ms(double ms, double pixels) {
     return fmt::format("{:.2f} ms ({:.1f} ns/pixel)", ms, ms * 1e6 / pixels);

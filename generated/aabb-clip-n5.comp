@@ -27,9 +27,9 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_AABB_CLIP_N5_GLSL
@@ -65,8 +65,8 @@ vec3 kdop_aabb_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi = max(hi, q3);
         hi = max(hi, q4);
         float p = current.x;
-        lo = min(lo - p, -1e-05);
-        hi = max(hi - p, 1e-05);
+        lo = min(lo - p, 0.0) - 1e-05;
+        hi = max(hi - p, 0.0) + 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -88,8 +88,8 @@ vec3 kdop_aabb_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi = max(hi, q3);
         hi = max(hi, q4);
         float p = current.y;
-        lo = min(lo - p, -1e-05);
-        hi = max(hi - p, 1e-05);
+        lo = min(lo - p, 0.0) - 1e-05;
+        hi = max(hi - p, 0.0) + 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -111,8 +111,8 @@ vec3 kdop_aabb_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         hi = max(hi, q3);
         hi = max(hi, q4);
         float p = current.z;
-        lo = min(lo - p, -1e-05);
-        hi = max(hi - p, 1e-05);
+        lo = min(lo - p, 0.0) - 1e-05;
+        hi = max(hi - p, 0.0) + 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -10,9 +10,9 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_AABB_VARCLIP_N9_GLSL
@@ -54,9 +54,10 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -75,9 +76,10 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -96,9 +98,10 @@ vec3 kdop_aabb_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

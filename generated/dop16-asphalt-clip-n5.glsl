@@ -9,9 +9,9 @@
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_ASPHALT_CLIP_N5_GLSL
@@ -36,16 +36,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.x + c1.y * -0.054975748 + c1.z * 0.051646315;
         float q3 = c3.x + c3.y * -0.054975748 + c3.z * 0.051646315;
         float q4 = c4.x + c4.y * -0.054975748 + c4.z * 0.051646315;
-        float lo = -1.0028408e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.0028408e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.0028408e-05;
+        hi += 1.0028408e-05;
         float d = dir.x + dir.y * -0.054975748 + dir.z * 0.051646315;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -56,16 +58,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.y + c1.x * -0.060030535 + c1.z * -0.9407404;
         float q3 = c3.y + c3.x * -0.060030535 + c3.z * -0.9407404;
         float q4 = c4.y + c4.x * -0.060030535 + c4.z * -0.9407404;
-        float lo = -1.37426205e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.37426205e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.37426205e-05;
+        hi += 1.37426205e-05;
         float d = dir.y + dir.x * -0.060030535 + dir.z * -0.9407404;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,16 +80,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.y + c1.x * -0.5586211 + c1.z * -0.46731988;
         float q3 = c3.y + c3.x * -0.5586211 + c3.z * -0.46731988;
         float q4 = c4.y + c4.x * -0.5586211 + c4.z * -0.46731988;
-        float lo = -1.2371117e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2371117e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2371117e-05;
+        hi += 1.2371117e-05;
         float d = dir.y + dir.x * -0.5586211 + dir.z * -0.46731988;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -96,16 +102,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.z + c1.x * 0.0038082886 + c1.y * -0.7812575;
         float q3 = c3.z + c3.x * 0.0038082886 + c3.y * -0.7812575;
         float q4 = c4.z + c4.x * 0.0038082886 + c4.y * -0.7812575;
-        float lo = -1.2690067e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2690067e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2690067e-05;
+        hi += 1.2690067e-05;
         float d = dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -116,16 +124,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.z + c1.x * -0.13157672 + c1.y * 0.06380852;
         float q3 = c3.z + c3.x * -0.13157672 + c3.y * 0.06380852;
         float q4 = c4.z + c4.x * -0.13157672 + c4.y * 0.06380852;
-        float lo = -1.0106354e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.0106354e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.0106354e-05;
+        hi += 1.0106354e-05;
         float d = dir.z + dir.x * -0.13157672 + dir.y * 0.06380852;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -136,16 +146,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.x + c1.y * -0.7537761 + c1.z * -0.3105077;
         float q3 = c3.x + c3.y * -0.7537761 + c3.z * -0.3105077;
         float q4 = c4.x + c4.y * -0.7537761 + c4.z * -0.3105077;
-        float lo = -1.2901913e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2901913e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2901913e-05;
+        hi += 1.2901913e-05;
         float d = dir.x + dir.y * -0.7537761 + dir.z * -0.3105077;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -156,16 +168,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.z + c1.x * -0.7475091 + c1.y * -0.21752696;
         float q3 = c3.z + c3.x * -0.7475091 + c3.y * -0.21752696;
         float q4 = c4.z + c4.x * -0.7475091 + c4.y * -0.21752696;
-        float lo = -1.2673152e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2673152e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2673152e-05;
+        hi += 1.2673152e-05;
         float d = dir.z + dir.x * -0.7475091 + dir.y * -0.21752696;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -176,16 +190,18 @@ vec3 kdop_dop16_asphalt_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5]
         float q1 = c1.x + c1.y * -0.48589435 + c1.z * -0.06287124;
         float q3 = c3.x + c3.y * -0.48589435 + c3.z * -0.06287124;
         float q4 = c4.x + c4.y * -0.48589435 + c4.z * -0.06287124;
-        float lo = -1.1135736e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.1135736e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.1135736e-05;
+        hi += 1.1135736e-05;
         float d = dir.x + dir.y * -0.48589435 + dir.z * -0.06287124;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

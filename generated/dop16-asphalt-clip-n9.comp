@@ -27,9 +27,9 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_ASPHALT_CLIP_N9_GLSL
@@ -62,7 +62,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.x + c6.y * -0.054975748 + c6.z * 0.051646315;
         float q7 = c7.x + c7.y * -0.054975748 + c7.z * 0.051646315;
         float q8 = c8.x + c8.y * -0.054975748 + c8.z * 0.051646315;
-        float lo = -1.0028408e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -71,7 +71,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.0028408e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -80,6 +80,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.0028408e-05;
+        hi += 1.0028408e-05;
         float d = dir.x + dir.y * -0.054975748 + dir.z * 0.051646315;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -94,7 +96,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.y + c6.x * -0.060030535 + c6.z * -0.9407404;
         float q7 = c7.y + c7.x * -0.060030535 + c7.z * -0.9407404;
         float q8 = c8.y + c8.x * -0.060030535 + c8.z * -0.9407404;
-        float lo = -1.37426205e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -103,7 +105,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.37426205e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -112,6 +114,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.37426205e-05;
+        hi += 1.37426205e-05;
         float d = dir.y + dir.x * -0.060030535 + dir.z * -0.9407404;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -126,7 +130,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.y + c6.x * -0.5586211 + c6.z * -0.46731988;
         float q7 = c7.y + c7.x * -0.5586211 + c7.z * -0.46731988;
         float q8 = c8.y + c8.x * -0.5586211 + c8.z * -0.46731988;
-        float lo = -1.2371117e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -135,7 +139,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2371117e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -144,6 +148,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2371117e-05;
+        hi += 1.2371117e-05;
         float d = dir.y + dir.x * -0.5586211 + dir.z * -0.46731988;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -158,7 +164,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.z + c6.x * 0.0038082886 + c6.y * -0.7812575;
         float q7 = c7.z + c7.x * 0.0038082886 + c7.y * -0.7812575;
         float q8 = c8.z + c8.x * 0.0038082886 + c8.y * -0.7812575;
-        float lo = -1.2690067e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -167,7 +173,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2690067e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -176,6 +182,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2690067e-05;
+        hi += 1.2690067e-05;
         float d = dir.z + dir.x * 0.0038082886 + dir.y * -0.7812575;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -190,7 +198,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.z + c6.x * -0.13157672 + c6.y * 0.06380852;
         float q7 = c7.z + c7.x * -0.13157672 + c7.y * 0.06380852;
         float q8 = c8.z + c8.x * -0.13157672 + c8.y * 0.06380852;
-        float lo = -1.0106354e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -199,7 +207,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.0106354e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -208,6 +216,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.0106354e-05;
+        hi += 1.0106354e-05;
         float d = dir.z + dir.x * -0.13157672 + dir.y * 0.06380852;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -222,7 +232,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.x + c6.y * -0.7537761 + c6.z * -0.3105077;
         float q7 = c7.x + c7.y * -0.7537761 + c7.z * -0.3105077;
         float q8 = c8.x + c8.y * -0.7537761 + c8.z * -0.3105077;
-        float lo = -1.2901913e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -231,7 +241,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2901913e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -240,6 +250,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2901913e-05;
+        hi += 1.2901913e-05;
         float d = dir.x + dir.y * -0.7537761 + dir.z * -0.3105077;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -254,7 +266,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.z + c6.x * -0.7475091 + c6.y * -0.21752696;
         float q7 = c7.z + c7.x * -0.7475091 + c7.y * -0.21752696;
         float q8 = c8.z + c8.x * -0.7475091 + c8.y * -0.21752696;
-        float lo = -1.2673152e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -263,7 +275,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2673152e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -272,6 +284,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2673152e-05;
+        hi += 1.2673152e-05;
         float d = dir.z + dir.x * -0.7475091 + dir.y * -0.21752696;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -286,7 +300,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         float q6 = c6.x + c6.y * -0.48589435 + c6.z * -0.06287124;
         float q7 = c7.x + c7.y * -0.48589435 + c7.z * -0.06287124;
         float q8 = c8.x + c8.y * -0.48589435 + c8.z * -0.06287124;
-        float lo = -1.1135736e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -295,7 +309,7 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.1135736e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -304,6 +318,8 @@ vec3 kdop_dop16_asphalt_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9]
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.1135736e-05;
+        hi += 1.1135736e-05;
         float d = dir.x + dir.y * -0.48589435 + dir.z * -0.06287124;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

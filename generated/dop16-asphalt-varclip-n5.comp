@@ -31,9 +31,9 @@ layout(push_constant) uniform Parameters
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_ASPHALT_VARCLIP_N5_GLSL
@@ -67,9 +67,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.0028408e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.0028408e-05, lo);
+        hi = fma(scale, 1.0028408e-05, hi);
         float d = ray.x + ray.y * -0.054975748 + ray.z * 0.051646315;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -84,9 +85,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.37426205e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.37426205e-05, lo);
+        hi = fma(scale, 1.37426205e-05, hi);
         float d = ray.y + ray.x * -0.060030535 + ray.z * -0.9407404;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -101,9 +103,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2371117e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2371117e-05, lo);
+        hi = fma(scale, 1.2371117e-05, hi);
         float d = ray.y + ray.x * -0.5586211 + ray.z * -0.46731988;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -118,9 +121,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2690067e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2690067e-05, lo);
+        hi = fma(scale, 1.2690067e-05, hi);
         float d = ray.z + ray.x * 0.0038082886 + ray.y * -0.7812575;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -135,9 +139,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.0106354e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.0106354e-05, lo);
+        hi = fma(scale, 1.0106354e-05, hi);
         float d = ray.z + ray.x * -0.13157672 + ray.y * 0.06380852;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -152,9 +157,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2901913e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2901913e-05, lo);
+        hi = fma(scale, 1.2901913e-05, hi);
         float d = ray.x + ray.y * -0.7537761 + ray.z * -0.3105077;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -169,9 +175,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2673152e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2673152e-05, lo);
+        hi = fma(scale, 1.2673152e-05, hi);
         float d = ray.z + ray.x * -0.7475091 + ray.y * -0.21752696;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -186,9 +193,10 @@ vec3 kdop_dop16_asphalt_varclip_n5(vec3 current, vec3 history, float gamma, vec3
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.1135736e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.1135736e-05, lo);
+        hi = fma(scale, 1.1135736e-05, hi);
         float d = ray.x + ray.y * -0.48589435 + ray.z * -0.06287124;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

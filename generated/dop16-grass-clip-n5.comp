@@ -27,9 +27,9 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_GRASS_CLIP_N5_GLSL
@@ -54,16 +54,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * -0.9091763 + c1.z * -0.22823879;
         float q3 = c3.y + c3.x * -0.9091763 + c3.z * -0.22823879;
         float q4 = c4.y + c4.x * -0.9091763 + c4.z * -0.22823879;
-        float lo = -1.3706547e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.3706547e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.3706547e-05;
+        hi += 1.3706547e-05;
         float d = dir.y + dir.x * -0.9091763 + dir.z * -0.22823879;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -74,16 +76,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * -0.70663214 + c1.y * 0.10394432;
         float q3 = c3.z + c3.x * -0.70663214 + c3.y * 0.10394432;
         float q4 = c4.z + c4.x * -0.70663214 + c4.y * 0.10394432;
-        float lo = -1.2288749e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2288749e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2288749e-05;
+        hi += 1.2288749e-05;
         float d = dir.z + dir.x * -0.70663214 + dir.y * 0.10394432;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -94,16 +98,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * 0.18454187 + c1.y * -0.57063365;
         float q3 = c3.z + c3.x * 0.18454187 + c3.y * -0.57063365;
         float q4 = c4.z + c4.x * 0.18454187 + c4.y * -0.57063365;
-        float lo = -1.1660525e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.1660525e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.1660525e-05;
+        hi += 1.1660525e-05;
         float d = dir.z + dir.x * 0.18454187 + dir.y * -0.57063365;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -114,16 +120,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * -0.2652209 + c1.y * 0.040031724;
         float q3 = c3.z + c3.x * -0.2652209 + c3.y * 0.040031724;
         float q4 = c4.z + c4.x * -0.2652209 + c4.y * 0.040031724;
-        float lo = -1.0353476e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.0353476e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.0353476e-05;
+        hi += 1.0353476e-05;
         float d = dir.z + dir.x * -0.2652209 + dir.y * 0.040031724;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -134,16 +142,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * -0.6816266 + c1.z * -0.9873084;
         float q3 = c3.x + c3.y * -0.6816266 + c3.z * -0.9873084;
         float q4 = c4.x + c4.y * -0.6816266 + c4.z * -0.9873084;
-        float lo = -1.5618556e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.5618556e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.5618556e-05;
+        hi += 1.5618556e-05;
         float d = dir.x + dir.y * -0.6816266 + dir.z * -0.9873084;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -154,16 +164,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * -0.5726 + c1.z * -0.42632;
         float q3 = c3.x + c3.y * -0.5726 + c3.z * -0.42632;
         float q4 = c4.x + c4.y * -0.5726 + c4.z * -0.42632;
-        float lo = -1.2286658e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2286658e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2286658e-05;
+        hi += 1.2286658e-05;
         float d = dir.x + dir.y * -0.5726 + dir.z * -0.42632;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -174,16 +186,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * 0.25867906 + c1.z * 0.61571217;
         float q3 = c3.x + c3.y * 0.25867906 + c3.z * 0.61571217;
         float q4 = c4.x + c4.y * 0.25867906 + c4.z * 0.61571217;
-        float lo = -1.20250415e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.20250415e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.20250415e-05;
+        hi += 1.20250415e-05;
         float d = dir.x + dir.y * 0.25867906 + dir.z * 0.61571217;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -194,16 +208,18 @@ vec3 kdop_dop16_grass_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * -0.6007664 + c1.z * -0.39173308;
         float q3 = c3.y + c3.x * -0.6007664 + c3.z * -0.39173308;
         float q4 = c4.y + c4.x * -0.6007664 + c4.z * -0.39173308;
-        float lo = -1.23059945e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.23059945e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.23059945e-05;
+        hi += 1.23059945e-05;
         float d = dir.y + dir.x * -0.6007664 + dir.z * -0.39173308;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

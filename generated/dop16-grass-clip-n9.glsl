@@ -9,9 +9,9 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_GRASS_CLIP_N9_GLSL
@@ -44,7 +44,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.9091763 + c6.z * -0.22823879;
         float q7 = c7.y + c7.x * -0.9091763 + c7.z * -0.22823879;
         float q8 = c8.y + c8.x * -0.9091763 + c8.z * -0.22823879;
-        float lo = -1.3706547e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -53,7 +53,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3706547e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -62,6 +62,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3706547e-05;
+        hi += 1.3706547e-05;
         float d = dir.y + dir.x * -0.9091763 + dir.z * -0.22823879;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,7 +78,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.70663214 + c6.y * 0.10394432;
         float q7 = c7.z + c7.x * -0.70663214 + c7.y * 0.10394432;
         float q8 = c8.z + c8.x * -0.70663214 + c8.y * 0.10394432;
-        float lo = -1.2288749e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -85,7 +87,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2288749e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -94,6 +96,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2288749e-05;
+        hi += 1.2288749e-05;
         float d = dir.z + dir.x * -0.70663214 + dir.y * 0.10394432;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -108,7 +112,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.18454187 + c6.y * -0.57063365;
         float q7 = c7.z + c7.x * 0.18454187 + c7.y * -0.57063365;
         float q8 = c8.z + c8.x * 0.18454187 + c8.y * -0.57063365;
-        float lo = -1.1660525e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -117,7 +121,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.1660525e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -126,6 +130,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.1660525e-05;
+        hi += 1.1660525e-05;
         float d = dir.z + dir.x * 0.18454187 + dir.y * -0.57063365;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -140,7 +146,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.2652209 + c6.y * 0.040031724;
         float q7 = c7.z + c7.x * -0.2652209 + c7.y * 0.040031724;
         float q8 = c8.z + c8.x * -0.2652209 + c8.y * 0.040031724;
-        float lo = -1.0353476e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -149,7 +155,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.0353476e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -158,6 +164,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.0353476e-05;
+        hi += 1.0353476e-05;
         float d = dir.z + dir.x * -0.2652209 + dir.y * 0.040031724;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -172,7 +180,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.6816266 + c6.z * -0.9873084;
         float q7 = c7.x + c7.y * -0.6816266 + c7.z * -0.9873084;
         float q8 = c8.x + c8.y * -0.6816266 + c8.z * -0.9873084;
-        float lo = -1.5618556e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -181,7 +189,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5618556e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -190,6 +198,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5618556e-05;
+        hi += 1.5618556e-05;
         float d = dir.x + dir.y * -0.6816266 + dir.z * -0.9873084;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -204,7 +214,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.5726 + c6.z * -0.42632;
         float q7 = c7.x + c7.y * -0.5726 + c7.z * -0.42632;
         float q8 = c8.x + c8.y * -0.5726 + c8.z * -0.42632;
-        float lo = -1.2286658e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -213,7 +223,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2286658e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -222,6 +232,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2286658e-05;
+        hi += 1.2286658e-05;
         float d = dir.x + dir.y * -0.5726 + dir.z * -0.42632;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -236,7 +248,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.25867906 + c6.z * 0.61571217;
         float q7 = c7.x + c7.y * 0.25867906 + c7.z * 0.61571217;
         float q8 = c8.x + c8.y * 0.25867906 + c8.z * 0.61571217;
-        float lo = -1.20250415e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -245,7 +257,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.20250415e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -254,6 +266,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.20250415e-05;
+        hi += 1.20250415e-05;
         float d = dir.x + dir.y * 0.25867906 + dir.z * 0.61571217;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -268,7 +282,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.6007664 + c6.z * -0.39173308;
         float q7 = c7.y + c7.x * -0.6007664 + c7.z * -0.39173308;
         float q8 = c8.y + c8.x * -0.6007664 + c8.z * -0.39173308;
-        float lo = -1.23059945e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -277,7 +291,7 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.23059945e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -286,6 +300,8 @@ vec3 kdop_dop16_grass_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.23059945e-05;
+        hi += 1.23059945e-05;
         float d = dir.y + dir.x * -0.6007664 + dir.z * -0.39173308;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -10,9 +10,9 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP16_GRASS_VARCLIP_N9_GLSL
@@ -54,9 +54,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.3706547e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.3706547e-05, lo);
+        hi = fma(scale, 1.3706547e-05, hi);
         float d = ray.y + ray.x * -0.9091763 + ray.z * -0.22823879;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -75,9 +76,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2288749e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2288749e-05, lo);
+        hi = fma(scale, 1.2288749e-05, hi);
         float d = ray.z + ray.x * -0.70663214 + ray.y * 0.10394432;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -96,9 +98,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.1660525e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.1660525e-05, lo);
+        hi = fma(scale, 1.1660525e-05, hi);
         float d = ray.z + ray.x * 0.18454187 + ray.y * -0.57063365;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -117,9 +120,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.0353476e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.0353476e-05, lo);
+        hi = fma(scale, 1.0353476e-05, hi);
         float d = ray.z + ray.x * -0.2652209 + ray.y * 0.040031724;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -138,9 +142,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.5618556e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.5618556e-05, lo);
+        hi = fma(scale, 1.5618556e-05, hi);
         float d = ray.x + ray.y * -0.6816266 + ray.z * -0.9873084;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -159,9 +164,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2286658e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2286658e-05, lo);
+        hi = fma(scale, 1.2286658e-05, hi);
         float d = ray.x + ray.y * -0.5726 + ray.z * -0.42632;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -180,9 +186,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.20250415e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.20250415e-05, lo);
+        hi = fma(scale, 1.20250415e-05, hi);
         float d = ray.x + ray.y * 0.25867906 + ray.z * 0.61571217;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -201,9 +208,10 @@ vec3 kdop_dop16_grass_varclip_n9(vec3 current, vec3 history, float gamma, vec3 n
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.23059945e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.23059945e-05, lo);
+        hi = fma(scale, 1.23059945e-05, hi);
         float d = ray.y + ray.x * -0.6007664 + ray.z * -0.39173308;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -9,9 +9,9 @@
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_CLIP_N5_GLSL
@@ -36,16 +36,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x;
         float q3 = c3.x;
         float q4 = c4.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -56,16 +58,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y;
         float q3 = c3.y;
         float q4 = c4.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,16 +80,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z;
         float q3 = c3.z;
         float q4 = c4.z;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -96,16 +102,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.y * -0.8882671;
         float q3 = c3.z + c3.y * -0.8882671;
         float q4 = c4.z + c4.y * -0.8882671;
-        float lo = -1.3375419e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.3375419e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.3375419e-05;
+        hi += 1.3375419e-05;
         float d = dir.z + dir.y * -0.8882671;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -116,16 +124,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * 0.9994562 + c1.z * -0.5668717;
         float q3 = c3.x + c3.y * 0.9994562 + c3.z * -0.5668717;
         float q4 = c4.x + c4.y * 0.9994562 + c4.z * -0.5668717;
-        float lo = -1.5232387e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.5232387e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.5232387e-05;
+        hi += 1.5232387e-05;
         float d = dir.x + dir.y * 0.9994562 + dir.z * -0.5668717;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -136,16 +146,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * 0.8886194;
         float q3 = c3.z + c3.x * 0.8886194;
         float q4 = c4.z + c4.x * 0.8886194;
-        float lo = -1.3377759e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.3377759e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.3377759e-05;
+        hi += 1.3377759e-05;
         float d = dir.z + dir.x * 0.8886194;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -156,16 +168,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * -0.8896277;
         float q3 = c3.z + c3.x * -0.8896277;
         float q4 = c4.z + c4.x * -0.8896277;
-        float lo = -1.3384459e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.3384459e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.3384459e-05;
+        hi += 1.3384459e-05;
         float d = dir.z + dir.x * -0.8896277;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -176,16 +190,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.y * 0.8887044;
         float q3 = c3.z + c3.y * 0.8887044;
         float q4 = c4.z + c4.y * 0.8887044;
-        float lo = -1.3378324e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.3378324e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.3378324e-05;
+        hi += 1.3378324e-05;
         float d = dir.z + dir.y * 0.8887044;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -196,16 +212,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * -0.9996624 + c1.z * 0.55936176;
         float q3 = c3.y + c3.x * -0.9996624 + c3.z * 0.55936176;
         float q4 = c4.y + c4.x * -0.9996624 + c4.z * 0.55936176;
-        float lo = -1.5205955e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.5205955e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.5205955e-05;
+        hi += 1.5205955e-05;
         float d = dir.y + dir.x * -0.9996624 + dir.z * 0.55936176;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -216,16 +234,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * 0.99789804 + c1.z * 0.56051946;
         float q3 = c3.y + c3.x * 0.99789804 + c3.z * 0.56051946;
         float q4 = c4.y + c4.x * 0.99789804 + c4.z * 0.56051946;
-        float lo = -1.5198627e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.5198627e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.5198627e-05;
+        hi += 1.5198627e-05;
         float d = dir.y + dir.x * 0.99789804 + dir.z * 0.56051946;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -236,16 +256,18 @@ vec3 kdop_dop22_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * -0.9982262 + c1.z * 0.5671452;
         float q3 = c3.x + c3.y * -0.9982262 + c3.z * 0.5671452;
         float q4 = c4.x + c4.y * -0.9982262 + c4.z * 0.5671452;
-        float lo = -1.5225339e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.5225339e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.5225339e-05;
+        hi += 1.5225339e-05;
         float d = dir.x + dir.y * -0.9982262 + dir.z * 0.5671452;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

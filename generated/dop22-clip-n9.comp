@@ -27,9 +27,9 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_CLIP_N9_GLSL
@@ -62,7 +62,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x;
         float q7 = c7.x;
         float q8 = c8.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -71,7 +71,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -80,6 +80,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -94,7 +96,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y;
         float q7 = c7.y;
         float q8 = c8.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -103,7 +105,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -112,6 +114,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -126,7 +130,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z;
         float q7 = c7.z;
         float q8 = c8.z;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -135,7 +139,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -144,6 +148,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -158,7 +164,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.y * -0.8882671;
         float q7 = c7.z + c7.y * -0.8882671;
         float q8 = c8.z + c8.y * -0.8882671;
-        float lo = -1.3375419e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -167,7 +173,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3375419e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -176,6 +182,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3375419e-05;
+        hi += 1.3375419e-05;
         float d = dir.z + dir.y * -0.8882671;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -190,7 +198,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.9994562 + c6.z * -0.5668717;
         float q7 = c7.x + c7.y * 0.9994562 + c7.z * -0.5668717;
         float q8 = c8.x + c8.y * 0.9994562 + c8.z * -0.5668717;
-        float lo = -1.5232387e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -199,7 +207,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5232387e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -208,6 +216,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5232387e-05;
+        hi += 1.5232387e-05;
         float d = dir.x + dir.y * 0.9994562 + dir.z * -0.5668717;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -222,7 +232,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.8886194;
         float q7 = c7.z + c7.x * 0.8886194;
         float q8 = c8.z + c8.x * 0.8886194;
-        float lo = -1.3377759e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -231,7 +241,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3377759e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -240,6 +250,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3377759e-05;
+        hi += 1.3377759e-05;
         float d = dir.z + dir.x * 0.8886194;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -254,7 +266,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.8896277;
         float q7 = c7.z + c7.x * -0.8896277;
         float q8 = c8.z + c8.x * -0.8896277;
-        float lo = -1.3384459e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -263,7 +275,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3384459e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -272,6 +284,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3384459e-05;
+        hi += 1.3384459e-05;
         float d = dir.z + dir.x * -0.8896277;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -286,7 +300,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.y * 0.8887044;
         float q7 = c7.z + c7.y * 0.8887044;
         float q8 = c8.z + c8.y * 0.8887044;
-        float lo = -1.3378324e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -295,7 +309,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3378324e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -304,6 +318,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3378324e-05;
+        hi += 1.3378324e-05;
         float d = dir.z + dir.y * 0.8887044;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -318,7 +334,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.9996624 + c6.z * 0.55936176;
         float q7 = c7.y + c7.x * -0.9996624 + c7.z * 0.55936176;
         float q8 = c8.y + c8.x * -0.9996624 + c8.z * 0.55936176;
-        float lo = -1.5205955e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -327,7 +343,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5205955e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -336,6 +352,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5205955e-05;
+        hi += 1.5205955e-05;
         float d = dir.y + dir.x * -0.9996624 + dir.z * 0.55936176;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -350,7 +368,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * 0.99789804 + c6.z * 0.56051946;
         float q7 = c7.y + c7.x * 0.99789804 + c7.z * 0.56051946;
         float q8 = c8.y + c8.x * 0.99789804 + c8.z * 0.56051946;
-        float lo = -1.5198627e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -359,7 +377,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5198627e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -368,6 +386,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5198627e-05;
+        hi += 1.5198627e-05;
         float d = dir.y + dir.x * 0.99789804 + dir.z * 0.56051946;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -382,7 +402,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.9982262 + c6.z * 0.5671452;
         float q7 = c7.x + c7.y * -0.9982262 + c7.z * 0.5671452;
         float q8 = c8.x + c8.y * -0.9982262 + c8.z * 0.5671452;
-        float lo = -1.5225339e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -391,7 +411,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5225339e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -400,6 +420,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5225339e-05;
+        hi += 1.5225339e-05;
         float d = dir.x + dir.y * -0.9982262 + dir.z * 0.5671452;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

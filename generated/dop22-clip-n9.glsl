@@ -9,9 +9,9 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_CLIP_N9_GLSL
@@ -44,7 +44,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x;
         float q7 = c7.x;
         float q8 = c8.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -53,7 +53,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -62,6 +62,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,7 +78,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y;
         float q7 = c7.y;
         float q8 = c8.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -85,7 +87,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -94,6 +96,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -108,7 +112,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z;
         float q7 = c7.z;
         float q8 = c8.z;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -117,7 +121,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -126,6 +130,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -140,7 +146,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.y * -0.8882671;
         float q7 = c7.z + c7.y * -0.8882671;
         float q8 = c8.z + c8.y * -0.8882671;
-        float lo = -1.3375419e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -149,7 +155,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3375419e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -158,6 +164,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3375419e-05;
+        hi += 1.3375419e-05;
         float d = dir.z + dir.y * -0.8882671;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -172,7 +180,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.9994562 + c6.z * -0.5668717;
         float q7 = c7.x + c7.y * 0.9994562 + c7.z * -0.5668717;
         float q8 = c8.x + c8.y * 0.9994562 + c8.z * -0.5668717;
-        float lo = -1.5232387e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -181,7 +189,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5232387e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -190,6 +198,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5232387e-05;
+        hi += 1.5232387e-05;
         float d = dir.x + dir.y * 0.9994562 + dir.z * -0.5668717;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -204,7 +214,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.8886194;
         float q7 = c7.z + c7.x * 0.8886194;
         float q8 = c8.z + c8.x * 0.8886194;
-        float lo = -1.3377759e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -213,7 +223,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3377759e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -222,6 +232,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3377759e-05;
+        hi += 1.3377759e-05;
         float d = dir.z + dir.x * 0.8886194;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -236,7 +248,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.8896277;
         float q7 = c7.z + c7.x * -0.8896277;
         float q8 = c8.z + c8.x * -0.8896277;
-        float lo = -1.3384459e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -245,7 +257,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3384459e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -254,6 +266,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3384459e-05;
+        hi += 1.3384459e-05;
         float d = dir.z + dir.x * -0.8896277;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -268,7 +282,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.y * 0.8887044;
         float q7 = c7.z + c7.y * 0.8887044;
         float q8 = c8.z + c8.y * 0.8887044;
-        float lo = -1.3378324e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -277,7 +291,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3378324e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -286,6 +300,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3378324e-05;
+        hi += 1.3378324e-05;
         float d = dir.z + dir.y * 0.8887044;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -300,7 +316,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.9996624 + c6.z * 0.55936176;
         float q7 = c7.y + c7.x * -0.9996624 + c7.z * 0.55936176;
         float q8 = c8.y + c8.x * -0.9996624 + c8.z * 0.55936176;
-        float lo = -1.5205955e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -309,7 +325,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5205955e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -318,6 +334,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5205955e-05;
+        hi += 1.5205955e-05;
         float d = dir.y + dir.x * -0.9996624 + dir.z * 0.55936176;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -332,7 +350,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * 0.99789804 + c6.z * 0.56051946;
         float q7 = c7.y + c7.x * 0.99789804 + c7.z * 0.56051946;
         float q8 = c8.y + c8.x * 0.99789804 + c8.z * 0.56051946;
-        float lo = -1.5198627e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -341,7 +359,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5198627e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -350,6 +368,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5198627e-05;
+        hi += 1.5198627e-05;
         float d = dir.y + dir.x * 0.99789804 + dir.z * 0.56051946;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -364,7 +384,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.9982262 + c6.z * 0.5671452;
         float q7 = c7.x + c7.y * -0.9982262 + c7.z * 0.5671452;
         float q8 = c8.x + c8.y * -0.9982262 + c8.z * 0.5671452;
-        float lo = -1.5225339e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -373,7 +393,7 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.5225339e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -382,6 +402,8 @@ vec3 kdop_dop22_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.5225339e-05;
+        hi += 1.5225339e-05;
         float d = dir.x + dir.y * -0.9982262 + dir.z * 0.5671452;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

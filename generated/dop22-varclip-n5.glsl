@@ -10,9 +10,9 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP22_VARCLIP_N5_GLSL
@@ -46,9 +46,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -63,9 +64,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -80,9 +82,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -97,9 +100,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.3375419e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.3375419e-05, lo);
+        hi = fma(scale, 1.3375419e-05, hi);
         float d = ray.z + ray.y * -0.8882671;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -114,9 +118,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.5232387e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.5232387e-05, lo);
+        hi = fma(scale, 1.5232387e-05, hi);
         float d = ray.x + ray.y * 0.9994562 + ray.z * -0.5668717;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -131,9 +136,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.3377759e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.3377759e-05, lo);
+        hi = fma(scale, 1.3377759e-05, hi);
         float d = ray.z + ray.x * 0.8886194;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -148,9 +154,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.3384459e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.3384459e-05, lo);
+        hi = fma(scale, 1.3384459e-05, hi);
         float d = ray.z + ray.x * -0.8896277;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -165,9 +172,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.3378324e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.3378324e-05, lo);
+        hi = fma(scale, 1.3378324e-05, hi);
         float d = ray.z + ray.y * 0.8887044;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -182,9 +190,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.5205955e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.5205955e-05, lo);
+        hi = fma(scale, 1.5205955e-05, hi);
         float d = ray.y + ray.x * -0.9996624 + ray.z * 0.55936176;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -199,9 +208,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.5198627e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.5198627e-05, lo);
+        hi = fma(scale, 1.5198627e-05, hi);
         float d = ray.y + ray.x * 0.99789804 + ray.z * 0.56051946;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -216,9 +226,10 @@ vec3 kdop_dop22_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.5225339e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.5225339e-05, lo);
+        hi = fma(scale, 1.5225339e-05, hi);
         float d = ray.x + ray.y * -0.9982262 + ray.z * 0.5671452;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -9,9 +9,9 @@
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_CLIP_N5_GLSL
@@ -36,16 +36,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x;
         float q3 = c3.x;
         float q4 = c4.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -56,16 +58,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y;
         float q3 = c3.y;
         float q4 = c4.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,16 +80,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z;
         float q3 = c3.z;
         float q4 = c4.z;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -96,16 +102,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * 0.5569291 + c1.z * -0.42041335;
         float q3 = c3.x + c3.y * 0.5569291 + c3.z * -0.42041335;
         float q4 = c4.x + c4.y * 0.5569291 + c4.z * -0.42041335;
-        float lo = -1.2193923e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2193923e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2193923e-05;
+        hi += 1.2193923e-05;
         float d = dir.x + dir.y * 0.5569291 + dir.z * -0.42041335;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -116,16 +124,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * 0.65158427 + c1.z * 0.17269012;
         float q3 = c3.y + c3.x * 0.65158427 + c3.z * 0.17269012;
         float q4 = c4.y + c4.x * 0.65158427 + c4.z * 0.17269012;
-        float lo = -1.2059784e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2059784e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2059784e-05;
+        hi += 1.2059784e-05;
         float d = dir.y + dir.x * 0.65158427 + dir.z * 0.17269012;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -136,16 +146,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * 0.30413133 + c1.z * -0.56664616;
         float q3 = c3.y + c3.x * 0.30413133 + c3.z * -0.56664616;
         float q4 = c4.y + c4.x * 0.30413133 + c4.z * -0.56664616;
-        float lo = -1.1889422e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.1889422e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.1889422e-05;
+        hi += 1.1889422e-05;
         float d = dir.y + dir.x * 0.30413133 + dir.z * -0.56664616;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -156,16 +168,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * -0.49238378 + c1.y * -0.47075778;
         float q3 = c3.z + c3.x * -0.49238378 + c3.y * -0.47075778;
         float q4 = c4.z + c4.x * -0.49238378 + c4.y * -0.47075778;
-        float lo = -1.2099813e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2099813e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2099813e-05;
+        hi += 1.2099813e-05;
         float d = dir.z + dir.x * -0.49238378 + dir.y * -0.47075778;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -176,16 +190,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * 0.46319014 + c1.z * 0.4986271;
         float q3 = c3.x + c3.y * 0.46319014 + c3.z * 0.4986271;
         float q4 = c4.x + c4.y * 0.46319014 + c4.z * 0.4986271;
-        float lo = -1.2096173e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2096173e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2096173e-05;
+        hi += 1.2096173e-05;
         float d = dir.x + dir.y * 0.46319014 + dir.z * 0.4986271;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -196,16 +212,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * 0.33731827 + c1.y * -0.74650776;
         float q3 = c3.z + c3.x * 0.33731827 + c3.y * -0.74650776;
         float q4 = c4.z + c4.x * 0.33731827 + c4.y * -0.74650776;
-        float lo = -1.2926939e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2926939e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2926939e-05;
+        hi += 1.2926939e-05;
         float d = dir.z + dir.x * 0.33731827 + dir.y * -0.74650776;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -216,16 +234,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * 0.34994918 + c1.y * 0.8773848;
         float q3 = c3.z + c3.x * 0.34994918 + c3.y * 0.8773848;
         float q4 = c4.z + c4.x * 0.34994918 + c4.y * 0.8773848;
-        float lo = -1.3755975e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.3755975e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.3755975e-05;
+        hi += 1.3755975e-05;
         float d = dir.z + dir.x * 0.34994918 + dir.y * 0.8773848;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -236,16 +256,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * -0.42701176 + c1.z * 0.8390939;
         float q3 = c3.y + c3.x * -0.42701176 + c3.z * 0.8390939;
         float q4 = c4.y + c4.x * -0.42701176 + c4.z * 0.8390939;
-        float lo = -1.37346915e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.37346915e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.37346915e-05;
+        hi += 1.37346915e-05;
         float d = dir.y + dir.x * -0.42701176 + dir.z * 0.8390939;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -256,16 +278,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * -0.69732994 + c1.z * -0.28645495;
         float q3 = c3.x + c3.y * -0.69732994 + c3.z * -0.28645495;
         float q4 = c4.x + c4.y * -0.69732994 + c4.z * -0.28645495;
-        float lo = -1.252328e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.252328e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.252328e-05;
+        hi += 1.252328e-05;
         float d = dir.x + dir.y * -0.69732994 + dir.z * -0.28645495;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -276,16 +300,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * -0.93400365 + c1.y * 0.22692117;
         float q3 = c3.z + c3.x * -0.93400365 + c3.y * 0.22692117;
         float q4 = c4.z + c4.x * -0.93400365 + c4.y * 0.22692117;
-        float lo = -1.38703135e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.38703135e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.38703135e-05;
+        hi += 1.38703135e-05;
         float d = dir.z + dir.x * -0.93400365 + dir.y * 0.22692117;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -296,16 +322,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x + c1.y * -0.45416883 + c1.z * 0.55066824;
         float q3 = c3.x + c3.y * -0.45416883 + c3.z * 0.55066824;
         float q4 = c4.x + c4.y * -0.45416883 + c4.z * 0.55066824;
-        float lo = -1.2286191e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2286191e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2286191e-05;
+        hi += 1.2286191e-05;
         float d = dir.x + dir.y * -0.45416883 + dir.z * 0.55066824;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -316,16 +344,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y + c1.x * -0.5594913 + c1.z * -0.24291748;
         float q3 = c3.y + c3.x * -0.5594913 + c3.z * -0.24291748;
         float q4 = c4.y + c4.x * -0.5594913 + c4.z * -0.24291748;
-        float lo = -1.1713409e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.1713409e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.1713409e-05;
+        hi += 1.1713409e-05;
         float d = dir.y + dir.x * -0.5594913 + dir.z * -0.24291748;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -336,16 +366,18 @@ vec3 kdop_dop32_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.x * 0.6677667 + c1.y * 0.050005417;
         float q3 = c3.z + c3.x * 0.6677667 + c3.y * 0.050005417;
         float q4 = c4.z + c4.x * 0.6677667 + c4.y * 0.050005417;
-        float lo = -1.2035002e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.2035002e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.2035002e-05;
+        hi += 1.2035002e-05;
         float d = dir.z + dir.x * 0.6677667 + dir.y * 0.050005417;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -27,9 +27,9 @@ layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D rectified_histor
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_CLIP_N9_GLSL
@@ -62,7 +62,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x;
         float q7 = c7.x;
         float q8 = c8.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -71,7 +71,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -80,6 +80,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -94,7 +96,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y;
         float q7 = c7.y;
         float q8 = c8.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -103,7 +105,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -112,6 +114,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -126,7 +130,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z;
         float q7 = c7.z;
         float q8 = c8.z;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -135,7 +139,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -144,6 +148,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -158,7 +164,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.5569291 + c6.z * -0.42041335;
         float q7 = c7.x + c7.y * 0.5569291 + c7.z * -0.42041335;
         float q8 = c8.x + c8.y * 0.5569291 + c8.z * -0.42041335;
-        float lo = -1.2193923e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -167,7 +173,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2193923e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -176,6 +182,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2193923e-05;
+        hi += 1.2193923e-05;
         float d = dir.x + dir.y * 0.5569291 + dir.z * -0.42041335;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -190,7 +198,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * 0.65158427 + c6.z * 0.17269012;
         float q7 = c7.y + c7.x * 0.65158427 + c7.z * 0.17269012;
         float q8 = c8.y + c8.x * 0.65158427 + c8.z * 0.17269012;
-        float lo = -1.2059784e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -199,7 +207,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2059784e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -208,6 +216,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2059784e-05;
+        hi += 1.2059784e-05;
         float d = dir.y + dir.x * 0.65158427 + dir.z * 0.17269012;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -222,7 +232,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * 0.30413133 + c6.z * -0.56664616;
         float q7 = c7.y + c7.x * 0.30413133 + c7.z * -0.56664616;
         float q8 = c8.y + c8.x * 0.30413133 + c8.z * -0.56664616;
-        float lo = -1.1889422e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -231,7 +241,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.1889422e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -240,6 +250,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.1889422e-05;
+        hi += 1.1889422e-05;
         float d = dir.y + dir.x * 0.30413133 + dir.z * -0.56664616;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -254,7 +266,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.49238378 + c6.y * -0.47075778;
         float q7 = c7.z + c7.x * -0.49238378 + c7.y * -0.47075778;
         float q8 = c8.z + c8.x * -0.49238378 + c8.y * -0.47075778;
-        float lo = -1.2099813e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -263,7 +275,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2099813e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -272,6 +284,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2099813e-05;
+        hi += 1.2099813e-05;
         float d = dir.z + dir.x * -0.49238378 + dir.y * -0.47075778;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -286,7 +300,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.46319014 + c6.z * 0.4986271;
         float q7 = c7.x + c7.y * 0.46319014 + c7.z * 0.4986271;
         float q8 = c8.x + c8.y * 0.46319014 + c8.z * 0.4986271;
-        float lo = -1.2096173e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -295,7 +309,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2096173e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -304,6 +318,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2096173e-05;
+        hi += 1.2096173e-05;
         float d = dir.x + dir.y * 0.46319014 + dir.z * 0.4986271;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -318,7 +334,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.33731827 + c6.y * -0.74650776;
         float q7 = c7.z + c7.x * 0.33731827 + c7.y * -0.74650776;
         float q8 = c8.z + c8.x * 0.33731827 + c8.y * -0.74650776;
-        float lo = -1.2926939e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -327,7 +343,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2926939e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -336,6 +352,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2926939e-05;
+        hi += 1.2926939e-05;
         float d = dir.z + dir.x * 0.33731827 + dir.y * -0.74650776;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -350,7 +368,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.34994918 + c6.y * 0.8773848;
         float q7 = c7.z + c7.x * 0.34994918 + c7.y * 0.8773848;
         float q8 = c8.z + c8.x * 0.34994918 + c8.y * 0.8773848;
-        float lo = -1.3755975e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -359,7 +377,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3755975e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -368,6 +386,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3755975e-05;
+        hi += 1.3755975e-05;
         float d = dir.z + dir.x * 0.34994918 + dir.y * 0.8773848;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -382,7 +402,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.42701176 + c6.z * 0.8390939;
         float q7 = c7.y + c7.x * -0.42701176 + c7.z * 0.8390939;
         float q8 = c8.y + c8.x * -0.42701176 + c8.z * 0.8390939;
-        float lo = -1.37346915e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -391,7 +411,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.37346915e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -400,6 +420,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.37346915e-05;
+        hi += 1.37346915e-05;
         float d = dir.y + dir.x * -0.42701176 + dir.z * 0.8390939;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -414,7 +436,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.69732994 + c6.z * -0.28645495;
         float q7 = c7.x + c7.y * -0.69732994 + c7.z * -0.28645495;
         float q8 = c8.x + c8.y * -0.69732994 + c8.z * -0.28645495;
-        float lo = -1.252328e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -423,7 +445,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.252328e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -432,6 +454,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.252328e-05;
+        hi += 1.252328e-05;
         float d = dir.x + dir.y * -0.69732994 + dir.z * -0.28645495;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -446,7 +470,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.93400365 + c6.y * 0.22692117;
         float q7 = c7.z + c7.x * -0.93400365 + c7.y * 0.22692117;
         float q8 = c8.z + c8.x * -0.93400365 + c8.y * 0.22692117;
-        float lo = -1.38703135e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -455,7 +479,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.38703135e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -464,6 +488,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.38703135e-05;
+        hi += 1.38703135e-05;
         float d = dir.z + dir.x * -0.93400365 + dir.y * 0.22692117;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -478,7 +504,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.45416883 + c6.z * 0.55066824;
         float q7 = c7.x + c7.y * -0.45416883 + c7.z * 0.55066824;
         float q8 = c8.x + c8.y * -0.45416883 + c8.z * 0.55066824;
-        float lo = -1.2286191e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -487,7 +513,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2286191e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -496,6 +522,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2286191e-05;
+        hi += 1.2286191e-05;
         float d = dir.x + dir.y * -0.45416883 + dir.z * 0.55066824;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -510,7 +538,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.5594913 + c6.z * -0.24291748;
         float q7 = c7.y + c7.x * -0.5594913 + c7.z * -0.24291748;
         float q8 = c8.y + c8.x * -0.5594913 + c8.z * -0.24291748;
-        float lo = -1.1713409e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -519,7 +547,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.1713409e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -528,6 +556,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.1713409e-05;
+        hi += 1.1713409e-05;
         float d = dir.y + dir.x * -0.5594913 + dir.z * -0.24291748;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -542,7 +572,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.6677667 + c6.y * 0.050005417;
         float q7 = c7.z + c7.x * 0.6677667 + c7.y * 0.050005417;
         float q8 = c8.z + c8.x * 0.6677667 + c8.y * 0.050005417;
-        float lo = -1.2035002e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -551,7 +581,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2035002e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -560,6 +590,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2035002e-05;
+        hi += 1.2035002e-05;
         float d = dir.z + dir.x * 0.6677667 + dir.y * 0.050005417;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -9,9 +9,9 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_CLIP_N9_GLSL
@@ -44,7 +44,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x;
         float q7 = c7.x;
         float q8 = c8.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -53,7 +53,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -62,6 +62,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,7 +78,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y;
         float q7 = c7.y;
         float q8 = c8.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -85,7 +87,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -94,6 +96,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -108,7 +112,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z;
         float q7 = c7.z;
         float q8 = c8.z;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -117,7 +121,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -126,6 +130,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -140,7 +146,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.5569291 + c6.z * -0.42041335;
         float q7 = c7.x + c7.y * 0.5569291 + c7.z * -0.42041335;
         float q8 = c8.x + c8.y * 0.5569291 + c8.z * -0.42041335;
-        float lo = -1.2193923e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -149,7 +155,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2193923e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -158,6 +164,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2193923e-05;
+        hi += 1.2193923e-05;
         float d = dir.x + dir.y * 0.5569291 + dir.z * -0.42041335;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -172,7 +180,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * 0.65158427 + c6.z * 0.17269012;
         float q7 = c7.y + c7.x * 0.65158427 + c7.z * 0.17269012;
         float q8 = c8.y + c8.x * 0.65158427 + c8.z * 0.17269012;
-        float lo = -1.2059784e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -181,7 +189,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2059784e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -190,6 +198,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2059784e-05;
+        hi += 1.2059784e-05;
         float d = dir.y + dir.x * 0.65158427 + dir.z * 0.17269012;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -204,7 +214,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * 0.30413133 + c6.z * -0.56664616;
         float q7 = c7.y + c7.x * 0.30413133 + c7.z * -0.56664616;
         float q8 = c8.y + c8.x * 0.30413133 + c8.z * -0.56664616;
-        float lo = -1.1889422e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -213,7 +223,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.1889422e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -222,6 +232,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.1889422e-05;
+        hi += 1.1889422e-05;
         float d = dir.y + dir.x * 0.30413133 + dir.z * -0.56664616;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -236,7 +248,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.49238378 + c6.y * -0.47075778;
         float q7 = c7.z + c7.x * -0.49238378 + c7.y * -0.47075778;
         float q8 = c8.z + c8.x * -0.49238378 + c8.y * -0.47075778;
-        float lo = -1.2099813e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -245,7 +257,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2099813e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -254,6 +266,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2099813e-05;
+        hi += 1.2099813e-05;
         float d = dir.z + dir.x * -0.49238378 + dir.y * -0.47075778;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -268,7 +282,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * 0.46319014 + c6.z * 0.4986271;
         float q7 = c7.x + c7.y * 0.46319014 + c7.z * 0.4986271;
         float q8 = c8.x + c8.y * 0.46319014 + c8.z * 0.4986271;
-        float lo = -1.2096173e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -277,7 +291,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2096173e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -286,6 +300,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2096173e-05;
+        hi += 1.2096173e-05;
         float d = dir.x + dir.y * 0.46319014 + dir.z * 0.4986271;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -300,7 +316,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.33731827 + c6.y * -0.74650776;
         float q7 = c7.z + c7.x * 0.33731827 + c7.y * -0.74650776;
         float q8 = c8.z + c8.x * 0.33731827 + c8.y * -0.74650776;
-        float lo = -1.2926939e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -309,7 +325,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2926939e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -318,6 +334,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2926939e-05;
+        hi += 1.2926939e-05;
         float d = dir.z + dir.x * 0.33731827 + dir.y * -0.74650776;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -332,7 +350,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.34994918 + c6.y * 0.8773848;
         float q7 = c7.z + c7.x * 0.34994918 + c7.y * 0.8773848;
         float q8 = c8.z + c8.x * 0.34994918 + c8.y * 0.8773848;
-        float lo = -1.3755975e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -341,7 +359,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.3755975e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -350,6 +368,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.3755975e-05;
+        hi += 1.3755975e-05;
         float d = dir.z + dir.x * 0.34994918 + dir.y * 0.8773848;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -364,7 +384,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.42701176 + c6.z * 0.8390939;
         float q7 = c7.y + c7.x * -0.42701176 + c7.z * 0.8390939;
         float q8 = c8.y + c8.x * -0.42701176 + c8.z * 0.8390939;
-        float lo = -1.37346915e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -373,7 +393,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.37346915e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -382,6 +402,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.37346915e-05;
+        hi += 1.37346915e-05;
         float d = dir.y + dir.x * -0.42701176 + dir.z * 0.8390939;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -396,7 +418,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.69732994 + c6.z * -0.28645495;
         float q7 = c7.x + c7.y * -0.69732994 + c7.z * -0.28645495;
         float q8 = c8.x + c8.y * -0.69732994 + c8.z * -0.28645495;
-        float lo = -1.252328e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -405,7 +427,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.252328e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -414,6 +436,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.252328e-05;
+        hi += 1.252328e-05;
         float d = dir.x + dir.y * -0.69732994 + dir.z * -0.28645495;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -428,7 +452,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * -0.93400365 + c6.y * 0.22692117;
         float q7 = c7.z + c7.x * -0.93400365 + c7.y * 0.22692117;
         float q8 = c8.z + c8.x * -0.93400365 + c8.y * 0.22692117;
-        float lo = -1.38703135e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -437,7 +461,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.38703135e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -446,6 +470,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.38703135e-05;
+        hi += 1.38703135e-05;
         float d = dir.z + dir.x * -0.93400365 + dir.y * 0.22692117;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -460,7 +486,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.x + c6.y * -0.45416883 + c6.z * 0.55066824;
         float q7 = c7.x + c7.y * -0.45416883 + c7.z * 0.55066824;
         float q8 = c8.x + c8.y * -0.45416883 + c8.z * 0.55066824;
-        float lo = -1.2286191e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -469,7 +495,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2286191e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -478,6 +504,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2286191e-05;
+        hi += 1.2286191e-05;
         float d = dir.x + dir.y * -0.45416883 + dir.z * 0.55066824;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -492,7 +520,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.y + c6.x * -0.5594913 + c6.z * -0.24291748;
         float q7 = c7.y + c7.x * -0.5594913 + c7.z * -0.24291748;
         float q8 = c8.y + c8.x * -0.5594913 + c8.z * -0.24291748;
-        float lo = -1.1713409e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -501,7 +529,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.1713409e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -510,6 +538,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.1713409e-05;
+        hi += 1.1713409e-05;
         float d = dir.y + dir.x * -0.5594913 + dir.z * -0.24291748;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -524,7 +554,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         float q6 = c6.z + c6.x * 0.6677667 + c6.y * 0.050005417;
         float q7 = c7.z + c7.x * 0.6677667 + c7.y * 0.050005417;
         float q8 = c8.z + c8.x * 0.6677667 + c8.y * 0.050005417;
-        float lo = -1.2035002e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q2);
@@ -533,7 +563,7 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         lo = min(lo, q6);
         lo = min(lo, q7);
         lo = min(lo, q8);
-        float hi = 1.2035002e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q2);
@@ -542,6 +572,8 @@ vec3 kdop_dop32_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
+        lo -= 1.2035002e-05;
+        hi += 1.2035002e-05;
         float d = dir.z + dir.x * 0.6677667 + dir.y * 0.050005417;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -31,9 +31,9 @@ layout(push_constant) uniform Parameters
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_DOP32_VARCLIP_N9_GLSL
@@ -75,9 +75,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -96,9 +97,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -117,9 +119,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -138,9 +141,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2193923e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2193923e-05, lo);
+        hi = fma(scale, 1.2193923e-05, hi);
         float d = ray.x + ray.y * 0.5569291 + ray.z * -0.42041335;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -159,9 +163,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2059784e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2059784e-05, lo);
+        hi = fma(scale, 1.2059784e-05, hi);
         float d = ray.y + ray.x * 0.65158427 + ray.z * 0.17269012;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -180,9 +185,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.1889422e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.1889422e-05, lo);
+        hi = fma(scale, 1.1889422e-05, hi);
         float d = ray.y + ray.x * 0.30413133 + ray.z * -0.56664616;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -201,9 +207,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2099813e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2099813e-05, lo);
+        hi = fma(scale, 1.2099813e-05, hi);
         float d = ray.z + ray.x * -0.49238378 + ray.y * -0.47075778;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -222,9 +229,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2096173e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2096173e-05, lo);
+        hi = fma(scale, 1.2096173e-05, hi);
         float d = ray.x + ray.y * 0.46319014 + ray.z * 0.4986271;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -243,9 +251,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2926939e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2926939e-05, lo);
+        hi = fma(scale, 1.2926939e-05, hi);
         float d = ray.z + ray.x * 0.33731827 + ray.y * -0.74650776;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -264,9 +273,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.3755975e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.3755975e-05, lo);
+        hi = fma(scale, 1.3755975e-05, hi);
         float d = ray.z + ray.x * 0.34994918 + ray.y * 0.8773848;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -285,9 +295,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.37346915e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.37346915e-05, lo);
+        hi = fma(scale, 1.37346915e-05, hi);
         float d = ray.y + ray.x * -0.42701176 + ray.z * 0.8390939;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -306,9 +317,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.252328e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.252328e-05, lo);
+        hi = fma(scale, 1.252328e-05, hi);
         float d = ray.x + ray.y * -0.69732994 + ray.z * -0.28645495;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -327,9 +339,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.38703135e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.38703135e-05, lo);
+        hi = fma(scale, 1.38703135e-05, hi);
         float d = ray.z + ray.x * -0.93400365 + ray.y * 0.22692117;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -348,9 +361,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2286191e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2286191e-05, lo);
+        hi = fma(scale, 1.2286191e-05, hi);
         float d = ray.x + ray.y * -0.45416883 + ray.z * 0.55066824;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -369,9 +383,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.1713409e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.1713409e-05, lo);
+        hi = fma(scale, 1.1713409e-05, hi);
         float d = ray.y + ray.x * -0.5594913 + ray.z * -0.24291748;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -390,9 +405,10 @@ vec3 kdop_dop32_varclip_n9(vec3 current, vec3 history, float gamma, vec3 neighbo
         float mean = sum * (1.0 / 9.0);
         float variance = fma(sum, sum * (-1.0 / 9.0), q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3 + q5 * q5 + q6 * q6 + q7 * q7 + q8 * q8) * (1.0 / 9.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.2035002e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.2035002e-05, lo);
+        hi = fma(scale, 1.2035002e-05, hi);
         float d = ray.z + ray.x * 0.6677667 + ray.y * 0.050005417;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

@@ -9,9 +9,9 @@
 // neighborhood[]: 3x3 neighborhood, row-major; index 4 is the pixel itself.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_YCOCG_CLIP_N9_GLSL
@@ -36,14 +36,14 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
 
     // Slab 1 of 3: axis (0.25, 0.5, 0.25) from ycocg.axes:7, scaled by 2 to (0.5, 1, 0.5)
     {
-        float q0 = c0.y + c0.x * 0.5 + c0.z * 0.5;
-        float q1 = c1.y + c1.x * 0.5 + c1.z * 0.5;
-        float q2 = c2.y + c2.x * 0.5 + c2.z * 0.5;
-        float q3 = c3.y + c3.x * 0.5 + c3.z * 0.5;
-        float q5 = c5.y + c5.x * 0.5 + c5.z * 0.5;
-        float q6 = c6.y + c6.x * 0.5 + c6.z * 0.5;
-        float q7 = c7.y + c7.x * 0.5 + c7.z * 0.5;
-        float q8 = c8.y + c8.x * 0.5 + c8.z * 0.5;
+        float q0 = c0.y + (c0.x + c0.z) * 0.5;
+        float q1 = c1.y + (c1.x + c1.z) * 0.5;
+        float q2 = c2.y + (c2.x + c2.z) * 0.5;
+        float q3 = c3.y + (c3.x + c3.z) * 0.5;
+        float q5 = c5.y + (c5.x + c5.z) * 0.5;
+        float q6 = c6.y + (c6.x + c6.z) * 0.5;
+        float q7 = c7.y + (c7.x + c7.z) * 0.5;
+        float q8 = c8.y + (c8.x + c8.z) * 0.5;
         float lo = 3.40282347e38;
         lo = min(lo, q0);
         lo = min(lo, q1);
@@ -62,10 +62,10 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
-        float p = current.y + current.x * 0.5 + current.z * 0.5;
-        lo = min(lo - p, -1.22474485e-05);
-        hi = max(hi - p, 1.22474485e-05);
-        float d = dir.y + dir.x * 0.5 + dir.z * 0.5;
+        float p = current.y + (current.x + current.z) * 0.5;
+        lo = min(lo - p, 0.0) - 1.22474485e-05;
+        hi = max(hi - p, 0.0) + 1.22474485e-05;
+        float d = dir.y + (dir.x + dir.z) * 0.5;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
@@ -98,22 +98,22 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q7);
         hi = max(hi, q8);
         float p = current.x - current.z;
-        lo = min(lo - p, -1.4142136e-05);
-        hi = max(hi - p, 1.4142136e-05);
+        lo = min(lo - p, 0.0) - 1.4142136e-05;
+        hi = max(hi - p, 0.0) + 1.4142136e-05;
         float d = dir.x - dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 3 of 3: axis (-0.25, 0.5, -0.25) from ycocg.axes:11, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
-        float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
-        float q2 = c2.y + c2.x * -0.5 + c2.z * -0.5;
-        float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
-        float q5 = c5.y + c5.x * -0.5 + c5.z * -0.5;
-        float q6 = c6.y + c6.x * -0.5 + c6.z * -0.5;
-        float q7 = c7.y + c7.x * -0.5 + c7.z * -0.5;
-        float q8 = c8.y + c8.x * -0.5 + c8.z * -0.5;
+        float q0 = c0.y + (c0.x + c0.z) * -0.5;
+        float q1 = c1.y + (c1.x + c1.z) * -0.5;
+        float q2 = c2.y + (c2.x + c2.z) * -0.5;
+        float q3 = c3.y + (c3.x + c3.z) * -0.5;
+        float q5 = c5.y + (c5.x + c5.z) * -0.5;
+        float q6 = c6.y + (c6.x + c6.z) * -0.5;
+        float q7 = c7.y + (c7.x + c7.z) * -0.5;
+        float q8 = c8.y + (c8.x + c8.z) * -0.5;
         float lo = 3.40282347e38;
         lo = min(lo, q0);
         lo = min(lo, q1);
@@ -132,10 +132,10 @@ vec3 kdop_ycocg_clip_n9(vec3 current, vec3 history, vec3 neighborhood[9])
         hi = max(hi, q6);
         hi = max(hi, q7);
         hi = max(hi, q8);
-        float p = current.y + current.x * -0.5 + current.z * -0.5;
-        lo = min(lo - p, -1.22474485e-05);
-        hi = max(hi - p, 1.22474485e-05);
-        float d = dir.y + dir.x * -0.5 + dir.z * -0.5;
+        float p = current.y + (current.x + current.z) * -0.5;
+        lo = min(lo - p, 0.0) - 1.22474485e-05;
+        hi = max(hi - p, 0.0) + 1.22474485e-05;
+        float d = dir.y + (dir.x + dir.z) * -0.5;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 

@@ -73,7 +73,14 @@ std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projectio
     }
     std::string scaled;
     // A negative scale stays in the literal: "a - b * k" would cost a negate once fused into an fma.
-    if (scales.size() == 1 || (scales.size() == 2 && style == EmitStyle::Projection::multiply_add)) {
+    if (scales.size() == 2 && style == EmitStyle::Projection::multiply_add &&
+        std::abs(scales[0]) == std::abs(scales[1])) {
+        // Two components with one scale (YCoCg's Y and Cg): their sum or difference is scaled once.
+        // The same float-op count as two multiply-adds, but one multiply less on a device without
+        // fused multiply-add (lavapipe splits every Fma into a multiply and an add).
+        scaled = fmt::format(" + ({0}.{1} {3} {0}.{2}) * {4}", v, scaled_components[0], scaled_components[1],
+                             scales[0] == scales[1] ? '+' : '-', float_literal(scales[0]));
+    } else if (scales.size() == 1 || (scales.size() == 2 && style == EmitStyle::Projection::multiply_add)) {
         for (std::size_t i = 0; i < scales.size(); ++i)
             scaled += fmt::format(" + {}.{} * {}", v, scaled_components[i], float_literal(scales[i]));
     } else if (scales.size() == 2)
@@ -109,8 +116,8 @@ std::string sum(int count, std::string_view term_format) {
 // computing both crossings and taking the larger. (The paper's numerics.)
 std::string paper_exit_update() { return "        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);\n"; }
 
-// Hardened, lo and hi are relative to the ray's origin and hold its margin: lo <= -padding < 0 <
-// padding <= hi, however float rounds. The plane the ray heads for is chosen by d's sign bit,
+// Hardened, lo and hi are relative to the ray's origin, which they contain, and padded after:
+// lo <= -padding < 0 < padding <= hi, however float rounds. The plane the ray heads for is chosen by d's sign bit,
 // which tells -0 from +0: a parallel ray (d = +-0) divides a distance of the same sign by it and
 // gets +inf, never 0 / 0; and every exit is positive, so t stays in (0, 1]. One division instead
 // of a reciprocal and a multiply.
@@ -138,12 +145,11 @@ void write_extent(std::string& out, std::string_view name, std::string_view op, 
 // Clip: the slab spans the projections' min..max.
 // With the paper's numerics that is every neighbor's projection, dilated by the padding, and the
 // exit is measured from the current color's projection p.
-// Hardened, `current` stands for the center pixel (whose projection is the ray's origin), and the
-// slab spans the other neighbors' projections and a margin of the padding around the origin, in
-// coordinates relative to the origin. In the relative frame the colors already are relative to
-// current (write_unrolled_body), so the margin is where lo and hi start; in the absolute frame p is
-// subtracted once per slab and the margin joined after, so that neither float rounding (p - padding
-// is p above ~84) nor a flat neighborhood can put the origin on a plane.
+// Hardened, the same slab in coordinates relative to the ray's origin, padded only then, so that
+// neither float rounding (p - padding is p above ~84) nor a flat neighborhood can put the origin on
+// a plane. `current` stands for the center pixel, whose projection is the origin. In the relative
+// frame the colors already are relative to current (write_unrolled_body), so the extents start from
+// 0, the center; in the absolute frame p is subtracted once per slab and the center joined after.
 // Starting the running extents from constants rather than from the first projection measured 8%
 // fewer lavapipe instructions per pixel for dop32 (the driver can drop its NaN handling down the
 // chain once a constant operand makes the result non-NaN); a NaN neighbor also drops out instead of
@@ -164,14 +170,15 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector
         return;
     }
     if (frame == Frame::relative) {
-        write_extent(out, "lo", "min", "-" + padding, neighbors, style.extent);
-        write_extent(out, "hi", "max", padding, neighbors, style.extent);
+        write_extent(out, "lo", "min", "0.0", neighbors, style.extent);
+        write_extent(out, "hi", "max", "0.0", neighbors, style.extent);
+        out += fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
     } else {
         write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
         write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
         out += fmt::format("        float p = {};\n", proj("current"));
-        out += fmt::format("        lo = min(lo - p, -{});\n", padding);
-        out += fmt::format("        hi = max(hi - p, {});\n", padding);
+        out += fmt::format("        lo = min(lo - p, 0.0) - {};\n", padding);
+        out += fmt::format("        hi = max(hi - p, 0.0) + {};\n", padding);
     }
     out += fmt::format("        float d = {};\n", proj("dir"));
     out += kHardenedExit;
@@ -182,8 +189,8 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector
 // starts inside, and dilated by the padding.
 // Hardened, the colors and the ray arrive relative to current and scaled (see
 // write_hardening_prologue), so the projections are relative to the ray's origin; as in the clip,
-// `current` stands for the center pixel (projection 0, so it adds nothing to the sums) and the slab
-// is widened to a margin of the padding around the origin. The shift keeps float32 from cancelling
+// `current` stands for the center pixel (projection 0, so it adds nothing to the sums), and the slab
+// is widened to contain the origin, then padded. The shift keeps float32 from cancelling
 // the small variance of bright, flat areas away: the supplement's E[q^2] - E[q]^2 gives a sigma of
 // about 3e-4 |q| there, or a negative variance and NaN.
 void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vector<int>& neighbors, int count,
@@ -205,9 +212,10 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vec
         out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
                            squares);
         out += "        float sigma = sqrt(max(variance, 0.0));\n";
-        out += fmt::format("        float margin = {} * scale;\n", float_literal(axis.padding));
-        out += "        float lo = min(fma(-gamma, sigma, mean), -margin);\n";
-        out += "        float hi = max(fma(gamma, sigma, mean), margin);\n";
+        out += "        float lo = min(fma(-gamma, sigma, mean), 0.0);\n";
+        out += "        float hi = max(fma(gamma, sigma, mean), 0.0);\n";
+        out += fmt::format("        lo = fma(scale, -{0}, lo);\n        hi = fma(scale, {0}, hi);\n",
+                           float_literal(axis.padding));
         out += fmt::format("        float d = {};\n", proj("ray"));
         out += kHardenedExit;
         return;
@@ -296,7 +304,7 @@ Frame hardened_frame(const AxisSet& set, Mode mode, Neighborhood neighborhood) {
     if (mode == Mode::varclip) return Frame::relative;
     // Relative costs 3 subtracts per neighbor but the center; absolute costs, per slab, the current
     // color's projection (nonzero components - 1 multiply-adds), subtracting it from lo and hi, and
-    // joining the margin to both (float_ops counts alike; analytic_cost.h).
+    // joining the center to both (float_ops counts alike; analytic_cost.h).
     const std::size_t others = neighborhood_offsets(neighborhood).size() - 1;
     std::size_t absolute_extra = 0;
     for (const Axis& axis : set.axes) {
@@ -360,9 +368,9 @@ std::string function_header(const VariantSpec& spec) {
         out += "// supplement's numerics: HDR values, flat neighborhoods and NaN or Inf history can give NaN\n";
         out += "// or a wrong color (`kdop stress` shows which); use the hardened variant unless measured.\n";
     } else {
-        out += "// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length\n";
-        out += "// around current, measured from current: the ray starts strictly inside at any magnitude,\n";
-        out += "// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or\n";
+        out += "// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds\n";
+        out += "// are measured from current: the ray starts strictly inside at any magnitude, and a ray\n";
+        out += "// parallel to a slab never stops at it. If history has a NaN or Inf channel, or\n";
         out += "// |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.\n";
         out += "// `kdop stress` checks these promises on a device.\n";
     }
@@ -458,8 +466,8 @@ void write_hardened_loop(std::string& out, Mode mode, int count, int center, int
     out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
     out += "        vec3 axis = axes[a];\n";
     if (mode == Mode::clip) {
-        out += fmt::format("        vec2 extent = vec2(-epsilon, epsilon); // current stands for neighborhood[{}]\n",
-                           center);
+        out +=
+            fmt::format("        vec2 extent = vec2(0.0); // current, for neighborhood[{}], at the origin\n", center);
         out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
         // A guarded body rather than `continue`, which keeps spirv-opt from unrolling the loop.
         out += fmt::format("            if (n != {})\n            {{\n", center);
@@ -467,6 +475,7 @@ void write_hardened_loop(std::string& out, Mode mode, int count, int center, int
         out += "                extent = vec2(min(q, extent.x), max(q, extent.y));\n";
         out += "            }\n";
         out += "        }\n";
+        out += "        extent += vec2(-epsilon, epsilon);\n";
         out += "        float d = dot(dir, axis);\n";
     } else {
         out += "        vec2 moments = vec2(0.0);\n";
@@ -479,8 +488,9 @@ void write_hardened_loop(std::string& out, Mode mode, int count, int center, int
         out += "        }\n";
         out += fmt::format("        moments /= vec2({}.0);\n", count);
         out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
-        out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, -epsilon * scale),\n";
-        out += "                           max(moments.x + gamma * sigma, epsilon * scale));\n";
+        out +=
+            "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
+        out += "        extent += vec2(-epsilon, epsilon) * scale;\n";
         out += "        float d = dot(ray, axis);\n";
     }
     out += "        t = min(t, (floatBitsToInt(d) < 0 ? extent.x : extent.y) / d);\n";

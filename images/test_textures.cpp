@@ -13,8 +13,9 @@
 namespace kdop {
 namespace {
 
-constexpr TextureFamily kFamilies[] = {TextureFamily::grass,    TextureFamily::edges, TextureFamily::asphalt,
-                                       TextureFamily::gradient, TextureFamily::flat,  TextureFamily::hdr};
+constexpr TextureFamily kFamilies[] = {TextureFamily::grass,     TextureFamily::edges, TextureFamily::asphalt,
+                                       TextureFamily::gradient,  TextureFamily::flat,  TextureFamily::hdr,
+                                       TextureFamily::highlights};
 constexpr HistoryModel kModels[] = {HistoryModel::same, HistoryModel::shifted, HistoryModel::moved_object,
                                     HistoryModel::other_texture};
 
@@ -121,6 +122,24 @@ Image hdr(std::uint32_t w, std::uint32_t h, std::uint64_t seed) {
     return image;
 }
 
+// Grass with 3% of its pixels raised to highlights whose brightest channel is 1e2 to 5e4
+// (log-uniform) and whose other channels are 1e-3 to 1 of it: lone bright pixels of any hue, next to
+// dim neighbors, as specular glints and emissive sparks are in HDR frames. Where one channel of a
+// pixel is far brighter than the others, float32 rounding and any padding that follows the pixel's
+// brightest channel meet the dim channels' slabs.
+Image highlights(std::uint32_t w, std::uint32_t h, std::uint64_t seed) {
+    Image image = grass(w, h, seed);
+    Random random(seed + 7);
+    for (glm::vec4& p : image.pixels) {
+        if (random.uniform() >= 0.03) continue;
+        const double peak = std::exp(random.uniform(std::log(1e2), std::log(5e4)));
+        const int brightest = int(random.next() % 3);
+        for (int c = 0; c < 3; ++c)
+            p[c] = float(c == brightest ? peak : peak * std::exp(random.uniform(std::log(1e-3), 0.0)));
+    }
+    return image;
+}
+
 float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 } // namespace
@@ -136,6 +155,7 @@ const char* to_string(TextureFamily family) {
     case TextureFamily::gradient: return "gradient";
     case TextureFamily::flat: return "flat";
     case TextureFamily::hdr: return "hdr";
+    case TextureFamily::highlights: return "highlights";
     }
     return "?";
 }
@@ -158,6 +178,7 @@ Image make_texture(TextureFamily family, std::uint32_t w, std::uint32_t h, std::
     case TextureFamily::gradient: return gradient(w, h, seed);
     case TextureFamily::flat: return flat(w, h, seed);
     case TextureFamily::hdr: return hdr(w, h, seed);
+    case TextureFamily::highlights: return highlights(w, h, seed);
     }
     return {};
 }

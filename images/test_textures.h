@@ -13,12 +13,13 @@
 namespace kdop {
 
 enum class TextureFamily {
-    grass,    // high-frequency chroma and luma: yellow- to blue-green blades with dark gaps
-    asphalt,  // high-frequency luma on gray: grain, bright aggregate and dark pits
-    edges,    // hard edges between saturated flat shapes
-    gradient, // smooth color ramps, no noise
-    flat,     // large constant areas: mid gray 0.37, a saturated color, black, and bright (40)
-    hdr,      // a dim scene with highlights from 5 to 60000
+    grass,      // high-frequency chroma and luma: yellow- to blue-green blades with dark gaps
+    asphalt,    // high-frequency luma on gray: grain, bright aggregate and dark pits
+    edges,      // hard edges between saturated flat shapes
+    gradient,   // smooth color ramps, no noise
+    flat,       // large constant areas: mid gray 0.37, a saturated color, black, and bright (40)
+    hdr,        // a dim scene with highlights from 5 to 60000
+    highlights, // grass with 3% of its pixels raised to highlights from 1e2 to 5e4 of any hue
 };
 std::span<const TextureFamily> texture_families();
 const char* to_string(TextureFamily family);

@@ -18,7 +18,7 @@ bool reference_history_usable(const glm::dvec3& current, const glm::dvec3& histo
 
 std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes,
                                            std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
-                                           Mode mode, double gamma, Numerics numerics) {
+                                           Mode mode, double gamma) {
     const double n = static_cast<double>(neighborhood.size());
     const double e = kReferencePadding;
     std::vector<ReferenceSlab> slabs;
@@ -43,9 +43,7 @@ std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes
             lo = mean - gamma * sigma;
             hi = mean + gamma * sigma;
         }
-        if (numerics == Numerics::hardened)
-            slabs.push_back({axis, std::min(lo, p - e), std::max(hi, p + e)});
-        else if (mode == Mode::clip)
+        if (mode == Mode::clip)
             slabs.push_back({axis, lo - e, hi + e});
         else
             slabs.push_back({axis, std::min(lo, p) - e, std::max(hi, p) + e});
@@ -69,7 +67,7 @@ glm::dvec3 reference_clip(std::span<const glm::dvec3> unit_axes, std::span<const
                           const glm::dvec3& current, const glm::dvec3& history, Mode mode, double gamma,
                           Numerics numerics) {
     if (numerics == Numerics::hardened && !reference_history_usable(current, history)) return current;
-    const auto slabs = reference_slabs(unit_axes, neighborhood, current, mode, gamma, numerics);
+    const auto slabs = reference_slabs(unit_axes, neighborhood, current, mode, gamma);
     return current + reference_exit(slabs, current, history) * (history - current);
 }
 

@@ -1,20 +1,17 @@
 // The CPU reference of k-DOP clipping, in double precision, written from the paper's definitions
 // and independently of the generator's emitter: GPU results are checked against it.
 //
-// Clip: each axis a (normalized) gives a slab of the neighborhood's projections q = c . a, from
-// min q to max q; variance clip: from mean - gamma * sigma to mean + gamma * sigma of them
-// (population variance). With the paper's numerics the clip slab is dilated by e = 1e-5 on both
-// sides, and the variance slab is widened to contain the current color's projection p, then
-// dilated by e. With kdop's hardened numerics either slab is widened to contain [p - e, p + e]
-// instead: a margin around the ray's origin, which is what keeps the ray strictly inside at every
-// magnitude (the paper's padding of the whole slab vanishes in float32 above about 84), and which
-// changes no slab by more than e. The ray from the current color toward the history leaves the
+// Clip: each axis a (normalized) gives a slab [min q - e, max q + e] of the neighborhood's
+// projections q = c . a, dilated by the paper's e = 1e-5. Variance clip: the slab is mean +- gamma *
+// sigma of the projections (population variance), widened to contain the current color's
+// projection, then dilated by e. The ray from the current color toward the history leaves the
 // k-DOP at the smallest exit parameter over the slabs; the result is
 // current + clamp(t, 0, 1) * (history - current). A slab the ray runs parallel to never limits t.
-// A history that is not usable is replaced by the current color: one with a NaN or Inf channel,
-// or one where |history - current|_1 + |current|_1 exceeds FLT_MAX (past which float32
-// projections of the ray could overflow; the generated shaders promise no more).
-// The current color is the neighborhood's center pixel, as the generated shaders take it.
+// Both numerics compute this function; kdop's hardened numerics also keep it at the extremes (where
+// float32 loses the paper's e above about 84), and replace a history that is not usable by the
+// current color: one with a NaN or Inf channel, or one where |history - current|_1 + |current|_1
+// exceeds FLT_MAX (past which float32 projections of the ray could overflow; the generated shaders
+// promise no more).
 #pragma once
 
 #include "axis_set.h"
@@ -43,10 +40,10 @@ struct ReferenceSlab {
     double lo, hi;
 };
 
-// The padded k-DOP of a neighborhood around `current` (each slab contains current; see above).
+// The padded k-DOP of a neighborhood around `current` (varclip widens each slab to contain it).
 std::vector<ReferenceSlab> reference_slabs(std::span<const glm::dvec3> unit_axes,
                                            std::span<const glm::dvec3> neighborhood, const glm::dvec3& current,
-                                           Mode mode, double gamma, Numerics numerics = Numerics::hardened);
+                                           Mode mode, double gamma);
 
 // Where the ray current + t (history - current) leaves the slabs, clamped to [0, 1]: 1 when the
 // history lies inside. Takes the history as given (no usability rule).

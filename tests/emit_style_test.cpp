@@ -52,7 +52,7 @@ TEST(EmitStyle, ProjectionsAreWrittenAsAsked) {
     EXPECT_NE(fd.find("float q0 = c0.x;"), std::string::npos); // axis 1: X
     spec.style.extent = EmitStyle::Extent::running;
     std::string running = emit_function(spec);
-    EXPECT_NE(running.find("float lo = -1e-05;"), std::string::npos); // from the margin around current
+    EXPECT_NE(running.find("float lo = 0.0;"), std::string::npos); // from current, the origin
     EXPECT_NE(running.find("lo = min(lo, q8);"), std::string::npos);
 }
 

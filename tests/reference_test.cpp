@@ -21,28 +21,13 @@ void expect_near(const glm::dvec3& a, const glm::dvec3& b) {
     EXPECT_NEAR(a.z, b.z, 1e-12);
 }
 
-constexpr Numerics paper = Numerics::paper, hardened = Numerics::hardened;
-
 TEST(Reference, AabbClipStopsAtThePaddedFace) {
-    // Along +x from the center: leaves at x = 1 + e with the paper's padding of the whole slab; at
-    // x = 1 hardened, whose margin surrounds only the current color.
-    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.5, 0.5}, Mode::clip, 0, paper), {1 + e, 0.5, 0.5});
-    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.5, 0.5}, Mode::clip, 0, hardened), {1, 0.5, 0.5});
+    // Along +x from the center: leaves at x = 1 + e.
+    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.5, 0.5}, Mode::clip, 0), {1 + e, 0.5, 0.5});
     // Diagonal toward (2, 0.75, 0.5): x limits first, at t = (0.5 + e) / 1.5.
     double t = (0.5 + e) / 1.5;
-    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.75, 0.5}, Mode::clip, 0, paper),
+    expect_near(reference_clip(kXyz, kCube, kCenter, {2, 0.75, 0.5}, Mode::clip, 0),
                 kCenter + t * glm::dvec3(1.5, 0.25, 0));
-}
-
-TEST(Reference, HardenedSlabsKeepAMarginAroundTheCurrentColor) {
-    // Current on the neighborhood's x maximum: the paper's slab ends at 1 + e, the hardened one at the
-    // margin's end, 1 + e as well; on a flat neighborhood both are [x - e, x + e].
-    const std::vector<glm::dvec3> n = {{0, 0, 0}, {1, 1, 1}};
-    for (Numerics numerics : {paper, hardened})
-        expect_near(reference_clip(kXyz, n, {1, 0.5, 0.5}, {3, 0.5, 0.5}, Mode::clip, 0, numerics), {1 + e, 0.5, 0.5});
-    const std::vector<glm::dvec3> flat = {{5e4, 5e4, 5e4}};
-    for (Numerics numerics : {paper, hardened})
-        expect_near(reference_clip(kXyz, flat, flat[0], {6e4, 5e4, 5e4}, Mode::clip, 0, numerics), {5e4 + e, 5e4, 5e4});
 }
 
 TEST(Reference, HistoryInsideIsKept) {
@@ -59,10 +44,7 @@ TEST(Reference, ADiagonalAxisCutsTheBoxCorner) {
     // On the diagonal axis the slab's max is 1/sqrt(3) + e; current projects to 0.5/sqrt(3) and the
     // direction (0.5, 1, 1) to 2.5/sqrt(3). The Y axis allows t up to (1 + e) / 1, so the diagonal decides.
     double t = (1 / std::sqrt(3.0) + e - 0.5 / std::sqrt(3.0)) / (2.5 / std::sqrt(3.0));
-    expect_near(reference_clip(axes, n, current, history, Mode::clip, 0, paper), current + t * (history - current));
-    // Hardened, the plane itself: the margin around current does not reach it.
-    expect_near(reference_clip(axes, n, current, history, Mode::clip, 0, hardened),
-                current + 0.2 * (history - current));
+    expect_near(reference_clip(axes, n, current, history, Mode::clip, 0), current + t * (history - current));
     // Without it, the box lets (1, 1, 1) through.
     expect_near(reference_clip(kXyz, n, current, history, Mode::clip, 0), {1, 1, 1});
 }
@@ -71,20 +53,17 @@ TEST(Reference, ARayParallelToASlabIsNotLimitedByIt) {
     // A flat x channel (every x = 0.5) and a history with the same x: the x slab is [0.5 - e, 0.5 + e]
     // and the ray runs inside it, so y decides.
     const std::vector<glm::dvec3> n = {{0.5, 0, 0}, {0.5, 1, 1}, {0.5, 0.5, 0.5}};
-    expect_near(reference_clip(kXyz, n, kCenter, {0.5, 3, 0.5}, Mode::clip, 0, paper), {0.5, 1 + e, 0.5});
-    expect_near(reference_clip(kXyz, n, kCenter, {0.5, 3, 0.5}, Mode::clip, 0, hardened), {0.5, 1, 0.5});
+    expect_near(reference_clip(kXyz, n, kCenter, {0.5, 3, 0.5}, Mode::clip, 0), {0.5, 1 + e, 0.5});
 }
 
 TEST(Reference, VarianceClipUsesMeanAndSigma) {
     // x values 0, 0, 3 (mean 1, population sigma sqrt(2)); y and z flat at 0. With gamma = 1 the x
     // slab is [1 - sqrt(2), 1 + sqrt(2)] widened to contain current (x = 0) and padded.
     const std::vector<glm::dvec3> n = {{0, 0, 0}, {0, 0, 0}, {3, 0, 0}};
-    glm::dvec3 out = reference_clip(kXyz, n, {0, 0, 0}, {10, 0, 0}, Mode::varclip, 1.0, paper);
+    glm::dvec3 out = reference_clip(kXyz, n, {0, 0, 0}, {10, 0, 0}, Mode::varclip, 1.0);
     expect_near(out, {1 + std::sqrt(2.0) + e, 0, 0});
-    out = reference_clip(kXyz, n, {0, 0, 0}, {10, 0, 0}, Mode::varclip, 0.5, paper);
+    out = reference_clip(kXyz, n, {0, 0, 0}, {10, 0, 0}, Mode::varclip, 0.5);
     expect_near(out, {1 + 0.5 * std::sqrt(2.0) + e, 0, 0});
-    out = reference_clip(kXyz, n, {0, 0, 0}, {10, 0, 0}, Mode::varclip, 1.0, hardened);
-    expect_near(out, {1 + std::sqrt(2.0), 0, 0});
 }
 
 TEST(Reference, NeighborhoodShapes) {

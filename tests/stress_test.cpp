@@ -189,13 +189,14 @@ TEST(Stress, ColorsNearTheFloatMaximumStayInsideTheKdop) {
     EXPECT_NE(broken(run, 3, "near-max").find('K'), std::string::npos);
 }
 
-// Fix: the margin is measured from the ray's origin. In float32 the paper's absolute 1e-5 is below
-// the spacing of values above about 84, so a flat neighborhood's padded slab has no width: the
-// ray's origin sits on both planes and a ray parallel to the slab computes 0 x inf = NaN (lavapipe's
-// min happens to drop that NaN; hardware whose min propagates it would return NaN). Hardened, the
-// bounds are taken relative to the origin first and the margin joined after, as the emitter writes
-// it in the absolute frame (the relative frame starts from the margin): checked in float arithmetic
-// for every built-in axis on a flat neighborhood, both planes strictly off the origin.
+// Fix: the padding is applied to bounds measured from the ray's origin. In float32 the paper's
+// absolute 1e-5 is below the spacing of values above about 84, so a flat neighborhood's padded slab
+// has no width: the ray's origin sits on both planes and a ray parallel to the slab computes
+// 0 x inf = NaN (lavapipe's min happens to drop that NaN; hardware whose min propagates it would
+// return NaN). Hardened, the bounds are taken relative to the origin first (min(lo - p, 0), as the
+// emitter writes it in the absolute frame; the relative frame starts from 0) and padded after:
+// checked in float arithmetic for every built-in axis on a flat neighborhood, both planes strictly
+// off the origin.
 TEST(Stress, PaddingKeepsTheRayOriginStrictlyInsideEverySlab) {
     for (std::string_view name : builtin_set_names()) {
         const AxisSet set = *resolve_axis_set(name);
@@ -205,7 +206,7 @@ TEST(Stress, PaddingKeepsTheRayOriginStrictlyInsideEverySlab) {
                 const glm::vec3 color(magnitude);
                 const float q = std::fma(color.z, scaled.coefficients.z,
                                          std::fma(color.y, scaled.coefficients.y, color.x * scaled.coefficients.x));
-                const float lo = std::min(q - q, -scaled.padding), hi = std::max(q - q, scaled.padding);
+                const float lo = std::min(q - q, 0.0f) - scaled.padding, hi = std::max(q - q, 0.0f) + scaled.padding;
                 EXPECT_LT(lo, 0.0f) << name << " at " << magnitude;
                 EXPECT_GT(hi, 0.0f) << name << " at " << magnitude;
                 if (magnitude >= 5e4f && std::abs(q) >= magnitude) { // where the paper's padding vanishes
@@ -216,7 +217,7 @@ TEST(Stress, PaddingKeepsTheRayOriginStrictlyInsideEverySlab) {
 }
 
 // The same on the GPU: on a flat gray 5e4 neighborhood, a history heading out along x and one
-// parallel to the x slab (off in y only). The first stops at the margin, which rounds to 5e4 itself;
+// parallel to the x slab (off in y only). The first stops at the padding, which rounds to 5e4 itself;
 // the second is clipped by the y slab, not stopped by x with NaN or 0. The paper's slab has no width
 // in float32, and its parallel ray computes 0 x inf (lavapipe's min happens to drop the NaN).
 TEST(Stress, FlatHdrNeighborhoodKeepsItsPadding) {

@@ -9,9 +9,9 @@
 // neighborhood[]: plus-shaped neighborhood: up, left, the pixel itself (index 2), right, down.
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_TINY_CLIP_N5_GLSL
@@ -36,16 +36,18 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x;
         float q3 = c3.x;
         float q4 = c4.x;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -56,16 +58,18 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.y;
         float q3 = c3.y;
         float q4 = c4.y;
-        float lo = -1e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1e-05;
+        hi += 1e-05;
         float d = dir.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -76,37 +80,41 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.x - c1.z;
         float q3 = c3.x - c3.z;
         float q4 = c4.x - c4.z;
-        float lo = -1.4142136e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.4142136e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.4142136e-05;
+        hi += 1.4142136e-05;
         float d = dir.x - dir.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 5: axis (-0.25, 0.5, -0.25) from tiny.axes:7, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
-        float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
-        float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
-        float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5;
-        float lo = -1.22474485e-05;
+        float q0 = c0.y + (c0.x + c0.z) * -0.5;
+        float q1 = c1.y + (c1.x + c1.z) * -0.5;
+        float q3 = c3.y + (c3.x + c3.z) * -0.5;
+        float q4 = c4.y + (c4.x + c4.z) * -0.5;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.22474485e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
-        float d = dir.y + dir.x * -0.5 + dir.z * -0.5;
+        lo -= 1.22474485e-05;
+        hi += 1.22474485e-05;
+        float d = dir.y + (dir.x + dir.z) * -0.5;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
@@ -116,16 +124,18 @@ vec3 kdop_tiny_clip_n5(vec3 current, vec3 history, vec3 neighborhood[5])
         float q1 = c1.z + c1.y * -0.75;
         float q3 = c3.z + c3.y * -0.75;
         float q4 = c4.z + c4.y * -0.75;
-        float lo = -1.25e-05;
+        float lo = 0.0;
         lo = min(lo, q0);
         lo = min(lo, q1);
         lo = min(lo, q3);
         lo = min(lo, q4);
-        float hi = 1.25e-05;
+        float hi = 0.0;
         hi = max(hi, q0);
         hi = max(hi, q1);
         hi = max(hi, q3);
         hi = max(hi, q4);
+        lo -= 1.25e-05;
+        hi += 1.25e-05;
         float d = dir.z + dir.y * -0.75;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }

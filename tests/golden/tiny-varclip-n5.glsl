@@ -10,9 +10,9 @@
 // gamma: slab half-width in standard deviations (1 is the usual choice).
 // Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a
 // unit component costs no multiply and a zero component nothing.
-// Each slab spans the neighborhood's extent and a margin of 1e-5 per unit of axis length
-// around current, measured from current: the ray starts strictly inside at any magnitude,
-// and a ray parallel to a slab never stops at it. If history has a NaN or Inf channel, or
+// Slabs are dilated by 1e-5 per unit of axis length, as in the paper's clip, after their bounds
+// are measured from current: the ray starts strictly inside at any magnitude, and a ray
+// parallel to a slab never stops at it. If history has a NaN or Inf channel, or
 // |history - current| + |current| (channels summed) exceeds FLT_MAX, current is returned.
 // `kdop stress` checks these promises on a device.
 #ifndef KDOP_TINY_VARCLIP_N5_GLSL
@@ -46,9 +46,10 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.x;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -63,9 +64,10 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1e-05, lo);
+        hi = fma(scale, 1e-05, hi);
         float d = ray.y;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
@@ -80,27 +82,29 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.4142136e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.4142136e-05, lo);
+        hi = fma(scale, 1.4142136e-05, hi);
         float d = ray.x - ray.z;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
     // Slab 4 of 5: axis (-0.25, 0.5, -0.25) from tiny.axes:7, scaled by 2 to (-0.5, 1, -0.5)
     {
-        float q0 = c0.y + c0.x * -0.5 + c0.z * -0.5;
-        float q1 = c1.y + c1.x * -0.5 + c1.z * -0.5;
-        float q3 = c3.y + c3.x * -0.5 + c3.z * -0.5;
-        float q4 = c4.y + c4.x * -0.5 + c4.z * -0.5;
+        float q0 = c0.y + (c0.x + c0.z) * -0.5;
+        float q1 = c1.y + (c1.x + c1.z) * -0.5;
+        float q3 = c3.y + (c3.x + c3.z) * -0.5;
+        float q4 = c4.y + (c4.x + c4.z) * -0.5;
         float sum = q0 + q1 + q3 + q4;
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.22474485e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
-        float d = ray.y + ray.x * -0.5 + ray.z * -0.5;
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.22474485e-05, lo);
+        hi = fma(scale, 1.22474485e-05, hi);
+        float d = ray.y + (ray.x + ray.z) * -0.5;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
 
@@ -114,9 +118,10 @@ vec3 kdop_tiny_varclip_n5(vec3 current, vec3 history, float gamma, vec3 neighbor
         float mean = sum * (1.0 / 5.0);
         float variance = fma(sum, sum * (-1.0 / 5.0), q0 * q0 + q1 * q1 + q3 * q3 + q4 * q4) * (1.0 / 5.0);
         float sigma = sqrt(max(variance, 0.0));
-        float margin = 1.25e-05 * scale;
-        float lo = min(fma(-gamma, sigma, mean), -margin);
-        float hi = max(fma(gamma, sigma, mean), margin);
+        float lo = min(fma(-gamma, sigma, mean), 0.0);
+        float hi = max(fma(gamma, sigma, mean), 0.0);
+        lo = fma(scale, -1.25e-05, lo);
+        hi = fma(scale, 1.25e-05, hi);
         float d = ray.z + ray.y * -0.75;
         t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);
     }
