@@ -34,7 +34,8 @@ Timing timing_of(const std::vector<double>& samples) {
     return {median(samples), quantile(samples, 0.25), quantile(samples, 0.75)};
 }
 
-// The kernels every row needs: itself, its loop form and its paper twin where it has them.
+// The kernels every row needs: itself, the supplement's listing of it and its paper twin where it
+// has them.
 struct Kernels {
     std::vector<VariantKey> keys;
     std::vector<const Variant*> variants;
@@ -44,9 +45,11 @@ struct Kernels {
     bool has(const VariantKey& key) const { return index(key) < keys.size(); }
 };
 
+// The supplement's listing as written: the loop form with the paper's numerics, whatever the
+// variant's own, so every variant is held against the same baseline.
 std::optional<VariantKey> loop_of(const VariantKey& key) {
     if (!key.is_clip()) return std::nullopt;
-    return key.with(Form::loop);
+    return key.with(Form::loop).with(Numerics::paper);
 }
 std::optional<VariantKey> paper_of(const VariantKey& key) {
     if (!key.is_clip() || key.numerics == Numerics::paper) return std::nullopt;

@@ -126,10 +126,11 @@ std::string cost_report_markdown(const BenchResult& result, const RunMetadata& r
     out += chart(0, "Float operations per variant against the loop form and the analytic lower bound");
     out += chart(1, "Measured cost on the device: callgrind instructions per pixel and time with its spread");
 
-    out +=
-        "## Static cost\n\nFrom the optimized SPIR-V (`generator/spirv_cost.h`): scalar float operations, vector "
-        "operations once per component, `OpDot` of N as 2N − 1, `Fma` as 1. The loop form is the supplement's listing, "
-        "compiled and optimized the same way.\n\n";
+    out += "## Static cost\n\nFrom the optimized SPIR-V (`generator/spirv_cost.h`): scalar float operations, vector "
+           "operations once per component, `OpDot` of N as 2N − 1, `Fma` as 1. The loop form is the supplement's "
+           "listing as "
+           "written (its loops and its numerics: `--forms loop --numerics paper`), compiled and optimized the same "
+           "way.\n\n";
     out += table.markdown(names(kStaticColumns)) + "\n";
     out += "### The analytic lower bound\n\n" + std::string(kDerivation) + "\n\n";
 
