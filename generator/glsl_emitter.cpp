@@ -124,7 +124,7 @@ std::string paper_exit_update() { return "        t = min(t, ((inv_d > 0.0 ? hi 
 constexpr char kHardenedExit[] = "        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);\n";
 
 // The paper's slab dilation, 1e-5 per unit of axis length, on both sides.
-std::string paper_dilation(const ScaledAxis& axis) {
+std::string dilation(const ScaledAxis& axis) {
     return fmt::format("        lo -= {0};\n        hi += {0};\n", float_literal(axis.padding));
 }
 
@@ -163,7 +163,7 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector
     if (numerics == Numerics::paper) {
         write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
         write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
-        out += paper_dilation(axis);
+        out += dilation(axis);
         out += fmt::format("        float p = {};\n", proj("current"));
         out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
         out += paper_exit_update();
@@ -172,7 +172,7 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector
     if (frame == Frame::relative) {
         write_extent(out, "lo", "min", "0.0", neighbors, style.extent);
         write_extent(out, "hi", "max", "0.0", neighbors, style.extent);
-        out += fmt::format("        lo -= {0};\n        hi += {0};\n", padding);
+        out += dilation(axis);
     } else {
         write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
         write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
@@ -223,7 +223,7 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vec
     out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", squares, count);
     out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
     out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
-    out += paper_dilation(axis);
+    out += dilation(axis);
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     out += paper_exit_update();
 }
