@@ -15,7 +15,6 @@ namespace {
 
 // Numbers in the report's sentences, as the tables show them.
 std::string cell(double value) { return format_value(value, Shown::significant, 3); }
-std::string percent(double share) { return format_value(share, Shown::percent, 1); }
 
 std::vector<std::string> families_of(const std::vector<TradeRow>& trade) {
     std::vector<std::string> families;

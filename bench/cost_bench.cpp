@@ -106,7 +106,7 @@ Result<BenchResult> run_cost_bench(const Context& context, VariantCatalog& catal
     if (!found) return std::unexpected(found.error());
     all.variants = std::move(*found);
 
-    // Static cost, and the analytic minimum from the set's axes.
+    // Static cost, and the analytic lower bound from the set's axes.
     for (std::size_t i = 0; i < options.variants.size() + kBaselines.size(); ++i) {
         const VariantKey& key = all.keys[i];
         CostRow row = static_row(key, *all.variants[i]);

@@ -57,10 +57,10 @@ Action add_bench_command(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* bench = app.add_subcommand(
-        "bench",
-        "Measure what each variant costs: static float-op counts against the loop form and the analytic minimum, "
-        "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, cost.json, "
-        "report.md and charts");
+        "bench", "Measure what each variant costs: static float-op counts against the supplement's listing and the "
+                 "analytic lower bound, "
+                 "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, cost.json, "
+                 "report.md and charts");
     bench->add_option("--out", o->out, "Output directory (created if missing)")->required();
     bench->add_option("--sets", o->sets,
                       "Axis sets to measure: built-in names or .axes files [default: every built-in set]; with "

@@ -55,9 +55,8 @@ Result<double> parse_number(std::string_view token, const std::string& where) {
     std::string_view digits = token.starts_with('+') ? token.substr(1) : token;
     if (token.starts_with('+') && (digits.starts_with('+') || digits.starts_with('-')))
         return fail(fmt::format("{}{} is not a number", where, quoted(token)));
-    // strtod in the "C" locale: the same in every program that links kdop, whatever locale it set
-    // (std::from_chars for double is missing from libc++ 16, which the fuzzing build uses). Hex
-    // floats, which strtod would take, are not a spelling axis files have.
+    // strtod in the "C" locale: the same in every program that links kdop, whatever locale it set.
+    // Hex floats, which strtod would take, are not a spelling axis files have.
     static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", locale_t(0));
     const std::string text(digits);
     if (text.empty() || text.find_first_of("xX") != std::string::npos ||

@@ -22,8 +22,8 @@ namespace kdop {
 // what measured cheapest on lavapipe (callgrind instructions per pixel, 256x256, clip-n9, see
 // `kdop bench`: dop32 467.6, dop22 411.1, dop16-grass 397.7, against 495.6, 422.4, 415.9 for the
 // loop form and 527.8, 445.3, 430.8 for fold-dot with trees; measured before the hardening, which
-// adds a fixed cost per pixel) and spend the analytic minimum of float operations plus 2 per slab
-// (generator/analytic_cost.h).
+// adds a fixed cost per pixel) and spend the analytic lower bound of float operations in their frame
+// (plus 2 per slab in the absolute frame; generator/analytic_cost.h).
 struct EmitStyle {
     enum class Projection {
         fold_dot,     // c.x + dot(c.yz, vec2(a, b)): unit component added, dot() over the rest
