@@ -8,6 +8,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <string>
 
 namespace kdop {
 
@@ -17,6 +18,7 @@ inline constexpr int kUsageError = 2;
 // program in the messages of escaped exceptions.
 template <class Body>
 int run_command_line(CLI::App& app, const char* program, int argc, char** argv, Body body) {
+    app.set_version_flag("--version", std::string(program) + " " + KDOP_VERSION);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

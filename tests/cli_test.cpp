@@ -162,6 +162,15 @@ TEST(Cli, EverySubcommandHasHelp) {
     EXPECT_NE(r.exit_code, 0);
 }
 
+TEST(Cli, VersionNamesTheProgramAndItsVersion) {
+    auto r = run(kdop("--version"));
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.out, std::string("kdop ") + KDOP_VERSION + "\n");
+    r = run(test::kdop_gen_binary() + " --version");
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_EQ(r.out, std::string("kdop-gen ") + KDOP_VERSION + "\n");
+}
+
 // Exit statuses a script can rely on: 0 done, 1 failed (with a message), 2 the command line is wrong.
 TEST(Cli, ExitStatusSaysUsageErrorsApartFromFailures) {
     EXPECT_EQ(run(kdop("list --no-such-option")).exit_code, 2);
