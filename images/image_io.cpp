@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace kdop {
 
@@ -154,6 +155,19 @@ bool fits_rgbe(const Image& image) {
     return true;
 }
 
+struct OutsideValue {
+    std::uint32_t x, y;
+    float value;
+};
+// The first channel value (of the first `channels`) that is not in [0, 1], NaN included.
+std::optional<OutsideValue> first_outside_unit_range(const Image& image, int channels) {
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < channels; ++c)
+            if (!(image.pixels[i][c] >= 0.0f && image.pixels[i][c] <= 1.0f))
+                return OutsideValue{std::uint32_t(i % image.width), std::uint32_t(i / image.width), image.pixels[i][c]};
+    return std::nullopt;
+}
+
 // Writes `image` to `file` (a temporary) and checks it; errors name `path`, the file's final name.
 Result<void> write_checked(const std::filesystem::path& file, const std::string& path, const Image& image) {
     // The temporary keeps the extension, which tells OpenImageIO the format.
@@ -179,6 +193,15 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     spec.attribute("oiio:UnassociatedAlpha", 1);
     if (!out->open(file.string(), spec))
         return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
+    // A format that stores integers (PNG, BMP, TGA) keeps 0..1; clamping anything else away would
+    // write a different image than asked, so it is refused (the temporary is removed by the caller).
+    if (!out->spec().format.is_floating_point())
+        if (auto outside = first_outside_unit_range(image, channels)) {
+            out->close();
+            return fail(fmt::format("{}: {} stores values from 0 to 1, and pixel ({}, {}) holds {}; write EXR or TIFF "
+                                    "to keep it, or tone-map the image first",
+                                    path, format, outside->x, outside->y, outside->value));
+        }
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
     if (!ok) return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));

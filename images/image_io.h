@@ -21,9 +21,10 @@ namespace kdop {
 Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0);
 
 // The format follows the extension. EXR and TIFF keep 32-bit floats; Radiance HDR keeps RGB with
-// about 8 bits relative to each pixel's brightest channel; 8-bit formats such as PNG store the
-// values clamped to [0, 1] (OpenImageIO's conversion), so use EXR for data. Lossy formats (JPEG,
-// WebP, HEIF, GIF) are refused: they would not give back what was written.
+// about 8 bits relative to each pixel's brightest channel; integer formats such as PNG keep values
+// from 0 to 1, and an image with any other value (HDR, negative, NaN) is refused rather than
+// clamped, so use EXR for data. Lossy formats (JPEG, WebP, HEIF, GIF) are refused: they would not
+// give back what was written.
 Result<void> write_image(const std::string& path, const Image& image);
 
 // Several images as a set, all or nothing: each is written under a temporary name next to its

@@ -86,8 +86,8 @@ TEST(ImageIo, WhatIsWrittenReadsBackAsWritten) {
 }
 
 // Transparency, negative and non-finite values survive where the format can hold them: color is
-// stored unassociated (not divided by alpha), so PNG and TGA give back what was written, clamped;
-// EXR and TIFF give back everything, NaN and infinity included.
+// stored unassociated (not divided by alpha), so PNG and TGA give back the transparent pixels as
+// written; EXR and TIFF give back everything, NaN and infinity included.
 TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
     test::TempDir dir;
     Image image(4, 1);
@@ -95,13 +95,15 @@ TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
                     {0.8f, 0.6f, 0.4f, 0.5f},
                     {-2.0f, 3e4f, 0.1f, 1.0f},
                     {NAN, INFINITY, -INFINITY, 1.0f}};
+    Image transparent(2, 1);
+    transparent.pixels = {image.pixels[0], image.pixels[1]};
     for (const char* ext : {"exr", "tif", "png", "tga"}) {
         const std::string path = (dir / (std::string("alpha.") + ext)).string();
-        auto written = write_image(path, image);
+        const bool floats = std::string(ext) == "exr" || std::string(ext) == "tif";
+        auto written = write_image(path, floats ? image : transparent);
         ASSERT_TRUE(written) << ext << ": " << written.error().message;
         auto read = read_image(path);
         ASSERT_TRUE(read) << read.error().message;
-        const bool floats = std::string(ext) == "exr" || std::string(ext) == "tif";
         for (std::size_t i = 0; i < 2; ++i) // the transparent pixels keep their color
             for (int c = 0; c < 4; ++c)
                 EXPECT_NEAR(read->pixels[i][c], image.pixels[i][c], floats ? 0.0 : 0.51 / 255) << ext << " " << i;
@@ -115,6 +117,22 @@ TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
     ASSERT_FALSE(hdr);
     EXPECT_NE(hdr.error().message.find("Radiance HDR cannot hold negative or non-finite values"), std::string::npos)
         << hdr.error().message;
+}
+
+// PNG, BMP and TGA store 0..1: an image with anything else is refused with the first such value, not
+// clamped, and nothing is written.
+TEST(ImageIo, IntegerFormatsRefuseValuesTheyWouldClamp) {
+    test::TempDir dir;
+    for (float value : {1.5f, -0.25f, NAN, INFINITY})
+        for (const char* ext : {"png", "bmp", "tga"}) {
+            Image image(3, 2, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+            image.at(2, 1).g = value;
+            const fs::path path = dir / (std::string("out.") + ext);
+            auto written = write_image(path.string(), image);
+            ASSERT_FALSE(written) << ext << " " << value;
+            EXPECT_NE(written.error().message.find("pixel (2, 1) holds"), std::string::npos) << written.error().message;
+            EXPECT_TRUE(fs::is_empty(dir.path())) << ext << " left a file";
+        }
 }
 
 // The image fuzzer's first finding: libpng's error for a damaged stream spans two lines.
