@@ -60,6 +60,12 @@ std::size_t frame_float_ops(const AxisSet& set, Mode mode, Neighborhood neighbor
     return ops + colors * pair_sums.size(); // each shared sum, once per color
 }
 
+Frame hardened_frame(const AxisSet& set, Mode mode, Neighborhood neighborhood) {
+    if (mode == Mode::varclip) return Frame::relative;
+    const std::size_t absolute = frame_float_ops(set, mode, neighborhood, false) + 2 * set.axes.size();
+    return frame_float_ops(set, mode, neighborhood, true) < absolute ? Frame::relative : Frame::absolute;
+}
+
 std::size_t analytic_min_float_ops(const AxisSet& set, Mode mode, Neighborhood neighborhood) {
     return std::min(frame_float_ops(set, mode, neighborhood, true), frame_float_ops(set, mode, neighborhood, false));
 }

@@ -40,11 +40,12 @@
 //
 // The bound is the cheaper frame. The emitted variance clip spends up to 1 per slab more (where
 // spirv-opt leaves a negation unfolded), which the tests allow for and no more. The emitter takes the cheaper one too
-// (hardened_frame in glsl_emitter.h), but starts the absolute frame's running extents from +-FLT_MAX (2 per slab more),
+// (hardened_frame below), but starts the absolute frame's running extents from +-FLT_MAX (2 per slab more),
 // which it does on purpose because it measured cheaper on lavapipe; see write_clip_slab().
 #pragma once
 
 #include "axis_set.h"
+#include "glsl_emitter.h"
 
 #include <kdop/variant.h>
 
@@ -59,5 +60,9 @@ std::size_t analytic_min_float_ops(const AxisSet& set, Mode mode, Neighborhood n
 // The same count in one frame (a clip's varclip is always relative), without the emitter's
 // deliberate constant starts.
 std::size_t frame_float_ops(const AxisSet& set, Mode mode, Neighborhood neighborhood, bool relative);
+
+// The frame the emitter writes a hardened clip in: the one whose emitted code counts fewer float
+// ops (the absolute frame's with its constant starts); absolute on a tie. Varclip: relative.
+Frame hardened_frame(const AxisSet& set, Mode mode, Neighborhood neighborhood);
 
 } // namespace kdop

@@ -1,5 +1,7 @@
 #include "glsl_emitter.h"
 
+#include "analytic_cost.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -298,20 +300,6 @@ ScaledAxis scale_axis(const glm::dvec3& axis) {
     // an axis of 1e200, no underflow for one of 1e-200.
     scaled.padding = static_cast<float>(kSlabPadding * glm::length(unit_largest));
     return scaled;
-}
-
-Frame hardened_frame(const AxisSet& set, Mode mode, Neighborhood neighborhood) {
-    if (mode == Mode::varclip) return Frame::relative;
-    // Relative costs 3 subtracts per neighbor but the center; absolute costs, per slab, the current
-    // color's projection (nonzero components - 1 multiply-adds), subtracting it from lo and hi, and
-    // joining the center to both (float_ops counts alike; analytic_cost.h).
-    const std::size_t others = neighborhood_offsets(neighborhood).size() - 1;
-    std::size_t absolute_extra = 0;
-    for (const Axis& axis : set.axes) {
-        const glm::vec3 k = scale_axis(axis.direction).coefficients;
-        absolute_extra += (k.x != 0.0f) + (k.y != 0.0f) + (k.z != 0.0f) + 3;
-    }
-    return 3 * others < absolute_extra ? Frame::relative : Frame::absolute;
 }
 
 std::string glsl_function_name(const VariantSpec& spec) {

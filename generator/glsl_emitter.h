@@ -35,11 +35,10 @@ ScaledAxis scale_axis(const glm::dvec3& axis);
 
 // Where a hardened clip measures its slabs from. Absolute: the colors as they are, minus the current
 // color's projection once per slab. Relative: the colors minus the current color, three subtracts
-// per neighbor once, after which the origin is 0 and a slab costs (its axis's nonzero components
-// + 3) float ops less. The generator takes the cheaper for the set (relative for the k-DOPs,
-// absolute for the AABBs in n9); the variance clip is always relative, as its moments need.
+// per neighbor once, after which the origin is 0 and every slab is cheaper. The generator takes
+// the cheaper for the set (hardened_frame in analytic_cost.h: relative for the k-DOPs, absolute for
+// the AABBs in n9); the variance clip is always relative, as its moments need.
 enum class Frame { absolute, relative };
-Frame hardened_frame(const AxisSet& set, Mode mode, Neighborhood neighborhood);
 
 // "dop16-grass-clip-n9" -> "kdop_dop16_grass_clip_n9": the GLSL function name of a variant.
 std::string glsl_function_name(const VariantSpec& spec);

@@ -4,24 +4,20 @@
 // infinite (the loop form's raw axes). Everything it refuses must be refused with a message that
 // names the file and holds no raw control bytes. Any violation aborts, which libFuzzer reports.
 #include "axis_set.h"
+#include "fuzz_checks.h"
 #include "glsl_emitter.h"
 #include "variant_spec.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <string_view>
 
 namespace {
 
-void require(bool condition, const char* what, const std::string& text) {
-    if (condition) return;
-    std::fprintf(stderr, "axis_set_fuzzer: %s\n%s\n", what, text.c_str());
-    std::abort();
-}
+using kdop::fuzz::has_control_bytes;
+using kdop::fuzz::require;
 
 // Whether `word` stands in `code` as a token of its own ("inf", not the "inf" of a set named "tinf").
 bool has_token(std::string_view code, std::string_view word) {
@@ -30,14 +26,6 @@ bool has_token(std::string_view code, std::string_view word) {
         const bool starts = at == 0 || !identifier(code[at - 1]);
         const bool ends = at + word.size() == code.size() || !identifier(code[at + word.size()]);
         if (starts && ends) return true;
-    }
-    return false;
-}
-
-bool has_control_bytes(std::string_view text, bool allow_newlines) {
-    for (char ch : text) {
-        const unsigned char c = static_cast<unsigned char>(ch);
-        if ((c < 0x20 && c != '\t' && !(allow_newlines && c == '\n')) || c == 0x7f) return true;
     }
     return false;
 }

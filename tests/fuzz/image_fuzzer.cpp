@@ -6,14 +6,13 @@
 // report or an allocation beyond libFuzzer's limit (a header claiming more than it holds).
 // The corpus: 4x4 images in each format kdop reads (oiiotool --pattern ... -d uint8|uint16|half|float)
 // and the two oversized headers of tests/data.
+#include "fuzz_checks.h"
 #include "image_io.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -24,22 +23,11 @@
 
 namespace {
 
+using kdop::fuzz::has_control_bytes;
+using kdop::fuzz::require;
+
 // A device's side limit, small enough that any image within it decodes in libFuzzer's memory limit.
 constexpr std::uint32_t kMaxSide = 1024;
-
-void require(bool condition, const char* what, const std::string& text) {
-    if (condition) return;
-    std::fprintf(stderr, "image_fuzzer: %s\n%s\n", what, text.c_str());
-    std::abort();
-}
-
-bool has_control_bytes(std::string_view text) {
-    for (char ch : text) {
-        const unsigned char c = static_cast<unsigned char>(ch);
-        if ((c < 0x20 && c != '\t') || c == 0x7f) return true;
-    }
-    return false;
-}
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
 
