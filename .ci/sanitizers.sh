@@ -33,7 +33,7 @@ ctest --test-dir build-tsan -R '^(SpirvBuild|Reference|IdealClip|IdealExits|Volu
 
 echo "== fuzzing"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-16 -DKDOP_FUZZ=ON \
-      -DBUILD_TESTING=OFF
+      -DKDOP_BUILD_TESTS=OFF
 cmake --build build-fuzz --target kdop_axis_set_fuzzer kdop_image_fuzzer
 # Reports name functions and lines.
 export ASAN_SYMBOLIZER_PATH=/usr/bin/llvm-symbolizer-16

@@ -17,8 +17,12 @@
 include_guard(GLOBAL)
 
 # The built-in sets are the axis files kdop-gen embeds; the list is read from that folder, not kept
-# here, and inside the function, so it holds wherever kdop_add_variants() is called from.
-set_property(GLOBAL PROPERTY KDOP_AXIS_SET_DIR "${CMAKE_CURRENT_LIST_DIR}/../shader_templates/axis_sets")
+# here, and inside the function, so it holds wherever kdop_add_variants() is called from. An
+# installed package's config file names the installed copy first; in kdop's own tree it is here.
+get_property(kdop_axis_set_dir_known GLOBAL PROPERTY KDOP_AXIS_SET_DIR SET)
+if(NOT kdop_axis_set_dir_known)
+  set_property(GLOBAL PROPERTY KDOP_AXIS_SET_DIR "${CMAKE_CURRENT_LIST_DIR}/../shader_templates/axis_sets")
+endif()
 
 function(kdop_add_variants target)
   cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES" "NAMESPACE;HEADER" "SETS;MODES;NEIGHBORHOODS;FORMS")

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -39,6 +41,22 @@ std::error_code create_directories(const fs::path& dir, std::vector<fs::path>& c
     return ec;
 }
 
+// Whether both files exist and hold the same bytes.
+bool same_content(const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    if (!fs::is_regular_file(b, ec) || fs::file_size(a, ec) != fs::file_size(b, ec) || ec) return false;
+    std::ifstream in_a(a, std::ios::binary), in_b(b, std::ios::binary);
+    std::array<char, 1 << 16> buffer_a, buffer_b;
+    while (in_a && in_b) {
+        in_a.read(buffer_a.data(), buffer_a.size());
+        in_b.read(buffer_b.data(), buffer_b.size());
+        if (in_a.gcount() != in_b.gcount() ||
+            !std::equal(buffer_a.begin(), buffer_a.begin() + in_a.gcount(), buffer_b.begin()))
+            return false;
+    }
+    return in_a.eof() && in_b.eof();
+}
+
 } // namespace
 
 Result<void> write_atomically(const std::vector<OutputWriter>& files) {
@@ -62,6 +80,11 @@ Result<void> write_atomically(const std::vector<OutputWriter>& files) {
     }
     for (std::size_t i = 0; i < files.size(); ++i) {
         std::error_code ec;
+        // An unchanged file keeps its time stamp, so a build that regenerates it recompiles nothing.
+        if (same_content(temporaries[i], files[i].path)) {
+            fs::remove(temporaries[i], ec);
+            continue;
+        }
         fs::rename(temporaries[i], files[i].path, ec);
         if (ec) return abandon({fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message())});
         placed.push_back(files[i].path);

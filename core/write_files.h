@@ -5,6 +5,10 @@
 // writing the same outputs never share a temporary. One limit: a rename that fails after others
 // succeeded (a full disk cannot cause it; renames do not allocate) leaves the earlier files of the
 // set removed, and the files they replaced are gone too.
+//
+// A file whose new content equals what is already there is left untouched, time stamp included, so
+// regenerating an unchanged output (kdop_add_variants() after an axis file was touched) makes a
+// build system recompile nothing that includes it.
 #pragma once
 
 #include "result.h"

@@ -1,7 +1,12 @@
-# Builds examples/consumer against this kdop build tree, as an outside project would, runs it, and
-# checks kdop_add_variants()'s dependencies: nothing regenerates on a no-op rebuild; editing a user
-# axis file or rebuilding kdop-gen regenerates.
-# Inputs: SOURCE, BUILD, kdop_DIR, GENERATOR, KDOP_GEN.
+cmake_minimum_required(VERSION 3.25) # policies: if() reads TRUE and FALSE as booleans
+# Builds examples/consumer as an outside project would, runs it, and checks kdop_add_variants()'s
+# dependencies: nothing regenerates on a no-op rebuild; touching a user axis file regenerates but,
+# as nothing changed, recompiles nothing; editing it regenerates and recompiles; a rebuilt kdop-gen
+# regenerates.
+# Inputs: SOURCE, BUILD, GENERATOR, and how the consumer gets kdop (see examples/consumer):
+#   -Dkdop_DIR=<build dir> -DKDOP_GEN=<its kdop-gen>   the build tree (KDOP_GEN is touched)
+#   -DINSTALL_FROM=<build dir>                          an installation of it, moved after installing
+#   -DKDOP_SUBDIRECTORY=<source dir>                    add_subdirectory, generator only
 
 function(run_checked output_var)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -11,23 +16,79 @@ function(run_checked output_var)
   set(${output_var} "${out}${err}" PARENT_SCOPE)
 endfunction()
 
-function(build_and_expect_generation expected reason)
-  run_checked(out ${CMAKE_COMMAND} --build ${BUILD}/build)
-  string(FIND "${out}" "kdop: generating" found)
-  if(expected AND found EQUAL -1)
-    message(FATAL_ERROR "${reason}: expected the variants to be regenerated, build said:\n${out}")
-  elseif(NOT expected AND NOT found EQUAL -1)
-    message(FATAL_ERROR "${reason}: expected no regeneration, build said:\n${out}")
-  endif()
+# Builds; GENERATES and COMPILES (TRUE/FALSE) say whether variants must be regenerated and C++ compiled.
+function(build_and_expect generates compiles reason)
+  run_checked(out ${CMAKE_COMMAND} --build ${BUILD}/build --target consumer)
+  foreach(check IN ITEMS "generates;kdop: generating" "compiles;Building CXX object")
+    list(GET check 0 what)
+    list(GET check 1 text)
+    string(FIND "${out}" "${text}" found)
+    if(${${what}} AND found EQUAL -1)
+      message(FATAL_ERROR "${reason}: expected '${text}', the build said:\n${out}")
+    elseif(NOT ${${what}} AND NOT found EQUAL -1)
+      message(FATAL_ERROR "${reason}: expected no '${text}', the build said:\n${out}")
+    endif()
+  endforeach()
   message(STATUS "ok: ${reason}")
+endfunction()
+
+function(touch_later file)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
+  file(TOUCH ${file})
 endfunction()
 
 # Work on a copy, so touching its axis file does not touch the repository.
 file(REMOVE_RECURSE ${BUILD})
 file(COPY ${SOURCE}/ DESTINATION ${BUILD}/src)
 
-run_checked(out ${CMAKE_COMMAND} -S ${BUILD}/src -B ${BUILD}/build -G ${GENERATOR} -Dkdop_DIR=${kdop_DIR})
-build_and_expect_generation(TRUE "first build")
+set(configure_args)
+if(INSTALL_FROM)
+  # Install, then move the prefix: the package must find everything relative to itself and name
+  # neither kdop's source nor its build tree.
+  run_checked(out ${CMAKE_COMMAND} --install ${INSTALL_FROM} --prefix ${BUILD}/staged)
+  file(RENAME ${BUILD}/staged ${BUILD}/prefix)
+  file(GLOB_RECURSE installed_cmake ${BUILD}/prefix/*.cmake)
+  get_filename_component(kdop_source "${SOURCE}/../.." ABSOLUTE)
+  foreach(file IN LISTS installed_cmake)
+    file(READ ${file} text)
+    foreach(tree IN ITEMS "${kdop_source}" "${INSTALL_FROM}" "${BUILD}/staged")
+      string(FIND "${text}" "${tree}" found)
+      if(NOT found EQUAL -1)
+        message(FATAL_ERROR "${file} refers to ${tree}: the installed package is not relocatable")
+      endif()
+    endforeach()
+  endforeach()
+  foreach(part IN ITEMS bin/kdop-gen bin/kdop include/kdop/variant.h share/kdop/axis_sets/dop22.axes)
+    if(NOT EXISTS ${BUILD}/prefix/${part})
+      message(FATAL_ERROR "cmake --install did not install ${part}")
+    endif()
+  endforeach()
+  list(APPEND configure_args -DCMAKE_PREFIX_PATH=${BUILD}/prefix)
+elseif(KDOP_SUBDIRECTORY)
+  list(APPEND configure_args -DKDOP_SUBDIRECTORY=${KDOP_SUBDIRECTORY})
+else()
+  list(APPEND configure_args -Dkdop_DIR=${kdop_DIR})
+endif()
+
+run_checked(out ${CMAKE_COMMAND} -S ${BUILD}/src -B ${BUILD}/build -G ${GENERATOR} ${configure_args})
+if(KDOP_SUBDIRECTORY)
+  # As a subproject, kdop leaves the parent's build type and testing alone and looks for nothing
+  # the generator does not need.
+  file(STRINGS ${BUILD}/build/CMakeCache.txt entries REGEX "^[A-Za-z_]") # the entries, not their comments
+  foreach(unwanted IN ITEMS "CMAKE_BUILD_TYPE:STRING=Release" "OpenImageIO" "Vulkan" "GLPK" "Qhull" "BUILD_TESTING")
+    list(FILTER entries EXCLUDE REGEX "^KDOP_") # kdop's own options describe what they leave out
+    string(FIND "${entries}" "${unwanted}" found)
+    if(NOT found EQUAL -1)
+      message(FATAL_ERROR "add_subdirectory(kdop) with KDOP_GENERATOR_ONLY put ${unwanted} in the parent's cache")
+    endif()
+  endforeach()
+  file(READ ${BUILD}/build/build.ninja ninja)
+  string(FIND "${ninja}" "kdop_tests" found)
+  if(NOT found EQUAL -1)
+    message(FATAL_ERROR "add_subdirectory(kdop) builds kdop's tests")
+  endif()
+endif()
+build_and_expect(TRUE TRUE "first build")
 
 run_checked(out ${BUILD}/build/consumer dop22-clip-n9)
 if(NOT out MATCHES "found dop22-clip-n9 \\(clip, 11 axes\\): usable")
@@ -42,11 +103,14 @@ if(result EQUAL 0)
   message(FATAL_ERROR "consumer claims a variant it was not built with")
 endif()
 
-build_and_expect_generation(FALSE "no-op rebuild")
-execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
-file(TOUCH ${BUILD}/src/my-scene.axes)
-build_and_expect_generation(TRUE "rebuild after editing a user axis file")
-execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
-file(TOUCH ${KDOP_GEN})
-build_and_expect_generation(TRUE "rebuild after kdop-gen (with its built-in sets and templates) changed")
-build_and_expect_generation(FALSE "second no-op rebuild")
+build_and_expect(FALSE FALSE "no-op rebuild")
+touch_later(${BUILD}/src/my-scene.axes)
+build_and_expect(TRUE FALSE "rebuild after touching a user axis file (same content: nothing to recompile)")
+build_and_expect(FALSE FALSE "no-op rebuild after the touch")
+file(APPEND ${BUILD}/src/my-scene.axes "0.5 0.25 1\n")
+build_and_expect(TRUE TRUE "rebuild after adding an axis to a user axis file")
+if(KDOP_GEN)
+  touch_later(${KDOP_GEN})
+  build_and_expect(TRUE FALSE "rebuild after kdop-gen (with its built-in sets and templates) changed")
+endif()
+build_and_expect(FALSE FALSE "final no-op rebuild")

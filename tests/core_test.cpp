@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 
 namespace kdop {
@@ -80,6 +81,22 @@ TEST(WriteFiles, WritesEveryFileOrNone) {
 
     ASSERT_TRUE(write_files_atomically({{dir / "out" / "a.csv", "a"}, {dir / "out" / "b.csv", "b"}}));
     EXPECT_EQ(test::read_file(dir / "out" / "b.csv"), "b");
+}
+
+TEST(WriteFiles, AnUnchangedFileKeepsItsTimeStamp) {
+    test::TempDir dir;
+    const fs::path a = dir / "a.h", b = dir / "b.h";
+    ASSERT_TRUE(write_files_atomically({{a, "same"}, {b, "old!"}}));
+    const auto long_ago = fs::file_time_type::clock::now() - std::chrono::hours(24);
+    fs::last_write_time(a, long_ago);
+    fs::last_write_time(b, long_ago);
+
+    ASSERT_TRUE(write_files_atomically({{a, "same"}, {b, "new!"}})); // b: same size, other bytes
+    EXPECT_EQ(fs::last_write_time(a), long_ago) << "rewriting identical bytes must not touch the file";
+    EXPECT_GT(fs::last_write_time(b), long_ago);
+    EXPECT_EQ(test::read_file(b), "new!");
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+        EXPECT_EQ(entry.path().string().find("kdop-partial"), std::string::npos) << entry.path();
 }
 
 TEST(WriteFiles, OutputDirectoryIsCheckedBeforeAnyWork) {

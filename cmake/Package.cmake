@@ -1,0 +1,38 @@
+# kdop as a CMake package, from its build tree and from an installation.
+#
+# Both provide kdop::kdop-gen, kdop::variant_headers and kdop_add_variants() (cmake/KdopVariants.cmake),
+# and a version file: find_package(kdop 0.1) accepts 0.1.x only, as a 0.x release may change the API.
+# The installed package is relocatable: every path in it is relative to the config file.
+include(CMakePackageConfigHelpers)
+include(GNUInstallDirs)
+
+set(KDOP_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/kdop)
+set(KDOP_INSTALL_AXIS_SET_DIR ${CMAKE_INSTALL_DATADIR}/kdop/axis_sets)
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/kdopConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+
+# Build tree: -Dkdop_DIR=<kdop build dir>. It refers to the source tree, as a build tree does.
+export(TARGETS kdop-gen kdop_variant_headers NAMESPACE kdop:: FILE ${PROJECT_BINARY_DIR}/kdopTargets.cmake)
+set(KDOP_CONFIG_AXIS_SET_DIR ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets)
+set(KDOP_CONFIG_VARIANTS_MODULE ${PROJECT_SOURCE_DIR}/cmake/KdopVariants.cmake)
+configure_file(${PROJECT_SOURCE_DIR}/cmake/kdopConfig.cmake.in ${PROJECT_BINARY_DIR}/kdopConfig.cmake @ONLY)
+
+# Installation: cmake --install <build> [--prefix P], then find_package(kdop) with P on CMAKE_PREFIX_PATH.
+set(installed_programs kdop-gen)
+if(TARGET kdop)
+  list(APPEND installed_programs kdop)
+endif()
+install(TARGETS ${installed_programs} kdop_variant_headers EXPORT kdopTargets
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/kdop DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets/ DESTINATION ${KDOP_INSTALL_AXIS_SET_DIR}
+        FILES_MATCHING PATTERN "*.axes")
+install(EXPORT kdopTargets NAMESPACE kdop:: DESTINATION ${KDOP_INSTALL_CMAKEDIR})
+# configure_package_config_file turns the install paths into paths relative to the config file.
+set(KDOP_CONFIG_AXIS_SET_DIR "\${PACKAGE_PREFIX_DIR}/${KDOP_INSTALL_AXIS_SET_DIR}")
+set(KDOP_CONFIG_VARIANTS_MODULE "\${CMAKE_CURRENT_LIST_DIR}/KdopVariants.cmake")
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/kdopConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/install/kdopConfig.cmake
+                              INSTALL_DESTINATION ${KDOP_INSTALL_CMAKEDIR})
+install(FILES ${PROJECT_BINARY_DIR}/install/kdopConfig.cmake ${PROJECT_BINARY_DIR}/kdopConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/KdopVariants.cmake
+        DESTINATION ${KDOP_INSTALL_CMAKEDIR})
