@@ -8,12 +8,23 @@
 #     [BASELINES]                       also the cost baselines gather-n9, gather-n5 and copy
 #     [NAMESPACE <ns>]                  C++ namespace of the registry; default: <target> made an identifier
 #     [HEADER <file-name>]              default: <target>_kdop_variants.h
-#     [PUBLIC])                         also give <target>'s users the header (for a library target)
+#     [PUBLIC]                          also give <target>'s users the header (for a library target)
+#     [FUNCTIONS]                       also write each variant's includable function, <variant>.glsl, into
+#                                       a folder for the project's own shader build (see below)
+#     [SHADERS <file.comp>...]          the project's own GLSL compute shaders, compiled into the registry
+#                                       too (named after their file stems), where
+#                                       `#include "dop22-clip-n9.glsl"` gives them a selected variant's function
+#     [SHADER_INCLUDE_DIRS <dir>...])   where the SHADERS' other includes are looked up (after their own folder)
 #
 # Generates, at build time, a header and source holding the variants' optimized SPIR-V and their
 # registry (see core/include/kdop/variant.h), adds them to <target>, and lets <target>
-# include the header by its file name. Generation reruns when a user axis file or kdop-gen (which
-# embeds the built-in sets and templates) changes, and at no other time.
+# include the header by its file name. Generation reruns when a user axis file, a shader or a file
+# it includes, or kdop-gen (which embeds the built-in sets and templates) changes, and at no other
+# time; files whose content did not change keep their time stamps, so nothing recompiles for them.
+#
+# With FUNCTIONS, the folder is the target's KDOP_FUNCTION_DIR property and <target>_KDOP_FUNCTION_DIR
+# in the caller's scope; its files are outputs of the generation, so a custom command of the same
+# folder that DEPENDS on one (${<target>_KDOP_FUNCTION_DIR}/dop22-clip-n9.glsl) runs after it.
 include_guard(GLOBAL)
 
 # The built-in sets are the axis files kdop-gen embeds; the list is read from that folder, not kept
@@ -25,7 +36,8 @@ if(NOT kdop_axis_set_dir_known)
 endif()
 
 function(kdop_add_variants target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES" "NAMESPACE;HEADER" "SETS;MODES;NEIGHBORHOODS;FORMS")
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS" "NAMESPACE;HEADER"
+                        "SETS;MODES;NEIGHBORHOODS;FORMS;SHADERS;SHADER_INCLUDE_DIRS")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "kdop_add_variants(${target}): unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
   endif()
@@ -58,9 +70,14 @@ function(kdop_add_variants target)
   # User axis files are inputs of their own; built-in sets live inside kdop-gen.
   set(arguments)
   set(depends kdop::kdop-gen)
+  set(set_names) # what the variants are named after, for the FUNCTIONS outputs
+  if(NOT ARG_SETS)
+    set(set_names ${builtin_sets})
+  endif()
   foreach(set IN LISTS ARG_SETS)
     if(set IN_LIST builtin_sets)
       list(APPEND arguments --sets ${set})
+      list(APPEND set_names ${set})
     else()
       get_filename_component(path "${set}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
       if(NOT EXISTS "${path}")
@@ -68,6 +85,11 @@ function(kdop_add_variants target)
       endif()
       list(APPEND arguments --sets "${path}")
       list(APPEND depends "${path}")
+      # The set's name is its `name:` line; reconfigure when the file changes, in case that did.
+      file(STRINGS "${path}" name_line REGEX "^[ \t]*name:" LIMIT_COUNT 1)
+      string(REGEX REPLACE "^[ \t]*name:[ \t]*([^ \t#]*).*" "\\1" name "${name_line}")
+      list(APPEND set_names ${name})
+      set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${path}")
     endif()
   endforeach()
   foreach(mode IN LISTS ARG_MODES)
@@ -83,10 +105,68 @@ function(kdop_add_variants target)
     list(APPEND arguments --baselines)
   endif()
 
+  set(outputs "${header}" "${source}")
+  if(ARG_FUNCTIONS)
+    set(function_dir "${out_dir}/functions")
+    list(APPEND arguments --functions "${function_dir}")
+    # The variants' names, as kdop-gen forms them: <set>-<mode>-<neighborhood>[-loop].
+    set(modes ${ARG_MODES})
+    set(neighborhoods ${ARG_NEIGHBORHOODS})
+    set(forms ${ARG_FORMS})
+    if(NOT modes)
+      set(modes clip varclip)
+    endif()
+    if(NOT neighborhoods)
+      set(neighborhoods n9 n5)
+    endif()
+    if(NOT forms)
+      set(forms unrolled)
+    endif()
+    foreach(name IN LISTS set_names)
+      foreach(mode IN LISTS modes)
+        foreach(neighborhood IN LISTS neighborhoods)
+          foreach(form IN LISTS forms)
+            set(suffix "")
+            if(form STREQUAL "loop")
+              set(suffix "-loop")
+            endif()
+            list(APPEND outputs "${function_dir}/${name}-${mode}-${neighborhood}${suffix}.glsl")
+          endforeach()
+        endforeach()
+      endforeach()
+    endforeach()
+    if(ARG_BASELINES)
+      foreach(baseline IN ITEMS gather-n9 gather-n5 copy)
+        list(APPEND outputs "${function_dir}/${baseline}.glsl")
+      endforeach()
+    endif()
+    set_property(TARGET ${target} PROPERTY KDOP_FUNCTION_DIR "${function_dir}")
+    set(${target}_KDOP_FUNCTION_DIR "${function_dir}" PARENT_SCOPE)
+  endif()
+  set(depfile_arguments)
+  if(ARG_SHADERS)
+    set(shader_paths)
+    foreach(shader IN LISTS ARG_SHADERS)
+      get_filename_component(path "${shader}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+      list(APPEND shader_paths "${path}")
+      list(APPEND depends "${path}")
+    endforeach()
+    list(APPEND arguments --shaders ${shader_paths})
+    foreach(dir IN LISTS ARG_SHADER_INCLUDE_DIRS)
+      get_filename_component(path "${dir}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+      list(APPEND arguments --include-dirs "${path}")
+    endforeach()
+    # The files the shaders include are found while compiling; kdop-gen lists them in a depfile.
+    set(depfile "${out_dir}/${header_stem}.d")
+    list(APPEND arguments --depfile "${depfile}")
+    set(depfile_arguments DEPFILE "${depfile}")
+  endif()
+
   add_custom_command(
-    OUTPUT "${header}" "${source}"
+    OUTPUT ${outputs}
     COMMAND kdop::kdop-gen registry --header "${header}" --source "${source}" --namespace ${ARG_NAMESPACE} ${arguments}
     DEPENDS ${depends} "$<TARGET_FILE:kdop::kdop-gen>"
+    ${depfile_arguments}
     COMMENT "kdop: generating k-DOP variants for ${target}"
     VERBATIM)
   set(scope PRIVATE)

@@ -5,7 +5,9 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <regex>
 #include <string>
 
@@ -28,7 +30,7 @@ std::string_view source_line(std::string_view source, int line) {
 // glslang logs "ERROR: name:12: 'x' : undeclared identifier"; rewrite each such line as a
 // diagnostic with the source line, and keep any other text as it is.
 std::string rewrite_log(std::string_view log, std::string_view source, std::string_view name) {
-    static const std::regex located(R"(^(ERROR|WARNING): [^:]*:(\d+): (.*)$)");
+    static const std::regex located(R"(^(ERROR|WARNING): ([^:]*):(\d+): (.*)$)");
     std::string out;
     std::string text(log);
     size_t start = 0;
@@ -37,11 +39,14 @@ std::string rewrite_log(std::string_view log, std::string_view source, std::stri
         std::string line = text.substr(start, eol == std::string::npos ? std::string::npos : eol - start);
         start = eol == std::string::npos ? text.size() : eol + 1;
         std::smatch m;
+        if (line.find("compilation terminated") != std::string::npos) continue; // follows an error already shown
         if (std::regex_match(line, m, located)) {
             std::string severity = m[1] == "ERROR" ? "error" : "warning";
-            out += glsl_diagnostic(source, name, std::stoi(m[2]), severity + ": " + m[3].str());
-        } else if (!line.empty() && line.find("compilation terminated") == std::string::npos &&
-                   line.find("compilation errors") == std::string::npos) {
+            if (m[2].str() == name)
+                out += glsl_diagnostic(source, name, std::stoi(m[3]), severity + ": " + m[4].str());
+            else // in an included source, whose text is not at hand here
+                out += fmt::format("{}:{}: {}: {}\n", m[2].str(), m[3].str(), severity, m[4].str());
+        } else if (!line.empty() && line.find("compilation errors") == std::string::npos) {
             out += fmt::format("{}: {}\n", name, line);
         }
     }
@@ -55,7 +60,30 @@ std::string glsl_diagnostic(std::string_view source, std::string_view name, int 
     return fmt::format("{}:{}: {}\n    {}\n", name, line, message, source_line(source, line));
 }
 
-Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name) {
+namespace {
+
+// glslang's side of an IncludeResolver. Included texts live as long as the compilation.
+class Includer : public glslang::TShader::Includer {
+public:
+    explicit Includer(const IncludeResolver& resolve) : resolve_(resolve) {}
+    IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
+        auto found = resolve_(header, includer);
+        if (!found) return nullptr;
+        auto& kept = sources_.emplace_back(std::make_unique<IncludedSource>(std::move(*found)));
+        return new IncludeResult(kept->name, kept->text.data(), kept->text.size(), nullptr);
+    }
+    IncludeResult* includeSystem(const char* header, const char* includer, size_t depth) override {
+        return includeLocal(header, includer, depth);
+    }
+    void releaseInclude(IncludeResult* result) override { delete result; }
+
+private:
+    const IncludeResolver& resolve_;
+    std::vector<std::unique_ptr<IncludedSource>> sources_;
+};
+
+Result<std::vector<std::uint32_t>> compile(std::string_view source, std::string_view name,
+                                           const IncludeResolver* resolve) {
     initialize_glslang_once();
     const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
 
@@ -68,8 +96,15 @@ Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source,
     shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
-    if (!shader.parse(GetDefaultResources(), 450, false, messages))
-        return fail(rewrite_log(shader.getInfoLog(), source, name));
+    std::optional<Includer> includer;
+    if (resolve) {
+        shader.setPreamble("#extension GL_GOOGLE_include_directive : enable\n");
+        includer.emplace(*resolve);
+    }
+    glslang::TShader::ForbidIncluder no_includes;
+    const bool parsed = includer ? shader.parse(GetDefaultResources(), 450, false, messages, *includer)
+                                 : shader.parse(GetDefaultResources(), 450, false, messages, no_includes);
+    if (!parsed) return fail(rewrite_log(shader.getInfoLog(), source, name));
 
     glslang::TProgram program;
     program.addShader(&shader);
@@ -85,6 +120,17 @@ Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source,
     if (words.empty() || !spv_messages.empty())
         return fail(fmt::format("{}: SPIR-V generation failed: {}", name, spv_messages));
     return words;
+}
+
+} // namespace
+
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name) {
+    return compile(source, name, nullptr);
+}
+
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name,
+                                                        const IncludeResolver& resolve) {
+    return compile(source, name, &resolve);
 }
 
 } // namespace kdop

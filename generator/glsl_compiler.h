@@ -5,6 +5,9 @@
 #include "result.h"
 
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -13,6 +16,20 @@ namespace kdop {
 // Compiles one compute shader. `name` (e.g. "dop22-clip-n9.comp") prefixes every message, which
 // reads "name:LINE: error: ..." followed by the offending source line. Thread-safe.
 Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name);
+
+// What `#include "header"` in a shader resolves to: the name messages use for it, and its text.
+struct IncludedSource {
+    std::string name;
+    std::string text;
+};
+// Resolves `header` as included from the source called `includer`; nullopt when nothing matches.
+using IncludeResolver =
+    std::function<std::optional<IncludedSource>(std::string_view header, std::string_view includer)>;
+
+// The same for a shader that #includes other sources (GL_GOOGLE_include_directive, enabled for it
+// as glslc does), each looked up through `resolve`. Errors in an included source name that source.
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name,
+                                                        const IncludeResolver& resolve);
 
 // "name:LINE: <message>" and the source line under it, the form every GLSL diagnostic takes.
 std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message);

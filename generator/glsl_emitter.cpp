@@ -257,6 +257,7 @@ std::string mode_description(Mode m) {
         return "k-DOP variance clip (Ikkala et al. 2024, after Salvi 2016): slabs span mean +- gamma * sigma";
     case Mode::gather: return "gather only: reads the neighborhood and history like a clip, writes their sum";
     case Mode::copy: return "copy: writes the history as it is";
+    case Mode::shader: return "a project's own shader"; // never emitted: it is the project's source
     }
     return "";
 }

@@ -2,6 +2,7 @@
 // variants in a target; the refresh-generated target runs `kdop-gen glsl` to rewrite generated/,
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
 #include "command_line.h"
+#include "project_shader.h"
 #include "registry_writer.h"
 #include "selection_options.h"
 #include "variant_builder.h"
@@ -87,6 +88,18 @@ int main(int argc, char** argv) {
     registry->add_option("--header", header, "Header file to write")->required();
     registry->add_option("--source", source, "Source file to write")->required();
     registry->add_option("--namespace", cpp_namespace, "C++ namespace of the registry")->required();
+    std::string functions_dir, depfile;
+    std::vector<std::string> shaders, include_dirs;
+    registry->add_option("--functions", functions_dir,
+                         "Also write each selected variant's includable function (<variant>.glsl) into this directory");
+    registry
+        ->add_option("--shaders", shaders,
+                     "The project's own compute shaders (GLSL) to embed too, named after their files; "
+                     "`#include \"<variant>.glsl\"` gives them a selected variant's function")
+        ->check(CLI::ExistingFile);
+    registry->add_option("--include-dirs", include_dirs, "Where the shaders' other includes are looked up")
+        ->check(CLI::ExistingDirectory);
+    registry->add_option("--depfile", depfile, "Write the files the shaders read as a depfile for the header");
 
     std::string glsl_dir;
     bool check = false;
@@ -106,9 +119,30 @@ int main(int argc, char** argv) {
 
         if (*glsl) return glsl_directory(*built, glsl_dir, check);
 
+        std::vector<OutputFile> files;
+        if (!functions_dir.empty())
+            for (const BuiltVariant& v : *built) files.push_back(function_file(v, functions_dir));
+
+        std::vector<fs::path> shader_reads;
+        std::vector<fs::path> dirs(include_dirs.begin(), include_dirs.end());
+        const std::size_t variant_count = built->size();
+        for (const std::string& file : shaders) {
+            auto shader = build_project_shader(file, std::span(built->data(), variant_count), dirs);
+            if (!shader) return report(shader.error());
+            for (const BuiltVariant& v : *built)
+                if (v.name == shader->built.name)
+                    return report({fmt::format("{}: a shader named '{}' would hide the variant or shader of that name; "
+                                               "rename the file",
+                                               file, v.name)});
+            shader_reads.insert(shader_reads.end(), shader->read_files.begin(), shader->read_files.end());
+            built->push_back(std::move(shader->built));
+        }
+        if (!depfile.empty()) files.push_back({depfile, depfile_rule(header, shader_reads)});
+
         auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
-        if (auto ok = write_files_atomically({{header, sources.header}, {source, sources.source}}); !ok)
-            return report(ok.error());
+        files.push_back({header, sources.header});
+        files.push_back({source, sources.source});
+        if (auto ok = write_files_atomically(files); !ok) return report(ok.error());
         return 0;
     });
 }

@@ -20,6 +20,26 @@ constexpr std::string_view kComputeTemplate = "shader_templates/rectify.comp.in"
 
 } // namespace
 
+Result<void> compile_into(BuiltVariant& v, std::string_view file, Result<std::vector<std::uint32_t>> compiled) {
+    if (!compiled) return std::unexpected(compiled.error());
+    if (auto ok = validate_spirv(*compiled, v.compute_glsl, file, "glslang output"); !ok) return ok;
+
+    auto optimized = optimize_spirv(*compiled, file);
+    if (!optimized) return std::unexpected(optimized.error());
+    if (auto ok = validate_spirv(*optimized, v.compute_glsl, file, "optimized module"); !ok) return ok;
+
+    auto interface = reflect_compute_interface(*optimized);
+    if (!interface) return fail(fmt::format("{}: reflection failed: {}", file, interface.error().message));
+    v.interface = std::move(*interface);
+
+    auto stripped = strip_debug_info(*optimized, file);
+    if (!stripped) return std::unexpected(stripped.error());
+    if (auto ok = validate_spirv(*stripped, v.compute_glsl, file, "shipped module"); !ok) return ok;
+    v.spirv = std::move(*stripped);
+    v.counts = count_spirv(v.spirv);
+    return {};
+}
+
 Result<BuiltVariant> build_variant(const VariantSpec& spec) {
     BuiltVariant v;
     v.spec = spec;
@@ -33,27 +53,8 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec) {
     if (!compute) return std::unexpected(compute.error());
     v.compute_glsl = std::move(*compute);
 
-    auto compiled = compile_glsl_compute(v.compute_glsl, file);
-    if (!compiled) return std::unexpected(compiled.error());
-    if (auto ok = validate_spirv(*compiled, v.compute_glsl, file, "glslang output"); !ok)
+    if (auto ok = compile_into(v, file, compile_glsl_compute(v.compute_glsl, file)); !ok)
         return std::unexpected(ok.error());
-
-    auto optimized = optimize_spirv(*compiled, file);
-    if (!optimized) return std::unexpected(optimized.error());
-    if (auto ok = validate_spirv(*optimized, v.compute_glsl, file, "optimized module"); !ok)
-        return std::unexpected(ok.error());
-
-    auto interface = reflect_compute_interface(*optimized);
-    if (!interface) return fail(fmt::format("{}: reflection failed: {}", file, interface.error().message));
-    v.interface = std::move(*interface);
-
-    auto stripped = strip_debug_info(*optimized, file);
-    if (!stripped) return std::unexpected(stripped.error());
-    if (auto ok = validate_spirv(*stripped, v.compute_glsl, file, "shipped module"); !ok)
-        return std::unexpected(ok.error());
-    v.spirv = std::move(*stripped);
-
-    v.counts = count_spirv(v.spirv);
     if (v.counts.loop_merges)
         return fail(fmt::format("{}: {} loop(s) left in the optimized SPIR-V; variants must be fully unrolled", file,
                                 v.counts.loop_merges));

@@ -11,6 +11,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace kdop {
@@ -26,6 +27,11 @@ struct BuiltVariant {
 };
 
 Result<BuiltVariant> build_variant(const VariantSpec& spec);
+
+// The stages after glslang, shared by variants and a project's own shaders: validate `compiled`,
+// optimize, validate, reflect into v.interface, strip, validate what ships into v.spirv, count.
+// Messages name `file` and the lines of v.compute_glsl.
+Result<void> compile_into(BuiltVariant& v, std::string_view file, Result<std::vector<std::uint32_t>> compiled);
 
 // Called after each variant finishes, from the worker that built it (calls are serialized).
 using BuildProgress = std::function<void(std::size_t done, std::size_t total, const std::string& name)>;

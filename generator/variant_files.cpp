@@ -10,6 +10,10 @@ std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {
     return {{dir / (v.name + ".glsl"), v.function_glsl}, {dir / (v.name + ".comp"), v.compute_glsl}};
 }
 
+OutputFile function_file(const BuiltVariant& v, const fs::path& dir) {
+    return {dir / (v.name + ".glsl"), v.function_glsl};
+}
+
 std::string spirv_bytes(std::span<const std::uint32_t> words) {
     static_assert(std::endian::native == std::endian::little, "SPIR-V files are written little-endian");
     std::string bytes(words.size() * sizeof(std::uint32_t), '\0');

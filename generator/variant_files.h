@@ -15,6 +15,8 @@ namespace kdop {
 
 // <dir>/<name>.glsl (includable function) and <dir>/<name>.comp (compute shader).
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const std::filesystem::path& dir);
+// <dir>/<name>.glsl: the includable function alone, for a project's own shaders.
+OutputFile function_file(const BuiltVariant& v, const std::filesystem::path& dir);
 // A module's words as the little-endian bytes of a .spv file.
 std::string spirv_bytes(std::span<const std::uint32_t> words);
 // <dir>/<name>.spv: the optimized module's bytes.

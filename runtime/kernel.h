@@ -7,6 +7,7 @@
 #include "context.h"
 
 #include <kdop/variant.h>
+#include <kdop/vulkan_pipeline.h>
 
 #include <array>
 #include <memory>
@@ -37,9 +38,9 @@ public:
     const std::vector<PushConstant>& push_constants() const { return push_constants_; }
     std::uint32_t push_constant_size() const { return push_constant_size_; }
     const std::array<std::uint32_t, 3>& local_size() const { return local_size_; }
-    VkDescriptorSetLayout set_layout() const { return set_layout_; }
-    VkPipelineLayout layout() const { return layout_; }
-    VkPipeline pipeline() const { return pipeline_; }
+    VkDescriptorSetLayout set_layout() const { return pipeline_.set_layouts[0]; }
+    VkPipelineLayout layout() const { return pipeline_.pipeline_layout; }
+    VkPipeline pipeline() const { return pipeline_.pipeline; }
     // Wall time of shader-module and pipeline creation (the driver's compile), in milliseconds.
     double creation_ms() const { return creation_ms_; }
 
@@ -52,9 +53,7 @@ private:
     std::vector<PushConstant> push_constants_;
     std::uint32_t push_constant_size_ = 0;
     std::array<std::uint32_t, 3> local_size_{};
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VariantPipeline pipeline_;
     double creation_ms_ = 0;
 };
 

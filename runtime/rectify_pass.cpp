@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -219,6 +220,13 @@ Result<void> RectifyPass::upload(const Image& current, const Image& history) {
 }
 
 Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) {
+    const PushConstantValue push[] = {{"gamma", {gamma}}};
+    // Clip kernels take gamma or nothing; pass gamma only to those that have it.
+    const bool takes_gamma = !kernel.push_constants().empty();
+    return dispatch(kernel, takes_gamma ? std::span(push) : std::span<const PushConstantValue>{});
+}
+
+Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<const PushConstantValue> values) {
     if (!uploaded_) return fail("dispatch before upload");
     VkDevice device = context_.device();
 
@@ -257,15 +265,19 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
         writes[i].pImageInfo = &infos[i];
     }
     vkUpdateDescriptorSets(device, static_cast<uint32_t>(count), writes.data(), 0, nullptr);
-    // Push constants by name, as the registry lays them out; the pass knows only gamma.
+    // Push constants by name, as the registry lays them out: every member needs a value of its size.
     std::vector<std::byte> push(kernel.push_constant_size());
     for (const Kernel::PushConstant& p : kernel.push_constants()) {
-        if (p.name != "gamma" || p.size != sizeof(float) || p.offset + p.size > push.size())
-            return fail(fmt::format(
-                "{}: push constant '{}' ({} bytes at {}) is not one the rectify pass provides (float gamma)",
-                kernel.name(), p.name, p.size, p.offset));
-        std::memcpy(push.data() + p.offset, &gamma, sizeof(float));
+        auto given = std::find_if(values.begin(), values.end(), [&](const auto& v) { return v.name == p.name; });
+        if (given == values.end() || given->values.size() * sizeof(float) != p.size || p.offset + p.size > push.size())
+            return fail(fmt::format("{}: push constant '{}' ({} bytes at {}) has no value of that size from the caller",
+                                    kernel.name(), p.name, p.size, p.offset));
+        std::memcpy(push.data() + p.offset, given->values.data(), p.size);
     }
+    for (const PushConstantValue& v : values)
+        if (std::none_of(kernel.push_constants().begin(), kernel.push_constants().end(),
+                         [&](const auto& p) { return p.name == v.name; }))
+            return fail(fmt::format("{}: has no push constant '{}'", kernel.name(), v.name));
 
     const uint32_t groups_x = (width_ + kernel.local_size()[0] - 1) / kernel.local_size()[0];
     const uint32_t groups_y = (height_ + kernel.local_size()[1] - 1) / kernel.local_size()[1];

@@ -10,7 +10,10 @@
 
 #include <memory>
 #include <optional>
+#include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace kdop {
 
@@ -38,6 +41,14 @@ public:
     Result<void> upload(const Image& current, const Image& history);
     // One dispatch of `kernel` over the whole image; `gamma` goes to kernels with a push constant.
     Result<DispatchTiming> dispatch(const Kernel& kernel, float gamma);
+    // The same for any kernel with the pass's bindings (current_frame, history_frame,
+    // rectified_history), a project's own shader included: every push-constant member gets the value
+    // of its name, as floats; a missing or extra value is an error.
+    struct PushConstantValue {
+        std::string name;
+        std::vector<float> values;
+    };
+    Result<DispatchTiming> dispatch(const Kernel& kernel, std::span<const PushConstantValue> values);
     // The output of the last dispatch.
     Result<Image> download();
 

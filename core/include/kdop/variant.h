@@ -21,6 +21,9 @@ enum class Mode : std::uint8_t {
     // clip variant does and writes their sum; `copy` writes the history as it is.
     gather,
     copy,
+    // A project's own compute shader (kdop_add_variants SHADERS), compiled with the kdop functions it
+    // includes; named after its file, with no axis set or neighborhood of its own.
+    shader,
 };
 
 // How a clip is written. Both compute the same function; `loop` is the supplement's form (axes in
@@ -108,6 +111,7 @@ inline const char* to_string(Mode mode) {
     case Mode::varclip: return "varclip";
     case Mode::gather: return "gather";
     case Mode::copy: return "copy";
+    case Mode::shader: return "shader";
     }
     return "?";
 }

@@ -1,0 +1,81 @@
+#include "project_shader.h"
+
+#include "glsl_compiler.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace kdop {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::optional<std::string> read_text(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return std::nullopt;
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in && !in.eof()) return std::nullopt;
+    return text.str();
+}
+
+} // namespace
+
+Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
+                                           std::span<const fs::path> include_dirs) {
+    ProjectShader out;
+    out.built.spec.mode = Mode::shader;
+    out.built.name = file.stem().string();
+    const std::string name = file.string();
+    auto source = read_text(file);
+    if (!source) return fail(fmt::format("{}: cannot read shader", name));
+    out.built.compute_glsl = std::move(*source);
+    out.read_files.push_back(fs::absolute(file));
+
+    // Included sources are named by their path (or "<variant>.glsl"), so messages point at them.
+    std::vector<std::string> unresolved;
+    IncludeResolver resolve = [&](std::string_view header, std::string_view includer) -> std::optional<IncludedSource> {
+        for (const BuiltVariant& v : variants)
+            if (header == v.name + ".glsl") return IncludedSource{std::string(header), v.function_glsl};
+        std::vector<fs::path> candidates{fs::path(includer).parent_path() / header};
+        for (const fs::path& dir : include_dirs) candidates.push_back(dir / header);
+        for (const fs::path& candidate : candidates)
+            if (auto text = read_text(candidate)) {
+                out.read_files.push_back(fs::absolute(candidate));
+                return IncludedSource{candidate.string(), std::move(*text)};
+            }
+        unresolved.emplace_back(header);
+        return std::nullopt;
+    };
+    auto compiled = compile_glsl_compute(out.built.compute_glsl, name, resolve);
+    if (!compiled && !unresolved.empty()) {
+        std::vector<std::string> functions;
+        for (const BuiltVariant& v : variants) functions.push_back(v.name + ".glsl");
+        return fail(fmt::format("{}{}: \"{}\" is neither a selected variant's function ({}) nor a file next to the "
+                                "including one or in an include directory\n",
+                                compiled.error().message, name, unresolved.front(), fmt::join(functions, ", ")));
+    }
+    if (auto ok = compile_into(out.built, name, std::move(compiled)); !ok) return std::unexpected(ok.error());
+    return out;
+}
+
+std::string depfile_rule(const fs::path& target, std::span<const fs::path> dependencies) {
+    auto escaped = [](const fs::path& p) {
+        std::string out;
+        for (char c : p.string()) {
+            if (c == ' ' || c == '#' || c == '\\') out += '\\';
+            if (c == '$') out += '$';
+            out += c;
+        }
+        return out;
+    };
+    std::string rule = escaped(target) + ":";
+    for (const fs::path& d : dependencies) rule += " \\\n  " + escaped(d);
+    return rule + "\n";
+}
+
+} // namespace kdop

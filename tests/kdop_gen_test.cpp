@@ -1,0 +1,95 @@
+// kdop-gen registry with a project's own shaders and functions, run as kdop_add_variants() runs it:
+// includes resolved, the shader embedded with its interface, the depfile listing what it read, and
+// bad shaders refused with a message naming the file, a non-zero exit and nothing written.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace kdop {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr const char* kShader = R"(#version 450
+#include "dop22-clip-n9.glsl"
+#include "blend.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D current_frame;
+layout(set = 1, binding = 3, rgba32f) uniform writeonly image2D resolved;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    vec3 n[9];
+    for (int i = 0; i < 9; ++i)
+        n[i] = texelFetch(current_frame, p + ivec2(i % 3 - 1, i / 3 - 1), 0).rgb;
+    imageStore(resolved, p, vec4(blend(kdop_dop22_clip_n9(n[4], vec3(0), n), n[4]), 1));
+}
+)";
+
+struct Generation {
+    test::TempDir dir;
+    fs::path header() const { return dir / "out" / "shaders.h"; }
+    fs::path source() const { return dir / "out" / "shaders.cpp"; }
+    test::CommandResult run(const std::string& shaders, const std::string& more = "") const {
+        return test::run(test::kdop_gen_binary() + " registry --sets dop22 --modes clip --neighborhoods n9 --header " +
+                         header().string() + " --source " + source().string() + " --namespace app --shaders " +
+                         shaders + " " + more);
+    }
+};
+
+TEST(KdopGen, EmbedsAProjectShaderWithTheFunctionsItIncludes) {
+    Generation g;
+    fs::create_directories(g.dir / "src");
+    test::write_file(g.dir / "src" / "resolve.comp", kShader);
+    test::write_file(g.dir / "src" / "blend.glsl", "vec3 blend(vec3 a, vec3 b) { return mix(a, b, 0.1); }\n");
+    const fs::path depfile = g.dir / "out" / "shaders.d", functions = g.dir / "out" / "functions";
+    auto r = g.run((g.dir / "src" / "resolve.comp").string(),
+                   "--depfile " + depfile.string() + " --functions " + functions.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+
+    const std::string source = test::read_file(g.source());
+    EXPECT_NE(source.find(R"({"resolve", "", kdop::Mode::shader)"), std::string::npos) << source;
+    EXPECT_NE(source.find(R"({1, 3, kdop::DescriptorType::storage_image, "resolved"})"), std::string::npos)
+        << "the shader's own interface, reflected";
+    EXPECT_NE(source.find(R"({"dop22-clip-n9", "dop22", kdop::Mode::clip)"), std::string::npos);
+
+    const std::string rule = test::read_file(depfile);
+    EXPECT_EQ(rule.rfind(g.header().string() + ":", 0), 0u) << rule;
+    EXPECT_NE(rule.find((g.dir / "src" / "resolve.comp").string()), std::string::npos) << rule;
+    EXPECT_NE(rule.find((g.dir / "src" / "blend.glsl").string()), std::string::npos) << rule;
+
+    EXPECT_EQ(test::read_file(functions / "dop22-clip-n9.glsl"),
+              test::run(test::kdop_binary() + " show dop22-clip-n9").out);
+}
+
+TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
+    struct Case {
+        const char* file;
+        std::string text;
+        const char* expected; // in the message
+    };
+    const Case cases[] = {
+        {"unknown.comp", "#version 450\n#include \"dop99-clip-n9.glsl\"\nvoid main() {}\n", "dop99-clip-n9.glsl"},
+        {"typo.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() { vec3 x = y; }\n",
+         "typo.comp:3: error"},
+        {"dop22-clip-n9.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n",
+         "would hide the variant"},
+    };
+    for (const Case& c : cases) {
+        Generation g;
+        test::write_file(g.dir / c.file, c.text);
+        auto r = g.run((g.dir / c.file).string());
+        EXPECT_EQ(r.exit_code, 1) << c.file << ": " << r.err;
+        EXPECT_NE(r.err.find(c.file), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(g.dir / "out")) << c.file << ": nothing may be written";
+    }
+    Generation g;
+    auto missing = g.run((g.dir / "absent.comp").string());
+    EXPECT_EQ(missing.exit_code, 2) << "a shader that does not exist is a usage error";
+    EXPECT_NE(missing.err.find("absent.comp"), std::string::npos) << missing.err;
+}
+
+} // namespace
+} // namespace kdop
