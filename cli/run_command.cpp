@@ -43,8 +43,10 @@ Action add_run_command(CLI::App& app) {
                     "Current frame (any OpenImageIO format; RGB from the first three channels)")
         ->required();
     run->add_option("--history", o->history, "History, the same size as the current frame")->required();
-    run->add_option("--out", o->out,
-                    "Rectified history to write (EXR keeps floats; PNG clamps to 8 bits; lossy formats are refused)")
+    run->add_option(
+           "--out", o->out,
+           "Rectified history to write (EXR keeps floats; PNG keeps 0..1 in 8 bits, tagged linear, and refuses other "
+           "values; lossy formats are refused)")
         ->required();
     run->add_option("--gamma", o->gamma,
                     "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]");

@@ -110,7 +110,8 @@ Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
 
 Result<void> check_output_directory(const fs::path& dir, const std::string& option) {
     std::error_code ec;
-    fs::path existing = fs::absolute(dir, ec);
+    // An empty path is the current directory: the folder of `--out result.png`.
+    fs::path existing = fs::absolute(dir.empty() ? fs::path(".") : dir, ec);
     if (ec) return fail(fmt::format("{}: {}: {}", option, dir.string(), ec.message()));
     while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
         existing = existing.parent_path();

@@ -191,17 +191,21 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     // Color and alpha are stored as they are: PNG and TGA writers would otherwise divide color by
     // alpha (and the readers multiply it back), which changes any pixel that is not opaque.
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    // The values are linear and stored as they are. A PNG without a tag is shown as sRGB (too dark),
+    // so it says what it holds: OpenImageIO writes "linear" as PNG's gAMA of 1.0.
+    if (format == "png") spec.attribute("oiio:ColorSpace", "linear");
     if (!out->open(file.string(), spec))
         return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
     // A format that stores integers (PNG, BMP, TGA) keeps 0..1; clamping anything else away would
     // write a different image than asked, so it is refused (the temporary is removed by the caller).
-    if (!out->spec().format.is_floating_point())
+    if (!out->spec().format.is_floating_point()) {
         if (auto outside = first_outside_unit_range(image, channels)) {
             out->close();
             return fail(fmt::format("{}: {} stores values from 0 to 1, and pixel ({}, {}) holds {}; write EXR or TIFF "
                                     "to keep it, or tone-map the image first",
                                     path, format, outside->x, outside->y, outside->value));
         }
+    }
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
     if (!ok) return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));

@@ -103,6 +103,8 @@ TEST(WriteFiles, OutputDirectoryIsCheckedBeforeAnyWork) {
     test::TempDir dir;
     EXPECT_TRUE(check_output_directory(dir / "new" / "deeper"));
     EXPECT_FALSE(fs::exists(dir / "new")) << "checking must create nothing";
+    auto here = check_output_directory(fs::path("result.png").parent_path());
+    EXPECT_TRUE(here) << "the folder of a bare file name is the current directory: " << here.error().message;
     test::write_file(dir / "file", "");
     auto not_dir = check_output_directory(dir / "file" / "out", "--out");
     ASSERT_FALSE(not_dir);

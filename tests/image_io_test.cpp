@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 namespace kdop {
 namespace {
@@ -133,6 +134,33 @@ TEST(ImageIo, IntegerFormatsRefuseValuesTheyWouldClamp) {
             EXPECT_NE(written.error().message.find("pixel (2, 1) holds"), std::string::npos) << written.error().message;
             EXPECT_TRUE(fs::is_empty(dir.path())) << ext << " left a file";
         }
+}
+
+// kdop's values are linear. A PNG holding them must say so (gAMA 1.0, no sRGB chunk); untagged, a
+// viewer would decode them as sRGB and show them too dark.
+TEST(ImageIo, PngSaysItsValuesAreLinear) {
+    test::TempDir dir;
+    const fs::path path = dir / "linear.png";
+    ASSERT_TRUE(write_image(path.string(), Image(2, 2, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f))));
+    const std::string bytes = test::read_file(path);
+    std::optional<std::uint32_t> gamma;
+    bool srgb = false;
+    for (std::size_t at = 8; at + 12 <= bytes.size();) { // chunks: length, type, data, CRC
+        auto word = [&](std::size_t i) {
+            return std::uint32_t(std::uint8_t(bytes[i])) << 24 | std::uint32_t(std::uint8_t(bytes[i + 1])) << 16 |
+                   std::uint32_t(std::uint8_t(bytes[i + 2])) << 8 | std::uint8_t(bytes[i + 3]);
+        };
+        const std::string type = bytes.substr(at + 4, 4);
+        if (type == "gAMA") gamma = word(at + 8);
+        srgb |= type == "sRGB" || type == "iCCP";
+        at += 12 + word(at);
+    }
+    ASSERT_TRUE(gamma) << "no gAMA chunk";
+    EXPECT_EQ(*gamma, 100000u) << "gAMA stores 1/gamma x 100000; linear is 100000";
+    EXPECT_FALSE(srgb);
+    auto back = read_image(path.string());
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->at(1, 1), glm::vec4(64 / 255.0f, 128 / 255.0f, 191 / 255.0f, 1.0f)) << "read as stored";
 }
 
 // The image fuzzer's first finding: libpng's error for a damaged stream spans two lines.
