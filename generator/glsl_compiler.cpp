@@ -8,6 +8,7 @@
 #include <mutex>
 #include <regex>
 #include <string>
+#include <utility>
 
 namespace kdop {
 namespace {
@@ -48,26 +49,20 @@ std::string rewrite_log(std::string_view log, std::string_view source, std::stri
     return out;
 }
 
-} // namespace
-
-std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message) {
-    if (line <= 0) return fmt::format("{}: {}\n", name, message);
-    return fmt::format("{}:{}: {}\n    {}\n", name, line, message, source_line(source, line));
+// glslang's client and SPIR-V target for `env` (target_env.h).
+std::pair<glslang::EShTargetClientVersion, glslang::EShTargetLanguageVersion> glslang_target(TargetEnv env) {
+    switch (env) {
+    case TargetEnv::vulkan1_0: return {glslang::EShTargetVulkan_1_0, glslang::EShTargetSpv_1_0};
+    case TargetEnv::vulkan1_1: return {glslang::EShTargetVulkan_1_1, glslang::EShTargetSpv_1_3};
+    case TargetEnv::vulkan1_2: return {glslang::EShTargetVulkan_1_2, glslang::EShTargetSpv_1_5};
+    case TargetEnv::vulkan1_3: return {glslang::EShTargetVulkan_1_3, glslang::EShTargetSpv_1_6};
+    }
+    return {glslang::EShTargetVulkan_1_0, glslang::EShTargetSpv_1_0};
 }
 
-Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name) {
-    initialize_glslang_once();
-    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
-
-    glslang::TShader shader(EShLangCompute);
-    const char* text = source.data();
-    const int length = static_cast<int>(source.size());
-    const std::string name_string(name);
-    const char* names = name_string.c_str();
-    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
-    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
-    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+// Parses `shader` (its source and language already set), links it and translates it to SPIR-V.
+Result<std::vector<std::uint32_t>> compile_shader(glslang::TShader& shader, EShMessages messages,
+                                                  std::string_view source, std::string_view name) {
     if (!shader.parse(GetDefaultResources(), 450, false, messages))
         return fail(rewrite_log(shader.getInfoLog(), source, name));
 
@@ -85,6 +80,51 @@ Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source,
     if (words.empty() || !spv_messages.empty())
         return fail(fmt::format("{}: SPIR-V generation failed: {}", name, spv_messages));
     return words;
+}
+
+} // namespace
+
+std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message) {
+    if (line <= 0) return fmt::format("{}: {}\n", name, message);
+    return fmt::format("{}:{}: {}\n    {}\n", name, line, message, source_line(source, line));
+}
+
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name, TargetEnv env) {
+    initialize_glslang_once();
+    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+
+    glslang::TShader shader(EShLangCompute);
+    const char* text = source.data();
+    const int length = static_cast<int>(source.size());
+    const std::string name_string(name);
+    const char* names = name_string.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    const auto [client, target] = glslang_target(env);
+    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, client);
+    shader.setEnvTarget(glslang::EShTargetSpv, target);
+    return compile_shader(shader, messages, source, name);
+}
+
+Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name, TargetEnv env) {
+    initialize_glslang_once();
+    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
+
+    glslang::TShader shader(EShLangCompute);
+    const char* text = source.data();
+    const int length = static_cast<int>(source.size());
+    const std::string name_string(name);
+    const char* names = name_string.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    shader.setEntryPoint("main");
+    const auto [client, target] = glslang_target(env);
+    shader.setEnvInput(glslang::EShSourceHlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, client);
+    shader.setEnvTarget(glslang::EShTargetSpv, target);
+    // HLSL textures are separate images; this turns each into a combined image sampler (and drops
+    // sampler objects), the descriptor type the GLSL shader's sampler2D has and the runtime binds.
+    shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
+    return compile_shader(shader, messages, source, name);
 }
 
 } // namespace kdop

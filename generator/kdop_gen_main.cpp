@@ -33,7 +33,7 @@ std::string read_file(const fs::path& path) {
     return text.str();
 }
 
-// Rewrites `dir` with the default variants' GLSL, removing GLSL files no default variant has; with
+// Rewrites `dir` with the default variants' GLSL and HLSL, removing such files no default variant has; with
 // `check`, writes nothing and fails when any file would change.
 int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, bool check) {
     std::vector<OutputFile> files;
@@ -47,7 +47,8 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
     if (fs::is_directory(dir))
         for (const auto& entry : fs::directory_iterator(dir)) {
             auto ext = entry.path().extension();
-            if ((ext == ".glsl" || ext == ".comp") && !expected.count(entry.path())) extra.push_back(entry.path());
+            if ((ext == ".glsl" || ext == ".hlsl" || ext == ".comp") && !expected.count(entry.path()))
+                extra.push_back(entry.path());
         }
     std::sort(extra.begin(), extra.end());
 
@@ -90,7 +91,8 @@ int main(int argc, char** argv) {
 
     std::string glsl_dir;
     bool check = false;
-    CLI::App* glsl = app.add_subcommand("glsl", "Write every default variant's .glsl and .comp into a directory");
+    CLI::App* glsl =
+        app.add_subcommand("glsl", "Write every default variant's .glsl, .hlsl and .comp into a directory");
     glsl->add_option("--out", glsl_dir, "Directory (normally generated/)")->required();
     glsl->add_flag("--check", check, "Write nothing; fail if any file in the directory is stale");
 

@@ -7,7 +7,9 @@ namespace kdop {
 namespace fs = std::filesystem;
 
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {
-    return {{dir / (v.name + ".glsl"), v.function_glsl}, {dir / (v.name + ".comp"), v.compute_glsl}};
+    return {{dir / (v.name + ".glsl"), v.function_glsl},
+            {dir / (v.name + ".hlsl"), v.function_hlsl},
+            {dir / (v.name + ".comp"), v.compute_glsl}};
 }
 
 std::string spirv_bytes(std::span<const std::uint32_t> words) {
