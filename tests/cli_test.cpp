@@ -168,6 +168,16 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("[[unroll]] for (int a = 0; a < 11; ++a)"), std::string::npos);
 
+    r = run(kdop("show dop32-varclip-n9 --hlsl"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("float3 kdop_dop32_varclip_n9(float3 current, float3 history, float gamma, float3 "
+                         "neighborhood[9])"),
+              std::string::npos);
+    r = run(kdop("show dop22-varclip-n5 --compute --hlsl"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("[numthreads(8, 8, 1)]"), std::string::npos);
+    EXPECT_NE(r.out.find("[[vk::push_constant]] ConstantBuffer<Parameters> parameters;"), std::string::npos);
+
     r = run(kdop("show tiny-clip-n9 --sets " + test::data_path("tiny.axes")));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("kdop_tiny_clip_n9"), std::string::npos);
