@@ -34,8 +34,8 @@ Action add_gen_command(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* gen = app.add_subcommand(
-        "gen", "Generate variants: write <name>.glsl (includable function), <name>.comp (compute shader) and "
-               "<name>.spv (optimized SPIR-V) per variant, then print a table of them");
+        "gen", "Generate variants: write <name>.glsl and <name>.hlsl (includable function), <name>.comp "
+               "(compute shader) and <name>.spv (optimized SPIR-V) per variant, then print a table of them");
     gen->add_option("--out", options->out, "Output directory (created if missing)")->required();
     options->selection.add_to(*gen);
     gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]");

@@ -9,8 +9,9 @@
 #     [NAMESPACE <ns>]                  C++ namespace of the registry; default: <target> made an identifier
 #     [HEADER <file-name>]              default: <target>_kdop_variants.h
 #     [PUBLIC]                          also give <target>'s users the header (for a library target)
-#     [FUNCTIONS]                       also write each variant's includable function, <variant>.glsl, into
-#                                       a folder for the project's own shader build (see below)
+#     [FUNCTIONS]                       also write each variant's includable function, <variant>.glsl and
+#                                       <variant>.hlsl, into a folder for the project's own shader build
+#     [TARGET_ENV <vulkan1.0..1.3>]     the SPIR-V's target environment; default vulkan1.0
 #     [SHADERS <file.comp>...]          the project's own GLSL compute shaders, compiled into the registry
 #                                       too (named after their file stems), where
 #                                       `#include "dop22-clip-n9.glsl"` gives them a selected variant's function
@@ -36,7 +37,7 @@ if(NOT kdop_axis_set_dir_known)
 endif()
 
 function(kdop_add_variants target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS" "NAMESPACE;HEADER"
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS" "NAMESPACE;HEADER;TARGET_ENV"
                         "SETS;MODES;NEIGHBORHOODS;FORMS;SHADERS;SHADER_INCLUDE_DIRS")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "kdop_add_variants(${target}): unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
@@ -104,6 +105,9 @@ function(kdop_add_variants target)
   if(ARG_BASELINES)
     list(APPEND arguments --baselines)
   endif()
+  if(ARG_TARGET_ENV)
+    list(APPEND arguments --target-env ${ARG_TARGET_ENV})
+  endif()
 
   set(outputs "${header}" "${source}")
   if(ARG_FUNCTIONS)
@@ -130,14 +134,15 @@ function(kdop_add_variants target)
             if(form STREQUAL "loop")
               set(suffix "-loop")
             endif()
-            list(APPEND outputs "${function_dir}/${name}-${mode}-${neighborhood}${suffix}.glsl")
+            list(APPEND outputs "${function_dir}/${name}-${mode}-${neighborhood}${suffix}.glsl"
+                                "${function_dir}/${name}-${mode}-${neighborhood}${suffix}.hlsl")
           endforeach()
         endforeach()
       endforeach()
     endforeach()
     if(ARG_BASELINES)
       foreach(baseline IN ITEMS gather-n9 gather-n5 copy)
-        list(APPEND outputs "${function_dir}/${baseline}.glsl")
+        list(APPEND outputs "${function_dir}/${baseline}.glsl" "${function_dir}/${baseline}.hlsl")
       endforeach()
     endif()
     set_property(TARGET ${target} PROPERTY KDOP_FUNCTION_DIR "${function_dir}")

@@ -10,6 +10,7 @@
 #include <optional>
 #include <regex>
 #include <string>
+#include <utility>
 
 namespace kdop {
 namespace {
@@ -53,14 +54,16 @@ std::string rewrite_log(std::string_view log, std::string_view source, std::stri
     return out;
 }
 
-} // namespace
-
-std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message) {
-    if (line <= 0) return fmt::format("{}: {}\n", name, message);
-    return fmt::format("{}:{}: {}\n    {}\n", name, line, message, source_line(source, line));
+// glslang's client and SPIR-V target for `env` (target_env.h).
+std::pair<glslang::EShTargetClientVersion, glslang::EShTargetLanguageVersion> glslang_target(TargetEnv env) {
+    switch (env) {
+    case TargetEnv::vulkan1_0: return {glslang::EShTargetVulkan_1_0, glslang::EShTargetSpv_1_0};
+    case TargetEnv::vulkan1_1: return {glslang::EShTargetVulkan_1_1, glslang::EShTargetSpv_1_3};
+    case TargetEnv::vulkan1_2: return {glslang::EShTargetVulkan_1_2, glslang::EShTargetSpv_1_5};
+    case TargetEnv::vulkan1_3: return {glslang::EShTargetVulkan_1_3, glslang::EShTargetSpv_1_6};
+    }
+    return {glslang::EShTargetVulkan_1_0, glslang::EShTargetSpv_1_0};
 }
-
-namespace {
 
 // glslang's side of an IncludeResolver. Included texts live as long as the compilation.
 class Includer : public glslang::TShader::Includer {
@@ -82,29 +85,21 @@ private:
     std::vector<std::unique_ptr<IncludedSource>> sources_;
 };
 
-Result<std::vector<std::uint32_t>> compile(std::string_view source, std::string_view name,
-                                           const IncludeResolver* resolve) {
-    initialize_glslang_once();
-    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
-
-    glslang::TShader shader(EShLangCompute);
-    const char* text = source.data();
-    const int length = static_cast<int>(source.size());
-    const std::string name_string(name);
-    const char* names = name_string.c_str();
-    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
-    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
-    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+// Parses `shader` (its source and language already set), links it and translates it to SPIR-V.
+// With a resolver, #include works as with glslc (GL_GOOGLE_include_directive, enabled); without
+// one, an #include is an error.
+Result<std::vector<std::uint32_t>> compile_shader(glslang::TShader& shader, EShMessages messages,
+                                                  std::string_view source, std::string_view name,
+                                                  const IncludeResolver& resolve = {}) {
     std::optional<Includer> includer;
+    glslang::TShader::ForbidIncluder no_includes;
     if (resolve) {
         shader.setPreamble("#extension GL_GOOGLE_include_directive : enable\n");
-        includer.emplace(*resolve);
+        includer.emplace(resolve);
     }
-    glslang::TShader::ForbidIncluder no_includes;
-    const bool parsed = includer ? shader.parse(GetDefaultResources(), 450, false, messages, *includer)
-                                 : shader.parse(GetDefaultResources(), 450, false, messages, no_includes);
-    if (!parsed) return fail(rewrite_log(shader.getInfoLog(), source, name));
+    glslang::TShader::Includer& chosen = includer ? static_cast<glslang::TShader::Includer&>(*includer) : no_includes;
+    if (!shader.parse(GetDefaultResources(), 450, false, messages, chosen))
+        return fail(rewrite_log(shader.getInfoLog(), source, name));
 
     glslang::TProgram program;
     program.addShader(&shader);
@@ -124,13 +119,48 @@ Result<std::vector<std::uint32_t>> compile(std::string_view source, std::string_
 
 } // namespace
 
-Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name) {
-    return compile(source, name, nullptr);
+std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message) {
+    if (line <= 0) return fmt::format("{}: {}\n", name, message);
+    return fmt::format("{}:{}: {}\n    {}\n", name, line, message, source_line(source, line));
 }
 
-Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name,
+Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name, TargetEnv env,
                                                         const IncludeResolver& resolve) {
-    return compile(source, name, &resolve);
+    initialize_glslang_once();
+    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+
+    glslang::TShader shader(EShLangCompute);
+    const char* text = source.data();
+    const int length = static_cast<int>(source.size());
+    const std::string name_string(name);
+    const char* names = name_string.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    const auto [client, target] = glslang_target(env);
+    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, client);
+    shader.setEnvTarget(glslang::EShTargetSpv, target);
+    return compile_shader(shader, messages, source, name, resolve);
+}
+
+Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name, TargetEnv env) {
+    initialize_glslang_once();
+    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
+
+    glslang::TShader shader(EShLangCompute);
+    const char* text = source.data();
+    const int length = static_cast<int>(source.size());
+    const std::string name_string(name);
+    const char* names = name_string.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    shader.setEntryPoint("main");
+    const auto [client, target] = glslang_target(env);
+    shader.setEnvInput(glslang::EShSourceHlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, client);
+    shader.setEnvTarget(glslang::EShTargetSpv, target);
+    // HLSL textures are separate images; this turns each into a combined image sampler (and drops
+    // sampler objects), the descriptor type the GLSL shader's sampler2D has and the runtime binds.
+    shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
+    return compile_shader(shader, messages, source, name);
 }
 
 } // namespace kdop

@@ -1,8 +1,10 @@
-// GLSL -> SPIR-V with glslang, in-process. Targets Vulkan 1.0 / SPIR-V 1.0 so the output runs on any
-// Vulkan device. The module carries OpLine debug information so later stages can name GLSL lines.
+// GLSL (and HLSL) -> SPIR-V with glslang, in-process. Targets Vulkan 1.0 / SPIR-V 1.0 by default so
+// the output runs on any Vulkan device (target_env.h for later ones). The module carries OpLine
+// debug information so later stages can name source lines.
 #pragma once
 
 #include "result.h"
+#include "target_env.h"
 
 #include <cstdint>
 #include <functional>
@@ -13,10 +15,6 @@
 
 namespace kdop {
 
-// Compiles one compute shader. `name` (e.g. "dop22-clip-n9.comp") prefixes every message, which
-// reads "name:LINE: error: ..." followed by the offending source line. Thread-safe.
-Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name);
-
 // What `#include "header"` in a shader resolves to: the name messages use for it, and its text.
 struct IncludedSource {
     std::string name;
@@ -26,10 +24,18 @@ struct IncludedSource {
 using IncludeResolver =
     std::function<std::optional<IncludedSource>(std::string_view header, std::string_view includer)>;
 
-// The same for a shader that #includes other sources (GL_GOOGLE_include_directive, enabled for it
-// as glslc does), each looked up through `resolve`. Errors in an included source name that source.
+// Compiles one compute shader. `name` (e.g. "dop22-clip-n9.comp") prefixes every message, which
+// reads "name:LINE: error: ..." followed by the offending source line. With `resolve`, the shader
+// may #include other sources (GL_GOOGLE_include_directive, enabled for it as glslc does), each
+// looked up through it; errors in an included source name that source. Thread-safe.
 Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name,
-                                                        const IncludeResolver& resolve);
+                                                        TargetEnv env = TargetEnv::vulkan1_0,
+                                                        const IncludeResolver& resolve = {});
+
+// Compiles one HLSL compute shader (entry point "main") through glslang's HLSL front end, with
+// textures upgraded to combined image samplers; messages as for GLSL. Thread-safe.
+Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name,
+                                                        TargetEnv env = TargetEnv::vulkan1_0);
 
 // "name:LINE: <message>" and the source line under it, the form every GLSL diagnostic takes.
 std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message);

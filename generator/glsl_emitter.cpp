@@ -48,7 +48,7 @@ std::string upper_identifier(std::string s) {
 // subtracted, zero components dropped, and the remaining ones multiplied: one multiply-add each
 // (multiply_add), one dot() over just those components (fold_dot), or one dot() over every nonzero
 // component including the unit one (full_dot).
-std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projection style) {
+std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projection style, const Dialect& dialect) {
     if (style == EmitStyle::Projection::full_dot) {
         std::string components;
         std::vector<std::string> values;
@@ -59,7 +59,8 @@ std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projectio
             }
         if (values.size() == 1) return fmt::format("{}.{}", v, components); // the unit component itself
         std::string operand = components == "xyz" ? std::string(v) : fmt::format("{}.{}", v, components);
-        return fmt::format("dot({}, vec{}({}))", operand, values.size(), fmt::join(values, ", "));
+        return fmt::format("dot({}, {}({}))", operand, dialect.vec(static_cast<int>(values.size())),
+                           fmt::join(values, ", "));
     }
     std::string units, negative_units, scaled_components;
     std::vector<float> scales;
@@ -86,8 +87,8 @@ std::string project(std::string_view v, const glm::vec3& k, EmitStyle::Projectio
         for (std::size_t i = 0; i < scales.size(); ++i)
             scaled += fmt::format(" + {}.{} * {}", v, scaled_components[i], float_literal(scales[i]));
     } else if (scales.size() == 2)
-        scaled = fmt::format(" + dot({}.{}, vec2({}, {}))", v, scaled_components, float_literal(scales[0]),
-                             float_literal(scales[1]));
+        scaled = fmt::format(" + dot({}.{}, {}({}, {}))", v, scaled_components, dialect.vec(2),
+                             float_literal(scales[0]), float_literal(scales[1]));
     return units + scaled + negative_units;
 }
 
@@ -123,7 +124,9 @@ std::string paper_exit_update() { return "        t = min(t, ((inv_d > 0.0 ? hi 
 // which tells -0 from +0: a parallel ray (d = +-0) divides a distance of the same sign by it and
 // gets +inf, never 0 / 0; and every exit is positive, so t stays in (0, 1]. One division instead
 // of a reciprocal and a multiply.
-constexpr char kHardenedExit[] = "        t = min(t, (floatBitsToInt(d) < 0 ? lo : hi) / d);\n";
+std::string hardened_exit(const Dialect& dialect) {
+    return fmt::format("        t = min(t, ({}(d) < 0 ? lo : hi) / d);\n", dialect.float_bits_to_int);
+}
 
 // The paper's slab dilation, 1e-5 per unit of axis length, on both sides.
 std::string dilation(const ScaledAxis& axis) {
@@ -157,8 +160,8 @@ void write_extent(std::string& out, std::string_view name, std::string_view op, 
 // chain once a constant operand makes the result non-NaN); a NaN neighbor also drops out instead of
 // poisoning the extent.
 void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector<int>& neighbors,
-                     const EmitStyle& style, Numerics numerics, Frame frame) {
-    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
+                     const EmitStyle& style, Numerics numerics, Frame frame, const Dialect& dialect) {
+    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection, dialect); };
     for (int n : neighbors) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
     const std::string padding = float_literal(axis.padding);
     const bool running = style.extent == EmitStyle::Extent::running;
@@ -183,7 +186,7 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector
         out += fmt::format("        hi = max(hi - p, 0.0) + {};\n", padding);
     }
     out += fmt::format("        float d = {};\n", proj("dir"));
-    out += kHardenedExit;
+    out += hardened_exit(dialect);
 }
 
 // Variance clip (Salvi 2016): the slab spans mean +- gamma * sigma of the projections.
@@ -196,8 +199,8 @@ void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector
 // the small variance of bright, flat areas away: the supplement's E[q^2] - E[q]^2 gives a sigma of
 // about 3e-4 |q| there, or a negative variance and NaN.
 void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vector<int>& neighbors, int count,
-                        const EmitStyle& style, Numerics numerics) {
-    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection); };
+                        const EmitStyle& style, Numerics numerics, const Dialect& dialect) {
+    auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection, dialect); };
     const bool hardened = numerics == Numerics::hardened;
     if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
     for (int n : neighbors) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
@@ -211,20 +214,20 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vec
     if (hardened) {
         // Written so every multiply-add fuses without a negation: the variance is
         // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
-        out += fmt::format("        float variance = fma(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
-                           squares);
+        out += fmt::format("        float variance = {2}(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
+                           squares, dialect.fma);
         out += "        float sigma = sqrt(max(variance, 0.0));\n";
-        out += "        float lo = min(fma(-gamma, sigma, mean), 0.0);\n";
-        out += "        float hi = max(fma(gamma, sigma, mean), 0.0);\n";
-        out += fmt::format("        lo = fma(scale, -{0}, lo);\n        hi = fma(scale, {0}, hi);\n",
-                           float_literal(axis.padding));
+        out += fmt::format("        float lo = min({}(-gamma, sigma, mean), 0.0);\n", dialect.fma);
+        out += fmt::format("        float hi = max({}(gamma, sigma, mean), 0.0);\n", dialect.fma);
+        out += fmt::format("        lo = {1}(scale, -{0}, lo);\n        hi = {1}(scale, {0}, hi);\n",
+                           float_literal(axis.padding), dialect.fma);
         out += fmt::format("        float d = {};\n", proj("ray"));
-        out += kHardenedExit;
+        out += hardened_exit(dialect);
         return;
     }
     out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", squares, count);
-    out += "        float lo = min(fma(-gamma, sigma, mean), p);\n";
-    out += "        float hi = max(fma(gamma, sigma, mean), p);\n";
+    out += fmt::format("        float lo = min({}(-gamma, sigma, mean), p);\n", dialect.fma);
+    out += fmt::format("        float hi = max({}(gamma, sigma, mean), p);\n", dialect.fma);
     out += dilation(axis);
     out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
     out += paper_exit_update();
@@ -322,7 +325,7 @@ std::string regenerate_command(const VariantSpec& spec) {
 
 namespace {
 
-std::string function_header(const VariantSpec& spec) {
+std::string function_header(const VariantSpec& spec, const Dialect& dialect) {
     const int axes = static_cast<int>(spec.set.axes.size());
     std::string out;
     out += fmt::format("// {}: {}.\n", variant_name(spec), mode_description(spec.mode));
@@ -346,8 +349,8 @@ std::string function_header(const VariantSpec& spec) {
     if (spec.mode == Mode::varclip)
         out += "// gamma: slab half-width in standard deviations (1 is the usual choice).\n";
     if (spec.form == Form::loop) {
-        out += "// Written in the supplement's loop form, as a baseline for tests and benchmarks; it needs\n";
-        out += "// GL_EXT_control_flow_attributes for [[unroll]].\n";
+        out += fmt::format("// Written in the supplement's loop form, as a baseline for tests and benchmarks; {}.\n",
+                           dialect.unroll_note);
     } else {
         out += "// Each axis is scaled so that its largest component is +1 (the k-DOP does not change), so a\n";
         out += "// unit component costs no multiply and a zero component nothing.\n";
@@ -366,9 +369,9 @@ std::string function_header(const VariantSpec& spec) {
     return out;
 }
 
-std::string signature(const VariantSpec& spec) {
-    return fmt::format("vec3 {}(vec3 current, vec3 history, {}vec3 neighborhood[{}])", glsl_function_name(spec),
-                       spec.mode == Mode::varclip ? "float gamma, " : "",
+std::string signature(const VariantSpec& spec, const Dialect& dialect) {
+    return fmt::format("{0} {1}({0} current, {0} history, {2}{0} neighborhood[{3}])", dialect.vec(3),
+                       glsl_function_name(spec), spec.mode == Mode::varclip ? "float gamma, " : "",
                        neighborhood_offsets(spec.neighborhood).size());
 }
 
@@ -381,10 +384,10 @@ std::string signature(const VariantSpec& spec) {
 // range whose squares neither overflow nor underflow: 1, or 2^-100 once the pixel exceeds 2^60.
 // A power of two scales exactly, so fma(c, scale, -current * scale) is (c - current) * scale
 // rounded once, as the plain difference would be.
-void write_hardening_prologue(std::string& out, Mode mode) {
+void write_hardening_prologue(std::string& out, Mode mode, const Dialect& dialect) {
     out += "    // A history with NaN or Inf, or too far out to project without overflow, is not used.\n";
-    out += "    vec3 current_size = abs(current);\n";
-    out += "    vec3 reach = abs(dir) + current_size;\n";
+    out += fmt::format("    {} current_size = abs(current);\n", dialect.vec(3));
+    out += fmt::format("    {} reach = abs(dir) + current_size;\n", dialect.vec(3));
     out += "    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;\n";
     if (mode != Mode::varclip) return;
     out += "    // Moments of colors relative to current, scaled so squares of HDR differences stay finite.\n";
@@ -392,8 +395,8 @@ void write_hardening_prologue(std::string& out, Mode mode) {
     out += fmt::format("    bool huge = max(max(current_size.x, current_size.y), current_size.z) > {}; // 2^60\n",
                        threshold);
     out += fmt::format("    float scale = huge ? {} : 1.0; // 2^-100\n", small);
-    out += fmt::format("    vec3 origin = current * (huge ? -{} : -1.0);\n", small);
-    out += "    vec3 ray = dir * scale;\n";
+    out += fmt::format("    {} origin = current * (huge ? -{} : -1.0);\n", dialect.vec(3), small);
+    out += fmt::format("    {} ray = dir * scale;\n", dialect.vec(3));
 }
 
 // The neighbors a slab reads: all of them with the paper's numerics; hardened, all but the center,
@@ -406,21 +409,23 @@ std::vector<int> slab_neighbors(const VariantSpec& spec) {
     return neighbors;
 }
 
-void write_unrolled_body(std::string& out, const VariantSpec& spec) {
+void write_unrolled_body(std::string& out, const VariantSpec& spec, const Dialect& dialect) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
     const bool hardened = spec.numerics == Numerics::hardened;
     const Frame frame = hardened ? hardened_frame(spec.set, spec.mode, spec.neighborhood) : Frame::absolute;
     const std::vector<int> neighbors = slab_neighbors(spec);
-    out += "    vec3 dir = history - current;\n";
-    if (hardened) write_hardening_prologue(out, spec.mode);
+    const std::string vec3 = dialect.vec(3);
+    out += fmt::format("    {} dir = history - current;\n", vec3);
+    if (hardened) write_hardening_prologue(out, spec.mode, dialect);
     for (int n : neighbors) {
         if (frame == Frame::absolute)
-            out += fmt::format("    vec3 c{0} = neighborhood[{0}];\n", n);
+            out += fmt::format("    {} c{} = neighborhood[{}];\n", vec3, n, n);
         else if (spec.mode == Mode::varclip)
-            out += fmt::format("    vec3 c{0} = fma(neighborhood[{0}], vec3(scale), origin);\n", n);
+            out += fmt::format("    {} c{} = {}(neighborhood[{}], {}, origin);\n", vec3, n, dialect.fma, n,
+                               dialect.splat(3, "scale"));
         else
-            out += fmt::format("    vec3 c{0} = neighborhood[{0}] - current;\n", n);
+            out += fmt::format("    {} c{} = neighborhood[{}] - current;\n", vec3, n, n);
     }
     out += "    float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n";
     for (int a = 0; a < axes; ++a) {
@@ -434,55 +439,59 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec) {
                        : fmt::format(", scaled to {}", vec3_text(scaled.coefficients));
         out += "\n    {\n";
         if (spec.mode == Mode::varclip)
-            write_varclip_slab(out, scaled, neighbors, count, spec.style, spec.numerics);
+            write_varclip_slab(out, scaled, neighbors, count, spec.style, spec.numerics, dialect);
         else
-            write_clip_slab(out, scaled, neighbors, spec.style, spec.numerics, frame);
+            write_clip_slab(out, scaled, neighbors, spec.style, spec.numerics, frame, dialect);
         out += "    }\n";
     }
     // current + t * dir, written as fma because spirv-opt fuses only scalar multiply-adds.
     out += "\n";
     if (hardened)
-        out += "    return history_usable ? fma(vec3(t), dir, current) : current; // 0 < t <= 1\n";
+        out += fmt::format("    return history_usable ? {}({}, dir, current) : current; // 0 < t <= 1\n", dialect.fma,
+                           dialect.splat(3, "t"));
     else
-        out += "    return fma(vec3(max(t, 0.0)), dir, current);\n";
+        out += fmt::format("    return {}({}, dir, current);\n", dialect.fma, dialect.splat(3, "max(t, 0.0)"));
 }
 
 // The hardened function in the loop form, relative to current as the unrolled form's relative frame
 // is (the axes at unit length, so the padding is epsilon itself).
-void write_hardened_loop(std::string& out, Mode mode, int count, int center, int axes) {
-    write_hardening_prologue(out, mode);
+void write_hardened_loop(std::string& out, Mode mode, int count, int center, int axes, const Dialect& dialect) {
+    const std::string vec2 = dialect.vec(2);
+    write_hardening_prologue(out, mode, dialect);
     out += "    float t = 1.0;\n";
-    out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
-    out += "        vec3 axis = axes[a];\n";
+    out += fmt::format("    {}for (int a = 0; a < {}; ++a)\n    {{\n", dialect.unroll, axes);
+    out += fmt::format("        {} axis = axes[a];\n", dialect.vec(3));
     if (mode == Mode::clip) {
-        out +=
-            fmt::format("        vec2 extent = vec2(0.0); // current, for neighborhood[{}], at the origin\n", center);
-        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+        out += fmt::format("        {} extent = {}; // current, for neighborhood[{}], at the origin\n", vec2,
+                           dialect.splat(2, "0.0"), center);
+        out += fmt::format("        {}for (int n = 0; n < {}; ++n)\n        {{\n", dialect.unroll, count);
         // A guarded body rather than `continue`, which keeps spirv-opt from unrolling the loop.
         out += fmt::format("            if (n != {})\n            {{\n", center);
         out += "                float q = dot(neighborhood[n] - current, axis);\n";
-        out += "                extent = vec2(min(q, extent.x), max(q, extent.y));\n";
+        out += fmt::format("                extent = {}(min(q, extent.x), max(q, extent.y));\n", vec2);
         out += "            }\n";
         out += "        }\n";
-        out += "        extent += vec2(-epsilon, epsilon);\n";
+        out += fmt::format("        extent += {}(-epsilon, epsilon);\n", vec2);
         out += "        float d = dot(dir, axis);\n";
     } else {
-        out += "        vec2 moments = vec2(0.0);\n";
-        out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+        out += fmt::format("        {} moments = {};\n", vec2, dialect.splat(2, "0.0"));
+        out += fmt::format("        {}for (int n = 0; n < {}; ++n)\n        {{\n", dialect.unroll, count);
         out += fmt::format("            if (n != {}) // current stands for it: 0 relative to itself\n            {{\n",
                            center);
-        out += "                float q = dot(fma(neighborhood[n], vec3(scale), origin), axis);\n";
-        out += "                moments += vec2(q, q * q);\n";
+        out += fmt::format("                float q = dot({}(neighborhood[n], {}, origin), axis);\n", dialect.fma,
+                           dialect.splat(3, "scale"));
+        out += fmt::format("                moments += {}(q, q * q);\n", vec2);
         out += "            }\n";
         out += "        }\n";
-        out += fmt::format("        moments /= vec2({}.0);\n", count);
+        out += fmt::format("        moments /= {};\n", dialect.splat(2, fmt::format("{}.0", count)));
         out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
-        out +=
-            "        vec2 extent = vec2(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n";
-        out += "        extent += vec2(-epsilon, epsilon) * scale;\n";
+        out += fmt::format("        {0} extent = {0}(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * "
+                           "sigma, 0.0));\n",
+                           vec2);
+        out += fmt::format("        extent += {}(-epsilon, epsilon) * scale;\n", vec2);
         out += "        float d = dot(ray, axis);\n";
     }
-    out += "        t = min(t, (floatBitsToInt(d) < 0 ? extent.x : extent.y) / d);\n";
+    out += fmt::format("        t = min(t, ({}(d) < 0 ? extent.x : extent.y) / d);\n", dialect.float_bits_to_int);
     out += "    }\n";
     out += "    return history_usable ? current + t * dir : current;\n";
 }
@@ -491,43 +500,46 @@ void write_hardened_loop(std::string& out, Mode mode, int count, int center, int
 // need not), in a constant array; loops over axes and neighbors; entry and exit bounds. With paper
 // numerics it is the listing itself (the epsilon intent fixed); hardened, it computes the same
 // function as the hardened unrolled form, in the listing's loops.
-void write_loop_body(std::string& out, const VariantSpec& spec) {
+void write_loop_body(std::string& out, const VariantSpec& spec, const Dialect& dialect) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
-    out += fmt::format("    const vec3 axes[{}] = vec3[](\n", axes);
+    const std::string vec2 = dialect.vec(2), vec3 = dialect.vec(3);
+    out += fmt::format("    const {} axes[{}] = {}\n", vec3, axes, dialect.array_open(3));
     for (int a = 0; a < axes; ++a) {
         const glm::vec3 v(unit_direction(spec.set.axes[a].direction));
-        out += fmt::format("        vec3({}, {}, {}){}\n", float_literal(v.x), float_literal(v.y), float_literal(v.z),
-                           a + 1 < axes ? "," : "");
+        out += fmt::format("        {}({}, {}, {}){}\n", vec3, float_literal(v.x), float_literal(v.y),
+                           float_literal(v.z), a + 1 < axes ? "," : "");
     }
-    out += "    );\n";
+    out += fmt::format("    {};\n", dialect.array_close());
     out += "    const float epsilon = 1e-5;\n";
-    out += "    vec3 dir = history - current;\n";
+    out += fmt::format("    {} dir = history - current;\n", vec3);
     if (spec.numerics == Numerics::hardened) {
-        write_hardened_loop(out, spec.mode, count, neighborhood_center(spec.neighborhood), axes);
+        write_hardened_loop(out, spec.mode, count, neighborhood_center(spec.neighborhood), axes, dialect);
         return;
     }
     out += "    float near = -1e9, far = 1e9;\n";
-    out += fmt::format("    [[unroll]] for (int a = 0; a < {}; ++a)\n    {{\n", axes);
-    out += "        vec3 axis = axes[a];\n";
+    out += fmt::format("    {}for (int a = 0; a < {}; ++a)\n    {{\n", dialect.unroll, axes);
+    out += fmt::format("        {} axis = axes[a];\n", vec3);
     out += "        float proj_pos = dot(current, axis);\n";
     out += "        float inv_dir = 1.0 / dot(dir, axis);\n";
-    out += spec.mode == Mode::clip ? "        vec2 extent = vec2(1e9, -1e9);\n" : "        vec2 moments = vec2(0.0);\n";
-    out += fmt::format("        [[unroll]] for (int n = 0; n < {}; ++n)\n        {{\n", count);
+    out += spec.mode == Mode::clip ? fmt::format("        {0} extent = {0}(1e9, -1e9);\n", vec2)
+                                   : fmt::format("        {} moments = {};\n", vec2, dialect.splat(2, "0.0"));
+    out += fmt::format("        {}for (int n = 0; n < {}; ++n)\n        {{\n", dialect.unroll, count);
     out += "            float t = dot(neighborhood[n], axis);\n";
     if (spec.mode == Mode::clip) {
         out += "            extent.x = min(t, extent.x);\n";
         out += "            extent.y = max(t, extent.y);\n";
         out += "        }\n";
     } else {
-        out += "            moments += vec2(t, t * t);\n";
+        out += fmt::format("            moments += {}(t, t * t);\n", vec2);
         out += "        }\n";
-        out += fmt::format("        moments /= vec2({}.0);\n", count);
+        out += fmt::format("        moments /= {};\n", dialect.splat(2, fmt::format("{}.0", count)));
         out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
-        out += "        vec2 extent = vec2(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
-               "sigma, proj_pos));\n";
+        out += fmt::format("        {0} extent = {0}(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
+                           "sigma, proj_pos));\n",
+                           vec2);
     }
-    out += "        extent += vec2(-epsilon, epsilon) * length(axis);\n";
+    out += fmt::format("        extent += {}(-epsilon, epsilon) * length(axis);\n", vec2);
     out += "        float t0 = (extent.x - proj_pos) * inv_dir;\n";
     out += "        float t1 = (extent.y - proj_pos) * inv_dir;\n";
     out += "        near = max(near, min(t0, t1));\n";
@@ -540,12 +552,12 @@ void write_loop_body(std::string& out, const VariantSpec& spec) {
     out += "    return current;\n";
 }
 
-std::string emit_baseline_function(const VariantSpec& spec) {
+std::string emit_baseline_function(const VariantSpec& spec, const Dialect& dialect) {
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     std::string out = fmt::format("// {}: {}.\n", variant_name(spec), mode_description(spec.mode));
     out += fmt::format("// Generated by kdop {} (generator/glsl_emitter.cpp). A cost baseline, not a clip.\n",
                        KDOP_VERSION);
-    out += fmt::format("{}\n{{\n", signature(spec));
+    out += fmt::format("{}\n{{\n", signature(spec, dialect));
     if (spec.mode == Mode::copy) {
         out += "    return history;\n";
     } else {
@@ -557,28 +569,28 @@ std::string emit_baseline_function(const VariantSpec& spec) {
 
 } // namespace
 
-std::string emit_function(const VariantSpec& spec) {
-    if (spec.mode == Mode::gather || spec.mode == Mode::copy) return emit_baseline_function(spec);
-    const std::string guard = upper_identifier(glsl_function_name(spec)) + "_GLSL";
-    std::string out = function_header(spec);
+std::string emit_function(const VariantSpec& spec, const Dialect& dialect) {
+    if (spec.mode == Mode::gather || spec.mode == Mode::copy) return emit_baseline_function(spec, dialect);
+    const std::string guard = upper_identifier(glsl_function_name(spec)) + "_" + std::string(dialect.language);
+    std::string out = function_header(spec, dialect);
     out += fmt::format("#ifndef {}\n#define {}\n\n", guard, guard);
-    out += signature(spec) + "\n{\n";
+    out += signature(spec, dialect) + "\n{\n";
     if (spec.form == Form::loop)
-        write_loop_body(out, spec);
+        write_loop_body(out, spec, dialect);
     else
-        write_unrolled_body(out, spec);
+        write_unrolled_body(out, spec, dialect);
     out += "}\n\n";
     out += fmt::format("#endif // {}\n", guard);
     return out;
 }
 
 Result<std::string> emit_compute_shader(const VariantSpec& spec, std::string_view compute_template,
-                                        std::string_view template_origin) {
+                                        std::string_view template_origin, const Dialect& dialect) {
     auto offsets = neighborhood_offsets(spec.neighborhood);
     std::string gather;
     for (size_t n = 0; n < offsets.size(); ++n)
-        gather += fmt::format("        current_at(p + ivec2({:2}, {:2}), last){}\n", offsets[n].x, offsets[n].y,
-                              n + 1 < offsets.size() ? "," : "");
+        gather += fmt::format("        current_at(p + {}({:2}, {:2}), last){}\n", dialect.ivec(2), offsets[n].x,
+                              offsets[n].y, n + 1 < offsets.size() ? "," : "");
     const bool varclip = spec.mode == Mode::varclip;
     std::map<std::string, std::string> values{
         {"VARIANT", variant_name(spec)},
@@ -588,9 +600,12 @@ Result<std::string> emit_compute_shader(const VariantSpec& spec, std::string_vie
                                            template_origin, spec.set.name, origin_file_name(spec.set))},
         {"EXTENSIONS", spec.form == Form::loop ? "#extension GL_EXT_control_flow_attributes : require\n" : ""},
         {"REGENERATE", regenerate_command(spec)},
-        {"PARAMETERS", varclip ? "layout(push_constant) uniform Parameters\n{\n    float gamma;\n} parameters;\n"
-                               : "// Clip variants take no parameters.\n"},
-        {"FUNCTION", emit_function(spec)},
+        {"PARAMETERS", !varclip ? "// Clip variants take no parameters.\n"
+                       : dialect.language == kGlsl.language
+                           ? "layout(push_constant) uniform Parameters\n{\n    float gamma;\n} parameters;\n"
+                           : "struct Parameters\n{\n    float gamma;\n};\n[[vk::push_constant]] "
+                             "ConstantBuffer<Parameters> parameters;\n"},
+        {"FUNCTION", emit_function(spec, dialect)},
         {"NEIGHBOR_COUNT", fmt::format("{}", offsets.size())},
         {"GATHER", gather},
         {"CALL", fmt::format("{}(neighborhood[{}], history, {}neighborhood)", glsl_function_name(spec),

@@ -1,5 +1,6 @@
-// GLSL emission: a pure function from a VariantSpec to shader text. No loops and no arrays indexed
-// at run time are emitted; every slab is written out. Per axis, a zero component emits nothing and
+// Shader emission: a pure function from a VariantSpec to shader text, in GLSL or, for engines whose
+// shaders are HLSL, the same function in HLSL (shader_dialect.h). No loops and no arrays indexed at
+// run time are emitted; every slab is written out. Per axis, a zero component emits nothing and
 // a +-1 component is added or subtracted without a multiply: each axis is first scaled so its
 // largest component is exactly +1 (see ScaledAxis), which also moves one multiply per projection
 // out of every dot product.
@@ -9,6 +10,7 @@
 #pragma once
 
 #include "result.h"
+#include "shader_dialect.h"
 #include "variant_spec.h"
 
 #include <glm/vec3.hpp>
@@ -43,16 +45,18 @@ enum class Frame { absolute, relative };
 // "dop16-grass-clip-n9" -> "kdop_dop16_grass_clip_n9": the GLSL function name of a variant.
 std::string glsl_function_name(const VariantSpec& spec);
 
-// The includable GLSL function of a variant, with a header saying where it came from and an
-// include guard, ready to paste or #include into a TAA shader. Signatures:
+// The includable function of a variant in GLSL or HLSL, with a header saying where it came from
+// and an include guard, ready to paste or #include into a TAA shader. Signatures:
 //   vec3 kdop_<set>_clip_<n>(vec3 current, vec3 history, vec3 neighborhood[N])
 //   vec3 kdop_<set>_varclip_<n>(vec3 current, vec3 history, float gamma, vec3 neighborhood[N])
-std::string emit_function(const VariantSpec& spec);
+// and in HLSL the same with float3. Both dialects write the same operations in the same order.
+std::string emit_function(const VariantSpec& spec, const Dialect& dialect = kGlsl);
 
-// The compute shader of a variant: `compute_template` (shader_templates/rectify.comp.in) with its
-// @PLACEHOLDERS@ filled in. `template_origin` names the template in errors.
+// The compute shader of a variant: `compute_template` (shader_templates/rectify.comp.in, or
+// rectify.hlsl.in for HLSL) with its @PLACEHOLDERS@ filled in. `template_origin` names the template
+// in errors.
 Result<std::string> emit_compute_shader(const VariantSpec& spec, std::string_view compute_template,
-                                        std::string_view template_origin);
+                                        std::string_view template_origin, const Dialect& dialect = kGlsl);
 
 // The command that regenerates a variant, quoted in generated headers.
 std::string regenerate_command(const VariantSpec& spec);

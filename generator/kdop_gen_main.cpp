@@ -34,7 +34,7 @@ std::string read_file(const fs::path& path) {
     return text.str();
 }
 
-// Rewrites `dir` with the default variants' GLSL, removing GLSL files no default variant has; with
+// Rewrites `dir` with the default variants' GLSL and HLSL, removing such files no default variant has; with
 // `check`, writes nothing and fails when any file would change.
 int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, bool check) {
     std::vector<OutputFile> files;
@@ -48,7 +48,8 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
     if (fs::is_directory(dir))
         for (const auto& entry : fs::directory_iterator(dir)) {
             auto ext = entry.path().extension();
-            if ((ext == ".glsl" || ext == ".comp") && !expected.count(entry.path())) extra.push_back(entry.path());
+            if ((ext == ".glsl" || ext == ".hlsl" || ext == ".comp") && !expected.count(entry.path()))
+                extra.push_back(entry.path());
         }
     std::sort(extra.begin(), extra.end());
 
@@ -90,8 +91,10 @@ int main(int argc, char** argv) {
     registry->add_option("--namespace", cpp_namespace, "C++ namespace of the registry")->required();
     std::string functions_dir, depfile;
     std::vector<std::string> shaders, include_dirs;
-    registry->add_option("--functions", functions_dir,
-                         "Also write each selected variant's includable function (<variant>.glsl) into this directory");
+    registry->add_option(
+        "--functions", functions_dir,
+        "Also write each selected variant's includable function (<variant>.glsl, <variant>.hlsl) into this "
+        "directory");
     registry
         ->add_option("--shaders", shaders,
                      "The project's own compute shaders (GLSL) to embed too, named after their files; "
@@ -103,7 +106,8 @@ int main(int argc, char** argv) {
 
     std::string glsl_dir;
     bool check = false;
-    CLI::App* glsl = app.add_subcommand("glsl", "Write every default variant's .glsl and .comp into a directory");
+    CLI::App* glsl =
+        app.add_subcommand("glsl", "Write every default variant's .glsl, .hlsl and .comp into a directory");
     glsl->add_option("--out", glsl_dir, "Directory (normally generated/)")->required();
     glsl->add_flag("--check", check, "Write nothing; fail if any file in the directory is stale");
 
@@ -121,13 +125,15 @@ int main(int argc, char** argv) {
 
         std::vector<OutputFile> files;
         if (!functions_dir.empty())
-            for (const BuiltVariant& v : *built) files.push_back(function_file(v, functions_dir));
+            for (const BuiltVariant& v : *built)
+                for (OutputFile& f : function_files(v, functions_dir)) files.push_back(std::move(f));
 
         std::vector<fs::path> shader_reads;
         std::vector<fs::path> dirs(include_dirs.begin(), include_dirs.end());
         const std::size_t variant_count = built->size();
         for (const std::string& file : shaders) {
-            auto shader = build_project_shader(file, std::span(built->data(), variant_count), dirs);
+            auto shader = build_project_shader(file, std::span(built->data(), variant_count), dirs,
+                                               *parse_target_env(selection.target_env)); // checked by CLI11
             if (!shader) return report(shader.error());
             for (const BuiltVariant& v : *built)
                 if (v.name == shader->built.name)

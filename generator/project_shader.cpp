@@ -26,7 +26,7 @@ std::optional<std::string> read_text(const fs::path& path) {
 } // namespace
 
 Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
-                                           std::span<const fs::path> include_dirs) {
+                                           std::span<const fs::path> include_dirs, TargetEnv env) {
     ProjectShader out;
     out.built.spec.mode = Mode::shader;
     out.built.name = file.stem().string();
@@ -51,7 +51,8 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
         unresolved.emplace_back(header);
         return std::nullopt;
     };
-    auto compiled = compile_glsl_compute(out.built.compute_glsl, name, resolve);
+    out.built.spec.target_env = env;
+    auto compiled = compile_glsl_compute(out.built.compute_glsl, name, env, resolve);
     if (!compiled && !unresolved.empty()) {
         std::vector<std::string> functions;
         for (const BuiltVariant& v : variants) functions.push_back(v.name + ".glsl");
@@ -59,7 +60,8 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
                                 "including one or in an include directory\n",
                                 compiled.error().message, name, unresolved.front(), fmt::join(functions, ", ")));
     }
-    if (auto ok = compile_into(out.built, name, std::move(compiled)); !ok) return std::unexpected(ok.error());
+    if (auto ok = compile_into(out.built, out.built.compute_glsl, name, env, std::move(compiled)); !ok)
+        return std::unexpected(ok.error());
     return out;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "result.h"
+#include "target_env.h"
 #include "variant_builder.h"
 
 #include <filesystem>
@@ -21,9 +22,10 @@ struct ProjectShader {
 
 // Compiles `file`. `#include "<variant>.glsl"` names the includable function of one of `variants`;
 // any other include is looked up next to the including file, then in `include_dirs`, in order.
-// Loops are allowed: this is the project's code, not a variant.
+// Loops are allowed: this is the project's code, not a variant. SPIR-V for `env`.
 Result<ProjectShader> build_project_shader(const std::filesystem::path& file, std::span<const BuiltVariant> variants,
-                                           std::span<const std::filesystem::path> include_dirs);
+                                           std::span<const std::filesystem::path> include_dirs,
+                                           TargetEnv env = TargetEnv::vulkan1_0);
 
 // A Makefile rule "<target>: <dependencies>" (spaces escaped), the depfile format CMake and Ninja read.
 std::string depfile_rule(const std::filesystem::path& target, std::span<const std::filesystem::path> dependencies);

@@ -1,5 +1,6 @@
-// The --sets / --modes / --neighborhoods options shared by kdop and kdop-gen, so both accept and
-// describe a selection of variants the same way.
+// The --sets / --modes / --neighborhoods options (and how to write and build them: --projection,
+// --extent, --numerics, --target-env) shared by kdop and kdop-gen, so both accept and describe a
+// selection of variants the same way.
 #pragma once
 
 #include "builtin_sets.h"
@@ -15,7 +16,7 @@ namespace kdop {
 struct SelectionOptions {
     std::vector<std::string> sets, modes, neighborhoods, forms;
     bool baselines = false;
-    std::string projection = "multiply-add", extent = "running", numerics = "hardened";
+    std::string projection = "multiply-add", extent = "running", numerics = "hardened", target_env = "vulkan1.0";
 
     void add_to(CLI::App& app) {
         app.add_option("--sets", sets,
@@ -35,6 +36,10 @@ struct SelectionOptions {
                        "hardened, or paper for the supplement's numerics without kdop's fixes for HDR, flat and "
                        "NaN input (named <variant>-paper; see `kdop stress`)")
             ->check(CLI::IsMember({"hardened", "paper"}));
+        app.add_option("--target-env", target_env,
+                       "Vulkan version the SPIR-V is built and validated for: vulkan1.0 (SPIR-V 1.0, any device), "
+                       "vulkan1.1 (1.3), vulkan1.2 (1.5) or vulkan1.3 (1.6)")
+            ->check(CLI::IsMember({"vulkan1.0", "vulkan1.1", "vulkan1.2", "vulkan1.3"}));
     }
 
     // --projection and --extent.
@@ -52,10 +57,14 @@ struct SelectionOptions {
         if (specs)
             for (VariantSpec& s : *specs) {
                 s.style = style();
-                s.numerics = *parse_numerics(numerics); // checked by CLI11
+                s.numerics = *parse_numerics(numerics);       // checked by CLI11
+                s.target_env = *parse_target_env(target_env); // checked by CLI11
             }
         if (specs && baselines)
-            for (VariantSpec& b : baseline_kernels()) specs->push_back(std::move(b));
+            for (VariantSpec& b : baseline_kernels()) {
+                b.target_env = *parse_target_env(target_env);
+                specs->push_back(std::move(b));
+            }
         return specs;
     }
 };

@@ -85,6 +85,10 @@ Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t>
     std::map<std::uint32_t, std::uint32_t> sets, bindings;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> variables; // (pointer type, id)
     std::optional<std::uint32_t> entry_id;
+    // glslang writes the workgroup size as LocalSizeId for SPIR-V 1.6 (Vulkan 1.3): ids of constants,
+    // declared after the execution mode, so resolved once the module has been read.
+    std::array<std::uint32_t, 3> local_size_ids{};
+    std::map<std::uint32_t, std::uint32_t> constants;
 
     ShaderInterface interface;
     for (const SpirvInstruction& inst : spirv_instructions(words)) {
@@ -98,6 +102,12 @@ Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t>
             break;
         case spv::OpExecutionMode:
             if (op[1] == spv::ExecutionModeLocalSize) interface.local_size = {op[2], op[3], op[4]};
+            break;
+        case spv::OpExecutionModeId:
+            if (op[1] == spv::ExecutionModeLocalSizeId) local_size_ids = {op[2], op[3], op[4]};
+            break;
+        case spv::OpConstant:
+            if (op.size() == 3) constants[op[1]] = op[2]; // 32-bit: the workgroup size's uint
             break;
         case spv::OpName: names[op[0]] = literal_string(op.subspan(1)); break;
         case spv::OpMemberName: member_names[{op[0], op[1]}] = literal_string(op.subspan(2)); break;
@@ -120,6 +130,12 @@ Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t>
         }
     }
     if (!entry_id) return fail("module has no entry point");
+    if (interface.local_size[0] == 0 && local_size_ids[0] != 0)
+        for (int i = 0; i < 3; ++i) {
+            auto value = constants.find(local_size_ids[i]);
+            if (value == constants.end()) return fail("compute entry point's LocalSizeId is not a constant");
+            interface.local_size[i] = value->second;
+        }
     if (interface.local_size[0] == 0) return fail("compute entry point has no LocalSize execution mode");
 
     auto type_size = [&](std::uint32_t id) -> std::optional<std::uint32_t> {

@@ -10,7 +10,15 @@
 namespace kdop {
 namespace {
 
-constexpr spv_target_env kTargetEnv = SPV_ENV_VULKAN_1_0;
+spv_target_env spirv_tools_env(TargetEnv env) {
+    switch (env) {
+    case TargetEnv::vulkan1_0: return SPV_ENV_VULKAN_1_0;
+    case TargetEnv::vulkan1_1: return SPV_ENV_VULKAN_1_1;
+    case TargetEnv::vulkan1_2: return SPV_ENV_VULKAN_1_2;
+    case TargetEnv::vulkan1_3: return SPV_ENV_VULKAN_1_3;
+    }
+    return SPV_ENV_VULKAN_1_0;
+}
 
 // Collects SPIRV-Tools messages; the position's index is the 1-based ordinal of the instruction.
 struct MessageLog {
@@ -23,8 +31,9 @@ struct MessageLog {
 };
 
 Result<std::vector<std::uint32_t>> run_passes(const std::vector<std::uint32_t>& words, std::string_view name,
-                                              std::string_view what, void (*register_passes)(spvtools::Optimizer&)) {
-    spvtools::Optimizer optimizer(kTargetEnv);
+                                              TargetEnv env, std::string_view what,
+                                              void (*register_passes)(spvtools::Optimizer&)) {
+    spvtools::Optimizer optimizer(spirv_tools_env(env));
     MessageLog log;
     optimizer.SetMessageConsumer(log.consumer());
     register_passes(optimizer);
@@ -40,8 +49,8 @@ Result<std::vector<std::uint32_t>> run_passes(const std::vector<std::uint32_t>& 
 } // namespace
 
 Result<void> validate_spirv(const std::vector<std::uint32_t>& words, std::string_view source, std::string_view name,
-                            std::string_view stage) {
-    spvtools::SpirvTools tools(kTargetEnv);
+                            std::string_view stage, TargetEnv env) {
+    spvtools::SpirvTools tools(spirv_tools_env(env));
     MessageLog log;
     tools.SetMessageConsumer(log.consumer());
     if (tools.Validate(words)) return {};
@@ -52,12 +61,14 @@ Result<void> validate_spirv(const std::vector<std::uint32_t>& words, std::string
     return fail(text.empty() ? fmt::format("{}: SPIR-V validation of the {} failed", name, stage) : text);
 }
 
-Result<std::vector<std::uint32_t>> optimize_spirv(const std::vector<std::uint32_t>& words, std::string_view name) {
-    return run_passes(words, name, "optimization", [](spvtools::Optimizer& o) { o.RegisterPerformancePasses(); });
+Result<std::vector<std::uint32_t>> optimize_spirv(const std::vector<std::uint32_t>& words, std::string_view name,
+                                                  TargetEnv env) {
+    return run_passes(words, name, env, "optimization", [](spvtools::Optimizer& o) { o.RegisterPerformancePasses(); });
 }
 
-Result<std::vector<std::uint32_t>> strip_debug_info(const std::vector<std::uint32_t>& words, std::string_view name) {
-    return run_passes(words, name, "debug-information stripping",
+Result<std::vector<std::uint32_t>> strip_debug_info(const std::vector<std::uint32_t>& words, std::string_view name,
+                                                    TargetEnv env) {
+    return run_passes(words, name, env, "debug-information stripping",
                       [](spvtools::Optimizer& o) { o.RegisterPass(spvtools::CreateStripDebugInfoPass()); });
 }
 

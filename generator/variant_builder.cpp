@@ -17,44 +17,57 @@ namespace kdop {
 namespace {
 
 constexpr std::string_view kComputeTemplate = "shader_templates/rectify.comp.in";
+constexpr std::string_view kHlslComputeTemplate = "shader_templates/rectify.hlsl.in";
+
+// The compute shader `language` asks for, around the function in that language.
+Result<std::string> compute_shader(const VariantSpec& spec, SourceLanguage language) {
+    const bool hlsl = language == SourceLanguage::hlsl;
+    const std::string_view origin = hlsl ? kHlslComputeTemplate : kComputeTemplate;
+    auto text = find_embedded_file(origin);
+    if (!text) return fail(fmt::format("internal error: {} is not embedded", origin));
+    return emit_compute_shader(spec, *text, origin, hlsl ? kHlsl : kGlsl);
+}
 
 } // namespace
 
-Result<void> compile_into(BuiltVariant& v, std::string_view file, Result<std::vector<std::uint32_t>> compiled) {
+Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_view file, TargetEnv env,
+                          Result<std::vector<std::uint32_t>> compiled) {
     if (!compiled) return std::unexpected(compiled.error());
-    if (auto ok = validate_spirv(*compiled, v.compute_glsl, file, "glslang output"); !ok) return ok;
+    if (auto ok = validate_spirv(*compiled, source, file, "glslang output", env); !ok) return ok;
 
-    auto optimized = optimize_spirv(*compiled, file);
+    auto optimized = optimize_spirv(*compiled, file, env);
     if (!optimized) return std::unexpected(optimized.error());
-    if (auto ok = validate_spirv(*optimized, v.compute_glsl, file, "optimized module"); !ok) return ok;
+    if (auto ok = validate_spirv(*optimized, source, file, "optimized module", env); !ok) return ok;
 
     auto interface = reflect_compute_interface(*optimized);
     if (!interface) return fail(fmt::format("{}: reflection failed: {}", file, interface.error().message));
     v.interface = std::move(*interface);
 
-    auto stripped = strip_debug_info(*optimized, file);
+    auto stripped = strip_debug_info(*optimized, file, env);
     if (!stripped) return std::unexpected(stripped.error());
-    if (auto ok = validate_spirv(*stripped, v.compute_glsl, file, "shipped module"); !ok) return ok;
+    if (auto ok = validate_spirv(*stripped, source, file, "shipped module", env); !ok) return ok;
     v.spirv = std::move(*stripped);
     v.counts = count_spirv(v.spirv);
     return {};
 }
 
-Result<BuiltVariant> build_variant(const VariantSpec& spec) {
+Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage language) {
     BuiltVariant v;
     v.spec = spec;
     v.name = variant_name(spec);
-    const std::string file = v.name + ".comp";
+    const bool hlsl = language == SourceLanguage::hlsl;
+    const std::string file = v.name + (hlsl ? ".hlsl (compute)" : ".comp");
+    const TargetEnv env = spec.target_env;
 
-    auto compute_template = find_embedded_file(kComputeTemplate);
-    if (!compute_template) return fail(fmt::format("internal error: {} is not embedded", kComputeTemplate));
-    v.function_glsl = emit_function(spec);
-    auto compute = emit_compute_shader(spec, *compute_template, kComputeTemplate);
+    v.function_glsl = emit_function(spec, kGlsl);
+    v.function_hlsl = emit_function(spec, kHlsl);
+    auto compute = compute_shader(spec, language);
     if (!compute) return std::unexpected(compute.error());
-    v.compute_glsl = std::move(*compute);
+    (hlsl ? v.compute_hlsl : v.compute_glsl) = std::move(*compute);
+    const std::string& source = hlsl ? v.compute_hlsl : v.compute_glsl;
 
-    if (auto ok = compile_into(v, file, compile_glsl_compute(v.compute_glsl, file)); !ok)
-        return std::unexpected(ok.error());
+    auto compiled = hlsl ? compile_hlsl_compute(source, file, env) : compile_glsl_compute(source, file, env);
+    if (auto ok = compile_into(v, source, file, env, std::move(compiled)); !ok) return std::unexpected(ok.error());
     if (v.counts.loop_merges)
         return fail(fmt::format("{}: {} loop(s) left in the optimized SPIR-V; variants must be fully unrolled", file,
                                 v.counts.loop_merges));
@@ -62,7 +75,7 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec) {
 }
 
 Result<std::vector<BuiltVariant>> build_variants(std::span<const VariantSpec> specs, unsigned threads,
-                                                 const BuildProgress& progress) {
+                                                 const BuildProgress& progress, SourceLanguage language) {
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(specs.size(), 1)));
 
@@ -75,7 +88,7 @@ Result<std::vector<BuiltVariant>> build_variants(std::span<const VariantSpec> sp
         for (unsigned t = 0; t < threads; ++t)
             workers.emplace_back([&] {
                 for (std::size_t i; (i = next++) < specs.size();) {
-                    results[i] = build_variant(specs[i]);
+                    results[i] = build_variant(specs[i], language);
                     std::lock_guard lock(progress_mutex);
                     ++done;
                     if (progress) progress(done, specs.size(), variant_name(specs[i]));

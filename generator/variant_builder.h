@@ -1,5 +1,6 @@
-// Building variants: emit GLSL, compile with glslang, validate, optimize, validate again, reflect
-// the interface, strip debug information, validate what ships, and check that no loop survived.
+// Building variants: emit GLSL (and the same function in HLSL), compile with glslang, validate,
+// optimize, validate again, reflect the interface, strip debug information, validate what ships,
+// and check that no loop survived. All for the spec's target environment (target_env.h).
 // Variants build in parallel; results come back in the order of the specs, so output does not
 // depend on thread timing.
 #pragma once
@@ -20,18 +21,26 @@ struct BuiltVariant {
     VariantSpec spec;
     std::string name;
     std::string function_glsl;        // the includable function (.glsl)
-    std::string compute_glsl;         // the compute shader (.comp)
-    std::vector<std::uint32_t> spirv; // optimized, validated, stripped (.spv)
+    std::string function_hlsl;        // the same function in HLSL (.hlsl)
+    std::string compute_glsl;         // the compute shader (.comp), when built from GLSL
+    std::string compute_hlsl;         // the HLSL compute shader, when built from HLSL
+    std::vector<std::uint32_t> spirv; // optimized, validated, stripped (.spv), from the compute shader
     ShaderInterface interface;
     SpirvCounts counts;
 };
 
-Result<BuiltVariant> build_variant(const VariantSpec& spec);
+// Which compute shader a build compiles: the GLSL one, which is what ships, or the HLSL one
+// (shader_templates/rectify.hlsl.in around the HLSL function, same interface), through glslang's
+// HLSL front end, which the tests run to show the HLSL function computes what the GLSL one does.
+enum class SourceLanguage { glsl, hlsl };
 
-// The stages after glslang, shared by variants and a project's own shaders: validate `compiled`,
-// optimize, validate, reflect into v.interface, strip, validate what ships into v.spirv, count.
-// Messages name `file` and the lines of v.compute_glsl.
-Result<void> compile_into(BuiltVariant& v, std::string_view file, Result<std::vector<std::uint32_t>> compiled);
+Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage language = SourceLanguage::glsl);
+
+// The stages after glslang, shared by variants and a project's own shaders, for `env`: validate
+// `compiled`, optimize, validate, reflect into v.interface, strip, validate what ships into v.spirv,
+// count. Messages name `file` and the lines of `source`, the shader `compiled` came from.
+Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_view file, TargetEnv env,
+                          Result<std::vector<std::uint32_t>> compiled);
 
 // Called after each variant finishes, from the worker that built it (calls are serialized).
 using BuildProgress = std::function<void(std::size_t done, std::size_t total, const std::string& name)>;
@@ -39,6 +48,7 @@ using BuildProgress = std::function<void(std::size_t done, std::size_t total, co
 // Builds every spec, on up to `threads` threads (0: one per core). Fails if any variant fails,
 // with every failing variant's messages in spec order.
 Result<std::vector<BuiltVariant>> build_variants(std::span<const VariantSpec> specs, unsigned threads = 0,
-                                                 const BuildProgress& progress = {});
+                                                 const BuildProgress& progress = {},
+                                                 SourceLanguage language = SourceLanguage::glsl);
 
 } // namespace kdop

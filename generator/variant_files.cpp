@@ -6,12 +6,14 @@
 namespace kdop {
 namespace fs = std::filesystem;
 
-std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {
-    return {{dir / (v.name + ".glsl"), v.function_glsl}, {dir / (v.name + ".comp"), v.compute_glsl}};
+std::vector<OutputFile> function_files(const BuiltVariant& v, const fs::path& dir) {
+    return {{dir / (v.name + ".glsl"), v.function_glsl}, {dir / (v.name + ".hlsl"), v.function_hlsl}};
 }
 
-OutputFile function_file(const BuiltVariant& v, const fs::path& dir) {
-    return {dir / (v.name + ".glsl"), v.function_glsl};
+std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {
+    std::vector<OutputFile> files = function_files(v, dir);
+    files.push_back({dir / (v.name + ".comp"), v.compute_glsl});
+    return files;
 }
 
 std::string spirv_bytes(std::span<const std::uint32_t> words) {

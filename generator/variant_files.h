@@ -1,4 +1,4 @@
-// The files a built variant is written as: its GLSL and its SPIR-V, ready for
+// The files a built variant is written as: its GLSL, its HLSL and its SPIR-V, ready for
 // write_files_atomically (core/write_files.h).
 #pragma once
 
@@ -13,10 +13,11 @@
 
 namespace kdop {
 
-// <dir>/<name>.glsl (includable function) and <dir>/<name>.comp (compute shader).
+// <dir>/<name>.glsl and <dir>/<name>.hlsl (the includable function in each language) and
+// <dir>/<name>.comp (compute shader).
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const std::filesystem::path& dir);
-// <dir>/<name>.glsl: the includable function alone, for a project's own shaders.
-OutputFile function_file(const BuiltVariant& v, const std::filesystem::path& dir);
+// <dir>/<name>.glsl and <dir>/<name>.hlsl: the includable function alone, for a project's own shaders.
+std::vector<OutputFile> function_files(const BuiltVariant& v, const std::filesystem::path& dir);
 // A module's words as the little-endian bytes of a .spv file.
 std::string spirv_bytes(std::span<const std::uint32_t> words);
 // <dir>/<name>.spv: the optimized module's bytes.

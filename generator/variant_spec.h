@@ -4,6 +4,7 @@
 
 #include "axis_set.h"
 #include "result.h"
+#include "target_env.h"
 #include "variant_key.h"
 
 #include <kdop/variant.h>
@@ -47,6 +48,8 @@ struct VariantSpec {
     // extremes; its price is measured by `kdop bench` (cost.csv, paper_* columns).
     Numerics numerics = Numerics::hardened;
     EmitStyle style = {};
+    // What the SPIR-V is built for; the shader text does not depend on it.
+    TargetEnv target_env = TargetEnv::vulkan1_0;
 
     VariantKey key() const { return {set.name, mode, neighborhood, form, numerics}; }
 };

@@ -38,15 +38,18 @@ TEST(Cli, ListPrintsEveryDefaultCombinationOncePerLine) {
     EXPECT_EQ(lines(r.out), expected);
 }
 
-TEST(Cli, GenWritesGlslCompAndSpvPerVariantAndPrintsATable) {
+TEST(Cli, GenWritesGlslHlslCompAndSpvPerVariantAndPrintsATable) {
     test::TempDir dir;
     auto r = run(kdop("gen --out " + (dir / "out").string() + " --sets dop22 " + test::data_path("tiny.axes") +
                       " --modes clip --neighborhoods n9 n5"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (std::string name : {"dop22-clip-n9", "dop22-clip-n5", "tiny-clip-n9", "tiny-clip-n5"})
-        for (std::string ext : {".glsl", ".comp", ".spv"})
+        for (std::string ext : {".glsl", ".hlsl", ".comp", ".spv"})
             EXPECT_TRUE(fs::exists(dir / "out" / (name + ext))) << name + ext;
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 12);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 16);
+    EXPECT_NE(test::read_file(dir / "out" / "dop22-clip-n9.hlsl")
+                  .find("float3 kdop_dop22_clip_n9(float3 current, float3 history, float3 neighborhood[9])"),
+              std::string::npos);
     EXPECT_NE(r.out.find("variant"), std::string::npos);
     EXPECT_NE(r.out.find("instructions"), std::string::npos);
     EXPECT_NE(r.out.find("dop22-clip-n9"), std::string::npos);
@@ -66,7 +69,38 @@ TEST(Cli, TwoGenerationRunsGiveIdenticalBytes) {
         EXPECT_EQ(test::read_file(entry.path()), test::read_file(dir / "b" / entry.path().filename()))
             << entry.path().filename();
     }
-    EXPECT_EQ(files, 72u);
+    EXPECT_EQ(files, 96u);
+}
+
+// The .spv's version word (the header's second word, little-endian) is the one --target-env asks for.
+TEST(Cli, GenAndRegistryBuildForTheTargetEnvironment) {
+    test::TempDir dir;
+    const std::pair<const char*, std::string> envs[] = {{"", std::string("\x00\x00\x01\x00", 4)},
+                                                        {"vulkan1.0", std::string("\x00\x00\x01\x00", 4)},
+                                                        {"vulkan1.1", std::string("\x00\x03\x01\x00", 4)},
+                                                        {"vulkan1.2", std::string("\x00\x05\x01\x00", 4)},
+                                                        {"vulkan1.3", std::string("\x00\x06\x01\x00", 4)}};
+    for (const auto& [env, version] : envs) {
+        fs::path out = dir / (std::string("out-") + env);
+        auto r = run(kdop("gen --sets aabb --modes varclip --neighborhoods n5 --out " + out.string() +
+                          (*env ? std::string(" --target-env ") + env : std::string())));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(test::read_file(out / "aabb-varclip-n5.spv").substr(4, 4), version) << env;
+    }
+    auto r =
+        run(test::kdop_gen_binary() + " registry --sets aabb --modes clip --neighborhoods n5 --target-env " +
+            "vulkan1.3 --namespace x --header " + (dir / "x.h").string() + " --source " + (dir / "x.cpp").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(test::read_file(dir / "x.cpp").find("0x00010600"), std::string::npos) << "SPIR-V 1.6 header word";
+    for (const std::string& bad : {kdop("gen --out " + (dir / "bad").string() + " --target-env vulkan1.4"),
+                                   test::kdop_gen_binary() + " registry --target-env opengl --namespace x --header " +
+                                       (dir / "y.h").string() + " --source " + (dir / "y.cpp").string()}) {
+        auto refused = run(bad);
+        EXPECT_EQ(refused.exit_code, 2) << bad;
+        EXPECT_NE(refused.err.find("--target-env"), std::string::npos) << refused.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "bad"));
+    EXPECT_FALSE(fs::exists(dir / "y.cpp"));
 }
 
 // Runs `kdop gen` on an axis file with the given text; expects refusal with `message` on stderr
@@ -133,6 +167,16 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
     r = run(kdop("show dop22-varclip-n9-loop"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("[[unroll]] for (int a = 0; a < 11; ++a)"), std::string::npos);
+
+    r = run(kdop("show dop32-varclip-n9 --hlsl"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("float3 kdop_dop32_varclip_n9(float3 current, float3 history, float gamma, float3 "
+                         "neighborhood[9])"),
+              std::string::npos);
+    r = run(kdop("show dop22-varclip-n5 --compute --hlsl"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("[numthreads(8, 8, 1)]"), std::string::npos);
+    EXPECT_NE(r.out.find("[[vk::push_constant]] ConstantBuffer<Parameters> parameters;"), std::string::npos);
 
     r = run(kdop("show tiny-clip-n9 --sets " + test::data_path("tiny.axes")));
     ASSERT_EQ(r.exit_code, 0) << r.err;

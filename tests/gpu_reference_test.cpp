@@ -43,18 +43,7 @@ double magnitude(const glm::vec4& a, const glm::vec4& b) {
     return std::max({1.0f, m.x, m.y, m.z});
 }
 
-// Every GPU test checks at its end that the validation layer reported nothing during it.
-class Gpu : public ::testing::Test {
-protected:
-    void SetUp() override { seen_ = test::gpu().validation_messages().size(); }
-    void TearDown() override {
-        auto messages = test::gpu().validation_messages();
-        for (std::size_t i = seen_; i < messages.size(); ++i) ADD_FAILURE() << "validation: " << messages[i];
-    }
-
-private:
-    std::size_t seen_ = 0;
-};
+class Gpu : public test::ValidationChecked {};
 
 TEST_F(Gpu, EveryDefaultVariantMatchesTheReferenceAndItsLoopForm) {
     ASSERT_GE(cases().size(), 24u) << "six synthetic families x four history models at least";

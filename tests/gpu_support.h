@@ -13,6 +13,8 @@
 
 #include <kdop/variant.h>
 
+#include <gtest/gtest.h>
+
 #include <string>
 
 namespace kdop::test {
@@ -43,5 +45,18 @@ struct ErrorReport {
     std::uint32_t x = 0, y = 0;
 };
 ErrorReport relative_error(const Image& a, const Image& b, const Image& current, const Image& history);
+
+// A fixture for GPU tests: each checks at its end that the validation layer reported nothing during it.
+class ValidationChecked : public ::testing::Test {
+protected:
+    void SetUp() override { seen_ = gpu().validation_messages().size(); }
+    void TearDown() override {
+        auto messages = gpu().validation_messages();
+        for (std::size_t i = seen_; i < messages.size(); ++i) ADD_FAILURE() << "validation: " << messages[i];
+    }
+
+private:
+    std::size_t seen_ = 0;
+};
 
 } // namespace kdop::test

@@ -61,6 +61,8 @@ TEST(KdopGen, EmbedsAProjectShaderWithTheFunctionsItIncludes) {
 
     EXPECT_EQ(test::read_file(functions / "dop22-clip-n9.glsl"),
               test::run(test::kdop_binary() + " show dop22-clip-n9").out);
+    EXPECT_EQ(test::read_file(functions / "dop22-clip-n9.hlsl"),
+              test::run(test::kdop_binary() + " show --hlsl dop22-clip-n9").out);
 }
 
 TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
