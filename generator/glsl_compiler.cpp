@@ -85,12 +85,34 @@ private:
     std::vector<std::unique_ptr<IncludedSource>> sources_;
 };
 
-// Parses `shader` (its source and language already set), links it and translates it to SPIR-V.
-// With a resolver, #include works as with glslc (GL_GOOGLE_include_directive, enabled); without
-// one, an #include is an error.
-Result<std::vector<std::uint32_t>> compile_shader(glslang::TShader& shader, EShMessages messages,
-                                                  std::string_view source, std::string_view name,
+// Compiles one compute shader of `language` for `env`: parse, link, translate to SPIR-V. With a
+// resolver, #include works as with glslc (GL_GOOGLE_include_directive, enabled); without one, an
+// #include is an error.
+Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, std::string_view source,
+                                                  std::string_view name, TargetEnv env,
                                                   const IncludeResolver& resolve = {}) {
+    initialize_glslang_once();
+    const bool hlsl = language == glslang::EShSourceHlsl;
+    const EShMessages messages =
+        static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? EShMsgReadHlsl : 0));
+
+    glslang::TShader shader(EShLangCompute);
+    const char* text = source.data();
+    const int length = static_cast<int>(source.size());
+    const std::string name_string(name);
+    const char* names = name_string.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    const auto [client, target] = glslang_target(env);
+    shader.setEnvInput(language, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, client);
+    shader.setEnvTarget(glslang::EShTargetSpv, target);
+    if (hlsl) {
+        shader.setEntryPoint("main");
+        // HLSL textures are separate images; this turns each into a combined image sampler (and
+        // drops sampler objects), the descriptor type the GLSL shader's sampler2D has and the runtime binds.
+        shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
+    }
+
     std::optional<Includer> includer;
     glslang::TShader::ForbidIncluder no_includes;
     if (resolve) {
@@ -126,41 +148,11 @@ std::string glsl_diagnostic(std::string_view source, std::string_view name, int 
 
 Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name, TargetEnv env,
                                                         const IncludeResolver& resolve) {
-    initialize_glslang_once();
-    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
-
-    glslang::TShader shader(EShLangCompute);
-    const char* text = source.data();
-    const int length = static_cast<int>(source.size());
-    const std::string name_string(name);
-    const char* names = name_string.c_str();
-    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
-    const auto [client, target] = glslang_target(env);
-    shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
-    shader.setEnvClient(glslang::EShClientVulkan, client);
-    shader.setEnvTarget(glslang::EShTargetSpv, target);
-    return compile_shader(shader, messages, source, name, resolve);
+    return compile_shader(glslang::EShSourceGlsl, source, name, env, resolve);
 }
 
 Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name, TargetEnv env) {
-    initialize_glslang_once();
-    const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
-
-    glslang::TShader shader(EShLangCompute);
-    const char* text = source.data();
-    const int length = static_cast<int>(source.size());
-    const std::string name_string(name);
-    const char* names = name_string.c_str();
-    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
-    shader.setEntryPoint("main");
-    const auto [client, target] = glslang_target(env);
-    shader.setEnvInput(glslang::EShSourceHlsl, EShLangCompute, glslang::EShClientVulkan, 100);
-    shader.setEnvClient(glslang::EShClientVulkan, client);
-    shader.setEnvTarget(glslang::EShTargetSpv, target);
-    // HLSL textures are separate images; this turns each into a combined image sampler (and drops
-    // sampler objects), the descriptor type the GLSL shader's sampler2D has and the runtime binds.
-    shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
-    return compile_shader(shader, messages, source, name);
+    return compile_shader(glslang::EShSourceHlsl, source, name, env);
 }
 
 } // namespace kdop

@@ -23,7 +23,8 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0);
 // The format follows the extension. EXR and TIFF keep 32-bit floats; Radiance HDR keeps RGB with
 // about 8 bits relative to each pixel's brightest channel; integer formats such as PNG keep values
 // from 0 to 1, and an image with any other value (HDR, negative, NaN) is refused rather than
-// clamped, so use EXR for data. Lossy formats (JPEG, WebP, HEIF, GIF) are refused: they would not
+// clamped, so use EXR for data; a PNG is tagged linear (gAMA 1.0), which is what its values are.
+// Lossy formats (JPEG, WebP, HEIF, GIF) are refused: they would not
 // give back what was written.
 Result<void> write_image(const std::string& path, const Image& image);
 

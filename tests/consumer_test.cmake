@@ -8,13 +8,7 @@ cmake_minimum_required(VERSION 3.25) # policies: if() reads TRUE and FALSE as bo
 #   -DINSTALL_FROM=<build dir>                          an installation of it, moved after installing
 #   -DKDOP_SUBDIRECTORY=<source dir>                    add_subdirectory, generator only
 
-function(run_checked output_var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT result EQUAL 0)
-    message(FATAL_ERROR "failed (${result}): ${ARGN}\n${out}\n${err}")
-  endif()
-  set(${output_var} "${out}${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/project_test_support.cmake)
 
 # Builds; GENERATES and COMPILES (TRUE/FALSE) say whether variants must be regenerated and C++ compiled.
 function(build_and_expect generates compiles reason)
@@ -30,11 +24,6 @@ function(build_and_expect generates compiles reason)
     endif()
   endforeach()
   message(STATUS "ok: ${reason}")
-endfunction()
-
-function(touch_later file)
-  execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
-  file(TOUCH ${file})
 endfunction()
 
 # Work on a copy, so touching its axis file does not touch the repository.

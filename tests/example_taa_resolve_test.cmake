@@ -5,13 +5,7 @@ cmake_minimum_required(VERSION 3.25) # policies: if() reads TRUE and FALSE as bo
 # regenerates, but the SPIR-V is the same, so nothing recompiles.
 # Inputs: SOURCE, BUILD, GENERATOR, kdop_DIR.
 
-function(run_checked output_var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT result EQUAL 0)
-    message(FATAL_ERROR "failed (${result}): ${ARGN}\n${out}\n${err}")
-  endif()
-  set(${output_var} "${out}${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/project_test_support.cmake)
 
 file(REMOVE_RECURSE ${BUILD})
 file(COPY ${SOURCE}/ DESTINATION ${BUILD}/src)
@@ -42,7 +36,7 @@ run_checked(out ${CMAKE_COMMAND} --build ${BUILD}/build)
 if(out MATCHES "kdop: generating|Building CXX")
   message(FATAL_ERROR "no-op rebuild did work:\n${out}")
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
+execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1) # past the time-stamp resolution
 file(APPEND ${BUILD}/src/taa_resolve.comp "// a comment changes no instruction\n")
 run_checked(out ${CMAKE_COMMAND} --build ${BUILD}/build)
 if(NOT out MATCHES "kdop: generating" OR out MATCHES "Building CXX")

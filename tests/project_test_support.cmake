@@ -1,0 +1,16 @@
+# What the scripts that build example projects share (consumer_test.cmake, example_taa_resolve_test.cmake).
+
+# Runs a command; fails the test with its output unless it exits 0. OUTPUT_VAR gets stdout and stderr.
+function(run_checked output_var)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "failed (${result}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(${output_var} "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+# Waits past the file system's time-stamp resolution, then touches FILE, so a build sees it newer.
+function(touch_later file)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
+  file(TOUCH ${file})
+endfunction()
