@@ -37,7 +37,7 @@ Action add_gen_command(CLI::App& app) {
         "gen", "Generate variants: write <name>.glsl and <name>.hlsl (includable function), <name>.comp "
                "(compute shader) and <name>.spv (optimized SPIR-V) per variant, then print a table of them");
     gen->add_option("--out", options->out, "Output directory (created if missing)")->required();
-    options->selection.add_to(*gen);
+    options->selection.add_to(*gen, /*with_manifest=*/true);
     gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]");
 
     return [options] {

@@ -1,18 +1,33 @@
 #include "commands.h"
 
+#include "manifest.h"
 #include "variant_spec.h"
 
 #include <iostream>
 #include <memory>
+#include <string>
 
 namespace kdop::cli {
 
 Action add_list_command(CLI::App& app) {
-    auto all = std::make_shared<bool>(false);
+    struct Options {
+        bool all = false;
+        std::string manifest;
+    };
+    auto o = std::make_shared<Options>();
     CLI::App* list = app.add_subcommand("list", "Print the name of every default variant, one per line");
-    list->add_flag("--all", *all, "Also the loop-form baselines (<variant>-loop) and gather-n9, gather-n5, copy");
-    return [all] {
-        auto specs = *all ? Result<std::vector<VariantSpec>>(all_builtin_variants()) : select_variants({}, {}, {});
+    auto* all =
+        list->add_flag("--all", o->all, "Also the loop-form baselines (<variant>-loop) and gather-n9, gather-n5, copy");
+    list->add_option("--manifest", o->manifest, "Only the variants a scene's manifest lists, in its order")
+        ->excludes(all);
+    return [o] {
+        if (!o->manifest.empty()) {
+            auto manifest = read_manifest(o->manifest);
+            if (!manifest) return report_error(manifest.error().message);
+            for (const VariantSpec& spec : manifest->variants) std::cout << variant_name(spec) << '\n';
+            return 0;
+        }
+        auto specs = o->all ? Result<std::vector<VariantSpec>>(all_builtin_variants()) : select_variants({}, {}, {});
         if (!specs) return report_error(specs.error().message);
         for (const VariantSpec& spec : *specs) std::cout << variant_name(spec) << '\n';
         return 0;

@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     std::string header, source, cpp_namespace;
     CLI::App* registry =
         app.add_subcommand("registry", "Write a C++ registry (header + source) of the selected variants");
-    selection.add_to(*registry);
+    selection.add_to(*registry, /*with_manifest=*/true);
     registry->add_option("--header", header, "Header file to write")->required();
     registry->add_option("--source", source, "Source file to write")->required();
     registry->add_option("--namespace", cpp_namespace, "C++ namespace of the registry")->required();

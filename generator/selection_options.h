@@ -4,6 +4,7 @@
 #pragma once
 
 #include "builtin_sets.h"
+#include "manifest.h"
 #include "variant_spec.h"
 
 #include <CLI/CLI.hpp>
@@ -17,29 +18,41 @@ struct SelectionOptions {
     std::vector<std::string> sets, modes, neighborhoods, forms;
     bool baselines = false;
     std::string projection = "multiply-add", extent = "running", numerics = "hardened", target_env = "vulkan1.0";
+    std::string manifest; // a scene's variant manifest (manifest.h), instead of the cross product
 
-    void add_to(CLI::App& app) {
-        app.add_option("--sets", sets,
-                       "Axis sets: built-in names (" + builtin_set_list() +
-                           ") or paths to .axes files [default: every built-in set]");
-        app.add_option("--modes", modes, "clip and/or varclip [default: both]");
-        app.add_option("--neighborhoods", neighborhoods, "n9 (3x3) and/or n5 (plus) [default: both]");
-        app.add_option("--forms", forms,
-                       "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]");
-        app.add_flag("--baselines", baselines, "Also the cost baselines gather-n9, gather-n5 and copy");
+    // `with_manifest`: also --manifest FILE, which excludes the options that select by cross product.
+    void add_to(CLI::App& app, bool with_manifest = false) {
+        std::vector<CLI::Option*> cross_product{
+            app.add_option("--sets", sets,
+                           "Axis sets: built-in names (" + builtin_set_list() +
+                               ") or paths to .axes files [default: every built-in set]"),
+            app.add_option("--modes", modes, "clip and/or varclip [default: both]"),
+            app.add_option("--neighborhoods", neighborhoods, "n9 (3x3) and/or n5 (plus) [default: both]"),
+            app.add_option(
+                "--forms", forms,
+                "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]"),
+            app.add_flag("--baselines", baselines, "Also the cost baselines gather-n9, gather-n5 and copy")};
         app.add_option("--projection", projection,
                        "How unrolled projections are written: fold-dot, multiply-add or full-dot")
             ->check(CLI::IsMember({"fold-dot", "multiply-add", "full-dot"}));
         app.add_option("--extent", extent, "How unrolled slab extents are reduced: tree or running")
             ->check(CLI::IsMember({"tree", "running"}));
-        app.add_option("--numerics", numerics,
-                       "hardened, or paper for the supplement's numerics without kdop's fixes for HDR, flat and "
-                       "NaN input (named <variant>-paper; see `kdop stress`)")
-            ->check(CLI::IsMember({"hardened", "paper"}));
+        cross_product.push_back(
+            app.add_option("--numerics", numerics,
+                           "hardened, or paper for the supplement's numerics without kdop's fixes for HDR, flat and "
+                           "NaN input (named <variant>-paper; see `kdop stress`)")
+                ->check(CLI::IsMember({"hardened", "paper"})));
         app.add_option("--target-env", target_env,
                        "Vulkan version the SPIR-V is built and validated for: vulkan1.0 (SPIR-V 1.0, any device), "
                        "vulkan1.1 (1.3), vulkan1.2 (1.5) or vulkan1.3 (1.6)")
             ->check(CLI::IsMember({"vulkan1.0", "vulkan1.1", "vulkan1.2", "vulkan1.3"}));
+        if (with_manifest) {
+            CLI::Option* option =
+                app.add_option("--manifest", manifest,
+                               "Exactly the variants a scene's manifest lists (one variant name per line; `set: FILE` "
+                               "lines add axis files; see the README)");
+            for (CLI::Option* other : cross_product) option->excludes(other);
+        }
     }
 
     // --projection and --extent.
@@ -53,6 +66,15 @@ struct SelectionOptions {
     }
 
     Result<std::vector<VariantSpec>> select() const {
+        if (!manifest.empty()) {
+            auto listed = read_manifest(manifest);
+            if (!listed) return std::unexpected(listed.error());
+            for (VariantSpec& s : listed->variants) {
+                s.style = style();
+                s.target_env = *parse_target_env(target_env); // checked by CLI11
+            }
+            return std::move(listed->variants);
+        }
         auto specs = select_variants(sets, modes, neighborhoods, forms);
         if (specs)
             for (VariantSpec& s : *specs) {

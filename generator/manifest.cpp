@@ -1,0 +1,77 @@
+#include "manifest.h"
+
+#include "builtin_sets.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace kdop {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+    const auto first = s.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+} // namespace
+
+Result<Manifest> read_manifest(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return fail(fmt::format("{}: cannot read manifest", path.string()));
+    Manifest manifest;
+    std::map<std::string, AxisSet> declared; // `set:` files by set name
+    int number = 0;
+    for (std::string text; std::getline(in, text);) {
+        ++number;
+        const std::string where = fmt::format("{}:{}", path.string(), number);
+        std::string_view line = trimmed(std::string_view(text).substr(0, text.find('#')));
+        if (line.empty()) continue;
+
+        if (line.starts_with("set:")) {
+            const fs::path file = path.parent_path() / trimmed(line.substr(4));
+            std::ifstream set_in(file, std::ios::binary);
+            std::ostringstream set_text;
+            set_text << set_in.rdbuf();
+            if (!set_in || set_in.bad())
+                return fail(fmt::format("{}: cannot read axis-set file {}", where, file.string()));
+            auto set = parse_axis_set(set_text.str(), file.string()); // its errors name the file and line
+            if (!set) return fail(fmt::format("{}: in the set it names: {}", where, set.error().message));
+            if (is_builtin_set(set->name) || declared.count(set->name))
+                return fail(fmt::format("{}: {} names its set '{}', which {}", where, file.string(), set->name,
+                                        declared.count(set->name) ? "an earlier set: line gives" : "is built in"));
+            manifest.set_files.push_back(file);
+            declared.emplace(set->name, std::move(*set));
+            continue;
+        }
+
+        auto key = parse_variant_key(line, where);
+        if (!key) return std::unexpected(key.error());
+        VariantSpec spec{{}, key->mode, key->neighborhood, key->form, key->numerics};
+        if (key->is_clip()) {
+            if (auto found = declared.find(key->set); found != declared.end())
+                spec.set = found->second;
+            else if (is_builtin_set(key->set))
+                spec.set = *resolve_axis_set(key->set); // built in: cannot fail
+            else
+                return fail(fmt::format("{}: '{}' is of set '{}', which is neither built in ({}) nor given by a "
+                                        "`set: FILE` line above",
+                                        where, line, key->set, builtin_set_list()));
+        }
+        if (std::any_of(manifest.variants.begin(), manifest.variants.end(),
+                        [&](const VariantSpec& s) { return s.key() == spec.key(); }))
+            return fail(fmt::format("{}: '{}' is listed twice", where, line));
+        manifest.variants.push_back(std::move(spec));
+    }
+    if (in.bad()) return fail(fmt::format("{}: read error", path.string()));
+    if (manifest.variants.empty()) return fail(fmt::format("{}: lists no variant", path.string()));
+    return manifest;
+}
+
+} // namespace kdop
