@@ -1,0 +1,65 @@
+// The k-DOP of a set of slabs as a polytope: its exact volume, and each face's area and centroid,
+// which give the volume's gradient with respect to the axes (fit/volume_objective.h). The fitting
+// objective evaluates this for every neighborhood of a scene, many times, so it is written for
+// speed: no allocation, a polytope clipped slab by slab from the parallelepiped of three of them.
+//
+// Why not Qhull (accuracy/volume.h, which the tests check this against): a half-space
+// intersection through Qhull costs tens of microseconds; this costs about one.
+#pragma once
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace kdop {
+
+// Axis sets of up to this many axes (the paper's largest has 16).
+inline constexpr std::size_t kMaxPolytopeAxes = 32;
+
+class KdopPolytope {
+public:
+    // `axes` need not be unit length, but must span three dimensions (the k-DOP is bounded).
+    explicit KdopPolytope(std::span<const glm::dvec3> axes);
+
+    std::size_t axis_count() const { return axes_.size(); }
+    const std::vector<glm::dvec3>& unit_axes() const { return axes_; }
+
+    // A face of the k-DOP: the part of a slab's plane on its boundary (area 0 if the plane does not
+    // touch it). Face 2i lies on the plane x . a_i = hi_i, face 2i+1 on x . a_i = lo_i (unit a_i).
+    struct Face {
+        double area = 0;
+        glm::dvec3 centroid{0.0};
+    };
+
+    // The volume of { x : lo_i <= x . a_i <= hi_i for every unit axis a_i }, and, when `faces` has
+    // 2 x axis_count() entries, every face. Needs lo_i <= hi_i; a slab of no width gives volume 0.
+    double volume(std::span<const double> lo, std::span<const double> hi, std::span<Face> faces = {}) const;
+
+    // The same for the k-DOP of `points`: each slab spans their projections.
+    double volume_of(std::span<const glm::dvec3> points, std::span<Face> faces = {}) const;
+
+    // The volume of the k-DOP of `points`, adding its gradient with respect to each unit axis to
+    // `gradient` (axis_count() entries). Moving axis a by da moves its high plane outward by
+    // da . (p_hi - x) at a point x of the face (p_hi: the point of largest projection, which sets
+    // the bound) and its low plane by da . (x - p_lo); over the faces that is
+    //   dV/da = A_hi (p_hi - c_hi) + A_lo (c_lo - p_lo)
+    // with A and c a face's area and centroid. It is perpendicular to a, as scaling an axis changes
+    // no slab. NaN (and no gradient added) where the polytope could not be built.
+    double volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient) const;
+
+    // The same for the k-DOP around the unit sphere (every slab [-1, 1]), whose support point in
+    // direction a is a itself: dV/da = A_hi (a - c_hi) + A_lo (c_lo + a).
+    double sphere_volume_gradient(std::span<glm::dvec3> gradient) const;
+
+private:
+    std::vector<glm::dvec3> axes_;        // unit
+    std::array<std::size_t, 3> base_{};   // the axes whose slabs make the starting parallelepiped
+    glm::dmat3 base_inverse_{1.0};        // rows a_base -> the point with given projections
+    bool base_flipped_ = false;           // det < 0: the parallelepiped's face loops run the other way
+};
+
+} // namespace kdop
