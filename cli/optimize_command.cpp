@@ -1,0 +1,170 @@
+// kdop optimize: fit an axis set to a scene's images (every neighborhood) or, scene-independent,
+// around the unit sphere, and write it as an axis-set file every command reads.
+#include "commands.h"
+
+#include "axis_fit.h"
+#include "builtin_sets.h"
+#include "command_line.h"
+#include "cpu_clip.h"
+#include "fitted_set.h"
+#include "image_io.h"
+#include "memory_budget.h"
+#include "progress.h"
+#include "variant_spec.h"
+#include "write_files.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace kdop::cli {
+namespace {
+
+struct Options {
+    std::vector<std::string> images;
+    bool sphere = false;
+    std::size_t axes = 0;
+    bool force_rgb = false;
+    std::string neighborhood = "n9", out, name;
+    std::uint64_t seed = 1;
+    std::size_t starts = 0, iterations = 0;
+    unsigned threads = 0;
+    double time_limit = 0;
+};
+
+// The objective of each built-in set on the same content, for the comparison the output gives.
+std::vector<std::pair<std::string, double>> builtin_scores(const Options& o, const Neighborhoods* neighborhoods) {
+    std::vector<std::pair<std::string, double>> scores;
+    for (const std::string& name : builtin_set_names()) {
+        const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set(name)); // built in: cannot fail
+        const KdopPolytope kdop(axes);
+        double score;
+        if (neighborhoods) {
+            score = mean_volume(axes, *neighborhoods, o.threads);
+        } else {
+            const std::vector<double> lo(axes.size(), -1.0), hi(axes.size(), 1.0);
+            score = kdop.volume(lo, hi);
+        }
+        scores.emplace_back(name, score);
+    }
+    return scores;
+}
+
+int run(const Options& o) {
+    if (o.force_rgb && o.axes <= 3)
+        return report_error(fmt::format("--force-rgb fixes 3 axes; --axes {} leaves none to fit", o.axes));
+    const std::string name = o.name.empty() ? std::filesystem::path(o.out).stem().string() : o.name;
+    if (!is_valid_set_name(name))
+        return report_error(fmt::format("{}: '{}' is not a set name (lowercase letters and digits, single '-' between "
+                                        "words); give one with --name",
+                                        o.name.empty() ? "--out" : "--name", name));
+    if (auto ok = check_output_directory(std::filesystem::path(o.out).parent_path()); !ok)
+        return report_error(ok.error().message);
+
+    // Every neighborhood of every image, in linear values as read.
+    const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
+    Neighborhoods neighborhoods;
+    if (!o.sphere) {
+        std::vector<Image> images;
+        std::uint64_t pixels = 0;
+        for (const std::string& path : o.images) {
+            auto image = read_image(path);
+            if (!image) return report_error(image.error().message);
+            if (image->width < 3 || image->height < 3)
+                return report_error(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels",
+                                                path, image->width, image->height));
+            pixels += std::uint64_t(image->width) * image->height;
+            images.push_back(std::move(*image));
+        }
+        if (auto ok = check_memory("the neighborhoods", pixels * neighborhood_offsets(shape).size() * 24); !ok)
+            return report_error(ok.error().message);
+        neighborhoods = gather_neighborhoods(images, shape);
+    }
+
+    FitOptions fit{o.axes, o.force_rgb, o.seed, o.threads, o.starts, o.iterations, {}};
+    if (o.time_limit > 0)
+        fit.deadline =
+            std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                   std::chrono::duration<double>(o.time_limit));
+    std::unique_ptr<Progress> progress;
+    auto on_step = [&](std::size_t done, std::size_t total, double best) {
+        if (!progress) progress = std::make_unique<Progress>("fitting", total);
+        if (done <= total) progress->advance(fmt::format("best {:.6g}", best));
+    };
+    const FitResult result = o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(neighborhoods, fit, on_step);
+    if (progress) progress->finish();
+    const auto scores = builtin_scores(o, o.sphere ? nullptr : &neighborhoods);
+
+    // The file: what was fitted to and how, and the objective next to the built-in sets'.
+    const std::string objective =
+        o.sphere ? "volume of the k-DOP around the unit sphere"
+                 : fmt::format("mean k-DOP volume over all {} {} neighborhoods of {}", neighborhoods.count(),
+                               o.neighborhood == "n9" ? "3x3" : "plus-shaped", fmt::join(o.images, ", "));
+    FittedSetText text{
+        name,
+        fmt::format("fitted by kdop {} optimize (seed {}): {} = {:.6g}", KDOP_VERSION, o.seed, objective, result.score),
+        {}};
+    text.comments.push_back(fmt::format("Fitted by `kdop optimize` {}: {} axes{}, seed {}, {} starts x {} steps{}.",
+                                        KDOP_VERSION, o.axes, o.force_rgb ? " (R, G, B forced)" : "", o.seed,
+                                        o.starts ? fmt::format("{}", o.starts) : "default",
+                                        o.iterations ? fmt::format("{}", o.iterations) : "default",
+                                        result.stopped_early ? ", stopped early by --time-limit" : ""));
+    text.comments.push_back(fmt::format("Objective: {}.", objective));
+    text.comments.push_back(fmt::format("This set: {:.6g}", result.score));
+    for (const auto& [set, score] : scores)
+        text.comments.push_back(fmt::format("{}: {:.6g} ({:.3f}x this set's)", set, score, score / result.score));
+    auto file = fitted_set_file(text, result.axes);
+    if (!file) return report_error(file.error().message);
+    if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
+
+    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, o.axes, objective, result.score);
+    for (const auto& [set, score] : scores)
+        std::cout << fmt::format("  {:<14} {:.6g} ({:.3f}x)\n", set, score, score / result.score);
+    std::cout << fmt::format("{:.1f} s, {} k-DOP volumes, {:.3g} per second{}{}\n", result.seconds, result.volumes,
+                             result.volumes / std::max(result.seconds, 1e-9),
+                             result.failed ? fmt::format(", {} polytopes left out (could not be built)", result.failed)
+                                           : "",
+                             result.stopped_early ? "; stopped early by --time-limit" : "");
+    return 0;
+}
+
+} // namespace
+
+Action add_optimize_command(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* cmd = app.add_subcommand(
+        "optimize", "Fit an axis set to a scene's images (every neighborhood) or around the unit sphere, minimizing "
+                    "the k-DOP volume, and write it as an axis-set file");
+    auto* images = cmd->add_option("--images", o->images,
+                                   "Images to fit to, any format OpenImageIO reads (EXR included), linear values")
+                       ->check(CLI::ExistingFile);
+    auto* sphere = cmd->add_flag("--sphere", o->sphere, "Fit around the unit sphere instead: a scene-independent set");
+    images->excludes(sphere);
+    cmd->add_option("--axes", o->axes, "Axes to fit (k = 2 x axes)")->required()->check(CLI::Range(3, 32));
+    cmd->add_flag("--force-rgb", o->force_rgb, "Keep R, G and B as the first three axes");
+    cmd->add_option("--neighborhood", o->neighborhood, "n9 (3x3) or n5 (plus) [default: n9]")
+        ->check(CLI::IsMember({"n9", "n5"}))
+        ->excludes(sphere);
+    cmd->add_option("--seed", o->seed, "Seed of the random starts [default: 1]");
+    cmd->add_option("--starts", o->starts, "Starts of the search [default: 64 around the sphere, 4 on images]")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--iterations", o->iterations, "Steps per start [default: 400 around the sphere, 60 on images]")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--threads", o->threads, "Threads [default: one per core]; the result does not depend on it");
+    cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds with the best set so far")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--out", o->out, "Axis-set file to write")->required();
+    cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
+    return [o, images, sphere] {
+        if (!*images && !*sphere) {
+            report_error("optimize: give --images FILE... to fit to, or --sphere");
+            return kUsageError;
+        }
+        return run(*o);
+    };
+}
+
+} // namespace kdop::cli

@@ -1,0 +1,251 @@
+#include "axis_fit.h"
+
+#include "random.h"
+#include "variant_spec.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+namespace kdop {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Neighborhoods are summed in chunks of this many, each on one thread, and the chunks' sums added
+// in chunk order: the same floating-point sum on any number of threads.
+constexpr std::size_t kChunk = 2048;
+
+unsigned thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
+
+// Runs body(i) for i in [0, count) on `threads` threads.
+template <class Body>
+void parallel_for(std::size_t count, unsigned threads, Body body) {
+    std::atomic<std::size_t> next{0};
+    std::vector<std::jthread> workers;
+    for (unsigned t = 0; t < std::min<std::size_t>(threads, count); ++t)
+        workers.emplace_back([&] {
+            for (std::size_t i; (i = next++) < count;) body(i);
+        });
+}
+
+// The objective and its gradient at `axes`.
+struct Evaluation {
+    double value = 0;
+    std::vector<glm::dvec3> gradient;
+    std::size_t volumes = 0, failed = 0;
+};
+
+Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods,
+                                  unsigned threads) {
+    const KdopPolytope kdop(axes);
+    const std::size_t chunks = (neighborhoods.count() + kChunk - 1) / kChunk;
+    std::vector<Evaluation> partial(chunks);
+    parallel_for(chunks, threads, [&](std::size_t c) {
+        Evaluation& e = partial[c];
+        e.gradient.assign(axes.size(), glm::dvec3(0.0));
+        const std::size_t end = std::min(neighborhoods.count(), (c + 1) * kChunk);
+        for (std::size_t i = c * kChunk; i < end; ++i) {
+            const double v = kdop.volume_gradient(neighborhoods.at(i), e.gradient);
+            ++e.volumes;
+            if (std::isnan(v))
+                ++e.failed;
+            else
+                e.value += v;
+        }
+    });
+    Evaluation total;
+    total.gradient.assign(axes.size(), glm::dvec3(0.0));
+    for (const Evaluation& e : partial) {
+        total.value += e.value;
+        total.volumes += e.volumes;
+        total.failed += e.failed;
+        for (std::size_t i = 0; i < axes.size(); ++i) total.gradient[i] += e.gradient[i];
+    }
+    const double counted = static_cast<double>(std::max<std::size_t>(total.volumes - total.failed, 1));
+    total.value /= counted;
+    for (glm::dvec3& g : total.gradient) g /= counted;
+    return total;
+}
+
+Evaluation evaluate_sphere(std::span<const glm::dvec3> axes) {
+    Evaluation e;
+    e.gradient.assign(axes.size(), glm::dvec3(0.0));
+    e.value = KdopPolytope(axes).sphere_volume_gradient(e.gradient);
+    e.volumes = 1;
+    if (std::isnan(e.value)) {
+        e.failed = 1;
+        e.value = std::numeric_limits<double>::infinity();
+    }
+    return e;
+}
+
+glm::dvec3 random_direction(Random& random) {
+    for (;;) { // uniform in the unit ball, then projected: uniform on the sphere
+        const glm::dvec3 p(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1));
+        const double length = glm::length(p);
+        if (length > 1e-3 && length <= 1) return p / length;
+    }
+}
+
+// Start `index` of a search with `seed`: the forced axes, then random directions. Each start has
+// its own generator, so starts do not depend on the order threads take them in.
+std::vector<glm::dvec3> random_start(const FitOptions& options, std::size_t index) {
+    Random random(options.seed * 0x9e3779b97f4a7c15ull + index);
+    std::vector<glm::dvec3> axes;
+    if (options.force_rgb) axes = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    while (axes.size() < options.axes) axes.push_back(random_direction(random));
+    return axes;
+}
+
+// Projected gradient descent from `axes`: each free axis turns against its gradient by an angle
+// proportional to the gradient's size, the largest turning by `step` radians; the step grows by
+// 1.25 after an improvement and halves after a failure. Stops after `iterations` steps, when the
+// step falls below 1e-9 radians, or at the deadline.
+template <class Evaluate, class Step>
+FitResult descend(std::vector<glm::dvec3> axes, std::size_t fixed, std::size_t iterations,
+                  const std::optional<Clock::time_point>& deadline, Evaluate evaluate, Step on_step) {
+    FitResult result;
+    Evaluation current = evaluate(axes);
+    result.volumes += current.volumes;
+    result.failed += current.failed;
+    double step = 0.05;
+    for (std::size_t it = 0; it < iterations && step > 1e-9; ++it) {
+        if (deadline && Clock::now() >= *deadline) {
+            result.stopped_early = true;
+            break;
+        }
+        double largest = 0;
+        for (std::size_t i = fixed; i < axes.size(); ++i) largest = std::max(largest, glm::length(current.gradient[i]));
+        if (!(largest > 0)) break;
+        std::vector<glm::dvec3> trial = axes;
+        for (std::size_t i = fixed; i < axes.size(); ++i) {
+            const glm::dvec3 g = current.gradient[i] - glm::dot(current.gradient[i], axes[i]) * axes[i];
+            trial[i] = glm::normalize(axes[i] - step * g / largest);
+        }
+        Evaluation next = evaluate(trial);
+        result.volumes += next.volumes;
+        result.failed += next.failed;
+        if (next.value < current.value) {
+            axes = std::move(trial);
+            current = std::move(next);
+            step *= 1.25;
+        } else {
+            step *= 0.5;
+        }
+        on_step(current.value);
+    }
+    result.axes = std::move(axes);
+    result.score = current.value;
+    return result;
+}
+
+// Runs `starts` descents and keeps the best (lowest score, then lowest start index).
+template <class Descend>
+FitResult best_of(std::size_t starts, unsigned threads, Descend descend_from) {
+    std::vector<FitResult> results(starts);
+    parallel_for(starts, threads, [&](std::size_t s) { results[s] = descend_from(s); });
+    FitResult best = results[0];
+    std::size_t volumes = 0, failed = 0;
+    bool stopped = false;
+    for (const FitResult& r : results) {
+        volumes += r.volumes;
+        failed += r.failed;
+        stopped |= r.stopped_early;
+        if (r.score < best.score) best = r;
+    }
+    best.volumes = volumes;
+    best.failed = failed;
+    best.stopped_early = stopped;
+    return best;
+}
+
+} // namespace
+
+Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape) {
+    Neighborhoods out;
+    const auto offsets = neighborhood_offsets(shape);
+    out.size = offsets.size();
+    std::size_t total = 0;
+    for (const Image& image : images) total += std::size_t(image.width) * image.height;
+    out.points.reserve(total * out.size);
+    for (const Image& image : images)
+        for (std::uint32_t y = 0; y < image.height; ++y)
+            for (std::uint32_t x = 0; x < image.width; ++x)
+                for (const glm::ivec2& o : offsets)
+                    out.points.emplace_back(glm::dvec3(image.clamped(int(x) + o.x, int(y) + o.y)));
+    return out;
+}
+
+double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads,
+                   std::size_t* failed) {
+    const Evaluation e = evaluate_neighborhoods(axes, neighborhoods, thread_count(threads));
+    if (failed) *failed = e.failed;
+    return e.value;
+}
+
+FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress) {
+    const auto start_time = Clock::now();
+    const std::size_t starts = options.starts ? options.starts : 64;
+    const std::size_t iterations = options.iterations ? options.iterations : 400;
+    std::mutex mutex;
+    std::size_t done = 0;
+    double best = std::numeric_limits<double>::infinity();
+    FitResult result = best_of(starts, thread_count(options.threads), [&](std::size_t s) {
+        FitResult r = descend(random_start(options, s), options.force_rgb ? 3 : 0, iterations, options.deadline,
+                              evaluate_sphere, [](double) {});
+        std::lock_guard lock(mutex); // a start takes milliseconds: report each, not each step
+        best = std::min(best, r.score);
+        if (progress) progress(++done, starts, best);
+        return r;
+    });
+    result.seconds = std::chrono::duration<double>(Clock::now() - start_time).count();
+    return result;
+}
+
+FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOptions& options,
+                               const FitProgress& progress) {
+    const auto start_time = Clock::now();
+    const std::size_t starts = options.starts ? options.starts : 4;
+    const std::size_t iterations = options.iterations ? options.iterations : 60;
+    const unsigned threads = thread_count(options.threads);
+    // The starts run one after another, each on every thread: the objective is what costs.
+    FitResult result;
+    std::size_t done = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t s = 0; s < starts; ++s) {
+        // The first start is the best k-DOP around the sphere: a good general shape to refine.
+        std::vector<glm::dvec3> from = random_start(options, s);
+        if (s == 0) {
+            FitOptions sphere = options;
+            sphere.starts = 16;
+            sphere.iterations = 200;
+            sphere.deadline.reset();
+            from = fit_to_sphere(sphere).axes;
+        }
+        FitResult r = descend(
+            std::move(from), options.force_rgb ? 3 : 0, iterations, options.deadline,
+            [&](std::span<const glm::dvec3> axes) { return evaluate_neighborhoods(axes, neighborhoods, threads); },
+            [&](double score) {
+                best = std::min(best, score);
+                if (progress) progress(++done, starts * iterations, best);
+            });
+        const std::size_t volumes = result.volumes + r.volumes, failed = result.failed + r.failed;
+        if (s == 0 || r.score < result.score) result = std::move(r);
+        result.volumes = volumes;
+        result.failed = failed;
+        if (result.stopped_early || (options.deadline && Clock::now() >= *options.deadline)) {
+            result.stopped_early = true;
+            break;
+        }
+    }
+    result.seconds = std::chrono::duration<double>(Clock::now() - start_time).count();
+    return result;
+}
+
+} // namespace kdop

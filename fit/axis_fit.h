@@ -1,0 +1,74 @@
+// Fitting an axis set: the directions whose k-DOPs enclose a scene's neighborhoods most tightly
+// (the paper's second claim: fitted axes reach the same anti-ghosting with fewer of them).
+//
+// Objective: the mean k-DOP volume over every neighborhood of the images (not a sample), or,
+// scene-independent, the volume of the k-DOP around the unit sphere. Volume is the paper's
+// objective; it is what the clip lets through beyond the colors seen, and its gradient in the
+// axes is exact and cheap (fit/kdop_polytope.h), so the search follows it instead of sampling.
+//
+// Search: from several starts, projected gradient descent on the axes' unit sphere with an
+// adaptive step (longer after a success, halved after a failure). Starts are seeded and the
+// neighborhoods are summed in fixed chunks in a fixed order, so the result is the same for a seed
+// on any number of threads; only a time limit, which stops the search where the machine got to,
+// makes it depend on speed.
+#pragma once
+
+#include "image.h"
+#include "kdop_polytope.h"
+
+#include <kdop/variant.h>
+
+#include <glm/vec3.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+// Every neighborhood of every image (clamp to edge, as the shaders read them), as points.
+struct Neighborhoods {
+    std::size_t size = 9;           // points per neighborhood: 9 (n9) or 5 (n5)
+    std::vector<glm::dvec3> points; // count() x size
+    std::size_t count() const { return points.size() / size; }
+    std::span<const glm::dvec3> at(std::size_t i) const { return {points.data() + i * size, size}; }
+};
+Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape);
+
+struct FitOptions {
+    std::size_t axes = 8;
+    bool force_rgb = false; // the first three axes are R, G and B and stay so
+    std::uint64_t seed = 1;
+    unsigned threads = 0; // 0: one per core
+    std::size_t starts = 0;     // 0: 64 around the sphere, 4 on images
+    std::size_t iterations = 0; // per start; 0: 400 around the sphere, 60 on images
+    std::optional<std::chrono::steady_clock::time_point> deadline; // stop there with the best so far
+};
+
+struct FitResult {
+    std::vector<glm::dvec3> axes; // unit, forced ones first
+    double score = 0;             // the objective at `axes`
+    std::size_t volumes = 0;      // k-DOP volumes computed (neighborhoods x evaluations)
+    std::size_t failed = 0;       // of those, polytopes that could not be built (left out of means)
+    double seconds = 0;
+    bool stopped_early = false; // the deadline came first
+};
+
+// Called as the search goes: units done of total (starts around the sphere, steps on images, where
+// each step is a pass over every neighborhood), and the best score so far.
+using FitProgress = std::function<void(std::size_t done, std::size_t total, double best)>;
+
+FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress = {});
+FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOptions& options,
+                               const FitProgress& progress = {});
+
+// The mean k-DOP volume of `axes` over the neighborhoods (polytopes that fail are left out and
+// counted in `failed`), on `threads` threads in a fixed order.
+double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads = 0,
+                   std::size_t* failed = nullptr);
+
+} // namespace kdop

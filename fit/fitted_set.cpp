@@ -1,0 +1,18 @@
+#include "fitted_set.h"
+
+#include <fmt/format.h>
+
+namespace kdop {
+
+Result<std::string> fitted_set_file(const FittedSetText& text, std::span<const glm::dvec3> axes) {
+    std::string out;
+    for (const std::string& line : text.comments) out += line.empty() ? "#\n" : "# " + line + "\n";
+    out += fmt::format("name: {}\nprovenance: {}\n", text.name, text.provenance);
+    // Nine decimals: the fitted directions to about 1e-9 rad, far below what moves the volume.
+    for (const glm::dvec3& a : axes) out += fmt::format("vec3({:.9f}, {:.9f}, {:.9f}),\n", a.x, a.y, a.z);
+    if (auto parsed = parse_axis_set(out, text.name + ".axes"); !parsed)
+        return fail(fmt::format("the fitted set cannot be written as an axis file: {}", parsed.error().message));
+    return out;
+}
+
+} // namespace kdop

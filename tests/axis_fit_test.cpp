@@ -1,0 +1,133 @@
+// Fitting axis sets (fit/axis_fit.h, kdop optimize): the sphere fits reach the supplement's general
+// sets, the result depends on the seed alone, a fitted set beats the paper's scene sets on its
+// scene, and the command round-trips through gen, run and accuracy and refuses bad input.
+#include "axis_fit.h"
+#include "cpu_clip.h"
+#include "image_io.h"
+#include "test_support.h"
+#include "test_textures.h"
+#include "variant_spec.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace kdop {
+namespace {
+namespace fs = std::filesystem;
+
+double builtin_sphere_volume(const char* name) {
+    const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set(name));
+    const std::vector<double> lo(axes.size(), -1.0), hi(axes.size(), 1.0);
+    return KdopPolytope(axes).volume(lo, hi);
+}
+
+// The linear colors of the grass texture (colobot-common-textures, installed by install-deps.sh).
+Image grass(std::uint32_t size) {
+    for (const RealTexture& t : installed_real_textures())
+        if (t.name == "colobot-grass") return load_real_texture(t, size, size);
+    ADD_FAILURE() << "colobot-grass is not installed";
+    return Image(size, size);
+}
+
+TEST(AxisFit, SphereFitsAreNoLargerThanTheSupplementsGeneralSets) {
+    FitOptions options;
+    options.force_rgb = true;
+    options.axes = 16;
+    const FitResult sixteen = fit_to_sphere(options);
+    EXPECT_LE(sixteen.score, builtin_sphere_volume("dop32") + 1e-9) << "the supplement's 32-DOP: 4.6396";
+    EXPECT_EQ(sixteen.axes[0], glm::dvec3(1, 0, 0)) << "forced axes stay";
+    options.axes = 11;
+    const FitResult eleven = fit_to_sphere(options);
+    EXPECT_LE(eleven.score, builtin_sphere_volume("dop22") + 1e-9) << "the supplement's 22-DOP: 4.8589";
+    EXPECT_EQ(sixteen.failed + eleven.failed, 0u);
+}
+
+TEST(AxisFit, TheSeedAloneDecidesTheSetWhateverTheThreads) {
+    const Image image = grass(24);
+    const Neighborhoods n = gather_neighborhoods({&image, 1}, Neighborhood::n9);
+    ASSERT_EQ(n.count(), 24u * 24u);
+    FitOptions options;
+    options.axes = 6;
+    options.starts = 2;
+    options.iterations = 6;
+    options.threads = 1;
+    const FitResult one = fit_to_neighborhoods(n, options);
+    options.threads = 3;
+    const FitResult three = fit_to_neighborhoods(n, options);
+    EXPECT_EQ(one.axes, three.axes);
+    EXPECT_EQ(one.score, three.score);
+    EXPECT_EQ(one.score, mean_volume(one.axes, n, 2)) << "the score is the objective at the set";
+    options.seed = 2;
+    EXPECT_NE(fit_to_neighborhoods(n, options).axes, one.axes);
+}
+
+TEST(AxisFit, AFittedEightAxisSetBeatsBothPaper16DopsOnItsImage) {
+    const Image image = grass(48);
+    const Neighborhoods n = gather_neighborhoods({&image, 1}, Neighborhood::n9);
+    FitOptions options;
+    options.axes = 8;
+    options.iterations = 25;
+    const FitResult fitted = fit_to_neighborhoods(n, options);
+    for (const char* paper : {"dop16-grass", "dop16-asphalt"})
+        EXPECT_LT(fitted.score, mean_volume(unit_axes(*resolve_axis_set(paper)), n)) << paper;
+}
+
+struct OptimizeInputs {
+    test::TempDir dir;
+    std::string image = (dir / "grass.exr").string();
+    OptimizeInputs() { EXPECT_TRUE(write_image(image, grass(16))); }
+    test::CommandResult kdop(const std::string& args) const { return test::run(test::kdop_binary() + " " + args); }
+};
+
+TEST(CliOptimize, AFittedSetGoesThroughGenRunAndAccuracy) {
+    OptimizeInputs in;
+    const std::string set = (in.dir / "scene.axes").string();
+    auto fit = in.kdop("optimize --images " + in.image + " --axes 5 --starts 1 --iterations 4 --out " + set);
+    ASSERT_EQ(fit.exit_code, 0) << fit.err;
+    const std::string text = test::read_file(set);
+    EXPECT_NE(text.find("name: scene\nprovenance: fitted by kdop"), std::string::npos) << text;
+    EXPECT_NE(text.find("dop16-grass: "), std::string::npos) << "the built-in sets' scores for comparison";
+
+    auto gen = in.kdop("gen --sets " + set + " --modes clip --neighborhoods n9 --out " + (in.dir / "gen").string());
+    EXPECT_EQ(gen.exit_code, 0) << gen.err;
+    EXPECT_TRUE(fs::exists(in.dir / "gen" / "scene-clip-n9.spv"));
+    auto run = in.kdop("run --sets " + set + " --variant scene-clip-n9 --current " + in.image + " --history " +
+                       in.image + " --out " + (in.dir / "out.exr").string());
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    auto accuracy =
+        in.kdop("accuracy --sets " + set + " --modes clip --neighborhoods n9 --current " + in.image + " --history " +
+                in.image + " --volume-samples 16 --no-charts --out " + (in.dir / "accuracy").string());
+    EXPECT_EQ(accuracy.exit_code, 0) << accuracy.err;
+    EXPECT_NE(test::read_file(in.dir / "accuracy" / "accuracy.csv").find("scene-clip-n9"), std::string::npos);
+}
+
+TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
+    OptimizeInputs in;
+    const std::string tiny = (in.dir / "tiny.exr").string();
+    ASSERT_TRUE(write_image(tiny, Image(2, 5)));
+    test::write_file(in.dir / "text.png", "not an image");
+    const std::string out = " --out " + (in.dir / "fitted.axes").string();
+    struct Case {
+        std::string args, message;
+        int exit_code;
+    };
+    const Case cases[] = {
+        {"--images " + (in.dir / "text.png").string() + " --axes 4" + out, "text.png: cannot read image", 1},
+        {"--images " + tiny + " --axes 4" + out, "tiny.exr: 2x5 has no 3x3 neighborhood", 1},
+        {"--images " + in.image + " --axes 2" + out, "--axes: Value 2 not in range", 2},
+        {"--images " + in.image + " --axes 3 --force-rgb" + out, "--force-rgb fixes 3 axes; --axes 3 leaves none", 1},
+        {"--images " + in.image + " --sphere --axes 4" + out, "excludes", 2},
+        {"--axes 4" + out, "give --images FILE... to fit to, or --sphere", 2},
+        {"--sphere --axes 4 --out " + (in.dir / "Bad_Name.axes").string(), "'Bad_Name' is not a set name", 1},
+    };
+    for (const Case& c : cases) {
+        auto r = in.kdop("optimize " + c.args);
+        EXPECT_EQ(r.exit_code, c.exit_code) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(in.dir / "fitted.axes")) << c.args;
+    }
+}
+
+} // namespace
+} // namespace kdop
