@@ -13,115 +13,137 @@ namespace kdop {
 namespace {
 
 constexpr int kMaxPlanes = 2 * static_cast<int>(kMaxPolytopeAxes);
-// A simple polytope with F faces has at most 2F - 4 vertices and 3F - 6 edges; clipping keeps the
-// vertices it cuts away until the next pass, so room for twice that.
+// A face is bounded by at most every other plane; a simple polytope with F faces has at most
+// 2F - 4 vertices, and a clip adds at most one per face before it frees those cut away.
+constexpr int kMaxFaceSize = kMaxPlanes;
 constexpr int kMaxVertices = 4 * kMaxPlanes;
-constexpr int kMaxLoop = 12 * kMaxPlanes;
 
-// A convex polytope as faces: each a loop of vertex indices, counter-clockwise seen from outside.
+// A convex polytope as faces, each a loop of vertex slots, counter-clockwise seen from outside.
+// Clipping edits it in place: a face the plane misses is not touched, vertices keep their slots,
+// and the slots of vertices cut away are reused.
 struct Polytope {
     glm::dvec3 vertices[kMaxVertices];
-    int vertex_count = 0;
-    int face_plane[kMaxPlanes]; // 2i: x . a_i <= hi_i, 2i+1: x . a_i >= lo_i
-    int face_start[kMaxPlanes];
-    int face_size[kMaxPlanes];
+    int live[kMaxVertices]; // the slots in use
+    int live_count = 0;
+    int free_slots[kMaxVertices];
+    int free_count = 0;
+    int slot_count = 0; // slots ever used
+    struct Face {
+        int plane; // 2i: x . a_i <= hi_i, 2i+1: x . a_i >= lo_i
+        int size;
+        int loop[kMaxFaceSize];
+    };
+    Face faces[kMaxPlanes];
     int face_count = 0;
-    int loop[kMaxLoop];
-    int loop_size = 0;
+
+    int new_vertex(const glm::dvec3& p) {
+        const int slot = free_count ? free_slots[--free_count] : slot_count++;
+        vertices[slot] = p;
+        return slot;
+    }
 };
 
 enum class Clip { unchanged, clipped, empty, failed };
 
-// Keeps the part of `in` where n . x <= d, as `out`, whose new face lies on plane `plane`. A vertex
-// within `tolerance` of the plane counts as on it (inside), so a face nearly in the plane is kept
-// whole instead of cut into slivers whose order rounding could scramble.
-Clip clip(const Polytope& in, Polytope& out, int plane, const glm::dvec3& n, double d, double tolerance) {
+// Keeps the part of `poly` where n . x <= d, adding the new face on plane `plane`. A vertex within
+// `tolerance` of the plane counts as on it (inside), so a face nearly in the plane is kept whole
+// instead of cut into slivers whose order rounding could scramble.
+Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double tolerance) {
     double side[kMaxVertices];
     bool any_out = false, any_in = false;
-    for (int i = 0; i < in.vertex_count; ++i) {
-        side[i] = glm::dot(n, in.vertices[i]) - d;
-        if (side[i] > tolerance)
+    for (int k = 0; k < poly.live_count; ++k) {
+        const int v = poly.live[k];
+        side[v] = glm::dot(n, poly.vertices[v]) - d;
+        if (side[v] > tolerance)
             any_out = true;
         else
             any_in = true;
     }
     if (!any_out) return Clip::unchanged;
     if (!any_in) return Clip::empty;
+    auto outside = [&](int v) { return side[v] > tolerance; };
 
-    int kept[kMaxVertices]; // in's vertex -> out's, or -1
-    std::fill_n(kept, in.vertex_count, -1);
     struct Cut {
         int inside, outside, vertex;
     };
-    Cut cuts[kMaxVertices];
+    Cut cuts[kMaxPlanes];
     int cut_count = 0;
-    int cap_next[kMaxVertices]; // out's vertex on the new face -> the next one around it
-    out.vertex_count = out.face_count = out.loop_size = 0;
-
-    auto keep = [&](int v) {
-        if (kept[v] < 0) {
-            kept[v] = out.vertex_count;
-            out.vertices[out.vertex_count++] = in.vertices[v];
-        }
-        return kept[v];
-    };
+    int cap_next[kMaxVertices]; // a new vertex -> the next one around the new face
     // The point where edge inside-outside meets the plane, made once for both faces of the edge.
-    auto cut = [&](int inside, int outside) {
+    auto cut = [&](int inside, int out) {
         for (int c = 0; c < cut_count; ++c)
-            if (cuts[c].inside == inside && cuts[c].outside == outside) return cuts[c].vertex;
-        const double t = side[inside] / (side[inside] - side[outside]);
-        const int v = out.vertex_count++;
-        out.vertices[v] = in.vertices[inside] + t * (in.vertices[outside] - in.vertices[inside]);
+            if (cuts[c].inside == inside && cuts[c].outside == out) return cuts[c].vertex;
+        if (cut_count == kMaxPlanes) return -1;
+        const double t = side[inside] / (side[inside] - side[out]);
+        const int v = poly.new_vertex(poly.vertices[inside] + t * (poly.vertices[out] - poly.vertices[inside]));
         cap_next[v] = -1;
-        cuts[cut_count++] = {inside, outside, v};
+        cuts[cut_count++] = {inside, out, v};
         return v;
     };
-    auto outside = [&](int v) { return side[v] > tolerance; };
 
-    for (int f = 0; f < in.face_count; ++f) {
-        const int* loop = in.loop + in.face_start[f];
-        const int size = in.face_size[f];
-        const int start = out.loop_size;
-        int exit = -1, entry = -1, exits = 0;
-        for (int k = 0; k < size; ++k) {
-            const int u = loop[k], w = loop[(k + 1) % size];
-            if (!outside(u)) out.loop[out.loop_size++] = keep(u);
+    int kept_faces = 0;
+    for (int f = 0; f < poly.face_count; ++f) {
+        Polytope::Face& face = poly.faces[f];
+        int outside_count = 0;
+        for (int k = 0; k < face.size; ++k) outside_count += outside(face.loop[k]);
+        if (outside_count == 0) { // untouched
+            if (kept_faces != f) poly.faces[kept_faces] = face;
+            ++kept_faces;
+            continue;
+        }
+        if (outside_count == face.size) continue; // cut away whole
+        int loop[kMaxFaceSize + 2];
+        int size = 0, exit = -1, entry = -1, exits = 0;
+        for (int k = 0, u = face.loop[face.size - 1]; k < face.size; ++k) {
+            const int w = face.loop[k];
+            // Edge u -> w: keep u's side of it, and where it crosses, the crossing.
             if (!outside(u) && outside(w)) {
                 exit = cut(u, w);
-                out.loop[out.loop_size++] = exit;
+                loop[size++] = exit;
                 ++exits;
             } else if (outside(u) && !outside(w)) {
                 entry = cut(w, u);
-                out.loop[out.loop_size++] = entry;
+                loop[size++] = entry;
             }
+            if (!outside(w)) loop[size++] = w;
+            u = w;
         }
-        if (exits > 1) return Clip::failed; // only a convex face crosses the plane once each way
-        if (out.loop_size - start < 3) {     // all outside, or a sliver of no area
-            out.loop_size = start;
-            continue;
-        }
+        // Only a convex face crosses the plane once each way; more means rounding scrambled it.
+        if (exits != 1 || exit < 0 || entry < 0 || size > kMaxFaceSize) return Clip::failed;
         // This face runs exit -> entry along the plane; the new face, its neighbor there, runs back.
-        if (exits) cap_next[entry] = exit;
-        out.face_plane[out.face_count] = in.face_plane[f];
-        out.face_start[out.face_count] = start;
-        out.face_size[out.face_count++] = out.loop_size - start;
+        cap_next[entry] = exit;
+        if (size < 3) continue; // a sliver of no area
+        Polytope::Face& kept = poly.faces[kept_faces++];
+        kept.plane = face.plane;
+        kept.size = size;
+        std::copy_n(loop, size, kept.loop);
     }
+    poly.face_count = kept_faces;
 
     // The new face: follow the links from any point where an edge was cut.
-    const int first = cuts[0].vertex, start = out.loop_size;
+    Polytope::Face& cap = poly.faces[poly.face_count];
+    cap.plane = plane;
+    cap.size = 0;
+    const int first = cuts[0].vertex;
     int v = first;
     do {
-        if (v < 0 || out.loop_size - start > cut_count) return Clip::failed;
-        out.loop[out.loop_size++] = v;
+        if (v < 0 || cap.size == cut_count) return Clip::failed;
+        cap.loop[cap.size++] = v;
         v = cap_next[v];
     } while (v != first);
-    if (out.loop_size - start >= 3) {
-        out.face_plane[out.face_count] = plane;
-        out.face_start[out.face_count] = start;
-        out.face_size[out.face_count++] = out.loop_size - start;
-    } else {
-        out.loop_size = start;
+    if (cap.size >= 3) ++poly.face_count;
+
+    // The vertices now: those inside, and the new ones; the slots of the rest are free again.
+    int live_count = 0;
+    for (int k = 0; k < poly.live_count; ++k) {
+        const int u = poly.live[k];
+        if (outside(u))
+            poly.free_slots[poly.free_count++] = u;
+        else
+            poly.live[live_count++] = u;
     }
+    for (int c = 0; c < cut_count; ++c) poly.live[live_count++] = cuts[c].vertex;
+    poly.live_count = live_count;
     return Clip::clipped;
 }
 
@@ -205,14 +227,12 @@ double KdopPolytope::volume(std::span<const double> lo, std::span<const double> 
         if (!(hi[i] > lo[i])) return 0.0; // no width (or NaN): a flat k-DOP
 
     // The parallelepiped of the base slabs: vertex b (bit k set: hi of base axis k).
-    Polytope polytopes[2];
-    Polytope* p = &polytopes[0];
+    Polytope poly;
     for (int b = 0; b < 8; ++b) {
         glm::dvec3 q;
         for (int k = 0; k < 3; ++k) q[k] = (b >> k & 1) ? hi[base_[k]] : lo[base_[k]];
-        p->vertices[b] = base_inverse_ * q;
+        poly.live[poly.live_count++] = poly.new_vertex(base_inverse_ * q);
     }
-    p->vertex_count = 8;
     // Face (k, high): the vertices with bit k equal to `high`, around the other two bits. The cycle
     // 00 -> 01 -> 11 -> 10 of bits (k+1, k+2) is counter-clockwise from outside on the high face of
     // a right-handed frame; low faces and a left-handed (flipped) frame run it backwards.
@@ -221,10 +241,10 @@ double KdopPolytope::volume(std::span<const double> lo, std::span<const double> 
             const int bit1 = 1 << ((k + 1) % 3), bit2 = 1 << ((k + 2) % 3), fixed = high ? 1 << k : 0;
             int cycle[4] = {fixed, fixed | bit1, fixed | bit1 | bit2, fixed | bit2};
             if (!high != base_flipped_) std::swap(cycle[1], cycle[3]);
-            p->face_plane[p->face_count] = 2 * static_cast<int>(base_[k]) + (high ? 0 : 1);
-            p->face_start[p->face_count] = p->loop_size;
-            p->face_size[p->face_count++] = 4;
-            for (int v : cycle) p->loop[p->loop_size++] = v;
+            Polytope::Face& face = poly.faces[poly.face_count++];
+            face.plane = 2 * static_cast<int>(base_[k]) + (high ? 0 : 1);
+            face.size = 4;
+            std::copy_n(cycle, 4, face.loop);
         }
 
     // The rest of the slabs, plane by plane. Distances within 1e-12 of the polytope's size count as 0.
@@ -236,10 +256,9 @@ double KdopPolytope::volume(std::span<const double> lo, std::span<const double> 
         for (int high = 1; high >= 0; --high) {
             const glm::dvec3 normal = high ? axes_[i] : -axes_[i];
             const double offset = high ? hi[i] : -lo[i];
-            Polytope* q = p == &polytopes[0] ? &polytopes[1] : &polytopes[0];
-            switch (clip(*p, *q, 2 * static_cast<int>(i) + (high ? 0 : 1), normal, offset, tolerance)) {
-            case Clip::unchanged: break;
-            case Clip::clipped: p = q; break;
+            switch (clip(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), normal, offset, tolerance)) {
+            case Clip::unchanged:
+            case Clip::clipped: break;
             case Clip::empty: return 0.0; // cannot happen for slabs around one set of points
             case Clip::failed: return std::numeric_limits<double>::quiet_NaN();
             }
@@ -248,24 +267,23 @@ double KdopPolytope::volume(std::span<const double> lo, std::span<const double> 
 
     // Volume by the divergence theorem: the sum over faces of area x distance from an inner point o, / 3.
     const glm::dvec3 o = base_inverse_ * (0.5 * (glm::dvec3(hi[base_[0]], hi[base_[1]], hi[base_[2]]) +
-                                glm::dvec3(lo[base_[0]], lo[base_[1]], lo[base_[2]])));
+                                                 glm::dvec3(lo[base_[0]], lo[base_[1]], lo[base_[2]])));
     double volume = 0;
-    for (int f = 0; f < p->face_count; ++f) {
-        const int plane = p->face_plane[f];
-        const glm::dvec3 normal = plane % 2 == 0 ? axes_[plane / 2] : -axes_[plane / 2];
-        const int* loop = p->loop + p->face_start[f];
-        const glm::dvec3 v0 = p->vertices[loop[0]];
+    for (int f = 0; f < poly.face_count; ++f) {
+        const Polytope::Face& face = poly.faces[f];
+        const glm::dvec3 normal = face.plane % 2 == 0 ? axes_[face.plane / 2] : -axes_[face.plane / 2];
+        const glm::dvec3 v0 = poly.vertices[face.loop[0]];
         double area = 0;
         glm::dvec3 weighted(0.0);
-        for (int k = 1; k + 1 < p->face_size[f]; ++k) {
-            const glm::dvec3 v1 = p->vertices[loop[k]], v2 = p->vertices[loop[k + 1]];
+        for (int k = 1; k + 1 < face.size; ++k) {
+            const glm::dvec3 v1 = poly.vertices[face.loop[k]], v2 = poly.vertices[face.loop[k + 1]];
             const double triangle = 0.5 * glm::dot(glm::cross(v1 - v0, v2 - v0), normal);
             area += triangle;
-            weighted += triangle * (v0 + v1 + v2) / 3.0;
+            if (want_faces) weighted += triangle * (v0 + v1 + v2);
         }
         if (area <= 0) continue;
         volume += area * glm::dot(normal, v0 - o) / 3.0;
-        if (want_faces) faces[plane] = {area, weighted / area};
+        if (want_faces) faces[face.plane] = {area, weighted / (3.0 * area)};
     }
     return std::max(volume, 0.0);
 }
