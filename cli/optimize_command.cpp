@@ -2,6 +2,7 @@
 // around the unit sphere, and write it as an axis-set file every command reads.
 #include "commands.h"
 
+#include "analytic_cost.h"
 #include "axis_fit.h"
 #include "builtin_sets.h"
 #include "command_line.h"
@@ -19,6 +20,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace kdop::cli {
 namespace {
@@ -33,6 +35,7 @@ struct Options {
     std::size_t starts = 0, iterations = 0;
     unsigned threads = 0;
     double time_limit = 0;
+    std::optional<double> target;
 };
 
 // The objective of each built-in set on the same content, for the comparison the output gives.
@@ -89,30 +92,62 @@ int run(const Options& o) {
         fit.deadline =
             std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                    std::chrono::duration<double>(o.time_limit));
-    std::unique_ptr<Progress> progress;
-    auto on_step = [&](std::size_t done, std::size_t total, double best) {
-        if (!progress) progress = std::make_unique<Progress>("fitting", total);
-        if (done <= total) progress->advance(fmt::format("best {:.6g}", best));
-    };
-    const FitResult result = o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(neighborhoods, fit, on_step);
-    if (progress) progress->finish();
-    const auto scores = builtin_scores(o, o.sphere ? nullptr : &neighborhoods);
-
-    // The file: what was fitted to and how, and the objective next to the built-in sets'.
     const std::string objective =
         o.sphere ? "volume of the k-DOP around the unit sphere"
                  : fmt::format("mean k-DOP volume over all {} {} neighborhoods of {}", neighborhoods.count(),
                                o.neighborhood == "n9" ? "3x3" : "plus-shaped", fmt::join(o.images, ", "));
+    auto fit_axes = [&](std::size_t axes) {
+        fit.axes = axes;
+        std::unique_ptr<Progress> progress;
+        auto on_step = [&](std::size_t done, std::size_t total, double best) {
+            if (!progress) progress = std::make_unique<Progress>(fmt::format("fitting {} axes", axes), total);
+            if (done <= total) progress->advance(fmt::format("best {:.6g}", best));
+        };
+        return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(neighborhoods, fit, on_step);
+    };
+
+    // With --target, the smallest axis count that reaches it, and the table of every count tried.
+    std::vector<std::string> table;
+    FitResult result;
+    if (o.target) {
+        table.push_back(fmt::format("{:>4} {:>4} {:>14} {:>22}", "axes", "k", "score", "float ops (clip, hardened)"));
+        bool reached = false;
+        for (std::size_t axes = o.force_rgb ? 4 : 3; axes <= o.axes && !reached; ++axes) {
+            result = fit_axes(axes);
+            // Its cost as the generator counts it: the float ops of its hardened clip.
+            auto text = fitted_set_file({name, "-", {}}, result.axes);
+            auto set = text ? parse_axis_set(*text, o.out) : Result<AxisSet>(std::unexpected(text.error()));
+            if (!set) return report_error(set.error().message);
+            const std::size_t ops = analytic_min_float_ops(*set, Mode::clip, shape);
+            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g} {:>22}", axes, 2 * axes, result.score, ops));
+            std::cout << table.back() << "\n";
+            reached = result.score <= *o.target;
+            if (result.stopped_early) break;
+        }
+        if (!reached)
+            return report_error(fmt::format("--target {:.6g}: no set of up to {} axes reaches it (the last: {:.6g}{})",
+                                            *o.target, o.axes, result.score,
+                                            result.stopped_early ? ", stopped by --time-limit" : ""));
+    } else {
+        result = fit_axes(o.axes);
+    }
+    const auto scores = builtin_scores(o, o.sphere ? nullptr : &neighborhoods);
+
+    // The file: what was fitted to and how, and the objective next to the built-in sets'.
     FittedSetText text{
         name,
         fmt::format("fitted by kdop {} optimize (seed {}): {} = {:.6g}", KDOP_VERSION, o.seed, objective, result.score),
         {}};
     text.comments.push_back(fmt::format("Fitted by `kdop optimize` {}: {} axes{}, seed {}, {} starts x {} steps{}.",
-                                        KDOP_VERSION, o.axes, o.force_rgb ? " (R, G, B forced)" : "", o.seed,
-                                        o.starts ? fmt::format("{}", o.starts) : "default",
+                                        KDOP_VERSION, result.axes.size(), o.force_rgb ? " (R, G, B forced)" : "",
+                                        o.seed, o.starts ? fmt::format("{}", o.starts) : "default",
                                         o.iterations ? fmt::format("{}", o.iterations) : "default",
                                         result.stopped_early ? ", stopped early by --time-limit" : ""));
     text.comments.push_back(fmt::format("Objective: {}.", objective));
+    if (o.target) {
+        text.comments.push_back(fmt::format("The fewest axes that reach --target {:.6g}:", *o.target));
+        for (const std::string& row : table) text.comments.push_back("  " + row);
+    }
     text.comments.push_back(fmt::format("This set: {:.6g}", result.score));
     for (const auto& [set, score] : scores)
         text.comments.push_back(fmt::format("{}: {:.6g} ({:.3f}x this set's)", set, score, score / result.score));
@@ -120,7 +155,7 @@ int run(const Options& o) {
     if (!file) return report_error(file.error().message);
     if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
 
-    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, o.axes, objective, result.score);
+    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), objective, result.score);
     for (const auto& [set, score] : scores)
         std::cout << fmt::format("  {:<14} {:.6g} ({:.3f}x)\n", set, score, score / result.score);
     std::cout << fmt::format("{:.1f} s, {} k-DOP volumes, {:.3g} per second{}{}\n", result.seconds, result.volumes,
@@ -143,7 +178,9 @@ Action add_optimize_command(CLI::App& app) {
                        ->check(CLI::ExistingFile);
     auto* sphere = cmd->add_flag("--sphere", o->sphere, "Fit around the unit sphere instead: a scene-independent set");
     images->excludes(sphere);
-    cmd->add_option("--axes", o->axes, "Axes to fit (k = 2 x axes)")->required()->check(CLI::Range(3, 32));
+    cmd->add_option("--axes", o->axes, "Axes to fit (k = 2 x axes); with --target, the most to try")
+        ->required()
+        ->check(CLI::Range(3, 32));
     cmd->add_flag("--force-rgb", o->force_rgb, "Keep R, G and B as the first three axes");
     cmd->add_option("--neighborhood", o->neighborhood, "n9 (3x3) or n5 (plus) [default: n9]")
         ->check(CLI::IsMember({"n9", "n5"}))
@@ -155,6 +192,10 @@ Action add_optimize_command(CLI::App& app) {
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--threads", o->threads, "Threads [default: one per core]; the result does not depend on it");
     cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds with the best set so far")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--target", o->target,
+                    "Fit 3, 4, ... up to --axes axes and keep the first whose score reaches this (a mean volume: "
+                    "compare the built-in sets' scores a plain run prints); prints the table of axes, score and cost")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");

@@ -102,6 +102,26 @@ TEST(CliOptimize, AFittedSetGoesThroughGenRunAndAccuracy) {
     EXPECT_NE(test::read_file(in.dir / "accuracy" / "accuracy.csv").find("scene-clip-n9"), std::string::npos);
 }
 
+// --target: the smallest axis count whose fitted set reaches the score, with the table of those tried.
+TEST(CliOptimize, TargetKeepsTheFewestAxesThatReachIt) {
+    OptimizeInputs in;
+    const std::string set = (in.dir / "few.axes").string();
+    auto easy =
+        in.kdop("optimize --images " + in.image + " --axes 6 --target 1 --starts 1 --iterations 3 --out " + set);
+    ASSERT_EQ(easy.exit_code, 0) << easy.err;
+    EXPECT_NE(easy.out.find("   3    6 "), std::string::npos) << "three axes reach a mean volume of 1:\n" << easy.out;
+    EXPECT_EQ(easy.out.find("   4    8 "), std::string::npos) << "and no more are tried:\n" << easy.out;
+    EXPECT_EQ(unit_axes(*resolve_axis_set(set)).size(), 3u);
+
+    const std::string none = (in.dir / "none.axes").string();
+    auto hard =
+        in.kdop("optimize --images " + in.image + " --axes 4 --target 1e-30 --starts 1 --iterations 3 --out " + none);
+    EXPECT_EQ(hard.exit_code, 1);
+    EXPECT_NE(hard.err.find("--target 1e-30: no set of up to 4 axes reaches it"), std::string::npos) << hard.err;
+    EXPECT_NE(hard.out.find("   4    8 "), std::string::npos) << "every count up to --axes is tried:\n" << hard.out;
+    EXPECT_FALSE(fs::exists(none));
+}
+
 TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
     OptimizeInputs in;
     const std::string tiny = (in.dir / "tiny.exr").string();
