@@ -36,6 +36,7 @@ struct Options {
     unsigned threads = 0;
     double time_limit = 0;
     std::optional<double> target;
+    std::optional<std::size_t> max_nonzero;
 };
 
 // The objective of each built-in set on the same content, for the comparison the output gives.
@@ -106,6 +107,15 @@ int run(const Options& o) {
         return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(neighborhoods, fit, on_step);
     };
 
+    // What a set's hardened clip costs, as the generator counts it (analytic_cost.h).
+    auto clip_float_ops = [&](std::span<const glm::dvec3> axes) -> Result<std::size_t> {
+        auto text = fitted_set_file({name, "-", {}}, axes);
+        if (!text) return std::unexpected(text.error());
+        auto set = parse_axis_set(*text, o.out);
+        if (!set) return std::unexpected(set.error());
+        return analytic_min_float_ops(*set, Mode::clip, shape);
+    };
+
     // With --target, the smallest axis count that reaches it, and the table of every count tried.
     std::vector<std::string> table;
     FitResult result;
@@ -114,12 +124,9 @@ int run(const Options& o) {
         bool reached = false;
         for (std::size_t axes = o.force_rgb ? 4 : 3; axes <= o.axes && !reached; ++axes) {
             result = fit_axes(axes);
-            // Its cost as the generator counts it: the float ops of its hardened clip.
-            auto text = fitted_set_file({name, "-", {}}, result.axes);
-            auto set = text ? parse_axis_set(*text, o.out) : Result<AxisSet>(std::unexpected(text.error()));
-            if (!set) return report_error(set.error().message);
-            const std::size_t ops = analytic_min_float_ops(*set, Mode::clip, shape);
-            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g} {:>22}", axes, 2 * axes, result.score, ops));
+            auto ops = clip_float_ops(result.axes);
+            if (!ops) return report_error(ops.error().message);
+            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g} {:>22}", axes, 2 * axes, result.score, *ops));
             std::cout << table.back() << "\n";
             reached = result.score <= *o.target;
             if (result.stopped_early) break;
@@ -130,6 +137,33 @@ int run(const Options& o) {
                                             result.stopped_early ? ", stopped by --time-limit" : ""));
     } else {
         result = fit_axes(o.axes);
+    }
+    // With --max-nonzero, components pinned at 0 one by one, and the curve of score against them.
+    if (o.max_nonzero) {
+        if (*o.max_nonzero < result.axes.size())
+            return report_error(fmt::format("--max-nonzero {}: each of the {} axes keeps at least one component",
+                                            *o.max_nonzero, result.axes.size()));
+        std::unique_ptr<Progress> progress;
+        auto steps = fit_sparser(o.sphere ? nullptr : &neighborhoods, result, *o.max_nonzero, fit,
+                                 [&](std::size_t done, std::size_t total, double best) {
+                                     if (!progress) progress = std::make_unique<Progress>("pinning zeros", total);
+                                     progress->advance(fmt::format("score {:.6g}", best));
+                                 });
+        if (progress) progress->finish();
+        table.push_back(fmt::format("{:>7} {:>14} {:>22}", "nonzero", "score", "float ops (clip, hardened)"));
+        for (const SparserStep& step : steps) {
+            auto ops = clip_float_ops(step.axes);
+            if (!ops) return report_error(ops.error().message);
+            table.push_back(fmt::format("{:>7} {:>14.6g} {:>22}", step.nonzero, step.score, *ops));
+            std::cout << table.back() << "\n";
+        }
+        if (steps.back().nonzero > *o.max_nonzero)
+            return report_error(fmt::format("--max-nonzero {}: pinning stops at {} nonzero components, where one "
+                                            "more zero would turn an axis onto another (the same slab twice); the "
+                                            "curve above shows the trade so far",
+                                            *o.max_nonzero, steps.back().nonzero));
+        result.axes = steps.back().axes;
+        result.score = steps.back().score;
     }
     const auto scores = builtin_scores(o, o.sphere ? nullptr : &neighborhoods);
 
@@ -144,10 +178,10 @@ int run(const Options& o) {
                                         o.iterations ? fmt::format("{}", o.iterations) : "default",
                                         result.stopped_early ? ", stopped early by --time-limit" : ""));
     text.comments.push_back(fmt::format("Objective: {}.", objective));
-    if (o.target) {
-        text.comments.push_back(fmt::format("The fewest axes that reach --target {:.6g}:", *o.target));
-        for (const std::string& row : table) text.comments.push_back("  " + row);
-    }
+    if (o.target) text.comments.push_back(fmt::format("The fewest axes that reach --target {:.6g}:", *o.target));
+    if (o.max_nonzero)
+        text.comments.push_back(fmt::format("Components pinned at 0 one by one, to at most {}:", *o.max_nonzero));
+    for (const std::string& row : table) text.comments.push_back("  " + row);
     text.comments.push_back(fmt::format("This set: {:.6g}", result.score));
     for (const auto& [set, score] : scores)
         text.comments.push_back(fmt::format("{}: {:.6g} ({:.3f}x this set's)", set, score, score / result.score));
@@ -197,6 +231,11 @@ Action add_optimize_command(CLI::App& app) {
                     "Fit 3, 4, ... up to --axes axes and keep the first whose score reaches this (a mean volume: "
                     "compare the built-in sets' scores a plain run prints); prints the table of axes, score and cost")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--max-nonzero", o->max_nonzero,
+                    "Then pin the smallest components at 0, refitting after each, until at most this many are "
+                    "nonzero over all axes (a zero costs the clip nothing); prints the curve of score and cost")
+        ->check(CLI::Range(1, 96))
+        ->excludes("--target");
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
     return [o, images, sphere] {

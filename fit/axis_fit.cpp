@@ -1,5 +1,6 @@
 #include "axis_fit.h"
 
+#include "axis_set.h"
 #include "random.h"
 #include "variant_spec.h"
 
@@ -107,9 +108,18 @@ std::vector<glm::dvec3> random_start(const FitOptions& options, std::size_t inde
 // proportional to the gradient's size, the largest turning by `step` radians; the step grows by
 // 1.25 after an improvement and halves after a failure. Stops after `iterations` steps, when the
 // step falls below 1e-9 radians, or at the deadline.
+//
+// `zeros` (one mask per axis, or empty) pins components at 0: the search runs on what is left.
 template <class Evaluate, class Step>
 FitResult descend(std::vector<glm::dvec3> axes, std::size_t fixed, std::size_t iterations,
-                  const std::optional<Clock::time_point>& deadline, Evaluate evaluate, Step on_step) {
+                  const std::optional<Clock::time_point>& deadline, Evaluate evaluate, Step on_step,
+                  const std::vector<glm::bvec3>& zeros = {}) {
+    auto pin = [&](std::size_t i, glm::dvec3 v) {
+        if (!zeros.empty())
+            for (int c = 0; c < 3; ++c)
+                if (zeros[i][c]) v[c] = 0;
+        return v;
+    };
     FitResult result;
     Evaluation current = evaluate(axes);
     result.volumes += current.volumes;
@@ -120,14 +130,16 @@ FitResult descend(std::vector<glm::dvec3> axes, std::size_t fixed, std::size_t i
             result.stopped_early = true;
             break;
         }
+        std::vector<glm::dvec3> descent(axes.size(), glm::dvec3(0.0));
         double largest = 0;
-        for (std::size_t i = fixed; i < axes.size(); ++i) largest = std::max(largest, glm::length(current.gradient[i]));
+        for (std::size_t i = fixed; i < axes.size(); ++i) {
+            descent[i] = pin(i, current.gradient[i] - glm::dot(current.gradient[i], axes[i]) * axes[i]);
+            largest = std::max(largest, glm::length(descent[i]));
+        }
         if (!(largest > 0)) break;
         std::vector<glm::dvec3> trial = axes;
-        for (std::size_t i = fixed; i < axes.size(); ++i) {
-            const glm::dvec3 g = current.gradient[i] - glm::dot(current.gradient[i], axes[i]) * axes[i];
-            trial[i] = glm::normalize(axes[i] - step * g / largest);
-        }
+        for (std::size_t i = fixed; i < axes.size(); ++i)
+            trial[i] = glm::normalize(pin(i, axes[i] - step * descent[i] / largest));
         Evaluation next = evaluate(trial);
         result.volumes += next.volumes;
         result.failed += next.failed;
@@ -246,6 +258,69 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
     }
     result.seconds = std::chrono::duration<double>(Clock::now() - start_time).count();
     return result;
+}
+
+std::size_t nonzero_components(std::span<const glm::dvec3> axes) {
+    std::size_t count = 0;
+    for (const glm::dvec3& a : axes) count += (a.x != 0) + (a.y != 0) + (a.z != 0);
+    return count;
+}
+
+std::vector<SparserStep> fit_sparser(const Neighborhoods* neighborhoods, const FitResult& start,
+                                     std::size_t max_nonzero, const FitOptions& options, const FitProgress& progress) {
+    const unsigned threads = thread_count(options.threads);
+    const std::size_t fixed = options.force_rgb ? 3 : 0;
+    const std::size_t iterations = options.iterations ? options.iterations : (neighborhoods ? 30 : 200);
+    auto evaluate = [&](std::span<const glm::dvec3> axes) {
+        return neighborhoods ? evaluate_neighborhoods(axes, *neighborhoods, threads) : evaluate_sphere(axes);
+    };
+    std::vector<glm::dvec3> axes = start.axes;
+    std::vector<glm::bvec3> zeros(axes.size(), glm::bvec3(false));
+    for (std::size_t i = 0; i < axes.size(); ++i)
+        for (int c = 0; c < 3; ++c) zeros[i][c] = axes[i][c] == 0;
+    std::vector<SparserStep> steps{{nonzero_components(axes), start.score, axes}};
+    const std::size_t total = steps[0].nonzero > max_nonzero ? steps[0].nonzero - max_nonzero : 0;
+    while (steps.back().nonzero > max_nonzero) {
+        // The smallest component relative to its axis's largest, never the largest itself, nor one
+        // whose loss would leave the axis parallel to another (the same slab twice).
+        auto parallel_to_another = [&](std::size_t i, const glm::dvec3& a) {
+            for (std::size_t j = 0; j < axes.size(); ++j)
+                if (j != i && std::abs(glm::dot(a, axes[j])) > std::cos(kParallelAxisAngle)) return true;
+            return false;
+        };
+        std::size_t best_axis = axes.size();
+        int best_component = 0;
+        double smallest = std::numeric_limits<double>::infinity();
+        for (std::size_t i = fixed; i < axes.size(); ++i) {
+            const double largest = std::max({std::abs(axes[i].x), std::abs(axes[i].y), std::abs(axes[i].z)});
+            int kept_largest = 0;
+            for (int c = 0; c < 3; ++c)
+                if (std::abs(axes[i][c]) == largest) kept_largest = c;
+            for (int c = 0; c < 3; ++c) {
+                glm::dvec3 pinned = axes[i];
+                pinned[c] = 0;
+                if (c != kept_largest && axes[i][c] != 0 && std::abs(axes[i][c]) / largest < smallest &&
+                    !parallel_to_another(i, glm::normalize(pinned))) {
+                    smallest = std::abs(axes[i][c]) / largest;
+                    best_axis = i;
+                    best_component = c;
+                }
+            }
+        }
+        if (best_axis == axes.size()) break; // one component per axis is all that is left
+        zeros[best_axis][best_component] = true;
+        axes[best_axis][best_component] = 0;
+        axes[best_axis] = glm::normalize(axes[best_axis]);
+        FitResult r = descend(axes, fixed, iterations, options.deadline, evaluate, [](double) {}, zeros);
+        bool collapsed = false; // the refit turned one axis onto another: stop at the step before
+        for (std::size_t i = 0; i < axes.size(); ++i) collapsed |= parallel_to_another(i, r.axes[i]);
+        if (collapsed) break;
+        axes = r.axes;
+        steps.push_back({nonzero_components(axes), r.score, axes});
+        if (progress) progress(steps.size() - 1, total, r.score);
+        if (r.stopped_early) break;
+    }
+    return steps;
 }
 
 } // namespace kdop

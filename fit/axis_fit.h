@@ -71,4 +71,20 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
 double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads = 0,
                    std::size_t* failed = nullptr);
 
+// Components equal to 0 over all axes: what a clip spends multiply-adds on (a zero costs nothing).
+std::size_t nonzero_components(std::span<const glm::dvec3> axes);
+
+// Trading tightness for cost, as the supplement's 22-DOP does with its zeros: from a fitted set,
+// pins its smallest component (relative to its axis's largest) at 0 and refits, one at a time,
+// until at most `max_nonzero` components are left (or one per axis). Each step of the curve, the
+// start first. On the neighborhoods, or around the sphere when `neighborhoods` is null.
+struct SparserStep {
+    std::size_t nonzero;
+    double score;
+    std::vector<glm::dvec3> axes;
+};
+std::vector<SparserStep> fit_sparser(const Neighborhoods* neighborhoods, const FitResult& start,
+                                     std::size_t max_nonzero, const FitOptions& options,
+                                     const FitProgress& progress = {});
+
 } // namespace kdop

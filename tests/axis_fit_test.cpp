@@ -122,6 +122,24 @@ TEST(CliOptimize, TargetKeepsTheFewestAxesThatReachIt) {
     EXPECT_FALSE(fs::exists(none));
 }
 
+// --max-nonzero: zeros pinned one by one, each cheaper, the score never better than before.
+TEST(AxisFit, PinningZerosTradesScoreForFloatOps) {
+    FitOptions options;
+    options.axes = 11;
+    options.force_rgb = true;
+    const FitResult fitted = fit_to_sphere(options);
+    const auto steps = fit_sparser(nullptr, fitted, 23, options);
+    ASSERT_GE(steps.size(), 2u);
+    EXPECT_EQ(steps.front().nonzero, nonzero_components(fitted.axes));
+    EXPECT_EQ(steps.back().nonzero, 23u) << "as many as the supplement's 22-DOP has";
+    for (std::size_t i = 1; i < steps.size(); ++i) {
+        EXPECT_EQ(steps[i].nonzero, steps[i - 1].nonzero - 1);
+        EXPECT_GE(steps[i].score, steps[i - 1].score - 1e-9) << "a pinned zero never helps";
+    }
+    EXPECT_LE(steps.back().score, builtin_sphere_volume("dop22") + 1e-6)
+        << "with the 22-DOP's 23 nonzero components, as tight as it";
+}
+
 TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
     OptimizeInputs in;
     const std::string tiny = (in.dir / "tiny.exr").string();
@@ -140,6 +158,9 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--images " + in.image + " --sphere --axes 4" + out, "excludes", 2},
         {"--axes 4" + out, "give --images FILE... to fit to, or --sphere", 2},
         {"--sphere --axes 4 --out " + (in.dir / "Bad_Name.axes").string(), "'Bad_Name' is not a set name", 1},
+        {"--sphere --axes 5 --max-nonzero 4" + out, "--max-nonzero 4: each of the 5 axes keeps at least one", 1},
+        {"--sphere --axes 11 --force-rgb --max-nonzero 11" + out, "--max-nonzero 11: pinning stops at", 1},
+        {"--images " + in.image + " --axes 5 --max-nonzero 9 --target 1" + out, "excludes", 2},
     };
     for (const Case& c : cases) {
         auto r = in.kdop("optimize " + c.args);
