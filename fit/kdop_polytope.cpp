@@ -50,18 +50,17 @@ enum class Clip { unchanged, clipped, empty, failed };
 // instead of cut into slivers whose order rounding could scramble.
 Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double tolerance) {
     double side[kMaxVertices];
-    bool any_out = false, any_in = false;
+    bool is_outside[kMaxVertices];
+    int outside_total = 0;
     for (int k = 0; k < poly.live_count; ++k) {
         const int v = poly.live[k];
         side[v] = glm::dot(n, poly.vertices[v]) - d;
-        if (side[v] > tolerance)
-            any_out = true;
-        else
-            any_in = true;
+        is_outside[v] = side[v] > tolerance;
+        outside_total += is_outside[v];
     }
-    if (!any_out) return Clip::unchanged;
-    if (!any_in) return Clip::empty;
-    auto outside = [&](int v) { return side[v] > tolerance; };
+    if (outside_total == 0) return Clip::unchanged;
+    if (outside_total == poly.live_count) return Clip::empty;
+    auto outside = [&](int v) { return is_outside[v]; };
 
     struct Cut {
         int inside, outside, vertex;
@@ -86,8 +85,13 @@ Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double toler
         Polytope::Face& face = poly.faces[f];
         int outside_count = 0;
         for (int k = 0; k < face.size; ++k) outside_count += outside(face.loop[k]);
-        if (outside_count == 0) { // untouched
-            if (kept_faces != f) poly.faces[kept_faces] = face;
+        if (outside_count == 0) { // untouched; moved down over faces cut away, its loop only
+            if (kept_faces != f) {
+                Polytope::Face& to = poly.faces[kept_faces];
+                to.plane = face.plane;
+                to.size = face.size;
+                std::copy_n(face.loop, face.size, to.loop);
+            }
             ++kept_faces;
             continue;
         }
@@ -137,7 +141,7 @@ Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double toler
     int live_count = 0;
     for (int k = 0; k < poly.live_count; ++k) {
         const int u = poly.live[k];
-        if (outside(u))
+        if (is_outside[u])
             poly.free_slots[poly.free_count++] = u;
         else
             poly.live[live_count++] = u;
