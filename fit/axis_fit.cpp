@@ -248,13 +248,12 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
                 if (progress) progress(++done, starts * iterations, best);
             });
         const std::size_t volumes = result.volumes + r.volumes, failed = result.failed + r.failed;
+        const bool stopped = r.stopped_early || (s + 1 < starts && options.deadline && Clock::now() >= *options.deadline);
         if (s == 0 || r.score < result.score) result = std::move(r);
         result.volumes = volumes;
         result.failed = failed;
-        if (result.stopped_early || (options.deadline && Clock::now() >= *options.deadline)) {
-            result.stopped_early = true;
-            break;
-        }
+        result.stopped_early = stopped;
+        if (stopped) break;
     }
     result.seconds = std::chrono::duration<double>(Clock::now() - start_time).count();
     return result;

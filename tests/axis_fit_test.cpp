@@ -122,6 +122,17 @@ TEST(CliOptimize, TargetKeepsTheFewestAxesThatReachIt) {
     EXPECT_FALSE(fs::exists(none));
 }
 
+// --time-limit: the best set so far, and the file says the search was cut short.
+TEST(CliOptimize, TimeLimitKeepsTheBestSetSoFar) {
+    OptimizeInputs in;
+    const std::string set = (in.dir / "quick.axes").string();
+    auto r = in.kdop("optimize --sphere --axes 16 --starts 20000 --time-limit 0.3 --out " + set);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("stopped early by --time-limit"), std::string::npos) << r.out;
+    EXPECT_NE(test::read_file(set).find("stopped early by --time-limit"), std::string::npos);
+    EXPECT_TRUE(resolve_axis_set(set)) << "a usable set all the same";
+}
+
 // --max-nonzero: zeros pinned one by one, each cheaper, the score never better than before.
 TEST(AxisFit, PinningZerosTradesScoreForFloatOps) {
     FitOptions options;
