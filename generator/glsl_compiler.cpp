@@ -93,8 +93,9 @@ Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, s
                                                   const IncludeResolver& resolve = {}) {
     initialize_glslang_once();
     const bool hlsl = language == glslang::EShSourceHlsl;
-    const EShMessages messages =
-        static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | (hlsl ? EShMsgReadHlsl : 0));
+    int flags = EShMsgSpvRules | EShMsgVulkanRules;
+    if (hlsl) flags |= EShMsgReadHlsl;
+    const EShMessages messages = static_cast<EShMessages>(flags);
 
     glslang::TShader shader(EShLangCompute);
     const char* text = source.data();
