@@ -44,14 +44,8 @@ std::vector<std::pair<std::string, double>> builtin_scores(const Options& o, con
     std::vector<std::pair<std::string, double>> scores;
     for (const std::string& name : builtin_set_names()) {
         const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set(name)); // built in: cannot fail
-        const KdopPolytope kdop(axes);
-        double score;
-        if (neighborhoods) {
-            score = mean_volume(axes, *neighborhoods, o.threads);
-        } else {
-            const std::vector<double> lo(axes.size(), -1.0), hi(axes.size(), 1.0);
-            score = kdop.volume(lo, hi);
-        }
+        const double score =
+            neighborhoods ? mean_volume(axes, *neighborhoods, o.threads) : KdopPolytope(axes).sphere_volume();
         scores.emplace_back(name, score);
     }
     return scores;
@@ -145,7 +139,7 @@ int run(const Options& o) {
                                             *o.max_nonzero, result.axes.size()));
         std::unique_ptr<Progress> progress;
         auto steps = fit_sparser(o.sphere ? nullptr : &neighborhoods, result, *o.max_nonzero, fit,
-                                 [&](std::size_t done, std::size_t total, double best) {
+                                 [&](std::size_t, std::size_t total, double best) {
                                      if (!progress) progress = std::make_unique<Progress>("pinning zeros", total);
                                      progress->advance(fmt::format("score {:.6g}", best));
                                  });

@@ -175,47 +175,46 @@ KdopPolytope::KdopPolytope(std::span<const glm::dvec3> axes) {
     base_flipped_ = glm::determinant(m) < 0;
 }
 
-double KdopPolytope::volume_of(std::span<const glm::dvec3> points, std::span<Face> faces) const {
-    double lo[kMaxPolytopeAxes], hi[kMaxPolytopeAxes];
+KdopPolytope::SlabBounds KdopPolytope::bounds_of(std::span<const glm::dvec3> points) const {
+    SlabBounds b;
     for (std::size_t i = 0; i < axes_.size(); ++i) {
-        lo[i] = std::numeric_limits<double>::infinity();
-        hi[i] = -lo[i];
-        for (const glm::dvec3& p : points) {
-            const double q = glm::dot(axes_[i], p);
-            lo[i] = std::min(lo[i], q);
-            hi[i] = std::max(hi[i], q);
+        b.lo[i] = b.hi[i] = glm::dot(axes_[i], points[0]);
+        b.lowest[i] = b.highest[i] = 0;
+        for (std::size_t j = 1; j < points.size(); ++j) {
+            const double q = glm::dot(axes_[i], points[j]);
+            if (q < b.lo[i]) b.lo[i] = q, b.lowest[i] = j;
+            if (q > b.hi[i]) b.hi[i] = q, b.highest[i] = j;
         }
     }
-    return volume({lo, axes_.size()}, {hi, axes_.size()}, faces);
+    return b;
+}
+
+double KdopPolytope::volume_of(std::span<const glm::dvec3> points, std::span<Face> faces) const {
+    const SlabBounds b = bounds_of(points);
+    return volume({b.lo, axes_.size()}, {b.hi, axes_.size()}, faces);
 }
 
 double KdopPolytope::volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient) const {
     const std::size_t n = axes_.size();
-    double lo[kMaxPolytopeAxes], hi[kMaxPolytopeAxes];
-    std::size_t lowest[kMaxPolytopeAxes], highest[kMaxPolytopeAxes];
-    for (std::size_t i = 0; i < n; ++i) {
-        lo[i] = hi[i] = glm::dot(axes_[i], points[0]);
-        lowest[i] = highest[i] = 0;
-        for (std::size_t j = 1; j < points.size(); ++j) {
-            const double q = glm::dot(axes_[i], points[j]);
-            if (q < lo[i]) lo[i] = q, lowest[i] = j;
-            if (q > hi[i]) hi[i] = q, highest[i] = j;
-        }
-    }
+    const SlabBounds b = bounds_of(points);
     Face faces[2 * kMaxPolytopeAxes];
-    const double v = volume({lo, n}, {hi, n}, {faces, 2 * n});
+    const double v = volume({b.lo, n}, {b.hi, n}, {faces, 2 * n});
     if (std::isnan(v)) return v;
     for (std::size_t i = 0; i < n; ++i)
-        gradient[i] += faces[2 * i].area * (points[highest[i]] - faces[2 * i].centroid) +
-                       faces[2 * i + 1].area * (faces[2 * i + 1].centroid - points[lowest[i]]);
+        gradient[i] += faces[2 * i].area * (points[b.highest[i]] - faces[2 * i].centroid) +
+                       faces[2 * i + 1].area * (faces[2 * i + 1].centroid - points[b.lowest[i]]);
     return v;
+}
+
+double KdopPolytope::sphere_volume(std::span<Face> faces) const {
+    const std::vector<double> lo(axes_.size(), -1.0), hi(axes_.size(), 1.0);
+    return volume(lo, hi, faces);
 }
 
 double KdopPolytope::sphere_volume_gradient(std::span<glm::dvec3> gradient) const {
     const std::size_t n = axes_.size();
-    const std::vector<double> lo(n, -1.0), hi(n, 1.0);
     Face faces[2 * kMaxPolytopeAxes];
-    const double v = volume(lo, hi, {faces, 2 * n});
+    const double v = sphere_volume({faces, 2 * n});
     if (std::isnan(v)) return v;
     for (std::size_t i = 0; i < n; ++i)
         gradient[i] += faces[2 * i].area * (axes_[i] - faces[2 * i].centroid) +

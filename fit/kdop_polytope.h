@@ -51,11 +51,21 @@ public:
     // no slab. NaN (and no gradient added) where the polytope could not be built.
     double volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient) const;
 
-    // The same for the k-DOP around the unit sphere (every slab [-1, 1]), whose support point in
+    // The k-DOP around the unit sphere: every slab [-1, 1].
+    double sphere_volume(std::span<Face> faces = {}) const;
+
+    // Its volume and gradient, as volume_gradient; the sphere's support point in
     // direction a is a itself: dV/da = A_hi (a - c_hi) + A_lo (c_lo + a).
     double sphere_volume_gradient(std::span<glm::dvec3> gradient) const;
 
 private:
+    // Each slab's bounds over `points`, and which point sets each.
+    struct SlabBounds {
+        double lo[kMaxPolytopeAxes], hi[kMaxPolytopeAxes];
+        std::size_t lowest[kMaxPolytopeAxes], highest[kMaxPolytopeAxes];
+    };
+    SlabBounds bounds_of(std::span<const glm::dvec3> points) const;
+
     std::vector<glm::dvec3> axes_;        // unit
     std::array<std::size_t, 3> base_{};   // the axes whose slabs make the starting parallelepiped
     glm::dmat3 base_inverse_{1.0};        // rows a_base -> the point with given projections

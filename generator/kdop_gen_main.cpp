@@ -3,6 +3,7 @@
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
 #include "command_line.h"
 #include "project_shader.h"
+#include "read_file.h"
 #include "registry_writer.h"
 #include "selection_options.h"
 #include "variant_builder.h"
@@ -12,10 +13,8 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <set>
-#include <sstream>
 
 namespace fs = std::filesystem;
 using namespace kdop;
@@ -25,13 +24,6 @@ namespace {
 int report(const Error& error) {
     std::cerr << error.message << (error.message.ends_with('\n') ? "" : "\n");
     return 1;
-}
-
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 // Rewrites `dir` with the default variants' GLSL and HLSL, removing such files no default variant has; with
@@ -56,7 +48,7 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
     if (check) {
         int stale = 0;
         for (const OutputFile& f : files)
-            if (!fs::exists(f.path) || read_file(f.path) != f.content) {
+            if (read_file(f.path) != f.content) { // missing, unreadable or different
                 std::cerr << f.path.string() << ": stale or missing\n";
                 ++stale;
             }

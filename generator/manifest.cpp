@@ -1,13 +1,13 @@
 #include "manifest.h"
 
 #include "builtin_sets.h"
+#include "read_file.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 namespace kdop {
 namespace fs = std::filesystem;
@@ -36,12 +36,9 @@ Result<Manifest> read_manifest(const fs::path& path) {
 
         if (line.starts_with("set:")) {
             const fs::path file = path.parent_path() / trimmed(line.substr(4));
-            std::ifstream set_in(file, std::ios::binary);
-            std::ostringstream set_text;
-            set_text << set_in.rdbuf();
-            if (!set_in || set_in.bad())
-                return fail(fmt::format("{}: cannot read axis-set file {}", where, file.string()));
-            auto set = parse_axis_set(set_text.str(), file.string()); // its errors name the file and line
+            auto set_text = read_file(file);
+            if (!set_text) return fail(fmt::format("{}: cannot read axis-set file {}", where, file.string()));
+            auto set = parse_axis_set(*set_text, file.string()); // its errors name the file and line
             if (!set) return fail(fmt::format("{}: in the set it names: {}", where, set.error().message));
             if (is_builtin_set(set->name) || declared.count(set->name))
                 return fail(fmt::format("{}: {} names its set '{}', which {}", where, file.string(), set->name,

@@ -1,29 +1,13 @@
 #include "project_shader.h"
 
 #include "glsl_compiler.h"
+#include "read_file.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <fstream>
-#include <sstream>
-
 namespace kdop {
 namespace fs = std::filesystem;
-
-namespace {
-
-std::optional<std::string> read_text(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in && !in.eof()) return std::nullopt;
-    return text.str();
-}
-
-} // namespace
 
 Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
                                            std::span<const fs::path> include_dirs, TargetEnv env) {
@@ -31,7 +15,7 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     out.built.spec.mode = Mode::shader;
     out.built.name = file.stem().string();
     const std::string name = file.string();
-    auto source = read_text(file);
+    auto source = read_file(file);
     if (!source) return fail(fmt::format("{}: cannot read shader", name));
     out.built.compute_glsl = std::move(*source);
     out.read_files.push_back(fs::absolute(file));
@@ -44,7 +28,7 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
         std::vector<fs::path> candidates{fs::path(includer).parent_path() / header};
         for (const fs::path& dir : include_dirs) candidates.push_back(dir / header);
         for (const fs::path& candidate : candidates)
-            if (auto text = read_text(candidate)) {
+            if (auto text = read_file(candidate)) {
                 out.read_files.push_back(fs::absolute(candidate));
                 return IncludedSource{candidate.string(), std::move(*text)};
             }

@@ -1,14 +1,13 @@
 #include "variant_spec.h"
 
 #include "builtin_sets.h"
+#include "read_file.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
-#include <fstream>
-#include <sstream>
 
 namespace kdop {
 namespace {
@@ -65,14 +64,11 @@ int neighborhood_center(Neighborhood n) { return n == Neighborhood::n9 ? 4 : 2; 
 
 Result<AxisSet> resolve_axis_set(std::string_view name_or_path) {
     if (auto text = builtin_set_text(name_or_path)) return parse_axis_set(*text, builtin_set_path(name_or_path));
-    std::ifstream file{std::string(name_or_path), std::ios::binary};
-    if (!file)
+    auto text = read_file(std::string(name_or_path));
+    if (!text)
         return fail(fmt::format("--sets: '{}' is not a built-in axis set ({}) nor a readable file", name_or_path,
                                 builtin_set_list()));
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) return fail(fmt::format("{}: read error", name_or_path));
-    return parse_axis_set(text.str(), name_or_path);
+    return parse_axis_set(*text, name_or_path);
 }
 
 Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& set_args,

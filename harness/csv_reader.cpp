@@ -1,10 +1,10 @@
 #include "csv_reader.h"
 
+#include "read_file.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 namespace kdop {
 
@@ -75,11 +75,9 @@ Result<CsvFile> parse_csv(std::string_view text, std::string_view origin) {
 }
 
 Result<CsvFile> read_csv(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return fail(fmt::format("{}: cannot read", path.string()));
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_csv(text.str(), path.string());
+    auto text = read_file(path);
+    if (!text) return fail(fmt::format("{}: cannot read", path.string()));
+    return parse_csv(*text, path.string());
 }
 
 } // namespace kdop

@@ -17,9 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 double builtin_sphere_volume(const char* name) {
-    const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set(name));
-    const std::vector<double> lo(axes.size(), -1.0), hi(axes.size(), 1.0);
-    return KdopPolytope(axes).volume(lo, hi);
+    return KdopPolytope(unit_axes(*resolve_axis_set(name))).sphere_volume();
 }
 
 // The linear colors of the grass texture (colobot-common-textures, installed by install-deps.sh).

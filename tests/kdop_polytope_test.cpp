@@ -23,7 +23,7 @@ std::vector<glm::dvec3> builtin_axes(const char* name) {
     return unit_axes(*set);
 }
 
-// The k-DOP around the unit sphere: every slab [-1, 1].
+// The k-DOP around the unit sphere, from the slabs [-1, 1] given as such.
 double sphere_volume(const KdopPolytope& kdop) {
     const std::vector<double> lo(kdop.axis_count(), -1.0), hi(kdop.axis_count(), 1.0);
     return kdop.volume(lo, hi);
