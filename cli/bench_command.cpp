@@ -7,6 +7,7 @@
 #include "output_set.h"
 #include "run_metadata.h"
 #include "scratch_directory.h"
+#include "size_option.h"
 #include "variant_catalog.h"
 
 #include <fmt/format.h>
@@ -19,32 +20,7 @@
 #include <thread>
 
 namespace kdop::cli {
-namespace {
 
-// "1920x1080" -> {1920, 1080}; both sides 8..16384.
-std::optional<bench::Size> parse_size(std::string_view text) {
-    const auto x = text.find('x');
-    if (x == std::string_view::npos) return std::nullopt;
-    auto number = [](std::string_view s) -> std::optional<std::uint32_t> {
-        std::uint32_t v = 0;
-        auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
-        if (error != std::errc{} || end != s.data() + s.size() || v < 8 || v > 16384) return std::nullopt;
-        return v;
-    };
-    auto w = number(text.substr(0, x)), h = number(text.substr(x + 1));
-    if (!w || !h) return std::nullopt;
-    return bench::Size{*w, *h};
-}
-
-Result<bench::Size> size_option(const std::string& option, const std::string& text) {
-    auto size = parse_size(text);
-    if (!size) return fail(fmt::format("{}: '{}' is not WIDTHxHEIGHT with sides 8..16384", option, text));
-    if (auto ok = check_memory(fmt::format("{} {}", option, text), rectify_pass_bytes(size->first, size->second)); !ok)
-        return std::unexpected(ok.error());
-    return *size;
-}
-
-} // namespace
 
 Action add_bench_command(CLI::App& app) {
     struct Options {

@@ -1,0 +1,207 @@
+#include "commands.h"
+
+#include "flip.h"
+#include "image_io.h"
+#include "output_set.h"
+#include "progress.h"
+#include "read_file.h"
+#include "run_metadata.h"
+#include "scratch_directory.h"
+#include "selection_options.h"
+#include "statistics.h"
+#include "size_option.h"
+#include "taa_measure.h"
+#include "taa_report.h"
+#include "taa_scene.h"
+#include "taa_shader.h"
+#include "timing.h"
+#include "trail_picture.h"
+#include "variant_catalog.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+namespace kdop::cli {
+namespace {
+
+// An image as an output of the set: written once through OpenImageIO into the scratch directory,
+// then carried as bytes, so it lands with the tables, all or nothing.
+Result<OutputFile> image_output(const std::filesystem::path& scratch, const std::filesystem::path& dir,
+                                const std::string& name, const Image& image) {
+    std::string flat = name;
+    std::replace(flat.begin(), flat.end(), '/', '_');
+    const std::filesystem::path staged = scratch / flat;
+    if (auto ok = write_image(staged.string(), image); !ok) return std::unexpected(ok.error());
+    auto bytes = read_file(staged);
+    if (!bytes) return fail(fmt::format("{}: cannot read back", staged.string()));
+    return OutputFile{dir / name, std::move(*bytes)};
+}
+
+// The scenes --scenes and --background ask for, in that order.
+Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& names,
+                                              const std::vector<std::string>& backgrounds, Size size,
+                                              std::uint64_t seed) {
+    std::vector<TaaScene> all = default_taa_scenes(size.first, size.second, seed), out;
+    std::string known;
+    for (const TaaScene& s : all) known += (known.empty() ? "" : ", ") + s.name;
+    if (names.empty() && backgrounds.empty()) return all;
+    for (const std::string& name : names) {
+        auto it = std::find_if(all.begin(), all.end(), [&](const TaaScene& s) { return s.name == name; });
+        if (it == all.end()) return fail(fmt::format("--scenes: no scene '{}'; the built-in scenes here: {}", name, known));
+        out.push_back(*it);
+    }
+    for (const std::string& path : backgrounds) {
+        auto scene = read_taa_scene(path, size.first, size.second);
+        if (!scene) return std::unexpected(scene.error());
+        if (std::any_of(out.begin(), out.end(), [&](const TaaScene& s) { return s.name == scene->name; }))
+            return fail(fmt::format("--background: {}: a scene is already called '{}'", path, scene->name));
+        out.push_back(std::move(*scene));
+    }
+    return out;
+}
+
+} // namespace
+
+Action add_taa_command(CLI::App& app) {
+    struct Options {
+        std::string out, size = "320x180", device;
+        std::vector<std::string> scenes, backgrounds;
+        SelectionOptions selection;
+        std::uint32_t warmup = 100, frames = 100;
+        unsigned timing_rounds = 15;
+        std::uint64_t seed = 1;
+        double ppd = 0;
+        bool validation = false;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* taa = app.add_subcommand(
+        "taa",
+        "Run every variant in a small TAA loop on the device over moving objects and measure the ghosting and "
+        "shimmer a viewer sees, in LDR-FLIP, as Ikkala et al. 2024 do (Tables 1 and 2); writes taa.csv (and "
+        "JSON), report.md, selected frames as EXR and PNG and one labeled ghosting picture per scene");
+    taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
+    o->selection.add_to(*taa, true);
+    taa->add_option("--scenes", o->scenes,
+                    "Built-in scenes: grass, asphalt and the first installed real texture (colobot-grass) "
+                    "[default: all of them, unless --background is given]");
+    taa->add_option("--background", o->backgrounds,
+                    "Your own background images (linear values in [0, 1]; tiled or cropped to --size), one scene each");
+    taa->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
+    taa->add_option("--warmup", o->warmup, "Frames before measuring [default: 100]")->check(CLI::Range(1u, 100000u));
+    taa->add_option("--frames", o->frames, "Frames measured [default: 100]")->check(CLI::Range(1u, 100000u));
+    taa->add_option("--ppd", o->ppd,
+                    "FLIP's pixels per degree [default: 0.7 m from a 0.7 m wide 3840-pixel display, about 67]");
+    taa->add_option("--timing-rounds", o->timing_rounds, "Interleaved dispatches per variant for ms [default: 15]")
+        ->check(CLI::Range(1u, 10000u));
+    taa->add_option("--seed", o->seed, "Seed of the synthetic backgrounds [default: 1]");
+    taa->add_option("--device", o->device,
+                    "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
+
+    return [o, taa] {
+        if (o->selection.baselines)
+            return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
+        if (taa->count("--ppd") && !(std::isfinite(o->ppd) && o->ppd > 0))
+            return report_error(fmt::format("--ppd: must be a finite number > 0, got {}", o->ppd));
+        const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
+        auto size = size_option("--size", o->size);
+        if (!size) return report_error(size.error().message);
+        auto outputs = OutputSet::prepare(o->out);
+        if (!outputs) return report_error(outputs.error().message);
+        // The paper's rows are 3x3 neighborhoods; n5 on request.
+        if (o->selection.manifest.empty() && o->selection.neighborhoods.empty()) o->selection.neighborhoods = {"n9"};
+        auto specs = o->selection.select();
+        if (!specs) return report_error(specs.error().message);
+        auto scenes = selected_scenes(o->scenes, o->backgrounds, *size, o->seed);
+        if (!scenes) return report_error(scenes.error().message);
+        auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
+        if (!catalog) return report_error(catalog.error().message);
+        ScratchDirectory scratch("kdop-taa");
+        if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
+
+        std::vector<std::unique_ptr<RunnableVariant>> shaders;
+        for (const VariantSpec& spec : *specs) {
+            auto shader = build_taa_shader(spec);
+            if (!shader) return report_error(shader.error().message);
+            shaders.push_back(std::move(*shader));
+        }
+        std::vector<VariantKey> keys;
+        for (const VariantSpec& spec : *specs) keys.push_back(spec.key());
+        auto rectifiers = catalog->find_all(keys, "--sets");
+        if (!rectifiers) return report_error(rectifiers.error().message);
+
+        auto context = Context::create({o->device, o->validation});
+        if (!context) return report_error(context.error().message);
+        const auto [width, height] = *size;
+        const TaaSchedule schedule{o->warmup, o->frames};
+        const LdrFlip flip(ppd);
+
+        std::vector<TaaRow> rows;
+        std::vector<OutputFile> files;
+        std::vector<std::string> pictures;
+        {
+            Progress progress(fmt::format("TAA of {} variants x {} scenes on {},", specs->size(), scenes->size(),
+                                          (*context)->device_name()),
+                              specs->size() * scenes->size() + o->timing_rounds);
+            auto timing = bench::time_interleaved(**context, *rectifiers, width, height, o->timing_rounds, progress);
+            if (!timing) return report_error(timing.error().message);
+            for (const TaaScene& scene : *scenes) {
+                std::vector<Image> trails;
+                Image aliased;
+                for (std::size_t v = 0; v < specs->size(); ++v) {
+                    auto loop = TaaLoop::create(**context, shaders[v]->variant(), scene.background);
+                    if (!loop) return report_error(loop.error().message);
+                    auto m = measure_taa(**loop, width, height, schedule, flip);
+                    if (!m) return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
+                    rows.push_back({keys[v], scene.name, median(timing->ms[v]), m->shimmer, m->ghosting});
+                    trails.push_back(std::move(m->trail));
+                    if (v == 0) {
+                        auto reference = (*loop)->render(frame_state(trail_frame(schedule, width, height), width,
+                                                                     height, true, false));
+                        if (!reference) return report_error(reference.error().message);
+                        aliased = std::move(*reference);
+                    }
+                    progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
+                }
+                // The frames shown, as data (EXR) and to look at (PNG), and the picture of them all.
+                const std::uint32_t shown = trail_frame(schedule, width, height);
+                std::vector<std::pair<std::string, const Image*>> frames{{"aliased", &aliased}};
+                std::vector<LabeledFrame> labeled{{fmt::format("aliased, frame {}", shown), &aliased}};
+                for (std::size_t v = 0; v < specs->size(); ++v) {
+                    frames.emplace_back(keys[v].name(), &trails[v]);
+                    labeled.push_back({keys[v].name(), &trails[v]});
+                }
+                for (const auto& [stem, image] : frames)
+                    for (const char* extension : {".exr", ".png"}) {
+                        auto file = image_output(scratch.path, outputs->dir(),
+                                                 fmt::format("frames/{}/{}{}", scene.name, stem, extension), *image);
+                        if (!file) return report_error(file.error().message);
+                        files.push_back(std::move(*file));
+                    }
+                auto picture = trail_picture(labeled, trail_crop(schedule, width, height));
+                if (!picture) return report_error(picture.error().message);
+                pictures.push_back(fmt::format("ghosting-{}.png", scene.name));
+                auto file = image_output(scratch.path, outputs->dir(), pictures.back(), *picture);
+                if (!file) return report_error(file.error().message);
+                files.push_back(std::move(*file));
+            }
+        }
+        report_validation_messages(**context);
+
+        RunMetadata run_info = describe_run(**context);
+        run_info.seed = o->seed;
+        outputs->add(std::move(files));
+        outputs->add_table("taa", taa_table(rows), run_info);
+        outputs->add("report.md", taa_report_markdown(rows, run_info,
+                                                      {width, height, o->warmup, o->frames, ppd, pictures}));
+        if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
+        std::cout << fmt::format("kdop taa: {} variants x {} scenes on {} ({}): {}\n", specs->size(), scenes->size(),
+                                 run_info.device, run_info.driver, (outputs->dir() / "report.md").string());
+        return 0;
+    };
+}
+
+} // namespace kdop::cli

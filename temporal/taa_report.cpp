@@ -1,0 +1,127 @@
+#include "taa_report.h"
+
+#include "taa_loop.h"
+#include "variant_columns.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+
+namespace kdop {
+namespace {
+
+// Ikkala et al. 2024, Tables 1 ("Grass") and 2 ("Asphalt"): method, time on a GTX 1080 Ti (ms),
+// shimmer and ghosting (FLIP). "16-DOP+Opt" is the 16-DOP optimized for that scene.
+struct PaperRow {
+    const char* method;
+    VariantKey key;
+    double ms, shimmer, ghosting;
+};
+
+VariantKey clip_of(const char* set, Mode mode) { return {set, mode, Neighborhood::n9}; }
+
+std::vector<PaperRow> paper_table(const std::string& scene) {
+    if (scene == "grass")
+        return {{"RGB", clip_of("aabb", Mode::clip), 0.449, 0.0346, 0.0499},
+                {"YCoCg", clip_of("ycocg", Mode::clip), 0.452, 0.0344, 0.0538},
+                {"32-DOP", clip_of("dop32", Mode::clip), 0.662, 0.0433, 0.0399},
+                {"16-DOP+Opt", clip_of("dop16-grass", Mode::clip), 0.538, 0.0491, 0.0374},
+                {"RGB+Var", clip_of("aabb", Mode::varclip), 0.465, 0.0406, 0.0417},
+                {"YCoCg+Var", clip_of("ycocg", Mode::varclip), 0.451, 0.0411, 0.0448},
+                {"32-DOP+Var", clip_of("dop32", Mode::varclip), 0.665, 0.0568, 0.0336}};
+    if (scene == "asphalt")
+        return {{"RGB", clip_of("aabb", Mode::clip), 0.428, 0.0111, 0.0520},
+                {"YCoCg", clip_of("ycocg", Mode::clip), 0.465, 0.0117, 0.0319},
+                {"32-DOP", clip_of("dop32", Mode::clip), 0.635, 0.0120, 0.0321},
+                {"16-DOP+Opt", clip_of("dop16-asphalt", Mode::clip), 0.528, 0.0130, 0.0300},
+                {"RGB+Var", clip_of("aabb", Mode::varclip), 0.466, 0.0116, 0.0439},
+                {"YCoCg+Var", clip_of("ycocg", Mode::varclip), 0.466, 0.0134, 0.0289},
+                {"32-DOP+Var", clip_of("dop32", Mode::varclip), 0.653, 0.0144, 0.0286}};
+    return {};
+}
+
+// Rank (1 = smallest) of each value among `values`.
+std::vector<int> ranks(const std::vector<double>& values) {
+    std::vector<int> out(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        out[i] = 1 + int(std::count_if(values.begin(), values.end(), [&](double v) { return v < values[i]; }));
+    return out;
+}
+
+// kdop's figures beside the paper's for the rows both have; empty when the scene is not the paper's
+// or the run lacks one of its methods.
+std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>& rows) {
+    const std::vector<PaperRow> paper = paper_table(scene);
+    std::vector<const TaaRow*> ours;
+    for (const PaperRow& p : paper) {
+        auto it = std::find_if(rows.begin(), rows.end(), [&](const TaaRow& r) { return r.scene == scene && r.key == p.key; });
+        if (it == rows.end()) return {};
+        ours.push_back(&*it);
+    }
+    if (paper.empty()) return {};
+    std::vector<double> ps, pg, os, og;
+    for (std::size_t i = 0; i < paper.size(); ++i) {
+        ps.push_back(paper[i].shimmer), pg.push_back(paper[i].ghosting);
+        os.push_back(ours[i]->shimmer), og.push_back(ours[i]->ghosting);
+    }
+    const auto rps = ranks(ps), rpg = ranks(pg), ros = ranks(os), rog = ranks(og);
+    std::string md = fmt::format("Beside Table {} of the paper (rank 1 = least among these seven):\n\n",
+                                 scene == "grass" ? 1 : 2);
+    md += "| method | variant | paper shimmer | kdop shimmer | paper ghosting | kdop ghosting |\n";
+    md += "|---|---|--:|--:|--:|--:|\n";
+    for (std::size_t i = 0; i < paper.size(); ++i)
+        md += fmt::format("| {} | {} | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) |\n",
+                          paper[i].method, paper[i].key.name(), ps[i], rps[i], os[i], ros[i], pg[i], rpg[i], og[i],
+                          rog[i]);
+    return md + "\n";
+}
+
+} // namespace
+
+Table taa_table(const std::vector<TaaRow>& rows) {
+    Table t(joined(variant_columns(), {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3),
+                                       Column("shimmer", "FLIP", Shown::fixed, 4),
+                                       Column("ghosting", "FLIP", Shown::fixed, 4)}));
+    for (const TaaRow& r : rows)
+        t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.shimmer), maybe(r.ghosting)}));
+    return t;
+}
+
+std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,
+                                const TaaReportSettings& s) {
+    std::string md = "# kdop taa: ghosting and shimmer over TAA sequences\n\n";
+    md += fmt::format(
+        "Each variant rectifies the history of a small TAA loop on the device ({}x{} frames; current-frame "
+        "weight {}; variance clips at gamma {}), as in Ikkala et al. 2024, Sec. 4, in LDR-FLIP at {:.1f} "
+        "pixels per degree:\n\n"
+        "- **shimmer**: jitter on (R2, 10 entries), no animation; after {} frames, the mean FLIP between "
+        "successive frames over {} frames;\n"
+        "- **ghosting**: jitter off, animation on; after {} frames, the mean FLIP against the aliased frame of "
+        "the same instant over {} frames;\n"
+        "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the loop, "
+        "which renders the scene too).\n\n",
+        s.width, s.height, kCurrentWeight, kVarianceGamma, s.pixels_per_degree, s.warmup, s.frames, s.warmup,
+        s.frames);
+    std::vector<std::string> scenes;
+    for (const TaaRow& r : rows)
+        if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    const std::vector<std::string> shown{"variant", "ms", "shimmer", "ghosting"};
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+        std::vector<TaaRow> in_scene;
+        std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),
+                     [&](const TaaRow& r) { return r.scene == scenes[i]; });
+        std::stable_sort(in_scene.begin(), in_scene.end(),
+                         [](const TaaRow& a, const TaaRow& b) { return a.ghosting < b.ghosting; });
+        md += fmt::format("## {}\n\nLeast ghosting first.\n\n{}\n", scenes[i], taa_table(in_scene).markdown(shown));
+        md += paper_comparison(scenes[i], rows);
+        if (i < s.pictures.size())
+            md += fmt::format("The ghosting sequence's frame where the red box moves fastest, every variant: "
+                              "![{0}]({1})\n\n",
+                              scenes[i], s.pictures[i]);
+    }
+    return md + metadata_markdown(run);
+}
+
+} // namespace kdop

@@ -1,0 +1,34 @@
+// What `kdop taa` writes: taa.csv (and .json), one row per variant and scene, and report.md, which
+// shows each scene's rows and, for the paper's two scenes, kdop's figures beside Tables 1 and 2 of
+// Ikkala et al. 2024 with each method's rank, so the orderings can be compared at a glance.
+#pragma once
+
+#include "run_metadata.h"
+#include "table.h"
+#include "variant_key.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+struct TaaRow {
+    VariantKey key;
+    std::string scene;
+    double ms = NAN; // median lavapipe time of the variant's rectification pass at the frame size
+    double shimmer = NAN, ghosting = NAN;
+};
+
+Table taa_table(const std::vector<TaaRow>& rows);
+
+struct TaaReportSettings {
+    std::uint32_t width = 0, height = 0, warmup = 0, frames = 0;
+    double pixels_per_degree = 0;
+    std::vector<std::string> pictures; // per scene, relative to the report
+};
+
+std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,
+                                const TaaReportSettings& settings);
+
+} // namespace kdop

@@ -1,0 +1,49 @@
+#include "taa_shader.h"
+
+#include "embedded_files.h"
+#include "glsl_compiler.h"
+#include "glsl_emitter.h"
+#include "variant_builder.h"
+
+#include <fmt/format.h>
+
+namespace kdop {
+namespace {
+
+constexpr std::string_view kTemplate = "shader_templates/taa_frame.comp.in";
+
+} // namespace
+
+Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name) {
+    auto source = find_embedded_file(kTemplate);
+    if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
+    BuiltVariant built;
+    built.spec.mode = Mode::shader;
+    built.name = name;
+    built.compute_glsl = std::string(*source);
+    const std::string file = name + ".comp";
+    IncludeResolver resolve = [&](std::string_view header, std::string_view) -> std::optional<IncludedSource> {
+        if (header != "rectification.glsl") return std::nullopt;
+        return IncludedSource{name + "/rectification.glsl", std::string(rectification)};
+    };
+    auto compiled = compile_glsl_compute(built.compute_glsl, file, TargetEnv::vulkan1_0, resolve);
+    if (auto ok = compile_into(built, built.compute_glsl, file, TargetEnv::vulkan1_0, std::move(compiled)); !ok)
+        return std::unexpected(ok.error());
+    return std::make_unique<RunnableVariant>(std::move(built));
+}
+
+Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spec) {
+    if (spec.mode != Mode::clip && spec.mode != Mode::varclip)
+        return fail(fmt::format("{}: the TAA loop takes clip and varclip variants", variant_name(spec)));
+    // The variant's function as a renderer includes it, and the one signature the frame shader calls.
+    const int count = spec.neighborhood == Neighborhood::n9 ? 9 : 5;
+    const std::string gamma = spec.mode == Mode::varclip ? "gamma, " : "";
+    const std::string rectification = fmt::format(
+        "#define KDOP_NEIGHBORS {0}\n{1}\n"
+        "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[{0}])\n"
+        "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
+        count, emit_function(spec), glsl_function_name(spec), gamma);
+    return build_taa_shader(rectification, "taa-" + variant_name(spec));
+}
+
+} // namespace kdop

@@ -1,0 +1,30 @@
+// One picture per scene for `kdop taa`: the same frame of the ghosting sequence from every variant,
+// side by side in a grid, each under its label, the aliased frame first, so a reader sees at a
+// glance which clip leaves a trail behind the moving objects and how long it is.
+#pragma once
+
+#include "image.h"
+#include "result.h"
+
+#include <span>
+#include <string>
+
+namespace kdop {
+
+struct LabeledFrame {
+    std::string label;
+    const Image* frame; // all of one size, values in [0, 1]
+};
+
+// The part of each frame shown, magnified `scale` times (nearest, so aliasing stays visible).
+struct TrailCrop {
+    std::uint32_t x = 0, y = 0, width = 0, height = 0;
+    std::uint32_t scale = 1;
+};
+
+// A grid `columns` crops wide, each with a strip above it holding its label (white on black, DejaVu
+// Sans from fonts-dejavu-core, or OpenImageIO's own font where that is missing). Errors when the
+// crop leaves a frame or the text cannot be drawn.
+Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns = 4);
+
+} // namespace kdop
