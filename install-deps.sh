@@ -11,6 +11,7 @@ set -eu
 # measures hull and k-DOP volumes (Qhull).
 # clang-format: the test format_is_applied checks the tree against .clang-format.
 # nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
+# fonts-dejavu-core: the font of the labels in `kdop taa`'s pictures (temporal/trail_picture.h).
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers
@@ -19,7 +20,7 @@ packages="
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libglpk-dev libqhull-dev
   libgtest-dev valgrind gnuplot-nox clang-format
-  colobot-common-textures
+  colobot-common-textures fonts-dejavu-core
 "
 
 if [ "$#" -gt 0 ]; then
