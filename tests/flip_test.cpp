@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
@@ -433,6 +434,16 @@ TEST(Flip, ThreadsShareOneEvaluator) {
     EXPECT_EQ(together[0], alone[0]);
     EXPECT_EQ(together[1], alone[1]);
     EXPECT_NE(alone[0], alone[1]);
+}
+
+// The per-pixel cube root of L*a*b* against the exact one, over the range L*a*b* takes it
+// (above (6/29)^3, up to white and a little beyond for rounding).
+TEST(Flip, CubeRootIsTheRootToFloatPrecision) {
+    double worst = 0;
+    for (float t = 0.0088f; t < 1.01f; t = std::bit_cast<float>(std::bit_cast<std::uint32_t>(t) + 37)) // every 37th
+        worst = std::max(worst, std::abs(double(flip::cube_root(t)) - std::cbrt(double(t))) / std::cbrt(double(t)));
+    EXPECT_LT(worst, 2.5e-7); // 4 units in the last place
+    EXPECT_EQ(flip::cube_root(8.0), 2.0);
 }
 
 // matplotlib's magma, indexed as the reference does: int(value * 255 + 0.5).
