@@ -21,6 +21,7 @@ Action add_bench_command(CLI::App& app);
 Action add_stress_command(CLI::App& app);
 Action add_accuracy_command(CLI::App& app);
 Action add_optimize_command(CLI::App& app);
+Action add_flip_command(CLI::App& app);
 Action add_taa_command(CLI::App& app);
 
 // Prints an error message (which already names file/line or argument) to stderr; returns 1.
