@@ -21,7 +21,6 @@
 
 namespace kdop::cli {
 
-
 Action add_bench_command(CLI::App& app) {
     struct Options {
         std::string out, size = "1920x1080", device, numerics = "hardened";

@@ -8,8 +8,8 @@
 #include "run_metadata.h"
 #include "scratch_directory.h"
 #include "selection_options.h"
-#include "statistics.h"
 #include "size_option.h"
+#include "statistics.h"
 #include "taa_measure.h"
 #include "taa_report.h"
 #include "taa_scene.h"
@@ -50,7 +50,8 @@ Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& na
     if (names.empty() && backgrounds.empty()) return all;
     for (const std::string& name : names) {
         auto it = std::find_if(all.begin(), all.end(), [&](const TaaScene& s) { return s.name == name; });
-        if (it == all.end()) return fail(fmt::format("--scenes: no scene '{}'; the built-in scenes here: {}", name, known));
+        if (it == all.end())
+            return fail(fmt::format("--scenes: no scene '{}'; the built-in scenes here: {}", name, known));
         out.push_back(*it);
     }
     for (const std::string& path : backgrounds) {
@@ -78,10 +79,9 @@ Action add_taa_command(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* taa = app.add_subcommand(
-        "taa",
-        "Run every variant in a small TAA loop on the device over moving objects and measure the ghosting and "
-        "shimmer a viewer sees, in LDR-FLIP, as Ikkala et al. 2024 do (Tables 1 and 2); writes taa.csv (and "
-        "JSON), report.md, selected frames as EXR and PNG and one labeled ghosting picture per scene");
+        "taa", "Run every variant in a small TAA loop on the device over moving objects and measure the ghosting and "
+               "shimmer a viewer sees, in LDR-FLIP, as Ikkala et al. 2024 do (Tables 1 and 2); writes taa.csv (and "
+               "JSON), report.md, selected frames as EXR and PNG and one labeled ghosting picture per scene");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true);
     taa->add_option("--scenes", o->scenes,
@@ -155,12 +155,13 @@ Action add_taa_command(CLI::App& app) {
                     auto loop = TaaLoop::create(**context, shaders[v]->variant(), scene.background);
                     if (!loop) return report_error(loop.error().message);
                     auto m = measure_taa(**loop, width, height, schedule, flip);
-                    if (!m) return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
+                    if (!m)
+                        return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
                     rows.push_back({keys[v], scene.name, median(timing->ms[v]), m->shimmer, m->ghosting});
                     trails.push_back(std::move(m->trail));
                     if (v == 0) {
-                        auto reference = (*loop)->render(frame_state(trail_frame(schedule, width, height), width,
-                                                                     height, true, false));
+                        auto reference = (*loop)->render(
+                            frame_state(trail_frame(schedule, width, height), width, height, true, false));
                         if (!reference) return report_error(reference.error().message);
                         aliased = std::move(*reference);
                     }
@@ -195,8 +196,8 @@ Action add_taa_command(CLI::App& app) {
         run_info.seed = o->seed;
         outputs->add(std::move(files));
         outputs->add_table("taa", taa_table(rows), run_info);
-        outputs->add("report.md", taa_report_markdown(rows, run_info,
-                                                      {width, height, o->warmup, o->frames, ppd, pictures}));
+        outputs->add("report.md",
+                     taa_report_markdown(rows, run_info, {width, height, o->warmup, o->frames, ppd, pictures}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes on {} ({}): {}\n", specs->size(), scenes->size(),
                                  run_info.device, run_info.driver, (outputs->dir() / "report.md").string());

@@ -15,8 +15,8 @@ Result<Image> within_unit_range(const Image& frame, std::string_view what) {
             for (int c = 0; c < 3; ++c) {
                 float& v = out.at(x, y)[c];
                 if (!(v >= -kRounding && v <= 1 + kRounding))
-                    return fail(fmt::format("{}: pixel ({}, {}) has {} {}, outside [0, 1] by more than rounding",
-                                            what, x, y, "RGB"[c], v));
+                    return fail(fmt::format("{}: pixel ({}, {}) has {} {}, outside [0, 1] by more than rounding", what,
+                                            x, y, "RGB"[c], v));
                 v = std::clamp(v, 0.0f, 1.0f);
             }
     return out;

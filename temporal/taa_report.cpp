@@ -56,7 +56,8 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
     const std::vector<PaperRow> paper = paper_table(scene);
     std::vector<const TaaRow*> ours;
     for (const PaperRow& p : paper) {
-        auto it = std::find_if(rows.begin(), rows.end(), [&](const TaaRow& r) { return r.scene == scene && r.key == p.key; });
+        auto it =
+            std::find_if(rows.begin(), rows.end(), [&](const TaaRow& r) { return r.scene == scene && r.key == p.key; });
         if (it == rows.end()) return {};
         ours.push_back(&*it);
     }
@@ -67,30 +68,28 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
         os.push_back(ours[i]->shimmer), og.push_back(ours[i]->ghosting);
     }
     const auto rps = ranks(ps), rpg = ranks(pg), ros = ranks(os), rog = ranks(og);
-    std::string md = fmt::format("Beside Table {} of the paper (rank 1 = least among these seven):\n\n",
-                                 scene == "grass" ? 1 : 2);
+    std::string md =
+        fmt::format("Beside Table {} of the paper (rank 1 = least among these seven):\n\n", scene == "grass" ? 1 : 2);
     md += "| method | variant | paper shimmer | kdop shimmer | paper ghosting | kdop ghosting |\n";
     md += "|---|---|--:|--:|--:|--:|\n";
     for (std::size_t i = 0; i < paper.size(); ++i)
-        md += fmt::format("| {} | {} | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) |\n",
-                          paper[i].method, paper[i].key.name(), ps[i], rps[i], os[i], ros[i], pg[i], rpg[i], og[i],
-                          rog[i]);
+        md += fmt::format("| {} | {} | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) |\n", paper[i].method,
+                          paper[i].key.name(), ps[i], rps[i], os[i], ros[i], pg[i], rpg[i], og[i], rog[i]);
     return md + "\n";
 }
 
 } // namespace
 
 Table taa_table(const std::vector<TaaRow>& rows) {
-    Table t(joined(variant_columns(), {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3),
-                                       Column("shimmer", "FLIP", Shown::fixed, 4),
-                                       Column("ghosting", "FLIP", Shown::fixed, 4)}));
+    Table t(joined(variant_columns(),
+                   {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3),
+                    Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4)}));
     for (const TaaRow& r : rows)
         t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.shimmer), maybe(r.ghosting)}));
     return t;
 }
 
-std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,
-                                const TaaReportSettings& s) {
+std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run, const TaaReportSettings& s) {
     std::string md = "# kdop taa: ghosting and shimmer over TAA sequences\n\n";
     md += fmt::format(
         "Each variant rectifies the history of a small TAA loop on the device ({}x{} frames; current-frame "
@@ -102,8 +101,7 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
         "the same instant over {} frames;\n"
         "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the loop, "
         "which renders the scene too).\n\n",
-        s.width, s.height, kCurrentWeight, kVarianceGamma, s.pixels_per_degree, s.warmup, s.frames, s.warmup,
-        s.frames);
+        s.width, s.height, kCurrentWeight, kVarianceGamma, s.pixels_per_degree, s.warmup, s.frames, s.warmup, s.frames);
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);

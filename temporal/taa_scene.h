@@ -4,8 +4,8 @@
 //
 // Animation: each object swings on a sine path, so it never jumps (a jump would be a disocclusion
 // no motion vector describes) and the measured frames see it at every speed from rest to about
-// 1.2% (the red box) and 1.9% (the dark ellipse) of the frame's width per frame. Jitter: the R2 sequence (Roberts 2018), 10 entries, as in
-// Ikkala et al. 2024, centered on the pixel.
+// 1.2% (the red box) and 1.9% (the dark ellipse) of the frame's width per frame. Jitter: the R2 sequence (Roberts
+// 2018), 10 entries, as in Ikkala et al. 2024, centered on the pixel.
 #pragma once
 
 #include "image.h"
@@ -33,7 +33,7 @@ std::vector<TaaScene> default_taa_scenes(std::uint32_t width, std::uint32_t heig
 Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height);
 
 struct FrameState {
-    glm::vec2 jitter{0};                  // sample offset from the pixel center, pixels
+    glm::vec2 jitter{0};                    // sample offset from the pixel center, pixels
     glm::vec2 car_center{0}, car_motion{0}; // pixels; motion since the previous frame
     glm::vec2 shadow_center{0}, shadow_motion{0};
 };

@@ -38,11 +38,11 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spe
     // The variant's function as a renderer includes it, and the one signature the frame shader calls.
     const int count = spec.neighborhood == Neighborhood::n9 ? 9 : 5;
     const std::string gamma = spec.mode == Mode::varclip ? "gamma, " : "";
-    const std::string rectification = fmt::format(
-        "#define KDOP_NEIGHBORS {0}\n{1}\n"
-        "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[{0}])\n"
-        "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
-        count, emit_function(spec), glsl_function_name(spec), gamma);
+    const std::string rectification =
+        fmt::format("#define KDOP_NEIGHBORS {0}\n{1}\n"
+                    "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[{0}])\n"
+                    "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
+                    count, emit_function(spec), glsl_function_name(spec), gamma);
     return build_taa_shader(rectification, "taa-" + variant_name(spec));
 }
 

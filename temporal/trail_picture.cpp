@@ -34,8 +34,7 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
     const float white[3] = {1, 1, 1};
     for (std::size_t i = 0; i < frames.size(); ++i) {
         const Image& f = *frames[i].frame;
-        if (f.width != first.width || f.height != first.height)
-            return fail("trail picture: frames of different sizes");
+        if (f.width != first.width || f.height != first.height) return fail("trail picture: frames of different sizes");
         const int x0 = int(i % cols) * cell_w, y0 = int(i / cols) * cell_h;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
@@ -45,8 +44,8 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
             }
         if (!OIIO::ImageBufAlgo::render_text(grid, x0 + 4, y0 + kLabelHeight - 6, frames[i].label, kFontSize, font,
                                              white))
-            return fail(fmt::format("trail picture: cannot draw the label \"{}\": {}", frames[i].label,
-                                    grid.geterror()));
+            return fail(
+                fmt::format("trail picture: cannot draw the label \"{}\": {}", frames[i].label, grid.geterror()));
     }
 
     Image out(grid.spec().width, grid.spec().height);
