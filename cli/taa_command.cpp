@@ -2,6 +2,7 @@
 
 #include "flip.h"
 #include "image_io.h"
+#include "magma.h"
 #include "output_set.h"
 #include "progress.h"
 #include "read_file.h"
@@ -62,6 +63,46 @@ Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& na
         out.push_back(std::move(*scene));
     }
     return out;
+}
+
+// ghosting-<scene>.png
+std::string trail_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
+
+// What a scene shows of its ghosting: the aliased frame and each variant's frame at the trail frame
+// under frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled picture of them all,
+// each variant's crop over its FLIP map against the aliased frame.
+Result<std::vector<OutputFile>> trail_files(const std::string& scene, const Image& aliased,
+                                            const std::vector<VariantKey>& keys, const std::vector<Image>& trails,
+                                            const LdrFlip& flip, const TaaSchedule& schedule,
+                                            const std::filesystem::path& scratch, const std::filesystem::path& dir) {
+    const std::uint32_t width = aliased.width, height = aliased.height;
+    std::vector<std::pair<std::string, const Image*>> frames{{"aliased", &aliased}};
+    std::vector<Image> maps;
+    maps.reserve(trails.size()); // the picture points into it
+    std::vector<LabeledFrame> labeled{
+        {fmt::format("aliased, frame {}", trail_frame(schedule, width, height)), &aliased}};
+    for (std::size_t v = 0; v < keys.size(); ++v) {
+        auto error = flip.error_map(aliased, trails[v]);
+        if (!error) return std::unexpected(error.error());
+        maps.push_back(flip::magma_image(*error, width, height));
+        frames.emplace_back(keys[v].name(), &trails[v]);
+        labeled.push_back({keys[v].name(), &trails[v], &maps.back()});
+    }
+    std::vector<OutputFile> files;
+    auto add = [&](const std::string& name, const Image& image) -> Result<void> {
+        auto file = image_output(scratch, dir, name, image);
+        if (!file) return std::unexpected(file.error());
+        files.push_back(std::move(*file));
+        return {};
+    };
+    for (const auto& [stem, image] : frames)
+        for (const char* extension : {".exr", ".png"})
+            if (auto ok = add(fmt::format("frames/{}/{}{}", scene, stem, extension), *image); !ok)
+                return std::unexpected(ok.error());
+    auto picture = trail_picture(labeled, trail_crop(schedule, width, height));
+    if (!picture) return std::unexpected(picture.error());
+    if (auto ok = add(trail_picture_name(scene), *picture); !ok) return std::unexpected(ok.error());
+    return files;
 }
 
 } // namespace
@@ -167,27 +208,11 @@ Action add_taa_command(CLI::App& app) {
                     }
                     progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
                 }
-                // The frames shown, as data (EXR) and to look at (PNG), and the picture of them all.
-                const std::uint32_t shown = trail_frame(schedule, width, height);
-                std::vector<std::pair<std::string, const Image*>> frames{{"aliased", &aliased}};
-                std::vector<LabeledFrame> labeled{{fmt::format("aliased, frame {}", shown), &aliased}};
-                for (std::size_t v = 0; v < specs->size(); ++v) {
-                    frames.emplace_back(keys[v].name(), &trails[v]);
-                    labeled.push_back({keys[v].name(), &trails[v]});
-                }
-                for (const auto& [stem, image] : frames)
-                    for (const char* extension : {".exr", ".png"}) {
-                        auto file = image_output(scratch.path, outputs->dir(),
-                                                 fmt::format("frames/{}/{}{}", scene.name, stem, extension), *image);
-                        if (!file) return report_error(file.error().message);
-                        files.push_back(std::move(*file));
-                    }
-                auto picture = trail_picture(labeled, trail_crop(schedule, width, height));
-                if (!picture) return report_error(picture.error().message);
-                pictures.push_back(fmt::format("ghosting-{}.png", scene.name));
-                auto file = image_output(scratch.path, outputs->dir(), pictures.back(), *picture);
-                if (!file) return report_error(file.error().message);
-                files.push_back(std::move(*file));
+                auto scene_files =
+                    trail_files(scene.name, aliased, keys, trails, flip, schedule, scratch.path, outputs->dir());
+                if (!scene_files) return report_error(scene_files.error().message);
+                std::move(scene_files->begin(), scene_files->end(), std::back_inserter(files));
+                pictures.push_back(trail_picture_name(scene.name));
             }
         }
         report_validation_messages(**context);

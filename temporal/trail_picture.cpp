@@ -24,24 +24,31 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
         return fail(fmt::format("trail picture: the crop {}x{} at ({}, {}) leaves the {}x{} frame", crop.width,
                                 crop.height, crop.x, crop.y, first.width, first.height));
     const int w = int(crop.width * crop.scale), h = int(crop.height * crop.scale);
+    const bool maps = std::any_of(frames.begin(), frames.end(), [](const LabeledFrame& f) { return f.error_map; });
     const int cols = int(std::min<std::size_t>(columns, frames.size()));
     const int rows = int((frames.size() + cols - 1) / cols);
-    const int cell_w = w + kGap, cell_h = h + kLabelHeight + kGap;
+    const int cell_w = w + kGap, cell_h = kLabelHeight + h * (maps ? 2 : 1) + kGap;
 
     OIIO::ImageBuf grid(OIIO::ImageSpec(cols * cell_w - kGap, rows * cell_h - kGap, 3, OIIO::TypeDesc::FLOAT));
     OIIO::ImageBufAlgo::zero(grid);
+    // The crop of `image`, magnified, with its top left corner at (x0, y0) of the grid.
+    auto place = [&](const Image& image, int x0, int y0) {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const glm::vec4& c = image.at(crop.x + x / crop.scale, crop.y + y / crop.scale);
+                const float rgb[3] = {c.r, c.g, c.b};
+                grid.setpixel(x0 + x, y0 + y, rgb, 3);
+            }
+    };
     const std::string font = std::filesystem::exists(kFont) ? kFont : "";
     const float white[3] = {1, 1, 1};
     for (std::size_t i = 0; i < frames.size(); ++i) {
-        const Image& f = *frames[i].frame;
-        if (f.width != first.width || f.height != first.height) return fail("trail picture: frames of different sizes");
+        for (const Image* image : {frames[i].frame, frames[i].error_map})
+            if (image && (image->width != first.width || image->height != first.height))
+                return fail("trail picture: frames of different sizes");
         const int x0 = int(i % cols) * cell_w, y0 = int(i / cols) * cell_h;
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const glm::vec4& c = f.at(crop.x + x / crop.scale, crop.y + y / crop.scale);
-                const float rgb[3] = {c.r, c.g, c.b};
-                grid.setpixel(x0 + x, y0 + kLabelHeight + y, rgb, 3);
-            }
+        place(*frames[i].frame, x0, y0 + kLabelHeight);
+        if (frames[i].error_map) place(*frames[i].error_map, x0, y0 + kLabelHeight + h);
         if (!OIIO::ImageBufAlgo::render_text(grid, x0 + 4, y0 + kLabelHeight - 6, frames[i].label, kFontSize, font,
                                              white))
             return fail(

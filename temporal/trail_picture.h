@@ -13,7 +13,8 @@ namespace kdop {
 
 struct LabeledFrame {
     std::string label;
-    const Image* frame; // all of one size, values in [0, 1]
+    const Image* frame;               // all of one size, values in [0, 1]
+    const Image* error_map = nullptr; // shown under the frame where given: its FLIP map, in magma
 };
 
 // The part of each frame shown, magnified `scale` times (nearest, so aliasing stays visible).
@@ -22,7 +23,8 @@ struct TrailCrop {
     std::uint32_t scale = 1;
 };
 
-// A grid `columns` crops wide, each with a strip above it holding its label (white on black, DejaVu
+// A grid `columns` crops wide (each frame over its error map, if any), each with a strip above it
+// holding its label (white on black, DejaVu
 // Sans from fonts-dejavu-core, or OpenImageIO's own font where that is missing). Errors when the
 // crop leaves a frame or the text cannot be drawn.
 Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns = 4);

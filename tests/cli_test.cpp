@@ -197,8 +197,8 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-    for (std::string sub :
-         {"", "list ", "gen ", "show ", "run ", "textures ", "bench ", "stress ", "accuracy ", "flip "}) {
+    for (std::string sub : {"", "list ", "gen ", "show ", "run ", "textures ", "bench ", "stress ", "accuracy ",
+                            "optimize ", "flip ", "taa "}) {
         auto r = run(kdop(sub + "--help"));
         EXPECT_EQ(r.exit_code, 0) << sub;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub << r.out;
