@@ -158,7 +158,9 @@ Action add_taa_command(CLI::App& app) {
         if (!specs) return report_error(specs.error().message);
         auto scenes = selected_scenes(o->scenes, o->backgrounds, *size, o->seed);
         if (!scenes) return report_error(scenes.error().message);
-        auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
+        auto sources = o->selection.set_sources();
+        if (!sources) return report_error(sources.error().message);
+        auto catalog = VariantCatalog::create(*sources, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
         ScratchDirectory scratch("kdop-taa");
         if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
@@ -171,7 +173,7 @@ Action add_taa_command(CLI::App& app) {
         }
         std::vector<VariantKey> keys;
         for (const VariantSpec& spec : *specs) keys.push_back(spec.key());
-        auto rectifiers = catalog->find_all(keys, "--sets");
+        auto rectifiers = catalog->find_all(keys, o->selection.manifest.empty() ? "--sets" : "--manifest");
         if (!rectifiers) return report_error(rectifiers.error().message);
 
         auto context = Context::create({o->device, o->validation});

@@ -65,6 +65,17 @@ struct SelectionOptions {
         return style;
     }
 
+    // The sets a VariantCatalog must be told of to find the selection: --sets, or the manifest's
+    // `set:` files.
+    Result<std::vector<std::string>> set_sources() const {
+        if (manifest.empty()) return sets;
+        auto listed = read_manifest(manifest);
+        if (!listed) return std::unexpected(listed.error());
+        std::vector<std::string> files;
+        for (const std::filesystem::path& file : listed->set_files) files.push_back(file.string());
+        return files;
+    }
+
     Result<std::vector<VariantSpec>> select() const {
         if (!manifest.empty()) {
             auto listed = read_manifest(manifest);

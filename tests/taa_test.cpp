@@ -304,6 +304,24 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     EXPECT_NE(test::read_file(out / "report.md").find("![grass](ghosting-grass.png)"), std::string::npos);
 }
 
+// A scene's own variants: a manifest naming a user's set, on a user's background.
+TEST(CliTaa, TakesAManifestAndTheUsersBackground) {
+    TaaRun t;
+    test::write_file(t.dir / "scene.manifest",
+                     "set: " + test::data_path("tiny.axes") + "\ntiny-varclip-n9\nycocg-clip-n9\n");
+    const std::string background = (t.dir / "meadow.exr").string();
+    ASSERT_TRUE(write_image(background, make_texture(TextureFamily::grass, 40, 30, 9)));
+    const fs::path out = t.dir / "taa";
+    auto r = t.kdop("--manifest " + (t.dir / "scene.manifest").string() + " --background " + background + " --out " +
+                    out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string csv = test::read_file(out / "taa.csv");
+    EXPECT_NE(csv.find("\ntiny-varclip-n9,tiny,varclip,n9,meadow,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\nycocg-clip-n9,ycocg,clip,n9,meadow,"), std::string::npos) << csv;
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3) << "only the background given, no built-in scene";
+    EXPECT_TRUE(fs::exists(out / "ghosting-meadow.png"));
+}
+
 TEST(CliTaa, RefusesBadInputAndWritesNothing) {
     TaaRun t;
     Image bright(8, 8, {2.0f, 0.5f, 0.5f, 1});
