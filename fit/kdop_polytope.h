@@ -61,15 +61,30 @@ public:
 private:
     // Each slab's bounds over `points`, and which point sets each.
     struct SlabBounds {
-        double lo[kMaxPolytopeAxes], hi[kMaxPolytopeAxes];
+        double lo[kMaxPolytopeAxes], hi[kMaxPolytopeAxes], first[kMaxPolytopeAxes]; // first: of points[0]
         std::size_t lowest[kMaxPolytopeAxes], highest[kMaxPolytopeAxes];
     };
     SlabBounds bounds_of(std::span<const glm::dvec3> points) const;
 
-    std::vector<glm::dvec3> axes_;        // unit
-    std::array<std::size_t, 3> base_{};   // the axes whose slabs make the starting parallelepiped
-    glm::dmat3 base_inverse_{1.0};        // rows a_base -> the point with given projections
-    bool base_flipped_ = false;           // det < 0: the parallelepiped's face loops run the other way
+    // The volume of the k-DOP whose slabs are [lo_i, hi_i] in coordinates centered on a point
+    // (lo and hi relative to it), and its 2 x axis_count() faces (area 0 for a face it lacks),
+    // relative to that point. `size` is the scale of the absolute coordinates, for the tolerance.
+    struct LocalFace { // as Face, left uninitialized: solve fills it
+        double area;
+        glm::dvec3 centroid;
+    };
+    double solve(const double* lo, const double* hi, double size, LocalFace* faces) const;
+
+    std::vector<glm::dvec3> axes_;      // unit
+    std::array<std::size_t, 3> base_{}; // the axes whose slabs make the starting parallelepiped
+    glm::dmat3 base_inverse_{1.0};      // rows a_base -> the point with given projections
+    // The parallelepiped's vertex b (bit k set: on the high plane of base axis k): its neighbors,
+    // counter-clockwise seen from outside, and the plane of the face left of each edge to them.
+    int base_neighbors_[8][3] = {};
+    int base_faces_[8][3] = {};
+    // The coordinates x, y, z such that z is the axis's largest (by size), in cyclic order: its faces
+    // are measured in their projection on the plane (x, y).
+    int projection_[kMaxPolytopeAxes][3] = {};
 };
 
 } // namespace kdop
