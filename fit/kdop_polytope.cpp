@@ -45,35 +45,44 @@ struct Polytope {
     }
 };
 
+// Scratch space for clipping, kept across the clips of one polytope: per plane, the new vertex
+// whose left face it is, in the clip `stamp` (the high bits).
+struct ClipScratch {
+    int left_of[kMaxPlanes];
+    int stamp = 0;
+};
+
 enum class Clip { unchanged, clipped, empty, failed };
 
-// Keeps the part of `poly` where n . x <= d, the new face on plane `plane`. A vertex within
-// `tolerance` of the plane counts as on it (inside), so a face nearly in the plane is kept whole
-// instead of cut into slivers. `cap_of` (one entry per plane) is scratch space.
-Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double tolerance, int* cap_of) {
+// Keeps the part of `poly` where side(v) <= tolerance, the new face on plane `plane`: `side` holds
+// each vertex's signed distance to the plane (positive outside), `outside` the vertices where it
+// is above the tolerance, in order. A vertex within the tolerance counts as on the plane (inside),
+// so a face nearly in it is kept whole instead of cut into slivers. Each new vertex's entry in
+// `next_side` is set to `new_side`; `moved` says whether other vertices changed slots.
+Clip cut(Polytope& poly, int plane, const double* side, const int* outside, int outside_count, double tolerance,
+         ClipScratch& scratch, double* next_side, double new_side, bool& moved) {
     const int old = poly.count;
-    double side[kMaxVertices];
-    for (int v = 0; v < old; ++v)
-        side[v] = n.x * poly.coord[0][v] + n.y * poly.coord[1][v] + n.z * poly.coord[2][v] - d;
-    int outside[kMaxVertices];
-    int outside_count = 0;
-    for (int v = 0; v < old; ++v)
-        if (side[v] > tolerance) outside[outside_count++] = v;
+    moved = false;
     if (outside_count == 0) return Clip::unchanged;
     if (outside_count == old) return Clip::empty;
     if (old + 3 * outside_count > kMaxVertices) return Clip::failed;
+    constexpr int kVertexBits = 0xffff;
+    const int stamp = (scratch.stamp += kVertexBits + 1);
 
     // A new vertex where each edge from inside to outside crosses the plane, in the outside one's
     // place among the inside one's neighbors; the first from each outside vertex takes its slot.
     // Seen from outside, its neighbors are the inside one, then the new vertices on the face right
     // of that edge and on the face left of it; its faces, the right one, the new one, the left one.
+    // Each face the plane cuts has one new vertex where its boundary leaves the kept part (whose
+    // left face it is) and one where it comes back; a face with two of either has been scrambled
+    // by rounding.
     int count = old;
     int created[3 * kMaxVertices], created_count = 0;
     int holes[kMaxVertices]; // outside vertices with no inside neighbor, in order
     int hole_count = 0;
     for (int i = 0; i < outside_count; ++i) {
         const int u = outside[i];
-        const glm::dvec3 pu(poly.coord[0][u], poly.coord[1][u], poly.coord[2][u]);
+        const double pu[3] = {poly.coord[0][u], poly.coord[1][u], poly.coord[2][u]};
         const int neighbors[3] = {poly.neighbor[u][0], poly.neighbor[u][1], poly.neighbor[u][2]};
         const int faces[3] = {poly.face[u][0], poly.face[u][1], poly.face[u][2]};
         int w = u;
@@ -86,32 +95,28 @@ Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double toler
             }
             // v is within the tolerance, perhaps just beyond the plane: then the crossing is v.
             const double t = std::max(side[v] / (side[v] - side[u]), 0.0);
-            for (int c = 0; c < 3; ++c) poly.coord[c][w] = poly.coord[c][v] + t * (pu[c] - poly.coord[c][v]);
-            poly.neighbor[w][0] = v;
+            const double pv[3] = {poly.coord[0][v], poly.coord[1][v], poly.coord[2][v]};
+            for (int c = 0; c < 3; ++c) poly.coord[c][w] = pv[c] + t * (pu[c] - pv[c]);
+            next_side[w] = new_side;
             // The face left of v -> u is right of u -> v: u's face k + 2.
-            const int right = faces[k], left = faces[(k + 2) % 3];
-            poly.face[w][0] = right;
+            const int left = faces[(k + 2) % 3];
+            poly.neighbor[w][0] = v;
+            poly.face[w][0] = faces[k];
             poly.face[w][1] = plane;
             poly.face[w][2] = left;
-            cap_of[right] = cap_of[left] = -1;
+            if ((scratch.left_of[left] & ~kVertexBits) == stamp) return Clip::failed;
+            scratch.left_of[left] = stamp | w;
             created[created_count++] = w;
             w = -1;
         }
         if (w == u) holes[hole_count++] = u;
     }
-    // Each face the plane cuts has one new vertex where its boundary leaves the kept part and one
-    // where it comes back: w's neighbor across its right face is the new vertex whose left face
-    // that is. A face with two of either has been scrambled by rounding.
+    // w's neighbor across its right face is the new vertex whose left face that is.
     for (int i = 0; i < created_count; ++i) {
-        int& entry = cap_of[poly.face[created[i]][2]];
-        if (entry >= 0) return Clip::failed;
-        entry = created[i];
-    }
-    for (int i = 0; i < created_count; ++i) {
-        const int w = created[i], x = cap_of[poly.face[w][0]];
-        if (x < 0) return Clip::failed;
-        poly.neighbor[w][1] = x;
-        poly.neighbor[x][2] = w;
+        const int w = created[i], x = scratch.left_of[poly.face[w][0]];
+        if ((x & ~kVertexBits) != stamp) return Clip::failed;
+        poly.neighbor[w][1] = x & kVertexBits;
+        poly.neighbor[x & kVertexBits][2] = w;
     }
     // Fill the holes from the top.
     for (int low = 0, high = hole_count - 1; low <= high;) {
@@ -120,6 +125,7 @@ Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double toler
             --high;
         } else {
             poly.move(--count, holes[low++]);
+            moved = true;
         }
     }
     poly.count = count;
@@ -162,12 +168,16 @@ KdopPolytope::KdopPolytope(std::span<const glm::dvec3> axes) {
             base_faces_[b][k] = 2 * static_cast<int>(base_[third]) + (b >> third & 1 ? 0 : 1);
         }
     }
-    for (std::size_t i = 0; i < axes_.size(); ++i) {
-        const glm::dvec3 size = glm::abs(axes_[i]);
-        const int z = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
-        projection_[i][0] = (z + 1) % 3;
-        projection_[i][1] = (z + 2) % 3;
-        projection_[i][2] = z;
+    for (std::size_t f = 0; f < 2 * axes_.size(); ++f) {
+        const glm::dvec3 normal = f % 2 == 0 ? axes_[f / 2] : -axes_[f / 2];
+        const glm::dvec3 size = glm::abs(normal);
+        Projection& p = planes_[f];
+        p.z = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+        p.x = (p.z + 1) % 3;
+        p.y = (p.z + 2) % 3;
+        p.nx = normal[p.x];
+        p.ny = normal[p.y];
+        p.half_over_nz = 0.5 / normal[p.z];
     }
 }
 
@@ -249,9 +259,11 @@ double KdopPolytope::volume(std::span<const double> lo, std::span<const double> 
 
 double KdopPolytope::solve(const double* lo, const double* hi, double size, LocalFace* faces) const {
     const std::size_t n = axes_.size();
-    std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
     for (std::size_t i = 0; i < n; ++i)
-        if (!(hi[i] > lo[i])) return 0.0; // no width (or NaN): a flat k-DOP
+        if (!(hi[i] > lo[i])) { // no width (or NaN): a flat k-DOP
+            std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
+            return 0.0;
+        }
 
     // The parallelepiped of the base slabs: vertex b (bit k set: hi of base axis k).
     Polytope poly;
@@ -270,19 +282,58 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
     }
     poly.count = 8;
 
-    // The rest of the slabs, plane by plane. Distances within 1e-12 of the coordinates' size count as 0.
+    // The rest of the slabs, high plane then low. Distances within 1e-12 of the coordinates' size
+    // count as 0. One projection serves both planes: the low one's outside vertices are found
+    // before the high one is cut (which moves none of them unless it fills holes), and the
+    // vertices that cut adds lie on the high plane.
     const double tolerance = 1e-12 * size;
-    int cap_of[2 * kMaxPolytopeAxes];
-    std::fill_n(cap_of, 2 * n, -1);
+    ClipScratch scratch;
+    std::fill_n(scratch.left_of, 2 * n, 0);
+    double side_hi[kMaxVertices], side_lo[kMaxVertices];
+    int outside_hi[kMaxVertices], outside_lo[kMaxVertices];
     for (std::size_t i = 0; i < n; ++i) {
         if (i == base_[0] || i == base_[1] || i == base_[2]) continue;
+        const glm::dvec3 a = axes_[i];
+        const double high_offset = hi[i], low_offset = lo[i];
+        auto project = [&] {
+            const int count = poly.count;
+            const double *x = poly.coord[0], *y = poly.coord[1], *z = poly.coord[2];
+            for (int v = 0; v < count; ++v) {
+                const double q = a.x * x[v] + a.y * y[v] + a.z * z[v];
+                side_hi[v] = q - high_offset;
+                side_lo[v] = low_offset - q;
+            }
+        };
+        auto outside_of = [&](const double* side, int* outside) {
+            int count = 0;
+            for (int v = 0; v < poly.count; ++v)
+                if (side[v] > tolerance) outside[count++] = v;
+            return count;
+        };
+        project();
+        int hi_count = 0, lo_count = 0;
+        for (int v = 0; v < poly.count; ++v) {
+            if (side_hi[v] > tolerance) outside_hi[hi_count++] = v;
+            if (side_lo[v] > tolerance) outside_lo[lo_count++] = v;
+        }
+        // The high plane, then the low one.
         for (int high = 1; high >= 0; --high) {
-            const glm::dvec3 normal = high ? axes_[i] : -axes_[i];
-            const double offset = high ? hi[i] : -lo[i];
-            switch (clip(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), normal, offset, tolerance, cap_of)) {
-            case Clip::unchanged:
-            case Clip::clipped: break;
-            case Clip::empty: return 0.0; // cannot happen for slabs around one set of points
+            bool moved = false;
+            const Clip clipped =
+                cut(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), high ? side_hi : side_lo,
+                    high ? outside_hi : outside_lo, high ? hi_count : lo_count, tolerance, scratch,
+                    high ? side_lo : side_hi, high ? low_offset - high_offset : 0, moved);
+            switch (clipped) {
+            case Clip::unchanged: break;
+            case Clip::clipped:
+                if (moved) {
+                    project();
+                    lo_count = outside_of(side_lo, outside_lo);
+                }
+                break;
+            case Clip::empty: // cannot happen for slabs around one set of points
+                std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
+                return 0.0;
             case Clip::failed: return std::numeric_limits<double>::quiet_NaN();
             }
         }
@@ -300,8 +351,8 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
     const double* along_y[2 * kMaxPolytopeAxes];
     for (std::size_t f = 0; f < 2 * n; ++f) {
         sums[f] = {0, 0, 0};
-        along_x[f] = poly.coord[projection_[f / 2][0]];
-        along_y[f] = poly.coord[projection_[f / 2][1]];
+        along_x[f] = poly.coord[planes_[f].x];
+        along_y[f] = poly.coord[planes_[f].y];
     }
     for (int v = 0; v < poly.count; ++v)
         for (int k = 0; k < 3; ++k) {
@@ -319,16 +370,18 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
     double volume = 0;
     for (std::size_t f = 0; f < 2 * n; ++f) {
         const Sums& s = sums[f];
-        const glm::dvec3 normal = f % 2 == 0 ? axes_[f / 2] : -axes_[f / 2];
+        const Projection& p = planes_[f];
+        const double area = s.twice_area * p.half_over_nz;
+        if (!(area > 0)) {
+            faces[f] = {0, glm::dvec3(0.0)};
+            continue;
+        }
         const double offset = f % 2 == 0 ? hi[f / 2] : -lo[f / 2];
-        const int x = projection_[f / 2][0], y = projection_[f / 2][1], z = projection_[f / 2][2];
-        const double area = s.twice_area / (2 * normal[z]);
-        if (!(area > 0)) continue;
-        glm::dvec3 centroid;
-        centroid[x] = s.x / (3 * s.twice_area);
-        centroid[y] = s.y / (3 * s.twice_area);
-        centroid[z] = (offset - normal[x] * centroid[x] - normal[y] * centroid[y]) / normal[z];
-        faces[f] = {area, centroid};
+        double centroid[3];
+        centroid[p.x] = s.x / (3 * s.twice_area);
+        centroid[p.y] = s.y / (3 * s.twice_area);
+        centroid[p.z] = (offset - p.nx * centroid[p.x] - p.ny * centroid[p.y]) * (2 * p.half_over_nz);
+        faces[f] = {area, glm::dvec3(centroid[0], centroid[1], centroid[2])};
         volume += area * offset / 3;
     }
     return std::max(volume, 0.0);

@@ -82,9 +82,13 @@ private:
     // counter-clockwise seen from outside, and the plane of the face left of each edge to them.
     int base_neighbors_[8][3] = {};
     int base_faces_[8][3] = {};
-    // The coordinates x, y, z such that z is the axis's largest (by size), in cyclic order: its faces
-    // are measured in their projection on the plane (x, y).
-    int projection_[kMaxPolytopeAxes][3] = {};
+    // Each plane's face is measured in its projection on the coordinate plane (x, y), where z is
+    // the largest component of its normal n (by size) and x, y, z are in cyclic order.
+    struct Projection {
+        int x, y, z;
+        double nx, ny, half_over_nz; // n_x, n_y, 1 / (2 n_z)
+    };
+    Projection planes_[2 * kMaxPolytopeAxes] = {};
 };
 
 } // namespace kdop
