@@ -200,7 +200,8 @@ double KdopPolytope::volume_of(std::span<const glm::dvec3> points, std::span<Fac
     return volume({b.lo, axes_.size()}, {b.hi, axes_.size()}, faces);
 }
 
-double KdopPolytope::volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient) const {
+double KdopPolytope::volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient,
+                                     double weight) const {
     const std::size_t n = axes_.size();
     const SlabBounds b = bounds_of(points);
     // Coordinates centered on the first point, which the k-DOP contains.
@@ -215,8 +216,8 @@ double KdopPolytope::volume_gradient(std::span<const glm::dvec3> points, std::sp
     if (std::isnan(v)) return v;
     const glm::dvec3 origin = points[0];
     for (std::size_t i = 0; i < n; ++i)
-        gradient[i] += faces[2 * i].area * (points[b.highest[i]] - origin - faces[2 * i].centroid) +
-                       faces[2 * i + 1].area * (faces[2 * i + 1].centroid - (points[b.lowest[i]] - origin));
+        gradient[i] += weight * (faces[2 * i].area * (points[b.highest[i]] - origin - faces[2 * i].centroid) +
+                                 faces[2 * i + 1].area * (faces[2 * i + 1].centroid - (points[b.lowest[i]] - origin)));
     return v;
 }
 

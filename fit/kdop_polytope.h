@@ -42,14 +42,15 @@ public:
     // The same for the k-DOP of `points`: each slab spans their projections.
     double volume_of(std::span<const glm::dvec3> points, std::span<Face> faces = {}) const;
 
-    // The volume of the k-DOP of `points`, adding its gradient with respect to each unit axis to
-    // `gradient` (axis_count() entries). Moving axis a by da moves its high plane outward by
+    // The volume of the k-DOP of `points`, adding its gradient with respect to each unit axis,
+    // times `weight`, to `gradient` (axis_count() entries). Moving axis a by da moves its high plane outward by
     // da . (p_hi - x) at a point x of the face (p_hi: the point of largest projection, which sets
     // the bound) and its low plane by da . (x - p_lo); over the faces that is
     //   dV/da = A_hi (p_hi - c_hi) + A_lo (c_lo - p_lo)
     // with A and c a face's area and centroid. It is perpendicular to a, as scaling an axis changes
     // no slab. NaN (and no gradient added) where the polytope could not be built.
-    double volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient) const;
+    double volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient,
+                           double weight = 1) const;
 
     // The k-DOP around the unit sphere: every slab [-1, 1].
     double sphere_volume(std::span<Face> faces = {}) const;
