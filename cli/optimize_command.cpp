@@ -187,14 +187,13 @@ int run(const Options& o) {
     for (const auto& [set, score] : scores)
         std::cout << fmt::format("  {:<14} {:.6g} ({:.3f}x)\n", set, score, score / result.score);
     // Volumes in the objective per second; a neighborhood repeated in the images is computed once.
-    std::cout << fmt::format("{:.1f} s, {} k-DOP volumes, {:.3g} per second{}{}{}\n", result.seconds, result.volumes,
-                             result.volumes / std::max(result.seconds, 1e-9),
-                             result.computed < result.volumes
-                                 ? fmt::format(" ({} computed, repeated neighborhoods once)", result.computed)
-                                 : "",
-                             result.failed ? fmt::format(", {} polytopes left out (could not be built)", result.failed)
-                                           : "",
-                             result.stopped_early ? "; stopped early by --time-limit" : "");
+    std::cout << fmt::format(
+        "{:.1f} s, {} k-DOP volumes, {:.3g} per second{}{}{}\n", result.seconds, result.volumes,
+        result.volumes / std::max(result.seconds, 1e-9),
+        result.computed < result.volumes ? fmt::format(" ({} computed, repeated neighborhoods once)", result.computed)
+                                         : "",
+        result.failed ? fmt::format(", {} polytopes left out (could not be built)", result.failed) : "",
+        result.stopped_early ? "; stopped early by --time-limit" : "");
     return 0;
 }
 

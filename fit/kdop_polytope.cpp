@@ -77,7 +77,7 @@ Clip cut(Polytope& poly, int plane, const double* side, const int* outside, int 
     // left face it is) and one where it comes back; a face with two of either has been scrambled
     // by rounding.
     int count = old;
-    int created[3 * kMaxVertices], created_count = 0;
+    int created[kMaxVertices], created_count = 0;
     int holes[kMaxVertices]; // outside vertices with no inside neighbor, in order
     int hole_count = 0;
     for (int i = 0; i < outside_count; ++i) {
@@ -305,12 +305,6 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
                 side_lo[v] = low_offset - q;
             }
         };
-        auto outside_of = [&](const double* side, int* outside) {
-            int count = 0;
-            for (int v = 0; v < poly.count; ++v)
-                if (side[v] > tolerance) outside[count++] = v;
-            return count;
-        };
         project();
         int hi_count = 0, lo_count = 0;
         for (int v = 0; v < poly.count; ++v) {
@@ -327,9 +321,11 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
             switch (clipped) {
             case Clip::unchanged: break;
             case Clip::clipped:
-                if (moved) {
+                if (high && moved) { // the low plane's outside vertices, again
                     project();
-                    lo_count = outside_of(side_lo, outside_lo);
+                    lo_count = 0;
+                    for (int v = 0; v < poly.count; ++v)
+                        if (side_lo[v] > tolerance) outside_lo[lo_count++] = v;
                 }
                 break;
             case Clip::empty: // cannot happen for slabs around one set of points

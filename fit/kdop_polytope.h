@@ -1,10 +1,13 @@
 // The k-DOP of a set of slabs as a polytope: its exact volume, and each face's area and centroid,
-// which give the volume's gradient with respect to the axes (fit/volume_objective.h). The fitting
+// which give the volume's gradient with respect to the axes (fit/axis_fit.h). The fitting
 // objective evaluates this for every neighborhood of a scene, many times, so it is written for
-// speed: no allocation, a polytope clipped slab by slab from the parallelepiped of three of them.
+// speed: no allocation, a polytope clipped slab by slab from the parallelepiped of three of them,
+// each vertex knowing its three neighbors (a clip measures each vertex's distance to its plane,
+// then edits only the edges it cuts), each face measured from its edges in one pass at the end.
 //
 // Why not Qhull (accuracy/volume.h, which the tests check this against): a half-space
-// intersection through Qhull costs tens of microseconds; this costs about one.
+// intersection through Qhull costs tens of microseconds; with 8 axes this costs about 11,500
+// instructions (callgrind), volume and gradient, a couple of microseconds.
 #pragma once
 
 #include <glm/mat3x3.hpp>
