@@ -11,7 +11,9 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <string_view>
 #include <thread>
+#include <unordered_map>
 
 namespace kdop {
 namespace {
@@ -39,25 +41,27 @@ void parallel_for(std::size_t count, unsigned threads, Body body) {
 struct Evaluation {
     double value = 0;
     std::vector<glm::dvec3> gradient;
-    std::size_t volumes = 0, failed = 0;
+    std::size_t volumes = 0, computed = 0, failed = 0;
 };
 
 Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods,
                                   unsigned threads) {
     const KdopPolytope kdop(axes);
-    const std::size_t chunks = (neighborhoods.count() + kChunk - 1) / kChunk;
+    const std::size_t chunks = (neighborhoods.distinct() + kChunk - 1) / kChunk;
     std::vector<Evaluation> partial(chunks);
     parallel_for(chunks, threads, [&](std::size_t c) {
         Evaluation& e = partial[c];
         e.gradient.assign(axes.size(), glm::dvec3(0.0));
-        const std::size_t end = std::min(neighborhoods.count(), (c + 1) * kChunk);
+        const std::size_t end = std::min(neighborhoods.distinct(), (c + 1) * kChunk);
         for (std::size_t i = c * kChunk; i < end; ++i) {
-            const double v = kdop.volume_gradient(neighborhoods.at(i), e.gradient);
-            ++e.volumes;
+            const std::uint32_t repeats = neighborhoods.repeats[i];
+            const double v = kdop.volume_gradient(neighborhoods.at(i), e.gradient, repeats);
+            e.volumes += repeats;
+            ++e.computed;
             if (std::isnan(v))
-                ++e.failed;
+                e.failed += repeats;
             else
-                e.value += v;
+                e.value += repeats * v;
         }
     });
     Evaluation total;
@@ -65,6 +69,7 @@ Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighb
     for (const Evaluation& e : partial) {
         total.value += e.value;
         total.volumes += e.volumes;
+        total.computed += e.computed;
         total.failed += e.failed;
         for (std::size_t i = 0; i < axes.size(); ++i) total.gradient[i] += e.gradient[i];
     }
@@ -78,7 +83,7 @@ Evaluation evaluate_sphere(std::span<const glm::dvec3> axes) {
     Evaluation e;
     e.gradient.assign(axes.size(), glm::dvec3(0.0));
     e.value = KdopPolytope(axes).sphere_volume_gradient(e.gradient);
-    e.volumes = 1;
+    e.volumes = e.computed = 1;
     if (std::isnan(e.value)) {
         e.failed = 1;
         e.value = std::numeric_limits<double>::infinity();
@@ -123,6 +128,7 @@ FitResult descend(std::vector<glm::dvec3> axes, std::size_t fixed, std::size_t i
     FitResult result;
     Evaluation current = evaluate(axes);
     result.volumes += current.volumes;
+    result.computed += current.computed;
     result.failed += current.failed;
     double step = 0.05;
     for (std::size_t it = 0; it < iterations && step > 1e-9; ++it) {
@@ -142,6 +148,7 @@ FitResult descend(std::vector<glm::dvec3> axes, std::size_t fixed, std::size_t i
             trial[i] = glm::normalize(pin(i, axes[i] - step * descent[i] / largest));
         Evaluation next = evaluate(trial);
         result.volumes += next.volumes;
+        result.computed += next.computed;
         result.failed += next.failed;
         if (next.value < current.value) {
             axes = std::move(trial);
@@ -163,15 +170,17 @@ FitResult best_of(std::size_t starts, unsigned threads, Descend descend_from) {
     std::vector<FitResult> results(starts);
     parallel_for(starts, threads, [&](std::size_t s) { results[s] = descend_from(s); });
     FitResult best = results[0];
-    std::size_t volumes = 0, failed = 0;
+    std::size_t volumes = 0, computed = 0, failed = 0;
     bool stopped = false;
     for (const FitResult& r : results) {
         volumes += r.volumes;
+        computed += r.computed;
         failed += r.failed;
         stopped |= r.stopped_early;
         if (r.score < best.score) best = r;
     }
     best.volumes = volumes;
+    best.computed = computed;
     best.failed = failed;
     best.stopped_early = stopped;
     return best;
@@ -183,14 +192,28 @@ Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood s
     Neighborhoods out;
     const auto offsets = neighborhood_offsets(shape);
     out.size = offsets.size();
-    std::size_t total = 0;
-    for (const Image& image : images) total += std::size_t(image.width) * image.height;
-    out.points.reserve(total * out.size);
+    for (const Image& image : images) out.total += std::size_t(image.width) * image.height;
+    // Room for every neighborhood, so the keys (views of the points' bytes) stay where they are.
+    out.points.reserve(out.total * out.size);
+    std::unordered_map<std::string_view, std::uint32_t> seen; // a distinct neighborhood's bytes -> its index
+    seen.reserve(out.total);
+    const std::size_t bytes = out.size * sizeof(glm::dvec3);
     for (const Image& image : images)
         for (std::uint32_t y = 0; y < image.height; ++y)
-            for (std::uint32_t x = 0; x < image.width; ++x)
+            for (std::uint32_t x = 0; x < image.width; ++x) {
+                const std::size_t start = out.points.size();
                 for (const glm::ivec2& o : offsets)
                     out.points.emplace_back(glm::dvec3(image.clamped(int(x) + o.x, int(y) + o.y)));
+                const std::string_view key(reinterpret_cast<const char*>(out.points.data() + start), bytes);
+                const auto [at, added] = seen.try_emplace(key, static_cast<std::uint32_t>(out.repeats.size()));
+                if (added) {
+                    out.repeats.push_back(1);
+                } else {
+                    ++out.repeats[at->second];
+                    out.points.resize(start);
+                }
+            }
+    out.points.shrink_to_fit(); // the keys are no longer needed
     return out;
 }
 
@@ -247,10 +270,12 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
                 best = std::min(best, score);
                 if (progress) progress(++done, starts * iterations, best);
             });
-        const std::size_t volumes = result.volumes + r.volumes, failed = result.failed + r.failed;
+        const std::size_t volumes = result.volumes + r.volumes, computed = result.computed + r.computed,
+                          failed = result.failed + r.failed;
         const bool stopped = r.stopped_early || (s + 1 < starts && options.deadline && Clock::now() >= *options.deadline);
         if (s == 0 || r.score < result.score) result = std::move(r);
         result.volumes = volumes;
+        result.computed = computed;
         result.failed = failed;
         result.stopped_early = stopped;
         if (stopped) break;

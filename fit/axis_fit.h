@@ -30,11 +30,17 @@
 
 namespace kdop {
 
-// Every neighborhood of every image (clamp to edge, as the shaders read them), as points.
+// Every neighborhood of every image (clamp to edge, as the shaders read them), as points. A
+// neighborhood that repeats one before it exactly (flat areas, repeated texels: on the colobot
+// grass texture, 46% of them) is kept once with how many times it appears, so the objective
+// computes its k-DOP once and weighs it by that count.
 struct Neighborhoods {
-    std::size_t size = 9;           // points per neighborhood: 9 (n9) or 5 (n5)
-    std::vector<glm::dvec3> points; // count() x size
-    std::size_t count() const { return points.size() / size; }
+    std::size_t size = 9;                // points per neighborhood: 9 (n9) or 5 (n5)
+    std::vector<glm::dvec3> points;      // distinct() x size, in order of first appearance
+    std::vector<std::uint32_t> repeats;  // how many times each distinct neighborhood appears
+    std::size_t total = 0;               // neighborhoods, repeats included
+    std::size_t count() const { return total; }
+    std::size_t distinct() const { return repeats.size(); }
     std::span<const glm::dvec3> at(std::size_t i) const { return {points.data() + i * size, size}; }
 };
 Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape);
@@ -52,8 +58,9 @@ struct FitOptions {
 struct FitResult {
     std::vector<glm::dvec3> axes; // unit, forced ones first
     double score = 0;             // the objective at `axes`
-    std::size_t volumes = 0;      // k-DOP volumes computed (neighborhoods x evaluations)
-    std::size_t failed = 0;       // of those, polytopes that could not be built (left out of means)
+    std::size_t volumes = 0;      // k-DOP volumes in the objective (neighborhoods x evaluations)
+    std::size_t computed = 0;     // of those, computed (a repeated neighborhood once per evaluation)
+    std::size_t failed = 0;       // of the volumes, polytopes that could not be built (left out of means)
     double seconds = 0;
     bool stopped_early = false; // the deadline came first
 };

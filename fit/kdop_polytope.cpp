@@ -13,141 +13,122 @@ namespace kdop {
 namespace {
 
 constexpr int kMaxPlanes = 2 * static_cast<int>(kMaxPolytopeAxes);
-// A face is bounded by at most every other plane; a simple polytope with F faces has at most
-// 2F - 4 vertices, and a clip adds at most one per face before it frees those cut away.
-constexpr int kMaxFaceSize = kMaxPlanes;
+// Room for a simple polytope of every plane (2F - 4 vertices) and the vertices a clip adds before
+// it drops those cut away.
 constexpr int kMaxVertices = 4 * kMaxPlanes;
 
-// A convex polytope as faces, each a loop of vertex slots, counter-clockwise seen from outside.
-// Clipping edits it in place: a face the plane misses is not touched, vertices keep their slots,
-// and the slots of vertices cut away are reused.
+// A convex polytope in which every vertex joins three edges (r3d's representation: Powell and
+// Abel, "An exact general remeshing scheme applied to physically conservative voxelization", 2015).
+// A vertex knows its three neighbors, counter-clockwise seen from outside, and the plane of the face
+// left of the edge to each (seen from outside): the face between neighbors k and k + 1. A plane
+// through a vertex leaves an edge of no length instead of a vertex of four edges, so clipping never
+// meets a case it cannot represent, and the faces need no loops: each directed edge lies on the face
+// left of it.
 struct Polytope {
-    glm::dvec3 vertices[kMaxVertices];
-    int live[kMaxVertices]; // the slots in use
-    int live_count = 0;
-    int free_slots[kMaxVertices];
-    int free_count = 0;
-    int slot_count = 0; // slots ever used
-    struct Face {
-        int plane; // 2i: x . a_i <= hi_i, 2i+1: x . a_i >= lo_i
-        int size;
-        int loop[kMaxFaceSize];
-    };
-    Face faces[kMaxPlanes];
-    int face_count = 0;
+    double coord[3][kMaxVertices]; // x, y, z of each vertex
+    int neighbor[kMaxVertices][3];
+    int face[kMaxVertices][3];
+    int count = 0;
 
-    int new_vertex(const glm::dvec3& p) {
-        const int slot = free_count ? free_slots[--free_count] : slot_count++;
-        vertices[slot] = p;
-        return slot;
+    // Where `from` lists `to` (the first time, if twice).
+    int index_of(int from, int to) const {
+        return neighbor[from][0] == to ? 0 : neighbor[from][1] == to ? 1 : 2;
     }
+    // Moves vertex `from` to the free slot `to`, and its neighbors' links with it.
+    void move(int from, int to) {
+        for (int c = 0; c < 3; ++c) coord[c][to] = coord[c][from];
+        for (int k = 0; k < 3; ++k) {
+            const int n = neighbor[to][k] = neighbor[from][k];
+            face[to][k] = face[from][k];
+            neighbor[n][index_of(n, from)] = to;
+        }
+    }
+};
+
+// Scratch space for clipping, kept across the clips of one polytope: per plane, the new vertex
+// whose left face it is, in the clip `stamp` (the high bits).
+struct ClipScratch {
+    int left_of[kMaxPlanes];
+    int stamp = 0;
 };
 
 enum class Clip { unchanged, clipped, empty, failed };
 
-// Keeps the part of `poly` where n . x <= d, adding the new face on plane `plane`. A vertex within
-// `tolerance` of the plane counts as on it (inside), so a face nearly in the plane is kept whole
-// instead of cut into slivers whose order rounding could scramble.
-Clip clip(Polytope& poly, int plane, const glm::dvec3& n, double d, double tolerance) {
-    double side[kMaxVertices];
-    bool is_outside[kMaxVertices];
-    int outside_total = 0;
-    for (int k = 0; k < poly.live_count; ++k) {
-        const int v = poly.live[k];
-        side[v] = glm::dot(n, poly.vertices[v]) - d;
-        is_outside[v] = side[v] > tolerance;
-        outside_total += is_outside[v];
-    }
-    if (outside_total == 0) return Clip::unchanged;
-    if (outside_total == poly.live_count) return Clip::empty;
-    auto outside = [&](int v) { return is_outside[v]; };
+// Keeps the part of `poly` where side(v) <= tolerance, the new face on plane `plane`: `side` holds
+// each vertex's signed distance to the plane (positive outside), `outside` the vertices where it
+// is above the tolerance, in order. A vertex within the tolerance counts as on the plane (inside),
+// so a face nearly in it is kept whole instead of cut into slivers. Each new vertex's entry in
+// `next_side` is set to `new_side`; `moved` says whether other vertices changed slots.
+Clip cut(Polytope& poly, int plane, const double* side, const int* outside, int outside_count, double tolerance,
+         ClipScratch& scratch, double* next_side, double new_side, bool& moved) {
+    const int old = poly.count;
+    moved = false;
+    if (outside_count == 0) return Clip::unchanged;
+    if (outside_count == old) return Clip::empty;
+    if (old + 3 * outside_count > kMaxVertices) return Clip::failed;
+    constexpr int kVertexBits = 0xffff;
+    const int stamp = (scratch.stamp += kVertexBits + 1);
 
-    struct Cut {
-        int inside, outside, vertex;
-    };
-    Cut cuts[kMaxPlanes];
-    int cut_count = 0;
-    int cap_next[kMaxVertices]; // a new vertex -> the next one around the new face
-    // The point where edge inside-outside meets the plane, made once for both faces of the edge.
-    auto cut = [&](int inside, int out) {
-        for (int c = 0; c < cut_count; ++c)
-            if (cuts[c].inside == inside && cuts[c].outside == out) return cuts[c].vertex;
-        if (cut_count == kMaxPlanes) return -1;
-        const double t = side[inside] / (side[inside] - side[out]);
-        const int v = poly.new_vertex(poly.vertices[inside] + t * (poly.vertices[out] - poly.vertices[inside]));
-        cap_next[v] = -1;
-        cuts[cut_count++] = {inside, out, v};
-        return v;
-    };
-
-    int kept_faces = 0;
-    for (int f = 0; f < poly.face_count; ++f) {
-        Polytope::Face& face = poly.faces[f];
-        int outside_count = 0;
-        for (int k = 0; k < face.size; ++k) outside_count += outside(face.loop[k]);
-        if (outside_count == 0) { // untouched; moved down over faces cut away, its loop only
-            if (kept_faces != f) {
-                Polytope::Face& to = poly.faces[kept_faces];
-                to.plane = face.plane;
-                to.size = face.size;
-                std::copy_n(face.loop, face.size, to.loop);
+    // A new vertex where each edge from inside to outside crosses the plane, in the outside one's
+    // place among the inside one's neighbors; the first from each outside vertex takes its slot.
+    // Seen from outside, its neighbors are the inside one, then the new vertices on the face right
+    // of that edge and on the face left of it; its faces, the right one, the new one, the left one.
+    // Each face the plane cuts has one new vertex where its boundary leaves the kept part (whose
+    // left face it is) and one where it comes back; a face with two of either has been scrambled
+    // by rounding.
+    int count = old;
+    int created[kMaxVertices], created_count = 0;
+    int holes[kMaxVertices]; // outside vertices with no inside neighbor, in order
+    int hole_count = 0;
+    for (int i = 0; i < outside_count; ++i) {
+        const int u = outside[i];
+        const double pu[3] = {poly.coord[0][u], poly.coord[1][u], poly.coord[2][u]};
+        const int neighbors[3] = {poly.neighbor[u][0], poly.neighbor[u][1], poly.neighbor[u][2]};
+        const int faces[3] = {poly.face[u][0], poly.face[u][1], poly.face[u][2]};
+        int w = u;
+        for (int k = 0; k < 3; ++k) {
+            const int v = neighbors[k];
+            if (side[v] > tolerance) continue;
+            if (w != u) {
+                w = count++;
+                poly.neighbor[v][poly.index_of(v, u)] = w;
             }
-            ++kept_faces;
-            continue;
+            // v is within the tolerance, perhaps just beyond the plane: then the crossing is v.
+            const double t = std::max(side[v] / (side[v] - side[u]), 0.0);
+            const double pv[3] = {poly.coord[0][v], poly.coord[1][v], poly.coord[2][v]};
+            for (int c = 0; c < 3; ++c) poly.coord[c][w] = pv[c] + t * (pu[c] - pv[c]);
+            next_side[w] = new_side;
+            // The face left of v -> u is right of u -> v: u's face k + 2.
+            const int left = faces[(k + 2) % 3];
+            poly.neighbor[w][0] = v;
+            poly.face[w][0] = faces[k];
+            poly.face[w][1] = plane;
+            poly.face[w][2] = left;
+            if ((scratch.left_of[left] & ~kVertexBits) == stamp) return Clip::failed;
+            scratch.left_of[left] = stamp | w;
+            created[created_count++] = w;
+            w = -1;
         }
-        if (outside_count == face.size) continue; // cut away whole
-        int loop[kMaxFaceSize + 2];
-        int size = 0, exit = -1, entry = -1, exits = 0;
-        for (int k = 0, u = face.loop[face.size - 1]; k < face.size; ++k) {
-            const int w = face.loop[k];
-            // Edge u -> w: keep u's side of it, and where it crosses, the crossing.
-            if (!outside(u) && outside(w)) {
-                exit = cut(u, w);
-                loop[size++] = exit;
-                ++exits;
-            } else if (outside(u) && !outside(w)) {
-                entry = cut(w, u);
-                loop[size++] = entry;
-            }
-            if (!outside(w)) loop[size++] = w;
-            u = w;
+        if (w == u) holes[hole_count++] = u;
+    }
+    // w's neighbor across its right face is the new vertex whose left face that is.
+    for (int i = 0; i < created_count; ++i) {
+        const int w = created[i], x = scratch.left_of[poly.face[w][0]];
+        if ((x & ~kVertexBits) != stamp) return Clip::failed;
+        poly.neighbor[w][1] = x & kVertexBits;
+        poly.neighbor[x & kVertexBits][2] = w;
+    }
+    // Fill the holes from the top.
+    for (int low = 0, high = hole_count - 1; low <= high;) {
+        if (holes[high] == count - 1) {
+            --count;
+            --high;
+        } else {
+            poly.move(--count, holes[low++]);
+            moved = true;
         }
-        // Only a convex face crosses the plane once each way; more means rounding scrambled it.
-        if (exits != 1 || exit < 0 || entry < 0 || size > kMaxFaceSize) return Clip::failed;
-        // This face runs exit -> entry along the plane; the new face, its neighbor there, runs back.
-        cap_next[entry] = exit;
-        if (size < 3) continue; // a sliver of no area
-        Polytope::Face& kept = poly.faces[kept_faces++];
-        kept.plane = face.plane;
-        kept.size = size;
-        std::copy_n(loop, size, kept.loop);
     }
-    poly.face_count = kept_faces;
-
-    // The new face: follow the links from any point where an edge was cut.
-    Polytope::Face& cap = poly.faces[poly.face_count];
-    cap.plane = plane;
-    cap.size = 0;
-    const int first = cuts[0].vertex;
-    int v = first;
-    do {
-        if (v < 0 || cap.size == cut_count) return Clip::failed;
-        cap.loop[cap.size++] = v;
-        v = cap_next[v];
-    } while (v != first);
-    if (cap.size >= 3) ++poly.face_count;
-
-    // The vertices now: those inside, and the new ones; the slots of the rest are free again.
-    int live_count = 0;
-    for (int k = 0; k < poly.live_count; ++k) {
-        const int u = poly.live[k];
-        if (is_outside[u])
-            poly.free_slots[poly.free_count++] = u;
-        else
-            poly.live[live_count++] = u;
-    }
-    for (int c = 0; c < cut_count; ++c) poly.live[live_count++] = cuts[c].vertex;
-    poly.live_count = live_count;
+    poly.count = count;
     return Clip::clipped;
 }
 
@@ -172,13 +153,38 @@ KdopPolytope::KdopPolytope(std::span<const glm::dvec3> axes) {
     // Rows a_i: M x = projections; glm's matrices are column-major, so the transpose of the columns.
     const glm::dmat3 m = glm::transpose(glm::dmat3(axes_[base_[0]], axes_[base_[1]], axes_[base_[2]]));
     base_inverse_ = glm::inverse(m);
-    base_flipped_ = glm::determinant(m) < 0;
+    // Vertex b's edges run along column k of the inverse, forward where bit k is clear. Its
+    // neighbors are counter-clockwise from outside when the edges make a left-handed frame (at the
+    // corner of the positive octant, -x, -y, -z do); the face between neighbors k and k + 1 is the
+    // third base axis's, on b's side of it.
+    for (int b = 0; b < 8; ++b) {
+        int bits[3] = {0, 1, 2};
+        glm::dmat3 edges;
+        for (int k = 0; k < 3; ++k) edges[k] = (b >> k & 1 ? -1.0 : 1.0) * base_inverse_[k];
+        if (glm::determinant(edges) > 0) std::swap(bits[1], bits[2]);
+        for (int k = 0; k < 3; ++k) {
+            const int third = 3 - bits[k] - bits[(k + 1) % 3];
+            base_neighbors_[b][k] = b ^ (1 << bits[k]);
+            base_faces_[b][k] = 2 * static_cast<int>(base_[third]) + (b >> third & 1 ? 0 : 1);
+        }
+    }
+    for (std::size_t f = 0; f < 2 * axes_.size(); ++f) {
+        const glm::dvec3 normal = f % 2 == 0 ? axes_[f / 2] : -axes_[f / 2];
+        const glm::dvec3 size = glm::abs(normal);
+        Projection& p = planes_[f];
+        p.z = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+        p.x = (p.z + 1) % 3;
+        p.y = (p.z + 2) % 3;
+        p.nx = normal[p.x];
+        p.ny = normal[p.y];
+        p.half_over_nz = 0.5 / normal[p.z];
+    }
 }
 
 KdopPolytope::SlabBounds KdopPolytope::bounds_of(std::span<const glm::dvec3> points) const {
     SlabBounds b;
     for (std::size_t i = 0; i < axes_.size(); ++i) {
-        b.lo[i] = b.hi[i] = glm::dot(axes_[i], points[0]);
+        b.first[i] = b.lo[i] = b.hi[i] = glm::dot(axes_[i], points[0]);
         b.lowest[i] = b.highest[i] = 0;
         for (std::size_t j = 1; j < points.size(); ++j) {
             const double q = glm::dot(axes_[i], points[j]);
@@ -194,15 +200,24 @@ double KdopPolytope::volume_of(std::span<const glm::dvec3> points, std::span<Fac
     return volume({b.lo, axes_.size()}, {b.hi, axes_.size()}, faces);
 }
 
-double KdopPolytope::volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient) const {
+double KdopPolytope::volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient,
+                                     double weight) const {
     const std::size_t n = axes_.size();
     const SlabBounds b = bounds_of(points);
-    Face faces[2 * kMaxPolytopeAxes];
-    const double v = volume({b.lo, n}, {b.hi, n}, {faces, 2 * n});
+    // Coordinates centered on the first point, which the k-DOP contains.
+    double lo[kMaxPolytopeAxes], hi[kMaxPolytopeAxes], size = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        size = std::max({size, std::abs(b.lo[i]), std::abs(b.hi[i])});
+        lo[i] = b.lo[i] - b.first[i];
+        hi[i] = b.hi[i] - b.first[i];
+    }
+    LocalFace faces[2 * kMaxPolytopeAxes];
+    const double v = solve(lo, hi, size, faces);
     if (std::isnan(v)) return v;
+    const glm::dvec3 origin = points[0];
     for (std::size_t i = 0; i < n; ++i)
-        gradient[i] += faces[2 * i].area * (points[b.highest[i]] - faces[2 * i].centroid) +
-                       faces[2 * i + 1].area * (faces[2 * i + 1].centroid - points[b.lowest[i]]);
+        gradient[i] += weight * (faces[2 * i].area * (points[b.highest[i]] - origin - faces[2 * i].centroid) +
+                                 faces[2 * i + 1].area * (faces[2 * i + 1].centroid - (points[b.lowest[i]] - origin)));
     return v;
 }
 
@@ -225,68 +240,146 @@ double KdopPolytope::sphere_volume_gradient(std::span<glm::dvec3> gradient) cons
 double KdopPolytope::volume(std::span<const double> lo, std::span<const double> hi, std::span<Face> faces) const {
     const std::size_t n = axes_.size();
     const bool want_faces = faces.size() == 2 * n;
-    if (want_faces) std::fill(faces.begin(), faces.end(), Face{});
+    // Coordinates centered on the starting parallelepiped.
+    const glm::dvec3 origin = base_inverse_ * (0.5 * (glm::dvec3(hi[base_[0]], hi[base_[1]], hi[base_[2]]) +
+                                                      glm::dvec3(lo[base_[0]], lo[base_[1]], lo[base_[2]])));
+    double local_lo[kMaxPolytopeAxes], local_hi[kMaxPolytopeAxes], size = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        size = std::max({size, std::abs(lo[i]), std::abs(hi[i])});
+        const double at = glm::dot(axes_[i], origin);
+        local_lo[i] = lo[i] - at;
+        local_hi[i] = hi[i] - at;
+    }
+    LocalFace local[2 * kMaxPolytopeAxes];
+    const double v = solve(local_lo, local_hi, size, local);
+    if (want_faces)
+        for (std::size_t f = 0; f < 2 * n; ++f)
+            faces[f] = local[f].area > 0 ? Face{local[f].area, local[f].centroid + origin} : Face{};
+    return v;
+}
+
+double KdopPolytope::solve(const double* lo, const double* hi, double size, LocalFace* faces) const {
+    const std::size_t n = axes_.size();
     for (std::size_t i = 0; i < n; ++i)
-        if (!(hi[i] > lo[i])) return 0.0; // no width (or NaN): a flat k-DOP
+        if (!(hi[i] > lo[i])) { // no width (or NaN): a flat k-DOP
+            std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
+            return 0.0;
+        }
 
     // The parallelepiped of the base slabs: vertex b (bit k set: hi of base axis k).
     Polytope poly;
-    for (int b = 0; b < 8; ++b) {
-        glm::dvec3 q;
-        for (int k = 0; k < 3; ++k) q[k] = (b >> k & 1) ? hi[base_[k]] : lo[base_[k]];
-        poly.live[poly.live_count++] = poly.new_vertex(base_inverse_ * q);
+    glm::dvec3 corner[3][2]; // base axis k's contribution at its low and high plane
+    for (int k = 0; k < 3; ++k) {
+        corner[k][0] = lo[base_[k]] * base_inverse_[k];
+        corner[k][1] = hi[base_[k]] * base_inverse_[k];
     }
-    // Face (k, high): the vertices with bit k equal to `high`, around the other two bits. The cycle
-    // 00 -> 01 -> 11 -> 10 of bits (k+1, k+2) is counter-clockwise from outside on the high face of
-    // a right-handed frame; low faces and a left-handed (flipped) frame run it backwards.
-    for (int k = 0; k < 3; ++k)
-        for (int high = 0; high < 2; ++high) {
-            const int bit1 = 1 << ((k + 1) % 3), bit2 = 1 << ((k + 2) % 3), fixed = high ? 1 << k : 0;
-            int cycle[4] = {fixed, fixed | bit1, fixed | bit1 | bit2, fixed | bit2};
-            if (!high != base_flipped_) std::swap(cycle[1], cycle[3]);
-            Polytope::Face& face = poly.faces[poly.face_count++];
-            face.plane = 2 * static_cast<int>(base_[k]) + (high ? 0 : 1);
-            face.size = 4;
-            std::copy_n(cycle, 4, face.loop);
+    for (int b = 0; b < 8; ++b) {
+        const glm::dvec3 p = corner[0][b & 1] + corner[1][b >> 1 & 1] + corner[2][b >> 2 & 1];
+        for (int c = 0; c < 3; ++c) poly.coord[c][b] = p[c];
+        for (int k = 0; k < 3; ++k) {
+            poly.neighbor[b][k] = base_neighbors_[b][k];
+            poly.face[b][k] = base_faces_[b][k];
         }
+    }
+    poly.count = 8;
 
-    // The rest of the slabs, plane by plane. Distances within 1e-12 of the polytope's size count as 0.
-    double size = 0;
-    for (std::size_t i = 0; i < n; ++i) size = std::max({size, std::abs(lo[i]), std::abs(hi[i])});
+    // The rest of the slabs, high plane then low. Distances within 1e-12 of the coordinates' size
+    // count as 0. One projection serves both planes: the low one's outside vertices are found
+    // before the high one is cut (which moves none of them unless it fills holes), and the
+    // vertices that cut adds lie on the high plane.
     const double tolerance = 1e-12 * size;
+    ClipScratch scratch;
+    std::fill_n(scratch.left_of, 2 * n, 0);
+    double side_hi[kMaxVertices], side_lo[kMaxVertices];
+    int outside_hi[kMaxVertices], outside_lo[kMaxVertices];
     for (std::size_t i = 0; i < n; ++i) {
         if (i == base_[0] || i == base_[1] || i == base_[2]) continue;
+        const glm::dvec3 a = axes_[i];
+        const double high_offset = hi[i], low_offset = lo[i];
+        auto project = [&] {
+            const int count = poly.count;
+            const double *x = poly.coord[0], *y = poly.coord[1], *z = poly.coord[2];
+            for (int v = 0; v < count; ++v) {
+                const double q = a.x * x[v] + a.y * y[v] + a.z * z[v];
+                side_hi[v] = q - high_offset;
+                side_lo[v] = low_offset - q;
+            }
+        };
+        project();
+        int hi_count = 0, lo_count = 0;
+        for (int v = 0; v < poly.count; ++v) {
+            if (side_hi[v] > tolerance) outside_hi[hi_count++] = v;
+            if (side_lo[v] > tolerance) outside_lo[lo_count++] = v;
+        }
+        // The high plane, then the low one.
         for (int high = 1; high >= 0; --high) {
-            const glm::dvec3 normal = high ? axes_[i] : -axes_[i];
-            const double offset = high ? hi[i] : -lo[i];
-            switch (clip(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), normal, offset, tolerance)) {
-            case Clip::unchanged:
-            case Clip::clipped: break;
-            case Clip::empty: return 0.0; // cannot happen for slabs around one set of points
+            bool moved = false;
+            const Clip clipped =
+                cut(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), high ? side_hi : side_lo,
+                    high ? outside_hi : outside_lo, high ? hi_count : lo_count, tolerance, scratch,
+                    high ? side_lo : side_hi, high ? low_offset - high_offset : 0, moved);
+            switch (clipped) {
+            case Clip::unchanged: break;
+            case Clip::clipped:
+                if (high && moved) { // the low plane's outside vertices, again
+                    project();
+                    lo_count = 0;
+                    for (int v = 0; v < poly.count; ++v)
+                        if (side_lo[v] > tolerance) outside_lo[lo_count++] = v;
+                }
+                break;
+            case Clip::empty: // cannot happen for slabs around one set of points
+                std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
+                return 0.0;
             case Clip::failed: return std::numeric_limits<double>::quiet_NaN();
             }
         }
     }
 
-    // Volume by the divergence theorem: the sum over faces of area x distance from an inner point o, / 3.
-    const glm::dvec3 o = base_inverse_ * (0.5 * (glm::dvec3(hi[base_[0]], hi[base_[1]], hi[base_[2]]) +
-                                                 glm::dvec3(lo[base_[0]], lo[base_[1]], lo[base_[2]])));
-    double volume = 0;
-    for (int f = 0; f < poly.face_count; ++f) {
-        const Polytope::Face& face = poly.faces[f];
-        const glm::dvec3 normal = face.plane % 2 == 0 ? axes_[face.plane / 2] : -axes_[face.plane / 2];
-        const glm::dvec3 v0 = poly.vertices[face.loop[0]];
-        double area = 0;
-        glm::dvec3 weighted(0.0);
-        for (int k = 1; k + 1 < face.size; ++k) {
-            const glm::dvec3 v1 = poly.vertices[face.loop[k]], v2 = poly.vertices[face.loop[k + 1]];
-            const double triangle = 0.5 * glm::dot(glm::cross(v1 - v0, v2 - v0), normal);
-            area += triangle;
-            if (want_faces) weighted += triangle * (v0 + v1 + v2);
+    // Each face's area and centroid from its projection on the coordinate plane (x, y) across the
+    // axis's largest component z: twice the projected area is the sum over its edges a -> b of
+    // x_a y_b - x_b y_a, and the projected centroid weights (x_a + x_b, y_a + y_b) by the same terms.
+    // Each directed edge lies on the face left of it.
+    struct Sums {
+        double twice_area, x, y;
+    };
+    Sums sums[2 * kMaxPolytopeAxes];
+    const double* along_x[2 * kMaxPolytopeAxes];
+    const double* along_y[2 * kMaxPolytopeAxes];
+    for (std::size_t f = 0; f < 2 * n; ++f) {
+        sums[f] = {0, 0, 0};
+        along_x[f] = poly.coord[planes_[f].x];
+        along_y[f] = poly.coord[planes_[f].y];
+    }
+    for (int v = 0; v < poly.count; ++v)
+        for (int k = 0; k < 3; ++k) {
+            const int f = poly.face[v][k], w = poly.neighbor[v][k];
+            const double* x = along_x[f];
+            const double* y = along_y[f];
+            const double xa = x[v], ya = y[v], xb = x[w], yb = y[w];
+            const double cross = xa * yb - xb * ya;
+            sums[f].twice_area += cross;
+            sums[f].x += cross * (xa + xb);
+            sums[f].y += cross * (ya + yb);
         }
-        if (area <= 0) continue;
-        volume += area * glm::dot(normal, v0 - o) / 3.0;
-        if (want_faces) faces[face.plane] = {area, weighted / (3.0 * area)};
+    // The projection scales areas by n_z; the centroid lies on the plane n . c = offset. The volume
+    // is the sum over faces of area x offset / 3 (the divergence theorem, from the origin).
+    double volume = 0;
+    for (std::size_t f = 0; f < 2 * n; ++f) {
+        const Sums& s = sums[f];
+        const Projection& p = planes_[f];
+        const double area = s.twice_area * p.half_over_nz;
+        if (!(area > 0)) {
+            faces[f] = {0, glm::dvec3(0.0)};
+            continue;
+        }
+        const double offset = f % 2 == 0 ? hi[f / 2] : -lo[f / 2];
+        double centroid[3];
+        centroid[p.x] = s.x / (3 * s.twice_area);
+        centroid[p.y] = s.y / (3 * s.twice_area);
+        centroid[p.z] = (offset - p.nx * centroid[p.x] - p.ny * centroid[p.y]) * (2 * p.half_over_nz);
+        faces[f] = {area, glm::dvec3(centroid[0], centroid[1], centroid[2])};
+        volume += area * offset / 3;
     }
     return std::max(volume, 0.0);
 }

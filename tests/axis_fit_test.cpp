@@ -60,6 +60,38 @@ TEST(AxisFit, TheSeedAloneDecidesTheSetWhateverTheThreads) {
     EXPECT_NE(fit_to_neighborhoods(n, options).axes, one.axes);
 }
 
+// A neighborhood that repeats is computed once and weighs as often as it appears: the mean is the
+// one over every neighborhood, each computed on its own.
+TEST(AxisFit, RepeatedNeighborhoodsCountAsOftenAsTheyAppear) {
+    Image image(7, 5, {0.2f, 0.3f, 0.1f, 1});
+    image.at(2, 2) = {0.8f, 0.1f, 0.4f, 1};
+    image.at(5, 1) = {0.1f, 0.9f, 0.3f, 1};
+    image.at(0, 4) = {0.5f, 0.5f, 0.9f, 1};
+    image.at(1, 4) = {0.6f, 0.2f, 0.7f, 1};
+    for (const Neighborhood shape : {Neighborhood::n9, Neighborhood::n5}) {
+        const Neighborhoods n = gather_neighborhoods({&image, 1}, shape);
+        EXPECT_EQ(n.count(), 35u);
+        EXPECT_LT(n.distinct(), 30u) << "the flat background repeats";
+        std::size_t repeats = 0;
+        for (const std::uint32_t r : n.repeats) repeats += r;
+        EXPECT_EQ(repeats, 35u);
+
+        const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set("dop16-grass"));
+        const KdopPolytope kdop(axes);
+        double sum = 0;
+        for (std::uint32_t y = 0; y < image.height; ++y)
+            for (std::uint32_t x = 0; x < image.width; ++x) {
+                std::vector<glm::dvec3> points;
+                for (const glm::ivec2& o : neighborhood_offsets(shape))
+                    points.emplace_back(image.clamped(int(x) + o.x, int(y) + o.y));
+                sum += kdop.volume_of(points);
+            }
+        const double mean = mean_volume(axes, n, 2);
+        EXPECT_GT(mean, 0);
+        EXPECT_NEAR(mean, sum / 35, 1e-12 * mean);
+    }
+}
+
 TEST(AxisFit, AFittedEightAxisSetBeatsBothPaper16DopsOnItsImage) {
     const Image image = grass(48);
     const Neighborhoods n = gather_neighborhoods({&image, 1}, Neighborhood::n9);

@@ -106,6 +106,10 @@ TEST(KdopPolytope, GradientMatchesFiniteDifferences) {
     KdopPolytope kdop(axes);
     kdop.volume_gradient(points, gradient);
     kdop.sphere_volume_gradient(sphere_gradient);
+    std::vector<glm::dvec3> tripled(axes.size(), glm::dvec3(1.0));
+    kdop.volume_gradient(points, tripled, 3);
+    for (std::size_t i = 0; i < axes.size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(tripled[i][c], 1 + 3 * gradient[i][c], 1e-15) << "weight 3, added";
     for (std::size_t i = 0; i < axes.size(); ++i)
         for (int direction = 0; direction < 3; ++direction) {
             glm::dvec3 d(0.0);
