@@ -24,7 +24,9 @@ using Clock = std::chrono::steady_clock;
 // in chunk order: the same floating-point sum on any number of threads.
 constexpr std::size_t kChunk = 2048;
 
-unsigned thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
+unsigned thread_count(unsigned threads) {
+    return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+}
 
 // Runs body(i) for i in [0, count) on `threads` threads.
 template <class Body>
@@ -272,7 +274,8 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
             });
         const std::size_t volumes = result.volumes + r.volumes, computed = result.computed + r.computed,
                           failed = result.failed + r.failed;
-        const bool stopped = r.stopped_early || (s + 1 < starts && options.deadline && Clock::now() >= *options.deadline);
+        const bool stopped =
+            r.stopped_early || (s + 1 < starts && options.deadline && Clock::now() >= *options.deadline);
         if (s == 0 || r.score < result.score) result = std::move(r);
         result.volumes = volumes;
         result.computed = computed;
@@ -335,7 +338,8 @@ std::vector<SparserStep> fit_sparser(const Neighborhoods* neighborhoods, const F
         zeros[best_axis][best_component] = true;
         axes[best_axis][best_component] = 0;
         axes[best_axis] = glm::normalize(axes[best_axis]);
-        FitResult r = descend(axes, fixed, iterations, options.deadline, evaluate, [](double) {}, zeros);
+        FitResult r = descend(
+            axes, fixed, iterations, options.deadline, evaluate, [](double) {}, zeros);
         bool collapsed = false; // the refit turned one axis onto another: stop at the step before
         for (std::size_t i = 0; i < axes.size(); ++i) collapsed |= parallel_to_another(i, r.axes[i]);
         if (collapsed) break;

@@ -35,10 +35,10 @@ namespace kdop {
 // grass texture, 46% of them) is kept once with how many times it appears, so the objective
 // computes its k-DOP once and weighs it by that count.
 struct Neighborhoods {
-    std::size_t size = 9;                // points per neighborhood: 9 (n9) or 5 (n5)
-    std::vector<glm::dvec3> points;      // distinct() x size, in order of first appearance
-    std::vector<std::uint32_t> repeats;  // how many times each distinct neighborhood appears
-    std::size_t total = 0;               // neighborhoods, repeats included
+    std::size_t size = 9;               // points per neighborhood: 9 (n9) or 5 (n5)
+    std::vector<glm::dvec3> points;     // distinct() x size, in order of first appearance
+    std::vector<std::uint32_t> repeats; // how many times each distinct neighborhood appears
+    std::size_t total = 0;              // neighborhoods, repeats included
     std::size_t count() const { return total; }
     std::size_t distinct() const { return repeats.size(); }
     std::span<const glm::dvec3> at(std::size_t i) const { return {points.data() + i * size, size}; }
@@ -49,9 +49,9 @@ struct FitOptions {
     std::size_t axes = 8;
     bool force_rgb = false; // the first three axes are R, G and B and stay so
     std::uint64_t seed = 1;
-    unsigned threads = 0; // 0: one per core
-    std::size_t starts = 0;     // 0: 64 around the sphere, 4 on images
-    std::size_t iterations = 0; // per start; 0: 400 around the sphere, 60 on images
+    unsigned threads = 0;                                          // 0: one per core
+    std::size_t starts = 0;                                        // 0: 64 around the sphere, 4 on images
+    std::size_t iterations = 0;                                    // per start; 0: 400 around the sphere, 60 on images
     std::optional<std::chrono::steady_clock::time_point> deadline; // stop there with the best so far
 };
 

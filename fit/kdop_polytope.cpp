@@ -31,9 +31,7 @@ struct Polytope {
     int count = 0;
 
     // Where `from` lists `to` (the first time, if twice).
-    int index_of(int from, int to) const {
-        return neighbor[from][0] == to ? 0 : neighbor[from][1] == to ? 1 : 2;
-    }
+    int index_of(int from, int to) const { return neighbor[from][0] == to ? 0 : neighbor[from][1] == to ? 1 : 2; }
     // Moves vertex `from` to the free slot `to`, and its neighbors' links with it.
     void move(int from, int to) {
         for (int c = 0; c < 3; ++c) coord[c][to] = coord[c][from];
@@ -135,8 +133,7 @@ Clip cut(Polytope& poly, int plane, const double* side, const int* outside, int 
 } // namespace
 
 KdopPolytope::KdopPolytope(std::span<const glm::dvec3> axes) {
-    if (axes.size() < 3 || axes.size() > kMaxPolytopeAxes)
-        throw std::invalid_argument("KdopPolytope: 3 to 32 axes");
+    if (axes.size() < 3 || axes.size() > kMaxPolytopeAxes) throw std::invalid_argument("KdopPolytope: 3 to 32 axes");
     for (const glm::dvec3& a : axes) axes_.push_back(glm::normalize(a));
     // The starting parallelepiped: the three slabs furthest from parallel, so it is well shaped.
     double best = 0;
@@ -314,10 +311,9 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
         // The high plane, then the low one.
         for (int high = 1; high >= 0; --high) {
             bool moved = false;
-            const Clip clipped =
-                cut(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), high ? side_hi : side_lo,
-                    high ? outside_hi : outside_lo, high ? hi_count : lo_count, tolerance, scratch,
-                    high ? side_lo : side_hi, high ? low_offset - high_offset : 0, moved);
+            const Clip clipped = cut(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), high ? side_hi : side_lo,
+                                     high ? outside_hi : outside_lo, high ? hi_count : lo_count, tolerance, scratch,
+                                     high ? side_lo : side_hi, high ? low_offset - high_offset : 0, moved);
             switch (clipped) {
             case Clip::unchanged: break;
             case Clip::clipped:

@@ -52,8 +52,7 @@ public:
     //   dV/da = A_hi (p_hi - c_hi) + A_lo (c_lo - p_lo)
     // with A and c a face's area and centroid. It is perpendicular to a, as scaling an axis changes
     // no slab. NaN (and no gradient added) where the polytope could not be built.
-    double volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient,
-                           double weight = 1) const;
+    double volume_gradient(std::span<const glm::dvec3> points, std::span<glm::dvec3> gradient, double weight = 1) const;
 
     // The k-DOP around the unit sphere: every slab [-1, 1].
     double sphere_volume(std::span<Face> faces = {}) const;
