@@ -75,7 +75,23 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
     for (std::size_t i = 0; i < paper.size(); ++i)
         md += fmt::format("| {} | {} | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) |\n", paper[i].method,
                           paper[i].key.name(), ps[i], rps[i], os[i], ros[i], pg[i], rpg[i], og[i], rog[i]);
-    return md + "\n";
+
+    // The orderings the paper's text draws from its tables, side by side.
+    auto first = [&](const std::vector<int>& rank, int wanted) {
+        std::string names;
+        for (std::size_t i = 0; i < rank.size(); ++i)
+            if (rank[i] == wanted) names += (names.empty() ? "" : ", ") + std::string(paper[i].method);
+        return names;
+    };
+    const int last = int(paper.size());
+    md += fmt::format("\n- Least ghosting: paper {}, kdop {}.\n", first(rpg, 1), first(rog, 1));
+    md += fmt::format("- Most ghosting: paper {}, kdop {}.\n", first(rpg, last), first(rog, last));
+    md += fmt::format("- Least shimmer: paper {}, kdop {}.\n", first(rps, 1), first(ros, 1));
+    md += fmt::format("- Most shimmer: paper {}, kdop {}.\n", first(rps, last), first(ros, last));
+    // Rows 0 and 1 are RGB and YCoCg: where YCoCg helps is their ratio below 1.
+    md += fmt::format("- YCoCg over RGB, ghosting: paper {:.2f}x, kdop {:.2f}x (below 1: YCoCg helps).\n\n",
+                      pg[1] / pg[0], og[1] / og[0]);
+    return md;
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "gpu_support.h"
 #include "image_io.h"
 #include "taa_measure.h"
+#include "taa_report.h"
 #include "taa_scene.h"
 #include "taa_shader.h"
 #include "test_support.h"
@@ -81,6 +82,30 @@ TEST(TaaScene, ABackgroundOutsideTheUnitRangeIsRefused) {
     ASSERT_TRUE(ok) << ok.error().message;
     EXPECT_EQ(ok->name, "bright");
     EXPECT_EQ(ok->background.width, 20u) << "tiled to the frame";
+}
+
+// The report sets kdop's figures beside the paper's Tables 1 and 2, by rank.
+TEST(TaaReport, SetsTheFiguresBesideThePapersTables) {
+    const std::pair<const char*, Mode> methods[] = {
+        {"aabb", Mode::clip},    {"ycocg", Mode::clip},    {"dop32", Mode::clip},   {"dop16-grass", Mode::clip},
+        {"aabb", Mode::varclip}, {"ycocg", Mode::varclip}, {"dop32", Mode::varclip}};
+    std::vector<TaaRow> rows;
+    for (int i = 0; i < 7; ++i) // ghosting rises down the paper's list, shimmer falls
+        rows.push_back(
+            {{methods[i].first, methods[i].second, Neighborhood::n9}, "grass", 1.0, 0.01 * (7 - i), 0.01 * (i + 1)});
+    rows.push_back({{"dop22", Mode::clip, Neighborhood::n9}, "colobot-grass", 1.0, 0.5, 0.5});
+    const std::string md = taa_report_markdown(rows, describe_run(), {320, 180, 100, 100, 67.0, {}});
+    EXPECT_NE(md.find("Beside Table 1 of the paper"), std::string::npos) << md;
+    EXPECT_NE(md.find("| RGB | aabb-clip-n9 | 0.0346 (#2) | 0.0700 (#7) | 0.0499 (#6) | 0.0100 (#1) |"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("- Least ghosting: paper 32-DOP+Var, kdop RGB."), std::string::npos) << md;
+    EXPECT_NE(md.find("- Most shimmer: paper 32-DOP+Var, kdop RGB."), std::string::npos) << md;
+    EXPECT_NE(md.find("- YCoCg over RGB, ghosting: paper 1.08x, kdop 2.00x"), std::string::npos) << md;
+    EXPECT_EQ(md.find("Beside Table 2"), std::string::npos) << "no asphalt rows, no Table 2";
+
+    rows.erase(rows.begin() + 3); // without 16-DOP+Opt the paper's table has no counterpart
+    EXPECT_EQ(taa_report_markdown(rows, describe_run(), {}).find("Beside Table 1"), std::string::npos);
 }
 
 // ---------------------------------------------------------------------------------------------
