@@ -145,9 +145,8 @@ Action add_taa_command(CLI::App& app) {
     return [o, taa] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
-        if (taa->count("--ppd") && !(std::isfinite(o->ppd) && o->ppd > 0))
-            return report_error(fmt::format("--ppd: must be a finite number > 0, got {}", o->ppd));
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
+        if (auto ok = check_pixels_per_degree(ppd); !ok) return report_error("--ppd: " + ok.error().message);
         auto size = size_option("--size", o->size);
         if (!size) return report_error(size.error().message);
         auto outputs = OutputSet::prepare(o->out);
