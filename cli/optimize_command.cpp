@@ -11,6 +11,8 @@
 #include "image_io.h"
 #include "memory_budget.h"
 #include "progress.h"
+#include "scratch_directory.h"
+#include "set_cost.h"
 #include "variant_spec.h"
 #include "write_files.h"
 
@@ -37,6 +39,7 @@ struct Options {
     double time_limit = 0;
     std::optional<double> target;
     std::optional<std::size_t> max_nonzero;
+    bool lavapipe_cost = false;
 };
 
 // The objective of each built-in set on the same content, for the comparison the output gives.
@@ -52,6 +55,10 @@ std::vector<std::pair<std::string, double>> builtin_scores(const Options& o, con
 }
 
 int run(const Options& o) {
+    if (o.lavapipe_cost && !o.target && !o.max_nonzero) {
+        report_error("--lavapipe-cost: counts the rows of --target's or --max-nonzero's table; give one of them");
+        return kUsageError;
+    }
     if (o.force_rgb && o.axes <= 3)
         return report_error(fmt::format("--force-rgb fixes 3 axes; --axes {} leaves none to fit", o.axes));
     const std::string name = o.name.empty() ? std::filesystem::path(o.out).stem().string() : o.name;
@@ -101,26 +108,41 @@ int run(const Options& o) {
         return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(neighborhoods, fit, on_step);
     };
 
-    // What a set's hardened clip costs, as the generator counts it (analytic_cost.h).
-    auto clip_float_ops = [&](std::span<const glm::dvec3> axes) -> Result<std::size_t> {
+    // What a set's hardened clip costs: float ops as the generator counts them (analytic_cost.h),
+    // and with --lavapipe-cost the instructions per pixel lavapipe runs beyond the gather (callgrind),
+    // as the bench counts them. One column of a table row.
+    ScratchDirectory scratch("kdop-optimize");
+    const bench::CallgrindSetup callgrind{
+        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe", scratch.path};
+    if (o.lavapipe_cost && (scratch.path.empty() || !std::filesystem::exists(callgrind.probe)))
+        return report_error(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
+                                        callgrind.probe.string()));
+    auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<std::string> {
         auto text = fitted_set_file({name, "-", {}}, axes);
         if (!text) return std::unexpected(text.error());
         auto set = parse_axis_set(*text, o.out);
         if (!set) return std::unexpected(set.error());
-        return analytic_min_float_ops(*set, Mode::clip, shape);
+        std::string cost = fmt::format("{:>22}", analytic_min_float_ops(*set, Mode::clip, shape));
+        if (!o.lavapipe_cost) return cost;
+        Progress progress("counting lavapipe instructions", 2);
+        auto instructions = bench::marginal_clip_instructions(*set, shape, callgrind, progress);
+        if (!instructions) return std::unexpected(instructions.error());
+        return cost + fmt::format(" {:>18.1f}", *instructions);
     };
+    const std::string cost_header = fmt::format("{:>22}", "float ops (clip, hardened)") +
+                                    (o.lavapipe_cost ? fmt::format(" {:>18}", "lavapipe instr/px") : "");
 
     // With --target, the smallest axis count that reaches it, and the table of every count tried.
     std::vector<std::string> table;
     FitResult result;
     if (o.target) {
-        table.push_back(fmt::format("{:>4} {:>4} {:>14} {:>22}", "axes", "k", "score", "float ops (clip, hardened)"));
+        table.push_back(fmt::format("{:>4} {:>4} {:>14} {}", "axes", "k", "score", cost_header));
         bool reached = false;
         for (std::size_t axes = o.force_rgb ? 4 : 3; axes <= o.axes && !reached; ++axes) {
             result = fit_axes(axes);
-            auto ops = clip_float_ops(result.axes);
-            if (!ops) return report_error(ops.error().message);
-            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g} {:>22}", axes, 2 * axes, result.score, *ops));
+            auto cost = clip_cost(result.axes);
+            if (!cost) return report_error(cost.error().message);
+            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g} {}", axes, 2 * axes, result.score, *cost));
             std::cout << table.back() << "\n";
             reached = result.score <= *o.target;
             if (result.stopped_early) break;
@@ -144,11 +166,11 @@ int run(const Options& o) {
                                      progress->advance(fmt::format("score {:.6g}", best));
                                  });
         if (progress) progress->finish();
-        table.push_back(fmt::format("{:>7} {:>14} {:>22}", "nonzero", "score", "float ops (clip, hardened)"));
+        table.push_back(fmt::format("{:>7} {:>14} {}", "nonzero", "score", cost_header));
         for (const SparserStep& step : steps) {
-            auto ops = clip_float_ops(step.axes);
-            if (!ops) return report_error(ops.error().message);
-            table.push_back(fmt::format("{:>7} {:>14.6g} {:>22}", step.nonzero, step.score, *ops));
+            auto cost = clip_cost(step.axes);
+            if (!cost) return report_error(cost.error().message);
+            table.push_back(fmt::format("{:>7} {:>14.6g} {}", step.nonzero, step.score, *cost));
             std::cout << table.back() << "\n";
         }
         if (steps.back().nonzero > *o.max_nonzero)
@@ -233,6 +255,9 @@ Action add_optimize_command(CLI::App& app) {
                     "nonzero over all axes (a zero costs the clip nothing); prints the curve of score and cost")
         ->check(CLI::Range(1, 96))
         ->excludes("--target");
+    cmd->add_flag("--lavapipe-cost", o->lavapipe_cost,
+                  "With --target or --max-nonzero: also count each row's clip on lavapipe with callgrind, in "
+                  "instructions per pixel beyond the gather, as `kdop bench` does (seconds per row)");
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
     return [o, images, sphere] {

@@ -202,6 +202,7 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--sphere --axes 5 --max-nonzero 4" + out, "--max-nonzero 4: each of the 5 axes keeps at least one", 1},
         {"--sphere --axes 11 --force-rgb --max-nonzero 11" + out, "--max-nonzero 11: pinning stops at", 1},
         {"--images " + in.image + " --axes 5 --max-nonzero 9 --target 1" + out, "excludes", 2},
+        {"--sphere --axes 4 --lavapipe-cost" + out, "--lavapipe-cost: counts the rows of --target's or", 2},
     };
     for (const Case& c : cases) {
         auto r = in.kdop("optimize " + c.args);

@@ -4,8 +4,10 @@
 #include "callgrind.h"
 #include "cost_table.h"
 #include "progress.h"
+#include "set_cost.h"
 #include "statistics.h"
 #include "test_support.h"
+#include "variant_spec.h"
 
 #include <gtest/gtest.h>
 
@@ -96,6 +98,24 @@ TEST(BenchCallgrind, CountsRepeatAndGrowWithTheWork) {
     ASSERT_FALSE(missing);
     EXPECT_NE(missing.error().message.find("unknown variant 'no-such-variant'"), std::string::npos)
         << missing.error().message;
+}
+
+// A set known only in memory (a step of `kdop optimize --max-nonzero`'s curve) costs what the same
+// clip from the registry costs beyond the gather, and more slabs cost more.
+TEST(BenchCallgrind, ASetsMarginalCostIsItsClipBeyondTheGather) {
+    test::TempDir scratch;
+    CallgrindSetup setup{fs::path(test::kdop_binary()).parent_path() / "kdop-dispatch-probe", scratch.path(), 128, ""};
+    Progress progress("callgrind", 2);
+    auto registry = callgrind_instructions_per_pixel(
+        setup, {{"dop22-clip-n9", "dop22-clip-n9", {}}, {"gather-n9", "gather-n9", {}}}, 2, progress);
+    ASSERT_TRUE(registry) << registry.error().message;
+    Progress built("callgrind", 4);
+    auto dop22 = marginal_clip_instructions(*resolve_axis_set("dop22"), Neighborhood::n9, setup, built);
+    auto aabb = marginal_clip_instructions(*resolve_axis_set("aabb"), Neighborhood::n9, setup, built);
+    ASSERT_TRUE(dop22 && aabb);
+    EXPECT_NEAR(*dop22, (*registry)[0] - (*registry)[1], 0.03 * (*registry)[0]);
+    EXPECT_GT(*dop22, *aabb);
+    EXPECT_GT(*aabb, 0.0);
 }
 
 std::string kdop(const std::string& args) { return test::kdop_binary() + " " + args; }
