@@ -113,7 +113,7 @@ int run(const Options& o) {
     // as the bench counts them. One column of a table row.
     ScratchDirectory scratch("kdop-optimize");
     const bench::CallgrindSetup callgrind{
-        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe", scratch.path};
+        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe", scratch.path, 256, ""};
     if (o.lavapipe_cost && (scratch.path.empty() || !std::filesystem::exists(callgrind.probe)))
         return report_error(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
                                         callgrind.probe.string()));
