@@ -5,9 +5,7 @@
 #include "magma.h"
 #include "output_set.h"
 #include "progress.h"
-#include "read_file.h"
 #include "run_metadata.h"
-#include "scratch_directory.h"
 #include "selection_options.h"
 #include "size_option.h"
 #include "statistics.h"
@@ -27,19 +25,6 @@
 
 namespace kdop::cli {
 namespace {
-
-// An image as an output of the set: written once through OpenImageIO into the scratch directory,
-// then carried as bytes, so it lands with the tables, all or nothing.
-Result<OutputFile> image_output(const std::filesystem::path& scratch, const std::filesystem::path& dir,
-                                const std::string& name, const Image& image) {
-    std::string flat = name;
-    std::replace(flat.begin(), flat.end(), '/', '_');
-    const std::filesystem::path staged = scratch / flat;
-    if (auto ok = write_image(staged.string(), image); !ok) return std::unexpected(ok.error());
-    auto bytes = read_file(staged);
-    if (!bytes) return fail(fmt::format("{}: cannot read back", staged.string()));
-    return OutputFile{dir / name, std::move(*bytes)};
-}
 
 // The scenes --scenes and --background ask for, in that order.
 Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& names,
@@ -68,41 +53,33 @@ Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& na
 // ghosting-<scene>.png
 std::string trail_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
 
-// What a scene shows of its ghosting: the aliased frame and each variant's frame at the trail frame
-// under frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled picture of them all,
-// each variant's crop over its FLIP map against the aliased frame.
-Result<std::vector<OutputFile>> trail_files(const std::string& scene, const Image& aliased,
-                                            const std::vector<VariantKey>& keys, const std::vector<Image>& trails,
-                                            const LdrFlip& flip, const TaaSchedule& schedule,
-                                            const std::filesystem::path& scratch, const std::filesystem::path& dir) {
-    const std::uint32_t width = aliased.width, height = aliased.height;
-    std::vector<std::pair<std::string, const Image*>> frames{{"aliased", &aliased}};
+// What a scene shows of its ghosting, added to `outputs`: the aliased frame and each variant's frame
+// at the trail frame under frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled
+// picture of them all, each variant's crop over its FLIP map against the aliased frame.
+Result<void> add_trail_outputs(OutputSet& outputs, const std::string& scene, std::shared_ptr<const Image> aliased,
+                               const std::vector<VariantKey>& keys,
+                               const std::vector<std::shared_ptr<const Image>>& trails, const LdrFlip& flip,
+                               const TaaSchedule& schedule) {
+    const std::uint32_t width = aliased->width, height = aliased->height;
+    std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{"aliased", aliased}};
     std::vector<Image> maps;
     maps.reserve(trails.size()); // the picture points into it
     std::vector<LabeledFrame> labeled{
-        {fmt::format("aliased, frame {}", trail_frame(schedule, width, height)), &aliased}};
+        {fmt::format("aliased, frame {}", trail_frame(schedule, width, height)), aliased.get()}};
     for (std::size_t v = 0; v < keys.size(); ++v) {
-        auto error = flip.error_map(aliased, trails[v]);
+        auto error = flip.error_map(*aliased, *trails[v]);
         if (!error) return std::unexpected(error.error());
         maps.push_back(flip::magma_image(*error, width, height));
-        frames.emplace_back(keys[v].name(), &trails[v]);
-        labeled.push_back({keys[v].name(), &trails[v], &maps.back()});
+        frames.emplace_back(keys[v].name(), trails[v]);
+        labeled.push_back({keys[v].name(), trails[v].get(), &maps.back()});
     }
-    std::vector<OutputFile> files;
-    auto add = [&](const std::string& name, const Image& image) -> Result<void> {
-        auto file = image_output(scratch, dir, name, image);
-        if (!file) return std::unexpected(file.error());
-        files.push_back(std::move(*file));
-        return {};
-    };
     for (const auto& [stem, image] : frames)
         for (const char* extension : {".exr", ".png"})
-            if (auto ok = add(fmt::format("frames/{}/{}{}", scene, stem, extension), *image); !ok)
-                return std::unexpected(ok.error());
+            outputs.add_image(fmt::format("frames/{}/{}{}", scene, stem, extension), image);
     auto picture = trail_picture(labeled, trail_crop(schedule, width, height));
     if (!picture) return std::unexpected(picture.error());
-    if (auto ok = add(trail_picture_name(scene), *picture); !ok) return std::unexpected(ok.error());
-    return files;
+    outputs.add_image(trail_picture_name(scene), std::make_shared<const Image>(std::move(*picture)));
+    return {};
 }
 
 } // namespace
@@ -161,8 +138,6 @@ Action add_taa_command(CLI::App& app) {
         if (!sources) return report_error(sources.error().message);
         auto catalog = VariantCatalog::create(*sources, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
-        ScratchDirectory scratch("kdop-taa");
-        if (scratch.path.empty()) return report_error("cannot create a scratch directory in the temporary directory");
 
         std::vector<std::unique_ptr<RunnableVariant>> shaders;
         for (const VariantSpec& spec : *specs) {
@@ -182,7 +157,6 @@ Action add_taa_command(CLI::App& app) {
         const LdrFlip flip(ppd);
 
         std::vector<TaaRow> rows;
-        std::vector<OutputFile> files;
         std::vector<std::string> pictures;
         {
             Progress progress(fmt::format("TAA of {} variants x {} scenes on {},", specs->size(), scenes->size(),
@@ -191,8 +165,8 @@ Action add_taa_command(CLI::App& app) {
             auto timing = bench::time_interleaved(**context, *rectifiers, width, height, o->timing_rounds, progress);
             if (!timing) return report_error(timing.error().message);
             for (const TaaScene& scene : *scenes) {
-                std::vector<Image> trails;
-                Image aliased;
+                std::vector<std::shared_ptr<const Image>> trails;
+                std::shared_ptr<const Image> aliased;
                 for (std::size_t v = 0; v < specs->size(); ++v) {
                     auto loop = TaaLoop::create(**context, shaders[v]->variant(), scene.background);
                     if (!loop) return report_error(loop.error().message);
@@ -200,19 +174,17 @@ Action add_taa_command(CLI::App& app) {
                     if (!m)
                         return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
                     rows.push_back({keys[v], scene.name, median(timing->ms[v]), m->shimmer, m->ghosting});
-                    trails.push_back(std::move(m->trail));
+                    trails.push_back(std::make_shared<const Image>(std::move(m->trail)));
                     if (v == 0) {
                         auto reference = (*loop)->render(
                             frame_state(trail_frame(schedule, width, height), width, height, true, false));
                         if (!reference) return report_error(reference.error().message);
-                        aliased = std::move(*reference);
+                        aliased = std::make_shared<const Image>(std::move(*reference));
                     }
                     progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
                 }
-                auto scene_files =
-                    trail_files(scene.name, aliased, keys, trails, flip, schedule, scratch.path, outputs->dir());
-                if (!scene_files) return report_error(scene_files.error().message);
-                std::move(scene_files->begin(), scene_files->end(), std::back_inserter(files));
+                if (auto ok = add_trail_outputs(*outputs, scene.name, aliased, keys, trails, flip, schedule); !ok)
+                    return report_error(ok.error().message);
                 pictures.push_back(trail_picture_name(scene.name));
             }
         }
@@ -220,7 +192,6 @@ Action add_taa_command(CLI::App& app) {
 
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;
-        outputs->add(std::move(files));
         outputs->add_table("taa", taa_table(rows), run_info);
         outputs->add("report.md",
                      taa_report_markdown(rows, run_info, {width, height, o->warmup, o->frames, ppd, pictures}));

@@ -92,19 +92,20 @@ Result<void> write_atomically(const std::vector<OutputWriter>& files) {
     return {};
 }
 
+OutputWriter content_writer(const OutputFile& f) {
+    return {f.path, [&f](const fs::path& temporary) -> Result<void> {
+                std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+                if (!out) return fail(fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));
+                out.write(f.content.data(), static_cast<std::streamsize>(f.content.size()));
+                out.close();
+                if (!out) return fail(fmt::format("{}: write failed (disk full?)", f.path.string()));
+                return {};
+            }};
+}
+
 Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
     std::vector<OutputWriter> writers;
-    for (const OutputFile& f : files)
-        writers.push_back({f.path, [&f](const fs::path& temporary) -> Result<void> {
-                               std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-                               if (!out)
-                                   return fail(
-                                       fmt::format("{}: cannot write: {}", f.path.string(), std::strerror(errno)));
-                               out.write(f.content.data(), static_cast<std::streamsize>(f.content.size()));
-                               out.close();
-                               if (!out) return fail(fmt::format("{}: write failed (disk full?)", f.path.string()));
-                               return {};
-                           }});
+    for (const OutputFile& f : files) writers.push_back(content_writer(f));
     return write_atomically(writers);
 }
 

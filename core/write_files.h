@@ -35,6 +35,10 @@ struct OutputWriter {
 };
 Result<void> write_atomically(const std::vector<OutputWriter>& files);
 
+// The writer of `file`'s bytes (what write_files_atomically writes), for a set that mixes them with
+// files other libraries write. It refers to `file`, which must outlive the write.
+OutputWriter content_writer(const OutputFile& file);
+
 // The temporary a file is written under before it is renamed to `path`: next to it, unique to
 // this process and call, keeping the extension (which tells image libraries the format).
 std::filesystem::path temporary_path_for(const std::filesystem::path& path);

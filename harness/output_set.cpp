@@ -1,5 +1,7 @@
 #include "output_set.h"
 
+#include "image_io.h"
+
 #include <nlohmann/json.hpp>
 
 namespace kdop {
@@ -24,6 +26,15 @@ void OutputSet::add_table(const std::string& stem, const Table& table, const Run
     add(stem + ".json", json.dump(2) + "\n");
 }
 
-Result<void> OutputSet::write() const { return write_files_atomically(files_); }
+void OutputSet::add_image(const std::string& name, std::shared_ptr<const Image> image) {
+    images_.push_back(image_writer(dir_ / name, std::move(image)));
+}
+
+Result<void> OutputSet::write() const {
+    std::vector<OutputWriter> writers;
+    for (const OutputFile& f : files_) writers.push_back(content_writer(f));
+    writers.insert(writers.end(), images_.begin(), images_.end());
+    return write_atomically(writers);
+}
 
 } // namespace kdop

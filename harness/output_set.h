@@ -1,15 +1,18 @@
 // A command's outputs: the directory is checked before any work starts (so a bad --out fails at
-// once, not after a ten-minute run), files and tables are collected as the run goes, and all of
-// them are written together at the end, all or nothing (core/write_files.h). Tables are written
-// as <stem>.csv and as <stem>.json, the JSON carrying the run's metadata and the columns' units.
+// once, not after a ten-minute run), files, tables and images are collected as the run goes, and
+// all of them are written together at the end, all or nothing (core/write_files.h). Tables are
+// written as <stem>.csv and as <stem>.json, the JSON carrying the run's metadata and the columns'
+// units; images through OpenImageIO (images/image_io.h), in the format their extension names.
 #pragma once
 
+#include "image.h"
 #include "result.h"
 #include "run_metadata.h"
 #include "table.h"
 #include "write_files.h"
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,7 +27,9 @@ public:
     void add(const std::string& name, std::string content);
     void add(std::vector<OutputFile> files); // paths already in dir(), e.g. drawn charts
     void add_table(const std::string& stem, const Table& table, const RunMetadata& run);
-    std::size_t size() const { return files_.size(); }
+    // An image at `name` in dir() (subfolders allowed); several names may share one image.
+    void add_image(const std::string& name, std::shared_ptr<const Image> image);
+    std::size_t size() const { return files_.size() + images_.size(); }
 
     Result<void> write() const;
 
@@ -32,6 +37,7 @@ private:
     explicit OutputSet(std::filesystem::path dir) : dir_(std::move(dir)) {}
     std::filesystem::path dir_;
     std::vector<OutputFile> files_;
+    std::vector<OutputWriter> images_;
 };
 
 } // namespace kdop

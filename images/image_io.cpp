@@ -219,6 +219,12 @@ Result<void> write_image(const std::string& path, const Image& image) {
         {{path, [&](const std::filesystem::path& file) { return write_checked(file, path, image); }}});
 }
 
+OutputWriter image_writer(std::filesystem::path path, std::shared_ptr<const Image> image) {
+    const std::string name = path.string();
+    return {std::move(path),
+            [image, name](const std::filesystem::path& file) { return write_checked(file, name, *image); }};
+}
+
 Result<void> write_images(const std::vector<ImageFile>& files) {
     std::vector<OutputWriter> writers;
     for (const ImageFile& f : files)

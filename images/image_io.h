@@ -8,8 +8,10 @@
 
 #include "image.h"
 #include "result.h"
+#include "write_files.h"
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,5 +37,9 @@ struct ImageFile {
     const Image* image;
 };
 Result<void> write_images(const std::vector<ImageFile>& files);
+
+// The writer of one image at `path` (write_image's part of write_atomically), for an output set
+// that holds images beside other files. It keeps the image alive until it has written it.
+OutputWriter image_writer(std::filesystem::path path, std::shared_ptr<const Image> image);
 
 } // namespace kdop
