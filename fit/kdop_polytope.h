@@ -4,10 +4,14 @@
 // speed: no allocation, a polytope clipped slab by slab from the parallelepiped of three of them,
 // each vertex knowing its three neighbors (a clip measures each vertex's distance to its plane,
 // then edits only the edges it cuts), each face measured from its edges in one pass at the end.
+// Where data decides (which point sets a slab's bound, which vertices lie outside a plane) it
+// selects instead of branching: such branches mispredict about half the time, and removing them
+// made the fit 1.3x faster for 7% more instructions (cachegrind's branch simulation: 41% fewer
+// mispredictions). So count instructions and mispredictions, not instructions alone, here.
 //
 // Why not Qhull (accuracy/volume.h, which the tests check this against): a half-space
-// intersection through Qhull costs tens of microseconds; with 8 axes this costs about 11,500
-// instructions (callgrind), volume and gradient, a couple of microseconds.
+// intersection through Qhull costs tens of microseconds; with 8 axes this costs about 12,000
+// instructions (callgrind), volume and gradient, about a microsecond.
 #pragma once
 
 #include <glm/mat3x3.hpp>
