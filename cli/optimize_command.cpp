@@ -2,6 +2,7 @@
 // around the unit sphere, and write it as an axis-set file every command reads.
 #include "commands.h"
 
+#include "accuracy_inputs.h"
 #include "analytic_cost.h"
 #include "axis_fit.h"
 #include "builtin_sets.h"
@@ -11,6 +12,7 @@
 #include "image_io.h"
 #include "memory_budget.h"
 #include "progress.h"
+#include "sampled_distance.h"
 #include "scratch_directory.h"
 #include "set_cost.h"
 #include "variant_spec.h"
@@ -40,18 +42,42 @@ struct Options {
     std::optional<double> target;
     std::optional<std::size_t> max_nonzero;
     bool lavapipe_cost = false;
+    std::size_t accuracy_samples = 8192;
 };
 
-// The objective of each built-in set on the same content, for the comparison the output gives.
-std::vector<std::pair<std::string, double>> builtin_scores(const Options& o, const Neighborhoods* neighborhoods) {
-    std::vector<std::pair<std::string, double>> scores;
+// A set next to the fitted one in the output: its objective on the same content and, on images,
+// its mean distance to the ideal clip on the sampled pixels (NaN where not measured).
+struct Compared {
+    std::string name;
+    std::vector<glm::dvec3> axes;
+    double score = NAN, distance = NAN;
+};
+
+// The fitted set first, then every built-in set, with their objectives.
+std::vector<Compared> compared_sets(const Options& o, const Neighborhoods* neighborhoods, const FitResult& fitted) {
+    std::vector<Compared> sets{{"this set", fitted.axes, fitted.score}};
     for (const std::string& name : builtin_set_names()) {
         const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set(name)); // built in: cannot fail
         const double score =
             neighborhoods ? mean_volume(axes, *neighborhoods, o.threads) : KdopPolytope(axes).sphere_volume();
-        scores.emplace_back(name, score);
+        sets.push_back({name, axes, score});
     }
-    return scores;
+    return sets;
+}
+
+// `kdop accuracy`'s measure on a sample: each set's mean distance to the ideal clip, over
+// --accuracy-samples pixels of each image under each of its ghosting histories.
+Result<std::size_t> measure_distances(const Options& o, Neighborhood shape, std::vector<Compared>& sets) {
+    auto pairs = image_pairs(o.images);
+    if (!pairs) return std::unexpected(pairs.error());
+    std::vector<std::vector<glm::dvec3>> axes;
+    for (const Compared& set : sets) axes.push_back(set.axes);
+    Progress progress(fmt::format("distance to the ideal clip on {} sampled pixels", o.accuracy_samples), 1);
+    auto distances = sampled_ideal_distances(*pairs, axes, shape, o.accuracy_samples, o.seed);
+    progress.finish();
+    if (!distances) return std::unexpected(distances.error());
+    for (std::size_t i = 0; i < sets.size(); ++i) sets[i].distance = distances->mean[i];
+    return distances->pixels;
 }
 
 int run(const Options& o) {
@@ -181,7 +207,23 @@ int run(const Options& o) {
         result.axes = steps.back().axes;
         result.score = steps.back().score;
     }
-    const auto scores = builtin_scores(o, o.sphere ? nullptr : &neighborhoods);
+    std::vector<Compared> sets = compared_sets(o, o.sphere ? nullptr : &neighborhoods, result);
+    std::string distance_measure; // empty where not measured
+    if (!o.sphere && o.accuracy_samples > 0) {
+        auto pixels = measure_distances(o, shape, sets);
+        if (!pixels) return report_error(pixels.error().message);
+        distance_measure = fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) over "
+                                       "{} sampled pixels: up to {} of "
+                                       "each image under each of its 3 ghosting histories, seed {}",
+                                       *pixels, o.accuracy_samples, o.seed);
+    }
+    // Each compared set's figures, and their ratio to the fitted set's.
+    auto compared_row = [&](const Compared& set) {
+        std::string row = fmt::format("{:<14} {:>12.6g} ({:>7.3f}x)", set.name, set.score, set.score / result.score);
+        if (!distance_measure.empty())
+            row += fmt::format("  {:>12.6g} ({:>7.3f}x)", set.distance, set.distance / sets[0].distance);
+        return row;
+    };
 
     // The file: what was fitted to and how, and the objective next to the built-in sets'.
     FittedSetText text{
@@ -198,16 +240,19 @@ int run(const Options& o) {
     if (o.max_nonzero)
         text.comments.push_back(fmt::format("Components pinned at 0 one by one, to at most {}:", *o.max_nonzero));
     for (const std::string& row : table) text.comments.push_back("  " + row);
-    text.comments.push_back(fmt::format("This set: {:.6g}", result.score));
-    for (const auto& [set, score] : scores)
-        text.comments.push_back(fmt::format("{}: {:.6g} ({:.3f}x this set's)", set, score, score / result.score));
+    if (!distance_measure.empty()) text.comments.push_back(fmt::format("Distance: {}.", distance_measure));
+    text.comments.push_back(fmt::format("Objective{} of this set and the built-in sets (x this set's):",
+                                        distance_measure.empty() ? "" : ", then distance,"));
+    for (const Compared& set : sets) text.comments.push_back("  " + compared_row(set));
     auto file = fitted_set_file(text, result.axes);
     if (!file) return report_error(file.error().message);
     if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
 
     std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), objective, result.score);
-    for (const auto& [set, score] : scores)
-        std::cout << fmt::format("  {:<14} {:.6g} ({:.3f}x)\n", set, score, score / result.score);
+    if (!distance_measure.empty()) std::cout << fmt::format("{}: {:.6g}\n", distance_measure, sets[0].distance);
+    std::cout << fmt::format("  {:<14} {:>23}{}\n", "set", "objective (x this set's)",
+                             distance_measure.empty() ? "" : fmt::format("  {:>23}", "distance (x this set's)"));
+    for (const Compared& set : sets) std::cout << "  " << compared_row(set) << "\n";
     // Volumes in the objective per second; a neighborhood repeated in the images is computed once.
     std::cout << fmt::format(
         "{:.1f} s, {} k-DOP volumes, {:.3g} per second{}{}{}\n", result.seconds, result.volumes,
@@ -258,6 +303,11 @@ Action add_optimize_command(CLI::App& app) {
     cmd->add_flag("--lavapipe-cost", o->lavapipe_cost,
                   "With --target or --max-nonzero: also count each row's clip on lavapipe with callgrind, in "
                   "instructions per pixel beyond the gather, as `kdop bench` does (seconds per row)");
+    cmd->add_option("--accuracy-samples", o->accuracy_samples,
+                    "With --images: also report each set's mean distance to the ideal clip (as `kdop accuracy` "
+                    "measures it, in the CPU reference) on this many seeded pixels of each image under each of its "
+                    "3 ghosting histories; 0 skips it [default: 8192]")
+        ->excludes(sphere);
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
     return [o, images, sphere] {

@@ -3,8 +3,11 @@
 // device checked against what must hold (sets with the RGB axes never looser than the RGB AABB).
 #include "accuracy_report.h"
 #include "accuracy_run.h"
+#include "cpu_clip.h"
 #include "gpu_support.h"
+#include "ideal_clip.h"
 #include "image_io.h"
+#include "sampled_distance.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -177,6 +180,43 @@ TEST(AccuracyRun, OnTheDeviceAgreesWithTheReferenceAndKeepsTheAabbBound) {
         }
     }
     EXPECT_GT(outside, 1000u) << "the content must give the clips something to do";
+}
+
+// kdop optimize's sampled measure: with every pixel sampled it equals the full measure taken the
+// way `kdop accuracy` takes it for the reference (ideal exits of the whole image, the reference's
+// rectified image, ideal_distances), up to the float32 the rectified image is stored in.
+TEST(SampledDistance, EveryPixelSampledIsTheFullReferenceMeasure) {
+    const auto all_pairs = builtin_pairs(16, 16, 5);
+    const std::vector<AccuracyPair> pairs(all_pairs.begin(), all_pairs.begin() + 3);
+    const std::vector<std::string> names = {"aabb", "dop32"};
+    std::vector<std::vector<glm::dvec3>> sets;
+    for (const std::string& name : names) sets.push_back(unit_axes(*resolve_axis_set(name)));
+
+    auto sampled = sampled_ideal_distances(pairs, sets, Neighborhood::n9, 1000, 7);
+    ASSERT_TRUE(sampled) << sampled.error().message;
+    EXPECT_EQ(sampled->pixels, 3u * 256u) << "more samples than pixels take every pixel once";
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        double sum = 0;
+        for (const AccuracyPair& pair : pairs) {
+            auto exits = ideal_exits(pair.current, pair.history, Neighborhood::n9);
+            ASSERT_TRUE(exits) << exits.error().message;
+            const Image clipped = reference_rectify(*resolve_axis_set(names[k]), Mode::clip, Neighborhood::n9,
+                                                    pair.current, pair.history, 1.0);
+            for (double d : ideal_distances(pair.current, pair.history, *exits, clipped)) sum += d;
+        }
+        EXPECT_NEAR(sampled->mean[k], sum / (3 * 256), 1e-6) << names[k];
+    }
+    // dop32 holds the R, G, B axes, so it lies inside the box: along each ray it stops no later.
+    EXPECT_GT(sampled->mean[0], sampled->mean[1]);
+
+    // A sample is fixed by its seed alone.
+    auto a = sampled_ideal_distances(pairs, sets, Neighborhood::n9, 20, 7);
+    auto b = sampled_ideal_distances(pairs, sets, Neighborhood::n9, 20, 7);
+    auto c = sampled_ideal_distances(pairs, sets, Neighborhood::n9, 20, 8);
+    ASSERT_TRUE(a && b && c);
+    EXPECT_EQ(a->pixels, 60u);
+    EXPECT_EQ(a->mean, b->mean);
+    EXPECT_NE(a->mean, c->mean);
 }
 
 } // namespace

@@ -117,7 +117,14 @@ TEST(CliOptimize, AFittedSetGoesThroughGenRunAndAccuracy) {
     ASSERT_EQ(fit.exit_code, 0) << fit.err;
     const std::string text = test::read_file(set);
     EXPECT_NE(text.find("name: scene\nprovenance: fitted by kdop"), std::string::npos) << text;
-    EXPECT_NE(text.find("dop16-grass: "), std::string::npos) << "the built-in sets' scores for comparison";
+    EXPECT_NE(text.find("\n#   dop16-grass "), std::string::npos) << "the built-in sets' scores for comparison";
+    // Beside the volume it minimizes, each set's distance to the ideal clip on sampled pixels.
+    EXPECT_NE(text.find("Objective, then distance,"), std::string::npos) << text;
+    EXPECT_NE(fit.out.find("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) over 768 "
+                           "sampled pixels: up to 8192 of each image"),
+              std::string::npos)
+        << "a 16x16 image has 256 pixels, under 3 histories:\n"
+        << fit.out;
 
     auto gen = in.kdop("gen --sets " + set + " --modes clip --neighborhoods n9 --out " + (in.dir / "gen").string());
     EXPECT_EQ(gen.exit_code, 0) << gen.err;
@@ -203,6 +210,7 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--sphere --axes 11 --force-rgb --max-nonzero 11" + out, "--max-nonzero 11: pinning stops at", 1},
         {"--images " + in.image + " --axes 5 --max-nonzero 9 --target 1" + out, "excludes", 2},
         {"--sphere --axes 4 --lavapipe-cost" + out, "--lavapipe-cost: counts the rows of --target's or", 2},
+        {"--sphere --axes 4 --accuracy-samples 10" + out, "excludes", 2},
     };
     for (const Case& c : cases) {
         auto r = in.kdop("optimize " + c.args);
