@@ -208,6 +208,7 @@ int run(const Options& o) {
         result.score = steps.back().score;
     }
     std::vector<Compared> sets = compared_sets(o, o.sphere ? nullptr : &neighborhoods, result);
+    neighborhoods = {};           // done with: the image pairs below then need less than the memory checked for them
     std::string distance_measure; // empty where not measured
     if (!o.sphere && o.accuracy_samples > 0) {
         auto pixels = measure_distances(o, shape, sets);
