@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -99,6 +100,10 @@ int run(const Options& o) {
     const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
     Neighborhoods neighborhoods;
     if (!o.sphere) {
+        // An image given twice would only weigh twice, and the distance's image pairs refuse it.
+        for (std::size_t i = 0; i < o.images.size(); ++i)
+            if (std::find(o.images.begin(), o.images.begin() + i, o.images[i]) != o.images.begin() + i)
+                return report_error(fmt::format("--images: {} is given twice", o.images[i]));
         std::vector<Image> images;
         std::uint64_t pixels = 0;
         for (const std::string& path : o.images) {
@@ -208,14 +213,15 @@ int run(const Options& o) {
         result.score = steps.back().score;
     }
     std::vector<Compared> sets = compared_sets(o, o.sphere ? nullptr : &neighborhoods, result);
-    neighborhoods = {};           // done with: the image pairs below then need less than the memory checked for them
+    // Freed before the image pairs are read, so the peak stays within the memory checked above.
+    neighborhoods = {};
     std::string distance_measure; // empty where not measured
     if (!o.sphere && o.accuracy_samples > 0) {
         auto pixels = measure_distances(o, shape, sets);
         if (!pixels) return report_error(pixels.error().message);
-        distance_measure = fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) over "
-                                       "{} sampled pixels: up to {} of "
-                                       "each image under each of its 3 ghosting histories, seed {}",
+        distance_measure = fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) "
+                                       "over {} sampled pixels: up to {} of each image under each of its 3 ghosting "
+                                       "histories, seed {}",
                                        *pixels, o.accuracy_samples, o.seed);
     }
     // Each compared set's figures, and their ratio to the fitted set's.

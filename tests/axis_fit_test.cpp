@@ -201,6 +201,7 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
     const Case cases[] = {
         {"--images " + (in.dir / "text.png").string() + " --axes 4" + out, "text.png: cannot read image", 1},
         {"--images " + tiny + " --axes 4" + out, "tiny.exr: 2x5 has no 3x3 neighborhood", 1},
+        {"--images " + in.image + " " + in.image + " --axes 4" + out, "grass.exr is given twice", 1},
         {"--images " + in.image + " --axes 2" + out, "--axes: Value 2 not in range", 2},
         {"--images " + in.image + " --axes 3 --force-rgb" + out, "--force-rgb fixes 3 axes; --axes 3 leaves none", 1},
         {"--images " + in.image + " --sphere --axes 4" + out, "excludes", 2},
