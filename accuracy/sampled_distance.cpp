@@ -14,7 +14,7 @@ namespace kdop {
 
 Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> pairs,
                                                  std::span<const std::vector<glm::dvec3>> sets, Neighborhood shape,
-                                                 std::size_t per_pair, std::uint64_t seed) {
+                                                 std::size_t per_pair, std::uint64_t seed, Progress* progress) {
     SampledDistances out;
     std::vector<double> sums(sets.size(), 0.0);
     const std::vector<glm::ivec2> offsets = reference_offsets(shape);
@@ -42,6 +42,7 @@ Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> p
                 sums[k] += glm::distance(reference_clip(sets[k], neighborhood, c, h, Mode::clip, 1.0), target) / s;
         }
         out.pixels += count;
+        if (progress) progress->advance(pair.name);
     }
     for (double sum : sums) out.mean.push_back(out.pixels ? sum / double(out.pixels) : NAN);
     return out;

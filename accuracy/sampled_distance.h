@@ -5,6 +5,7 @@
 #pragma once
 
 #include "accuracy_inputs.h"
+#include "progress.h"
 #include "result.h"
 #include "variant_spec.h"
 
@@ -22,9 +23,10 @@ struct SampledDistances {
 };
 
 // Up to `per_pair` pixels of each pair, in a random order fixed by `seed` (every pixel where the
-// pair has fewer). Each set is given by its unit axes.
+// pair has fewer). Each set is given by its unit axes. `progress` advances once per pair.
 Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> pairs,
                                                  std::span<const std::vector<glm::dvec3>> sets, Neighborhood shape,
-                                                 std::size_t per_pair, std::uint64_t seed);
+                                                 std::size_t per_pair, std::uint64_t seed,
+                                                 Progress* progress = nullptr);
 
 } // namespace kdop

@@ -73,8 +73,9 @@ Result<std::size_t> measure_distances(const Options& o, Neighborhood shape, std:
     if (!pairs) return std::unexpected(pairs.error());
     std::vector<std::vector<glm::dvec3>> axes;
     for (const Compared& set : sets) axes.push_back(set.axes);
-    Progress progress(fmt::format("distance to the ideal clip on {} sampled pixels", o.accuracy_samples), 1);
-    auto distances = sampled_ideal_distances(*pairs, axes, shape, o.accuracy_samples, o.seed);
+    Progress progress(fmt::format("distance to the ideal clip on up to {} sampled pixels of", o.accuracy_samples),
+                      pairs->size());
+    auto distances = sampled_ideal_distances(*pairs, axes, shape, o.accuracy_samples, o.seed, &progress);
     progress.finish();
     if (!distances) return std::unexpected(distances.error());
     for (std::size_t i = 0; i < sets.size(); ++i) sets[i].distance = distances->mean[i];
