@@ -14,19 +14,7 @@ namespace kdop {
 namespace {
 
 // The ideal clip is defined for finite colors only (an unusable history is a stress-suite matter).
-Result<Image> read_finite_image(const std::string& path) {
-    auto image = read_image(path);
-    if (!image) return image;
-    for (std::uint32_t y = 0; y < image->height; ++y)
-        for (std::uint32_t x = 0; x < image->width; ++x) {
-            const glm::vec4& p = image->at(x, y);
-            if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b))
-                return fail(fmt::format("{}: pixel ({}, {}) is not finite ({}, {}, {}); accuracy needs finite colors "
-                                        "(see `kdop stress` for NaN and Inf)",
-                                        path, x, y, p.r, p.g, p.b));
-        }
-    return image;
-}
+constexpr std::string_view kFiniteForAccuracy = "accuracy needs finite colors (see `kdop stress` for NaN and Inf)";
 
 std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
@@ -58,7 +46,7 @@ Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& pa
         if (shared_stem && std::ranges::count(paths, path) > 1)
             return fail(fmt::format("--images: {} is given twice", path));
         const std::string family = shared_stem ? path : stem(path);
-        auto current = read_finite_image(path);
+        auto current = read_finite_image(path, kFiniteForAccuracy);
         if (!current) return std::unexpected(current.error());
         const Image other = rotated_half_turn(*current);
         for (HistoryModel m : history_models())
@@ -70,9 +58,9 @@ Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& pa
 }
 
 Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path) {
-    auto current = read_finite_image(current_path);
+    auto current = read_finite_image(current_path, kFiniteForAccuracy);
     if (!current) return std::unexpected(current.error());
-    auto history = read_finite_image(history_path);
+    auto history = read_finite_image(history_path, kFiniteForAccuracy);
     if (!history) return std::unexpected(history.error());
     if (current->width != history->width || current->height != history->height)
         return fail(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", history_path, history->width,

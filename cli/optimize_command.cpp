@@ -108,7 +108,8 @@ int run(const Options& o) {
         std::vector<Image> images;
         std::uint64_t pixels = 0;
         for (const std::string& path : o.images) {
-            auto image = read_image(path);
+            // A NaN bound would make a slab of no width, a k-DOP of no volume: refused, not fitted.
+            auto image = read_finite_image(path, "fitting needs finite colors");
             if (!image) return report_error(image.error().message);
             if (image->width < 3 || image->height < 3)
                 return report_error(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels",

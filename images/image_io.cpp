@@ -83,6 +83,19 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
     }
 }
 
+Result<Image> read_finite_image(const std::string& path, std::string_view why) {
+    auto image = read_image(path);
+    if (!image) return image;
+    for (std::uint32_t y = 0; y < image->height; ++y)
+        for (std::uint32_t x = 0; x < image->width; ++x) {
+            const glm::vec4& p = image->at(x, y);
+            if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b))
+                return fail(
+                    fmt::format("{}: pixel ({}, {}) is not finite ({}, {}, {}); {}", path, x, y, p.r, p.g, p.b, why));
+        }
+    return image;
+}
+
 namespace {
 
 // Formats that would not give back the values written: kdop writes data, not pictures. JPEG also

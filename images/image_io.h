@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace kdop {
@@ -21,6 +22,10 @@ namespace kdop {
 // maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory are refused,
 // so a small file claiming an enormous image is an error, not an allocation failure.
 Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0);
+
+// read_image, refusing an image with a NaN or infinite R, G or B: the error names the file, the
+// first such pixel and its value, then `why` (what needs finite colors, and where to look instead).
+Result<Image> read_finite_image(const std::string& path, std::string_view why);
 
 // The format follows the extension. EXR and TIFF keep 32-bit floats; Radiance HDR keeps RGB with
 // about 8 bits relative to each pixel's brightest channel; integer formats such as PNG keep values

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace kdop {
@@ -192,6 +193,10 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
     OptimizeInputs in;
     const std::string tiny = (in.dir / "tiny.exr").string();
     ASSERT_TRUE(write_image(tiny, Image(2, 5)));
+    const std::string nan = (in.dir / "nan.exr").string();
+    Image with_nan = grass(8);
+    with_nan.at(3, 4).g = NAN;
+    ASSERT_TRUE(write_image(nan, with_nan));
     test::write_file(in.dir / "text.png", "not an image");
     const std::string out = " --out " + (in.dir / "fitted.axes").string();
     struct Case {
@@ -202,6 +207,7 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--images " + (in.dir / "text.png").string() + " --axes 4" + out, "text.png: cannot read image", 1},
         {"--images " + tiny + " --axes 4" + out, "tiny.exr: 2x5 has no 3x3 neighborhood", 1},
         {"--images " + in.image + " " + in.image + " --axes 4" + out, "grass.exr is given twice", 1},
+        {"--images " + nan + " --axes 4" + out, "fitting needs finite colors", 1},
         {"--images " + in.image + " --axes 2" + out, "--axes: Value 2 not in range", 2},
         {"--images " + in.image + " --axes 3 --force-rgb" + out, "--force-rgb fixes 3 axes; --axes 3 leaves none", 1},
         {"--images " + in.image + " --sphere --axes 4" + out, "excludes", 2},
