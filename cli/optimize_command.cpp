@@ -144,10 +144,12 @@ int run(const Options& o) {
     // What a set's hardened clip costs: float ops as the generator counts them (analytic_cost.h),
     // and with --lavapipe-cost the instructions per pixel lavapipe runs beyond the gather (callgrind),
     // as the bench counts them. One column of a table row.
-    ScratchDirectory scratch("kdop-optimize");
-    const bench::CallgrindSetup callgrind{
-        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe", scratch.path, 256, ""};
-    if (o.lavapipe_cost && (scratch.path.empty() || !std::filesystem::exists(callgrind.probe)))
+    std::optional<ScratchDirectory> scratch; // for callgrind's files: only with --lavapipe-cost
+    if (o.lavapipe_cost) scratch.emplace("kdop-optimize");
+    const bench::CallgrindSetup callgrind{std::filesystem::read_symlink("/proc/self/exe").parent_path() /
+                                              "kdop-dispatch-probe",
+                                          scratch ? scratch->path : std::filesystem::path(), 256, ""};
+    if (o.lavapipe_cost && (callgrind.scratch.empty() || !std::filesystem::exists(callgrind.probe)))
         return report_error(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
                                         callgrind.probe.string()));
     auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<std::string> {
