@@ -1,5 +1,7 @@
 #include "accuracy_inputs.h"
 
+#include "input_files.h"
+
 #include "image_io.h"
 #include "test_textures.h"
 
@@ -37,14 +39,13 @@ std::vector<AccuracyPair> builtin_pairs(std::uint32_t width, std::uint32_t heigh
 }
 
 Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths) {
+    if (auto ok = check_distinct_files(paths, "--images"); !ok) return std::unexpected(ok.error());
     std::vector<AccuracyPair> pairs;
     for (const std::string& path : paths) {
         // An image is its family, named by its file's stem, or by the path as given where two files
         // share a stem (frame.exr from two folders): rows and charts must not merge them.
         const bool shared_stem =
             std::ranges::count_if(paths, [&](const std::string& p) { return stem(p) == stem(path); }) > 1;
-        if (shared_stem && std::ranges::count(paths, path) > 1)
-            return fail(fmt::format("--images: {} is given twice", path));
         const std::string family = shared_stem ? path : stem(path);
         auto current = read_finite_image(path, kFiniteForAccuracy);
         if (!current) return std::unexpected(current.error());

@@ -27,6 +27,10 @@ Action add_taa_command(CLI::App& app);
 // Prints an error message (which already names file/line or argument) to stderr; returns 1.
 int report_error(const std::string& message);
 
+// The same for a wrong command line (an option's value, options that do not go together); returns
+// 2, as CLI11's own usage errors do.
+int usage_error(const std::string& message);
+
 // Prints what the validation layer reported on `context` (nothing when it was off) to stderr.
 void report_validation_messages(const Context& context);
 

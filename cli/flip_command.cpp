@@ -4,8 +4,10 @@
 #include "command_line.h"
 #include "flip.h"
 #include "image_io.h"
+#include "input_files.h"
 #include "magma.h"
 #include "memory_budget.h"
+#include "number_option.h"
 #include "write_files.h"
 
 #include <fmt/format.h>
@@ -36,15 +38,15 @@ Action add_flip_command(CLI::App& app) {
                                  fmt::format("Pixels per degree of visual angle, from {} to {} [default: from the "
                                              "viewing conditions, about 67]",
                                              kMinPixelsPerDegree, kMaxPixelsPerDegree))
-                    ->check(CLI::Range(kMinPixelsPerDegree, kMaxPixelsPerDegree));
+                    ->check(finite_number(kMinPixelsPerDegree, kMaxPixelsPerDegree));
     flip->add_option("--distance", o->viewing.distance_m, "Viewing distance in meters [default: 0.7]")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number(1e6))
         ->excludes(ppd);
     flip->add_option("--display-width", o->viewing.display_width_m, "Display width in meters [default: 0.7]")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number(1e6))
         ->excludes(ppd);
     flip->add_option("--display-pixels", o->viewing.display_width_px, "Display width in pixels [default: 3840]")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number(1e6))
         ->excludes(ppd);
     flip->add_flag("--srgb", o->srgb,
                    "The inputs hold sRGB-encoded values (as most PNGs do): decode them to linear first [default: "
@@ -68,9 +70,13 @@ Action add_flip_command(CLI::App& app) {
             std::string extension = std::filesystem::path(o->out).extension().string();
             std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return std::tolower(c); });
             if (extension != ".exr" && extension != ".png")
-                return report_error(fmt::format(
+                return usage_error(fmt::format(
                     "--out: {}: the map is written as .exr (its values) or .png (in magma colors)", o->out));
             magma = extension == ".png";
+            if (std::error_code ec; std::filesystem::is_directory(o->out, ec))
+                return usage_error(fmt::format("--out {}: is a directory; name the map's file", o->out));
+            const std::filesystem::path inputs[] = {o->reference, o->test};
+            if (auto ok = check_not_an_input(o->out, "--out", inputs); !ok) return report_error(ok.error().message);
             if (auto ok = check_output_directory(std::filesystem::path(o->out).parent_path(), "--out"); !ok)
                 return report_error(ok.error().message);
         }

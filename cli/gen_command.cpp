@@ -42,6 +42,7 @@ Action add_gen_command(CLI::App& app) {
 
     return [options] {
         auto start = std::chrono::steady_clock::now();
+        if (auto ok = check_output_directory(options->out); !ok) return report_error(ok.error().message);
         auto specs = options->selection.select();
         if (!specs) return report_error(specs.error().message);
 

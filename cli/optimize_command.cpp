@@ -10,7 +10,9 @@
 #include "cpu_clip.h"
 #include "fitted_set.h"
 #include "image_io.h"
+#include "input_files.h"
 #include "memory_budget.h"
+#include "number_option.h"
 #include "progress.h"
 #include "sampled_distance.h"
 #include "scratch_directory.h"
@@ -83,17 +85,28 @@ Result<std::size_t> measure_distances(const Options& o, Neighborhood shape, std:
 }
 
 int run(const Options& o) {
-    if (o.lavapipe_cost && !o.target && !o.max_nonzero) {
-        report_error("--lavapipe-cost: counts the rows of --target's or --max-nonzero's table; give one of them");
-        return kUsageError;
-    }
+    // Everything the command line decides is checked here, before the fit, which can take minutes.
+    if (o.lavapipe_cost && !o.target && !o.max_nonzero)
+        return usage_error("--lavapipe-cost: counts the rows of --target's or --max-nonzero's table; give one of them");
     if (o.force_rgb && o.axes <= 3)
-        return report_error(fmt::format("--force-rgb fixes 3 axes; --axes {} leaves none to fit", o.axes));
+        return usage_error(fmt::format("--force-rgb fixes 3 axes; --axes {} leaves none to fit", o.axes));
+    if (o.max_nonzero && *o.max_nonzero < o.axes)
+        return usage_error(
+            fmt::format("--max-nonzero {}: each of the {} axes keeps at least one component", *o.max_nonzero, o.axes));
+    const std::string name_option = o.name.empty() ? "--out" : "--name";
     const std::string name = o.name.empty() ? std::filesystem::path(o.out).stem().string() : o.name;
     if (!is_valid_set_name(name))
-        return report_error(fmt::format("{}: '{}' is not a set name (lowercase letters and digits, single '-' between "
-                                        "words); give one with --name",
-                                        o.name.empty() ? "--out" : "--name", name));
+        return usage_error(fmt::format("{}: '{}' is not a set name (lowercase letters and digits, single '-' between "
+                                       "words); give one with --name",
+                                       name_option, name));
+    if (is_builtin_set(name))
+        return usage_error(fmt::format("{}: '{}' is the name of a built-in set, which every command would take "
+                                       "instead of this file; give another with --name",
+                                       name_option, name));
+    if (std::error_code ec; std::filesystem::is_directory(o.out, ec))
+        return usage_error(fmt::format("--out {}: is a directory; name the axis-set file to write", o.out));
+    std::vector<std::filesystem::path> inputs(o.images.begin(), o.images.end());
+    if (auto ok = check_not_an_input(o.out, "--out", inputs); !ok) return report_error(ok.error().message);
     if (auto ok = check_output_directory(std::filesystem::path(o.out).parent_path()); !ok)
         return report_error(ok.error().message);
 
@@ -102,9 +115,7 @@ int run(const Options& o) {
     Neighborhoods neighborhoods;
     if (!o.sphere) {
         // An image given twice would only weigh twice, and the distance's image pairs refuse it.
-        for (std::size_t i = 0; i < o.images.size(); ++i)
-            if (std::find(o.images.begin(), o.images.begin() + i, o.images[i]) != o.images.begin() + i)
-                return report_error(fmt::format("--images: {} is given twice", o.images[i]));
+        if (auto ok = check_distinct_files(o.images, "--images"); !ok) return report_error(ok.error().message);
         std::vector<Image> images;
         std::uint64_t pixels = 0;
         for (const std::string& path : o.images) {
@@ -114,6 +125,13 @@ int run(const Options& o) {
             if (image->width < 3 || image->height < 3)
                 return report_error(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels",
                                                 path, image->width, image->height));
+            // One color throughout: every neighborhood is a point, every k-DOP has volume 0, and the
+            // fit would choose among sets that all score 0.
+            if (std::ranges::all_of(image->pixels,
+                                    [&](const glm::vec4& p) { return glm::vec3(p) == glm::vec3(image->pixels[0]); }))
+                return report_error(fmt::format("{}: every pixel is ({}, {}, {}), so every neighborhood is flat and "
+                                                "there is nothing to fit to; give images with the scene's detail",
+                                                path, image->pixels[0].r, image->pixels[0].g, image->pixels[0].b));
             pixels += std::uint64_t(image->width) * image->height;
             images.push_back(std::move(*image));
         }
@@ -191,9 +209,6 @@ int run(const Options& o) {
     }
     // With --max-nonzero, components pinned at 0 one by one, and the curve of score against them.
     if (o.max_nonzero) {
-        if (*o.max_nonzero < result.axes.size())
-            return report_error(fmt::format("--max-nonzero {}: each of the {} axes keeps at least one component",
-                                            *o.max_nonzero, result.axes.size()));
         std::unique_ptr<Progress> progress;
         auto steps = fit_sparser(o.sphere ? nullptr : &neighborhoods, result, *o.max_nonzero, fit,
                                  [&](std::size_t, std::size_t total, double best) {
@@ -300,12 +315,13 @@ Action add_optimize_command(CLI::App& app) {
     cmd->add_option("--iterations", o->iterations, "Steps per start [default: 400 around the sphere, 60 on images]")
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--threads", o->threads, "Threads [default: one per core]; the result does not depend on it");
+    // Up to a year: a steady_clock deadline much further out would overflow.
     cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds with the best set so far")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number(365.0 * 24 * 3600, " seconds (a year)"));
     cmd->add_option("--target", o->target,
                     "Fit 3, 4, ... up to --axes axes and keep the first whose score reaches this (a mean volume: "
                     "compare the built-in sets' scores a plain run prints); prints the table of axes, score and cost")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number(1e30));
     cmd->add_option("--max-nonzero", o->max_nonzero,
                     "Then pin the smallest components at 0, refitting after each, until at most this many are "
                     "nonzero over all axes (a zero costs the clip nothing); prints the curve of score and cost")
@@ -323,8 +339,7 @@ Action add_optimize_command(CLI::App& app) {
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
     return [o, images, sphere] {
         if (!*images && !*sphere) {
-            report_error("optimize: give --images FILE... to fit to, or --sphere");
-            return kUsageError;
+            return usage_error("optimize: give --images FILE... to fit to, or --sphere");
         }
         return run(*o);
     };

@@ -2,6 +2,7 @@
 
 #include "context.h"
 #include "image_io.h"
+#include "input_files.h"
 #include "kernel.h"
 #include "memory_budget.h"
 #include "rectify_pass.h"
@@ -66,14 +67,16 @@ Action add_run_command(CLI::App& app) {
         if (!found) return report_error(found.error().message);
         const Variant* variant = *found;
         auto format = parse_texture_format(o->format);
-        if (!format) return report_error(fmt::format("--format: '{}' is not rgba32f or rgba16f", o->format));
+        if (!format) return usage_error(fmt::format("--format: '{}' is not rgba32f or rgba16f", o->format));
         if (o->gamma && variant->mode != Mode::varclip)
-            return report_error(fmt::format("--gamma: {} is not a variance clip and takes no gamma", variant->name));
+            return usage_error(fmt::format("--gamma: {} is not a variance clip and takes no gamma", variant->name));
         const double gamma = o->gamma.value_or(1.0);
         if (!std::isfinite(gamma) || gamma < 0)
-            return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", gamma));
+            return usage_error(fmt::format("--gamma: must be a finite number >= 0, got {}", gamma));
         if (!OIIO::ImageOutput::create(o->out))
-            return report_error(fmt::format("--out: {}: no image format for this extension", o->out));
+            return usage_error(fmt::format("--out: {}: no image format for this extension", o->out));
+        const std::filesystem::path inputs[] = {o->current, o->history};
+        if (auto ok = check_not_an_input(o->out, "--out", inputs); !ok) return report_error(ok.error().message);
         if (auto ok = check_output_directory(std::filesystem::path(o->out).parent_path(), "--out"); !ok)
             return report_error(ok.error().message);
 

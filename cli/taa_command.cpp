@@ -1,7 +1,9 @@
 #include "commands.h"
 
+#include "command_line.h"
 #include "flip.h"
 #include "image_io.h"
+#include "input_files.h"
 #include "magma.h"
 #include "output_set.h"
 #include "progress.h"
@@ -123,15 +125,24 @@ Action add_taa_command(CLI::App& app) {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
-        if (auto ok = check_pixels_per_degree(ppd); !ok) return report_error("--ppd: " + ok.error().message);
+        if (auto ok = check_pixels_per_degree(ppd); !ok) {
+            return usage_error("--ppd: " + ok.error().message);
+        }
         auto size = size_option("--size", o->size);
-        if (!size) return report_error(size.error().message);
+        if (!size) {
+            return usage_error(size.error().message);
+        }
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
         // The paper's rows are 3x3 neighborhoods; n5 on request.
         if (o->selection.manifest.empty() && o->selection.neighborhoods.empty()) o->selection.neighborhoods = {"n9"};
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
+        // A scene given twice would only give the same rows twice.
+        for (std::size_t i = 0; i < o->scenes.size(); ++i)
+            if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)
+                return usage_error(fmt::format("--scenes: '{}' is given twice", o->scenes[i]));
+        if (auto ok = check_distinct_files(o->backgrounds, "--background"); !ok) return usage_error(ok.error().message);
         auto scenes = selected_scenes(o->scenes, o->backgrounds, *size, o->seed);
         if (!scenes) return report_error(scenes.error().message);
         auto sources = o->selection.set_sources();

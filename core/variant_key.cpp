@@ -1,5 +1,7 @@
 #include "variant_key.h"
 
+#include "shown_text.h"
+
 #include <fmt/format.h>
 
 #include <initializer_list>
@@ -92,7 +94,7 @@ Result<VariantKey> parse_variant_key(std::string_view name, std::string_view opt
     if (!neighborhood || !mode || !is_valid_set_name(rest))
         return fail(fmt::format("{}: '{}' is not a variant name: expected <set>-<clip|varclip>-<n9|n5>[-loop][-paper], "
                                 "gather-n9, gather-n5 or copy (see `kdop list --all`)",
-                                option, name));
+                                option, shown_text(name)));
     key.set = std::string(rest);
     key.mode = *mode;
     key.neighborhood = *neighborhood;

@@ -1,5 +1,8 @@
 #include "write_files.h"
 
+#include "input_files.h"
+#include "interrupt.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +11,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <system_error>
 #include <unistd.h>
 
@@ -59,36 +63,126 @@ bool same_content(const fs::path& a, const fs::path& b) {
 
 } // namespace
 
-Result<void> write_atomically(const std::vector<OutputWriter>& files) {
-    std::vector<fs::path> temporaries, placed, created;
-    auto abandon = [&](Error error) -> Result<void> {
+namespace {
+
+// One output set on its way into place, in the state an interruption has to undo. It changes only
+// under the interrupt lock, so the undo step (abandon()) sees either a step done or not begun.
+struct Transaction {
+    std::vector<fs::path> temporaries; // written or being written, not yet moved
+    std::vector<fs::path> created;     // folders made for the set, outermost first
+    struct Placed {
+        fs::path path;
+        fs::path previous; // where the file it replaced waits; empty when there was none
+    };
+    std::vector<Placed> placed;
+
+    // Puts everything back as it was: each replaced file returns to its place (newest first), new
+    // files, temporaries and the folders made for them go.
+    void abandon() {
         std::error_code ignored;
+        for (auto it = placed.rbegin(); it != placed.rend(); ++it) {
+            if (it->previous.empty())
+                fs::remove(it->path, ignored);
+            else
+                fs::rename(it->previous, it->path, ignored);
+        }
         for (const fs::path& p : temporaries) fs::remove(p, ignored);
-        for (const fs::path& p : placed) fs::remove(p, ignored);
-        // The folders made for the set go too (innermost first; one that holds anything else stays).
+        // Innermost first; one that holds anything else stays.
         for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, ignored);
+        placed.clear();
+        temporaries.clear();
+        created.clear();
+    }
+};
+
+// Refuses, before anything is written, a destination that is a folder or one of this run's inputs.
+Result<void> check_destinations(const std::vector<OutputWriter>& files) {
+    for (const OutputWriter& f : files) {
+        std::error_code ec;
+        if (fs::is_directory(f.path, ec))
+            return fail(fmt::format("{}: is a directory; cannot write a file there", f.path.string()));
+        if (auto input = noted_input_at(f.path)) {
+            const std::string same =
+                input->string() == f.path.string() ? "" : fmt::format(" (the same file as {})", input->string());
+            return fail(
+                fmt::format("{}: is an input of this run{}; kdop never writes over an input", f.path.string(), same));
+        }
+    }
+    return {};
+}
+
+// Moves every temporary into place, keeping each file it replaces under another name until all are
+// in place, so that a failed move can put the previous set back whole.
+Result<void> commit(Transaction& t, const std::vector<OutputWriter>& files) {
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const fs::path& temporary = t.temporaries[i];
+        const fs::path& path = files[i].path;
+        std::error_code ec;
+        // An unchanged file keeps its time stamp, so a build that regenerates it recompiles nothing.
+        if (same_content(temporary, path)) {
+            fs::remove(temporary, ec);
+            continue;
+        }
+        Transaction::Placed placed{path, {}};
+        const fs::file_status status = fs::symlink_status(path, ec);
+        // A folder made there since the check (by another process) is not this set's to move.
+        if (fs::is_directory(status))
+            return fail(fmt::format("{}: cannot move into place: it has become a directory", path.string()));
+        if (fs::exists(status)) {
+            // A second name for the previous file keeps it at its path until the new one replaces
+            // it; where hard links are not allowed, it is moved aside instead.
+            placed.previous = temporary_path_for(path);
+            fs::create_hard_link(path, placed.previous, ec);
+            if (ec) fs::rename(path, placed.previous, ec);
+            if (ec) return fail(fmt::format("{}: cannot keep the previous file: {}", path.string(), ec.message()));
+        }
+        fs::rename(temporary, path, ec);
+        if (ec) {
+            std::error_code ignored;
+            if (!placed.previous.empty()) fs::rename(placed.previous, path, ignored);
+            return fail(fmt::format("{}: cannot move into place: {}", path.string(), ec.message()));
+        }
+        t.placed.push_back(std::move(placed));
+    }
+    return {};
+}
+
+} // namespace
+
+Result<void> write_atomically(const std::vector<OutputWriter>& files) {
+    if (auto ok = check_destinations(files); !ok) return ok;
+    auto t = std::make_shared<Transaction>();
+    const OnInterrupt undo([t] { t->abandon(); });
+    auto abandon = [&](Error error) -> Result<void> {
+        auto held = hold_interrupts();
+        t->abandon();
         return std::unexpected(std::move(error));
     };
     for (const OutputWriter& f : files) {
         std::error_code ec;
-        if (f.path.has_parent_path()) ec = create_directories(f.path.parent_path(), created);
+        {
+            auto held = hold_interrupts();
+            if (f.path.has_parent_path()) ec = create_directories(f.path.parent_path(), t->created);
+            if (!ec) t->temporaries.push_back(temporary_path_for(f.path));
+        }
         if (ec)
             return abandon(
                 {fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message())});
-        temporaries.push_back(temporary_path_for(f.path));
-        if (auto ok = f.write(temporaries.back()); !ok) return abandon(ok.error());
+        if (auto ok = f.write(t->temporaries.back()); !ok) return abandon(ok.error());
     }
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        std::error_code ec;
-        // An unchanged file keeps its time stamp, so a build that regenerates it recompiles nothing.
-        if (same_content(temporaries[i], files[i].path)) {
-            fs::remove(temporaries[i], ec);
-            continue;
-        }
-        fs::rename(temporaries[i], files[i].path, ec);
-        if (ec) return abandon({fmt::format("{}: cannot move into place: {}", files[i].path.string(), ec.message())});
-        placed.push_back(files[i].path);
+    test_hold_point("write_atomically");
+    // The moves happen with the interrupt lock held: an interruption waits for them, then finds the
+    // new set complete, which it leaves.
+    auto held = hold_interrupts();
+    if (interrupted()) return abandon({"interrupted"});
+    if (auto ok = commit(*t, files); !ok) {
+        t->abandon();
+        return ok;
     }
+    std::error_code ignored;
+    for (const Transaction::Placed& p : t->placed)
+        if (!p.previous.empty()) fs::remove(p.previous, ignored);
+    *t = {};
     return {};
 }
 

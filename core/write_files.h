@@ -1,10 +1,11 @@
 // Writing a command's outputs as a set, all or nothing: every file is first written next to its
 // destination under a temporary name unique to this process, and only when all of them are
-// complete are they renamed into place. A failure removes the temporaries (and any file of the
-// set already renamed, and the folders made for it), so a failed run leaves no partial output behind, and two processes
-// writing the same outputs never share a temporary. One limit: a rename that fails after others
-// succeeded (a full disk cannot cause it; renames do not allocate) leaves the earlier files of the
-// set removed, and the files they replaced are gone too.
+// complete are they moved into place; each file they replace keeps a second name until the whole
+// set is in place. A failure at any step, or SIGINT/SIGTERM (core/interrupt.h), puts the previous
+// files back, removes the temporaries and the folders made for the set: the destination is left
+// as it was, and two processes writing the same outputs never share a temporary. Before anything
+// is written, a destination that is a folder or an input of this run (core/input_files.h) is
+// refused.
 //
 // A file whose new content equals what is already there is left untouched, time stamp included, so
 // regenerating an unchanged output (kdop_add_variants() after an axis file was touched) makes a

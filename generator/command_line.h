@@ -1,7 +1,12 @@
 // How every kdop program ends: a usage error prints CLI11's message and exits 2 (--help and
 // --version exit 0); a failure the body reports is a message and exit 1 (the body returns it); and
-// an exception that escapes the body (memory, a library) is a message and exit 1 too, never an abort.
+// an exception that escapes the body (memory, a library) is a message and exit 1 too, never an abort;
+// SIGINT and SIGTERM remove what the run left unfinished and exit 130 and 143 (core/interrupt.h);
+// and no output may replace a file the run read (core/input_files.h).
 #pragma once
+
+#include "input_files.h"
+#include "interrupt.h"
 
 #include <CLI/CLI.hpp>
 
@@ -18,10 +23,29 @@ inline constexpr int kUsageError = 2;
 // program in the messages of escaped exceptions.
 template <class Body>
 int run_command_line(CLI::App& app, const char* program, int argc, char** argv, Body body) {
+    handle_interrupts(program); // before any thread starts, so that every one inherits the mask
+    protect_inputs();           // no output of this run may replace a file it read
     app.set_version_flag("--version", std::string(program) + " " + KDOP_VERSION);
+    // Every message says whose it is, as compilers' do ("glslc: error: ...").
+    app.failure_message([program](const CLI::App* failed, const CLI::Error& e) {
+        return std::string(program) + ": " + CLI::FailureMessage::simple(failed, e);
+    });
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
+        // A mistyped command reads better as that than as "A subcommand is required".
+        std::string commands;
+        bool known = false;
+        for (const CLI::App* command : app.get_subcommands({}))
+            if (!command->get_name().empty()) {
+                commands += (commands.empty() ? "" : ", ") + command->get_name();
+                known = known || (argc > 1 && command->get_name() == argv[1]);
+            }
+        if (argc > 1 && argv[1][0] != '-' && !known && !commands.empty()) {
+            std::cerr << program << ": '" << argv[1] << "' is not a command; the commands: " << commands
+                      << " (see --help)\n";
+            return kUsageError;
+        }
         return app.exit(e) == 0 ? 0 : kUsageError;
     }
     try {

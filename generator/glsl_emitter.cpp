@@ -573,8 +573,9 @@ std::string emit_function(const VariantSpec& spec, const Dialect& dialect) {
     if (spec.mode == Mode::gather || spec.mode == Mode::copy) return emit_baseline_function(spec, dialect);
     const std::string guard = upper_identifier(glsl_function_name(spec)) + "_" + std::string(dialect.language);
     std::string out = function_header(spec, dialect);
-    out += fmt::format("#ifndef {}\n#define {}\n\n", guard, guard);
-    out += signature(spec, dialect) + "\n{\n";
+    out += fmt::format("#ifndef {}\n#define {}\n", guard, guard);
+    if (spec.form == Form::loop) out += dialect.loop_extension;
+    out += "\n" + signature(spec, dialect) + "\n{\n";
     if (spec.form == Form::loop)
         write_loop_body(out, spec, dialect);
     else

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 
 namespace kdop {
@@ -23,21 +22,30 @@ std::string_view trimmed(std::string_view s) {
 } // namespace
 
 Result<Manifest> read_manifest(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return fail(fmt::format("{}: cannot read manifest", path.string()));
+    auto content = read_input_file(path);
+    if (!content) return fail(fmt::format("{} (the manifest)", content.error().message));
+    std::string_view rest = *content;
+    if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3); // a UTF-8 byte-order mark some editors write
     Manifest manifest;
     std::map<std::string, AxisSet> declared; // `set:` files by set name
     int number = 0;
-    for (std::string text; std::getline(in, text);) {
+    while (!rest.empty()) {
+        const std::size_t end = std::min(rest.find('\n'), rest.size());
+        const std::string_view text = rest.substr(0, end);
+        rest.remove_prefix(std::min(end + 1, rest.size()));
         ++number;
         const std::string where = fmt::format("{}:{}", path.string(), number);
-        std::string_view line = trimmed(std::string_view(text).substr(0, text.find('#')));
+        std::string_view line = trimmed(text.substr(0, text.find('#')));
         if (line.empty()) continue;
 
         if (line.starts_with("set:")) {
-            const fs::path file = path.parent_path() / trimmed(line.substr(4));
-            auto set_text = read_file(file);
-            if (!set_text) return fail(fmt::format("{}: cannot read axis-set file {}", where, file.string()));
+            const std::string_view named = trimmed(line.substr(4));
+            if (named.empty()) return fail(fmt::format("{}: `set:` names no axis-set file", where));
+            const fs::path file = path.parent_path() / named;
+            auto set_text = read_input_file(file);
+            if (!set_text)
+                return fail(
+                    fmt::format("{}: cannot read the axis-set file it names: {}", where, set_text.error().message));
             auto set = parse_axis_set(*set_text, file.string()); // its errors name the file and line
             if (!set) return fail(fmt::format("{}: in the set it names: {}", where, set.error().message));
             if (is_builtin_set(set->name) || declared.count(set->name))
@@ -66,7 +74,6 @@ Result<Manifest> read_manifest(const fs::path& path) {
             return fail(fmt::format("{}: '{}' is listed twice", where, line));
         manifest.variants.push_back(std::move(spec));
     }
-    if (in.bad()) return fail(fmt::format("{}: read error", path.string()));
     if (manifest.variants.empty()) return fail(fmt::format("{}: lists no variant", path.string()));
     return manifest;
 }

@@ -6,8 +6,24 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+
 namespace kdop {
 namespace fs = std::filesystem;
+
+namespace {
+
+// Whether `file` lies in `folder` or below it, links and ".." resolved.
+bool is_inside(const fs::path& file, const fs::path& folder) {
+    std::error_code ec;
+    const fs::path f = fs::weakly_canonical(file, ec);
+    const fs::path d = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, ec);
+    if (ec) return false;
+    auto [end, _] = std::mismatch(d.begin(), d.end(), f.begin(), f.end());
+    return end == d.end();
+}
+
+} // namespace
 
 Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
                                            std::span<const fs::path> include_dirs, TargetEnv env) {
@@ -21,22 +37,35 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     out.read_files.push_back(fs::absolute(file));
 
     // Included sources are named by their path (or "<variant>.glsl"), so messages point at them.
-    std::vector<std::string> unresolved;
+    // A file is included only from inside the including file's folder or an include directory: a
+    // shader cannot read "/etc/passwd" or "../../../secret" into a build.
+    std::vector<std::string> unresolved, outside;
     IncludeResolver resolve = [&](std::string_view header, std::string_view includer) -> std::optional<IncludedSource> {
         for (const BuiltVariant& v : variants)
             if (header == v.name + ".glsl") return IncludedSource{std::string(header), v.function_glsl};
-        std::vector<fs::path> candidates{fs::path(includer).parent_path() / header};
-        for (const fs::path& dir : include_dirs) candidates.push_back(dir / header);
-        for (const fs::path& candidate : candidates)
+        std::vector<fs::path> folders{fs::path(includer).parent_path()};
+        folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
+        for (const fs::path& folder : folders) {
+            const fs::path candidate = folder / header;
+            if (!fs::exists(candidate)) continue;
+            if (!is_inside(candidate, folder)) {
+                outside.push_back(fmt::format("{}: #include \"{}\" names {}, which is outside {}; kdop includes "
+                                              "only from the including file's folder and the include directories\n",
+                                              includer, header, candidate.lexically_normal().string(),
+                                              folder.empty() ? "the current folder" : folder.string()));
+                continue;
+            }
             if (auto text = read_file(candidate)) {
                 out.read_files.push_back(fs::absolute(candidate));
                 return IncludedSource{candidate.string(), std::move(*text)};
             }
+        }
         unresolved.emplace_back(header);
         return std::nullopt;
     };
     out.built.spec.target_env = env;
     auto compiled = compile_glsl_compute(out.built.compute_glsl, name, env, resolve);
+    if (!compiled && !outside.empty()) return fail(compiled.error().message + outside.front());
     if (!compiled && !unresolved.empty()) {
         std::vector<std::string> functions;
         for (const BuiltVariant& v : variants) functions.push_back(v.name + ".glsl");

@@ -20,6 +20,7 @@ struct Dialect {
     std::string_view float_bits_to_int; // floatBitsToInt / asint
     std::string_view unroll;            // the loop attribute asking for full unrolling
     std::string_view unroll_note;       // what the loop form needs for it, for the header comment
+    std::string_view loop_extension;    // what the loop-form function enables for it (GLSL), or nothing
 
     // "vec3" / "float3".
     std::string vec(int size) const { return fmt::format("{}{}", vector_prefix, size); }
@@ -41,7 +42,10 @@ inline constexpr Dialect kGlsl{
     .fma = "fma",
     .float_bits_to_int = "floatBitsToInt",
     .unroll = "[[unroll]] ",
-    .unroll_note = "it needs GL_EXT_control_flow_attributes for [[unroll]]",
+    .unroll_note = "it enables GL_EXT_control_flow_attributes, which [[unroll]] needs",
+    // In the function itself, so that it compiles wherever it is included (glslang takes an
+    // #extension after other code in desktop GLSL).
+    .loop_extension = "#extension GL_EXT_control_flow_attributes : enable\n",
 };
 
 inline constexpr Dialect kHlsl{

@@ -1,8 +1,11 @@
 #include "subprocess.h"
 
+#include "interrupt.h"
+
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -48,10 +51,31 @@ Result<int> run_program(const std::vector<std::string>& argv, const std::filesys
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    // The child starts with no signal blocked: kdop blocks SIGINT and SIGTERM for its watcher
+    // thread (core/interrupt.h), and a child inherits the mask.
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawnattr_setsigmask(&attributes, &none);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
     pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), env.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (spawned != 0) return fail(fmt::format("cannot start {}: {}", argv[0], std::strerror(spawned)));
+    OnInterrupt stop_child;
+    {
+        auto held = hold_interrupts(); // the child and its undo step come into being together
+        const int spawned = posix_spawn(&pid, args[0], &actions, &attributes, args.data(), env.data());
+        posix_spawn_file_actions_destroy(&actions);
+        posix_spawnattr_destroy(&attributes);
+        if (spawned != 0) return fail(fmt::format("cannot start {}: {}", argv[0], std::strerror(spawned)));
+        // An interrupted run ends the child and waits for it (without reaping it: this thread may)
+        // before its scratch folder goes.
+        stop_child = OnInterrupt([pid] {
+            kill(pid, SIGTERM);
+            siginfo_t info;
+            while (waitid(P_PID, id_t(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+            }
+        });
+    }
     int status = 0;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR) return fail(fmt::format("waiting for {}: {}", argv[0], std::strerror(errno)));

@@ -1,6 +1,8 @@
 #include "image_io.h"
 
+#include "input_files.h"
 #include "memory_budget.h"
+#include "read_file.h"
 #include "write_files.h"
 
 #include <OpenImageIO/imageio.h>
@@ -36,6 +38,9 @@ std::string library_message(std::string_view text) {
 }
 
 Result<Image> read_checked(const std::string& path, std::uint32_t max_side) {
+    // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
+    if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
+    note_input(path);
     // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
     // multiply it by alpha.
     OIIO::ImageSpec config;

@@ -571,7 +571,7 @@ TEST(CliFlip, RefusesBadInputAndWritesNothing) {
          fmt::format("--reference {}: pixel (0, 1) has green = nan", nan)},
         {reference + " --test " + (files.dir / "missing.exr").string(), 1, "missing.exr"},
         {files.inputs() + " --ppd 0", 2, "--ppd"},
-        {files.inputs() + " --ppd nan", 2, "--ppd: pixels per degree must be a number from 1 to 1000, got nan"},
+        {files.inputs() + " --ppd nan", 2, "--ppd: 'nan' is not a number from 1 to 1000"},
         {files.inputs() + " --ppd 30 --distance 1", 2, "--ppd excludes --distance"},
         {files.inputs() + " --distance 0", 2, "--distance"},
         {files.inputs() + " --display-pixels 10", 2,
@@ -585,7 +585,7 @@ TEST(CliFlip, RefusesBadInputAndWritesNothing) {
         EXPECT_FALSE(fs::exists(out)) << c.args;
     }
     auto r = test::run(kdop_flip(files.inputs() + " --out " + (files.dir / "map.jpg").string()));
-    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("the map is written as .exr (its values) or .png (in magma colors)"), std::string::npos)
         << r.err;
     EXPECT_FALSE(fs::exists(files.dir / "map.jpg"));

@@ -44,7 +44,8 @@ TEST(Manifest, AnythingElseIsAnErrorNamingItsLine) {
         {"dop22-clip-n9\nforest-clip-n9\n", "scene.manifest:2: 'forest-clip-n9' is of set 'forest', which is neither"},
         {"dop22-clip-n7\n", "scene.manifest:1: 'dop22-clip-n7' is not a variant name"},
         {"dop22-clip-n9\n# again\ndop22-clip-n9\n", "scene.manifest:3: 'dop22-clip-n9' is listed twice"},
-        {"set: missing.axes\n", "scene.manifest:1: cannot read axis-set file"},
+        {"set: missing.axes\n", "scene.manifest:1: cannot read the axis-set file it names: "},
+        {"set: missing.axes\n", "missing.axes: does not exist"},
         {"set: bad.axes\n", "scene.manifest:1: in the set it names: "},
         {"set: forest.axes\nset: copy.axes\n", "scene.manifest:2: "},
         {"set: dop22.axes\n", "which is built in"},
@@ -63,7 +64,9 @@ TEST(Manifest, AnythingElseIsAnErrorNamingItsLine) {
     }
     auto missing = read_manifest("/nonexistent/scene.manifest");
     ASSERT_FALSE(missing);
-    EXPECT_NE(missing.error().message.find("/nonexistent/scene.manifest: cannot read"), std::string::npos);
+    EXPECT_NE(missing.error().message.find("/nonexistent/scene.manifest: does not exist (the manifest)"),
+              std::string::npos)
+        << missing.error().message;
 }
 
 TEST(Cli, ManifestSelectsWhatListAndGenProduce) {

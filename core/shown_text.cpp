@@ -1,0 +1,20 @@
+#include "shown_text.h"
+
+#include <fmt/format.h>
+
+namespace kdop {
+
+std::string shown_text(std::string_view text, std::size_t limit) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size() && i < limit; ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c < 0x20 || c >= 0x7f)
+            out += fmt::format("\\x{:02x}", c);
+        else
+            out += text[i];
+    }
+    if (text.size() > limit) out += fmt::format("... ({} bytes in all)", text.size());
+    return out;
+}
+
+} // namespace kdop
