@@ -38,7 +38,7 @@ std::vector<AccuracyPair> builtin_pairs(std::uint32_t width, std::uint32_t heigh
     return pairs;
 }
 
-Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths) {
+Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths, InputSpace space) {
     if (auto ok = check_distinct_files(paths, "--images"); !ok) return std::unexpected(ok.error());
     std::vector<AccuracyPair> pairs;
     for (const std::string& path : paths) {
@@ -47,7 +47,7 @@ Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& pa
         const bool shared_stem =
             std::ranges::count_if(paths, [&](const std::string& p) { return stem(p) == stem(path); }) > 1;
         const std::string family = shared_stem ? path : stem(path);
-        auto current = read_finite_image(path, kFiniteForAccuracy);
+        auto current = read_finite_image(path, kFiniteForAccuracy, space);
         if (!current) return std::unexpected(current.error());
         const Image other = rotated_half_turn(*current);
         for (HistoryModel m : history_models())
@@ -58,10 +58,10 @@ Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& pa
     return pairs;
 }
 
-Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path) {
-    auto current = read_finite_image(current_path, kFiniteForAccuracy);
+Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path, InputSpace space) {
+    auto current = read_finite_image(current_path, kFiniteForAccuracy, space);
     if (!current) return std::unexpected(current.error());
-    auto history = read_finite_image(history_path, kFiniteForAccuracy);
+    auto history = read_finite_image(history_path, kFiniteForAccuracy, space);
     if (!history) return std::unexpected(history.error());
     if (current->width != history->width || current->height != history->height)
         return fail(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", history_path, history->width,

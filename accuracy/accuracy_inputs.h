@@ -3,6 +3,7 @@
 #pragma once
 
 #include "image.h"
+#include "image_io.h"
 #include "result.h"
 
 #include <cstdint>
@@ -25,9 +26,11 @@ std::vector<AccuracyPair> builtin_pairs(std::uint32_t width, std::uint32_t heigh
 
 // Each image as a current frame x those models; other-texture takes the image rotated by 180
 // degrees (content from elsewhere in the same scene, as on a disocclusion).
-Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths);
+Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths,
+                                              InputSpace space = InputSpace::from_file);
 
 // One given pair, named after the current frame's file.
-Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path);
+Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path,
+                                InputSpace space = InputSpace::from_file);
 
 } // namespace kdop

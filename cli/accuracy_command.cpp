@@ -5,6 +5,7 @@
 #include "context.h"
 #include "device_runner.h"
 #include "gnuplot.h"
+#include "input_space_option.h"
 #include "memory_budget.h"
 #include "output_set.h"
 #include "progress.h"
@@ -31,6 +32,7 @@ Action add_accuracy_command(CLI::App& app) {
         std::size_t volume_samples = 256;
         double gamma = 1.0;
         bool validation = false, no_charts = false;
+        InputSpace input_space = InputSpace::from_file;
     };
     auto o = std::make_shared<Options>();
     CLI::App* accuracy = app.add_subcommand(
@@ -41,6 +43,7 @@ Action add_accuracy_command(CLI::App& app) {
     accuracy->add_option("--out", o->out, "Output directory (created if missing)")->required();
     auto* current = accuracy->add_option("--current", o->current, "Current frame (needs --history)");
     auto* history = accuracy->add_option("--history", o->history, "History of the same size as --current");
+    add_input_space_option(*accuracy, o->input_space);
     current->needs(history);
     history->needs(current);
     accuracy
@@ -95,11 +98,11 @@ Action add_accuracy_command(CLI::App& app) {
         if (builtin) {
             pairs = builtin_pairs(o->size, o->size, o->seed);
         } else if (!o->images.empty()) {
-            auto read = image_pairs(o->images);
+            auto read = image_pairs(o->images, o->input_space);
             if (!read) return report_error(read.error().message);
             pairs = std::move(*read);
         } else {
-            auto read = given_pair(o->current, o->history);
+            auto read = given_pair(o->current, o->history, o->input_space);
             if (!read) return report_error(read.error().message);
             pairs.push_back(std::move(*read));
         }

@@ -5,6 +5,7 @@
 #include "flip.h"
 #include "image_io.h"
 #include "input_files.h"
+#include "input_space_option.h"
 #include "magma.h"
 #include "memory_budget.h"
 #include "number_option.h"
@@ -26,12 +27,14 @@ Action add_flip_command(CLI::App& app) {
         double ppd = 0;
         ViewingConditions viewing;
         bool srgb = false;
+        InputSpace input_space = InputSpace::from_file;
     };
     auto o = std::make_shared<Options>();
     CLI::App* flip = app.add_subcommand(
         "flip", "LDR-FLIP (Andersson et al. 2020): the difference a viewer sees flipping between a reference and a "
                 "test image; prints the mean, writes the per-pixel map with --out");
-    flip->add_option("--reference", o->reference, "Reference image (any OpenImageIO format; RGB from 0 to 1)")
+    flip->add_option("--reference", o->reference,
+                     "Reference image (any OpenImageIO format; RGB from 0 to 1 once decoded, see --input-space)")
         ->required();
     flip->add_option("--test", o->test, "Test image, the same size as the reference")->required();
     auto* ppd = flip->add_option("--ppd", o->ppd,
@@ -48,9 +51,8 @@ Action add_flip_command(CLI::App& app) {
     flip->add_option("--display-pixels", o->viewing.display_width_px, "Display width in pixels [default: 3840]")
         ->check(positive_number(1e6))
         ->excludes(ppd);
-    flip->add_flag("--srgb", o->srgb,
-                   "The inputs hold sRGB-encoded values (as most PNGs do): decode them to linear first [default: "
-                   "linear, kdop's convention]");
+    auto* space = add_input_space_option(*flip, o->input_space);
+    flip->add_flag("--srgb", o->srgb, "The same as --input-space srgb: decode every input from sRGB")->excludes(space);
     flip->add_option("--out", o->out,
                      "Error map to write: .exr holds the values (gray), .png shows them in the magma color map");
 
@@ -81,9 +83,10 @@ Action add_flip_command(CLI::App& app) {
                 return report_error(ok.error().message);
         }
 
-        auto reference = read_image(o->reference);
+        const InputSpace input_space = o->srgb ? InputSpace::srgb : o->input_space;
+        auto reference = read_image(o->reference, 0, input_space);
         if (!reference) return report_error(reference.error().message);
-        auto test = read_image(o->test);
+        auto test = read_image(o->test, 0, input_space);
         if (!test) return report_error(test.error().message);
         if (test->width != reference->width || test->height != reference->height)
             return report_error(fmt::format("--test {}: {}x{}, but --reference {} is {}x{}", o->test, test->width,
@@ -96,17 +99,15 @@ Action add_flip_command(CLI::App& app) {
                 ldr_flip_bytes(reference->width, reference->height) + image_bytes(reference->width, reference->height));
             !ok)
             return report_error(ok.error().message);
-        if (o->srgb)
-            for (Image* image : {&*reference, &*test})
-                for (glm::vec4& p : image->pixels)
-                    p = glm::vec4(flip::srgb_to_linear(p.r), flip::srgb_to_linear(p.g), flip::srgb_to_linear(p.b), p.a);
 
         const LdrFlip evaluator(pixels_per_degree);
         auto map = evaluator.error_map(*reference, *test);
         if (!map) return report_error(map.error().message);
         std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{})\n", mean_error(*map),
                                  pixels_per_degree, reference->width, reference->height,
-                                 o->srgb ? ", decoded from sRGB" : "");
+                                 input_space == InputSpace::srgb     ? ", every input decoded from sRGB"
+                                 : input_space == InputSpace::linear ? ", every input taken as linear"
+                                                                     : "");
         if (o->out.empty()) return 0;
 
         const std::uint32_t w = reference->width, h = reference->height;

@@ -11,6 +11,7 @@
 #include "fitted_set.h"
 #include "image_io.h"
 #include "input_files.h"
+#include "input_space_option.h"
 #include "memory_budget.h"
 #include "number_option.h"
 #include "progress.h"
@@ -46,6 +47,7 @@ struct Options {
     std::optional<std::size_t> max_nonzero;
     bool lavapipe_cost = false;
     std::size_t accuracy_samples = 8192;
+    InputSpace input_space = InputSpace::from_file;
 };
 
 // A set next to the fitted one in the output: its objective on the same content and, on images,
@@ -71,7 +73,7 @@ std::vector<Compared> compared_sets(const Options& o, const Neighborhoods* neigh
 // `kdop accuracy`'s measure on a sample: each set's mean distance to the ideal clip, over
 // --accuracy-samples pixels of each image under each of its ghosting histories.
 Result<std::size_t> measure_distances(const Options& o, Neighborhood shape, std::vector<Compared>& sets) {
-    auto pairs = image_pairs(o.images);
+    auto pairs = image_pairs(o.images, o.input_space);
     if (!pairs) return std::unexpected(pairs.error());
     std::vector<std::vector<glm::dvec3>> axes;
     for (const Compared& set : sets) axes.push_back(set.axes);
@@ -110,7 +112,7 @@ int run(const Options& o) {
     if (auto ok = check_output_directory(std::filesystem::path(o.out).parent_path()); !ok)
         return report_error(ok.error().message);
 
-    // Every neighborhood of every image, in linear values as read.
+    // Every neighborhood of every image, in linear values as decoded (--input-space).
     const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
     Neighborhoods neighborhoods;
     if (!o.sphere) {
@@ -120,7 +122,7 @@ int run(const Options& o) {
         std::uint64_t pixels = 0;
         for (const std::string& path : o.images) {
             // A NaN bound would make a slab of no width, a k-DOP of no volume: refused, not fitted.
-            auto image = read_finite_image(path, "fitting needs finite colors");
+            auto image = read_finite_image(path, "fitting needs finite colors", o.input_space);
             if (!image) return report_error(image.error().message);
             if (image->width < 3 || image->height < 3)
                 return report_error(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels",
@@ -297,11 +299,14 @@ Action add_optimize_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "optimize", "Fit an axis set to a scene's images (every neighborhood) or around the unit sphere, minimizing "
                     "the k-DOP volume, and write it as an axis-set file");
-    auto* images = cmd->add_option("--images", o->images,
-                                   "Images to fit to, any format OpenImageIO reads (EXR included), linear values")
-                       ->check(CLI::ExistingFile);
+    auto* images =
+        cmd->add_option(
+               "--images", o->images,
+               "Images to fit to, any format OpenImageIO reads (EXR included), decoded to linear RGB (--input-space)")
+            ->check(CLI::ExistingFile);
     auto* sphere = cmd->add_flag("--sphere", o->sphere, "Fit around the unit sphere instead: a scene-independent set");
     images->excludes(sphere);
+    add_input_space_option(*cmd, o->input_space)->excludes(sphere);
     cmd->add_option("--axes", o->axes, "Axes to fit (k = 2 x axes); with --target, the most to try")
         ->required()
         ->check(CLI::Range(3, 32));

@@ -3,6 +3,7 @@
 #include "context.h"
 #include "image_io.h"
 #include "input_files.h"
+#include "input_space_option.h"
 #include "kernel.h"
 #include "memory_budget.h"
 #include "rectify_pass.h"
@@ -28,6 +29,7 @@ Action add_run_command(CLI::App& app) {
         std::vector<std::string> sets;
         std::optional<double> gamma;
         unsigned repeat = 1;
+        InputSpace input_space = InputSpace::from_file;
     };
     auto o = std::make_shared<Options>();
     CLI::App* run = app.add_subcommand(
@@ -44,9 +46,10 @@ Action add_run_command(CLI::App& app) {
                     "Current frame (any OpenImageIO format; RGB from the first three channels)")
         ->required();
     run->add_option("--history", o->history, "History, the same size as the current frame")->required();
+    add_input_space_option(*run, o->input_space);
     run->add_option(
            "--out", o->out,
-           "Rectified history to write (EXR keeps floats; PNG keeps 0..1 in 8 bits, tagged linear, and refuses other "
+           "Rectified history to write (EXR keeps floats; PNG keeps 0..1 in 8 bits, sRGB-encoded, and refuses other "
            "values; lossy formats are refused)")
         ->required();
     run->add_option("--gamma", o->gamma,
@@ -84,9 +87,9 @@ Action add_run_command(CLI::App& app) {
         auto context = Context::create({o->device, false});
         if (!context) return report_error(context.error().message);
         const std::uint32_t max_side = (*context)->properties().limits.maxImageDimension2D;
-        auto current = read_image(o->current, max_side);
+        auto current = read_image(o->current, max_side, o->input_space);
         if (!current) return report_error(current.error().message);
-        auto history = read_image(o->history, max_side);
+        auto history = read_image(o->history, max_side, o->input_space);
         if (!history) return report_error(history.error().message);
         if (current->width != history->width || current->height != history->height)
             return report_error(fmt::format("--history: {} is {}x{} but --current {} is {}x{}", o->history,

@@ -4,6 +4,7 @@
 #include "flip.h"
 #include "image_io.h"
 #include "input_files.h"
+#include "input_space_option.h"
 #include "magma.h"
 #include "output_set.h"
 #include "progress.h"
@@ -31,7 +32,7 @@ namespace {
 // The scenes --scenes and --background ask for, in that order.
 Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& names,
                                               const std::vector<std::string>& backgrounds, Size size,
-                                              std::uint64_t seed) {
+                                              std::uint64_t seed, InputSpace space) {
     std::vector<TaaScene> all = default_taa_scenes(size.first, size.second, seed), out;
     std::string known;
     for (const TaaScene& s : all) known += (known.empty() ? "" : ", ") + s.name;
@@ -43,7 +44,7 @@ Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& na
         out.push_back(*it);
     }
     for (const std::string& path : backgrounds) {
-        auto scene = read_taa_scene(path, size.first, size.second);
+        auto scene = read_taa_scene(path, size.first, size.second, space);
         if (!scene) return std::unexpected(scene.error());
         if (std::any_of(out.begin(), out.end(), [&](const TaaScene& s) { return s.name == scene->name; }))
             return fail(fmt::format("--background: {}: a scene is already called '{}'", path, scene->name));
@@ -96,6 +97,7 @@ Action add_taa_command(CLI::App& app) {
         std::uint64_t seed = 1;
         double ppd = 0;
         bool validation = false;
+        InputSpace input_space = InputSpace::from_file;
     };
     auto o = std::make_shared<Options>();
     CLI::App* taa = app.add_subcommand(
@@ -107,8 +109,11 @@ Action add_taa_command(CLI::App& app) {
     taa->add_option("--scenes", o->scenes,
                     "Built-in scenes: grass, asphalt and the first installed real texture (colobot-grass) "
                     "[default: all of them, unless --background is given]");
-    taa->add_option("--background", o->backgrounds,
-                    "Your own background images (linear values in [0, 1]; tiled or cropped to --size), one scene each");
+    taa->add_option(
+        "--background", o->backgrounds,
+        "Your own background images (decoded to linear values in [0, 1], see --input-space; tiled or cropped to "
+        "--size), one scene each");
+    add_input_space_option(*taa, o->input_space);
     taa->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
     taa->add_option("--warmup", o->warmup, "Frames before measuring [default: 100]")->check(CLI::Range(1u, 100000u));
     taa->add_option("--frames", o->frames, "Frames measured [default: 100]")->check(CLI::Range(1u, 100000u));
@@ -143,7 +148,7 @@ Action add_taa_command(CLI::App& app) {
             if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)
                 return usage_error(fmt::format("--scenes: '{}' is given twice", o->scenes[i]));
         if (auto ok = check_distinct_files(o->backgrounds, "--background"); !ok) return usage_error(ok.error().message);
-        auto scenes = selected_scenes(o->scenes, o->backgrounds, *size, o->seed);
+        auto scenes = selected_scenes(o->scenes, o->backgrounds, *size, o->seed, o->input_space);
         if (!scenes) return report_error(scenes.error().message);
         auto sources = o->selection.set_sources();
         if (!sources) return report_error(sources.error().message);

@@ -9,6 +9,8 @@
 // absolute (white is kD65White), L*a*b* and YCxCz are relative to kD65White.
 #pragma once
 
+#include "srgb.h"
+
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -62,15 +64,9 @@ Color<T> multiply(const Matrix3& m, const Color<T>& v) {
             T(m[2][0]) * v.x + T(m[2][1]) * v.y + T(m[2][2]) * v.z};
 }
 
-// sRGB's transfer function (IEC 61966-2-1), per channel, with the reference's thresholds.
-template <class T>
-T srgb_to_linear(T encoded) {
-    return encoded <= T(0.04045) ? encoded / T(12.92) : std::pow((encoded + T(0.055)) / T(1.055), T(2.4));
-}
-template <class T>
-T linear_to_srgb(T linear) {
-    return linear <= T(0.0031308) ? linear * T(12.92) : T(1.055) * std::pow(linear, T(1) / T(2.4)) - T(0.055);
-}
+// sRGB's transfer function, per channel, with the reference's thresholds (images/srgb.h).
+using kdop::linear_to_srgb;
+using kdop::srgb_to_linear;
 
 template <class T>
 Color<T> linear_rgb_to_xyz(const Color<T>& rgb) {

@@ -2,6 +2,7 @@
 
 #include "builtin_sets.h"
 #include "read_file.h"
+#include "shown_text.h"
 
 #include <fmt/format.h>
 
@@ -44,12 +45,13 @@ Result<Manifest> read_manifest(const fs::path& path) {
             const fs::path file = path.parent_path() / named;
             auto set_text = read_input_file(file);
             if (!set_text)
-                return fail(
-                    fmt::format("{}: cannot read the axis-set file it names: {}", where, set_text.error().message));
+                return fail(fmt::format("{}: cannot read the axis-set file it names: {}", where,
+                                        shown_text(set_text.error().message, 300)));
             auto set = parse_axis_set(*set_text, file.string()); // its errors name the file and line
             if (!set) return fail(fmt::format("{}: in the set it names: {}", where, set.error().message));
             if (is_builtin_set(set->name) || declared.count(set->name))
-                return fail(fmt::format("{}: {} names its set '{}', which {}", where, file.string(), set->name,
+                return fail(fmt::format("{}: {} names its set '{}', which {}", where, shown_text(file.string(), 200),
+                                        set->name,
                                         declared.count(set->name) ? "an earlier set: line gives" : "is built in"));
             manifest.set_files.push_back(file);
             declared.emplace(set->name, std::move(*set));

@@ -3,14 +3,17 @@
 #include "input_files.h"
 #include "memory_budget.h"
 #include "read_file.h"
+#include "srgb.h"
 #include "write_files.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -37,7 +40,22 @@ std::string library_message(std::string_view text) {
     return out;
 }
 
-Result<Image> read_checked(const std::string& path, std::uint32_t max_side) {
+// The exponent that turns a stored integer value into a linear one, or nullopt for sRGB.
+std::optional<float> stored_gamma(const OIIO::ImageSpec& spec, InputSpace space) {
+    if (space == InputSpace::linear) return 1.0f;
+    if (space == InputSpace::srgb) return std::nullopt;
+    if (spec.format.is_floating_point()) return 1.0f;
+    std::string tag = spec.get_string_attribute("oiio:ColorSpace");
+    std::ranges::transform(tag, tag.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (tag == "linear" || tag == "lin_srgb" || tag == "scene_linear" || tag == "raw") return 1.0f;
+    if (tag.starts_with("gammacorrected")) {
+        const float gamma = spec.get_float_attribute("oiio:Gamma", std::strtof(tag.c_str() + 14, nullptr));
+        if (std::isfinite(gamma) && gamma > 0) return gamma;
+    }
+    return std::nullopt;
+}
+
+Result<Image> read_checked(const std::string& path, std::uint32_t max_side, InputSpace space) {
     // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
     if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
     note_input(path);
@@ -69,27 +87,40 @@ Result<Image> read_checked(const std::string& path, std::uint32_t max_side) {
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in->geterror())));
 
+    const std::optional<float> gamma = stored_gamma(spec, space);
+    auto decode = [&](float v) {
+        if (!gamma) return srgb_to_linear(v);
+        return *gamma == 1.0f ? v : std::pow(v, *gamma);
+    };
     Image image(spec.width, spec.height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < channels; ++c) image.pixels[i][c] = data[i * channels + c];
+        for (int c = 0; c < channels; ++c)
+            image.pixels[i][c] = c < 3 ? decode(data[i * channels + c]) : data[i * channels + c];
     return image;
 }
 
 } // namespace
 
-Result<Image> read_image(const std::string& path, std::uint32_t max_side) {
+std::optional<InputSpace> parse_input_space(std::string_view text) {
+    if (text == "file") return InputSpace::from_file;
+    if (text == "linear") return InputSpace::linear;
+    if (text == "srgb") return InputSpace::srgb;
+    return std::nullopt;
+}
+
+Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputSpace space) {
     // Some of OpenImageIO's readers throw on a damaged file instead of reporting it (its BMP reader
     // lets std::length_error out of open() for an RLE image claiming billions of rows; found by
     // tests/fuzz/image_fuzzer.cpp), so that is a read error of this file too.
     try {
-        return read_checked(path, max_side);
+        return read_checked(path, max_side, space);
     } catch (const std::exception& e) {
         return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
     }
 }
 
-Result<Image> read_finite_image(const std::string& path, std::string_view why) {
-    auto image = read_image(path);
+Result<Image> read_finite_image(const std::string& path, std::string_view why, InputSpace space) {
+    auto image = read_image(path, 0, space);
     if (!image) return image;
     for (std::uint32_t y = 0; y < image->height; ++y)
         for (std::uint32_t x = 0; x < image->width; ++x) {
@@ -109,13 +140,13 @@ bool is_lossy(std::string_view format) {
     return format == "jpeg" || format == "webp" || format == "heif" || format == "gif";
 }
 
-// What a channel value becomes when stored as `type` (as OpenImageIO converts it), and how far the
-// read-back value may be from it.
+// What a channel value becomes when stored as `type` (as OpenImageIO converts it; `v` already
+// encoded for an integer type), and how far the read-back value may be from it.
 struct Expected {
     float value, tolerance;
 };
 Expected stored(float v, OIIO::TypeDesc type) {
-    if (type == OIIO::TypeDesc::UINT8 || type == OIIO::TypeDesc::UINT16) {
+    if (!type.is_floating_point()) {
         const float levels = type == OIIO::TypeDesc::UINT8 ? 255.0f : 65535.0f;
         const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
         return {std::round(clamped * levels) / levels, 1.01f / levels};
@@ -149,7 +180,8 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
         const float rgbe = std::max({std::abs(p.r), std::abs(p.g), std::abs(p.b)}) / 64.0f + 1e-32f;
         for (int c = 0; c < channels; ++c) {
             const float read = data[i * channels + c];
-            const Expected e = stored(p[c], spec.format);
+            const bool encoded = c < 3 && !spec.format.is_floating_point();
+            const Expected e = stored(encoded ? linear_to_srgb(p[c]) : p[c], spec.format);
             const float tolerance = shared_exponent && c < 3 ? rgbe : e.tolerance;
             const bool same =
                 std::isnan(e.value) ? std::isnan(read) : std::abs(read - e.value) <= tolerance || read == e.value;
@@ -209,9 +241,9 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     // Color and alpha are stored as they are: PNG and TGA writers would otherwise divide color by
     // alpha (and the readers multiply it back), which changes any pixel that is not opaque.
     spec.attribute("oiio:UnassociatedAlpha", 1);
-    // The values are linear and stored as they are. A PNG without a tag is shown as sRGB (too dark),
-    // so it says what it holds: OpenImageIO writes "linear" as PNG's gAMA of 1.0.
-    if (format == "png") spec.attribute("oiio:ColorSpace", "linear");
+    // A PNG says what it holds (its sRGB chunk); other integer formats have no tag, and sRGB is what
+    // readers take them to hold.
+    if (format == "png") spec.attribute("oiio:ColorSpace", "sRGB");
     if (!out->open(file.string(), spec))
         return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
     // A format that stores integers (PNG, BMP, TGA) keeps 0..1; clamping anything else away would
@@ -224,7 +256,14 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
                                     path, format, outside->x, outside->y, outside->value));
         }
     }
-    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
+    // Integer formats hold sRGB-encoded color, as viewers expect; float formats the linear values.
+    const bool encode = !out->spec().format.is_floating_point();
+    std::vector<glm::vec4> encoded;
+    if (encode) {
+        encoded = image.pixels;
+        for (glm::vec4& p : encoded) p = glm::vec4(linear_to_srgb(p.r), linear_to_srgb(p.g), linear_to_srgb(p.b), p.a);
+    }
+    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, encode ? encoded.data() : image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
     if (!ok) return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
     return verify_written(file.string(), image, path);

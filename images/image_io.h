@@ -1,9 +1,9 @@
 // Reading and writing images through OpenImageIO, in any format it knows (EXR, HDR, PNG, ...).
-// Reading takes RGB from the first three channels as stored (no color conversion, no clamping)
-// and alpha from the fourth if there is one. Writing is all-or-nothing: the file appears complete
-// or not at all (it is read back and compared before it is renamed into place, because some of
-// OpenImageIO's writers report success on a full disk); and deterministic: the same image gives the
-// same bytes.
+// kdop's images hold linear RGB. Reading takes RGB from the first three channels, decoded to linear
+// as the file says (InputSpace; never clamped), and alpha from the fourth if there is one, as
+// stored. Writing is all-or-nothing: the file appears complete or not at all (it is read back and
+// compared before it is renamed into place, because some of OpenImageIO's writers report success on
+// a full disk); and deterministic: the same image gives the same bytes.
 #pragma once
 
 #include "image.h"
@@ -12,25 +12,40 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace kdop {
 
+// How a file's values become linear RGB. `from_file`: float formats (EXR, Radiance HDR, float TIFF)
+// hold linear values; integer ones (PNG, JPEG, BMP, TGA, 8- and 16-bit TIFF) are decoded by the
+// color space OpenImageIO reads from them (oiio:ColorSpace): "linear" as stored, "GammaCorrectedG"
+// by the power G, and sRGB, untagged or anything else by sRGB's transfer function, since that is
+// what such files hold unless they say otherwise. `linear` and `srgb` override what any file says
+// (the commands' `--input-space`).
+enum class InputSpace { from_file, linear, srgb };
+
+// What `--input-space` takes: "file", "linear", "srgb".
+std::optional<InputSpace> parse_input_space(std::string_view text);
+
 // The header is checked before any pixel is read or allocated: sides beyond `max_side` (a device's
 // maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory are refused,
 // so a small file claiming an enormous image is an error, not an allocation failure.
-Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0);
+Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0, InputSpace space = InputSpace::from_file);
 
 // read_image, refusing an image with a NaN or infinite R, G or B: the error names the file, the
 // first such pixel and its value, then `why` (what needs finite colors, and where to look instead).
-Result<Image> read_finite_image(const std::string& path, std::string_view why);
+Result<Image> read_finite_image(const std::string& path, std::string_view why,
+                                InputSpace space = InputSpace::from_file);
 
 // The format follows the extension. EXR and TIFF keep 32-bit floats; Radiance HDR keeps RGB with
 // about 8 bits relative to each pixel's brightest channel; integer formats such as PNG keep values
 // from 0 to 1, and an image with any other value (HDR, negative, NaN) is refused rather than
-// clamped, so use EXR for data; a PNG is tagged linear (gAMA 1.0), which is what its values are.
+// clamped, so use EXR for data. Integer formats are written sRGB-encoded and tagged so (PNG's sRGB
+// chunk), as every viewer expects, and read back to the same linear values within their precision;
+// float formats hold the linear values as they are.
 // Lossy formats (JPEG, WebP, HEIF, GIF) are refused: they would not
 // give back what was written.
 Result<void> write_image(const std::string& path, const Image& image);

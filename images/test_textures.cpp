@@ -140,8 +140,6 @@ Image highlights(std::uint32_t w, std::uint32_t h, std::uint64_t seed) {
     return image;
 }
 
-float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-
 } // namespace
 
 std::span<const TextureFamily> texture_families() { return kFamilies; }
@@ -222,14 +220,12 @@ std::vector<RealTexture> installed_real_textures() {
 }
 
 Image load_real_texture(const RealTexture& texture, std::uint32_t w, std::uint32_t h) {
-    auto source = read_image(texture.path);
+    auto source = read_image(texture.path); // decoded from sRGB, as the file says
     if (!source) return {};
     Image image(w, h);
     for (std::uint32_t y = 0; y < h; ++y)
-        for (std::uint32_t x = 0; x < w; ++x) {
-            glm::vec4 c = source->at(x % source->width, y % source->height);
-            image.at(x, y) = glm::vec4(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b), 1.0f);
-        }
+        for (std::uint32_t x = 0; x < w; ++x)
+            image.at(x, y) = glm::vec4(glm::vec3(source->at(x % source->width, y % source->height)), 1.0f);
     return image;
 }
 

@@ -46,8 +46,8 @@ std::vector<TaaScene> default_taa_scenes(std::uint32_t width, std::uint32_t heig
     return scenes;
 }
 
-Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height) {
-    auto image = read_image(path);
+Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height, InputSpace space) {
+    auto image = read_image(path, 0, space);
     if (!image) return fail(fmt::format("--background: {}", image.error().message));
     for (std::uint32_t y = 0; y < image->height; ++y)
         for (std::uint32_t x = 0; x < image->width; ++x)

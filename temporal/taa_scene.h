@@ -9,6 +9,7 @@
 #pragma once
 
 #include "image.h"
+#include "image_io.h"
 #include "result.h"
 
 #include <glm/vec2.hpp>
@@ -30,7 +31,8 @@ std::vector<TaaScene> default_taa_scenes(std::uint32_t width, std::uint32_t heig
 
 // A user's background: read, then tiled or cropped to the frame. The error names the file; values
 // must lie in [0, 1] (the metric is LDR-FLIP), and one that does not is named with its pixel.
-Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height);
+Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
+                                InputSpace space = InputSpace::from_file);
 
 struct FrameState {
     glm::vec2 jitter{0};                    // sample offset from the pixel center, pixels

@@ -521,27 +521,38 @@ TEST(CliFlip, PrintsTheMeanAndWritesTheMap) {
     EXPECT_NE(printed_mean(r.out), printed_mean(test::run(kdop_flip(files.inputs())).out));
 }
 
-// PNGs as most tools write them hold sRGB-encoded values; --srgb decodes them first.
-TEST(CliFlip, DecodesSrgbInputsWhenAskedTo) {
+// PNGs hold sRGB-encoded values, and kdop flip decodes them as NVlabs/flip does; --input-space
+// linear takes the stored values as they are.
+TEST(CliFlip, DecodesSrgbInputsAsTheReferenceDoes) {
     FlipFiles files;
     const std::string reference_png = (files.dir / "reference.png").string(),
                       test_png = (files.dir / "test.png").string();
     ASSERT_TRUE(write_image(reference_png, files.reference_image));
     ASSERT_TRUE(write_image(test_png, files.test_image));
-    Image encoded[2] = {*read_image(reference_png), *read_image(test_png)}; // 8-bit, as the tool reads them
+    // The 8-bit values as stored, as NVlabs/flip reads them, then decoded by sRGB's transfer function
+    // as its LDR path does.
+    Image encoded[2] = {*read_image(reference_png, 0, InputSpace::linear),
+                        *read_image(test_png, 0, InputSpace::linear)};
     const LdrFlip flip(kDefaultPpd);
     const std::string inputs = "--reference " + reference_png + " --test " + test_png;
 
-    auto r = test::run(kdop_flip(inputs));
+    auto r = test::run(kdop_flip(inputs + " --input-space linear"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("every input taken as linear"), std::string::npos) << r.out;
     EXPECT_EQ(printed_mean(r.out), *flip.mean(encoded[0], encoded[1]));
     for (Image& image : encoded)
         for (glm::vec4& p : image.pixels)
             p = glm::vec4(flip::srgb_to_linear(p.r), flip::srgb_to_linear(p.g), flip::srgb_to_linear(p.b), p.a);
+    const double decoded = *flip.mean(encoded[0], encoded[1]);
+    r = test::run(kdop_flip(inputs));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(printed_mean(r.out), decoded) << "decoded by default, as the file says";
     r = test::run(kdop_flip(inputs + " --srgb"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("decoded from sRGB"), std::string::npos) << r.out;
-    EXPECT_EQ(printed_mean(r.out), *flip.mean(encoded[0], encoded[1]));
+    EXPECT_NE(r.out.find("every input decoded from sRGB"), std::string::npos) << r.out;
+    EXPECT_EQ(printed_mean(r.out), decoded);
+    // Close to the EXR pair's, which holds the same linear values unquantized.
+    EXPECT_NEAR(decoded, *flip.mean(files.reference_image, files.test_image), 0.01);
 }
 
 TEST(CliFlip, RefusesBadInputAndWritesNothing) {

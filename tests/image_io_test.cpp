@@ -3,8 +3,11 @@
 // silently through OpenImageIO's PNG, BMP and TGA writers.
 #include "image_io.h"
 #include "random.h"
+#include "srgb.h"
 #include "test_support.h"
 
+#include <OpenImageIO/imageio.h>
+#include <glm/vec3.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,7 +63,7 @@ TEST(ImageIo, WhatIsWrittenReadsBackAsWritten) {
     struct Case {
         const char* ext;
         const Image& image;
-        double tolerance; // absolute for 8-bit, relative for the float formats
+        double tolerance; // absolute in the sRGB-encoded values for 8-bit, relative for the float formats
     };
     for (const Case& c : {Case{"exr", hdr, 0.0}, Case{"tif", hdr, 0.0}, Case{"hdr", hdr, 1.0 / 64},
                           Case{"png", ldr, 0.51 / 255}, Case{"bmp", ldr, 0.51 / 255}, Case{"tga", ldr, 0.51 / 255}}) {
@@ -73,12 +76,15 @@ TEST(ImageIo, WhatIsWrittenReadsBackAsWritten) {
         double worst = 0;
         for (std::size_t i = 0; i < read->pixels.size(); ++i) {
             const glm::vec4& p = c.image.pixels[i];
+            const bool eight_bit = ext == "png" || ext == "bmp" || ext == "tga";
             for (int ch = 0; ch < 3; ++ch) {
-                const double expected = p[ch], got = read->pixels[i][ch];
+                // 8-bit files hold sRGB-encoded values: within half a step of them once encoded again.
+                const double expected = eight_bit ? linear_to_srgb(p[ch]) : p[ch];
+                const double got = eight_bit ? linear_to_srgb(read->pixels[i][ch]) : read->pixels[i][ch];
                 // 8-bit: absolute; float: relative to the value; RGBE: to the pixel's largest channel.
-                const double scale = ext == "png" || ext == "bmp" || ext == "tga" ? 1.0
-                                     : ext == "hdr"                               ? double(std::max({p.r, p.g, p.b}))
-                                                                                  : std::max(1.0, std::abs(expected));
+                const double scale = eight_bit      ? 1.0
+                                     : ext == "hdr" ? double(std::max({p.r, p.g, p.b}))
+                                                    : std::max(1.0, std::abs(expected));
                 worst = std::max(worst, std::abs(got - expected) / scale);
             }
         }
@@ -105,9 +111,12 @@ TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
         ASSERT_TRUE(written) << ext << ": " << written.error().message;
         auto read = read_image(path);
         ASSERT_TRUE(read) << read.error().message;
-        for (std::size_t i = 0; i < 2; ++i) // the transparent pixels keep their color
+        // The transparent pixels keep their color (8-bit: within half a step of the sRGB-encoded value).
+        auto stored = [&](float v, int c) { return floats || c == 3 ? v : linear_to_srgb(v); };
+        for (std::size_t i = 0; i < 2; ++i)
             for (int c = 0; c < 4; ++c)
-                EXPECT_NEAR(read->pixels[i][c], image.pixels[i][c], floats ? 0.0 : 0.51 / 255) << ext << " " << i;
+                EXPECT_NEAR(stored(read->pixels[i][c], c), stored(image.pixels[i][c], c), floats ? 0.0 : 0.51 / 255)
+                    << ext << " " << i;
         if (floats) {
             EXPECT_EQ(read->pixels[2], image.pixels[2]) << ext;
             EXPECT_TRUE(std::isnan(read->pixels[3].r)) << ext;
@@ -136,11 +145,11 @@ TEST(ImageIo, IntegerFormatsRefuseValuesTheyWouldClamp) {
         }
 }
 
-// kdop's values are linear. A PNG holding them must say so (gAMA 1.0, no sRGB chunk); untagged, a
-// viewer would decode them as sRGB and show them too dark.
-TEST(ImageIo, PngSaysItsValuesAreLinear) {
+// kdop's values are linear; a PNG holds them sRGB-encoded, as every viewer expects, and says so
+// (its sRGB chunk).
+TEST(ImageIo, PngHoldsSrgbAndSaysSo) {
     test::TempDir dir;
-    const fs::path path = dir / "linear.png";
+    const fs::path path = dir / "picture.png";
     ASSERT_TRUE(write_image(path.string(), Image(2, 2, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f))));
     const std::string bytes = test::read_file(path);
     std::optional<std::uint32_t> gamma;
@@ -155,12 +164,54 @@ TEST(ImageIo, PngSaysItsValuesAreLinear) {
         srgb |= type == "sRGB" || type == "iCCP";
         at += 12 + word(at);
     }
-    ASSERT_TRUE(gamma) << "no gAMA chunk";
-    EXPECT_EQ(*gamma, 100000u) << "gAMA stores 1/gamma x 100000; linear is 100000";
-    EXPECT_FALSE(srgb);
+    EXPECT_TRUE(srgb) << "no sRGB chunk";
+    if (gamma) EXPECT_EQ(*gamma, 45455u) << "gAMA, if any, must agree: 1/2.2 x 100000";
+    // The bytes are the encoded values: 0.25, 0.5, 0.75 become 137, 188, 225.
+    auto stored = read_image(path.string(), 0, InputSpace::linear);
     auto back = read_image(path.string());
-    ASSERT_TRUE(back);
-    EXPECT_EQ(back->at(1, 1), glm::vec4(64 / 255.0f, 128 / 255.0f, 191 / 255.0f, 1.0f)) << "read as stored";
+    ASSERT_TRUE(stored && back);
+    const int bytes_expected[3] = {137, 188, 225};
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(std::lround(stored->at(1, 1)[c] * 255), bytes_expected[c]) << "as stored, channel " << c;
+        EXPECT_NEAR(back->at(1, 1)[c], srgb_to_linear(bytes_expected[c] / 255.0f), 1e-6)
+            << "decoded to linear as the file says, channel " << c;
+    }
+}
+
+// Each file is decoded as it says: 8-bit PNG untagged or sRGB from sRGB, a PNG tagged linear (what
+// kdop wrote before) as stored, a gamma-tagged one by its power, EXR always as stored; --input-space
+// overrides.
+TEST(ImageIo, EachFileIsDecodedAsItSays) {
+    test::TempDir dir;
+    auto write_tagged = [&](const std::string& name, const char* color_space, float gamma) {
+        const std::string path = (dir / name).string();
+        auto out = OIIO::ImageOutput::create(path);
+        OIIO::ImageSpec spec(1, 1, 3, OIIO::TypeDesc::UINT8);
+        if (color_space) spec.attribute("oiio:ColorSpace", color_space);
+        if (gamma > 0) spec.attribute("oiio:Gamma", gamma);
+        const std::uint8_t pixel[3] = {64, 128, 255};
+        EXPECT_TRUE(out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixel) && out->close());
+        return path;
+    };
+    const glm::vec3 stored(64 / 255.0f, 128 / 255.0f, 1.0f);
+    const glm::vec3 srgb(srgb_to_linear(stored.r), srgb_to_linear(stored.g), 1.0f);
+    auto read = [](const std::string& path, InputSpace space = InputSpace::from_file) {
+        return glm::vec3(read_image(path, 0, space)->at(0, 0));
+    };
+    EXPECT_EQ(read(write_tagged("untagged.png", nullptr, 0)), srgb);
+    EXPECT_EQ(read(write_tagged("srgb.png", "sRGB", 0)), srgb);
+    EXPECT_EQ(read(write_tagged("untagged.bmp", nullptr, 0)), srgb);
+    const std::string linear = write_tagged("linear.png", "linear", 0);
+    EXPECT_EQ(read(linear), stored);
+    EXPECT_EQ(read(linear, InputSpace::srgb), srgb) << "--input-space srgb overrides the tag";
+    const glm::vec3 gamma = read(write_tagged("gamma.png", "GammaCorrected2.2", 2.2f));
+    EXPECT_NEAR(gamma.g, std::pow(stored.g, 2.2f), 1e-3f);
+    const std::string exr = (dir / "values.exr").string();
+    ASSERT_TRUE(write_image(exr, Image(1, 1, glm::vec4(0.25f, 0.5f, 2.0f, 1.0f))));
+    EXPECT_EQ(read(exr), glm::vec3(0.25f, 0.5f, 2.0f));
+    EXPECT_EQ(read(exr, InputSpace::linear), glm::vec3(0.25f, 0.5f, 2.0f));
+    EXPECT_EQ(parse_input_space("srgb"), InputSpace::srgb);
+    EXPECT_FALSE(parse_input_space("sRGB-ish"));
 }
 
 // The image fuzzer's first finding: libpng's error for a damaged stream spans two lines.

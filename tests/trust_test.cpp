@@ -5,10 +5,13 @@
 #include "input_files.h"
 #include "write_files.h"
 
+#include "cpu_clip.h"
 #include "image_io.h"
 #include "test_support.h"
 #include "test_textures.h"
+#include "variant_spec.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -355,6 +358,35 @@ TEST(CliTrust, MessagesShowWhatIsThereAndNoMore) {
     auto set = test::run(kdop("list --manifest " + (t.dir / "set.manifest").string()));
     EXPECT_EQ(set.exit_code, 1);
     EXPECT_NE(set.err.find("set.manifest:1: `set:` names no axis-set file"), std::string::npos) << set.err;
+}
+
+// A PNG holds sRGB-encoded values: the clip runs on the linear values they decode to, as the CPU
+// reference computes it on the same decoded values (not on the stored ones).
+TEST(CliTrust, AnSrgbPngIsClippedOnItsDecodedLinearValues) {
+    TrustRun t;
+    const std::string current = (t.dir / "current.png").string(), history = (t.dir / "history.png").string();
+    ASSERT_TRUE(write_image(current, *read_image(t.grass)));
+    ASSERT_TRUE(write_image(history, *read_image(t.asphalt)));
+    const std::string out = (t.dir / "clipped.exr").string();
+    auto r =
+        test::run(kdop("run --variant dop22-clip-n9 --current " + current + " --history " + history + " --out " + out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto clipped = read_image(out);
+    ASSERT_TRUE(clipped) << clipped.error().message;
+    const AxisSet dop22 = *resolve_axis_set("dop22");
+    const Image decoded =
+        reference_rectify(dop22, Mode::clip, Neighborhood::n9, *read_image(current), *read_image(history), 1.0);
+    const Image stored =
+        reference_rectify(dop22, Mode::clip, Neighborhood::n9, *read_image(current, 0, InputSpace::linear),
+                          *read_image(history, 0, InputSpace::linear), 1.0);
+    double worst = 0, worst_stored = 0;
+    for (std::size_t i = 0; i < clipped->pixels.size(); ++i) {
+        const glm::vec3 gpu(clipped->pixels[i]);
+        worst = std::max<double>(worst, glm::distance(gpu, glm::vec3(decoded.pixels[i])));
+        worst_stored = std::max<double>(worst_stored, glm::distance(gpu, glm::vec3(stored.pixels[i])));
+    }
+    EXPECT_LT(worst, 1e-5);
+    EXPECT_GT(worst_stored, 1e-2) << "the stored values would give another clip";
 }
 
 // Includes that nest without end, and includes from outside the project.

@@ -1,0 +1,52 @@
+// libFuzzer target: any bytes as a variant manifest, read from a file as every command reads one
+// (next to it, forest.axes, so `set: forest.axes` lines resolve). Whatever is refused must be
+// refused with a message that names the manifest, holds no raw control bytes and stays short
+// (the bytes of a long line are cut); whatever is read must list at least one variant, each once.
+// Any violation aborts, which libFuzzer reports.
+#include "fuzz_checks.h"
+#include "manifest.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace {
+
+using kdop::fuzz::has_control_bytes;
+using kdop::fuzz::require;
+
+// A folder of this process's own with the manifest and the axis file it may name.
+const std::filesystem::path& folder() {
+    static const std::filesystem::path dir = [] {
+        const auto d = std::filesystem::temp_directory_path() / ("kdop-manifest-fuzz-" + std::to_string(getpid()));
+        std::filesystem::create_directories(d);
+        std::ofstream(d / "forest.axes") << "name: forest\nprovenance: the fuzzer\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n";
+        return d;
+    }();
+    return dir;
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::filesystem::path path = folder() / "fuzz.manifest";
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), size);
+    auto manifest = kdop::read_manifest(path);
+    if (!manifest) {
+        const std::string& message = manifest.error().message;
+        require(message.rfind(path.string(), 0) == 0, "an error that does not name the manifest", message);
+        require(!has_control_bytes(message, false), "an error that echoes control bytes", message);
+        require(message.size() < 2000, "an error that repeats a long line whole", message);
+        return 0;
+    }
+    require(!manifest->variants.empty(), "a manifest read with no variant", "");
+    for (std::size_t i = 0; i < manifest->variants.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            require(!(manifest->variants[i].key() == manifest->variants[j].key()), "a variant read twice",
+                    manifest->variants[i].key().name());
+    return 0;
+}
