@@ -1,6 +1,7 @@
 #include "accuracy_report.h"
 
 #include "builtin_sets.h"
+#include "chart_style.h"
 #include "csv_reader.h"
 #include "gnuplot.h"
 #include "variant_columns.h"
@@ -433,15 +434,28 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                                                 const std::filesystem::path& out_dir) {
     const bool lavapipe = has_lavapipe_cost(trade);
     const std::vector<std::string> families = families_of(trade), names = accuracy_chart_names(trade);
-    std::string script = fmt::format("set terminal pngcairo size {},600 font 'sans,10'\nset grid\nset key top right\n"
-                                     "set ylabel 'mean distance to the ideal clip'\nset yrange [0:*]\n",
-                                     lavapipe ? 1600 : 900);
+    std::vector<std::string> sets; // in the order rows name them
+    for (const TradeRow& r : trade)
+        if (std::find(sets.begin(), sets.end(), safe_name(r.key.set)) == sets.end())
+            sets.push_back(safe_name(r.key.set));
+    const VariantChartStyle style(sets);
+    std::string script = fmt::format("set terminal pngcairo size {},600 font 'sans,10'\nset grid\n"
+                                     "set key outside right top spacing 1.1\n",
+                                     lavapipe ? 1800 : 1000);
     for (std::size_t f = 0; f < families.size(); ++f) {
         const std::string stem = (scratch / safe_name(families[f])).string();
-        script +=
-            fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point per "
-                        "variant; dashed: the Pareto fronts'\n",
-                        (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
+        std::vector<double> distances;
+        std::vector<VariantKey> keys;
+        for (const TradeRow& r : trade)
+            if (r.family == families[f]) {
+                distances.push_back(r.mean_dist);
+                keys.push_back(r.key);
+            }
+        script += axis_scale('y', distances, "mean distance to the ideal clip");
+        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point "
+                              "per variant (color: mode and neighborhood; shape: axis set); black lines: the Pareto "
+                              "fronts'\n",
+                              (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
         struct Axis {
             std::string suffix, label;
             double (*cost)(const TradeRow&);
@@ -451,21 +465,21 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                                    [](const TradeRow& r) { return r.float_ops; }, &TradeRow::front_float_ops}};
         if (lavapipe) axes.push_back({"lavapipe", lavapipe_label(trade), lavapipe_cost, &TradeRow::front_lavapipe});
         for (const Axis& axis : axes) {
-            std::string plot;
+            std::string plot, fronts;
             for (Mode mode : kAllModes)
                 for (Neighborhood n : kAllNeighborhoods) {
-                    const std::string group = fmt::format("{}-{}", to_string(mode), to_string(n));
+                    const VariantKey group_key{"", mode, n};
                     std::vector<std::vector<std::string>> points;
                     for (const TradeRow& r : trade)
                         if (r.family == families[f] && r.key.mode == mode && r.key.neighborhood == n)
-                            points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist), r.key.set});
+                            points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist),
+                                              std::to_string(style.shape(safe_name(r.key.set)))});
                     if (points.empty()) continue;
-                    const std::string data = fmt::format("{}-{}-{}.dat", stem, axis.suffix, group);
+                    const std::string data =
+                        fmt::format("{}-{}-{}.dat", stem, axis.suffix, VariantChartStyle::group(group_key));
                     if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
-                    plot +=
-                        fmt::format("{}'{}' using 1:2 with points pt 7 ps 1.3 title '{}', '' using 1:2:3 with labels "
-                                    "offset 0.6,0.6 left font ',7' notitle",
-                                    plot.empty() ? "" : ", ", data, group);
+                    plot += fmt::format("{}'{}' using 1:2:3 with points pt variable ps 1.5 lc rgb '{}' notitle",
+                                        plot.empty() ? "" : ", ", data, VariantChartStyle::color(group_key));
                 }
             for (Neighborhood shape : kAllNeighborhoods) {
                 std::vector<const TradeRow*> members;
@@ -479,10 +493,11 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                     front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
                 const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, to_string(shape));
                 if (auto ok = write_text(data, gnuplot_data(front)); !ok) return std::unexpected(ok.error());
-                plot += fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
-                                    data, shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
+                fronts +=
+                    fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
+                                data, shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
             }
-            script += fmt::format("set xlabel '{}'\nplot {}\n", axis.label, plot);
+            script += fmt::format("set xlabel '{}'\nplot {}{}{}\n", axis.label, plot, style.key_entries(keys), fronts);
         }
         script += "unset multiplot\n";
     }

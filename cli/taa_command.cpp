@@ -2,6 +2,7 @@
 
 #include "command_line.h"
 #include "flip.h"
+#include "gnuplot.h"
 #include "image_io.h"
 #include "input_files.h"
 #include "input_space_option.h"
@@ -9,9 +10,11 @@
 #include "output_set.h"
 #include "progress.h"
 #include "run_metadata.h"
+#include "scratch_directory.h"
 #include "selection_options.h"
 #include "size_option.h"
 #include "statistics.h"
+#include "taa_chart.h"
 #include "taa_measure.h"
 #include "taa_report.h"
 #include "taa_scene.h"
@@ -58,11 +61,13 @@ std::string trail_picture_name(const std::string& scene) { return fmt::format("g
 
 // What a scene shows of its ghosting, added to `outputs`: the aliased frame and each variant's frame
 // at the trail frame under frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled
-// picture of them all, each variant's crop over its FLIP map against the aliased frame.
+// picture of them all, each variant's crop over its FLIP map against the aliased frame, under it the
+// variant's ghosting (the mean over the measured frames) and this frame's mean FLIP, and the maps'
+// color scale under the grid.
 Result<void> add_trail_outputs(OutputSet& outputs, const std::string& scene, std::shared_ptr<const Image> aliased,
                                const std::vector<VariantKey>& keys,
-                               const std::vector<std::shared_ptr<const Image>>& trails, const LdrFlip& flip,
-                               const TaaSchedule& schedule) {
+                               const std::vector<std::shared_ptr<const Image>>& trails,
+                               const std::vector<double>& ghosting, const LdrFlip& flip, const TaaSchedule& schedule) {
     const std::uint32_t width = aliased->width, height = aliased->height;
     std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{"aliased", aliased}};
     std::vector<Image> maps;
@@ -74,12 +79,17 @@ Result<void> add_trail_outputs(OutputSet& outputs, const std::string& scene, std
         if (!error) return std::unexpected(error.error());
         maps.push_back(flip::magma_image(*error, width, height));
         frames.emplace_back(keys[v].name(), trails[v]);
-        labeled.push_back({keys[v].name(), trails[v].get(), &maps.back()});
+        labeled.push_back({keys[v].name(), trails[v].get(), &maps.back(),
+                           fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(*error))});
     }
+    std::vector<float> ramp(256);
+    for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = float(i) / float(ramp.size() - 1);
+    const Image bar = flip::magma_image(ramp, std::uint32_t(ramp.size()), 1);
+    const ColorScale scale{&bar, "LDR-FLIP against the aliased frame"};
     for (const auto& [stem, image] : frames)
         for (const char* extension : {".exr", ".png"})
             outputs.add_image(fmt::format("frames/{}/{}{}", scene, stem, extension), image);
-    auto picture = trail_picture(labeled, trail_crop(schedule, width, height));
+    auto picture = trail_picture(labeled, trail_crop(schedule, width, height), 4, &scale);
     if (!picture) return std::unexpected(picture.error());
     outputs.add_image(trail_picture_name(scene), std::make_shared<const Image>(std::move(*picture)));
     return {};
@@ -96,7 +106,7 @@ Action add_taa_command(CLI::App& app) {
         unsigned timing_rounds = 15;
         std::uint64_t seed = 1;
         double ppd = 0;
-        bool validation = false;
+        bool validation = false, no_charts = false;
         InputSpace input_space = InputSpace::from_file;
     };
     auto o = std::make_shared<Options>();
@@ -125,6 +135,7 @@ Action add_taa_command(CLI::App& app) {
     taa->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
+    taa->add_flag("--no-charts", o->no_charts, "Write the tables, report and pictures without the trade charts");
 
     return [o, taa] {
         if (o->selection.baselines)
@@ -189,7 +200,8 @@ Action add_taa_command(CLI::App& app) {
                     auto m = measure_taa(**loop, width, height, schedule, flip);
                     if (!m)
                         return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
-                    rows.push_back({keys[v], scene.name, median(timing->ms[v]), m->shimmer, m->ghosting});
+                    rows.push_back({keys[v], scene.name, median(timing->ms[v]), quantile(timing->ms[v], 0.25),
+                                    quantile(timing->ms[v], 0.75), m->shimmer, m->ghosting});
                     trails.push_back(std::make_shared<const Image>(std::move(m->trail)));
                     if (v == 0) {
                         auto reference = (*loop)->render(
@@ -199,7 +211,11 @@ Action add_taa_command(CLI::App& app) {
                     }
                     progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
                 }
-                if (auto ok = add_trail_outputs(*outputs, scene.name, aliased, keys, trails, flip, schedule); !ok)
+                std::vector<double> ghosting;
+                for (std::size_t v = rows.size() - keys.size(); v < rows.size(); ++v)
+                    ghosting.push_back(rows[v].ghosting);
+                if (auto ok = add_trail_outputs(*outputs, scene.name, aliased, keys, trails, ghosting, flip, schedule);
+                    !ok)
                     return report_error(ok.error().message);
                 pictures.push_back(trail_picture_name(scene.name));
             }
@@ -208,9 +224,22 @@ Action add_taa_command(CLI::App& app) {
 
         RunMetadata run_info = describe_run(**context);
         run_info.seed = o->seed;
+        // A chart that fails costs the charts, not the run: the data, report and pictures are still written.
+        std::vector<std::string> charts;
+        if (charts_available(!o->no_charts)) {
+            ScratchDirectory scratch("kdop-taa");
+            auto drawn = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
+                                              : taa_charts(rows, scratch.path, outputs->dir());
+            if (drawn) {
+                outputs->add(std::move(*drawn));
+                charts = taa_chart_names(rows);
+            } else {
+                warn_no_charts(drawn.error().message);
+            }
+        }
         outputs->add_table("taa", taa_table(rows), run_info);
         outputs->add("report.md",
-                     taa_report_markdown(rows, run_info, {width, height, o->warmup, o->frames, ppd, pictures}));
+                     taa_report_markdown(rows, run_info, {width, height, o->warmup, o->frames, ppd, pictures, charts}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes on {} ({}): {}\n", specs->size(), scenes->size(),
                                  run_info.device, run_info.driver, (outputs->dir() / "report.md").string());

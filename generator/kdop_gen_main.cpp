@@ -22,7 +22,7 @@ using namespace kdop;
 namespace {
 
 int report(const Error& error) {
-    std::cerr << error.message << (error.message.ends_with('\n') ? "" : "\n");
+    std::cerr << "kdop-gen: " << error.message << (error.message.ends_with('\n') ? "" : "\n");
     return 1;
 }
 

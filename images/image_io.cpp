@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <sys/statvfs.h>
 
 namespace kdop {
 
@@ -218,6 +219,16 @@ std::optional<OutsideValue> first_outside_unit_range(const Image& image, int cha
     return std::nullopt;
 }
 
+// "; the disk is full" where the folder of `file` has no room left: the codecs' own words for a
+// write cut short ("Not a PNG file" on reading it back) do not say so.
+std::string disk_full(const std::filesystem::path& file) {
+    struct statvfs fs {};
+    const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : ".";
+    if (statvfs(folder.c_str(), &fs) != 0) return {};
+    return std::uint64_t(fs.f_bavail) * fs.f_frsize < 64 * 1024 ? "; the disk is full (no space left on the device)"
+                                                                : "";
+}
+
 // Writes `image` to `file` (a temporary) and checks it; errors name `path`, the file's final name.
 Result<void> write_checked(const std::filesystem::path& file, const std::string& path, const Image& image) {
     // The temporary keeps the extension, which tells OpenImageIO the format.
@@ -250,6 +261,10 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     // write a different image than asked, so it is refused (the temporary is removed by the caller).
     if (!out->spec().format.is_floating_point()) {
         if (auto outside = first_outside_unit_range(image, channels)) {
+            // Closed whole (black), or libpng prints "No IDATs written into file" on stderr before
+            // kdop's message; the temporary is removed all the same.
+            const std::vector<float> black(std::size_t(image.width) * image.height * channels, 0.0f);
+            out->write_image(OIIO::TypeDesc::FLOAT, black.data());
             out->close();
             return fail(fmt::format("{}: {} stores values from 0 to 1, and pixel ({}, {}) holds {}; write EXR or TIFF "
                                     "to keep it, or tone-map the image first",
@@ -265,8 +280,11 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     }
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, encode ? encoded.data() : image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
-    if (!ok) return fail(fmt::format("{}: cannot write: {}", path, library_message(out->geterror())));
-    return verify_written(file.string(), image, path);
+    if (!ok)
+        return fail(fmt::format("{}: cannot write: {}{}", path, library_message(out->geterror()), disk_full(file)));
+    auto verified = verify_written(file.string(), image, path);
+    if (!verified) return fail(verified.error().message + disk_full(file));
+    return verified;
 }
 
 } // namespace

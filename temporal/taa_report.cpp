@@ -96,12 +96,24 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
 
 } // namespace
 
+bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows) {
+    const TaaRow* fastest = nullptr;
+    for (const TaaRow& r : rows)
+        if (std::isfinite(r.ms) && (!fastest || r.ms < fastest->ms)) fastest = &r;
+    if (!fastest || !std::isfinite(row.ms)) return false;
+    return std::abs(row.ms - fastest->ms) <= std::max(row.ms_q3 - row.ms_q1, fastest->ms_q3 - fastest->ms_q1);
+}
+
 Table taa_table(const std::vector<TaaRow>& rows) {
     Table t(joined(variant_columns(),
-                   {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3),
+                   {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3, "median"),
+                    Column("ms_q1", "ms", Shown::fixed, 3, "Q1"), Column("ms_q3", "ms", Shown::fixed, 3, "Q3"),
+                    Column("ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"),
                     Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4)}));
     for (const TaaRow& r : rows)
-        t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.shimmer), maybe(r.ghosting)}));
+        t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.ms_q1), maybe(r.ms_q3),
+                                             std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value(),
+                                             maybe(r.shimmer), maybe(r.ghosting)}));
     return t;
 }
 
@@ -116,12 +128,14 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
         "- **ghosting**: jitter off, animation on; after {} frames, the mean FLIP against the aliased frame of "
         "the same instant over {} frames;\n"
         "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the loop, "
-        "which renders the scene too).\n\n",
+        "which renders the scene too), with its quartiles Q1 and Q3 over the interleaved rounds; a variant whose "
+        "median is within the larger interquartile range of its own and the fastest variant's is *within noise* "
+        "of the fastest: that difference is not to be believed.\n\n",
         s.width, s.height, kCurrentWeight, kVarianceGamma, s.pixels_per_degree, s.warmup, s.frames, s.warmup, s.frames);
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-    const std::vector<std::string> shown{"variant", "ms", "shimmer", "ghosting"};
+    const std::vector<std::string> shown{"variant", "ms", "ms_q1", "ms_q3", "ms_noise", "shimmer", "ghosting"};
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<TaaRow> in_scene;
         std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),
@@ -129,9 +143,15 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
         std::stable_sort(in_scene.begin(), in_scene.end(),
                          [](const TaaRow& a, const TaaRow& b) { return a.ghosting < b.ghosting; });
         md += fmt::format("## {}\n\nLeast ghosting first.\n\n{}\n", scenes[i], taa_table(in_scene).markdown(shown));
+        if (i < s.charts.size())
+            md += fmt::format("What each variant costs against the ghosting and shimmer it leaves (lower left is "
+                              "better): ![cost against ghosting and shimmer, {0}]({1})\n\n",
+                              scenes[i], s.charts[i]);
         md += paper_comparison(scenes[i], rows);
         if (i < s.pictures.size())
-            md += fmt::format("The ghosting sequence's frame where the red box moves fastest, every variant: "
+            md += fmt::format("The ghosting sequence's frame where the red box moves fastest, every variant over its "
+                              "LDR-FLIP map against the aliased frame (the scale under the picture); under each, the "
+                              "variant's ghosting (the mean over the measured frames) and this frame's mean FLIP: "
                               "![{0}]({1})\n\n",
                               scenes[i], s.pictures[i]);
     }

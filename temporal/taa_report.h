@@ -16,9 +16,14 @@ namespace kdop {
 struct TaaRow {
     VariantKey key;
     std::string scene;
-    double ms = NAN; // median lavapipe time of the variant's rectification pass at the frame size
+    // The lavapipe time of the variant's rectification pass at the frame size: median and quartiles.
+    double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
     double shimmer = NAN, ghosting = NAN;
 };
+
+// Whether `row`'s time differs from the fastest row's by no more than the larger interquartile
+// range of the two: a difference a reader should not believe.
+bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows);
 
 Table taa_table(const std::vector<TaaRow>& rows);
 
@@ -26,6 +31,7 @@ struct TaaReportSettings {
     std::uint32_t width = 0, height = 0, warmup = 0, frames = 0;
     double pixels_per_degree = 0;
     std::vector<std::string> pictures; // per scene, relative to the report
+    std::vector<std::string> charts;   // per scene, cost against ghosting and shimmer; empty: none drawn
 };
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,

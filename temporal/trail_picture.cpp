@@ -11,12 +11,21 @@
 namespace kdop {
 namespace {
 
-constexpr int kLabelHeight = 22, kFontSize = 15, kGap = 4;
+constexpr int kLabelHeight = 22, kNoteHeight = 18, kFontSize = 15, kNoteFontSize = 12, kGap = 4;
+constexpr int kScaleHeight = 40, kBarHeight = 12, kBarWidth = 320;
 constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// The largest font size from `size` down to 8 at which `text` fits in `width` pixels.
+int fitting_font_size(const std::string& text, int size, int width, const std::string& font) {
+    for (; size > 8; --size)
+        if (OIIO::ImageBufAlgo::text_size(text, size, font).width() <= width) break;
+    return size;
+}
 
 } // namespace
 
-Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns) {
+Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns,
+                            const ColorScale* scale) {
     if (frames.empty()) return fail("trail picture: no frames");
     const Image& first = *frames[0].frame;
     if (crop.scale == 0 || crop.width == 0 || crop.height == 0 || crop.x + crop.width > first.width ||
@@ -25,11 +34,14 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
                                 crop.height, crop.x, crop.y, first.width, first.height));
     const int w = int(crop.width * crop.scale), h = int(crop.height * crop.scale);
     const bool maps = std::any_of(frames.begin(), frames.end(), [](const LabeledFrame& f) { return f.error_map; });
+    const bool notes = std::any_of(frames.begin(), frames.end(), [](const LabeledFrame& f) { return !f.note.empty(); });
     const int cols = int(std::min<std::size_t>(columns, frames.size()));
     const int rows = int((frames.size() + cols - 1) / cols);
-    const int cell_w = w + kGap, cell_h = kLabelHeight + h * (maps ? 2 : 1) + kGap;
+    const int note_h = notes ? kNoteHeight : 0;
+    const int cell_w = w + kGap, cell_h = kLabelHeight + h * (maps ? 2 : 1) + note_h + kGap;
+    const int grid_w = cols * cell_w - kGap, grid_h = rows * cell_h - kGap;
 
-    OIIO::ImageBuf grid(OIIO::ImageSpec(cols * cell_w - kGap, rows * cell_h - kGap, 3, OIIO::TypeDesc::FLOAT));
+    OIIO::ImageBuf grid(OIIO::ImageSpec(grid_w, grid_h + (scale ? kScaleHeight : 0), 3, OIIO::TypeDesc::FLOAT));
     OIIO::ImageBufAlgo::zero(grid);
     // The crop of `image`, magnified, with its top left corner at (x0, y0) of the grid.
     auto place = [&](const Image& image, int x0, int y0) {
@@ -42,6 +54,10 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
     };
     const std::string font = std::filesystem::exists(kFont) ? kFont : "";
     const float white[3] = {1, 1, 1};
+    auto text = [&](int x, int y, const std::string& line, int size) -> Result<void> {
+        if (OIIO::ImageBufAlgo::render_text(grid, x, y, line, size, font, white)) return {};
+        return fail(fmt::format("trail picture: cannot draw the text \"{}\": {}", line, grid.geterror()));
+    };
     for (std::size_t i = 0; i < frames.size(); ++i) {
         for (const Image* image : {frames[i].frame, frames[i].error_map})
             if (image && (image->width != first.width || image->height != first.height))
@@ -49,10 +65,32 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
         const int x0 = int(i % cols) * cell_w, y0 = int(i / cols) * cell_h;
         place(*frames[i].frame, x0, y0 + kLabelHeight);
         if (frames[i].error_map) place(*frames[i].error_map, x0, y0 + kLabelHeight + h);
-        if (!OIIO::ImageBufAlgo::render_text(grid, x0 + 4, y0 + kLabelHeight - 6, frames[i].label, kFontSize, font,
-                                             white))
-            return fail(
-                fmt::format("trail picture: cannot draw the label \"{}\": {}", frames[i].label, grid.geterror()));
+        const std::string& label = frames[i].label;
+        if (auto ok = text(x0 + 3, y0 + kLabelHeight - 6, label, fitting_font_size(label, kFontSize, w - 6, font)); !ok)
+            return std::unexpected(ok.error());
+        const std::string& note = frames[i].note;
+        if (!note.empty())
+            if (auto ok = text(x0 + 3, y0 + kLabelHeight + h * (maps ? 2 : 1) + kNoteHeight - 5, note,
+                               fitting_font_size(note, kNoteFontSize, w - 6, font));
+                !ok)
+                return std::unexpected(ok.error());
+    }
+    if (scale && scale->bar->width > 0) {
+        const int bar_w = std::min(kBarWidth, grid_w - 60), x0 = 20, y0 = grid_h + 8;
+        for (int y = 0; y < kBarHeight; ++y)
+            for (int x = 0; x < bar_w; ++x) {
+                const glm::vec4& c =
+                    scale->bar->at(std::uint32_t(x * (scale->bar->width - 1) / std::max(bar_w - 1, 1)), 0);
+                const float rgb[3] = {c.r, c.g, c.b};
+                grid.setpixel(x0 + x, y0 + y, rgb, 3);
+            }
+        const int baseline = y0 + kBarHeight + 14;
+        if (auto ok = text(x0 - 4, baseline, "0", kNoteFontSize); !ok) return std::unexpected(ok.error());
+        if (auto ok = text(x0 + bar_w - 4, baseline, "1", kNoteFontSize); !ok) return std::unexpected(ok.error());
+        if (auto ok = text(x0 + bar_w + 14, y0 + kBarHeight, scale->caption,
+                           fitting_font_size(scale->caption, kNoteFontSize, grid_w - bar_w - x0 - 18, font));
+            !ok)
+            return std::unexpected(ok.error());
     }
 
     Image out(grid.spec().width, grid.spec().height);

@@ -15,6 +15,14 @@ struct LabeledFrame {
     std::string label;
     const Image* frame;               // all of one size, values in [0, 1]
     const Image* error_map = nullptr; // shown under the frame where given: its FLIP map, in magma
+    std::string note = {};            // a line under it: the figures of this variant
+};
+
+// The scale of the error maps, drawn under the grid: `bar` (one row, its left end for 0, its right
+// for 1) stretched to a strip, "0" and "1" at its ends and the caption beside it.
+struct ColorScale {
+    const Image* bar;
+    std::string caption;
 };
 
 // The part of each frame shown, magnified `scale` times (nearest, so aliasing stays visible).
@@ -24,9 +32,11 @@ struct TrailCrop {
 };
 
 // A grid `columns` crops wide (each frame over its error map, if any), each with a strip above it
-// holding its label (white on black, DejaVu
-// Sans from fonts-dejavu-core, or OpenImageIO's own font where that is missing). Errors when the
-// crop leaves a frame or the text cannot be drawn.
-Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns = 4);
+// holding its label and, where given, one under it holding its note (white on black, DejaVu Sans
+// from fonts-dejavu-core, or OpenImageIO's own font where that is missing; a label too long for its
+// crop is drawn smaller), and the color scale under the grid where given. Errors when the crop
+// leaves a frame or the text cannot be drawn.
+Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns = 4,
+                            const ColorScale* scale = nullptr);
 
 } // namespace kdop

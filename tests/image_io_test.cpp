@@ -52,6 +52,7 @@ TEST(ImageIo, AFullDiskIsAnErrorAndLeavesNoFile) {
         EXPECT_FALSE(written) << ext << " reported success on a full disk";
         if (!written) {
             EXPECT_NE(written.error().message.find(out.string()), std::string::npos) << written.error().message;
+            EXPECT_NE(written.error().message.find("the disk is full"), std::string::npos) << written.error().message;
         }
         EXPECT_TRUE(fs::is_empty(disk.path)) << ext << " left a file behind";
     }

@@ -84,6 +84,27 @@ TEST(TaaScene, ABackgroundOutsideTheUnitRangeIsRefused) {
     EXPECT_EQ(ok->background.width, 20u) << "tiled to the frame";
 }
 
+// A time is within noise of the fastest where the difference is no more than the larger of the two
+// interquartile ranges.
+TEST(TaaReport, MarksTimesWithinNoiseOfTheFastest) {
+    auto row = [](double ms, double q1, double q3) {
+        TaaRow r;
+        r.key = VariantKey{"aabb", Mode::clip, Neighborhood::n9};
+        r.ms = ms;
+        r.ms_q1 = q1;
+        r.ms_q3 = q3;
+        return r;
+    };
+    const std::vector<TaaRow> rows{row(1.0, 0.9, 1.2), row(1.25, 1.2, 1.3), row(1.35, 1.3, 1.4), row(NAN, NAN, NAN)};
+    EXPECT_TRUE(within_noise_of_fastest(rows[0], rows)) << "the fastest itself";
+    EXPECT_TRUE(within_noise_of_fastest(rows[1], rows)) << "0.25 apart, the fastest's spread 0.3";
+    EXPECT_FALSE(within_noise_of_fastest(rows[2], rows)) << "0.35 apart";
+    EXPECT_FALSE(within_noise_of_fastest(rows[3], rows)) << "not measured";
+    const std::string csv = taa_table(rows).csv();
+    EXPECT_NE(csv.find(",1.25,1.2,1.3,1,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",1.35,1.3,1.4,0,"), std::string::npos) << csv;
+}
+
 // The report sets kdop's figures beside the paper's Tables 1 and 2, by rank.
 TEST(TaaReport, SetsTheFiguresBesideThePapersTables) {
     const std::pair<const char*, Mode> methods[] = {
@@ -326,7 +347,8 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     auto r = t.kdop("--sets aabb dop22 --modes clip --scenes grass asphalt --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = test::read_file(out / "taa.csv");
-    EXPECT_EQ(csv.substr(0, csv.find('\n')), "variant,axis_set,mode,neighborhood,scene,ms,shimmer,ghosting");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,ghosting");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << "2 variants x 2 scenes:\n" << csv;
     EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,"), std::string::npos) << csv;
     for (const char* scene : {"grass", "asphalt"}) {
@@ -336,7 +358,16 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
                 EXPECT_TRUE(fs::exists(out / "frames" / scene / (std::string(frame) + extension))) << frame;
     }
     EXPECT_TRUE(fs::exists(out / "taa.json"));
-    EXPECT_NE(test::read_file(out / "report.md").find("![grass](ghosting-grass.png)"), std::string::npos);
+    const std::string report = test::read_file(out / "report.md");
+    EXPECT_NE(report.find("![grass](ghosting-grass.png)"), std::string::npos);
+    for (const char* scene : {"grass", "asphalt"}) {
+        EXPECT_EQ(test::read_file(out / fmt::format("trade-{}.png", scene)).substr(0, 4), "\x89PNG") << scene;
+        EXPECT_NE(report.find(fmt::format("![cost against ghosting and shimmer, {0}](trade-{0}.png)", scene)),
+                  std::string::npos)
+            << report;
+    }
+    EXPECT_NE(report.find("| median (ms) | Q1 (ms) | Q3 (ms) | ms within noise of the fastest |"), std::string::npos)
+        << report;
 }
 
 // A scene's own variants: a manifest naming a user's set, on a user's background.

@@ -1,0 +1,84 @@
+#include "taa_chart.h"
+
+#include "chart_style.h"
+#include "gnuplot.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace kdop {
+namespace {
+
+std::vector<std::string> scenes_of(const std::vector<TaaRow>& rows) {
+    std::vector<std::string> scenes;
+    for (const TaaRow& r : rows)
+        if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    return scenes;
+}
+
+} // namespace
+
+std::vector<std::string> taa_chart_names(const std::vector<TaaRow>& rows) {
+    std::vector<std::string> names;
+    for (const std::string& scene : scenes_of(rows)) names.push_back(fmt::format("trade-{}.png", scene));
+    return names;
+}
+
+Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, const std::filesystem::path& scratch,
+                                           const std::filesystem::path& out_dir) {
+    const std::vector<std::string> scenes = scenes_of(rows), names = taa_chart_names(rows);
+    std::vector<std::string> sets;
+    std::vector<VariantKey> keys;
+    for (const TaaRow& r : rows) {
+        if (std::find(sets.begin(), sets.end(), r.key.set) == sets.end()) sets.push_back(r.key.set);
+        keys.push_back(r.key);
+    }
+    const VariantChartStyle style(sets);
+    // Autoscaled around the points, with a margin: the variants' times and errors lie close together.
+    std::string script = "set terminal pngcairo size 1500,560 font 'sans,10'\nset grid\n"
+                         "set key outside right top spacing 1.1\nset offsets graph 0.08, graph 0.08, graph 0.08, "
+                         "graph 0.08\n";
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        std::vector<double> ms, ghosting, shimmer;
+        std::string plot[2]; // ghosting, shimmer
+        std::vector<std::string> groups;
+        for (const TaaRow& r : rows)
+            if (r.scene == scenes[s]) {
+                ms.push_back(r.ms);
+                ghosting.push_back(r.ghosting);
+                shimmer.push_back(r.shimmer);
+                if (std::find(groups.begin(), groups.end(), VariantChartStyle::group(r.key)) == groups.end())
+                    groups.push_back(VariantChartStyle::group(r.key));
+            }
+        for (const std::string& group : groups) {
+            std::vector<std::vector<std::string>> points;
+            const char* color = "black";
+            for (const TaaRow& r : rows)
+                if (r.scene == scenes[s] && VariantChartStyle::group(r.key) == group) {
+                    color = VariantChartStyle::color(r.key);
+                    points.push_back({gnuplot_number(r.ms), gnuplot_number(r.ghosting), gnuplot_number(r.shimmer),
+                                      gnuplot_number(r.ms_q1), gnuplot_number(r.ms_q3),
+                                      std::to_string(style.shape(r.key.set))});
+                }
+            const std::string data = (scratch / fmt::format("trade-{}-{}.dat", s, group)).string();
+            if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+            for (int y = 0; y < 2; ++y)
+                plot[y] += fmt::format("{0}'{1}' using 1:{2}:4:5 with xerrorbars pt 0 lc rgb '{3}' notitle, '{1}' "
+                                       "using 1:{2}:6 with points pt variable ps 1.5 lc rgb '{3}' notitle",
+                                       plot[y].empty() ? "" : ", ", data, 2 + y, color);
+        }
+        script += fmt::format("set output '{}'\nset multiplot layout 1,2 title '{}: cost against what a viewer sees, "
+                              "one point per variant (color: mode and neighborhood; shape: axis set; bars: Q1..Q3 of "
+                              "the time); lower left is better'\n",
+                              (scratch / names[s]).string(), scenes[s]);
+        script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
+        script += axis_scale('y', ghosting, "ghosting (mean LDR-FLIP against the aliased frame)", false);
+        script += fmt::format("plot {}\n", plot[0]);
+        script += axis_scale('y', shimmer, "shimmer (mean LDR-FLIP between successive frames)", false);
+        script += fmt::format("plot {}{}\nunset multiplot\n", plot[1], style.key_entries(keys));
+    }
+    return draw_charts(script, names, scratch, out_dir);
+}
+
+} // namespace kdop

@@ -1,0 +1,23 @@
+// The chart `kdop taa` draws per scene: the trade a user reads first, each variant's cost (its
+// median time, with Q1..Q3 as a bar) against the ghosting (left) and shimmer (right) it leaves;
+// lower left is better. Drawn with gnuplot (harness/gnuplot.h) in the shared style of variant charts
+// (harness/chart_style.h): color for mode and neighborhood, shape for the axis set.
+#pragma once
+
+#include "result.h"
+#include "taa_report.h"
+#include "write_files.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+// trade-<scene>.png, one per scene in the order the rows first name them.
+std::vector<std::string> taa_chart_names(const std::vector<TaaRow>& rows);
+
+Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, const std::filesystem::path& scratch,
+                                           const std::filesystem::path& out_dir);
+
+} // namespace kdop
