@@ -56,7 +56,9 @@ std::optional<float> stored_gamma(const OIIO::ImageSpec& spec, InputSpace space)
     return std::nullopt;
 }
 
-Result<Image> read_checked(const std::string& path, std::uint32_t max_side, InputSpace space) {
+// `what`: the channels the caller needs, for the error when there are fewer: "RGB" (3) or a count
+// of data channels.
+Result<Image> read_checked(const std::string& path, std::uint32_t max_side, InputSpace space, int needed = 3) {
     // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
     if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
     note_input(path);
@@ -70,8 +72,10 @@ Result<Image> read_checked(const std::string& path, std::uint32_t max_side, Inpu
         return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
     }
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels < 3)
-        return fail(fmt::format("{}: has {} channel(s); kdop needs RGB in the first three", path, spec.nchannels));
+    if (spec.nchannels < needed)
+        return fail(needed == 3
+                        ? fmt::format("{}: has {} channel(s); kdop needs RGB in the first three", path, spec.nchannels)
+                        : fmt::format("{}: has {} channel(s); kdop needs {} here", path, spec.nchannels, needed));
     if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
         return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
 
@@ -93,7 +97,7 @@ Result<Image> read_checked(const std::string& path, std::uint32_t max_side, Inpu
         if (!gamma) return srgb_to_linear(v);
         return *gamma == 1.0f ? v : std::pow(v, *gamma);
     };
-    Image image(spec.width, spec.height);
+    Image image(spec.width, spec.height); // channels the file lacks stay 0, alpha 1
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < channels; ++c)
             image.pixels[i][c] = c < 3 ? decode(data[i * channels + c]) : data[i * channels + c];
@@ -115,6 +119,14 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputS
     // tests/fuzz/image_fuzzer.cpp), so that is a read error of this file too.
     try {
         return read_checked(path, max_side, space);
+    } catch (const std::exception& e) {
+        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
+    }
+}
+
+Result<Image> read_data_image(const std::string& path, int channels) {
+    try {
+        return read_checked(path, 0, InputSpace::linear, channels);
     } catch (const std::exception& e) {
         return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
     }

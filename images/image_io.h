@@ -35,6 +35,10 @@ std::optional<InputSpace> parse_input_space(std::string_view text);
 // so a small file claiming an enormous image is an error, not an allocation failure.
 Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0, InputSpace space = InputSpace::from_file);
 
+// An image of data, not color (motion vectors, depth): its values as stored, never decoded, from a
+// file with at least `channels` channels (1 to 4); the channels it lacks are 0 (alpha 1).
+Result<Image> read_data_image(const std::string& path, int channels);
+
 // read_image, refusing an image with a NaN or infinite R, G or B: the error names the file, the
 // first such pixel and its value, then `why` (what needs finite colors, and where to look instead).
 Result<Image> read_finite_image(const std::string& path, std::string_view why,

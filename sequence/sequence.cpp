@@ -1,0 +1,280 @@
+#include "sequence.h"
+
+#include "read_file.h"
+#include "shown_text.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <string_view>
+
+namespace kdop {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr std::uint32_t kMaxSide = 16384;
+
+// "line L, column C" of byte `offset` (1-based, as nlohmann counts it) of `text`.
+std::string position_of(std::string_view text, std::size_t offset) {
+    offset = std::min(offset, text.size());
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i + 1 < offset; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return fmt::format("{}:{}", line, column);
+}
+
+// The reading of one sequence.json: errors name the file and the JSON path of the value.
+class Reader {
+public:
+    explicit Reader(fs::path file) : file_(std::move(file)) {}
+
+    Error error(std::string_view where, std::string_view what) const {
+        return {fmt::format("{}: {}: {}", file_.string(), where, what)};
+    }
+
+    // Refuses a key of `object` not in `allowed`: a misspelled key must not silently mean the default.
+    Result<void> known_keys(const json& object, std::initializer_list<std::string_view> allowed,
+                            std::string_view where) const {
+        for (const auto& [key, value] : object.items())
+            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+                std::string known;
+                for (std::string_view k : allowed) known += (known.empty() ? "" : ", ") + std::string(k);
+                return std::unexpected(
+                    error(where, fmt::format("unknown key \"{}\" (the keys here: {})", shown_text(key, 60), known)));
+            }
+        return {};
+    }
+
+    Result<std::uint32_t> side(const json& root, const char* key) const {
+        const auto it = root.find(key);
+        if (it == root.end() || !it->is_number_integer() || it->get<std::int64_t>() < 1 ||
+            it->get<std::int64_t>() > kMaxSide)
+            return std::unexpected(error(key, fmt::format("expected a whole number of pixels from 1 to {}", kMaxSide)));
+        return std::uint32_t(it->get<std::int64_t>());
+    }
+
+    // One of `names` at `object[key]` (`fallback` when absent), as its index.
+    Result<int> choice(const json& object, const char* key, std::initializer_list<const char*> names,
+                       std::string_view where) const {
+        const auto it = object.find(key);
+        if (it == object.end()) return 0;
+        std::string listed;
+        for (const char* n : names) listed += fmt::format("{}\"{}\"", listed.empty() ? "" : " or ", n);
+        if (it->is_string()) {
+            int index = 0;
+            for (const char* n : names) {
+                if (it->get<std::string>() == n) return index;
+                ++index;
+            }
+        }
+        return std::unexpected(
+            error(fmt::format("{}.{}", where, key),
+                  fmt::format("{} is not a convention kdop knows; expected {}", shown_text(it->dump(), 60), listed)));
+    }
+
+    // A file named relative to the sequence's folder: a regular file inside it.
+    Result<fs::path> file(const fs::path& dir, const json& value, std::string_view where) const {
+        if (!value.is_string() || value.get<std::string>().empty())
+            return std::unexpected(error(where, "expected a file name relative to the sequence's folder"));
+        const fs::path relative = value.get<std::string>();
+        const std::string shown = shown_text(relative.string(), 200);
+        if (relative.is_absolute())
+            return std::unexpected(
+                error(where, fmt::format("\"{}\" is absolute; name files relative to the sequence's folder", shown)));
+        const fs::path path = dir / relative;
+        std::error_code ec;
+        const fs::path inside = fs::weakly_canonical(dir, ec), resolved = fs::weakly_canonical(path, ec);
+        if (std::mismatch(inside.begin(), inside.end(), resolved.begin(), resolved.end()).first != inside.end())
+            return std::unexpected(error(where, fmt::format("\"{}\" is outside the sequence's folder", shown)));
+        if (auto why = not_a_readable_file(path))
+            return std::unexpected(error(where, fmt::format("{}: {}", path.string(), *why)));
+        return path;
+    }
+
+private:
+    fs::path file_;
+};
+
+} // namespace
+
+glm::vec2 canonical_motion(glm::vec2 stored, const MotionConvention& c, std::uint32_t width, std::uint32_t height) {
+    glm::vec2 m = stored;
+    if (c.units == MotionConvention::Units::uv) m *= glm::vec2(float(width), float(height));
+    if (c.y_axis == MotionConvention::YAxis::up) m.y = -m.y;
+    if (c.points_to == MotionConvention::PointsTo::current) m = -m;
+    return m;
+}
+
+Result<Sequence> read_sequence(const fs::path& dir) {
+    const fs::path path = dir / "sequence.json";
+    auto text = read_input_file(path);
+    if (!text) return std::unexpected(text.error());
+    json root;
+    try {
+        root = json::parse(*text);
+    } catch (const json::parse_error& e) {
+        // nlohmann's message, after its "[json.exception.parse_error.101] parse error at line 1,
+        // column 2: " prefix, says what it found and expected.
+        std::string_view what = e.what();
+        if (const auto colon = what.find(": "); colon != std::string_view::npos) what.remove_prefix(colon + 2);
+        return fail(
+            fmt::format("{}:{}: not JSON: {}", path.string(), position_of(*text, e.byte), shown_text(what, 200)));
+    }
+    const Reader reader(path);
+    if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
+    if (auto ok = reader.known_keys(root, {"kdop_sequence", "width", "height", "motion", "frames"}, "the top level");
+        !ok)
+        return std::unexpected(ok.error());
+    const auto version = root.find("kdop_sequence");
+    if (version == root.end() || !version->is_number_integer())
+        return std::unexpected(
+            reader.error("kdop_sequence", fmt::format("expected the format's version, {}", kSequenceFormatVersion)));
+    if (version->get<std::int64_t>() != kSequenceFormatVersion)
+        return std::unexpected(
+            reader.error("kdop_sequence", fmt::format("version {}; this kdop reads version {}",
+                                                      version->get<std::int64_t>(), kSequenceFormatVersion)));
+    Sequence s;
+    s.dir = dir;
+    s.name = fs::weakly_canonical(dir).filename().string();
+    auto width = reader.side(root, "width");
+    if (!width) return std::unexpected(width.error());
+    auto height = reader.side(root, "height");
+    if (!height) return std::unexpected(height.error());
+    s.width = *width;
+    s.height = *height;
+
+    if (const auto motion = root.find("motion"); motion != root.end()) {
+        if (!motion->is_object()) return std::unexpected(reader.error("motion", "expected an object"));
+        if (auto ok = reader.known_keys(*motion, {"units", "points_to", "y_axis"}, "motion"); !ok)
+            return std::unexpected(ok.error());
+        auto units = reader.choice(*motion, "units", {"pixels", "uv"}, "motion");
+        auto points_to = reader.choice(*motion, "points_to", {"previous", "current"}, "motion");
+        auto y_axis = reader.choice(*motion, "y_axis", {"down", "up"}, "motion");
+        for (const auto* r : {&units, &points_to, &y_axis})
+            if (!*r) return std::unexpected(r->error());
+        s.motion = {MotionConvention::Units(*units), MotionConvention::PointsTo(*points_to),
+                    MotionConvention::YAxis(*y_axis)};
+    }
+
+    const auto frames = root.find("frames");
+    if (frames == root.end() || !frames->is_array() || frames->empty())
+        return std::unexpected(reader.error("frames", "expected a list of at least one frame"));
+    for (std::size_t i = 0; i < frames->size(); ++i) {
+        const json& f = (*frames)[i];
+        const std::string where = fmt::format("frames[{}]", i);
+        if (!f.is_object()) return std::unexpected(reader.error(where, "expected an object"));
+        if (auto ok = reader.known_keys(f, {"color", "motion", "depth", "reference", "jitter", "camera_cut"}, where);
+            !ok)
+            return std::unexpected(ok.error());
+        SequenceFrame frame;
+        if (const auto cut = f.find("camera_cut"); cut != f.end()) {
+            if (!cut->is_boolean())
+                return std::unexpected(reader.error(where + ".camera_cut", "expected true or false"));
+            frame.camera_cut = cut->get<bool>();
+        }
+        if (!f.contains("color")) return std::unexpected(reader.error(where, "has no \"color\" file"));
+        auto color = reader.file(dir, f["color"], where + ".color");
+        if (!color) return std::unexpected(color.error());
+        frame.color = *color;
+        if (f.contains("motion")) {
+            auto motion = reader.file(dir, f["motion"], where + ".motion");
+            if (!motion) return std::unexpected(motion.error());
+            frame.motion = *motion;
+        } else if (i > 0 && !frame.camera_cut) {
+            return std::unexpected(reader.error(
+                where, "has no \"motion\" file, which every frame with a history needs (all but the first and the "
+                       "camera cuts)"));
+        }
+        for (auto [key, target] : {std::pair{"depth", &frame.depth}, std::pair{"reference", &frame.reference}})
+            if (f.contains(key)) {
+                auto file = reader.file(dir, f[key], where + "." + key);
+                if (!file) return std::unexpected(file.error());
+                *target = *file;
+            }
+        if (const auto jitter = f.find("jitter"); jitter != f.end()) {
+            const bool pair =
+                jitter->is_array() && jitter->size() == 2 && (*jitter)[0].is_number() && (*jitter)[1].is_number();
+            // As doubles first: a float conversion of 1e300 would be undefined.
+            const double x = pair ? (*jitter)[0].get<double>() : NAN, y = pair ? (*jitter)[1].get<double>() : NAN;
+            if (!(std::abs(x) <= 0.5 && std::abs(y) <= 0.5))
+                return std::unexpected(reader.error(
+                    where + ".jitter", fmt::format("{} is not [x, y] within half a pixel ([-0.5, 0.5] each)",
+                                                   shown_text(jitter->dump(), 60))));
+            frame.jitter = glm::vec2(float(x), float(y));
+        }
+        s.frames.push_back(std::move(frame));
+    }
+    return s;
+}
+
+namespace {
+
+// Refuses an image of another size than the sequence's.
+Result<void> check_size(const Image& image, const fs::path& file, const Sequence& s) {
+    if (image.width == s.width && image.height == s.height) return {};
+    return fail(fmt::format("{}: {}x{}, but the sequence is {}x{} ({})", file.string(), image.width, image.height,
+                            s.width, s.height, (s.dir / "sequence.json").string()));
+}
+
+// Refuses a NaN or infinite value among the first `channels`, naming the pixel.
+Result<void> check_finite(const Image& image, const fs::path& file, int channels, std::string_view what) {
+    for (std::uint32_t y = 0; y < image.height; ++y)
+        for (std::uint32_t x = 0; x < image.width; ++x)
+            for (int c = 0; c < channels; ++c)
+                if (!std::isfinite(image.at(x, y)[c]))
+                    return fail(fmt::format("{}: pixel ({}, {}) holds {} in channel {}; {} must be finite",
+                                            file.string(), x, y, image.at(x, y)[c], c, what));
+    return {};
+}
+
+Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace space, std::string_view what) {
+    auto image = read_image(file.string(), 0, space);
+    if (!image) return image;
+    if (auto ok = check_size(*image, file, s); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_finite(*image, file, 3, what); !ok) return std::unexpected(ok.error());
+    return image;
+}
+
+} // namespace
+
+Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace space) {
+    const SequenceFrame& f = s.frames.at(index);
+    LoadedFrame out;
+    auto color = read_color(f.color, s, space, "color");
+    if (!color) return std::unexpected(color.error());
+    out.color = std::move(*color);
+    if (!s.starts_history(index)) {
+        auto motion = read_data_image(f.motion.string(), 2);
+        if (!motion) return std::unexpected(motion.error());
+        if (auto ok = check_size(*motion, f.motion, s); !ok) return std::unexpected(ok.error());
+        if (auto ok = check_finite(*motion, f.motion, 2, "motion"); !ok) return std::unexpected(ok.error());
+        out.motion.reserve(motion->pixels.size());
+        for (const glm::vec4& m : motion->pixels)
+            out.motion.push_back(canonical_motion(glm::vec2(m), s.motion, s.width, s.height));
+    }
+    if (!f.depth.empty()) {
+        auto depth = read_data_image(f.depth.string(), 1);
+        if (!depth) return std::unexpected(depth.error());
+        if (auto ok = check_size(*depth, f.depth, s); !ok) return std::unexpected(ok.error());
+        out.depth = std::move(*depth);
+    }
+    if (!f.reference.empty()) {
+        auto reference = read_color(f.reference, s, space, "the reference");
+        if (!reference) return std::unexpected(reference.error());
+        out.reference = std::move(*reference);
+    }
+    return out;
+}
+
+} // namespace kdop

@@ -1,0 +1,86 @@
+// A frame sequence: the contract between every content source (kdop's own scenes, a renderer's
+// captured frames, Blender, a 3-D testbed) and the one TAA resolve. A folder holds sequence.json
+// and per-frame EXR files; README "Frame sequences" documents the format, version 1:
+//
+//     {"kdop_sequence": 1, "width": 320, "height": 180,
+//      "motion": {"units": "pixels", "points_to": "previous", "y_axis": "down"},
+//      "frames": [{"color": "color/0000.exr", "motion": "motion/0000.exr", "jitter": [0.12, -0.31],
+//                  "depth": "depth/0000.exr", "reference": "reference/0000.exr", "camera_cut": false}]}
+//
+// read_sequence() reads and checks sequence.json and that every file it names is a regular file
+// inside the folder, and reads no pixel: a 400-frame 1920x1080 sequence costs its list of names.
+// load_frame() reads one frame's files when the resolve needs them, checks them against the
+// sequence (size, channels, finite values) and turns the motion into one convention; peak memory
+// is a frame's, whatever the frame count. Every error names the file (sequence.json with its line
+// and column, or the JSON path of the value) and the reason.
+#pragma once
+
+#include "image.h"
+#include "image_io.h"
+#include "result.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+inline constexpr int kSequenceFormatVersion = 1;
+
+// How a sequence's motion files are to be read. Whatever they say, load_frame() gives motion in
+// pixels, pointing to where the surface at the pixel's center was in the previous frame, y down.
+struct MotionConvention {
+    enum class Units { pixels, uv };           // uv: divided by the frame's width and height
+    enum class PointsTo { previous, current }; // current: the velocity convention of Unreal and Unity
+    enum class YAxis { down, up };
+    Units units = Units::pixels;
+    PointsTo points_to = PointsTo::previous;
+    YAxis y_axis = YAxis::down;
+};
+
+struct SequenceFrame {
+    std::filesystem::path color;            // linear RGB in the first three channels, any range
+    std::filesystem::path motion;           // empty only where there is no history to reproject
+    std::filesystem::path depth, reference; // optional: empty when not given
+    std::optional<glm::vec2> jitter;        // the sample's offset from the pixel center, pixels
+    bool camera_cut = false;                // the history is dropped before this frame
+};
+
+struct Sequence {
+    std::filesystem::path dir;
+    std::string name; // the folder's name, for tables
+    std::uint32_t width = 0, height = 0;
+    MotionConvention motion;
+    std::vector<SequenceFrame> frames; // paths joined to dir
+
+    // Whether frame `index` starts without a history: the first frame and every camera cut.
+    bool starts_history(std::size_t index) const { return index == 0 || frames[index].camera_cut; }
+};
+
+// Reads `dir`/sequence.json. Refuses a wrong version, unknown keys (a misspelled "point_to" must
+// not silently mean the default), a frame without color, a frame with a history but no motion, a
+// jitter outside [-0.5, 0.5], and any named file that is missing, not a regular file, or outside
+// the folder.
+Result<Sequence> read_sequence(const std::filesystem::path& dir);
+
+// One frame's images, as the resolve takes them.
+struct LoadedFrame {
+    Image color;                    // linear RGB, alpha 1
+    std::vector<glm::vec2> motion;  // per pixel, row-major: pixels, to the previous frame, y down; empty at a start
+    std::optional<Image> depth;     // depth in the red channel
+    std::optional<Image> reference; // linear RGB
+};
+
+// Reads frame `index` of `sequence`. `space` decodes color and reference files (EXR is linear
+// whatever it says); motion and depth are data, read as stored.
+Result<LoadedFrame> load_frame(const Sequence& sequence, std::size_t index, InputSpace space = InputSpace::from_file);
+
+// The motion of one pixel, as stored in a file of `convention`, in load_frame()'s convention.
+glm::vec2 canonical_motion(glm::vec2 stored, const MotionConvention& convention, std::uint32_t width,
+                           std::uint32_t height);
+
+} // namespace kdop
