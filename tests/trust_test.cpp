@@ -360,6 +360,20 @@ TEST(CliTrust, MessagesShowWhatIsThereAndNoMore) {
     EXPECT_NE(set.err.find("set.manifest:1: `set:` names no axis-set file"), std::string::npos) << set.err;
 }
 
+// A PNG refused for a value it cannot hold says so in kdop's words alone: libpng's own complaint
+// about a file closed unwritten ("No IDATs written into file") came first.
+TEST(CliTrust, ARefusedPngOutputSaysWhyInOneMessage) {
+    TrustRun t;
+    const std::string bright = (t.dir / "bright.exr").string();
+    ASSERT_TRUE(write_image(bright, Image(8, 8, {2.0f, 0.5f, 0.5f, 1.0f})));
+    auto r = test::run(kdop("run --variant aabb-clip-n9 --current " + bright + " --history " + bright + " --out " +
+                            (t.dir / "out.png").string()));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("png stores values from 0 to 1, and pixel (0, 0) holds 2"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("libpng"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(t.dir / "out.png"));
+}
+
 // A PNG holds sRGB-encoded values: the clip runs on the linear values they decode to, as the CPU
 // reference computes it on the same decoded values (not on the stored ones).
 TEST(CliTrust, AnSrgbPngIsClippedOnItsDecodedLinearValues) {
