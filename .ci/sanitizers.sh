@@ -60,8 +60,8 @@ fuzz() {
   grep -E '^(Done|stat::)' "$scratch/$name.log"
 }
 fuzz axis_set 200000
-fuzz manifest 50000
-fuzz sequence 20000
+fuzz manifest 200000
+fuzz sequence 100000
 # Image loading leaks inside Debian's libraries (see the suppressions), which have no frame
 # pointers: LeakSanitizer walks every frame at each allocation to see whose it is (half the speed).
 export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"

@@ -130,6 +130,10 @@ Result<Sequence> read_sequence(const fs::path& dir) {
         if (const auto colon = what.find(": "); colon != std::string_view::npos) what.remove_prefix(colon + 2);
         return fail(
             fmt::format("{}:{}: not JSON: {}", path.string(), position_of(*text, e.byte), shown_text(what, 200)));
+    } catch (const json::exception& e) {
+        // A number too large for a double ("99e9999", found by tests/fuzz/sequence_fuzzer.cpp) is
+        // nlohmann's out_of_range, not a parse error, and has no position.
+        return fail(fmt::format("{}: not JSON kdop can read: {}", path.string(), shown_text(e.what(), 200)));
     }
     const Reader reader(path);
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));

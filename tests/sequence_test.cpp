@@ -119,6 +119,8 @@ TEST(Sequence, BadInputIsRefusedNamingTheFileAndTheReason) {
         {"no sequence.json", "sequence.json: does not exist", [](SequenceDir&) {}},
         {"not JSON", "sequence.json:3:1: not JSON: syntax error while parsing object key",
          [](SequenceDir& s) { test::write_file(s / "sequence.json", "{\"kdop_sequence\": 1,\n\"width\": 8,\n}"); }},
+        {"a number past a double's range", "sequence.json: not JSON kdop can read: ",
+         [](SequenceDir& s) { test::write_file(s / "sequence.json", "99e9999"); }},
         {"a newer version", "kdop_sequence: version 2; this kdop reads version 1",
          [](SequenceDir& s) { s.json("{}", {s.frame(0)}, 2); }},
         {"an unknown convention",
