@@ -79,6 +79,7 @@ Result<int> run_program(const std::vector<std::string>& argv, const std::filesys
     int status = 0;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR) return fail(fmt::format("waiting for {}: {}", argv[0], std::strerror(errno)));
+    stop_child.forget(); // reaped: its pid may be another process's now
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
