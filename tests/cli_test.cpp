@@ -38,6 +38,22 @@ TEST(Cli, ListPrintsEveryDefaultCombinationOncePerLine) {
     EXPECT_EQ(lines(r.out), expected);
 }
 
+// A user's set is listed like a built-in one, with its loop forms under --all.
+TEST(Cli, ListTakesTheUsersSets) {
+    auto r = run(kdop("list --sets dop22 " + test::data_path("tiny.axes")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(lines(r.out),
+              (std::vector<std::string>{"dop22-clip-n9", "dop22-clip-n5", "dop22-varclip-n9", "dop22-varclip-n5",
+                                        "tiny-clip-n9", "tiny-clip-n5", "tiny-varclip-n9", "tiny-varclip-n5"}));
+    auto all = run(kdop("list --all --sets " + test::data_path("tiny.axes")));
+    ASSERT_EQ(all.exit_code, 0) << all.err;
+    EXPECT_EQ(lines(all.out).size(), 8u);
+    EXPECT_NE(all.out.find("tiny-clip-n9-loop\n"), std::string::npos) << all.out;
+    auto missing = run(kdop("list --sets nowhere.axes"));
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.err.find("nowhere.axes"), std::string::npos) << missing.err;
+}
+
 TEST(Cli, GenWritesGlslHlslCompAndSpvPerVariantAndPrintsATable) {
     test::TempDir dir;
     auto r = run(kdop("gen --out " + (dir / "out").string() + " --sets dop22 " + test::data_path("tiny.axes") +
