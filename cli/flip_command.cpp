@@ -59,14 +59,11 @@ Action add_flip_command(CLI::App& app) {
     return [o, ppd] {
         const bool viewing = !*ppd;
         const double pixels_per_degree = viewing ? kdop::pixels_per_degree(o->viewing) : o->ppd;
-        if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) {
-            std::cerr << (viewing ? fmt::format("--distance {} --display-width {} --display-pixels {}: {}",
-                                                o->viewing.distance_m, o->viewing.display_width_m,
-                                                o->viewing.display_width_px, ok.error().message)
-                                  : fmt::format("--ppd: {}", ok.error().message))
-                      << "\n";
-            return kUsageError;
-        }
+        if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok)
+            return usage_error(viewing ? fmt::format("--distance {} --display-width {} --display-pixels {}: {}",
+                                                     o->viewing.distance_m, o->viewing.display_width_m,
+                                                     o->viewing.display_width_px, ok.error().message)
+                                       : fmt::format("--ppd: {}", ok.error().message));
         bool magma = false;
         if (!o->out.empty()) {
             std::string extension = std::filesystem::path(o->out).extension().string();

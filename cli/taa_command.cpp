@@ -141,13 +141,9 @@ Action add_taa_command(CLI::App& app) {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
-        if (auto ok = check_pixels_per_degree(ppd); !ok) {
-            return usage_error("--ppd: " + ok.error().message);
-        }
+        if (auto ok = check_pixels_per_degree(ppd); !ok) return usage_error("--ppd: " + ok.error().message);
         auto size = size_option("--size", o->size);
-        if (!size) {
-            return usage_error(size.error().message);
-        }
+        if (!size) return usage_error(size.error().message);
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
         // The paper's rows are 3x3 neighborhoods; n5 on request.
