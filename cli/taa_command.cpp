@@ -9,14 +9,18 @@
 #include "magma.h"
 #include "output_set.h"
 #include "progress.h"
+#include "resolve_option.h"
 #include "run_metadata.h"
 #include "scratch_directory.h"
 #include "selection_options.h"
+#include "sequence.h"
 #include "size_option.h"
+#include "staged_images.h"
 #include "statistics.h"
 #include "taa_chart.h"
 #include "taa_measure.h"
 #include "taa_report.h"
+#include "taa_resolve.h"
 #include "taa_scene.h"
 #include "taa_shader.h"
 #include "timing.h"
@@ -31,30 +35,6 @@
 
 namespace kdop::cli {
 namespace {
-
-// The scenes --scenes and --background ask for, in that order.
-Result<std::vector<TaaScene>> selected_scenes(const std::vector<std::string>& names,
-                                              const std::vector<std::string>& backgrounds, Size size,
-                                              std::uint64_t seed, InputSpace space) {
-    std::vector<TaaScene> all = default_taa_scenes(size.first, size.second, seed), out;
-    std::string known;
-    for (const TaaScene& s : all) known += (known.empty() ? "" : ", ") + s.name;
-    if (names.empty() && backgrounds.empty()) return all;
-    for (const std::string& name : names) {
-        auto it = std::find_if(all.begin(), all.end(), [&](const TaaScene& s) { return s.name == name; });
-        if (it == all.end())
-            return fail(fmt::format("--scenes: no scene '{}'; the built-in scenes here: {}", name, known));
-        out.push_back(*it);
-    }
-    for (const std::string& path : backgrounds) {
-        auto scene = read_taa_scene(path, size.first, size.second, space);
-        if (!scene) return std::unexpected(scene.error());
-        if (std::any_of(out.begin(), out.end(), [&](const TaaScene& s) { return s.name == scene->name; }))
-            return fail(fmt::format("--background: {}: a scene is already called '{}'", path, scene->name));
-        out.push_back(std::move(*scene));
-    }
-    return out;
-}
 
 // ghosting-<scene>.png
 std::string trail_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
@@ -95,25 +75,33 @@ Result<void> add_trail_outputs(OutputSet& outputs, const std::string& scene, std
     return {};
 }
 
+std::vector<std::string> sequence_names(const std::vector<SequenceFrames>& sequences) {
+    std::vector<std::string> names;
+    for (const SequenceFrames& s : sequences) names.push_back(s.name());
+    return names;
+}
+
 } // namespace
 
 Action add_taa_command(CLI::App& app) {
     struct Options {
         std::string out, size = "320x180", device;
-        std::vector<std::string> scenes, backgrounds;
+        std::vector<std::string> scenes, backgrounds, sequences;
         SelectionOptions selection;
         std::uint32_t warmup = 100, frames = 100;
         unsigned timing_rounds = 15;
         std::uint64_t seed = 1;
         double ppd = 0;
-        bool validation = false, no_charts = false;
+        bool validation = false, no_charts = false, write_frames = false;
         InputSpace input_space = InputSpace::from_file;
+        ResolveOptions resolve;
     };
     auto o = std::make_shared<Options>();
     CLI::App* taa = app.add_subcommand(
-        "taa", "Run every variant in a small TAA loop on the device over moving objects and measure the ghosting and "
-               "shimmer a viewer sees, in LDR-FLIP, as Ikkala et al. 2024 do (Tables 1 and 2); writes taa.csv (and "
-               "JSON), report.md, selected frames as EXR and PNG and one labeled ghosting picture per scene");
+        "taa", "Run every variant in one TAA resolve on the device over kdop's scenes or your own frame sequences "
+               "and measure the ghosting and shimmer a viewer sees, in LDR-FLIP, as Ikkala et al. 2024 do (Tables 1 "
+               "and 2); writes taa.csv (and JSON), report.md, selected frames as EXR and PNG and one labeled ghosting "
+               "picture per built-in scene");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true);
     taa->add_option("--scenes", o->scenes,
@@ -123,10 +111,20 @@ Action add_taa_command(CLI::App& app) {
         "--background", o->backgrounds,
         "Your own background images (decoded to linear values in [0, 1], see --input-space; tiled or cropped to "
         "--size), one scene each");
+    taa->add_option("--sequence", o->sequences,
+                    "Frame sequences to measure (folders with sequence.json; README \"Frame sequences\"); with "
+                    "--sequence, kdop's own scenes run only if --scenes or --background is given too");
     add_input_space_option(*taa, o->input_space);
+    add_resolve_options(*taa, o->resolve);
+    taa->add_flag("--write-frames", o->write_frames,
+                  "Also write every measured output as EXR, frames/<sequence>/<variant>/NNNN.exr (kdop's scenes: "
+                  "<scene>-shimmer and <scene>-ghosting)");
     taa->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
-    taa->add_option("--warmup", o->warmup, "Frames before measuring [default: 100]")->check(CLI::Range(1u, 100000u));
-    taa->add_option("--frames", o->frames, "Frames measured [default: 100]")->check(CLI::Range(1u, 100000u));
+    taa->add_option("--warmup", o->warmup, "Frames before measuring, in every sequence [default: 100]")
+        ->check(CLI::Range(1u, 100000u));
+    taa->add_option("--frames", o->frames,
+                    "Frames measured in kdop's scenes (a sequence: all after the warmup) [default: 100]")
+        ->check(CLI::Range(1u, 100000u));
     taa->add_option("--ppd", o->ppd,
                     "FLIP's pixels per degree [default: 0.7 m from a 0.7 m wide 3840-pixel display, about 67]");
     taa->add_option("--timing-rounds", o->timing_rounds, "Interleaved dispatches per variant for ms [default: 15]")
@@ -155,19 +153,53 @@ Action add_taa_command(CLI::App& app) {
             if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)
                 return usage_error(fmt::format("--scenes: '{}' is given twice", o->scenes[i]));
         if (auto ok = check_distinct_files(o->backgrounds, "--background"); !ok) return usage_error(ok.error().message);
-        auto scenes = selected_scenes(o->scenes, o->backgrounds, *size, o->seed, o->input_space);
-        if (!scenes) return report_error(scenes.error().message);
+        const bool builtin = o->sequences.empty() || !o->scenes.empty() || !o->backgrounds.empty();
+        std::vector<TaaScene> scenes;
+        if (builtin) {
+            auto selected =
+                select_taa_scenes(o->scenes, o->backgrounds, size->first, size->second, o->seed, o->input_space);
+            if (!selected) return report_error(selected.error().message);
+            scenes = std::move(*selected);
+        }
+        if (auto ok = check_distinct_files(o->sequences, "--sequence"); !ok) return usage_error(ok.error().message);
+        std::vector<SequenceFrames> sequences;
+        for (const std::string& dir : o->sequences) {
+            auto sequence = read_sequence(dir);
+            if (!sequence) return report_error(sequence.error().message);
+            auto taken = [&](const std::string& name) {
+                return std::any_of(scenes.begin(), scenes.end(), [&](const TaaScene& s) { return s.name == name; }) ||
+                       std::any_of(sequences.begin(), sequences.end(),
+                                   [&](const SequenceFrames& s) { return s.name() == name; });
+            };
+            if (taken(sequence->name))
+                return report_error(
+                    fmt::format("--sequence: {}: a scene or sequence is already called '{}'", dir, sequence->name));
+            if (o->warmup >= sequence->frames.size())
+                return report_error(fmt::format("--sequence: {}: {} frames, and --warmup {} leaves none to measure",
+                                                dir, sequence->frames.size(), o->warmup));
+            sequences.emplace_back(std::move(*sequence), o->input_space);
+        }
         auto sources = o->selection.set_sources();
         if (!sources) return report_error(sources.error().message);
         auto catalog = VariantCatalog::create(*sources, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
 
-        std::vector<std::unique_ptr<RunnableVariant>> shaders;
-        for (const VariantSpec& spec : *specs) {
-            auto shader = build_taa_shader(spec);
-            if (!shader) return report_error(shader.error().message);
-            shaders.push_back(std::move(*shader));
-        }
+        // One resolve per variant and depth convention (only --dilate-motion reads depth).
+        std::vector<std::unique_ptr<RunnableVariant>> shaders[2];
+        auto shader_for = [&](std::size_t v, bool nearer_larger) -> Result<const Variant*> {
+            auto& built = shaders[o->resolve.dilate_motion && nearer_larger ? 1 : 0];
+            if (built.empty()) {
+                ResolveOptions options = o->resolve;
+                options.depth_nearer_larger = o->resolve.dilate_motion && nearer_larger;
+                for (const VariantSpec& spec : *specs) {
+                    auto shader = build_taa_shader(spec, options);
+                    if (!shader) return std::unexpected(shader.error());
+                    built.push_back(std::move(*shader));
+                }
+            }
+            return &built[v]->variant();
+        };
+        if (auto first = shader_for(0, false); !first) return report_error(first.error().message);
         std::vector<VariantKey> keys;
         for (const VariantSpec& spec : *specs) keys.push_back(spec.key());
         auto rectifiers = catalog->find_all(keys, o->selection.manifest.empty() ? "--sets" : "--manifest");
@@ -175,47 +207,82 @@ Action add_taa_command(CLI::App& app) {
 
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
-        const auto [width, height] = *size;
+        // The rectification is timed at the frame size of what is measured: --size, or, with
+        // sequences only, the first sequence's.
+        const std::uint32_t width = builtin ? size->first : sequences.front().width();
+        const std::uint32_t height = builtin ? size->second : sequences.front().height();
         const TaaSchedule schedule{o->warmup, o->frames};
         const LdrFlip flip(ppd);
+        StagedImages written_frames;
+        auto write_frame = [&](const std::string& sequence, std::size_t v) {
+            return [&, sequence, v](std::size_t index, const Image& output) -> Result<void> {
+                if (!o->write_frames) return {};
+                return written_frames.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index),
+                                          output);
+            };
+        };
 
         std::vector<TaaRow> rows;
         std::vector<std::string> pictures;
         {
-            Progress progress(fmt::format("TAA of {} variants x {} scenes on {},", specs->size(), scenes->size(),
-                                          (*context)->device_name()),
-                              specs->size() * scenes->size() + o->timing_rounds);
+            Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs->size(),
+                                          scenes.size() + sequences.size(), (*context)->device_name()),
+                              specs->size() * (scenes.size() + sequences.size()) + o->timing_rounds);
             auto timing = bench::time_interleaved(**context, *rectifiers, width, height, o->timing_rounds, progress);
             if (!timing) return report_error(timing.error().message);
-            for (const TaaScene& scene : *scenes) {
+            auto row = [&](std::size_t v, const std::string& scene, double shimmer, double ghosting,
+                           const char* against) {
+                rows.push_back({keys[v], scene, median(timing->ms[v]), quantile(timing->ms[v], 0.25),
+                                quantile(timing->ms[v], 0.75), shimmer, ghosting, against});
+            };
+            for (const TaaScene& scene : scenes) {
                 std::vector<std::shared_ptr<const Image>> trails;
-                std::shared_ptr<const Image> aliased;
+                const std::uint32_t w = scene.background.width, h = scene.background.height;
                 for (std::size_t v = 0; v < specs->size(); ++v) {
-                    auto loop = TaaLoop::create(**context, shaders[v]->variant(), scene.background);
-                    if (!loop) return report_error(loop.error().message);
-                    auto m = measure_taa(**loop, width, height, schedule, flip);
+                    auto resolve = TaaResolve::create(**context, **shader_for(v, false), w, h, o->resolve);
+                    if (!resolve) return report_error(resolve.error().message);
+                    SceneOutputObserver written = [&](const std::string& sequence, std::size_t index,
+                                                      const Image& output) {
+                        return write_frame(sequence, v)(index, output);
+                    };
+                    auto m = measure_scene(**resolve, scene.name, scene.background, schedule, flip, written);
                     if (!m)
                         return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
-                    rows.push_back({keys[v], scene.name, median(timing->ms[v]), quantile(timing->ms[v], 0.25),
-                                    quantile(timing->ms[v], 0.75), m->shimmer, m->ghosting});
+                    row(v, scene.name, m->shimmer, m->ghosting, "aliased");
                     trails.push_back(std::make_shared<const Image>(std::move(m->trail)));
-                    if (v == 0) {
-                        auto reference = (*loop)->render(
-                            frame_state(trail_frame(schedule, width, height), width, height, true, false));
-                        if (!reference) return report_error(reference.error().message);
-                        aliased = std::make_shared<const Image>(std::move(*reference));
-                    }
                     progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
                 }
+                const SceneFrames moving = ghosting_frames(scene.name, scene.background, schedule);
+                auto aliased = moving.frame(trail_frame(schedule, w, h));
+                if (!aliased) return report_error(aliased.error().message);
                 std::vector<double> ghosting;
                 for (std::size_t v = rows.size() - keys.size(); v < rows.size(); ++v)
                     ghosting.push_back(rows[v].ghosting);
-                if (auto ok = add_trail_outputs(*outputs, scene.name, aliased, keys, trails, ghosting, flip, schedule);
+                if (auto ok = add_trail_outputs(*outputs, scene.name,
+                                                std::make_shared<const Image>(std::move(aliased->color)), keys, trails,
+                                                ghosting, flip, schedule);
                     !ok)
                     return report_error(ok.error().message);
                 pictures.push_back(trail_picture_name(scene.name));
             }
+            for (const SequenceFrames& sequence : sequences) {
+                for (std::size_t v = 0; v < specs->size(); ++v) {
+                    auto shader = shader_for(v, sequence.sequence().depth_nearer_larger);
+                    if (!shader) return report_error(shader.error().message);
+                    auto resolve =
+                        TaaResolve::create(**context, **shader, sequence.width(), sequence.height(), o->resolve);
+                    if (!resolve) return report_error(resolve.error().message);
+                    auto m =
+                        measure_sequence(**resolve, sequence, o->warmup, flip, {}, write_frame(sequence.name(), v));
+                    if (!m)
+                        return report_error(
+                            fmt::format("{} on {}: {}", keys[v].name(), sequence.name(), m.error().message));
+                    row(v, sequence.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased");
+                    progress.advance(fmt::format("{} on {}", keys[v].name(), sequence.name()));
+                }
+            }
         }
+        outputs->add(written_frames.writers(outputs->dir()));
         report_validation_messages(**context);
 
         RunMetadata run_info = describe_run(**context);
@@ -234,11 +301,13 @@ Action add_taa_command(CLI::App& app) {
             }
         }
         outputs->add_table("taa", taa_table(rows), run_info);
-        outputs->add("report.md",
-                     taa_report_markdown(rows, run_info, {width, height, o->warmup, o->frames, ppd, pictures, charts}));
+        outputs->add("report.md", taa_report_markdown(rows, run_info,
+                                                      {width, height, o->warmup, o->frames, ppd, pictures, charts,
+                                                       o->resolve, sequence_names(sequences)}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
-        std::cout << fmt::format("kdop taa: {} variants x {} scenes on {} ({}): {}\n", specs->size(), scenes->size(),
-                                 run_info.device, run_info.driver, (outputs->dir() / "report.md").string());
+        std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
+                                 scenes.size() + sequences.size(), run_info.device, run_info.driver,
+                                 (outputs->dir() / "report.md").string());
         return 0;
     };
 }

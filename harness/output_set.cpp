@@ -26,6 +26,10 @@ void OutputSet::add_table(const std::string& stem, const Table& table, const Run
     add(stem + ".json", json.dump(2) + "\n");
 }
 
+void OutputSet::add(std::vector<OutputWriter> writers) {
+    images_.insert(images_.end(), std::make_move_iterator(writers.begin()), std::make_move_iterator(writers.end()));
+}
+
 void OutputSet::add_image(const std::string& name, std::shared_ptr<const Image> image) {
     images_.push_back(image_writer(dir_ / name, std::move(image)));
 }

@@ -26,6 +26,8 @@ public:
     const std::filesystem::path& dir() const { return dir_; }
     void add(const std::string& name, std::string content);
     void add(std::vector<OutputFile> files); // paths already in dir(), e.g. drawn charts
+    // Files another writer makes when the set is written (paths in dir()), e.g. a sequence's frames.
+    void add(std::vector<OutputWriter> writers);
     void add_table(const std::string& stem, const Table& table, const RunMetadata& run);
     // An image at `name` in dir() (subfolders allowed); several names may share one image.
     void add_image(const std::string& name, std::shared_ptr<const Image> image);

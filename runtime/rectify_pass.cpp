@@ -105,6 +105,12 @@ Result<void> RectifyPass::create_buffer(Buffer& b, VkDeviceSize size, VkBufferUs
 
 Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
                                                          TextureFormat format) {
+    return create(context, width, height, format, {"current_frame", "history_frame"});
+}
+
+Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
+                                                         TextureFormat format, std::vector<std::string> inputs) {
+    if (inputs.empty()) return fail("a rectify pass needs at least one input");
     if (width == 0 || height == 0) return fail(fmt::format("cannot rectify an empty {}x{} image", width, height));
     // Checked here rather than left to vkCreateImage, which is undefined (and a validation error)
     // beyond the limit.
@@ -120,13 +126,19 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
 
     const VkImageUsageFlags input_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    for (Texture* t : {&p->current_, &p->history_})
-        if (auto ok = p->create_texture(*t, vk_format(format), input_usage); !ok) return std::unexpected(ok.error());
+    for (std::string& name : inputs) {
+        p->inputs_.push_back({std::move(name), {}});
+        if (auto ok = p->create_texture(p->inputs_.back().texture, vk_format(format), input_usage); !ok)
+            return std::unexpected(ok.error());
+    }
+    const auto input_count = static_cast<uint32_t>(p->inputs_.size());
     if (auto ok =
             p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         !ok)
         return std::unexpected(ok.error());
-    if (auto ok = p->create_buffer(p->upload_, 2 * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT); !ok)
+    if (auto ok =
+            p->create_buffer(p->upload_, input_count * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        !ok)
         return std::unexpected(ok.error());
     if (auto ok = p->create_buffer(p->readback_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT); !ok)
         return std::unexpected(ok.error());
@@ -137,7 +149,7 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &p->sampler_));
 
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, input_count},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool.maxSets = 1;
@@ -186,36 +198,47 @@ Result<double> RectifyPass::submit(Record record) {
 }
 
 Result<void> RectifyPass::upload(const Image& current, const Image& history) {
-    for (const Image* image : {&current, &history})
-        if (image->width != width_ || image->height != height_)
+    if (inputs_.size() != 2) return fail("upload(current, history) on a pass of other inputs");
+    const Image* images[] = {&current, &history};
+    return upload(images);
+}
+
+Result<void> RectifyPass::upload(std::span<const Image* const> images) {
+    if (images.size() != inputs_.size())
+        return fail(fmt::format("{} images for a pass of {} inputs", images.size(), inputs_.size()));
+    for (const Image* image : images)
+        if (image && (image->width != width_ || image->height != height_))
             return fail(fmt::format("image is {}x{}, the pass is {}x{}", image->width, image->height, width_, height_));
     const std::size_t pixels = std::size_t(width_) * height_;
+    const VkDeviceSize bytes_per_image = VkDeviceSize(pixels) * texel_bytes(format_);
     auto* bytes = static_cast<std::byte*>(upload_.mapped);
-    for (const Image* image : {&current, &history}) {
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        if (!images[i]) continue;
+        std::byte* at = bytes + i * bytes_per_image;
         if (format_ == TextureFormat::rgba32f) {
-            std::memcpy(bytes, image->pixels.data(), pixels * 16);
+            std::memcpy(at, images[i]->pixels.data(), pixels * 16);
         } else {
-            auto* halves = reinterpret_cast<std::uint64_t*>(bytes);
-            for (std::size_t i = 0; i < pixels; ++i) halves[i] = glm::packHalf4x16(image->pixels[i]);
+            auto* halves = reinterpret_cast<std::uint64_t*>(at);
+            for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(images[i]->pixels[k]);
         }
-        bytes += pixels * texel_bytes(format_);
     }
     auto copied = submit([&](VkCommandBuffer cb) {
-        VkDeviceSize offset = 0;
-        for (const Texture* t : {&current_, &history_}) {
-            image_barrier(cb, t->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+        for (std::size_t i = 0; i < images.size(); ++i) {
+            if (!images[i]) continue;
+            const Texture& t = inputs_[i].texture;
+            image_barrier(cb, t.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT);
-            VkBufferImageCopy copy = whole_image(width_, height_, offset);
-            vkCmdCopyBufferToImage(cb, upload_.buffer, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-            image_barrier(cb, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+            VkBufferImageCopy copy = whole_image(width_, height_, i * bytes_per_image);
+            vkCmdCopyBufferToImage(cb, upload_.buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+            image_barrier(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-            offset += VkDeviceSize(pixels) * texel_bytes(format_);
         }
     });
     if (!copied) return std::unexpected(copied.error());
-    uploaded_ = true;
+    for (std::size_t i = 0; i < images.size(); ++i)
+        if (images[i]) inputs_[i].uploaded = true;
     return {};
 }
 
@@ -227,7 +250,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
 }
 
 Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<const PushConstantValue> values) {
-    if (!uploaded_) return fail("dispatch before upload");
+
     VkDevice device = context_.device();
 
     KDOP_VK_TRY(vkResetDescriptorPool(device, descriptor_pool_, 0));
@@ -239,21 +262,28 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     VkDescriptorSet set = VK_NULL_HANDLE;
     KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &set));
     // Each binding the registry reports gets the image its name asks for (the names of the
-    // compute-shader template, shader_templates/rectify.comp.in), whatever its binding number.
+    // compute-shader template, shader_templates/rectify.comp.in, or those given to create()),
+    // whatever its binding number.
     const std::size_t count = kernel.bindings().size();
     std::vector<VkDescriptorImageInfo> infos(count);
     std::vector<VkWriteDescriptorSet> writes(count);
     for (std::size_t i = 0; i < count; ++i) {
         const Kernel::Binding& b = kernel.bindings()[i];
-        const Texture* texture = b.name == "current_frame"       ? &current_
-                                 : b.name == "history_frame"     ? &history_
-                                 : b.name == "rectified_history" ? &output_
-                                                                 : nullptr;
+        const auto input =
+            std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.name == b.name; });
+        const Texture* texture = b.name == "rectified_history" ? &output_
+                                 : input != inputs_.end()      ? &input->texture
+                                                               : nullptr;
         const bool storage = b.type == DescriptorType::storage_image;
-        if (!texture || storage != (texture == &output_))
-            return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides (current_frame and "
-                                    "history_frame samplers, rectified_history storage image)",
-                                    kernel.name(), b.binding, b.name, storage ? "storage image" : "sampler"));
+        if (!texture || storage != (texture == &output_)) {
+            std::string provided;
+            for (const Input& in : inputs_) provided += in.name + " ";
+            return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides ({}samplers, "
+                                    "rectified_history storage image)",
+                                    kernel.name(), b.binding, b.name, storage ? "storage image" : "sampler", provided));
+        }
+        if (input != inputs_.end() && !input->uploaded)
+            return fail(fmt::format("{}: dispatch before '{}' was uploaded", kernel.name(), b.name));
         infos[i] = {storage ? VK_NULL_HANDLE : sampler_, texture->view,
                     storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -354,7 +384,8 @@ RectifyPass::~RectifyPass() {
     if (commands_) vkFreeCommandBuffers(device, context_.command_pool(), 1, &commands_);
     vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     vkDestroySampler(device, sampler_, nullptr);
-    for (Texture* t : {&current_, &history_, &output_}) destroy(*t);
+    for (Input& in : inputs_) destroy(in.texture);
+    destroy(output_);
     for (Buffer* b : {&upload_, &readback_}) destroy(*b);
 }
 

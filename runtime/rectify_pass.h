@@ -1,7 +1,9 @@
-// The GPU side of one rectification: current and history textures (rgba32f or rgba16f), an
-// rgba32f output, and the buffers to fill and read them. Created once per image size and input
-// format; any number of kernels can then be dispatched on the uploaded pair, which is what the
-// benchmarks do. rectify() below does the whole round trip for one variant.
+// The GPU side of one rectification: named input textures (rgba32f or rgba16f; by default the
+// current and history frames of shader_templates/rectify.comp.in), an rgba32f output, and the
+// buffers to fill and read them. Created once per image size and input format; any number of
+// kernels can then be dispatched on the uploaded inputs, which is what the benchmarks do. The TAA
+// resolve (temporal/taa_resolve.h) uses the same pass with its color, history, motion and depth.
+// rectify() below does the whole round trip for one variant.
 #pragma once
 
 #include "context.h"
@@ -31,18 +33,25 @@ struct DispatchTiming {
 
 class RectifyPass {
 public:
+    // Inputs current_frame and history_frame.
     static Result<std::unique_ptr<RectifyPass>> create(const Context& context, uint32_t width, uint32_t height,
                                                        TextureFormat format);
+    // Inputs of these names, each a combined image sampler in the kernels dispatched.
+    static Result<std::unique_ptr<RectifyPass>> create(const Context& context, uint32_t width, uint32_t height,
+                                                       TextureFormat format, std::vector<std::string> inputs);
     ~RectifyPass();
     RectifyPass(const RectifyPass&) = delete;
     RectifyPass& operator=(const RectifyPass&) = delete;
 
     // Both images must have the pass's size.
     Result<void> upload(const Image& current, const Image& history);
+    // One image per input, in the order create() named them, each of the pass's size; a null one
+    // is not uploaded, and a kernel that reads an input never uploaded is refused.
+    Result<void> upload(std::span<const Image* const> images);
     // One dispatch of `kernel` over the whole image; `gamma` goes to kernels with a push constant.
     Result<DispatchTiming> dispatch(const Kernel& kernel, float gamma);
-    // The same for any kernel with the pass's bindings (current_frame, history_frame,
-    // rectified_history), a project's own shader included: every push-constant member gets the value
+    // The same for any kernel with the pass's bindings (its inputs and the rectified_history
+    // storage image), a project's own shader included: every push-constant member gets the value
     // of its name, as floats; a missing or extra value is an error.
     struct PushConstantValue {
         std::string name;
@@ -77,14 +86,20 @@ private:
     const Context& context_;
     uint32_t width_ = 0, height_ = 0;
     TextureFormat format_ = TextureFormat::rgba32f;
-    Texture current_, history_, output_;
+    struct Input {
+        std::string name;
+        Texture texture;
+        bool uploaded = false;
+    };
+    std::vector<Input> inputs_;
+    Texture output_;
     Buffer upload_, readback_;
     VkSampler sampler_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     VkCommandBuffer commands_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
-    bool uploaded_ = false, dispatched_ = false;
+    bool dispatched_ = false;
 };
 
 // Loads `variant`, runs it once on the pair and reads the result back.

@@ -137,7 +137,8 @@ Result<Sequence> read_sequence(const fs::path& dir) {
     }
     const Reader reader(path);
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
-    if (auto ok = reader.known_keys(root, {"kdop_sequence", "width", "height", "motion", "frames"}, "the top level");
+    if (auto ok =
+            reader.known_keys(root, {"kdop_sequence", "width", "height", "motion", "depth", "frames"}, "the top level");
         !ok)
         return std::unexpected(ok.error());
     const auto version = root.find("kdop_sequence");
@@ -169,6 +170,14 @@ Result<Sequence> read_sequence(const fs::path& dir) {
             if (!*r) return std::unexpected(r->error());
         s.motion = {MotionConvention::Units(*units), MotionConvention::PointsTo(*points_to),
                     MotionConvention::YAxis(*y_axis)};
+    }
+
+    if (const auto depth = root.find("depth"); depth != root.end()) {
+        if (!depth->is_object()) return std::unexpected(reader.error("depth", "expected an object"));
+        if (auto ok = reader.known_keys(*depth, {"nearer"}, "depth"); !ok) return std::unexpected(ok.error());
+        auto nearer = reader.choice(*depth, "nearer", {"smaller", "larger"}, "depth");
+        if (!nearer) return std::unexpected(nearer.error());
+        s.depth_nearer_larger = *nearer == 1;
     }
 
     const auto frames = root.find("frames");

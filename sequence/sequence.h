@@ -4,6 +4,7 @@
 //
 //     {"kdop_sequence": 1, "width": 320, "height": 180,
 //      "motion": {"units": "pixels", "points_to": "previous", "y_axis": "down"},
+//      "depth": {"nearer": "smaller"},
 //      "frames": [{"color": "color/0000.exr", "motion": "motion/0000.exr", "jitter": [0.12, -0.31],
 //                  "depth": "depth/0000.exr", "reference": "reference/0000.exr", "camera_cut": false}]}
 //
@@ -55,6 +56,9 @@ struct Sequence {
     std::string name; // the folder's name, for tables
     std::uint32_t width = 0, height = 0;
     MotionConvention motion;
+    // "depth": {"nearer": "smaller" | "larger"}: which way depth files count (larger: reversed Z,
+    // as Unreal writes it). Only --dilate-motion reads depth.
+    bool depth_nearer_larger = false;
     std::vector<SequenceFrame> frames; // paths joined to dir
 
     // Whether frame `index` starts without a history: the first frame and every camera cut.

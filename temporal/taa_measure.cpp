@@ -44,55 +44,114 @@ TrailCrop trail_crop(const TaaSchedule& schedule, std::uint32_t width, std::uint
     return crop;
 }
 
-Result<TaaMeasurement> measure_taa(TaaLoop& loop, std::uint32_t width, std::uint32_t height,
-                                   const TaaSchedule& schedule, const LdrFlip& flip,
-                                   const std::function<void()>& on_frame) {
-    TaaMeasurement m;
-    const std::uint32_t end = schedule.warmup + schedule.frames;
+namespace {
 
-    // Shimmer: jitter on, no animation; frame `warmup - 1` is the first one compared against.
-    loop.restart();
+// Refuses a color outside LDR-FLIP's range, naming where it is.
+Result<void> check_ldr(const Image& image, const std::string& label, std::string_view what) {
+    for (std::uint32_t y = 0; y < image.height; ++y)
+        for (std::uint32_t x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float v = image.at(x, y)[c];
+                if (!(v >= 0.0f && v <= 1.0f))
+                    return fail(fmt::format("{}: {} pixel ({}, {}) has {} {}, outside [0, 1]; ghosting and shimmer "
+                                            "are measured in LDR-FLIP, which takes linear values from 0 to 1, so an "
+                                            "HDR sequence must be tone-mapped first (kdop does not clamp it)",
+                                            label, what, x, y, "RGB"[c], v));
+            }
+    return {};
+}
+
+} // namespace
+
+Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
+                                             const LdrFlip& flip, TaaMetrics metrics, const OutputObserver& on_output,
+                                             const std::function<void()>& on_frame) {
+    const std::size_t count = source.frame_count();
+    if (warmup >= count)
+        return fail(
+            fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
+    SequenceMeasurement m;
+    m.against_reference = source.has_reference();
     Image previous;
-    double shimmer_sum = 0;
-    for (std::uint32_t f = 0; f < end; ++f) {
-        auto frame = loop.advance(frame_state(f, width, height, false, true));
+    double shimmer_sum = 0, ghosting_sum = 0;
+    std::size_t shimmer_pairs = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        auto frame = source.frame(i);
         if (!frame) return std::unexpected(frame.error());
-        if (f + 1 >= schedule.warmup) {
-            auto current = within_unit_range(**frame, "shimmer sequence");
+        const std::string label = source.frame_label(i);
+        if (auto ok = check_ldr(frame->color, label, "color"); !ok) return std::unexpected(ok.error());
+        if (frame->reference.has_value() != m.against_reference)
+            return fail(fmt::format("{}: {} a reference, unlike the sequence's others; give every frame a reference "
+                                    "or none",
+                                    label, m.against_reference ? "has no" : "has"));
+        auto output = resolve.advance(*frame, source.starts_history(i));
+        if (!output) return std::unexpected(output.error());
+        if (i + 1 >= warmup) {
+            auto current = within_unit_range(**output, label);
             if (!current) return std::unexpected(current.error());
-            if (f >= schedule.warmup) {
-                auto d = flip.mean(previous, *current);
-                if (!d) return std::unexpected(d.error());
-                shimmer_sum += *d;
+            if (i >= warmup) {
+                const Image* truth = &frame->color;
+                if (m.against_reference) {
+                    if (auto ok = check_ldr(*frame->reference, label, "reference"); !ok)
+                        return std::unexpected(ok.error());
+                    truth = &*frame->reference;
+                }
+                if (metrics.ghosting) {
+                    auto ghosting = flip.mean(*truth, *current);
+                    if (!ghosting) return std::unexpected(ghosting.error());
+                    ghosting_sum += *ghosting;
+                }
+                if (metrics.shimmer && !source.starts_history(i)) {
+                    auto shimmer = flip.mean(previous, *current);
+                    if (!shimmer) return std::unexpected(shimmer.error());
+                    shimmer_sum += *shimmer;
+                    ++shimmer_pairs;
+                }
+                ++m.frames;
+                if (on_output)
+                    if (auto ok = on_output(i, *current); !ok) return std::unexpected(ok.error());
             }
             previous = std::move(*current);
         }
         if (on_frame) on_frame();
     }
+    m.ghosting = ghosting_sum / double(m.frames);
+    m.shimmer = shimmer_pairs ? shimmer_sum / double(shimmer_pairs) : 0.0;
+    return m;
+}
 
-    // Ghosting: jitter off, animation on, each frame against the aliased frame of the same instant.
-    loop.restart();
-    const std::uint32_t shown = trail_frame(schedule, width, height);
-    double ghosting_sum = 0;
-    for (std::uint32_t f = 0; f < end; ++f) {
-        const FrameState state = frame_state(f, width, height, true, false);
-        auto frame = loop.advance(state);
-        if (!frame) return std::unexpected(frame.error());
-        if (f >= schedule.warmup) {
-            auto result = within_unit_range(**frame, "ghosting sequence");
-            auto reference = loop.render(state);
-            if (!reference) return std::unexpected(reference.error());
-            auto aliased = within_unit_range(*reference, "aliased frame");
-            if (!result || !aliased) return std::unexpected(result ? aliased.error() : result.error());
-            auto d = flip.mean(*aliased, *result);
-            if (!d) return std::unexpected(d.error());
-            ghosting_sum += *d;
-            if (f == shown) m.trail = std::move(*result);
-        }
-        if (on_frame) on_frame();
-    }
-    m.shimmer = shimmer_sum / schedule.frames;
-    m.ghosting = ghosting_sum / schedule.frames;
+SceneFrames shimmer_frames(const std::string& name, const Image& background, const TaaSchedule& schedule) {
+    return SceneFrames(name + "-shimmer", background, schedule.warmup + schedule.frames, false, true);
+}
+
+SceneFrames ghosting_frames(const std::string& name, const Image& background, const TaaSchedule& schedule) {
+    return SceneFrames(name + "-ghosting", background, schedule.warmup + schedule.frames, true, false);
+}
+
+Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const std::string& name, const Image& background,
+                                     const TaaSchedule& schedule, const LdrFlip& flip,
+                                     const SceneOutputObserver& on_output, const std::function<void()>& on_frame) {
+    TaaMeasurement m;
+    const SceneFrames still = shimmer_frames(name, background, schedule);
+    auto pass_on = [&](const FrameSource& source) -> OutputObserver {
+        if (!on_output) return {};
+        return [&](std::size_t index, const Image& output) { return on_output(source.name(), index, output); };
+    };
+    auto shimmer = measure_sequence(resolve, still, schedule.warmup, flip, {.shimmer = true, .ghosting = false},
+                                    pass_on(still), on_frame);
+    if (!shimmer) return std::unexpected(shimmer.error());
+    const SceneFrames moving = ghosting_frames(name, background, schedule);
+    const std::uint32_t shown = trail_frame(schedule, background.width, background.height);
+    const OutputObserver also_written = pass_on(moving);
+    auto keep_trail = [&](std::size_t index, const Image& output) -> Result<void> {
+        if (index == shown) m.trail = output;
+        return also_written ? also_written(index, output) : Result<void>{};
+    };
+    auto ghosting = measure_sequence(resolve, moving, schedule.warmup, flip, {.shimmer = false, .ghosting = true},
+                                     keep_trail, on_frame);
+    if (!ghosting) return std::unexpected(ghosting.error());
+    m.shimmer = shimmer->shimmer;
+    m.ghosting = ghosting->ghosting;
     return m;
 }
 

@@ -1,17 +1,22 @@
-// Shimmer and ghosting of one TAA frame shader on one scene, as Ikkala et al. 2024 measure them
-// (Sec. 4), in LDR-FLIP (flip/flip.h):
-//   shimmer:  jitter on, no animation; after `warmup` frames, the mean FLIP between each frame and
-//             the one before it, over `frames` frames. Only the loop's rejection of valid history
-//             makes successive frames differ, so this is the temporal instability clipping causes.
-//   ghosting: jitter off, animation on; after `warmup` frames, the mean FLIP between each frame
-//             and the aliased frame of the same instant (TaaLoop::render), over `frames` frames.
-//             With jitter off the loop no longer antialiases, so what is left is the ghosting.
+// Shimmer and ghosting of one TAA resolve over one frame source, as Ikkala et al. 2024 measure them
+// (Sec. 4), in LDR-FLIP (flip/flip.h). After `warmup` frames, so the history is full:
+//   ghosting: the mean FLIP between each output and its frame's reference, or, where the source has
+//             none, the frame's own color: the aliased frame a renderer without TAA shows, which
+//             is the paper's ground truth for jitter-off sequences (with jitter off the resolve no
+//             longer antialiases, so what differs is the ghosting).
+//   shimmer:  the mean FLIP between successive outputs (none across a camera cut). On a still,
+//             jittered sequence only the resolve's rejection of valid history makes successive
+//             outputs differ, so this is the temporal instability clipping causes.
+// kdop's own scenes are measured as the paper does: shimmer on a still, jittered sequence and
+// ghosting on a moving one without jitter (measure_scene below); a captured sequence gives both.
 #pragma once
 
 #include "flip.h"
+#include "frame_source.h"
 #include "image.h"
 #include "result.h"
-#include "taa_loop.h"
+#include "taa_resolve.h"
+#include "taa_scene.h"
 #include "trail_picture.h"
 
 #include <cstdint>
@@ -19,16 +24,54 @@
 
 namespace kdop {
 
+struct SequenceMeasurement {
+    double shimmer = 0, ghosting = 0;
+    bool against_reference = false; // ghosting against the frames' references, not their own color
+    std::size_t frames = 0;         // frames measured
+};
+
+// Called with each measured frame's index and output; an error stops the measurement.
+using OutputObserver = std::function<Result<void>(std::size_t index, const Image& output)>;
+
+// Which figures to compute: each costs one FLIP per measured frame.
+struct TaaMetrics {
+    bool shimmer = true, ghosting = true;
+};
+
+// Resolves every frame of `source` on `resolve`, measuring after `warmup`. Frames and references
+// must lie in [0, 1] (LDR-FLIP's range): a value outside is refused, naming the frame, the pixel
+// and the value, never clamped. `on_frame` is called after each frame, measured or not.
+Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
+                                             const LdrFlip& flip, TaaMetrics metrics = {},
+                                             const OutputObserver& on_output = {},
+                                             const std::function<void()>& on_frame = {});
+
 struct TaaSchedule {
     std::uint32_t warmup = 100; // frames before measuring, so the history is full
     std::uint32_t frames = 100; // frames measured
 };
+
+// kdop's own scene `name` on `background`, as `kdop scene` writes it: the still, jittered sequence
+// of shimmer and the moving, unjittered one of ghosting, each warmup + frames long.
+SceneFrames shimmer_frames(const std::string& name, const Image& background, const TaaSchedule& schedule);
+SceneFrames ghosting_frames(const std::string& name, const Image& background, const TaaSchedule& schedule);
 
 struct TaaMeasurement {
     double shimmer = 0, ghosting = 0;
     // The ghosting sequence's frame trail_frame(schedule): where a trail is longest.
     Image trail;
 };
+
+// Called with the sequence's name (shimmer_frames' or ghosting_frames'), a measured frame's index
+// and its output.
+using SceneOutputObserver =
+    std::function<Result<void>(const std::string& sequence, std::size_t index, const Image& output)>;
+
+// Both of a scene's sequences on `resolve`.
+Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const std::string& name, const Image& background,
+                                     const TaaSchedule& schedule, const LdrFlip& flip,
+                                     const SceneOutputObserver& on_output = {},
+                                     const std::function<void()>& on_frame = {});
 
 // Which frame of the ghosting sequence the pictures show: of the measured frames, the one where
 // the red box moves fastest, so its trail is longest.
@@ -38,14 +81,9 @@ std::uint32_t trail_frame(const TaaSchedule& schedule, std::uint32_t width, std:
 // shifted toward where it came from, so its trail is in view.
 TrailCrop trail_crop(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height);
 
-// Runs both sequences on `loop` (2 x (warmup + frames) + 1 frames); `on_frame` is called after each.
-Result<TaaMeasurement> measure_taa(TaaLoop& loop, std::uint32_t width, std::uint32_t height,
-                                   const TaaSchedule& schedule, const LdrFlip& flip,
-                                   const std::function<void()>& on_frame = {});
-
-// `frame` ready for LDR-FLIP and PNG: the loop's blends and clips land on segments between colors
-// in [0, 1], so anything beyond it is float rounding; values within 1e-4 outside are moved onto the
-// range, and anything further (a bug, not rounding) is an error naming the pixel.
+// `frame` ready for LDR-FLIP and PNG: the resolve's blends and clips land on segments between
+// colors in [0, 1], so anything beyond it is float rounding; values within 1e-4 outside are moved
+// onto the range, and anything further (a bug, not rounding) is an error naming the pixel.
 Result<Image> within_unit_range(const Image& frame, std::string_view what);
 
 } // namespace kdop

@@ -1,9 +1,9 @@
 #include "taa_report.h"
 
-#include "taa_loop.h"
 #include "variant_columns.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <map>
@@ -109,33 +109,41 @@ Table taa_table(const std::vector<TaaRow>& rows) {
                    {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3, "median"),
                     Column("ms_q1", "ms", Shown::fixed, 3, "Q1"), Column("ms_q3", "ms", Shown::fixed, 3, "Q3"),
                     Column("ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"),
-                    Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4)}));
+                    Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4),
+                    Column("ghosting_against", "", Shown::text, 0, "aliased: each frame's own color")}));
     for (const TaaRow& r : rows)
         t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.ms_q1), maybe(r.ms_q3),
                                              std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value(),
-                                             maybe(r.shimmer), maybe(r.ghosting)}));
+                                             maybe(r.shimmer), maybe(r.ghosting), r.ghosting_against}));
     return t;
 }
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run, const TaaReportSettings& s) {
     std::string md = "# kdop taa: ghosting and shimmer over TAA sequences\n\n";
     md += fmt::format(
-        "Each variant rectifies the history of a small TAA loop on the device ({}x{} frames; current-frame "
-        "weight {}; variance clips at gamma {}), as in Ikkala et al. 2024, Sec. 4, in LDR-FLIP at {:.1f} "
-        "pixels per degree:\n\n"
+        "Each variant rectifies the history of one TAA resolve on the device ({}x{} frames; {}), as in Ikkala et "
+        "al. 2024, Sec. 4, in LDR-FLIP at {:.1f} pixels per degree. kdop's own scenes are measured on two "
+        "sequences each, as the paper does:\n\n"
         "- **shimmer**: jitter on (R2, 10 entries), no animation; after {} frames, the mean FLIP between "
         "successive frames over {} frames;\n"
         "- **ghosting**: jitter off, animation on; after {} frames, the mean FLIP against the aliased frame of "
         "the same instant over {} frames;\n"
-        "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the loop, "
-        "which renders the scene too), with its quartiles Q1 and Q3 over the interleaved rounds; a variant whose "
-        "median is within the larger interquartile range of its own and the fastest variant's is *within noise* "
-        "of the fastest: that difference is not to be believed.\n\n",
-        s.width, s.height, kCurrentWeight, kVarianceGamma, s.pixels_per_degree, s.warmup, s.frames, s.warmup, s.frames);
+        "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the "
+        "resolve's reprojection and blend), with its quartiles Q1 and Q3 over the interleaved rounds; a variant "
+        "whose median is within the larger interquartile range of its own and the fastest variant's is *within "
+        "noise* of the fastest: that difference is not to be believed.\n\n",
+        s.width, s.height, describe(s.resolve), s.pixels_per_degree, s.warmup, s.frames, s.warmup, s.frames);
+    if (!s.sequences.empty())
+        md += fmt::format("Sequences given with --sequence ({}) are measured once each, after {} frames, over all "
+                          "the frames that follow: ghosting against each frame's reference where the sequence has "
+                          "them (ghosting_against = reference), else against its own color; shimmer between "
+                          "successive outputs, none across a camera cut.\n\n",
+                          fmt::join(s.sequences, ", "), s.warmup);
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-    const std::vector<std::string> shown{"variant", "ms", "ms_q1", "ms_q3", "ms_noise", "shimmer", "ghosting"};
+    const std::vector<std::string> shown{"variant",  "ms",      "ms_q1",    "ms_q3",
+                                         "ms_noise", "shimmer", "ghosting", "ghosting_against"};
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<TaaRow> in_scene;
         std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),

@@ -3,6 +3,7 @@
 // Ikkala et al. 2024 with each method's rank, so the orderings can be compared at a glance.
 #pragma once
 
+#include "resolve_options.h"
 #include "run_metadata.h"
 #include "table.h"
 #include "variant_key.h"
@@ -19,6 +20,9 @@ struct TaaRow {
     // The lavapipe time of the variant's rectification pass at the frame size: median and quartiles.
     double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
     double shimmer = NAN, ghosting = NAN;
+    // What the ghosting was measured against: "aliased" (each frame's own color, the paper's
+    // ground truth with jitter off) or "reference" (the sequence's reference frames).
+    std::string ghosting_against = "aliased";
 };
 
 // Whether `row`'s time differs from the fastest row's by no more than the larger interquartile
@@ -32,6 +36,9 @@ struct TaaReportSettings {
     double pixels_per_degree = 0;
     std::vector<std::string> pictures; // per scene, relative to the report
     std::vector<std::string> charts;   // per scene, cost against ghosting and shimmer; empty: none drawn
+    ResolveOptions resolve;
+    // The sequences measured (`kdop taa --sequence`), by name, beside kdop's own scenes.
+    std::vector<std::string> sequences;
 };
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,

@@ -5,6 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -22,6 +26,38 @@ glm::vec2 car_center(double t, glm::vec2 frame) {
 glm::vec2 shadow_center(double t, glm::vec2 frame) {
     const double phase = 2 * std::numbers::pi * t / kShadowPeriod + 1.0;
     return {frame.x * (0.5 - 0.32 * std::sin(phase)), frame.y * (0.3 + 0.12 * std::cos(phase))};
+}
+
+constexpr float kTexelsPerPixel = 1.25f;
+const glm::vec3 kCarColor(0.62f, 0.018f, 0.012f); // linear; a saturated red
+const glm::vec3 kShadowColor(0.012f, 0.011f, 0.010f);
+constexpr float kCarDepth = 0.5f, kGroundDepth = 1.0f;
+
+glm::vec3 texel(const Image& background, glm::ivec2 t) {
+    const int w = int(background.width), h = int(background.height);
+    return glm::vec3(background.at(std::uint32_t(((t.x % w) + w) % w), std::uint32_t(((t.y % h) + h) % h)));
+}
+
+// The background at pixel coordinates x: repeated, minified, bilinear.
+glm::vec3 background_at(const Image& background, glm::vec2 x) {
+    const glm::vec2 t = x * kTexelsPerPixel - 0.5f, f = t - glm::floor(t);
+    const glm::ivec2 i(glm::floor(t));
+    return glm::mix(glm::mix(texel(background, i), texel(background, i + glm::ivec2(1, 0)), f.x),
+                    glm::mix(texel(background, i + glm::ivec2(0, 1)), texel(background, i + glm::ivec2(1, 1)), f.x),
+                    f.y);
+}
+
+bool inside_car(glm::vec2 x, const FrameState& s, glm::vec2 frame) {
+    const float angle = 0.2f;
+    const glm::vec2 d = x - s.car_center;
+    const glm::vec2 local(std::cos(angle) * d.x + std::sin(angle) * d.y,
+                          -std::sin(angle) * d.x + std::cos(angle) * d.y);
+    return std::abs(local.x) < 0.14f * frame.x && std::abs(local.y) < 0.07f * frame.x;
+}
+
+bool inside_shadow(glm::vec2 x, const FrameState& s, glm::vec2 frame) {
+    const glm::vec2 d = (x - s.shadow_center) / (glm::vec2(0.09f, 0.05f) * frame.x);
+    return glm::dot(d, d) < 1.0f;
 }
 
 // The image repeated (or cropped) to width x height.
@@ -62,6 +98,29 @@ Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, st
     return TaaScene{std::filesystem::path(path).stem().string(), tiled(*image, width, height)};
 }
 
+Result<std::vector<TaaScene>> select_taa_scenes(const std::vector<std::string>& names,
+                                                const std::vector<std::string>& backgrounds, std::uint32_t width,
+                                                std::uint32_t height, std::uint64_t seed, InputSpace space) {
+    std::vector<TaaScene> all = default_taa_scenes(width, height, seed), out;
+    std::string known;
+    for (const TaaScene& s : all) known += (known.empty() ? "" : ", ") + s.name;
+    if (names.empty() && backgrounds.empty()) return all;
+    for (const std::string& name : names) {
+        auto it = std::find_if(all.begin(), all.end(), [&](const TaaScene& s) { return s.name == name; });
+        if (it == all.end())
+            return fail(fmt::format("--scenes: no scene '{}'; the built-in scenes here: {}", name, known));
+        out.push_back(*it);
+    }
+    for (const std::string& path : backgrounds) {
+        auto scene = read_taa_scene(path, width, height, space);
+        if (!scene) return std::unexpected(scene.error());
+        if (std::any_of(out.begin(), out.end(), [&](const TaaScene& s) { return s.name == scene->name; }))
+            return fail(fmt::format("--background: {}: a scene is already called '{}'", path, scene->name));
+        out.push_back(std::move(*scene));
+    }
+    return out;
+}
+
 glm::vec2 r2_jitter(std::uint32_t index) {
     // R2: the plastic number g solves g^3 = g + 1; entry n is frac(0.5 + n * (1/g, 1/g^2)).
     constexpr double g = 1.32471795724474602596;
@@ -69,6 +128,43 @@ glm::vec2 r2_jitter(std::uint32_t index) {
     const double x = 0.5 + n / g, y = 0.5 + n / (g * g);
     return {float(x - std::floor(x) - 0.5), float(y - std::floor(y) - 0.5)};
 }
+
+LoadedFrame render_scene(const Image& background, const FrameState& s) {
+    const std::uint32_t width = background.width, height = background.height;
+    const glm::vec2 frame{float(width), float(height)};
+    LoadedFrame out;
+    out.color = Image(width, height);
+    out.depth = Image(width, height, glm::vec4(kGroundDepth, 0, 0, 1));
+    out.motion.assign(std::size_t(width) * height, glm::vec2(0));
+    for (std::uint32_t y = 0; y < height; ++y)
+        for (std::uint32_t x = 0; x < width; ++x) {
+            const glm::vec2 at = glm::vec2(float(x), float(y)) + 0.5f + s.jitter;
+            const std::size_t i = std::size_t(y) * width + x;
+            glm::vec3 color = background_at(background, at);
+            // A surface that moved by m since last frame was at x - m.
+            if (inside_car(at, s, frame)) {
+                color = kCarColor;
+                out.motion[i] = -s.car_motion;
+                out.depth->pixels[i].r = kCarDepth;
+            } else if (inside_shadow(at, s, frame)) {
+                color = kShadowColor;
+                out.motion[i] = -s.shadow_motion;
+            }
+            out.color.pixels[i] = glm::vec4(color, 1);
+        }
+    return out;
+}
+
+FrameState SceneFrames::state(std::size_t index) const {
+    return frame_state(std::uint32_t(index), background_.width, background_.height, animate_, jitter_);
+}
+
+std::optional<glm::vec2> SceneFrames::jitter(std::size_t index) const {
+    if (!jitter_) return std::nullopt;
+    return state(index).jitter;
+}
+
+std::string SceneFrames::frame_label(std::size_t index) const { return fmt::format("{}, frame {}", name_, index); }
 
 FrameState frame_state(std::uint32_t frame, std::uint32_t width, std::uint32_t height, bool animate, bool jitter) {
     const glm::vec2 size(width, height);

@@ -1,6 +1,13 @@
-// The content of `kdop taa`: a scene is a background image under two moving objects (a red box and
-// a dark ellipse, drawn by shader_templates/taa_frame.comp.in); this file says where they are on
-// each frame and where the camera's sample falls in each pixel.
+// kdop's own content: a scene is a background image under two moving objects (a red box and a dark
+// ellipse); this file says where they are on each frame, where the camera's sample falls in each
+// pixel, and draws the frames a renderer would give the resolve (color, motion, depth), in memory,
+// as a frame source (sequence/frame_source.h) that `kdop taa` measures and `kdop scene` writes.
+//
+// The picture: the background repeated and minified by 1.25 texels per pixel, bilinear, without
+// mipmaps (so its detail aliases and shimmers under jitter, as distant grass does), under two
+// objects with hard, point-sampled edges: a saturated red box (the paper's red car), rotated by
+// 0.2 rad so its edges alias on every row, and a near-black ellipse (a shadow or a tire, the
+// paper's limitations case). One sample per pixel, at the pixel center plus the jitter.
 //
 // Animation: each object swings on a sine path, so it never jumps (a jump would be a disocclusion
 // no motion vector describes) and the measured frames see it at every speed from rest to about
@@ -8,6 +15,7 @@
 // 2018), 10 entries, as in Ikkala et al. 2024, centered on the pixel.
 #pragma once
 
+#include "frame_source.h"
 #include "image.h"
 #include "image_io.h"
 #include "result.h"
@@ -34,6 +42,12 @@ std::vector<TaaScene> default_taa_scenes(std::uint32_t width, std::uint32_t heig
 Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
                                 InputSpace space = InputSpace::from_file);
 
+// The scenes `names` asks for (built-in, by name), then one per image in `backgrounds`, in that
+// order; both empty: every built-in scene. Errors name the option (--scenes, --background).
+Result<std::vector<TaaScene>> select_taa_scenes(const std::vector<std::string>& names,
+                                                const std::vector<std::string>& backgrounds, std::uint32_t width,
+                                                std::uint32_t height, std::uint64_t seed, InputSpace space);
+
 struct FrameState {
     glm::vec2 jitter{0};                    // sample offset from the pixel center, pixels
     glm::vec2 car_center{0}, car_motion{0}; // pixels; motion since the previous frame
@@ -46,5 +60,35 @@ FrameState frame_state(std::uint32_t frame, std::uint32_t width, std::uint32_t h
 
 // Entry `index` (mod 10) of the R2 jitter, in (-0.5, 0.5) pixels.
 glm::vec2 r2_jitter(std::uint32_t index);
+
+// The frame at `state`: color at each pixel's sample; motion of the surface seen there, pointing
+// to where it was last frame; depth 0.5 on the box, 1 on the ground (the ellipse lies on it).
+LoadedFrame render_scene(const Image& background, const FrameState& state);
+
+// Frames 0 to `count` - 1 of `scene`, as frame_state() places them.
+class SceneFrames final : public FrameSource {
+public:
+    SceneFrames(std::string name, Image background, std::size_t count, bool animate, bool jitter)
+        : name_(std::move(name)), background_(std::move(background)), count_(count), animate_(animate),
+          jitter_(jitter) {}
+    FrameState state(std::size_t index) const;
+
+    const std::string& name() const override { return name_; }
+    std::uint32_t width() const override { return background_.width; }
+    std::uint32_t height() const override { return background_.height; }
+    std::size_t frame_count() const override { return count_; }
+    bool starts_history(std::size_t index) const override { return index == 0; }
+    std::optional<glm::vec2> jitter(std::size_t index) const override;
+    bool has_depth() const override { return true; }
+    bool has_reference() const override { return false; }
+    Result<LoadedFrame> frame(std::size_t index) const override { return render_scene(background_, state(index)); }
+    std::string frame_label(std::size_t index) const override;
+
+private:
+    std::string name_;
+    Image background_;
+    std::size_t count_;
+    bool animate_, jitter_;
+};
 
 } // namespace kdop

@@ -10,11 +10,22 @@
 namespace kdop {
 namespace {
 
-constexpr std::string_view kTemplate = "shader_templates/taa_frame.comp.in";
+constexpr std::string_view kTemplate = "shader_templates/taa_resolve.comp.in";
+
+// The defines the template's resolve_options.glsl stands for.
+std::string option_defines(const ResolveOptions& o) {
+    const int map = o.color_map.kind == ColorMap::Kind::power ? 1 : o.color_map.kind == ColorMap::Kind::log ? 2 : 0;
+    // The exponent with every digit a float has, so the shader's constant is the option's value.
+    return fmt::format("#define KDOP_HISTORY_FILTER {}\n#define KDOP_COLOR_MAP {}\n#define KDOP_MAP_EXPONENT {:.9g}\n"
+                       "#define KDOP_DILATE_MOTION {}\n#define KDOP_DEPTH_NEARER_LARGER {}\n",
+                       o.history_filter == HistoryFilter::catmull_rom ? 1 : 0, map, o.color_map.exponent,
+                       o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0);
+}
 
 } // namespace
 
-Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name) {
+Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name,
+                                                          const ResolveOptions& options) {
     auto source = find_embedded_file(kTemplate);
     if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
     BuiltVariant built;
@@ -22,9 +33,12 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view recti
     built.name = name;
     built.compute_glsl = std::string(*source);
     const std::string file = name + ".comp";
+    const std::string defines = option_defines(options);
     IncludeResolver resolve = [&](std::string_view header, std::string_view) -> std::optional<IncludedSource> {
-        if (header != "rectification.glsl") return std::nullopt;
-        return IncludedSource{name + "/rectification.glsl", std::string(rectification)};
+        if (header == "rectification.glsl")
+            return IncludedSource{name + "/rectification.glsl", std::string(rectification)};
+        if (header == "resolve_options.glsl") return IncludedSource{name + "/resolve_options.glsl", defines};
+        return std::nullopt;
     };
     auto compiled = compile_glsl_compute(built.compute_glsl, file, TargetEnv::vulkan1_0, resolve);
     if (auto ok = compile_into(built, built.compute_glsl, file, TargetEnv::vulkan1_0, std::move(compiled)); !ok)
@@ -32,10 +46,10 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view recti
     return std::make_unique<RunnableVariant>(std::move(built));
 }
 
-Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spec) {
+Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spec, const ResolveOptions& options) {
     if (spec.mode != Mode::clip && spec.mode != Mode::varclip)
-        return fail(fmt::format("{}: the TAA loop takes clip and varclip variants", variant_name(spec)));
-    // The variant's function as a renderer includes it, and the one signature the frame shader calls.
+        return fail(fmt::format("{}: the TAA resolve takes clip and varclip variants", variant_name(spec)));
+    // The variant's function as a renderer includes it, and the one signature the resolve calls.
     const int count = spec.neighborhood == Neighborhood::n9 ? 9 : 5;
     const std::string gamma = spec.mode == Mode::varclip ? "gamma, " : "";
     const std::string rectification =
@@ -43,7 +57,7 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spe
                     "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[{0}])\n"
                     "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
                     count, emit_function(spec), glsl_function_name(spec), gamma);
-    return build_taa_shader(rectification, "taa-" + variant_name(spec));
+    return build_taa_shader(rectification, "taa-" + variant_name(spec), options);
 }
 
 } // namespace kdop

@@ -1,10 +1,12 @@
-// The TAA frame shader of `kdop taa` (shader_templates/taa_frame.comp.in) around one
-// rectification: the includable function of a clip variant, exactly as kdop generates it for a
-// renderer, or any function a test supplies (one that returns the current color, say). Built
-// in-process like a project's own shader (generator/project_shader.h): compiled by glslang,
-// validated, optimized and reflected, loaded by the runtime as any variant.
+// The TAA resolve of `kdop taa` (shader_templates/taa_resolve.comp.in) around one rectification:
+// the includable function of a clip variant, exactly as kdop generates it for a renderer, or any
+// function a test supplies (one that returns the current color, say), and one set of resolve
+// options, as compile-time defines. Built in-process like a project's own shader
+// (generator/project_shader.h): compiled by glslang, validated, optimized and reflected, loaded by
+// the runtime as any variant.
 #pragma once
 
+#include "resolve_options.h"
 #include "result.h"
 #include "runnable_variant.h"
 #include "variant_spec.h"
@@ -15,12 +17,13 @@
 
 namespace kdop {
 
-// The shader for `spec` (a clip or variance clip), named "taa-<variant>".
-Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spec);
+// The resolve for `spec` (a clip or variance clip), named "taa-<variant>".
+Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spec, const ResolveOptions& options = {});
 
-// The shader around `rectification`: GLSL that defines KDOP_NEIGHBORS (9 or 5) and
+// The resolve around `rectification`: GLSL that defines KDOP_NEIGHBORS (9 or 5) and
 //   vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[KDOP_NEIGHBORS])
 // Messages name `name`.
-Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name);
+Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name,
+                                                          const ResolveOptions& options = {});
 
 } // namespace kdop

@@ -1,13 +1,14 @@
-// The temporal evaluation (temporal/, `kdop taa`): the scene's animation and jitter, the TAA loop on
-// lavapipe against a CPU reference of the frame shader, the properties the metrics rest on (no
-// ghosting or shimmer where nothing moves or jitters, none for a loop that keeps no history) and
-// the paper's central ordering, then the command's outputs and its refusals.
+// The temporal evaluation (temporal/, `kdop taa`): the scene's animation, jitter and frames, the
+// resolve over them on lavapipe (determinism, none ghosting for a resolve that keeps no history)
+// and the paper's central ordering, then the command's outputs and its refusals. The resolve's
+// options against a CPU restatement, and sequences on disk: tests/sequence_resolve_test.cpp.
 #include "cpu_clip.h"
 #include "flip.h"
 #include "gpu_support.h"
 #include "image_io.h"
 #include "taa_measure.h"
 #include "taa_report.h"
+#include "taa_resolve.h"
 #include "taa_scene.h"
 #include "taa_shader.h"
 #include "test_support.h"
@@ -138,65 +139,28 @@ TEST(TaaReport, SetsTheFiguresBesideThePapersTables) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The loop on the device.
+// The frames a scene gives the resolve, and the resolve over them on the device (each option
+// against a CPU restatement: tests/sequence_resolve_test.cpp).
 
-// The frame shader restated on the CPU from its definition (shader_templates/taa_frame.comp.in):
-// the background repeated and minified by 1.25 texels per pixel, bilinear; a red box rotated by
-// 0.2 rad with half sides (0.14, 0.07) x width; a near-black ellipse with radii (0.09, 0.05) x width.
-struct CpuScene {
-    const Image& background;
-    FrameState s;
-    glm::vec2 frame{float(background.width), float(background.height)};
-
-    glm::vec3 texel(glm::ivec2 t) const {
-        const int w = int(background.width), h = int(background.height);
-        return glm::vec3(background.at(std::uint32_t(((t.x % w) + w) % w), std::uint32_t(((t.y % h) + h) % h)));
-    }
-    glm::vec3 filtered(glm::vec2 x) const {
-        const glm::vec2 t = x * 1.25f - 0.5f, f = t - glm::floor(t);
-        const glm::ivec2 i(glm::floor(t));
-        return glm::mix(glm::mix(texel(i), texel(i + glm::ivec2(1, 0)), f.x),
-                        glm::mix(texel(i + glm::ivec2(0, 1)), texel(i + glm::ivec2(1, 1)), f.x), f.y);
-    }
-    bool car(glm::vec2 x) const {
-        const glm::vec2 d = x - s.car_center;
-        const float c = std::cos(0.2f), si = std::sin(0.2f);
-        return std::abs(c * d.x + si * d.y) < 0.14f * frame.x && std::abs(-si * d.x + c * d.y) < 0.07f * frame.x;
-    }
-    bool shadow(glm::vec2 x) const {
-        const glm::vec2 d = (x - s.shadow_center) / (glm::vec2(0.09f, 0.05f) * frame.x);
-        return glm::dot(d, d) < 1.0f;
-    }
-    glm::vec3 color(glm::vec2 x) const {
-        return car(x) ? glm::vec3(0.62f, 0.018f, 0.012f) : shadow(x) ? glm::vec3(0.012f, 0.011f, 0.010f) : filtered(x);
-    }
-    glm::vec2 motion(glm::vec2 x) const { return car(x) ? s.car_motion : shadow(x) ? s.shadow_motion : glm::vec2(0); }
-};
-
-glm::vec3 bilinear_clamped(const Image& image, glm::vec2 x) {
-    const glm::vec2 t = x - 0.5f, f = t - glm::floor(t);
-    const glm::ivec2 i(glm::floor(t));
-    auto at = [&](int dx, int dy) { return glm::vec3(image.clamped(i.x + dx, i.y + dy)); };
-    return glm::mix(glm::mix(at(0, 0), at(1, 0), f.x), glm::mix(at(0, 1), at(1, 1), f.x), f.y);
-}
-
-// One frame of the loop on the CPU, from the device's previous frame, with the reference clip.
-Image cpu_frame(const Image& background, const FrameState& s, const Image& history, const AxisSet& set, Mode mode) {
-    const CpuScene scene{background, s};
-    const std::vector<glm::dvec3> axes = unit_axes(set);
-    Image out(background.width, background.height);
-    for (std::uint32_t y = 0; y < out.height; ++y)
-        for (std::uint32_t x = 0; x < out.width; ++x) {
-            const glm::vec2 at = glm::vec2(x, y) + 0.5f + s.jitter;
-            std::vector<glm::dvec3> neighborhood;
-            for (glm::ivec2 o : reference_offsets(Neighborhood::n9))
-                neighborhood.push_back(glm::dvec3(scene.color(at + glm::vec2(o))));
-            const glm::dvec3 current(scene.color(at));
-            const glm::dvec3 past(bilinear_clamped(history, glm::vec2(x, y) + 0.5f - scene.motion(at)));
-            const glm::dvec3 clipped = reference_clip(axes, neighborhood, current, past, mode, kVarianceGamma);
-            out.at(x, y) = glm::vec4(glm::vec3(clipped + double(kCurrentWeight) * (current - clipped)), 1);
-        }
-    return out;
+TEST(TaaScene, DrawsTheObjectsWithTheirMotionAndDepth) {
+    constexpr std::uint32_t w = 96, h = 54;
+    const Image background = make_texture(TextureFamily::grass, w, h, 1);
+    const FrameState s = frame_state(30, w, h, true, false);
+    const LoadedFrame frame = render_scene(background, s);
+    auto pixel = [&](glm::vec2 at) { return std::size_t(at.y) * w + std::size_t(at.x); };
+    const std::size_t car = pixel(s.car_center), shadow = pixel(s.shadow_center), corner = 0;
+    EXPECT_EQ(glm::vec3(frame.color.pixels[car]), glm::vec3(0.62f, 0.018f, 0.012f));
+    EXPECT_EQ(frame.motion[car], -s.car_motion) << "the box was at x - its motion last frame";
+    EXPECT_EQ(frame.depth->pixels[car].r, 0.5f);
+    EXPECT_EQ(glm::vec3(frame.color.pixels[shadow]), glm::vec3(0.012f, 0.011f, 0.010f));
+    EXPECT_EQ(frame.motion[shadow], -s.shadow_motion);
+    EXPECT_EQ(frame.depth->pixels[shadow].r, 1.0f);
+    EXPECT_EQ(frame.motion[corner], glm::vec2(0)) << "the background stands still";
+    // The background, minified by 1.25 texels per pixel: pixel (0, 0)'s center is texel 0.125.
+    const glm::vec3 expected =
+        glm::mix(glm::vec3(background.at(0, 0)), glm::vec3(background.at(1, 0)), 0.125f) * 0.875f +
+        glm::mix(glm::vec3(background.at(0, 1)), glm::vec3(background.at(1, 1)), 0.125f) * 0.125f;
+    EXPECT_LT(glm::distance(glm::vec3(frame.color.pixels[corner]), expected), 1e-6f);
 }
 
 using TaaGpu = test::ValidationChecked;
@@ -210,79 +174,32 @@ std::unique_ptr<RunnableVariant> taa_shader(const std::string& set, Mode mode) {
     return shader ? std::move(*shader) : nullptr;
 }
 
-std::unique_ptr<TaaLoop> make_loop(const RunnableVariant& shader, const Image& background) {
-    auto loop = TaaLoop::create(test::gpu(), shader.variant(), background);
-    EXPECT_TRUE(loop) << loop.error().message;
-    return loop ? std::move(*loop) : nullptr;
-}
-
-TEST_F(TaaGpu, EachFrameIsTheCpuReferenceFrame) {
-    constexpr std::uint32_t w = 64, h = 40;
-    const Image background = make_texture(TextureFamily::grass, w, h, 3);
-    for (Mode mode : {Mode::clip, Mode::varclip}) {
-        auto shader = taa_shader("dop22", mode);
-        ASSERT_TRUE(shader);
-        auto loop = make_loop(*shader, background);
-        ASSERT_TRUE(loop);
-        auto first = loop->advance(frame_state(20, w, h, true, true));
-        ASSERT_TRUE(first);
-        Image history = **first;
-        for (std::uint32_t f = 21; f < 26; ++f) {
-            const FrameState s = frame_state(f, w, h, true, true);
-            auto gpu = loop->advance(s);
-            ASSERT_TRUE(gpu);
-            const Image expected = cpu_frame(background, s, history, *resolve_axis_set("dop22"), mode);
-            // float32 against double: 2e-4 as in the standalone variants' reference test; a sample
-            // landing within rounding of an object's edge may fall on the other side, so a few
-            // pixels at edges are allowed to differ.
-            std::size_t off = 0;
-            for (std::size_t i = 0; i < expected.pixels.size(); ++i)
-                if (glm::distance(glm::vec3(expected.pixels[i]), glm::vec3((*gpu)->pixels[i])) > 2e-4f) ++off;
-            EXPECT_LE(off, expected.pixels.size() / 200) << to_string(mode) << ", frame " << f;
-            history = **gpu;
-        }
-    }
+std::unique_ptr<TaaResolve> make_resolve(const RunnableVariant& shader, std::uint32_t w, std::uint32_t h) {
+    auto resolve = TaaResolve::create(test::gpu(), shader.variant(), w, h, {});
+    EXPECT_TRUE(resolve) << resolve.error().message;
+    return resolve ? std::move(*resolve) : nullptr;
 }
 
 TEST_F(TaaGpu, TheSameSequenceGivesTheSameFrames) {
-    const Image background = make_texture(TextureFamily::asphalt, 48, 32, 5);
+    const SceneFrames frames("asphalt", make_texture(TextureFamily::asphalt, 48, 32, 5), 13, true, true);
     auto shader = taa_shader("dop16-asphalt", Mode::varclip);
     ASSERT_TRUE(shader);
     std::vector<Image> runs;
     for (int run = 0; run < 2; ++run) {
-        auto loop = make_loop(*shader, background);
-        ASSERT_TRUE(loop);
-        for (std::uint32_t f = 0; f < 12; ++f) ASSERT_TRUE(loop->advance(frame_state(f, 48, 32, true, true)));
-        runs.push_back(**loop->advance(frame_state(12, 48, 32, true, true)));
+        auto resolve = make_resolve(*shader, 48, 32);
+        ASSERT_TRUE(resolve);
+        const Image* out = nullptr;
+        for (std::size_t f = 0; f < frames.frame_count(); ++f) {
+            auto resolved = resolve->advance(*frames.frame(f), frames.starts_history(f));
+            ASSERT_TRUE(resolved);
+            out = *resolved;
+        }
+        runs.push_back(*out);
     }
     EXPECT_EQ(std::memcmp(runs[0].pixels.data(), runs[1].pixels.data(), runs[0].pixels.size() * sizeof(glm::vec4)), 0);
 }
 
-TEST_F(TaaGpu, WithoutMotionOrJitterNothingGhostsOrShimmers) {
-    constexpr std::uint32_t w = 48, h = 32;
-    const Image background = make_texture(TextureFamily::grass, w, h, 2);
-    const LdrFlip flip(pixels_per_degree(ViewingConditions{}));
-    auto shader = taa_shader("aabb", Mode::clip);
-    ASSERT_TRUE(shader);
-    auto loop = make_loop(*shader, background);
-    ASSERT_TRUE(loop);
-    Image previous;
-    for (std::uint32_t f = 0; f < 8; ++f) {
-        const FrameState still = frame_state(f, w, h, false, false);
-        auto frame = loop->advance(still);
-        ASSERT_TRUE(frame);
-        const Image result = **frame;
-        auto aliased = loop->render(still);
-        ASSERT_TRUE(aliased);
-        EXPECT_EQ(*flip.mean(*aliased, result), 0.0) << "ghosting, frame " << f;
-        if (f > 0) {
-            EXPECT_EQ(*flip.mean(previous, result), 0.0) << "shimmer, frame " << f;
-        }
-        previous = result;
-    }
-}
-
-// A loop whose rectification throws the history away shows the aliased frame every frame: no
+// A resolve whose rectification throws the history away shows the aliased frame every frame: no
 // ghosting at all, and the most shimmer, which a k-DOP clip's history must reduce.
 TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     constexpr std::uint32_t w = 64, h = 36;
@@ -296,11 +213,11 @@ TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     auto dop32 = taa_shader("dop32", Mode::clip);
     ASSERT_TRUE(dop32);
     const TaaSchedule schedule{12, 6};
-    auto loop = make_loop(**current_only, background);
-    auto dop32_loop = make_loop(*dop32, background);
-    ASSERT_TRUE(loop && dop32_loop);
-    auto none = measure_taa(*loop, w, h, schedule, flip);
-    auto clipped = measure_taa(*dop32_loop, w, h, schedule, flip);
+    auto none_resolve = make_resolve(**current_only, w, h);
+    auto dop32_resolve = make_resolve(*dop32, w, h);
+    ASSERT_TRUE(none_resolve && dop32_resolve);
+    auto none = measure_scene(*none_resolve, "grass", background, schedule, flip);
+    auto clipped = measure_scene(*dop32_resolve, "grass", background, schedule, flip);
     ASSERT_TRUE(none && clipped);
     EXPECT_EQ(none->ghosting, 0.0);
     EXPECT_GT(none->shimmer, 0.0);
@@ -320,9 +237,9 @@ TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
     for (const char* set : {"aabb", "dop32"}) {
         auto shader = taa_shader(set, Mode::clip);
         ASSERT_TRUE(shader);
-        auto loop = make_loop(*shader, background);
-        ASSERT_TRUE(loop);
-        auto m = measure_taa(*loop, w, h, schedule, flip);
+        auto resolve = make_resolve(*shader, w, h);
+        ASSERT_TRUE(resolve);
+        auto m = measure_scene(*resolve, "grass", background, schedule, flip);
         ASSERT_TRUE(m) << m.error().message;
         ghosting[i++] = m->ghosting;
     }
@@ -348,7 +265,7 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = test::read_file(out / "taa.csv");
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
-              "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,ghosting");
+              "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,ghosting,ghosting_against");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << "2 variants x 2 scenes:\n" << csv;
     EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,"), std::string::npos) << csv;
     for (const char* scene : {"grass", "asphalt"}) {

@@ -1,0 +1,53 @@
+// The options of the TAA resolve (temporal/resolve_options.h), for every command that resolves
+// frames: --history-filter, --color-map, --dilate-motion, --current-weight, --gamma.
+#pragma once
+
+#include "number_option.h"
+#include "resolve_options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace kdop::cli {
+
+inline void add_resolve_options(CLI::App& app, ResolveOptions& options) {
+    const CLI::Validator filter(
+        [&options](std::string& text) -> std::string {
+            auto parsed = parse_history_filter(text);
+            if (!parsed) return parsed.error().message;
+            options.history_filter = *parsed;
+            return {};
+        },
+        "bilinear|catmull-rom");
+    const CLI::Validator map(
+        [&options](std::string& text) -> std::string {
+            auto parsed = parse_color_map(text);
+            if (!parsed) return parsed.error().message;
+            options.color_map = *parsed;
+            return {};
+        },
+        "linear|gamma:G|log");
+    // The validators parse and store the value; the options' own functions have nothing left to do.
+    auto stored = [](const std::string&) {};
+    app.add_option_function<std::string>(
+           "--history-filter", stored,
+           "How the history is sampled at the reprojected position: bilinear, or catmull-rom (the 4x4 "
+           "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]")
+        ->check(filter);
+    app.add_option_function<std::string>(
+           "--color-map", stored,
+           "The space the clip and the blend work in: linear, gamma:G (values raised to G, as the paper's "
+           "own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which damps "
+           "bright outliers) [default: linear]")
+        ->check(map);
+    app.add_flag("--dilate-motion", options.dilate_motion,
+                 "Take the motion of the nearest of the 3x3 neighbors by depth, so edges follow the nearer surface "
+                 "(needs depth on every frame)");
+    app.add_option("--current-weight", options.current_weight, "The current frame's share of the blend [default: 0.1]")
+        ->check(finite_number(0, 1, true));
+    app.add_option("--gamma", options.gamma, "The variance clip's width in standard deviations [default: 1]")
+        ->check(positive_number(100));
+}
+
+} // namespace kdop::cli

@@ -1,0 +1,108 @@
+#include "commands.h"
+
+#include "command_line.h"
+#include "input_files.h"
+#include "input_space_option.h"
+#include "output_set.h"
+#include "progress.h"
+#include "sequence_writer.h"
+#include "size_option.h"
+#include "taa_measure.h"
+#include "taa_scene.h"
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+namespace kdop::cli {
+namespace {
+
+// "on" or "off", for --jitter and --animate.
+CLI::Validator on_or_off() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            return text == "on" || text == "off" ? "" : "'" + text + "' is not on or off";
+        },
+        "on|off");
+}
+
+} // namespace
+
+Action add_scene_command(CLI::App& app) {
+    struct Options {
+        std::string out, size = "320x180", jitter, animate;
+        std::vector<std::string> scenes, backgrounds;
+        std::uint32_t frames = 200;
+        std::uint64_t seed = 1;
+        InputSpace input_space = InputSpace::from_file;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* scene = app.add_subcommand(
+        "scene", "Write kdop's own TAA scenes as frame sequences (README \"Frame sequences\"): color, motion and "
+                 "depth per frame, exactly the frames kdop taa measures, to look at, edit or replay with "
+                 "kdop taa --sequence");
+    scene->add_option("--out", o->out, "Output directory (created if missing); one folder per sequence")->required();
+    scene->add_option("--scenes", o->scenes,
+                      "Built-in scenes: grass, asphalt and the first installed real texture (colobot-grass) "
+                      "[default: all of them, unless --background is given]");
+    scene->add_option("--background", o->backgrounds,
+                      "Your own background images (decoded to linear values in [0, 1], see --input-space), one "
+                      "scene each");
+    add_input_space_option(*scene, o->input_space);
+    scene->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
+    scene->add_option("--frames", o->frames, "Frames per sequence [default: 200, kdop taa's warmup and frames]")
+        ->check(CLI::Range(1u, 100000u));
+    scene->add_option("--seed", o->seed, "Seed of the synthetic backgrounds [default: 1]");
+    scene
+        ->add_option("--jitter", o->jitter,
+                     "Jitter the samples (R2) [with neither --jitter nor --animate: two sequences per scene, "
+                     "<scene>-shimmer (jitter on, still) and <scene>-ghosting (moving, jitter off), as kdop taa "
+                     "measures them; with either, one sequence <scene>, the other on]")
+        ->check(on_or_off());
+    scene->add_option("--animate", o->animate, "Move the objects (see --jitter)")->check(on_or_off());
+
+    return [o] {
+        auto size = size_option("--size", o->size);
+        if (!size) return usage_error(size.error().message);
+        for (std::size_t i = 0; i < o->scenes.size(); ++i)
+            if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)
+                return usage_error(fmt::format("--scenes: '{}' is given twice", o->scenes[i]));
+        if (auto ok = check_distinct_files(o->backgrounds, "--background"); !ok) return usage_error(ok.error().message);
+        auto outputs = OutputSet::prepare(o->out);
+        if (!outputs) return report_error(outputs.error().message);
+        auto scenes = select_taa_scenes(o->scenes, o->backgrounds, size->first, size->second, o->seed, o->input_space);
+        if (!scenes) return report_error(scenes.error().message);
+
+        std::vector<std::shared_ptr<const FrameSource>> sources;
+        for (const TaaScene& s : *scenes) {
+            if (o->jitter.empty() && o->animate.empty()) {
+                // kdop taa's own two: the schedule's frames split as warmup + the rest.
+                const TaaSchedule schedule{0, o->frames};
+                sources.push_back(std::make_shared<SceneFrames>(shimmer_frames(s.name, s.background, schedule)));
+                sources.push_back(std::make_shared<SceneFrames>(ghosting_frames(s.name, s.background, schedule)));
+            } else {
+                sources.push_back(std::make_shared<SceneFrames>(s.name, s.background, o->frames, o->animate != "off",
+                                                                o->jitter != "off"));
+            }
+        }
+        std::size_t files = 0;
+        for (const auto& source : sources) {
+            outputs->add(source->name() + "/sequence.json", sequence_json(*source));
+            auto writers = sequence_frame_writers(outputs->dir() / source->name(), source);
+            files += writers.size();
+            outputs->add(std::move(writers));
+        }
+        {
+            // The frames are drawn as they are written; the progress line follows the writes.
+            Progress progress(fmt::format("Writing {} sequences,", sources.size()), 1);
+            if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
+            progress.advance(fmt::format("{} files", files));
+        }
+        std::cout << fmt::format("kdop scene: {} sequences of {} frames at {}x{}: {}\n", sources.size(), o->frames,
+                                 size->first, size->second, outputs->dir().string());
+        return 0;
+    };
+}
+
+} // namespace kdop::cli

@@ -1,0 +1,35 @@
+#include "staged_images.h"
+
+#include "image_io.h"
+
+#include <fmt/format.h>
+
+namespace kdop {
+
+Result<void> StagedImages::add(const std::string& name, const Image& image) {
+    if (scratch_->path.empty()) return fail("cannot create a scratch folder for the frames (is TMPDIR writable?)");
+    const std::filesystem::path staged = scratch_->path / name;
+    std::error_code ec;
+    std::filesystem::create_directories(staged.parent_path(), ec);
+    if (ec) return fail(fmt::format("{}: {}", staged.parent_path().string(), ec.message()));
+    if (auto ok = write_image(staged.string(), image); !ok) return ok;
+    names_.push_back(name);
+    return {};
+}
+
+std::vector<OutputWriter> StagedImages::writers(const std::filesystem::path& dir) const {
+    std::vector<OutputWriter> out;
+    for (const std::string& name : names_) {
+        const std::filesystem::path staged = scratch_->path / name;
+        // A copy, not a rename: the scratch folder may be on another file system.
+        out.push_back({dir / name, [staged](const std::filesystem::path& to) -> Result<void> {
+                           std::error_code ec;
+                           std::filesystem::copy_file(staged, to, ec);
+                           if (ec) return fail(fmt::format("{}: {}", to.string(), ec.message()));
+                           return {};
+                       }});
+    }
+    return out;
+}
+
+} // namespace kdop

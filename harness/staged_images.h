@@ -1,0 +1,33 @@
+// Images a long run produces frame by frame (`kdop taa --write-frames`: every output of every
+// variant): each is written to a scratch folder when it is made, so the run holds none of them in
+// memory, and joins the run's output set (output_set.h) as a writer that moves it into place with
+// the rest, all or nothing. An interrupted or failed run leaves none of them behind.
+#pragma once
+
+#include "image.h"
+#include "result.h"
+#include "scratch_directory.h"
+#include "write_files.h"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+class StagedImages {
+public:
+    StagedImages() : scratch_(std::make_unique<ScratchDirectory>("kdop-frames")) {}
+
+    // Writes `image` now, to be `name` (relative to the output folder) when the set is written.
+    Result<void> add(const std::string& name, const Image& image);
+    // The writers that move the staged images into `dir`; valid while this object lives.
+    std::vector<OutputWriter> writers(const std::filesystem::path& dir) const;
+
+private:
+    std::unique_ptr<ScratchDirectory> scratch_;
+    std::vector<std::string> names_;
+};
+
+} // namespace kdop

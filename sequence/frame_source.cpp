@@ -1,0 +1,21 @@
+#include "frame_source.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace kdop {
+
+bool SequenceFrames::has_depth() const {
+    return std::all_of(s_.frames.begin(), s_.frames.end(), [](const SequenceFrame& f) { return !f.depth.empty(); });
+}
+
+bool SequenceFrames::has_reference() const {
+    return std::all_of(s_.frames.begin(), s_.frames.end(), [](const SequenceFrame& f) { return !f.reference.empty(); });
+}
+
+std::string SequenceFrames::frame_label(std::size_t index) const {
+    return fmt::format("{} (frame {})", s_.frames[index].color.string(), index);
+}
+
+} // namespace kdop

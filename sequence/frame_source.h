@@ -1,0 +1,59 @@
+// Where the TAA resolve's frames come from: a sequence on disk (SequenceFrames below), kdop's own
+// scenes rendered in memory (temporal/taa_scene.h), a 3-D testbed. The resolve, the measurement
+// and `kdop scene`'s writer take any of them through this interface, so every source is measured
+// the same way and every source can be written as a sequence.
+#pragma once
+
+#include "sequence.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace kdop {
+
+class FrameSource {
+public:
+    virtual ~FrameSource() = default;
+    virtual const std::string& name() const = 0;
+    virtual std::uint32_t width() const = 0;
+    virtual std::uint32_t height() const = 0;
+    virtual std::size_t frame_count() const = 0;
+    // Whether frame `index` starts without a history: the first frame and every camera cut.
+    virtual bool starts_history(std::size_t index) const = 0;
+    virtual std::optional<glm::vec2> jitter(std::size_t index) const = 0;
+    // Whether every frame has a depth image, or a reference image.
+    virtual bool has_depth() const = 0;
+    virtual bool has_reference() const = 0;
+    // Frame `index`'s images, motion in load_frame()'s convention.
+    virtual Result<LoadedFrame> frame(std::size_t index) const = 0;
+    // What an error about frame `index`'s color names: its file, or the scene and frame.
+    virtual std::string frame_label(std::size_t index) const = 0;
+};
+
+// A sequence read from disk, one frame at a time.
+class SequenceFrames final : public FrameSource {
+public:
+    SequenceFrames(Sequence sequence, InputSpace space) : s_(std::move(sequence)), space_(space) {}
+    const Sequence& sequence() const { return s_; }
+
+    const std::string& name() const override { return s_.name; }
+    std::uint32_t width() const override { return s_.width; }
+    std::uint32_t height() const override { return s_.height; }
+    std::size_t frame_count() const override { return s_.frames.size(); }
+    bool starts_history(std::size_t index) const override { return s_.starts_history(index); }
+    std::optional<glm::vec2> jitter(std::size_t index) const override { return s_.frames[index].jitter; }
+    bool has_depth() const override;
+    bool has_reference() const override;
+    Result<LoadedFrame> frame(std::size_t index) const override { return load_frame(s_, index, space_); }
+    std::string frame_label(std::size_t index) const override;
+
+private:
+    Sequence s_;
+    InputSpace space_;
+};
+
+} // namespace kdop

@@ -1,0 +1,91 @@
+#include "sequence_writer.h"
+
+#include "image_io.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace kdop {
+namespace {
+
+std::string frame_file(const char* kind, std::size_t index) { return fmt::format("{}/{:04}.exr", kind, index); }
+
+// The frame the writers are on: made by the first writer of a frame, kept for its others.
+struct FrameCache {
+    std::shared_ptr<const FrameSource> source;
+    std::size_t index = SIZE_MAX;
+    LoadedFrame frame;
+
+    Result<const LoadedFrame*> get(std::size_t i) {
+        if (i != index) {
+            index = SIZE_MAX;
+            auto loaded = source->frame(i);
+            if (!loaded) return std::unexpected(loaded.error());
+            frame = std::move(*loaded);
+            index = i;
+        }
+        return &frame;
+    }
+};
+
+Image motion_image(const std::vector<glm::vec2>& motion, std::uint32_t width, std::uint32_t height) {
+    Image out(width, height);
+    for (std::size_t i = 0; i < motion.size(); ++i) out.pixels[i] = glm::vec4(motion[i], 0, 1);
+    return out;
+}
+
+} // namespace
+
+std::string sequence_json(const FrameSource& source) {
+    using nlohmann::ordered_json;
+    ordered_json root{{"kdop_sequence", kSequenceFormatVersion},
+                      {"width", source.width()},
+                      {"height", source.height()},
+                      {"motion", {{"units", "pixels"}, {"points_to", "previous"}, {"y_axis", "down"}}}};
+    ordered_json frames = ordered_json::array();
+    for (std::size_t i = 0; i < source.frame_count(); ++i) {
+        ordered_json f{{"color", frame_file("color", i)}};
+        if (!source.starts_history(i)) f["motion"] = frame_file("motion", i);
+        if (source.has_depth()) f["depth"] = frame_file("depth", i);
+        if (source.has_reference()) f["reference"] = frame_file("reference", i);
+        if (const auto jitter = source.jitter(i)) f["jitter"] = {jitter->x, jitter->y};
+        if (i > 0 && source.starts_history(i)) f["camera_cut"] = true;
+        frames.push_back(std::move(f));
+    }
+    root["frames"] = std::move(frames);
+    return root.dump(1) + "\n";
+}
+
+std::vector<OutputWriter> sequence_frame_writers(const std::filesystem::path& folder,
+                                                 std::shared_ptr<const FrameSource> source) {
+    auto cache = std::make_shared<FrameCache>();
+    cache->source = source;
+    std::vector<OutputWriter> writers;
+    const std::uint32_t w = source->width(), h = source->height();
+    for (std::size_t i = 0; i < source->frame_count(); ++i) {
+        // `pick` gives the frame's image of that kind, or null where the frame has none.
+        auto add = [&](const char* kind, auto pick) {
+            const std::filesystem::path path = folder / frame_file(kind, i);
+            writers.push_back({path, [cache, i, pick, path](const std::filesystem::path& to) -> Result<void> {
+                                   auto frame = cache->get(i);
+                                   if (!frame) return std::unexpected(frame.error());
+                                   const std::optional<Image> image = pick(**frame);
+                                   if (!image)
+                                       return fail(fmt::format("{}: frame {} of {} has none", path.string(), i,
+                                                               cache->source->name()));
+                                   return write_image(to.string(), *image);
+                               }});
+        };
+        add("color", [](const LoadedFrame& f) { return std::optional<Image>(f.color); });
+        if (!source->starts_history(i))
+            add("motion", [w, h](const LoadedFrame& f) {
+                return f.motion.size() == std::size_t(w) * h ? std::optional(motion_image(f.motion, w, h))
+                                                             : std::nullopt;
+            });
+        if (source->has_depth()) add("depth", [](const LoadedFrame& f) { return f.depth; });
+        if (source->has_reference()) add("reference", [](const LoadedFrame& f) { return f.reference; });
+    }
+    return writers;
+}
+
+} // namespace kdop

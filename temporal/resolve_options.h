@@ -1,0 +1,46 @@
+// The choices of the TAA resolve (shader_templates/taa_resolve.comp.in) a user makes on the
+// command line. The defaults are the textbook resolve the paper's tables were measured with in
+// kdop; the others follow the paper's own renderer (Tauray, shader/taa.comp). Each choice is a
+// compile-time define of the resolve, as a renderer would build its permutations: no branch in
+// the shader tests an option.
+#pragma once
+
+#include "result.h"
+
+#include <string>
+#include <string_view>
+
+namespace kdop {
+
+enum class HistoryFilter { bilinear, catmull_rom };
+
+// The space the clip and the blend happen in: linear values, c^exponent, or log(c + 1e-5).
+struct ColorMap {
+    enum class Kind { linear, power, log };
+    Kind kind = Kind::linear;
+    float exponent = 1; // Kind::power only: > 0
+};
+
+struct ResolveOptions {
+    HistoryFilter history_filter = HistoryFilter::bilinear;
+    ColorMap color_map;
+    bool dilate_motion = false;       // the motion of the nearest 3x3 neighbor, by depth
+    bool depth_nearer_larger = false; // the sequence's depth convention (reversed Z), for dilate_motion
+    // The current frame's share of the blend. The introduction to TAA in shared/reference gives 0.05
+    // to 0.1 as the usual range; at 0.1 the history averages about ten frames, the length of the R2
+    // jitter cycle.
+    float current_weight = 0.1f;
+    float gamma = 1; // variance-clip width; Salvi's recommended 1, as in the paper's +Var rows
+};
+
+// "bilinear" or "catmull-rom".
+Result<HistoryFilter> parse_history_filter(std::string_view text);
+// "linear", "gamma:G" (G finite and > 0; the clip works on c^G, as Tauray's map_color) or "log".
+Result<ColorMap> parse_color_map(std::string_view text);
+std::string to_string(HistoryFilter filter);
+std::string to_string(const ColorMap& map);
+
+// What the options say, for a report: "bilinear history, linear colors, w = 0.1".
+std::string describe(const ResolveOptions& options);
+
+} // namespace kdop
