@@ -85,7 +85,7 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
                                     "or none",
                                     label, m.against_reference ? "has no" : "has"));
         auto output = resolve.advance(*frame, source.starts_history(i));
-        if (!output) return std::unexpected(output.error());
+        if (!output) return fail(fmt::format("{}: {}", label, output.error().message));
         if (i + 1 >= warmup) {
             auto current = within_unit_range(**output, label);
             if (!current) return std::unexpected(current.error());

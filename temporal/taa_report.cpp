@@ -110,7 +110,7 @@ Table taa_table(const std::vector<TaaRow>& rows) {
                     Column("ms_q1", "ms", Shown::fixed, 3, "Q1"), Column("ms_q3", "ms", Shown::fixed, 3, "Q3"),
                     Column("ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"),
                     Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4),
-                    Column("ghosting_against", "", Shown::text, 0, "aliased: each frame's own color")}));
+                    Column("ghosting_against", "", Shown::text, 0, "ghosting against")}));
     for (const TaaRow& r : rows)
         t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.ms_q1), maybe(r.ms_q3),
                                              std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value(),

@@ -212,6 +212,13 @@ TEST_F(ResolveGpu, DilationTakesTheNearestNeighborsMotionInEitherDepthConvention
             history = **gpu;
         }
         EXPECT_GT(moved, 0u) << "nearer larger " << larger << ": dilation changed nothing";
+        // A frame without depth cannot be dilated: refused, not resolved with the pixel's own motion.
+        auto frame = frames.frame(3);
+        ASSERT_TRUE(frame);
+        frame->depth.reset();
+        auto refused = resolve->advance(*frame, false);
+        ASSERT_FALSE(refused);
+        EXPECT_NE(refused.error().message.find("this frame has no depth"), std::string::npos);
     }
 }
 

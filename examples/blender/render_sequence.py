@@ -29,9 +29,12 @@ What it writes under DIR, frames numbered from 0000:
                      because kdop measures LDR-FLIP and refuses values outside
                      that range; the lighting is modest, so the clamp only
                      touches the odd bright sample.
-    motion/NNNN.exr  the Vector pass (RGBA: X, Y toward the previous frame,
-                     Z, W toward the next, which kdop ignores), for every frame
-                     but the first. Cycles writes it only with motion blur off.
+    motion/NNNN.exr  the Vector pass, for every frame but the first. Cycles
+                     writes it only with motion blur off. R, G: X, Y, the
+                     offset to where the surface was in the previous frame;
+                     B: Cycles' Z, about the next frame, which kdop ignores
+                     (the 3.4 compositor's vector sockets carry three
+                     channels, so W is lost; kdop reads only X and Y).
     depth/NNNN.exr   the Depth (Z) pass, distance from the camera: smaller is
                      nearer, kdop's default.
     sequence.json    format version 1, with the motion settings README's
@@ -58,7 +61,7 @@ CAR_START = (-5.5, -1.0, 0.55)  # the red box's center on the first frame
 CAR_END = (5.5, 2.0, 0.55)      # and on the last: right and away, up in the image
 CAR_SIZE = (2.0, 1.0, 0.7)
 WHEEL_RADIUS = 0.3
-SUN_STRENGTH = 2.0
+SUN_STRENGTH = 3.5
 WORLD_STRENGTH = 0.15
 PASSES = ("color", "motion", "depth")
 
@@ -307,7 +310,7 @@ def build_compositor(scene, out_dir):
     tree.links.new(layers.outputs["Image"], clamp.inputs[1])
 
     color = file_output(tree, out_dir, "color", "RGB")
-    motion = file_output(tree, out_dir, "motion", "RGBA")
+    motion = file_output(tree, out_dir, "motion", "RGB")
     depth = file_output(tree, out_dir, "depth", "RGB")
     tree.links.new(clamp.outputs["Image"], color.inputs[0])
     tree.links.new(layers.outputs["Vector"], motion.inputs[0])
