@@ -1,4 +1,4 @@
-"""Render a short animated scene with Blender's Cycles as a kdop frame sequence.
+"""Render a short animated scene with Cycles as a kdop frame sequence.
 
 What it renders: a static camera looking down at an angle on a ground plane
 with a high-frequency, grass-like procedural texture (luma and chroma
@@ -27,8 +27,8 @@ What it writes under DIR, frames numbered from 0000:
     color/NNNN.exr   the Combined pass, linear RGB, 32-bit float. The
                      compositor clamps it to [0, 1] (a Mix node with Clamp on)
                      because kdop measures LDR-FLIP and refuses values outside
-                     that range; the lighting is modest, so the clamp only
-                     touches the odd bright sample.
+                     that range. It is a safeguard: with this lighting the
+                     default render peaks near 0.8 and nothing is clamped.
     motion/NNNN.exr  the Vector pass, for every frame but the first. Cycles
                      writes it only with motion blur off. R, G: X, Y, the
                      offset to where the surface was in the previous frame;
@@ -58,7 +58,7 @@ from mathutils import Matrix
 
 GROUND_SIZE = 60.0
 CAR_START = (-5.5, -1.0, 0.55)  # the red box's center on the first frame
-CAR_END = (5.5, 2.0, 0.55)      # and on the last: right and away, up in the image
+CAR_END = (5.5, 2.0, 0.55)      # on the last: right, away, up in the image
 CAR_SIZE = (2.0, 1.0, 0.7)
 WHEEL_RADIUS = 0.3
 SUN_STRENGTH = 3.5
@@ -122,7 +122,8 @@ def configure_render(scene, args):
     scene.render.fps = 24
     scene.frame_start = 0
     scene.frame_end = args.frames - 1
-    scene.view_settings.view_transform = "Standard"  # display only; EXR is linear
+    # Display only: EXR files hold scene-linear values whatever the view.
+    scene.view_settings.view_transform = "Standard"
     view_layer = scene.view_layers[0]
     view_layer.use_pass_z = True
     view_layer.use_pass_vector = True
