@@ -109,6 +109,24 @@ TEST(Sequence, EveryMotionConventionGivesTheSameMotion) {
     }
 }
 
+TEST(Sequence, ReadsTheDepthConvention) {
+    SequenceDir s;
+    s.json("{}", {s.frame(0)});
+    auto plain = read_sequence(s.dir.path());
+    ASSERT_TRUE(plain) << plain.error().message;
+    EXPECT_FALSE(plain->depth_nearer_larger) << "smaller is nearer by default";
+    s.json(R"({}, "depth": {"nearer": "larger"})", {s.frame(0)});
+    auto reversed = read_sequence(s.dir.path());
+    ASSERT_TRUE(reversed) << reversed.error().message;
+    EXPECT_TRUE(reversed->depth_nearer_larger);
+    for (const char* bad : {R"({"nearer": "closer"})", R"({"near": "larger"})", R"("larger")"}) {
+        s.json(std::string(R"({}, "depth": )") + bad, {s.frame(0)});
+        auto refused = read_sequence(s.dir.path());
+        ASSERT_FALSE(refused) << bad;
+        EXPECT_NE(refused.error().message.find("sequence.json: depth"), std::string::npos) << refused.error().message;
+    }
+}
+
 TEST(Sequence, BadInputIsRefusedNamingTheFileAndTheReason) {
     struct Case {
         std::string what, expected;
