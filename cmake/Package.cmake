@@ -26,6 +26,7 @@ install(TARGETS ${installed_programs} kdop_variant_headers EXPORT kdopTargets
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/kdop DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets/ DESTINATION ${KDOP_INSTALL_AXIS_SET_DIR}
         FILES_MATCHING PATTERN "*.axes")
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/NOTICE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(EXPORT kdopTargets NAMESPACE kdop:: DESTINATION ${KDOP_INSTALL_CMAKEDIR})
 # configure_package_config_file turns the install paths into paths relative to the config file.
 set(KDOP_CONFIG_AXIS_SET_DIR "\${PACKAGE_PREFIX_DIR}/${KDOP_INSTALL_AXIS_SET_DIR}")
