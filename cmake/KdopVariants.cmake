@@ -14,6 +14,8 @@
 #     [FUNCTIONS]                       also write each variant's includable function, <variant>.glsl and
 #                                       <variant>.hlsl, into a folder for the project's own shader build
 #     [TARGET_ENV <vulkan1.0..1.3>]     the SPIR-V's target environment; default vulkan1.0
+#     [STRIP_NAMES]                     drop OpName and OpMemberName from the SPIR-V, for shipping; by default
+#                                       they are kept (as glslc keeps them) for debuggers and spirv-cross
 #     [SHADERS <file.comp>...]          the project's own GLSL compute shaders, compiled into the registry
 #                                       too (named after their file stems), where
 #                                       `#include "dop22-clip-n9.glsl"` gives them a selected variant's function
@@ -39,7 +41,7 @@ if(NOT kdop_axis_set_dir_known)
 endif()
 
 function(kdop_add_variants target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS" "NAMESPACE;HEADER;TARGET_ENV;MANIFEST"
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS;STRIP_NAMES" "NAMESPACE;HEADER;TARGET_ENV;MANIFEST"
                         "SETS;MODES;NEIGHBORHOODS;FORMS;SHADERS;SHADER_INCLUDE_DIRS")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "kdop_add_variants(${target}): unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
@@ -171,6 +173,9 @@ function(kdop_add_variants target)
   endif()
   if(ARG_TARGET_ENV)
     list(APPEND arguments --target-env ${ARG_TARGET_ENV})
+  endif()
+  if(ARG_STRIP_NAMES)
+    list(APPEND arguments --strip-names)
   endif()
 
   set(outputs "${header}" "${source}")

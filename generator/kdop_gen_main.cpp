@@ -125,7 +125,8 @@ int main(int argc, char** argv) {
         const std::size_t variant_count = built->size();
         for (const std::string& file : shaders) {
             auto shader = build_project_shader(file, std::span(built->data(), variant_count), dirs,
-                                               *parse_target_env(selection.target_env)); // checked by CLI11
+                                               *parse_target_env(selection.target_env), // checked by CLI11
+                                               selection.strip_names);
             if (!shader) return report(shader.error());
             for (const BuiltVariant& v : *built)
                 if (v.name == shader->built.name)

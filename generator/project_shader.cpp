@@ -26,7 +26,7 @@ bool is_inside(const fs::path& file, const fs::path& folder) {
 } // namespace
 
 Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
-                                           std::span<const fs::path> include_dirs, TargetEnv env) {
+                                           std::span<const fs::path> include_dirs, TargetEnv env, bool strip_names) {
     ProjectShader out;
     out.built.spec.mode = Mode::shader;
     out.built.name = file.stem().string();
@@ -64,6 +64,7 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
         return std::nullopt;
     };
     out.built.spec.target_env = env;
+    out.built.spec.strip_names = strip_names;
     auto compiled = compile_glsl_compute(out.built.compute_glsl, name, env, resolve);
     if (!compiled && !outside.empty()) return fail(compiled.error().message + outside.front());
     if (!compiled && !unresolved.empty()) {

@@ -1,7 +1,7 @@
 // A project's own compute shader, built at build time with the kdop functions it includes
 // (kdop_add_variants SHADERS): a TAA resolve that reprojects, clips with
 // `#include "dop22-clip-n9.glsl"` and blends. It goes through the same stages as a variant
-// (validate, optimize, reflect, strip) and into the same registry, as a Mode::shader entry named
+// (validate, optimize, reflect, drop the line information) and into the same registry, as a Mode::shader entry named
 // after its file.
 #pragma once
 
@@ -22,10 +22,11 @@ struct ProjectShader {
 
 // Compiles `file`. `#include "<variant>.glsl"` names the includable function of one of `variants`;
 // any other include is looked up next to the including file, then in `include_dirs`, in order.
-// Loops are allowed: this is the project's code, not a variant. SPIR-V for `env`.
+// Loops are allowed: this is the project's code, not a variant. SPIR-V for `env`, with its names
+// unless `strip_names`.
 Result<ProjectShader> build_project_shader(const std::filesystem::path& file, std::span<const BuiltVariant> variants,
                                            std::span<const std::filesystem::path> include_dirs,
-                                           TargetEnv env = TargetEnv::vulkan1_0);
+                                           TargetEnv env = TargetEnv::vulkan1_0, bool strip_names = false);
 
 // A Makefile rule "<target>: <dependencies>" (spaces escaped), the depfile format CMake and Ninja read.
 std::string depfile_rule(const std::filesystem::path& target, std::span<const std::filesystem::path> dependencies);

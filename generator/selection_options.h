@@ -1,5 +1,5 @@
 // The --sets / --modes / --neighborhoods options (and how to write and build them: --projection,
-// --extent, --numerics, --target-env) shared by kdop and kdop-gen, so both accept and describe a
+// --extent, --numerics, --target-env, --strip-names) shared by kdop and kdop-gen, so both accept and describe a
 // selection of variants the same way.
 #pragma once
 
@@ -19,6 +19,7 @@ struct SelectionOptions {
     bool baselines = false;
     std::string projection = "multiply-add", extent = "running", numerics = "hardened", target_env = "vulkan1.0";
     std::string manifest; // a scene's variant manifest (manifest.h), instead of the cross product
+    bool strip_names = false;
 
     // `with_manifest`: also --manifest FILE, which excludes the options that select by cross product.
     void add_to(CLI::App& app, bool with_manifest = false) {
@@ -46,6 +47,9 @@ struct SelectionOptions {
                        "Vulkan version the SPIR-V is built and validated for: vulkan1.0 (SPIR-V 1.0, any device), "
                        "vulkan1.1 (1.3), vulkan1.2 (1.5) or vulkan1.3 (1.6)")
             ->check(CLI::IsMember({"vulkan1.0", "vulkan1.1", "vulkan1.2", "vulkan1.3"}));
+        app.add_flag("--strip-names", strip_names,
+                     "Drop the names (OpName, OpMemberName) from the SPIR-V, for shipping; kept by default, as glslc "
+                     "keeps them, so spirv-cross output and RenderDoc read with the shader's names");
         if (with_manifest) {
             CLI::Option* option =
                 app.add_option("--manifest", manifest,
@@ -83,6 +87,7 @@ struct SelectionOptions {
             for (VariantSpec& s : listed->variants) {
                 s.style = style();
                 s.target_env = *parse_target_env(target_env); // checked by CLI11
+                s.strip_names = strip_names;
             }
             return std::move(listed->variants);
         }
@@ -92,10 +97,12 @@ struct SelectionOptions {
                 s.style = style();
                 s.numerics = *parse_numerics(numerics);       // checked by CLI11
                 s.target_env = *parse_target_env(target_env); // checked by CLI11
+                s.strip_names = strip_names;
             }
         if (specs && baselines)
             for (VariantSpec& b : baseline_kernels()) {
                 b.target_env = *parse_target_env(target_env);
+                b.strip_names = strip_names;
                 specs->push_back(std::move(b));
             }
         return specs;

@@ -63,6 +63,28 @@ std::uint64_t spirv_hash(std::span<const std::uint32_t> words) {
     return hash;
 }
 
+std::vector<std::uint32_t> without_line_info(std::span<const std::uint32_t> words) {
+    if (words.size() < kHeaderWords) return {words.begin(), words.end()};
+    std::vector<std::uint32_t> out(words.begin(), words.begin() + kHeaderWords);
+    for (const SpirvInstruction& inst : spirv_instructions(words)) {
+        switch (inst.opcode) {
+        case spv::OpLine:
+        case spv::OpNoLine:
+        case spv::OpString:
+        case spv::OpSourceContinued:
+        case spv::OpModuleProcessed: continue;
+        case spv::OpSource: // language and version only
+            out.push_back((3u << spv::WordCountShift) | spv::OpSource);
+            out.insert(out.end(), inst.operands.begin(), inst.operands.begin() + 2);
+            continue;
+        default:
+            out.push_back((static_cast<std::uint32_t>(inst.operands.size() + 1) << spv::WordCountShift) | inst.opcode);
+            out.insert(out.end(), inst.operands.begin(), inst.operands.end());
+        }
+    }
+    return out;
+}
+
 int glsl_line_of_instruction(std::span<const std::uint32_t> words, std::size_t ordinal) {
     int line = 0;
     for (const SpirvInstruction& inst : spirv_instructions(words)) {

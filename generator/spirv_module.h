@@ -61,6 +61,12 @@ struct ShaderInterface {
 // before debug information is stripped.
 Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t> words);
 
+// The module without what kdop's compilation adds for its own messages and glslc does not by
+// default: OpLine, OpNoLine, OpString, OpModuleProcessed, and OpSource's file and text (OpSource
+// keeps its language and version). Names (OpName, OpMemberName) stay. SPIRV-Tools' strip passes
+// take names with the lines, hence this walk.
+std::vector<std::uint32_t> without_line_info(std::span<const std::uint32_t> words);
+
 // The GLSL line of the OpLine in effect at the instruction with this ordinal, or 0.
 int glsl_line_of_instruction(std::span<const std::uint32_t> words, std::size_t ordinal);
 

@@ -66,8 +66,9 @@ Result<std::vector<std::uint32_t>> optimize_spirv(const std::vector<std::uint32_
     return run_passes(words, name, env, "optimization", [](spvtools::Optimizer& o) { o.RegisterPerformancePasses(); });
 }
 
-Result<std::vector<std::uint32_t>> strip_debug_info(const std::vector<std::uint32_t>& words, std::string_view name,
-                                                    TargetEnv env) {
+Result<std::vector<std::uint32_t>> shipped_spirv(const std::vector<std::uint32_t>& words, std::string_view name,
+                                                 TargetEnv env, bool strip_names) {
+    if (!strip_names) return without_line_info(words);
     return run_passes(words, name, env, "debug-information stripping",
                       [](spvtools::Optimizer& o) { o.RegisterPass(spvtools::CreateStripDebugInfoPass()); });
 }

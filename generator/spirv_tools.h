@@ -1,5 +1,5 @@
 // The SPIRV-Tools stages of a variant's build: validate what glslang produced, optimize it for
-// performance, validate again, strip debug information. Messages name the GLSL line where the
+// performance, validate again, strip what does not ship. Messages name the GLSL line where the
 // module's OpLine information allows it.
 #pragma once
 
@@ -21,9 +21,12 @@ Result<void> validate_spirv(const std::vector<std::uint32_t>& words, std::string
 Result<std::vector<std::uint32_t>> optimize_spirv(const std::vector<std::uint32_t>& words, std::string_view name,
                                                   TargetEnv env = TargetEnv::vulkan1_0);
 
-// Drops OpSource, OpString, OpLine and OpName: the shipped module carries code only, so its bytes
-// do not depend on file names or comments.
-Result<std::vector<std::uint32_t>> strip_debug_info(const std::vector<std::uint32_t>& words, std::string_view name,
-                                                    TargetEnv env = TargetEnv::vulkan1_0);
+// The module that ships: without the line information kdop's compilation adds for its messages
+// (spirv_module.h's without_line_info), so its bytes do not depend on file names or comments.
+// Names stay, as glslc keeps them, so that spirv-cross output, RenderDoc and validation messages
+// read with the shader's own names; with `strip_names`, every debug instruction goes (SPIRV-Tools'
+// strip-debug pass), for shipping.
+Result<std::vector<std::uint32_t>> shipped_spirv(const std::vector<std::uint32_t>& words, std::string_view name,
+                                                 TargetEnv env, bool strip_names);
 
 } // namespace kdop

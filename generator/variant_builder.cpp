@@ -43,10 +43,10 @@ Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_
     if (!interface) return fail(fmt::format("{}: reflection failed: {}", file, interface.error().message));
     v.interface = std::move(*interface);
 
-    auto stripped = strip_debug_info(*optimized, file, env);
-    if (!stripped) return std::unexpected(stripped.error());
-    if (auto ok = validate_spirv(*stripped, source, file, "shipped module", env); !ok) return ok;
-    v.spirv = std::move(*stripped);
+    auto shipped = shipped_spirv(*optimized, file, env, v.spec.strip_names);
+    if (!shipped) return std::unexpected(shipped.error());
+    if (auto ok = validate_spirv(*shipped, source, file, "shipped module", env); !ok) return ok;
+    v.spirv = std::move(*shipped);
     v.counts = count_spirv(v.spirv);
     return {};
 }

@@ -1,8 +1,7 @@
 // Building variants: emit GLSL (and the same function in HLSL), compile with glslang, validate,
-// optimize, validate again, reflect the interface, strip debug information, validate what ships,
-// and check that no loop survived. All for the spec's target environment (target_env.h).
-// Variants build in parallel; results come back in the order of the specs, so output does not
-// depend on thread timing.
+// optimize, validate again, reflect the interface, drop the line information (and names, if asked), validate what
+// ships, and check that no loop survived. All for the spec's target environment (target_env.h). Variants build in
+// parallel; results come back in the order of the specs, so output does not depend on thread timing.
 #pragma once
 
 #include "result.h"
@@ -24,7 +23,7 @@ struct BuiltVariant {
     std::string function_hlsl;        // the same function in HLSL (.hlsl)
     std::string compute_glsl;         // the compute shader (.comp), when built from GLSL
     std::string compute_hlsl;         // the HLSL compute shader, when built from HLSL
-    std::vector<std::uint32_t> spirv; // optimized, validated, stripped (.spv), from the compute shader
+    std::vector<std::uint32_t> spirv; // optimized, validated, as shipped (.spv), from the compute shader
     ShaderInterface interface;
     SpirvCounts counts;
 };
@@ -37,8 +36,8 @@ enum class SourceLanguage { glsl, hlsl };
 Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage language = SourceLanguage::glsl);
 
 // The stages after glslang, shared by variants and a project's own shaders, for `env`: validate
-// `compiled`, optimize, validate, reflect into v.interface, strip, validate what ships into v.spirv,
-// count. Messages name `file` and the lines of `source`, the shader `compiled` came from.
+// `compiled`, optimize, validate, reflect into v.interface, drop what does not ship (v.spec.strip_names), validate what
+// ships into v.spirv, count. Messages name `file` and the lines of `source`, the shader `compiled` came from.
 Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_view file, TargetEnv env,
                           Result<std::vector<std::uint32_t>> compiled);
 

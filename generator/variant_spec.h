@@ -50,6 +50,8 @@ struct VariantSpec {
     EmitStyle style = {};
     // What the SPIR-V is built for; the shader text does not depend on it.
     TargetEnv target_env = TargetEnv::vulkan1_0;
+    // Whether the shipped SPIR-V drops its names (OpName, OpMemberName) too; kept by default.
+    bool strip_names = false;
 
     VariantKey key() const { return {set.name, mode, neighborhood, form, numerics}; }
 };

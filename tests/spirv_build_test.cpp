@@ -3,6 +3,8 @@
 // reflected, output is deterministic, identical modules are stored once, and compiler messages
 // name the GLSL line.
 #include "glsl_compiler.h"
+#include "kdop_stripped_test_shaders.h"
+#include "kdop_test_shaders.h"
 #include "registry_writer.h"
 #include "spirv_module.h"
 #include "test_support.h"
@@ -37,10 +39,58 @@ TEST(SpirvBuild, EveryDefaultVariantValidatesAndHasNoLoop) {
         std::string disassembly;
         ASSERT_TRUE(tools.Disassemble(v.spirv, &disassembly));
         EXPECT_EQ(disassembly.find("OpLoopMerge"), std::string::npos);
-        EXPECT_EQ(disassembly.find("OpLine"), std::string::npos) << "debug information must be stripped";
+        // kdop's line information is gone (its bytes must not depend on file names or comments);
+        // the names stay, as glslc keeps them.
+        EXPECT_EQ(disassembly.find("OpLine"), std::string::npos);
+        EXPECT_EQ(disassembly.find("OpString"), std::string::npos);
+        EXPECT_EQ(disassembly.find("OpModuleProcessed"), std::string::npos);
+        EXPECT_NE(disassembly.find("OpName %history_frame \"history_frame\""), std::string::npos) << disassembly;
+        EXPECT_NE(disassembly.find("OpName %rectified_history \"rectified_history\""), std::string::npos);
         EXPECT_NE(disassembly.find("OpEntryPoint GLCompute"), std::string::npos);
         EXPECT_EQ(v.counts.loop_merges, 0u);
     }
+}
+
+TEST(SpirvBuild, StripNamesLeavesCodeOnlyAndTheSameCode) {
+    auto specs = select_variants({"dop22"}, {"varclip"}, {"n5"});
+    ASSERT_TRUE(specs);
+    VariantSpec spec = specs->front();
+    auto named = build_variant(spec);
+    spec.strip_names = true;
+    auto stripped = build_variant(spec);
+    ASSERT_TRUE(named && stripped);
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+    EXPECT_TRUE(tools.Validate(stripped->spirv));
+    std::string named_text, stripped_text;
+    ASSERT_TRUE(tools.Disassemble(named->spirv, &named_text, SPV_BINARY_TO_TEXT_OPTION_NONE));
+    ASSERT_TRUE(tools.Disassemble(stripped->spirv, &stripped_text, SPV_BINARY_TO_TEXT_OPTION_NONE));
+    EXPECT_NE(named_text.find("OpName"), std::string::npos);
+    EXPECT_EQ(stripped_text.find("OpName"), std::string::npos);
+    EXPECT_EQ(stripped_text.find("OpSource"), std::string::npos);
+    // Names are all that differ: the function bodies are the same instructions.
+    EXPECT_EQ(named->counts.function_instructions, stripped->counts.function_instructions);
+    EXPECT_LT(stripped->spirv.size(), named->spirv.size());
+}
+
+TEST(SpirvBuild, KdopAddVariantsKeepsAProjectShadersNamesUnlessStripNames) {
+    // tests/CMakeLists.txt builds examples/taa_resolve's shader twice, the second with STRIP_NAMES.
+    auto disassemble = [](const Variant* v) {
+        std::string text;
+        spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+        EXPECT_TRUE(tools.Disassemble(std::vector<std::uint32_t>(v->spirv, v->spirv + v->spirv_word_count), &text));
+        return text;
+    };
+    const Variant* named = test_shaders::variants().find("taa_resolve");
+    const Variant* stripped = stripped_test_shaders::variants().find("taa_resolve");
+    ASSERT_TRUE(named && stripped);
+    const std::string named_text = disassemble(named), stripped_text = disassemble(stripped);
+    EXPECT_NE(named_text.find("OpName %history_frame \"history_frame\""), std::string::npos) << named_text;
+    EXPECT_NE(named_text.find("\"current_weight\""), std::string::npos) << "the push constant's member";
+    EXPECT_EQ(stripped_text.find("OpName"), std::string::npos) << stripped_text;
+    EXPECT_EQ(stripped_text.find("OpMemberName"), std::string::npos);
+    // The registry's reflection does not depend on the names shipping.
+    EXPECT_STREQ(stripped->bindings[1].name, "history_frame");
+    EXPECT_STREQ(stripped->push_constants[0].name, named->push_constants[0].name);
 }
 
 TEST(SpirvBuild, MoreAxesCostMoreInstructions) {
