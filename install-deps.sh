@@ -9,12 +9,13 @@ set -eu
 # valgrind and gnuplot-nox: `kdop bench` (and its tests) run callgrind and draw charts with gnuplot.
 # libglpk-dev and libqhull-dev: `kdop accuracy` solves the ideal clip as an exact LP (GLPK) and
 # measures hull and k-DOP volumes (Qhull).
+# libspirv-cross-c-shared-dev: SPIRV-Cross's static core library, which reflects shaders' interfaces.
 # clang-format: the test format_is_applied checks the tree against .clang-format.
 # nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
 # fonts-dejavu-core: the font of the labels in `kdop taa`'s pictures (temporal/trail_picture.h).
 packages="
   build-essential cmake ninja-build pkg-config
-  glslang-dev glslang-tools spirv-tools spirv-headers
+  glslang-dev glslang-tools spirv-tools spirv-headers libspirv-cross-c-shared-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev

@@ -16,8 +16,9 @@
 #     [TARGET_ENV <vulkan1.0..1.3>]     the SPIR-V's target environment; default vulkan1.0
 #     [STRIP_NAMES]                     drop OpName and OpMemberName from the SPIR-V, for shipping; by default
 #                                       they are kept (as glslc keeps them) for debuggers and spirv-cross
-#     [SHADERS <file.comp>...]          the project's own GLSL compute shaders, compiled into the registry
-#                                       too (named after their file stems), where
+#     [SHADERS <file>...]               the project's own GLSL shaders, compute (.comp), vertex (.vert) or
+#                                       fragment (.frag), compiled into the registry too (named after their
+#                                       file stems, with their reflected bindings and stage), where
 #                                       `#include "dop22-clip-n9.glsl"` gives them a selected variant's function
 #     [SHADER_INCLUDE_DIRS <dir>...])   where the SHADERS' other includes are looked up (after their own folder)
 #

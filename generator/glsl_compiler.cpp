@@ -117,23 +117,34 @@ private:
 // Compiles one compute shader of `language` for `env`: parse, link, translate to SPIR-V. With a
 // resolver, #include works as with glslc (GL_GOOGLE_include_directive, enabled); without one, an
 // #include is an error.
+EShLanguage glslang_stage(ShaderStage stage) {
+    switch (stage) {
+    case ShaderStage::compute: return EShLangCompute;
+    case ShaderStage::vertex: return EShLangVertex;
+    case ShaderStage::fragment: return EShLangFragment;
+    }
+    return EShLangCompute;
+}
+
 Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, std::string_view source,
                                                   std::string_view name, TargetEnv env,
-                                                  const IncludeResolver& resolve = {}) {
+                                                  const IncludeResolver& resolve = {},
+                                                  ShaderStage shader_stage = ShaderStage::compute) {
+    const EShLanguage stage = glslang_stage(shader_stage);
     initialize_glslang_once();
     const bool hlsl = language == glslang::EShSourceHlsl;
     int flags = EShMsgSpvRules | EShMsgVulkanRules;
     if (hlsl) flags |= EShMsgReadHlsl;
     const EShMessages messages = static_cast<EShMessages>(flags);
 
-    glslang::TShader shader(EShLangCompute);
+    glslang::TShader shader(stage);
     const char* text = source.data();
     const int length = static_cast<int>(source.size());
     const std::string name_string(name);
     const char* names = name_string.c_str();
     shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
     const auto [client, target] = glslang_target(env);
-    shader.setEnvInput(language, EShLangCompute, glslang::EShClientVulkan, 100);
+    shader.setEnvInput(language, stage, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, client);
     shader.setEnvTarget(glslang::EShTargetSpv, target);
     if (hlsl) {
@@ -162,7 +173,7 @@ Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, s
     glslang::SpvOptions options;
     options.generateDebugInfo = true; // OpLine, so validator messages can name GLSL lines
     options.disableOptimizer = true;  // SPIRV-Tools optimizes in the next stage, with our settings
-    glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), words, &logger, &options);
+    glslang::GlslangToSpv(*program.getIntermediate(stage), words, &logger, &options);
     std::string spv_messages = logger.getAllMessages();
     if (words.empty() || !spv_messages.empty())
         return fail(fmt::format("{}: SPIR-V generation failed: {}", name, spv_messages));
@@ -179,6 +190,11 @@ std::string glsl_diagnostic(std::string_view source, std::string_view name, int 
 Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name, TargetEnv env,
                                                         const IncludeResolver& resolve) {
     return compile_shader(glslang::EShSourceGlsl, source, name, env, resolve);
+}
+
+Result<std::vector<std::uint32_t>> compile_glsl(std::string_view source, std::string_view name, ShaderStage stage,
+                                                TargetEnv env, const IncludeResolver& resolve) {
+    return compile_shader(glslang::EShSourceGlsl, source, name, env, resolve, stage);
 }
 
 Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name, TargetEnv env) {

@@ -6,6 +6,8 @@
 #include "result.h"
 #include "target_env.h"
 
+#include <kdop/variant.h>
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -31,6 +33,11 @@ using IncludeResolver =
 Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name,
                                                         TargetEnv env = TargetEnv::vulkan1_0,
                                                         const IncludeResolver& resolve = {});
+
+// The same for a shader of any stage kdop builds (a project's vertex and fragment SHADERS).
+Result<std::vector<std::uint32_t>> compile_glsl(std::string_view source, std::string_view name, ShaderStage stage,
+                                                TargetEnv env = TargetEnv::vulkan1_0,
+                                                const IncludeResolver& resolve = {});
 
 // Compiles one HLSL compute shader (entry point "main") through glslang's HLSL front end, with
 // textures upgraded to combined image samplers; messages as for GLSL. Thread-safe.

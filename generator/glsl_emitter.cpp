@@ -117,7 +117,9 @@ std::string sum(int count, std::string_view term_format) {
 // parallel to the slab (d = +-0, inv_d = +-inf) from stopping at it: the chosen plane's distance
 // then has inv_d's sign and the exit is +inf. A compare and a select cost one float op less than
 // computing both crossings and taking the larger. (The paper's numerics.)
-std::string paper_exit_update() { return "        t = min(t, ((inv_d > 0.0 ? hi : lo) - p) * inv_d);\n"; }
+std::string paper_exit_update(const Dialect& dialect) {
+    return fmt::format("        t = min(t, (({}) - p) * inv_d);\n", dialect.select("inv_d > 0.0", "hi", "lo"));
+}
 
 // Hardened, lo and hi are relative to the ray's origin, which they contain, and padded after:
 // lo <= -padding < 0 < padding <= hi, however float rounds. The plane the ray heads for is chosen by d's sign bit,
@@ -125,7 +127,8 @@ std::string paper_exit_update() { return "        t = min(t, ((inv_d > 0.0 ? hi 
 // gets +inf, never 0 / 0; and every exit is positive, so t stays in (0, 1]. One division instead
 // of a reciprocal and a multiply.
 std::string hardened_exit(const Dialect& dialect) {
-    return fmt::format("        t = min(t, ({}(d) < 0 ? lo : hi) / d);\n", dialect.float_bits_to_int);
+    return fmt::format("        t = min(t, ({}) / d);\n",
+                       dialect.select(fmt::format("{}(d) < 0", dialect.float_bits_to_int), "lo", "hi"));
 }
 
 // The paper's slab dilation, 1e-5 per unit of axis length, on both sides.
@@ -136,15 +139,16 @@ std::string dilation(const ScaledAxis& axis) {
 // `float <name> = ...;`: the min() or max() (`op`) of `start` (if any) and the projections q<n> of
 // `neighbors`, updated neighbor by neighbor from `start`, or as a balanced tree joined with it.
 void write_extent(std::string& out, std::string_view name, std::string_view op, std::string_view start,
-                  const std::vector<int>& neighbors, EmitStyle::Extent extent) {
+                  const std::vector<int>& neighbors, EmitStyle::Extent extent, const Dialect& dialect) {
+    const std::string declaration = dialect.declare("float", name, true); // padded or moved after
     if (extent == EmitStyle::Extent::running) {
-        out += fmt::format("        float {} = {};\n", name, start);
+        out += fmt::format("        {} = {};\n", declaration, start);
         for (int n : neighbors) out += fmt::format("        {0} = {1}({0}, q{2});\n", name, op, n);
         return;
     }
     const std::string tree = reduce_tree(op, neighbors, 0, static_cast<int>(neighbors.size()));
-    out += start.empty() ? fmt::format("        float {} = {};\n", name, tree)
-                         : fmt::format("        float {} = {}({}, {});\n", name, op, tree, start);
+    out += start.empty() ? fmt::format("        {} = {};\n", declaration, tree)
+                         : fmt::format("        {} = {}({}, {});\n", declaration, op, tree, start);
 }
 
 // Clip: the slab spans the projections' min..max.
@@ -162,30 +166,34 @@ void write_extent(std::string& out, std::string_view name, std::string_view op, 
 void write_clip_slab(std::string& out, const ScaledAxis& axis, const std::vector<int>& neighbors,
                      const EmitStyle& style, Numerics numerics, Frame frame, const Dialect& dialect) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection, dialect); };
-    for (int n : neighbors) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
+    for (int n : neighbors)
+        out += fmt::format("        {} = {};\n", dialect.declare("float", fmt::format("q{}", n)),
+                           proj(fmt::format("c{}", n)));
     const std::string padding = float_literal(axis.padding);
     const bool running = style.extent == EmitStyle::Extent::running;
+    const std::string largest(running ? dialect.float_max : ""), lowest(running ? "-" + largest : "");
+    const std::string p = dialect.declare("float", "p");
     if (numerics == Numerics::paper) {
-        write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
-        write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
+        write_extent(out, "lo", "min", largest, neighbors, style.extent, dialect);
+        write_extent(out, "hi", "max", lowest, neighbors, style.extent, dialect);
         out += dilation(axis);
-        out += fmt::format("        float p = {};\n", proj("current"));
-        out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
-        out += paper_exit_update();
+        out += fmt::format("        {} = {};\n", p, proj("current"));
+        out += fmt::format("        {} = {};\n", dialect.declare("float", "inv_d"), reciprocal(proj("dir")));
+        out += paper_exit_update(dialect);
         return;
     }
     if (frame == Frame::relative) {
-        write_extent(out, "lo", "min", "0.0", neighbors, style.extent);
-        write_extent(out, "hi", "max", "0.0", neighbors, style.extent);
+        write_extent(out, "lo", "min", "0.0", neighbors, style.extent, dialect);
+        write_extent(out, "hi", "max", "0.0", neighbors, style.extent, dialect);
         out += dilation(axis);
     } else {
-        write_extent(out, "lo", "min", running ? "3.40282347e38" : "", neighbors, style.extent);
-        write_extent(out, "hi", "max", running ? "-3.40282347e38" : "", neighbors, style.extent);
-        out += fmt::format("        float p = {};\n", proj("current"));
+        write_extent(out, "lo", "min", largest, neighbors, style.extent, dialect);
+        write_extent(out, "hi", "max", lowest, neighbors, style.extent, dialect);
+        out += fmt::format("        {} = {};\n", p, proj("current"));
         out += fmt::format("        lo = min(lo - p, 0.0) - {};\n", padding);
         out += fmt::format("        hi = max(hi - p, 0.0) + {};\n", padding);
     }
-    out += fmt::format("        float d = {};\n", proj("dir"));
+    out += fmt::format("        {} = {};\n", dialect.declare("float", "d"), proj("dir"));
     out += hardened_exit(dialect);
 }
 
@@ -202,35 +210,41 @@ void write_varclip_slab(std::string& out, const ScaledAxis& axis, const std::vec
                         const EmitStyle& style, Numerics numerics, const Dialect& dialect) {
     auto proj = [&](std::string_view v) { return project(v, axis.coefficients, style.projection, dialect); };
     const bool hardened = numerics == Numerics::hardened;
-    if (!hardened) out += fmt::format("        float p = {};\n", proj("current"));
-    for (int n : neighbors) out += fmt::format("        float q{} = {};\n", n, proj(fmt::format("c{}", n)));
+    auto let = [&](std::string_view name) { return dialect.declare("float", name); };
+    if (!hardened) out += fmt::format("        {} = {};\n", let("p"), proj("current"));
+    for (int n : neighbors)
+        out += fmt::format("        {} = {};\n", let(fmt::format("q{}", n)), proj(fmt::format("c{}", n)));
     std::string sum, squares;
     for (int n : neighbors) {
         sum += fmt::format("{}q{}", sum.empty() ? "" : " + ", n);
         squares += fmt::format("{0}q{1} * q{1}", squares.empty() ? "" : " + ", n);
     }
-    out += fmt::format("        float sum = {};\n", sum);
-    out += fmt::format("        float mean = sum * (1.0 / {}.0);\n", count);
+    out += fmt::format("        {} = {};\n", let("sum"), sum);
+    out += fmt::format("        {} = sum * (1.0 / {}.0);\n", let("mean"), count);
     if (hardened) {
         // Written so every multiply-add fuses without a negation: the variance is
         // (sum q^2 - sum q * mean) / N, and -gamma is shared by all slabs.
-        out += fmt::format("        float variance = {2}(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count,
-                           squares, dialect.fma);
-        out += "        float sigma = sqrt(max(variance, 0.0));\n";
-        out += fmt::format("        float lo = min({}(-gamma, sigma, mean), 0.0);\n", dialect.fma);
-        out += fmt::format("        float hi = max({}(gamma, sigma, mean), 0.0);\n", dialect.fma);
+        out += fmt::format("        {3} = {2}(sum, sum * (-1.0 / {0}.0), {1}) * (1.0 / {0}.0);\n", count, squares,
+                           dialect.fma, let("variance"));
+        out += fmt::format("        {} = sqrt(max(variance, 0.0));\n", let("sigma"));
+        out += fmt::format("        {} = min({}(-gamma, sigma, mean), 0.0);\n", dialect.declare("float", "lo", true),
+                           dialect.fma);
+        out += fmt::format("        {} = max({}(gamma, sigma, mean), 0.0);\n", dialect.declare("float", "hi", true),
+                           dialect.fma);
         out += fmt::format("        lo = {1}(scale, -{0}, lo);\n        hi = {1}(scale, {0}, hi);\n",
                            float_literal(axis.padding), dialect.fma);
-        out += fmt::format("        float d = {};\n", proj("ray"));
+        out += fmt::format("        {} = {};\n", let("d"), proj("ray"));
         out += hardened_exit(dialect);
         return;
     }
-    out += fmt::format("        float sigma = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", squares, count);
-    out += fmt::format("        float lo = min({}(-gamma, sigma, mean), p);\n", dialect.fma);
-    out += fmt::format("        float hi = max({}(gamma, sigma, mean), p);\n", dialect.fma);
+    out += fmt::format("        {} = sqrt(({}) * (1.0 / {}.0) - mean * mean);\n", let("sigma"), squares, count);
+    out += fmt::format("        {} = min({}(-gamma, sigma, mean), p);\n", dialect.declare("float", "lo", true),
+                       dialect.fma);
+    out += fmt::format("        {} = max({}(gamma, sigma, mean), p);\n", dialect.declare("float", "hi", true),
+                       dialect.fma);
     out += dilation(axis);
-    out += fmt::format("        float inv_d = {};\n", reciprocal(proj("dir")));
-    out += paper_exit_update();
+    out += fmt::format("        {} = {};\n", let("inv_d"), reciprocal(proj("dir")));
+    out += paper_exit_update(dialect);
 }
 
 // Text from outside (a file's name, its provenance line) as it may stand in a `//` comment: a
@@ -370,6 +384,10 @@ std::string function_header(const VariantSpec& spec, const Dialect& dialect) {
 }
 
 std::string signature(const VariantSpec& spec, const Dialect& dialect) {
+    if (dialect.wgsl())
+        return fmt::format("fn {}(current: vec3f, history: vec3f, {}neighborhood: array<vec3f, {}>) -> vec3f",
+                           glsl_function_name(spec), spec.mode == Mode::varclip ? "gamma: f32, " : "",
+                           neighborhood_offsets(spec.neighborhood).size());
     return fmt::format("{0} {1}({0} current, {0} history, {2}{0} neighborhood[{3}])", dialect.vec(3),
                        glsl_function_name(spec), spec.mode == Mode::varclip ? "float gamma, " : "",
                        neighborhood_offsets(spec.neighborhood).size());
@@ -386,17 +404,19 @@ std::string signature(const VariantSpec& spec, const Dialect& dialect) {
 // rounded once, as the plain difference would be.
 void write_hardening_prologue(std::string& out, Mode mode, const Dialect& dialect) {
     out += "    // A history with NaN or Inf, or too far out to project without overflow, is not used.\n";
-    out += fmt::format("    {} current_size = abs(current);\n", dialect.vec(3));
-    out += fmt::format("    {} reach = abs(dir) + current_size;\n", dialect.vec(3));
-    out += "    bool history_usable = reach.x + reach.y + reach.z <= 3.40282347e38;\n";
+    out += fmt::format("    {} = abs(current);\n", dialect.declare("vec3", "current_size"));
+    out += fmt::format("    {} = abs(dir) + current_size;\n", dialect.declare("vec3", "reach"));
+    out += fmt::format("    {} = reach.x + reach.y + reach.z <= {};\n", dialect.declare("bool", "history_usable"),
+                       dialect.float_max);
     if (mode != Mode::varclip) return;
     out += "    // Moments of colors relative to current, scaled so squares of HDR differences stay finite.\n";
     const std::string threshold = float_literal(std::ldexp(1.0f, 60)), small = float_literal(std::ldexp(1.0f, -100));
-    out += fmt::format("    bool huge = max(max(current_size.x, current_size.y), current_size.z) > {}; // 2^60\n",
-                       threshold);
-    out += fmt::format("    float scale = huge ? {} : 1.0; // 2^-100\n", small);
-    out += fmt::format("    {} origin = current * (huge ? -{} : -1.0);\n", dialect.vec(3), small);
-    out += fmt::format("    {} ray = dir * scale;\n", dialect.vec(3));
+    out += fmt::format("    {} = max(max(current_size.x, current_size.y), current_size.z) > {}; // 2^60\n",
+                       dialect.declare("bool", "huge"), threshold);
+    out += fmt::format("    {} = {}; // 2^-100\n", dialect.declare("float", "scale"), dialect.select("huge", small, "1.0"));
+    out += fmt::format("    {} = current * ({});\n", dialect.declare("vec3", "origin"),
+                       dialect.select("huge", "-" + small, "-1.0"));
+    out += fmt::format("    {} = dir * scale;\n", dialect.declare("vec3", "ray"));
 }
 
 // The neighbors a slab reads: all of them with the paper's numerics; hardened, all but the center,
@@ -416,18 +436,20 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec, const Dialec
     const Frame frame = hardened ? hardened_frame(spec.set, spec.mode, spec.neighborhood) : Frame::absolute;
     const std::vector<int> neighbors = slab_neighbors(spec);
     const std::string vec3 = dialect.vec(3);
-    out += fmt::format("    {} dir = history - current;\n", vec3);
+    out += fmt::format("    {} = history - current;\n", dialect.declare("vec3", "dir"));
     if (hardened) write_hardening_prologue(out, spec.mode, dialect);
     for (int n : neighbors) {
+        const std::string c = dialect.declare("vec3", fmt::format("c{}", n));
         if (frame == Frame::absolute)
-            out += fmt::format("    {} c{} = neighborhood[{}];\n", vec3, n, n);
+            out += fmt::format("    {} = neighborhood[{}];\n", c, n);
         else if (spec.mode == Mode::varclip)
-            out += fmt::format("    {} c{} = {}(neighborhood[{}], {}, origin);\n", vec3, n, dialect.fma, n,
+            out += fmt::format("    {} = {}(neighborhood[{}], {}, origin);\n", c, dialect.fma, n,
                                dialect.splat(3, "scale"));
         else
-            out += fmt::format("    {} c{} = neighborhood[{}] - current;\n", vec3, n, n);
+            out += fmt::format("    {} = neighborhood[{}] - current;\n", c, n);
     }
-    out += "    float t = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n";
+    out += fmt::format("    {} = 1.0; // where current + t * dir leaves the k-DOP; stays 1 while history is inside\n",
+                       dialect.declare("float", "t", true));
     for (int a = 0; a < axes; ++a) {
         const Axis& axis = spec.set.axes[a];
         ScaledAxis scaled = scale_axis(axis.direction);
@@ -447,53 +469,63 @@ void write_unrolled_body(std::string& out, const VariantSpec& spec, const Dialec
     // current + t * dir, written as fma because spirv-opt fuses only scalar multiply-adds.
     out += "\n";
     if (hardened)
-        out += fmt::format("    return history_usable ? {}({}, dir, current) : current; // 0 < t <= 1\n", dialect.fma,
-                           dialect.splat(3, "t"));
+        out += fmt::format("    return {}; // 0 < t <= 1\n",
+                           dialect.select("history_usable",
+                                          fmt::format("{}({}, dir, current)", dialect.fma, dialect.splat(3, "t")),
+                                          "current"));
     else
         out += fmt::format("    return {}({}, dir, current);\n", dialect.fma, dialect.splat(3, "max(t, 0.0)"));
+}
+
+// `for (int i = 0; i < count; ++i)` with the dialect's unroll attribute, or WGSL's `for (var i = 0; ...; i++)`.
+std::string counted_loop(const Dialect& dialect, std::string_view i, int count) {
+    return dialect.wgsl() ? fmt::format("for (var {0} = 0; {0} < {1}; {0}++)", i, count)
+                          : fmt::format("{0}for (int {1} = 0; {1} < {2}; ++{1})", dialect.unroll, i, count);
 }
 
 // The hardened function in the loop form, relative to current as the unrolled form's relative frame
 // is (the axes at unit length, so the padding is epsilon itself).
 void write_hardened_loop(std::string& out, Mode mode, int count, int center, int axes, const Dialect& dialect) {
     const std::string vec2 = dialect.vec(2);
+    auto let = [&](std::string_view type, std::string_view name) { return dialect.declare(type, name); };
+    auto var = [&](std::string_view type, std::string_view name) { return dialect.declare(type, name, true); };
     write_hardening_prologue(out, mode, dialect);
-    out += "    float t = 1.0;\n";
-    out += fmt::format("    {}for (int a = 0; a < {}; ++a)\n    {{\n", dialect.unroll, axes);
-    out += fmt::format("        {} axis = axes[a];\n", dialect.vec(3));
+    out += fmt::format("    {} = 1.0;\n", var("float", "t"));
+    out += fmt::format("    {}\n    {{\n", counted_loop(dialect, "a", axes));
+    out += fmt::format("        {} = axes[a];\n", let("vec3", "axis"));
     if (mode == Mode::clip) {
-        out += fmt::format("        {} extent = {}; // current, for neighborhood[{}], at the origin\n", vec2,
+        out += fmt::format("        {} = {}; // current, for neighborhood[{}], at the origin\n", var("vec2", "extent"),
                            dialect.splat(2, "0.0"), center);
-        out += fmt::format("        {}for (int n = 0; n < {}; ++n)\n        {{\n", dialect.unroll, count);
+        out += fmt::format("        {}\n        {{\n", counted_loop(dialect, "n", count));
         // A guarded body rather than `continue`, which keeps spirv-opt from unrolling the loop.
         out += fmt::format("            if (n != {})\n            {{\n", center);
-        out += "                float q = dot(neighborhood[n] - current, axis);\n";
+        out += fmt::format("                {} = dot(neighborhood[n] - current, axis);\n", let("float", "q"));
         out += fmt::format("                extent = {}(min(q, extent.x), max(q, extent.y));\n", vec2);
         out += "            }\n";
         out += "        }\n";
         out += fmt::format("        extent += {}(-epsilon, epsilon);\n", vec2);
-        out += "        float d = dot(dir, axis);\n";
+        out += fmt::format("        {} = dot(dir, axis);\n", let("float", "d"));
     } else {
-        out += fmt::format("        {} moments = {};\n", vec2, dialect.splat(2, "0.0"));
-        out += fmt::format("        {}for (int n = 0; n < {}; ++n)\n        {{\n", dialect.unroll, count);
+        out += fmt::format("        {} = {};\n", var("vec2", "moments"), dialect.splat(2, "0.0"));
+        out += fmt::format("        {}\n        {{\n", counted_loop(dialect, "n", count));
         out += fmt::format("            if (n != {}) // current stands for it: 0 relative to itself\n            {{\n",
                            center);
-        out += fmt::format("                float q = dot({}(neighborhood[n], {}, origin), axis);\n", dialect.fma,
-                           dialect.splat(3, "scale"));
+        out += fmt::format("                {} = dot({}(neighborhood[n], {}, origin), axis);\n", let("float", "q"),
+                           dialect.fma, dialect.splat(3, "scale"));
         out += fmt::format("                moments += {}(q, q * q);\n", vec2);
         out += "            }\n";
         out += "        }\n";
         out += fmt::format("        moments /= {};\n", dialect.splat(2, fmt::format("{}.0", count)));
-        out += "        float sigma = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n";
-        out += fmt::format("        {0} extent = {0}(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * "
-                           "sigma, 0.0));\n",
-                           vec2);
+        out += fmt::format("        {} = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n", let("float", "sigma"));
+        out += fmt::format("        {} = {}(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n",
+                           var("vec2", "extent"), vec2);
         out += fmt::format("        extent += {}(-epsilon, epsilon) * scale;\n", vec2);
-        out += "        float d = dot(ray, axis);\n";
+        out += fmt::format("        {} = dot(ray, axis);\n", let("float", "d"));
     }
-    out += fmt::format("        t = min(t, ({}(d) < 0 ? extent.x : extent.y) / d);\n", dialect.float_bits_to_int);
+    out += fmt::format("        t = min(t, ({}) / d);\n",
+                       dialect.select(fmt::format("{}(d) < 0", dialect.float_bits_to_int), "extent.x", "extent.y"));
     out += "    }\n";
-    out += "    return history_usable ? current + t * dir : current;\n";
+    out += fmt::format("    return {};\n", dialect.select("history_usable", "current + t * dir", "current"));
 }
 
 // The supplement's listing: the axes at unit length (as the supplement lists them; a user's file
@@ -504,28 +536,31 @@ void write_loop_body(std::string& out, const VariantSpec& spec, const Dialect& d
     const int count = static_cast<int>(neighborhood_offsets(spec.neighborhood).size());
     const int axes = static_cast<int>(spec.set.axes.size());
     const std::string vec2 = dialect.vec(2), vec3 = dialect.vec(3);
-    out += fmt::format("    const {} axes[{}] = {}\n", vec3, axes, dialect.array_open(3));
+    auto let = [&](std::string_view type, std::string_view name) { return dialect.declare(type, name); };
+    auto var = [&](std::string_view type, std::string_view name) { return dialect.declare(type, name, true); };
+    out += dialect.wgsl() ? fmt::format("    const axes = {}\n", dialect.array_open(3, axes))
+                          : fmt::format("    const {} axes[{}] = {}\n", vec3, axes, dialect.array_open(3, axes));
     for (int a = 0; a < axes; ++a) {
         const glm::vec3 v(unit_direction(spec.set.axes[a].direction));
         out += fmt::format("        {}({}, {}, {}){}\n", vec3, float_literal(v.x), float_literal(v.y),
                            float_literal(v.z), a + 1 < axes ? "," : "");
     }
     out += fmt::format("    {};\n", dialect.array_close());
-    out += "    const float epsilon = 1e-5;\n";
-    out += fmt::format("    {} dir = history - current;\n", vec3);
+    out += dialect.wgsl() ? "    const epsilon: f32 = 1e-5;\n" : "    const float epsilon = 1e-5;\n";
+    out += fmt::format("    {} = history - current;\n", let("vec3", "dir"));
     if (spec.numerics == Numerics::hardened) {
         write_hardened_loop(out, spec.mode, count, neighborhood_center(spec.neighborhood), axes, dialect);
         return;
     }
-    out += "    float near = -1e9, far = 1e9;\n";
-    out += fmt::format("    {}for (int a = 0; a < {}; ++a)\n    {{\n", dialect.unroll, axes);
-    out += fmt::format("        {} axis = axes[a];\n", vec3);
-    out += "        float proj_pos = dot(current, axis);\n";
-    out += "        float inv_dir = 1.0 / dot(dir, axis);\n";
-    out += spec.mode == Mode::clip ? fmt::format("        {0} extent = {0}(1e9, -1e9);\n", vec2)
-                                   : fmt::format("        {} moments = {};\n", vec2, dialect.splat(2, "0.0"));
-    out += fmt::format("        {}for (int n = 0; n < {}; ++n)\n        {{\n", dialect.unroll, count);
-    out += "            float t = dot(neighborhood[n], axis);\n";
+    out += dialect.wgsl() ? "    var near: f32 = -1e9;\n    var far: f32 = 1e9;\n" : "    float near = -1e9, far = 1e9;\n";
+    out += fmt::format("    {}\n    {{\n", counted_loop(dialect, "a", axes));
+    out += fmt::format("        {} = axes[a];\n", let("vec3", "axis"));
+    out += fmt::format("        {} = dot(current, axis);\n", let("float", "proj_pos"));
+    out += fmt::format("        {} = 1.0 / dot(dir, axis);\n", let("float", "inv_dir"));
+    out += spec.mode == Mode::clip ? fmt::format("        {} = {}(1e9, -1e9);\n", var("vec2", "extent"), vec2)
+                                   : fmt::format("        {} = {};\n", var("vec2", "moments"), dialect.splat(2, "0.0"));
+    out += fmt::format("        {}\n        {{\n", counted_loop(dialect, "n", count));
+    out += fmt::format("            {} = dot(neighborhood[n], axis);\n", let("float", "t"));
     if (spec.mode == Mode::clip) {
         out += "            extent.x = min(t, extent.x);\n";
         out += "            extent.y = max(t, extent.y);\n";
@@ -534,19 +569,19 @@ void write_loop_body(std::string& out, const VariantSpec& spec, const Dialect& d
         out += fmt::format("            moments += {}(t, t * t);\n", vec2);
         out += "        }\n";
         out += fmt::format("        moments /= {};\n", dialect.splat(2, fmt::format("{}.0", count)));
-        out += "        float sigma = sqrt(moments.y - moments.x * moments.x);\n";
-        out += fmt::format("        {0} extent = {0}(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
+        out += fmt::format("        {} = sqrt(moments.y - moments.x * moments.x);\n", let("float", "sigma"));
+        out += fmt::format("        {} = {}(min(moments.x - gamma * sigma, proj_pos), max(moments.x + gamma * "
                            "sigma, proj_pos));\n",
-                           vec2);
+                           var("vec2", "extent"), vec2);
     }
     out += fmt::format("        extent += {}(-epsilon, epsilon) * length(axis);\n", vec2);
-    out += "        float t0 = (extent.x - proj_pos) * inv_dir;\n";
-    out += "        float t1 = (extent.y - proj_pos) * inv_dir;\n";
+    out += fmt::format("        {} = (extent.x - proj_pos) * inv_dir;\n", let("float", "t0"));
+    out += fmt::format("        {} = (extent.y - proj_pos) * inv_dir;\n", let("float", "t1"));
     out += "        near = max(near, min(t0, t1));\n";
     out += "        far = min(far, max(t0, t1));\n";
     out += "    }\n";
     out += "    if (near <= far && (near > 0.0 || far > 0.0))\n    {\n";
-    out += "        float t = clamp(near > 0.0 ? near : far, 0.0, 1.0);\n";
+    out += fmt::format("        {} = clamp({}, 0.0, 1.0);\n", let("float", "t"), dialect.select("near > 0.0", "near", "far"));
     out += "        return current + t * dir;\n";
     out += "    }\n";
     out += "    return current;\n";
@@ -573,15 +608,16 @@ std::string emit_function(const VariantSpec& spec, const Dialect& dialect) {
     if (spec.mode == Mode::gather || spec.mode == Mode::copy) return emit_baseline_function(spec, dialect);
     const std::string guard = upper_identifier(glsl_function_name(spec)) + "_" + std::string(dialect.language);
     std::string out = function_header(spec, dialect);
-    out += fmt::format("#ifndef {}\n#define {}\n", guard, guard);
+    // WGSL has no preprocessor, so no include guard: a module pastes the function in once.
+    if (!dialect.wgsl()) out += fmt::format("#ifndef {}\n#define {}\n", guard, guard);
     if (spec.form == Form::loop) out += dialect.loop_extension;
     out += "\n" + signature(spec, dialect) + "\n{\n";
     if (spec.form == Form::loop)
         write_loop_body(out, spec, dialect);
     else
         write_unrolled_body(out, spec, dialect);
-    out += "}\n\n";
-    out += fmt::format("#endif // {}\n", guard);
+    out += "}\n";
+    if (!dialect.wgsl()) out += fmt::format("\n#endif // {}\n", guard);
     return out;
 }
 

@@ -23,6 +23,32 @@ bool is_inside(const fs::path& file, const fs::path& folder) {
     return end == d.end();
 }
 
+// The stage glslc reads from the extension; what kdop does not build pipelines for, refused by name.
+Result<ShaderStage> stage_of_file(const fs::path& file) {
+    const std::string extension = file.extension().string();
+    if (extension == ".comp") return ShaderStage::compute;
+    if (extension == ".vert") return ShaderStage::vertex;
+    if (extension == ".frag") return ShaderStage::fragment;
+    static const std::pair<const char*, const char*> others[] = {{".geom", "a geometry"},
+                                                                 {".tesc", "a tessellation control"},
+                                                                 {".tese", "a tessellation evaluation"},
+                                                                 {".mesh", "a mesh"},
+                                                                 {".task", "a task"},
+                                                                 {".rgen", "a ray generation"},
+                                                                 {".rchit", "a closest-hit"},
+                                                                 {".rahit", "an any-hit"},
+                                                                 {".rmiss", "a miss"},
+                                                                 {".rint", "an intersection"},
+                                                                 {".rcall", "a callable"}};
+    for (const auto& [other, stage] : others)
+        if (extension == other)
+            return fail(fmt::format("{}: '{}' is {} shader; kdop builds compute (.comp), vertex (.vert) and fragment "
+                                    "(.frag) shaders",
+                                    file.string(), extension, stage));
+    return fail(fmt::format("{}: the stage is read from the extension, as glslc reads it: .comp, .vert or .frag",
+                            file.string()));
+}
+
 } // namespace
 
 Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
@@ -31,6 +57,8 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     out.built.spec.mode = Mode::shader;
     out.built.name = file.stem().string();
     const std::string name = file.string();
+    auto stage = stage_of_file(file);
+    if (!stage) return std::unexpected(stage.error());
     auto source = read_file(file);
     if (!source) return fail(fmt::format("{}: cannot read shader", name));
     out.built.compute_glsl = std::move(*source);
@@ -65,7 +93,7 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     };
     out.built.spec.target_env = env;
     out.built.spec.strip_names = strip_names;
-    auto compiled = compile_glsl_compute(out.built.compute_glsl, name, env, resolve);
+    auto compiled = compile_glsl(out.built.compute_glsl, name, *stage, env, resolve);
     if (!compiled && !outside.empty()) return fail(compiled.error().message + outside.front());
     if (!compiled && !unresolved.empty()) {
         std::vector<std::string> functions;

@@ -15,9 +15,10 @@
 namespace kdop {
 namespace {
 
-const char* cpp_enum(DescriptorType t) {
-    return t == DescriptorType::combined_image_sampler ? "kdop::DescriptorType::combined_image_sampler"
-                                                       : "kdop::DescriptorType::storage_image";
+std::string cpp_enum(DescriptorType t) {
+    std::string name = to_string(t); // "combined image sampler": the enumerator with spaces
+    std::replace(name.begin(), name.end(), ' ', '_');
+    return "kdop::DescriptorType::" + name;
 }
 
 std::string words_initializer(const std::vector<std::uint32_t>& words) {
@@ -97,7 +98,9 @@ RegistrySources write_registry(std::span<const BuiltVariant> variants, std::stri
 
         std::string binding_body;
         for (const BindingInfo& b : v.interface.bindings)
-            binding_body += fmt::format("    {{{}, {}, {}, \"{}\"}},\n", b.set, b.binding, cpp_enum(b.type), b.name);
+            binding_body +=
+                fmt::format("    {{{}, {}, {}, \"{}\", {}, 0x{:x}, {}, {}}},\n", b.set, b.binding, cpp_enum(b.type),
+                            b.name, b.count, vulkan_stage_bit(v.interface.stage), b.block_size, b.format);
         std::string binding_array =
             binding_body.empty() ? "nullptr" : bindings.name_for("kdop::DescriptorBinding", binding_body, arrays);
 
@@ -111,11 +114,12 @@ RegistrySources write_registry(std::span<const BuiltVariant> variants, std::stri
         table += fmt::format(
             "    {{\"{}\", \"{}\", kdop::Mode::{}, kdop::Neighborhood::{}, kdop::Form::{}, kdop::Numerics::{}, {},\n"
             "     {}, {}, 0x{:016x}ull,\n"
-            "     \"{}\", {{{}, {}, {}}}, {}, {}, {}, {}, {}}},\n",
+            "     \"{}\", {{{}, {}, {}}}, {}, {}, {}, {}, {}, kdop::ShaderStage::{}, {}}},\n",
             v.name, v.spec.set.name, to_string(v.spec.mode), to_string(v.spec.neighborhood), to_string(v.spec.form),
             to_string(v.spec.numerics), v.spec.set.axes.size(), module, v.spirv.size(), hash, v.interface.entry_point,
             ls[0], ls[1], ls[2], binding_array, v.interface.bindings.size(), push_array,
-            v.interface.push_constants.size(), v.interface.push_constant_size);
+            v.interface.push_constants.size(), v.interface.push_constant_size, to_string(v.interface.stage),
+            v.interface.color_output_count);
     }
 
     out.source = banner;

@@ -4,7 +4,9 @@ namespace kdop {
 
 RunnableVariant::RunnableVariant(BuiltVariant built) : built_(std::move(built)) {
     const ShaderInterface& interface = built_.interface;
-    for (const BindingInfo& b : interface.bindings) bindings_.push_back({b.set, b.binding, b.type, b.name.c_str()});
+    for (const BindingInfo& b : interface.bindings)
+        bindings_.push_back({b.set, b.binding, b.type, b.name.c_str(), b.count, vulkan_stage_bit(interface.stage),
+                             b.block_size, b.format});
     for (const PushConstantInfo& p : interface.push_constants)
         push_constants_.push_back({p.name.c_str(), p.offset, p.size});
     const VariantSpec& spec = built_.spec;
@@ -25,6 +27,8 @@ RunnableVariant::RunnableVariant(BuiltVariant built) : built_(std::move(built)) 
     variant_.push_constants = push_constants_.empty() ? nullptr : push_constants_.data();
     variant_.push_constant_count = static_cast<std::uint32_t>(push_constants_.size());
     variant_.push_constant_size = interface.push_constant_size;
+    variant_.stage = interface.stage;
+    variant_.color_output_count = interface.color_output_count;
 }
 
 } // namespace kdop

@@ -1,13 +1,9 @@
 // Reading SPIR-V modules: instruction walking, the counts reported in tables, the loop check, the
-// content hash, and reflection of a compute shader's interface (what a caller needs to build its
-// pipeline), taken from the module that ships so it cannot drift from it.
+// content hash, and the line information that does not ship (reflection: shader_reflection.h).
 #pragma once
 
 #include "result.h"
 
-#include <kdop/variant.h>
-
-#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -34,32 +30,6 @@ SpirvCounts count_spirv(std::span<const std::uint32_t> words);
 // FNV-1a over the module's bytes (little-endian words): a content key for deduplication, not a
 // security hash. Written here because 64 bits of FNV are all that is needed.
 std::uint64_t spirv_hash(std::span<const std::uint32_t> words);
-
-struct BindingInfo {
-    std::uint32_t set;
-    std::uint32_t binding;
-    DescriptorType type;
-    std::string name;
-};
-
-struct PushConstantInfo {
-    std::string name;
-    std::uint32_t offset;
-    std::uint32_t size;
-};
-
-struct ShaderInterface {
-    std::string entry_point;
-    std::array<std::uint32_t, 3> local_size{};
-    std::vector<BindingInfo> bindings; // sorted by set, then binding
-    std::vector<PushConstantInfo> push_constants;
-    std::uint32_t push_constant_size = 0;
-};
-
-// Reflects a GLCompute module's entry point, workgroup size, descriptor bindings (combined image
-// samplers and storage images) and push-constant members. Names come from OpName, so reflect
-// before debug information is stripped.
-Result<ShaderInterface> reflect_compute_interface(std::span<const std::uint32_t> words);
 
 // The module without what kdop's compilation adds for its own messages and glslc does not by
 // default: OpLine, OpNoLine, OpString, OpModuleProcessed, and OpSource's file and text (OpSource

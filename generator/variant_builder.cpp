@@ -39,7 +39,7 @@ Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_
     if (!optimized) return std::unexpected(optimized.error());
     if (auto ok = validate_spirv(*optimized, source, file, "optimized module", env); !ok) return ok;
 
-    auto interface = reflect_compute_interface(*optimized);
+    auto interface = reflect_interface(*optimized);
     if (!interface) return fail(fmt::format("{}: reflection failed: {}", file, interface.error().message));
     v.interface = std::move(*interface);
 

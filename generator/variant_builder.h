@@ -5,6 +5,7 @@
 #pragma once
 
 #include "result.h"
+#include "shader_reflection.h"
 #include "spirv_module.h"
 #include "variant_spec.h"
 
@@ -21,7 +22,7 @@ struct BuiltVariant {
     std::string name;
     std::string function_glsl;        // the includable function (.glsl)
     std::string function_hlsl;        // the same function in HLSL (.hlsl)
-    std::string compute_glsl;         // the compute shader (.comp), when built from GLSL
+    std::string compute_glsl;         // the compute shader (.comp), when built from GLSL; a SHADERS source
     std::string compute_hlsl;         // the HLSL compute shader, when built from HLSL
     std::vector<std::uint32_t> spirv; // optimized, validated, as shipped (.spv), from the compute shader
     ShaderInterface interface;

@@ -130,12 +130,17 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     vkGetPhysicalDeviceQueueFamilyProperties(c->physical_, &family_count, nullptr);
     std::vector<VkQueueFamilyProperties> families(family_count);
     vkGetPhysicalDeviceQueueFamilyProperties(c->physical_, &family_count, families.data());
+    // A family with graphics too where there is one (the first family, on every device seen), so
+    // that a caller can also draw on the queue; else the first with compute.
     bool found = false;
-    for (uint32_t i = 0; i < family_count && !found; ++i)
-        if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
-            c->queue_family_ = i;
-            found = true;
-        }
+    for (VkQueueFlags wanted :
+         {VkQueueFlags(VK_QUEUE_COMPUTE_BIT | VK_QUEUE_GRAPHICS_BIT), VkQueueFlags(VK_QUEUE_COMPUTE_BIT)})
+        for (uint32_t i = 0; i < family_count && !found; ++i)
+            if ((families[i].queueFlags & wanted) == wanted) {
+                c->queue_family_ = i;
+                c->queue_flags_ = families[i].queueFlags;
+                found = true;
+            }
     if (!found) return fail(fmt::format("{} has no compute queue", c->device_name_));
 
     const float priority = 1.0f;

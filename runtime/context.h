@@ -1,4 +1,5 @@
-// A Vulkan instance and device with one compute queue: the start of every GPU run.
+// A Vulkan instance and device with one compute queue (graphics too where the device has it):
+// the start of every GPU run.
 //
 // The device is Mesa's lavapipe by default, chosen as the first device of type CPU (not by
 // index, which depends on what else is installed). ContextOptions::device or the KDOP_DEVICE
@@ -30,10 +31,12 @@ public:
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
+    VkInstance instance() const { return instance_; }
     VkDevice device() const { return device_; }
     VkPhysicalDevice physical_device() const { return physical_; }
     VkQueue queue() const { return queue_; }
     uint32_t queue_family() const { return queue_family_; }
+    VkQueueFlags queue_flags() const { return queue_flags_; } // compute, and graphics where the device has it
     VkCommandPool command_pool() const { return command_pool_; }
     const std::string& device_name() const { return device_name_; }
     const std::string& driver_info() const {
@@ -60,6 +63,7 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
+    VkQueueFlags queue_flags_ = 0;
     VkCommandPool command_pool_ = VK_NULL_HANDLE;
     std::string device_name_;
     std::string driver_info_;

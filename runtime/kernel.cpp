@@ -20,6 +20,9 @@ Result<std::unique_ptr<Kernel>> Kernel::create(const Context& context, const Var
     k->push_constant_size_ = variant.push_constant_size;
     k->local_size_ = {variant.local_size[0], variant.local_size[1], variant.local_size[2]};
 
+    if (variant.stage != ShaderStage::compute)
+        return fail(fmt::format("{}: a {} shader; the runtime dispatches compute shaders", variant.name,
+                                to_string(variant.stage)));
     for (uint32_t i = 0; i < variant.binding_count; ++i)
         if (variant.bindings[i].set != 0)
             return fail(fmt::format("{}: binding '{}' is in descriptor set {}; the runtime binds set 0 only",

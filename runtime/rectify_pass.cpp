@@ -275,12 +275,13 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
                                  : input != inputs_.end()      ? &input->texture
                                                                : nullptr;
         const bool storage = b.type == DescriptorType::storage_image;
-        if (!texture || storage != (texture == &output_)) {
+        const bool image = storage || b.type == DescriptorType::combined_image_sampler;
+        if (!texture || !image || storage != (texture == &output_)) {
             std::string provided;
             for (const Input& in : inputs_) provided += in.name + " ";
             return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides ({}samplers, "
                                     "rectified_history storage image)",
-                                    kernel.name(), b.binding, b.name, storage ? "storage image" : "sampler", provided));
+                                    kernel.name(), b.binding, b.name, to_string(b.type), provided));
         }
         if (input != inputs_.end() && !input->uploaded)
             return fail(fmt::format("{}: dispatch before '{}' was uploaded", kernel.name(), b.name));

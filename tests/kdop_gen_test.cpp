@@ -50,7 +50,8 @@ TEST(KdopGen, EmbedsAProjectShaderWithTheFunctionsItIncludes) {
 
     const std::string source = test::read_file(g.source());
     EXPECT_NE(source.find(R"({"resolve", "", kdop::Mode::shader)"), std::string::npos) << source;
-    EXPECT_NE(source.find(R"({1, 3, kdop::DescriptorType::storage_image, "resolved"})"), std::string::npos)
+    EXPECT_NE(source.find(R"({1, 3, kdop::DescriptorType::storage_image, "resolved", 1, 0x20, 0, 109})"),
+              std::string::npos)
         << "the shader's own interface, reflected";
     EXPECT_NE(source.find(R"({"dop22-clip-n9", "dop22", kdop::Mode::clip)"), std::string::npos);
 
@@ -77,6 +78,27 @@ TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
          "typo.comp:3: error"},
         {"dop22-clip-n9.comp", "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n",
          "would hide the variant"},
+        // What no engine resolve binds, and stages kdop makes no pipelines of.
+        {"rays.comp",
+         "#version 460\n#extension GL_EXT_ray_query : require\nlayout(local_size_x = 1) in;\n"
+         "layout(set = 0, binding = 0) uniform accelerationStructureEXT scene;\n"
+         "layout(set = 0, binding = 1) buffer Hits { float hit; } hits;\n"
+         "void main() { rayQueryEXT q; rayQueryInitializeEXT(q, scene, 0, 0xff, vec3(0), 0.0, vec3(0, 0, 1), 1.0);\n"
+         "    hits.hit = rayQueryProceedEXT(q) ? 1.0 : 0.0; }\n",
+         "resource 'scene' is an acceleration structure"},
+        {"extrude.geom", "#version 450\nlayout(points) in;\nlayout(points, max_vertices = 1) out;\nvoid main() {}\n",
+         "is a geometry shader"},
+        {"lookup.comp",
+         "#version 450\n#extension GL_EXT_nonuniform_qualifier : require\nlayout(local_size_x = 1) in;\n"
+         "layout(set = 0, binding = 0) uniform sampler2D textures[];\n"
+         "layout(set = 0, binding = 1) buffer Out { vec4 color; } result;\n"
+         "void main() { result.color = texelFetch(textures[nonuniformEXT(int(result.color.x))], ivec2(0), 0); }\n",
+         "resource 'textures' is a runtime-sized descriptor array"},
+        {"twice.frag",
+         "#version 450\nlayout(set = 0, binding = 0) uniform sampler2D a;\nlayout(set = 0, binding = 0) uniform "
+         "sampler2D b;\nlayout(location = 0) out vec4 color;\nvoid main() { color = texture(a, vec2(0)) + "
+         "texture(b, vec2(0)); }\n",
+         "share set 0 binding 0"},
     };
     for (const Case& c : cases) {
         Generation g;

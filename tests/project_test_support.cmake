@@ -1,4 +1,4 @@
-# What the scripts that build example projects share (consumer_test.cmake, example_taa_resolve_test.cmake).
+# What the scripts that build example projects share (consumer_test.cmake, example_*_test.cmake).
 
 # Runs a command; fails the test with its output unless it exits 0. OUTPUT_VAR gets stdout and stderr.
 function(run_checked output_var)

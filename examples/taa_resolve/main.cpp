@@ -77,9 +77,7 @@ int main(int argc, char** argv) {
                 properties.deviceName, pipeline.set_layout_count, resolve->local_size[0], resolve->local_size[1]);
     for (uint32_t i = 0; i < resolve->binding_count; ++i)
         std::printf("  set %u binding %u: %s (%s)\n", resolve->bindings[i].set, resolve->bindings[i].binding,
-                    resolve->bindings[i].name,
-                    resolve->bindings[i].type == kdop::DescriptorType::storage_image ? "storage image"
-                                                                                     : "combined image sampler");
+                    resolve->bindings[i].name, kdop::to_string(resolve->bindings[i].type));
     for (uint32_t i = 0; i < resolve->push_constant_count; ++i)
         std::printf("  push constant %s: %u bytes at %u\n", resolve->push_constants[i].name,
                     resolve->push_constants[i].size, resolve->push_constants[i].offset);

@@ -1,6 +1,7 @@
-// The registry of embedded k-DOP clipping variants: what kdop_add_variants() generates for a target
-// and what a caller needs to build a compute pipeline without guessing. Plain data, C++17, no
-// dependencies, so a renderer can include it as is.
+// The registry of embedded k-DOP clipping variants and a project's own shaders: what
+// kdop_add_variants() generates for a target and what a caller needs to build a pipeline without
+// guessing (kdop/vulkan_pipeline.h builds it). Plain data, C++17, no dependencies (not even Vulkan's
+// headers: stages and formats are Vulkan's numbers), so a renderer can include it as is.
 //
 // Each variant's compute shader reads the current frame and the history (two combined image
 // samplers, read with texelFetch, so any float format works), clips the history to the k-DOP of
@@ -48,19 +49,38 @@ enum class Neighborhood : std::uint8_t {
     n5, // plus shape: up, left, self, right, down (the pixel itself at index 2)
 };
 
+// The stage of an entry's module. Variants are compute shaders; a project's SHADERS may be any of
+// these, by their file's extension (.comp, .vert, .frag, as glslc reads them).
+enum class ShaderStage : std::uint8_t {
+    compute,  // VK_SHADER_STAGE_COMPUTE_BIT
+    vertex,   // VK_SHADER_STAGE_VERTEX_BIT
+    fragment, // VK_SHADER_STAGE_FRAGMENT_BIT
+};
+
 enum class DescriptorType : std::uint8_t {
-    combined_image_sampler, // VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-    storage_image,          // VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+    combined_image_sampler, // VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: sampler2D
+    storage_image,          // VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: image2D
+    sampled_image,          // VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE: texture2D (HLSL's Texture2D)
+    sampler,                // VK_DESCRIPTOR_TYPE_SAMPLER: sampler (HLSL's SamplerState)
+    uniform_texel_buffer,   // VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER: samplerBuffer, textureBuffer
+    storage_texel_buffer,   // VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: imageBuffer
+    uniform_buffer,         // VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: uniform blocks (HLSL's cbuffer)
+    storage_buffer,         // VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: buffer blocks
 };
 
 struct DescriptorBinding {
     std::uint32_t set;
     std::uint32_t binding;
     DescriptorType type;
-    const char* name; // the GLSL variable name
+    const char* name;         // the GLSL variable name (a block without one: its block name)
+    std::uint32_t count;      // descriptors in the binding: 1, or the array's length (uniform sampler2D t[4])
+    std::uint32_t stages;     // VkShaderStageFlags of the entry's stage
+    std::uint32_t block_size; // buffers: the block's size in bytes, a trailing runtime array not counted; else 0
+    std::uint32_t format;     // storage images and texel buffers: the VkFormat the shader declares
+                              // (rgba32f: 109, VK_FORMAT_R32G32B32A32_SFLOAT); 0 when it declares none
 };
 
-// One member of the push-constant block (compute stage). All of a variant's members together
+// One member of the push-constant block, in the entry's stage. All of an entry's members together
 // form one range starting at offset 0 of push_constant_size bytes.
 struct PushConstantMember {
     const char* name;
@@ -88,6 +108,9 @@ struct Variant {
     const PushConstantMember* push_constants;
     std::uint32_t push_constant_count;
     std::uint32_t push_constant_size; // bytes; 0 when the variant takes none
+
+    ShaderStage stage;                // compute for every variant; local_size is 0 for the other stages
+    std::uint32_t color_output_count; // fragment shaders: color attachments written (highest location + 1)
 };
 
 struct VariantList {
@@ -114,6 +137,36 @@ inline const char* to_string(Mode mode) {
     case Mode::shader: return "shader";
     }
     return "?";
+}
+inline const char* to_string(ShaderStage stage) {
+    switch (stage) {
+    case ShaderStage::compute: return "compute";
+    case ShaderStage::vertex: return "vertex";
+    case ShaderStage::fragment: return "fragment";
+    }
+    return "?";
+}
+inline const char* to_string(DescriptorType type) {
+    switch (type) {
+    case DescriptorType::combined_image_sampler: return "combined image sampler";
+    case DescriptorType::storage_image: return "storage image";
+    case DescriptorType::sampled_image: return "sampled image";
+    case DescriptorType::sampler: return "sampler";
+    case DescriptorType::uniform_texel_buffer: return "uniform texel buffer";
+    case DescriptorType::storage_texel_buffer: return "storage texel buffer";
+    case DescriptorType::uniform_buffer: return "uniform buffer";
+    case DescriptorType::storage_buffer: return "storage buffer";
+    }
+    return "?";
+}
+// VkShaderStageFlagBits of `stage`.
+inline std::uint32_t vulkan_stage_bit(ShaderStage stage) {
+    switch (stage) {
+    case ShaderStage::compute: return 0x20;  // VK_SHADER_STAGE_COMPUTE_BIT
+    case ShaderStage::vertex: return 0x01;   // VK_SHADER_STAGE_VERTEX_BIT
+    case ShaderStage::fragment: return 0x10; // VK_SHADER_STAGE_FRAGMENT_BIT
+    }
+    return 0;
 }
 inline const char* to_string(Form form) { return form == Form::unrolled ? "unrolled" : "loop"; }
 inline const char* to_string(Numerics numerics) { return numerics == Numerics::hardened ? "hardened" : "paper"; }

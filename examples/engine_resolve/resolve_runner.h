@@ -1,0 +1,73 @@
+// The two resolves of this example (resolve_compute.comp; fullscreen.vert + resolve_fragment.frag)
+// run on a caller's Vulkan device as an engine's frame runs them: pipelines, descriptor pool and
+// set writes through kdop/vulkan_pipeline.h from the registry entries alone, images and buffers
+// sized and typed from their reflection (the storage image's format, the uniform blocks' sizes),
+// then one submission that resolves the same frames both ways.
+//
+// Compiled with VK_NO_PROTOTYPES: every Vulkan call goes through vkGetInstanceProcAddr and
+// vkGetDeviceProcAddr, as with volk, so nothing here links the loader.
+#pragma once
+
+#include <kdop/variant.h>
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace engine {
+
+// The caller's device; its queue must do graphics and compute.
+struct Device {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    std::uint32_t queue_family = 0;
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
+};
+
+// The registry entries of the three shaders.
+struct Shaders {
+    const kdop::Variant* compute = nullptr;  // resolve_compute
+    const kdop::Variant* vertex = nullptr;   // fullscreen
+    const kdop::Variant* fragment = nullptr; // resolve_fragment
+};
+
+// One frame's inputs; colors are RGBA floats, row-major from the top-left pixel.
+struct Frames {
+    std::vector<float> current;    // this frame
+    std::vector<float> history;    // last frame's resolve
+    std::array<float, 2> motion{}; // screen motion in pixels
+    float current_weight = 0.1f;
+};
+
+struct Resolved {
+    std::vector<float> compute;       // RGBA, the compute resolve's storage image
+    std::vector<float> fragment;      // RGBA, the fragment resolve's color attachment
+    std::vector<float> clip_distance; // per pixel, the compute resolve's storage buffer
+};
+
+class Resolver {
+public:
+    // Pipelines and resources for width x height frames; on failure `error` says what failed.
+    static std::unique_ptr<Resolver> create(const Device& device, const Shaders& shaders, std::uint32_t width,
+                                            std::uint32_t height, std::string& error);
+    ~Resolver();
+    Resolver(const Resolver&) = delete;
+    Resolver& operator=(const Resolver&) = delete;
+
+    // Both resolves of `frames` (each of width x height pixels); empty on success, else what failed.
+    std::string resolve(const Frames& frames, Resolved& out);
+
+    struct State; // Vulkan objects and the functions that made them (resolve_runner.cpp)
+
+private:
+    explicit Resolver(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+} // namespace engine

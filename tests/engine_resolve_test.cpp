@@ -1,0 +1,161 @@
+// The resolves an engine writes (examples/engine_resolve): a compute resolve with a uniform buffer,
+// a storage buffer, a separate texture and sampler, and a vertex + fragment resolve with an array
+// of combined image samplers and a fragment push constant. Built into this binary with
+// kdop_add_variants SHADERS (tests/CMakeLists.txt), their reflection is checked against the
+// shaders' declarations, and both run through kdop/vulkan_pipeline.h, with a function table and
+// VK_NO_PROTOTYPES (resolve_runner.cpp), on lavapipe with the validation layer on, against the CPU
+// reference.
+#include "cpu_clip.h"
+#include "gpu_support.h"
+#include "kdop_test_shaders.h"
+#include "resolve_runner.h"
+#include "test_textures.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace kdop {
+namespace {
+
+constexpr std::uint32_t kWidth = 40, kHeight = 24; // not multiples of the 8x8 work group on both axes
+constexpr std::uint64_t kSeed = 11;
+constexpr double kTolerance = 2e-4; // taa_resolve_test.cpp's, for the same clip and content
+
+const Variant& shader(const char* name) {
+    const Variant* v = test_shaders::variants().find(name);
+    if (!v) ADD_FAILURE() << name << " is not in the test registry";
+    static const Variant none{};
+    return v ? *v : none;
+}
+
+TEST(EngineShaders, ReflectsEveryBindingAsDeclared) {
+    const Variant& compute = shader("resolve_compute");
+    EXPECT_EQ(compute.stage, ShaderStage::compute);
+    EXPECT_EQ(compute.local_size[0], 8u);
+    EXPECT_EQ(compute.local_size[1], 8u);
+    EXPECT_EQ(compute.push_constant_size, 0u);
+    struct Expected {
+        const char* name;
+        std::uint32_t set, binding;
+        DescriptorType type;
+        std::uint32_t block_size, format;
+    };
+    const Expected compute_bindings[] = {
+        {"current_texture", 0, 0, DescriptorType::sampled_image, 0, 0},
+        {"nearest_sampler", 0, 1, DescriptorType::sampler, 0, 0},
+        {"history_frame", 0, 2, DescriptorType::combined_image_sampler, 0, 0},
+        {"resolved_frame", 0, 3, DescriptorType::storage_image, 0, 109}, // VK_FORMAT_R32G32B32A32_SFLOAT
+        {"parameters", 1, 0, DescriptorType::uniform_buffer, 12, 0},     // vec2 + float, std140
+        {"clip_distances", 1, 1, DescriptorType::storage_buffer, 0, 0},  // only a runtime array
+    };
+    ASSERT_EQ(compute.binding_count, std::size(compute_bindings));
+    for (const Expected& e : compute_bindings) {
+        const DescriptorBinding* b = find_binding(compute, e.name);
+        ASSERT_NE(b, nullptr) << e.name;
+        EXPECT_EQ(b->set, e.set) << e.name;
+        EXPECT_EQ(b->binding, e.binding) << e.name;
+        EXPECT_EQ(b->type, e.type) << e.name << ": " << to_string(b->type);
+        EXPECT_EQ(b->count, 1u) << e.name;
+        EXPECT_EQ(b->stages, 0x20u) << e.name; // VK_SHADER_STAGE_COMPUTE_BIT
+        EXPECT_EQ(b->block_size, e.block_size) << e.name;
+        EXPECT_EQ(b->format, e.format) << e.name;
+    }
+
+    const Variant& vertex = shader("fullscreen");
+    EXPECT_EQ(vertex.stage, ShaderStage::vertex);
+    EXPECT_EQ(vertex.binding_count, 0u);
+    EXPECT_EQ(vertex.local_size[0], 0u);
+
+    const Variant& fragment = shader("resolve_fragment");
+    EXPECT_EQ(fragment.stage, ShaderStage::fragment);
+    EXPECT_EQ(fragment.color_output_count, 1u);
+    ASSERT_EQ(fragment.binding_count, 2u);
+    const DescriptorBinding* frames = find_binding(fragment, "frames");
+    ASSERT_NE(frames, nullptr);
+    EXPECT_EQ(frames->type, DescriptorType::combined_image_sampler);
+    EXPECT_EQ(frames->count, 2u);
+    EXPECT_EQ(frames->stages, 0x10u); // VK_SHADER_STAGE_FRAGMENT_BIT
+    const DescriptorBinding* parameters = find_binding(fragment, "parameters");
+    ASSERT_NE(parameters, nullptr);
+    EXPECT_EQ(parameters->type, DescriptorType::uniform_buffer);
+    EXPECT_EQ(parameters->block_size, 8u);
+    ASSERT_EQ(fragment.push_constant_count, 1u);
+    EXPECT_STREQ(fragment.push_constants[0].name, "current_weight");
+    EXPECT_EQ(fragment.push_constant_size, 4u);
+}
+
+std::vector<float> floats_of(const Image& image) {
+    std::vector<float> out;
+    out.reserve(image.pixels.size() * 4);
+    for (const glm::vec4& p : image.pixels) out.insert(out.end(), {p.r, p.g, p.b, p.a});
+    return out;
+}
+
+Image image_of(const std::vector<float>& floats) {
+    Image out(kWidth, kHeight);
+    for (std::size_t i = 0; i < out.pixels.size(); ++i)
+        out.pixels[i] = {floats[4 * i], floats[4 * i + 1], floats[4 * i + 2], floats[4 * i + 3]};
+    return out;
+}
+
+class EngineResolveGpu : public test::ValidationChecked {};
+
+TEST_F(EngineResolveGpu, ComputeAndFragmentResolvesMatchTheReference) {
+    ASSERT_TRUE(test::gpu().queue_flags() & VK_QUEUE_GRAPHICS_BIT) << "the test device's queue cannot draw";
+    const engine::Device device{test::gpu().instance(), test::gpu().physical_device(), test::gpu().device(),
+                                test::gpu().queue(),    test::gpu().queue_family(),    vkGetInstanceProcAddr};
+    const engine::Shaders shaders{&shader("resolve_compute"), &shader("fullscreen"), &shader("resolve_fragment")};
+    std::string error;
+    auto resolver = engine::Resolver::create(device, shaders, kWidth, kHeight, error);
+    ASSERT_TRUE(resolver) << error;
+    auto dop22 = resolve_axis_set("dop22");
+    ASSERT_TRUE(dop22);
+
+    const glm::ivec2 motion(2, -3);
+    const float weight = 0.125f;
+    std::size_t checked = 0;
+    for (const TestCase& c : make_test_cases(kWidth, kHeight, kSeed)) {
+        engine::Frames frames{floats_of(c.current), floats_of(c.history), {float(motion.x), float(motion.y)}, weight};
+        engine::Resolved resolved;
+        ASSERT_EQ(resolver->resolve(frames, resolved), "") << c.name();
+
+        Image reprojected(kWidth, kHeight);
+        for (std::uint32_t y = 0; y < kHeight; ++y)
+            for (std::uint32_t x = 0; x < kWidth; ++x)
+                reprojected.at(x, y) = c.history.clamped(int(x) - motion.x, int(y) - motion.y);
+        const Image clipped = reference_rectify(*dop22, Mode::clip, Neighborhood::n9, c.current, reprojected, 1.0);
+        Image expected = clipped;
+        for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+            expected.pixels[i] =
+                glm::vec4(glm::mix(glm::vec3(clipped.pixels[i]), glm::vec3(c.current.pixels[i]), weight), 1);
+
+        for (auto [what, floats] :
+             {std::pair{"compute", &resolved.compute}, std::pair{"fragment", &resolved.fragment}}) {
+            auto e = test::relative_error(image_of(*floats), expected, c.current, reprojected);
+            EXPECT_LE(e.max_relative, kTolerance) << what << " resolve, " << c.name() << " at " << e.x << "," << e.y;
+        }
+        // The storage buffer: how far the clip moved each pixel's history.
+        double worst = 0;
+        for (std::size_t i = 0; i < clipped.pixels.size(); ++i) {
+            const double d = glm::distance(glm::vec3(reprojected.pixels[i]), glm::vec3(clipped.pixels[i]));
+            const double magnitude = std::max({1.0, double(glm::length(glm::vec3(reprojected.pixels[i]))),
+                                               double(glm::length(glm::vec3(c.current.pixels[i])))});
+            worst = std::max(worst, std::abs(resolved.clip_distance[i] - d) / magnitude);
+        }
+        EXPECT_LE(worst, 2 * kTolerance) << "clip distances, " << c.name();
+        ++checked;
+    }
+    EXPECT_GE(checked, 24u);
+
+    engine::Frames wrong_size{std::vector<float>(4), std::vector<float>(4)};
+    engine::Resolved unused;
+    EXPECT_NE(resolver->resolve(wrong_size, unused).find("40x24"), std::string::npos);
+}
+
+} // namespace
+} // namespace kdop
