@@ -13,6 +13,7 @@ set -eu
 # clang-format: the test format_is_applied checks the tree against .clang-format.
 # nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
 # fonts-dejavu-core: the font of the labels in `kdop taa`'s pictures (temporal/trail_picture.h).
+# nodejs and npm: the WGSL tests compile with Tint, from the npm package `webgpu` (installed below).
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers libspirv-cross-c-shared-dev
@@ -24,8 +25,14 @@ packages="
   colobot-common-textures fonts-dejavu-core
 "
 
+# A node that is installed another way (NodeSource's nodejs carries its own npm) is kept.
+command -v node >/dev/null 2>&1 || packages="$packages nodejs"
+command -v npm >/dev/null 2>&1 || packages="$packages npm"
+
+given_packages=false
 if [ "$#" -gt 0 ]; then
   packages="$*"
+  given_packages=true
 fi
 
 missing=""
@@ -41,4 +48,16 @@ if [ -n "$missing" ]; then
   apt-get update -qq
   # shellcheck disable=SC2086 # word splitting of the package list is intended
   apt-get install -y -qq --no-install-recommends $missing
+fi
+
+# Tint for the WGSL tests: the npm package `webgpu` (Dawn, with a null backend that compiles WGSL
+# without a GPU) at the version and hashes tests/wgsl/package-lock.json pins, into
+# tests/wgsl/node_modules (ignored by git), unless that version is there already.
+if [ "$given_packages" = false ]; then
+  wgsl="$(dirname "$0")/tests/wgsl"
+  wanted="$(sed -n 's/.*"webgpu": "\(.*\)".*/\1/p' "$wgsl/package.json")"
+  if ! grep -qs "\"version\": \"$wanted\"" "$wgsl/node_modules/webgpu/package.json"; then
+    echo "install-deps.sh: installing the npm package webgpu@$wanted into $wgsl"
+    (cd "$wgsl" && npm ci --no-audit --no-fund)
+  fi
 fi

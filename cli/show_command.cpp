@@ -17,11 +17,11 @@ Action add_show_command(CLI::App& app) {
         std::string name;
         std::vector<std::string> sets;
         std::string numerics;
-        bool compute = false, hlsl = false;
+        bool compute = false, hlsl = false, wgsl = false;
     };
     auto options = std::make_shared<Options>();
-    CLI::App* show =
-        app.add_subcommand("show", "Print a variant's GLSL or HLSL function (or, with --compute, its compute shader)");
+    CLI::App* show = app.add_subcommand(
+        "show", "Print a variant's GLSL, HLSL or WGSL function (or, with --compute, its compute shader)");
     show->add_option("NAME", options->name, "Variant name, e.g. dop32-clip-n9 (see `kdop list --all`)")->required();
     show->add_option("--sets", options->sets, "Axis-set files to look in besides the built-in sets");
     show->add_option(
@@ -29,8 +29,11 @@ Action add_show_command(CLI::App& app) {
             "hardened, or paper: the variant with the supplement's numerics (the same as naming <variant>-paper)")
         ->check(CLI::IsMember({"hardened", "paper"}));
     show->add_flag("--compute", options->compute, "Print the whole compute shader instead of the includable function");
-    show->add_flag("--hlsl", options->hlsl,
-                   "The HLSL function (with --compute, the HLSL compute shader the tests run it in)");
+    CLI::Option* hlsl = show->add_flag(
+        "--hlsl", options->hlsl, "The HLSL function (with --compute, the HLSL compute shader the tests run it in)");
+    show->add_flag("--wgsl", options->wgsl, "The WGSL function (WebGPU, Bevy)")
+        ->excludes(hlsl)
+        ->excludes(show->get_option("--compute"));
 
     return [options] {
         auto key = variant_option(options->name, options->numerics, "show");
@@ -40,7 +43,7 @@ Action add_show_command(CLI::App& app) {
         auto spec = catalog->spec(*key, "show");
         if (!spec) return report_error(spec.error().message);
         if (!options->compute) {
-            std::cout << emit_function(*spec, options->hlsl ? kHlsl : kGlsl);
+            std::cout << emit_function(*spec, options->wgsl ? kWgsl : options->hlsl ? kHlsl : kGlsl);
             return 0;
         }
         // Builds, so the shader shown is one that compiles.

@@ -11,8 +11,9 @@
 #     [NAMESPACE <ns>]                  C++ namespace of the registry; default: <target> made an identifier
 #     [HEADER <file-name>]              default: <target>_kdop_variants.h
 #     [PUBLIC]                          also give <target>'s users the header (for a library target)
-#     [FUNCTIONS]                       also write each variant's includable function, <variant>.glsl and
-#                                       <variant>.hlsl, into a folder for the project's own shader build
+#     [FUNCTIONS]                       also write each variant's includable function, <variant>.glsl,
+#                                       <variant>.hlsl and <variant>.wgsl, into a folder for the project's own
+#                                       shader build
 #     [TARGET_ENV <vulkan1.0..1.3>]     the SPIR-V's target environment; default vulkan1.0
 #     [STRIP_NAMES]                     drop OpName and OpMemberName from the SPIR-V, for shipping; by default
 #                                       they are kept (as glslc keeps them) for debuggers and spirv-cross
@@ -184,7 +185,7 @@ function(kdop_add_variants target)
     set(function_dir "${out_dir}/functions")
     list(APPEND arguments --functions "${function_dir}")
     foreach(name IN LISTS variant_names)
-      list(APPEND outputs "${function_dir}/${name}.glsl" "${function_dir}/${name}.hlsl")
+      list(APPEND outputs "${function_dir}/${name}.glsl" "${function_dir}/${name}.hlsl" "${function_dir}/${name}.wgsl")
     endforeach()
     set_property(TARGET ${target} PROPERTY KDOP_FUNCTION_DIR "${function_dir}")
     set(${target}_KDOP_FUNCTION_DIR "${function_dir}" PARENT_SCOPE)

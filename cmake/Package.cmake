@@ -29,7 +29,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets/ DESTINATION 
 # The default variants' functions and compute shaders, as generated/ holds them (checked fresh by
 # the tests), so a user of the installed package can include one without running kdop gen.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/generated/ DESTINATION ${CMAKE_INSTALL_DATADIR}/kdop/functions
-        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.hlsl" PATTERN "*.comp")
+        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.hlsl" PATTERN "*.wgsl" PATTERN "*.comp")
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/NOTICE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(EXPORT kdopTargets NAMESPACE kdop:: DESTINATION ${KDOP_INSTALL_CMAKEDIR})
 # configure_package_config_file turns the install paths into paths relative to the config file.

@@ -413,7 +413,8 @@ void write_hardening_prologue(std::string& out, Mode mode, const Dialect& dialec
     const std::string threshold = float_literal(std::ldexp(1.0f, 60)), small = float_literal(std::ldexp(1.0f, -100));
     out += fmt::format("    {} = max(max(current_size.x, current_size.y), current_size.z) > {}; // 2^60\n",
                        dialect.declare("bool", "huge"), threshold);
-    out += fmt::format("    {} = {}; // 2^-100\n", dialect.declare("float", "scale"), dialect.select("huge", small, "1.0"));
+    out += fmt::format("    {} = {}; // 2^-100\n", dialect.declare("float", "scale"),
+                       dialect.select("huge", small, "1.0"));
     out += fmt::format("    {} = current * ({});\n", dialect.declare("vec3", "origin"),
                        dialect.select("huge", "-" + small, "-1.0"));
     out += fmt::format("    {} = dir * scale;\n", dialect.declare("vec3", "ray"));
@@ -517,8 +518,9 @@ void write_hardened_loop(std::string& out, Mode mode, int count, int center, int
         out += "        }\n";
         out += fmt::format("        moments /= {};\n", dialect.splat(2, fmt::format("{}.0", count)));
         out += fmt::format("        {} = sqrt(max(moments.y - moments.x * moments.x, 0.0));\n", let("float", "sigma"));
-        out += fmt::format("        {} = {}(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n",
-                           var("vec2", "extent"), vec2);
+        out +=
+            fmt::format("        {} = {}(min(moments.x - gamma * sigma, 0.0), max(moments.x + gamma * sigma, 0.0));\n",
+                        var("vec2", "extent"), vec2);
         out += fmt::format("        extent += {}(-epsilon, epsilon) * scale;\n", vec2);
         out += fmt::format("        {} = dot(ray, axis);\n", let("float", "d"));
     }
@@ -552,7 +554,8 @@ void write_loop_body(std::string& out, const VariantSpec& spec, const Dialect& d
         write_hardened_loop(out, spec.mode, count, neighborhood_center(spec.neighborhood), axes, dialect);
         return;
     }
-    out += dialect.wgsl() ? "    var near: f32 = -1e9;\n    var far: f32 = 1e9;\n" : "    float near = -1e9, far = 1e9;\n";
+    out +=
+        dialect.wgsl() ? "    var near: f32 = -1e9;\n    var far: f32 = 1e9;\n" : "    float near = -1e9, far = 1e9;\n";
     out += fmt::format("    {}\n    {{\n", counted_loop(dialect, "a", axes));
     out += fmt::format("        {} = axes[a];\n", let("vec3", "axis"));
     out += fmt::format("        {} = dot(current, axis);\n", let("float", "proj_pos"));
@@ -581,7 +584,8 @@ void write_loop_body(std::string& out, const VariantSpec& spec, const Dialect& d
     out += "        far = min(far, max(t0, t1));\n";
     out += "    }\n";
     out += "    if (near <= far && (near > 0.0 || far > 0.0))\n    {\n";
-    out += fmt::format("        {} = clamp({}, 0.0, 1.0);\n", let("float", "t"), dialect.select("near > 0.0", "near", "far"));
+    out += fmt::format("        {} = clamp({}, 0.0, 1.0);\n", let("float", "t"),
+                       dialect.select("near > 0.0", "near", "far"));
     out += "        return current + t * dir;\n";
     out += "    }\n";
     out += "    return current;\n";

@@ -40,7 +40,7 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
     if (fs::is_directory(dir))
         for (const auto& entry : fs::directory_iterator(dir)) {
             auto ext = entry.path().extension();
-            if ((ext == ".glsl" || ext == ".hlsl" || ext == ".comp") && !expected.count(entry.path()))
+            if ((ext == ".glsl" || ext == ".hlsl" || ext == ".wgsl" || ext == ".comp") && !expected.count(entry.path()))
                 extra.push_back(entry.path());
         }
     std::sort(extra.begin(), extra.end());
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> shaders, include_dirs;
     registry->add_option(
         "--functions", functions_dir,
-        "Also write each selected variant's includable function (<variant>.glsl, <variant>.hlsl) into this "
+        "Also write each selected variant's includable function (<variant>.glsl, .hlsl, .wgsl) into this "
         "directory");
     registry
         ->add_option("--shaders", shaders,
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     std::string glsl_dir;
     bool check = false;
     CLI::App* glsl =
-        app.add_subcommand("glsl", "Write every default variant's .glsl, .hlsl and .comp into a directory");
+        app.add_subcommand("glsl", "Write every default variant's .glsl, .hlsl, .wgsl and .comp into a directory");
     glsl->add_option("--out", glsl_dir, "Directory (normally generated/)")->required();
     glsl->add_flag("--check", check, "Write nothing; fail if any file in the directory is stale");
 

@@ -61,6 +61,7 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage langu
 
     v.function_glsl = emit_function(spec, kGlsl);
     v.function_hlsl = emit_function(spec, kHlsl);
+    v.function_wgsl = emit_function(spec, kWgsl);
     auto compute = compute_shader(spec, language);
     if (!compute) return std::unexpected(compute.error());
     (hlsl ? v.compute_hlsl : v.compute_glsl) = std::move(*compute);

@@ -22,6 +22,7 @@ struct BuiltVariant {
     std::string name;
     std::string function_glsl;        // the includable function (.glsl)
     std::string function_hlsl;        // the same function in HLSL (.hlsl)
+    std::string function_wgsl;        // the same function in WGSL (.wgsl)
     std::string compute_glsl;         // the compute shader (.comp), when built from GLSL; a SHADERS source
     std::string compute_hlsl;         // the HLSL compute shader, when built from HLSL
     std::vector<std::uint32_t> spirv; // optimized, validated, as shipped (.spv), from the compute shader

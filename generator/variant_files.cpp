@@ -7,7 +7,9 @@ namespace kdop {
 namespace fs = std::filesystem;
 
 std::vector<OutputFile> function_files(const BuiltVariant& v, const fs::path& dir) {
-    return {{dir / (v.name + ".glsl"), v.function_glsl}, {dir / (v.name + ".hlsl"), v.function_hlsl}};
+    return {{dir / (v.name + ".glsl"), v.function_glsl},
+            {dir / (v.name + ".hlsl"), v.function_hlsl},
+            {dir / (v.name + ".wgsl"), v.function_wgsl}};
 }
 
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {

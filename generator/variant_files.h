@@ -13,10 +13,10 @@
 
 namespace kdop {
 
-// <dir>/<name>.glsl and <dir>/<name>.hlsl (the includable function in each language) and
+// <dir>/<name>.glsl, .hlsl and .wgsl (the includable function in each language) and
 // <dir>/<name>.comp (compute shader).
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const std::filesystem::path& dir);
-// <dir>/<name>.glsl and <dir>/<name>.hlsl: the includable function alone, for a project's own shaders.
+// <dir>/<name>.glsl, .hlsl and .wgsl: the includable function alone, for a project's own shaders.
 std::vector<OutputFile> function_files(const BuiltVariant& v, const std::filesystem::path& dir);
 // A module's words as the little-endian bytes of a .spv file.
 std::string spirv_bytes(std::span<const std::uint32_t> words);

@@ -54,15 +54,15 @@ TEST(Cli, ListTakesTheUsersSets) {
     EXPECT_NE(missing.err.find("nowhere.axes"), std::string::npos) << missing.err;
 }
 
-TEST(Cli, GenWritesGlslHlslCompAndSpvPerVariantAndPrintsATable) {
+TEST(Cli, GenWritesGlslHlslWgslCompAndSpvPerVariantAndPrintsATable) {
     test::TempDir dir;
     auto r = run(kdop("gen --out " + (dir / "out").string() + " --sets dop22 " + test::data_path("tiny.axes") +
                       " --modes clip --neighborhoods n9 n5"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (std::string name : {"dop22-clip-n9", "dop22-clip-n5", "tiny-clip-n9", "tiny-clip-n5"})
-        for (std::string ext : {".glsl", ".hlsl", ".comp", ".spv"})
+        for (std::string ext : {".glsl", ".hlsl", ".wgsl", ".comp", ".spv"})
             EXPECT_TRUE(fs::exists(dir / "out" / (name + ext))) << name + ext;
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 16);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 20);
     EXPECT_NE(test::read_file(dir / "out" / "dop22-clip-n9.hlsl")
                   .find("float3 kdop_dop22_clip_n9(float3 current, float3 history, float3 neighborhood[9])"),
               std::string::npos);
@@ -85,7 +85,7 @@ TEST(Cli, TwoGenerationRunsGiveIdenticalBytes) {
         EXPECT_EQ(test::read_file(entry.path()), test::read_file(dir / "b" / entry.path().filename()))
             << entry.path().filename();
     }
-    EXPECT_EQ(files, 96u);
+    EXPECT_EQ(files, 120u) << "24 default variants x .glsl, .hlsl, .wgsl, .comp, .spv";
 }
 
 // The .spv's version word (the header's second word, little-endian) is the one --target-env asks for.
@@ -189,6 +189,15 @@ TEST(Cli, ShowPrintsTheFunctionOrTheComputeShader) {
     EXPECT_NE(r.out.find("float3 kdop_dop32_varclip_n9(float3 current, float3 history, float gamma, float3 "
                          "neighborhood[9])"),
               std::string::npos);
+    r = run(kdop("show dop32-varclip-n9 --wgsl"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("fn kdop_dop32_varclip_n9(current: vec3f, history: vec3f, gamma: f32, neighborhood: "
+                         "array<vec3f, 9>) -> vec3f"),
+              std::string::npos);
+    r = run(kdop("show dop32-clip-n9 --wgsl --hlsl"));
+    EXPECT_EQ(r.exit_code, 2) << "one language at a time";
+    r = run(kdop("show dop32-clip-n9 --wgsl --compute"));
+    EXPECT_EQ(r.exit_code, 2) << "kdop has no WGSL compute shader";
     r = run(kdop("show dop22-varclip-n5 --compute --hlsl"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("[numthreads(8, 8, 1)]"), std::string::npos);

@@ -49,6 +49,7 @@ if(INSTALL_FROM)
   endforeach()
   foreach(part IN ITEMS bin/kdop-gen bin/kdop include/kdop/variant.h share/kdop/axis_sets/dop22.axes
                         share/kdop/functions/dop32-clip-n9.glsl share/kdop/functions/dop32-clip-n9.hlsl
+                        share/kdop/functions/dop32-clip-n9.wgsl
                         share/doc/kdop/LICENSE share/doc/kdop/NOTICE)
     if(NOT EXISTS ${BUILD}/prefix/${part})
       message(FATAL_ERROR "cmake --install did not install ${part}")

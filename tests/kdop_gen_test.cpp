@@ -64,6 +64,8 @@ TEST(KdopGen, EmbedsAProjectShaderWithTheFunctionsItIncludes) {
               test::run(test::kdop_binary() + " show dop22-clip-n9").out);
     EXPECT_EQ(test::read_file(functions / "dop22-clip-n9.hlsl"),
               test::run(test::kdop_binary() + " show --hlsl dop22-clip-n9").out);
+    EXPECT_EQ(test::read_file(functions / "dop22-clip-n9.wgsl"),
+              test::run(test::kdop_binary() + " show --wgsl dop22-clip-n9").out);
 }
 
 TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
