@@ -68,6 +68,32 @@ TEST(KdopGen, EmbedsAProjectShaderWithTheFunctionsItIncludes) {
               test::run(test::kdop_binary() + " show --wgsl dop22-clip-n9").out);
 }
 
+// A loop-form function enables the extension its [[unroll]] needs itself, so it compiles wherever it
+// is included, after the shader's own code (a fragment shader here, as a resolve pass would be).
+TEST(KdopGen, ALoopFormFunctionCompilesInsideAProjectShader) {
+    Generation g;
+    test::write_file(g.dir / "resolve_pass.frag", R"(#version 450
+layout(set = 0, binding = 0) uniform sampler2D frames[2];
+layout(location = 0) out vec4 resolved;
+#include "dop22-varclip-n9-loop.glsl"
+void main()
+{
+    vec3 n[9];
+    for (int i = 0; i < 9; ++i)
+        n[i] = texelFetch(frames[0], ivec2(gl_FragCoord.xy) + ivec2(i % 3 - 1, i / 3 - 1), 0).rgb;
+    resolved = vec4(kdop_dop22_varclip_n9_loop(n[4], texelFetch(frames[1], ivec2(gl_FragCoord.xy), 0).rgb, 1.0, n), 1);
+}
+)");
+    auto r =
+        test::run(test::kdop_gen_binary() + " registry --sets dop22 --modes varclip --neighborhoods n9 --forms loop" +
+                  " --header " + g.header().string() + " --source " + g.source().string() +
+                  " --namespace app --shaders " + (g.dir / "resolve_pass.frag").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string source = test::read_file(g.source());
+    EXPECT_NE(source.find(R"({"resolve_pass", "", kdop::Mode::shader)"), std::string::npos) << source;
+    EXPECT_NE(source.find("kdop::ShaderStage::fragment"), std::string::npos);
+}
+
 TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
     struct Case {
         const char* file;
