@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
         "directory");
     registry
         ->add_option("--shaders", shaders,
-                     "The project's own compute shaders (GLSL) to embed too, named after their files; "
+                     "The project's own GLSL shaders to embed too (.comp, .vert, .frag), named after their files; "
                      "`#include \"<variant>.glsl\"` gives them a selected variant's function")
         ->check(CLI::ExistingFile);
     registry->add_option("--include-dirs", include_dirs, "Where the shaders' other includes are looked up")

@@ -1,5 +1,5 @@
-// A project's own compute shader, built at build time with the kdop functions it includes
-// (kdop_add_variants SHADERS): a TAA resolve that reprojects, clips with
+// A project's own shader (compute, vertex or fragment, by its extension), built at build time with
+// the kdop functions it includes (kdop_add_variants SHADERS): a TAA resolve that reprojects, clips with
 // `#include "dop22-clip-n9.glsl"` and blends. It goes through the same stages as a variant
 // (validate, optimize, reflect, drop the line information) and into the same registry, as a Mode::shader entry named
 // after its file.

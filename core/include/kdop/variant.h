@@ -22,8 +22,8 @@ enum class Mode : std::uint8_t {
     // clip variant does and writes their sum; `copy` writes the history as it is.
     gather,
     copy,
-    // A project's own compute shader (kdop_add_variants SHADERS), compiled with the kdop functions it
-    // includes; named after its file, with no axis set or neighborhood of its own.
+    // A project's own shader (kdop_add_variants SHADERS: compute, vertex or fragment), compiled with
+    // the kdop functions it includes; named after its file, with no axis set or neighborhood of its own.
     shader,
 };
 
