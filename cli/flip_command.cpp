@@ -3,6 +3,7 @@
 #include "color_spaces.h"
 #include "command_line.h"
 #include "flip.h"
+#include "hdr_flip.h"
 #include "image_io.h"
 #include "input_files.h"
 #include "input_space_option.h"
@@ -18,6 +19,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace kdop::cli {
 
@@ -28,11 +30,16 @@ Action add_flip_command(CLI::App& app) {
         ViewingConditions viewing;
         bool srgb = false;
         InputSpace input_space = InputSpace::from_file;
+        bool hdr = false;
+        std::string tone_mapper = "aces", exposure_map;
+        double start_exposure = 0, stop_exposure = 0;
+        int exposures = 0;
     };
     auto o = std::make_shared<Options>();
     CLI::App* flip = app.add_subcommand(
-        "flip", "LDR-FLIP (Andersson et al. 2020): the difference a viewer sees flipping between a reference and a "
-                "test image; prints the mean, writes the per-pixel map with --out");
+        "flip", "LDR-FLIP (Andersson et al. 2020), or with --hdr HDR-FLIP (Andersson et al. 2021): the difference a "
+                "viewer sees flipping between a reference and a test image; prints the mean, writes the per-pixel map "
+                "with --out");
     flip->add_option("--reference", o->reference,
                      "Reference image (any OpenImageIO format; RGB from 0 to 1 once decoded, see --input-space)")
         ->required();
@@ -55,8 +62,31 @@ Action add_flip_command(CLI::App& app) {
     flip->add_flag("--srgb", o->srgb, "The same as --input-space srgb: decode every input from sRGB")->excludes(space);
     flip->add_option("--out", o->out,
                      "Error map to write: .exr holds the values (gray), .png shows them in the magma color map");
+    auto* hdr = flip->add_flag("--hdr", o->hdr,
+                               "HDR-FLIP: linear RGB from 0 up, compared at a range of exposures after tone mapping");
+    flip->add_option("--tone-mapper", o->tone_mapper, "HDR-FLIP's tone mapper [default: aces]")
+        ->check(CLI::IsMember({"aces", "hable", "reinhard"}))
+        ->needs(hdr);
+    auto* start = flip->add_option("--start-exposure", o->start_exposure,
+                                   "HDR-FLIP's first exposure in stops [default: from the reference's largest "
+                                   "luminance, as NVlabs/flip derives it]")
+                      ->check(finite_number(-1000, 1000))
+                      ->needs(hdr);
+    auto* stop = flip->add_option("--stop-exposure", o->stop_exposure,
+                                  "HDR-FLIP's last exposure in stops [default: from the reference's median luminance]")
+                     ->check(finite_number(-1000, 1000))
+                     ->needs(hdr);
+    auto* exposures = flip->add_option("--exposures", o->exposures,
+                                       "HDR-FLIP's number of exposures, from 1 to 1000 [default: max(2, "
+                                       "ceil(stop - start))]")
+                          ->check(CLI::Range(1, 1000))
+                          ->needs(hdr);
+    flip->add_option("--exposure-map", o->exposure_map,
+                     "HDR-FLIP: write, per pixel, which exposure gave its error (0 the first, 1 the last) to this "
+                     ".exr or .png")
+        ->needs(hdr);
 
-    return [o, ppd] {
+    return [o, ppd, start, stop, exposures] {
         const bool viewing = !*ppd;
         const double pixels_per_degree = viewing ? kdop::pixels_per_degree(o->viewing) : o->ppd;
         if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok)
@@ -64,21 +94,31 @@ Action add_flip_command(CLI::App& app) {
                                                      o->viewing.distance_m, o->viewing.display_width_m,
                                                      o->viewing.display_width_px, ok.error().message)
                                        : fmt::format("--ppd: {}", ok.error().message));
-        bool magma = false;
-        if (!o->out.empty()) {
-            std::string extension = std::filesystem::path(o->out).extension().string();
+        // A map's file: .exr for its values, .png in magma colors; checked before any work.
+        const std::filesystem::path inputs[] = {o->reference, o->test};
+        auto extension_of = [](const std::string& path) {
+            std::string extension = std::filesystem::path(path).extension().string();
             std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return std::tolower(c); });
+            return extension;
+        };
+        auto check_map_file = [&](const std::string& path, const char* option) -> std::optional<int> {
+            if (path.empty()) return std::nullopt;
+            const std::string extension = extension_of(path);
             if (extension != ".exr" && extension != ".png")
-                return usage_error(fmt::format(
-                    "--out: {}: the map is written as .exr (its values) or .png (in magma colors)", o->out));
-            magma = extension == ".png";
-            if (std::error_code ec; std::filesystem::is_directory(o->out, ec))
-                return usage_error(fmt::format("--out {}: is a directory; name the map's file", o->out));
-            const std::filesystem::path inputs[] = {o->reference, o->test};
-            if (auto ok = check_not_an_input(o->out, "--out", inputs); !ok) return report_error(ok.error().message);
-            if (auto ok = check_output_directory(std::filesystem::path(o->out).parent_path(), "--out"); !ok)
+                return usage_error(fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma "
+                                               "colors)",
+                                               option, path));
+            if (std::error_code ec; std::filesystem::is_directory(path, ec))
+                return usage_error(fmt::format("{} {}: is a directory; name the map's file", option, path));
+            if (auto ok = check_not_an_input(path, option, inputs); !ok) return report_error(ok.error().message);
+            if (auto ok = check_output_directory(std::filesystem::path(path).parent_path(), option); !ok)
                 return report_error(ok.error().message);
-        }
+            return std::nullopt;
+        };
+        if (auto failed = check_map_file(o->out, "--out")) return *failed;
+        if (auto failed = check_map_file(o->exposure_map, "--exposure-map")) return *failed;
+        if (!o->out.empty() && o->out == o->exposure_map)
+            return usage_error(fmt::format("--out and --exposure-map both name {}", o->out));
 
         const InputSpace input_space = o->srgb ? InputSpace::srgb : o->input_space;
         auto reference = read_image(o->reference, 0, input_space);
@@ -88,34 +128,66 @@ Action add_flip_command(CLI::App& app) {
         if (test->width != reference->width || test->height != reference->height)
             return report_error(fmt::format("--test {}: {}x{}, but --reference {} is {}x{}", o->test, test->width,
                                             test->height, o->reference, reference->width, reference->height));
-        if (auto ok = check_ldr_image(*reference, "--reference " + o->reference); !ok)
+        const auto check_image = o->hdr ? check_hdr_image : check_ldr_image;
+        if (auto ok = check_image(*reference, "--reference " + o->reference); !ok)
             return report_error(ok.error().message);
-        if (auto ok = check_ldr_image(*test, "--test " + o->test); !ok) return report_error(ok.error().message);
-        if (auto ok = check_memory(
-                fmt::format("--reference {}: LDR-FLIP of {}x{}", o->reference, reference->width, reference->height),
-                ldr_flip_bytes(reference->width, reference->height) + image_bytes(reference->width, reference->height));
+        if (auto ok = check_image(*test, "--test " + o->test); !ok) return report_error(ok.error().message);
+        // HDR-FLIP holds two tone-mapped copies and the exposure map besides LDR-FLIP's planes.
+        const std::uint64_t pixels = std::uint64_t(reference->width) * reference->height;
+        if (auto ok = check_memory(fmt::format("--reference {}: {}-FLIP of {}x{}", o->reference, o->hdr ? "HDR" : "LDR",
+                                               reference->width, reference->height),
+                                   ldr_flip_bytes(reference->width, reference->height) +
+                                       image_bytes(reference->width, reference->height) * (o->hdr ? 3 : 1) +
+                                       (o->hdr ? pixels * sizeof(float) : 0));
             !ok)
             return report_error(ok.error().message);
 
-        const LdrFlip evaluator(pixels_per_degree);
-        auto map = evaluator.error_map(*reference, *test);
-        if (!map) return report_error(map.error().message);
-        std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{})\n", mean_error(*map),
-                                 pixels_per_degree, reference->width, reference->height,
-                                 input_space == InputSpace::srgb     ? ", every input decoded from sRGB"
-                                 : input_space == InputSpace::linear ? ", every input taken as linear"
-                                                                     : "");
-        if (o->out.empty()) return 0;
-
-        const std::uint32_t w = reference->width, h = reference->height;
-        Image image(w, h);
-        if (magma) {
-            image = flip::magma_image(*map, w, h);
+        const char* space = input_space == InputSpace::srgb     ? ", every input decoded from sRGB"
+                            : input_space == InputSpace::linear ? ", every input taken as linear"
+                                                                : "";
+        std::vector<float> map, exposure_map;
+        if (o->hdr) {
+            ExposureOptions exposure;
+            exposure.tone_mapper = *parse_tone_mapper(o->tone_mapper);
+            if (*start) exposure.start = float(o->start_exposure);
+            if (*stop) exposure.stop = float(o->stop_exposure);
+            if (*exposures) exposure.count = o->exposures;
+            auto maps = HdrFlip(pixels_per_degree).maps(*reference, *test, exposure);
+            if (!maps) return report_error(fmt::format("--reference {}: {}", o->reference, maps.error().message));
+            map = std::move(maps->error);
+            exposure_map = std::move(maps->exposure);
+            std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
+                                     "exposure{} from {:.4g} to {:.4g})\n",
+                                     mean_error(map), pixels_per_degree, reference->width, reference->height, space,
+                                     o->tone_mapper, maps->range.count, maps->range.count == 1 ? "" : "s",
+                                     maps->range.start, maps->range.stop);
         } else {
-            for (std::size_t i = 0; i < map->size(); ++i) image.pixels[i] = glm::vec4(glm::vec3((*map)[i]), 1.0f);
+            auto ldr = LdrFlip(pixels_per_degree).error_map(*reference, *test);
+            if (!ldr) return report_error(ldr.error().message);
+            map = std::move(*ldr);
+            std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{})\n", mean_error(map),
+                                     pixels_per_degree, reference->width, reference->height, space);
         }
-        if (auto ok = write_image(o->out, image); !ok) return report_error(ok.error().message);
-        std::cout << fmt::format("wrote {}\n", o->out);
+
+        // The maps as one set of files: both or neither.
+        const std::uint32_t w = reference->width, h = reference->height;
+        auto picture = [&](const std::vector<float>& values, const std::string& path) {
+            const bool magma = extension_of(path) == ".png";
+            auto image = std::make_shared<Image>(w, h);
+            if (magma)
+                *image = flip::magma_image(values, w, h);
+            else
+                for (std::size_t i = 0; i < values.size(); ++i)
+                    image->pixels[i] = glm::vec4(glm::vec3(values[i]), 1.0f);
+            return image_writer(path, std::move(image));
+        };
+        std::vector<OutputWriter> files;
+        if (!o->out.empty()) files.push_back(picture(map, o->out));
+        if (!o->exposure_map.empty()) files.push_back(picture(exposure_map, o->exposure_map));
+        if (files.empty()) return 0;
+        if (auto ok = write_atomically(files); !ok) return report_error(ok.error().message);
+        for (const std::string& path : {o->out, o->exposure_map})
+            if (!path.empty()) std::cout << fmt::format("wrote {}\n", path);
         return 0;
     };
 }

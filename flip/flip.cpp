@@ -146,7 +146,7 @@ Result<void> check_ldr_image(const Image& image, const std::string& what) {
                 const float v = image.at(x, y)[c];
                 if (!(v >= 0.0f && v <= 1.0f)) // NaN fails too
                     return fail(fmt::format("{}: pixel ({}, {}) has {} = {}; LDR-FLIP takes linear RGB from 0 to 1 "
-                                            "and clamps nothing (HDR-FLIP, for other values, is not implemented)",
+                                            "and clamps nothing (for other values, HDR-FLIP: kdop flip --hdr)",
                                             what, x, y, kChannelNames[c], v));
             }
     return {};

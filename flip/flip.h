@@ -15,7 +15,7 @@
 //
 // Inputs are LINEAR RGB in [0, 1] (kdop's convention); LDR-FLIP's own first step, sRGB to linear,
 // is the caller's (flip::srgb_to_linear in color_spaces.h). Borders are clamp-to-edge, as in the
-// reference. HDR-FLIP (exposures and tone mapping over HDR inputs) is not implemented.
+// reference. HDR-FLIP (exposures and tone mapping over HDR inputs) is hdr_flip.h.
 #pragma once
 
 #include "flip_filters.h"

@@ -577,7 +577,7 @@ TEST(CliFlip, RefusesBadInputAndWritesNothing) {
          fmt::format("--test {}: 8x8, but --reference {} is 24x16", small, files.reference_exr)},
         {reference + " --test " + bright, 1,
          fmt::format("--test {}: pixel (5, 3) has blue = 2.5; LDR-FLIP takes linear RGB from 0 to 1", bright)},
-        {reference + " --test " + bright, 1, "HDR-FLIP, for other values, is not implemented"},
+        {reference + " --test " + bright, 1, "for other values, HDR-FLIP: kdop flip --hdr"},
         {"--reference " + nan + " --test " + files.test_exr, 1,
          fmt::format("--reference {}: pixel (0, 1) has green = nan", nan)},
         {reference + " --test " + (files.dir / "missing.exr").string(), 1, "missing.exr"},

@@ -1,0 +1,91 @@
+// HDR-FLIP (Andersson, Nilsson, Shirley, Akenine-Moller, "Visualizing Errors in Rendered High
+// Dynamic Range Images", Eurographics 2021) as its reference implementation (NVlabs/flip, FLIP.h)
+// computes it: both images are exposed at a range of exposures, tone mapped, clamped to [0, 1], and
+// compared with LDR-FLIP (flip.h); each pixel's error is its largest over the exposures. The paper's
+// full text is not at hand here, so every detail follows the reference code and says where:
+//
+// - Tone mappers (FLIP.h toneMap, ToneMappingCoefficients): ACES (Narkowicz's fit with the 0.6
+//   pre-exposure cancelled), Hable, each a per-channel rational (a x^2 + b x + c) / (d x^2 + e x + f);
+//   Reinhard is color / (1 + luminance), per pixel.
+// - The exposure range (computeExposures), from the reference alone: x_max solves T(x) = 0.85 for
+//   the tone mapper's curve; start = log2(x_max / Y_max) and stop = log2(x_max / Y_median), with
+//   Y the reference's luminance (0.2126 R + 0.7152 G + 0.0722 B), Y_max its largest and Y_median the
+//   element at index n / 2 in sorted order (zeros included). The count, unless given, is
+//   max(2, ceil(stop - start)); exposure i is start + i (stop - start) / (count - 1).
+// - The exposure map (setMaxExposure): i / (count - 1) of the first exposure whose error is the
+//   pixel's largest (0 where every error is 0).
+//
+// Where the reference divides by zero, this refuses or defines instead, and says so: one exposure
+// (count 1) is the start exposure alone; a reference whose median or largest luminance is 0 (the
+// range would be infinite) is refused unless start and stop are given.
+#pragma once
+
+#include "flip.h"
+#include "image.h"
+#include "result.h"
+
+#include <glm/vec3.hpp>
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace kdop {
+
+enum class ToneMapper { aces, hable, reinhard };
+std::optional<ToneMapper> parse_tone_mapper(std::string_view name); // "aces", "hable", "reinhard"
+const char* to_string(ToneMapper tone_mapper);
+
+// The tone mapper applied to one linear RGB color (not clamped: HDR-FLIP clamps after it).
+glm::vec3 tone_map(ToneMapper tone_mapper, glm::vec3 color);
+
+// What the user sets; what is not set is derived from the reference as the reference code derives it.
+struct ExposureOptions {
+    ToneMapper tone_mapper = ToneMapper::aces;
+    std::optional<float> start, stop; // exposures in stops (the image is multiplied by 2^exposure)
+    std::optional<int> count;         // at least 1
+};
+
+struct ExposureRange {
+    float start = 0, stop = 0;
+    int count = 0;
+    float exposure(int i) const; // start + i (stop - start) / (count - 1); start when count is 1
+};
+
+// The exposures HDR-FLIP evaluates `reference` at. Errors name the option or the reference's
+// luminance that makes the range unusable (start above stop, a count below 1, an infinite range).
+Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options);
+
+// Fails unless every pixel's R, G and B are finite and not negative, naming `what`, the pixel and
+// the value. Alpha is not looked at.
+Result<void> check_hdr_image(const Image& image, const std::string& what);
+
+struct HdrFlipMaps {
+    ExposureRange range;
+    std::vector<float> error;    // per pixel, row-major: the largest LDR-FLIP over the exposures
+    std::vector<float> exposure; // per pixel: i / (count - 1) of the exposure that gave it (0 for count 1)
+};
+
+// Evaluates image pairs at one ppd (the LDR-FLIP kernels are made once); const and stateless, so
+// one object serves any number of threads.
+class HdrFlip {
+public:
+    // Throws std::invalid_argument when check_pixels_per_degree fails (check it first for a message).
+    explicit HdrFlip(double pixels_per_degree) : ldr_(pixels_per_degree) {}
+
+    const LdrFlip& ldr() const { return ldr_; }
+
+    // reference and test: linear RGB, finite, not negative, the same size, not empty; anything else
+    // is an error naming the image, the pixel and the value.
+    Result<HdrFlipMaps> maps(const Image& reference, const Image& test, const ExposureOptions& options) const;
+
+    // The reference's step at one exposure: both images multiplied by 2^exposure, tone mapped and
+    // clamped to [0, 1], as LDR-FLIP is then given them.
+    static Image tone_mapped(const Image& image, ToneMapper tone_mapper, float exposure);
+
+private:
+    LdrFlip ldr_;
+};
+
+} // namespace kdop
