@@ -9,12 +9,15 @@
 #include "gpu_support.h"
 #include "kdop_test_shaders.h"
 #include "resolve_runner.h"
+#include "shader_reflection.h"
 #include "test_textures.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include <spirv/unified1/spirv.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -87,6 +90,59 @@ TEST(EngineShaders, ReflectsEveryBindingAsDeclared) {
     ASSERT_EQ(fragment.push_constant_count, 1u);
     EXPECT_STREQ(fragment.push_constants[0].name, "current_weight");
     EXPECT_EQ(fragment.push_constant_size, 4u);
+}
+
+// The registry's storage formats are Vulkan's numbers, written in shader_reflection.cpp without
+// Vulkan's headers; here each is checked against vulkan_core.h's enum, for every SPIR-V format.
+TEST(EngineShaders, StorageFormatsAreVulkansNumbers) {
+    const std::pair<spv::ImageFormat, VkFormat> formats[] = {
+        {spv::ImageFormatUnknown, VK_FORMAT_UNDEFINED},
+        {spv::ImageFormatRgba32f, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {spv::ImageFormatRgba16f, VK_FORMAT_R16G16B16A16_SFLOAT},
+        {spv::ImageFormatR32f, VK_FORMAT_R32_SFLOAT},
+        {spv::ImageFormatRgba8, VK_FORMAT_R8G8B8A8_UNORM},
+        {spv::ImageFormatRgba8Snorm, VK_FORMAT_R8G8B8A8_SNORM},
+        {spv::ImageFormatRg32f, VK_FORMAT_R32G32_SFLOAT},
+        {spv::ImageFormatRg16f, VK_FORMAT_R16G16_SFLOAT},
+        {spv::ImageFormatR11fG11fB10f, VK_FORMAT_B10G11R11_UFLOAT_PACK32},
+        {spv::ImageFormatR16f, VK_FORMAT_R16_SFLOAT},
+        {spv::ImageFormatRgba16, VK_FORMAT_R16G16B16A16_UNORM},
+        {spv::ImageFormatRgb10A2, VK_FORMAT_A2B10G10R10_UNORM_PACK32},
+        {spv::ImageFormatRg16, VK_FORMAT_R16G16_UNORM},
+        {spv::ImageFormatRg8, VK_FORMAT_R8G8_UNORM},
+        {spv::ImageFormatR16, VK_FORMAT_R16_UNORM},
+        {spv::ImageFormatR8, VK_FORMAT_R8_UNORM},
+        {spv::ImageFormatRgba16Snorm, VK_FORMAT_R16G16B16A16_SNORM},
+        {spv::ImageFormatRg16Snorm, VK_FORMAT_R16G16_SNORM},
+        {spv::ImageFormatRg8Snorm, VK_FORMAT_R8G8_SNORM},
+        {spv::ImageFormatR16Snorm, VK_FORMAT_R16_SNORM},
+        {spv::ImageFormatR8Snorm, VK_FORMAT_R8_SNORM},
+        {spv::ImageFormatRgba32i, VK_FORMAT_R32G32B32A32_SINT},
+        {spv::ImageFormatRgba16i, VK_FORMAT_R16G16B16A16_SINT},
+        {spv::ImageFormatRgba8i, VK_FORMAT_R8G8B8A8_SINT},
+        {spv::ImageFormatR32i, VK_FORMAT_R32_SINT},
+        {spv::ImageFormatRg32i, VK_FORMAT_R32G32_SINT},
+        {spv::ImageFormatRg16i, VK_FORMAT_R16G16_SINT},
+        {spv::ImageFormatRg8i, VK_FORMAT_R8G8_SINT},
+        {spv::ImageFormatR16i, VK_FORMAT_R16_SINT},
+        {spv::ImageFormatR8i, VK_FORMAT_R8_SINT},
+        {spv::ImageFormatRgba32ui, VK_FORMAT_R32G32B32A32_UINT},
+        {spv::ImageFormatRgba16ui, VK_FORMAT_R16G16B16A16_UINT},
+        {spv::ImageFormatRgba8ui, VK_FORMAT_R8G8B8A8_UINT},
+        {spv::ImageFormatR32ui, VK_FORMAT_R32_UINT},
+        {spv::ImageFormatRgb10a2ui, VK_FORMAT_A2B10G10R10_UINT_PACK32},
+        {spv::ImageFormatRg32ui, VK_FORMAT_R32G32_UINT},
+        {spv::ImageFormatRg16ui, VK_FORMAT_R16G16_UINT},
+        {spv::ImageFormatRg8ui, VK_FORMAT_R8G8_UINT},
+        {spv::ImageFormatR16ui, VK_FORMAT_R16_UINT},
+        {spv::ImageFormatR8ui, VK_FORMAT_R8_UINT},
+        {spv::ImageFormatR64ui, VK_FORMAT_R64_UINT},
+        {spv::ImageFormatR64i, VK_FORMAT_R64_SINT},
+    };
+    ASSERT_EQ(std::size(formats), 42u) << "every SPIR-V image format up to R64i";
+    for (const auto& [spirv, vulkan] : formats)
+        EXPECT_EQ(vulkan_format_of_image_format(spirv), std::uint32_t(vulkan)) << "spv::ImageFormat " << int(spirv);
+    EXPECT_EQ(vulkan_format_of_image_format(1000), 0u) << "a format the table does not know";
 }
 
 std::vector<float> floats_of(const Image& image) {
