@@ -270,7 +270,8 @@ inline VkResult create_variant_pipeline(const VariantVulkanFunctions& vk, VkDevi
 
 // Where a graphics pipeline draws: a render pass and subpass of the caller's, or, when render_pass
 // is null, dynamic rendering (Vulkan 1.3 or VK_KHR_dynamic_rendering, enabled by the caller) into
-// these formats.
+// these formats. Either way the pipeline blends (writes) one color attachment per fragment output
+// (Variant::color_output_count), so the subpass or the rendering must have that many.
 struct GraphicsTargets {
     VkRenderPass render_pass = VK_NULL_HANDLE;
     std::uint32_t subpass = 0;
