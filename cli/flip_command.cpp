@@ -83,7 +83,7 @@ Action add_flip_command(CLI::App& app) {
                           ->needs(hdr);
     flip->add_option("--exposure-map", o->exposure_map,
                      "HDR-FLIP: write, per pixel, which exposure gave its error (0 the first, 1 the last) to this "
-                     ".exr or .png")
+                     ".exr (the values) or .png (in magma colors; the reference tool draws it in viridis)")
         ->needs(hdr);
 
     return [o, ppd, start, stop, exposures] {
