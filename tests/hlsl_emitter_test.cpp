@@ -1,6 +1,7 @@
 // The HLSL emitter: golden text for the tiny set, and for every built-in variant in every form and
 // numerics, the HLSL function is the GLSL one with only the names shader_dialect.h lists changed,
 // line for line, so it performs the same operations in the same order. (gpu_hlsl_test.cpp runs it.)
+#include "emitter_specs.h"
 #include "glsl_emitter.h"
 #include "test_support.h"
 #include "variant_spec.h"
@@ -14,11 +15,7 @@
 namespace kdop {
 namespace {
 
-VariantSpec tiny(Mode mode, Neighborhood n) {
-    auto set = resolve_axis_set(test::data_path("tiny.axes"));
-    EXPECT_TRUE(set) << set.error().message;
-    return {*set, mode, n};
-}
+VariantSpec tiny(Mode mode, Neighborhood n) { return test::tiny_spec(mode, n); }
 
 std::vector<std::string> lines(const std::string& text) {
     std::vector<std::string> out;
@@ -89,16 +86,8 @@ TEST(HlslEmitter, SignaturesUseHlslTypes) {
 }
 
 TEST(HlslEmitter, EveryBuiltinVariantIsItsGlslWithHlslNames) {
-    std::vector<VariantSpec> specs = all_builtin_variants();
-    ASSERT_GE(specs.size(), 51u) << "24 defaults in two forms and three baselines";
-    const std::size_t builtin = specs.size();
-    for (std::size_t i = 0; i < builtin; ++i)
-        if (specs[i].mode == Mode::clip || specs[i].mode == Mode::varclip) {
-            VariantSpec paper = specs[i];
-            paper.numerics = Numerics::paper;
-            specs.push_back(paper);
-        }
-    for (const VariantSpec& spec : specs) expect_hlsl_is_the_glsl_translated(spec);
+    ASSERT_GE(all_builtin_variants().size(), 51u) << "24 defaults in two forms and three baselines";
+    for (const VariantSpec& spec : test::builtin_variants_in_both_numerics()) expect_hlsl_is_the_glsl_translated(spec);
 }
 
 // The translation rules above are not vacuous: they change what the emitter writes differently.

@@ -2,6 +2,7 @@
 // form and numerics, compiled inside a compute shader by Tint (Dawn's WGSL compiler, through the
 // webgpu package install-deps.sh puts in tests/wgsl; tint_check.mjs); a broken one refused with
 // Tint's message; and each function's operations, counted per kind, the GLSL function's.
+#include "emitter_specs.h"
 #include "glsl_emitter.h"
 #include "test_support.h"
 #include "variant_spec.h"
@@ -19,24 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-VariantSpec tiny(Mode mode, Neighborhood n) {
-    auto set = resolve_axis_set(test::data_path("tiny.axes"));
-    EXPECT_TRUE(set) << set.error().message;
-    return {*set, mode, n};
-}
-
-// Every built-in variant, and each clip and variance clip with the paper's numerics too.
-std::vector<VariantSpec> every_variant() {
-    std::vector<VariantSpec> specs = all_builtin_variants();
-    const std::size_t builtin = specs.size();
-    for (std::size_t i = 0; i < builtin; ++i)
-        if (specs[i].mode == Mode::clip || specs[i].mode == Mode::varclip) {
-            VariantSpec paper = specs[i];
-            paper.numerics = Numerics::paper;
-            specs.push_back(paper);
-        }
-    return specs;
-}
+VariantSpec tiny(Mode mode, Neighborhood n) { return test::tiny_spec(mode, n); }
+std::vector<VariantSpec> every_variant() { return test::builtin_variants_in_both_numerics(); }
 
 // The function inside a compute shader that reads its inputs from, and writes its result to, a
 // storage buffer, so that nothing of it is dead code.
