@@ -17,12 +17,10 @@ namespace {
 
 using flip::Color;
 
-// The paper's constants (and the reference's FLIPConstants): the color error's exponent qc, and
-// its remapping: distances below pc cmax go to [0, pt], the rest to [pt, 1]; the feature
-// error's exponent qf.
-constexpr float kQc = 0.7f, kPc = 0.4f, kPt = 0.95f;
-constexpr float kQf = 0.5f;
-static_assert(kQf == 0.5f, "the feature error's power is taken as a square root");
+using flip::kPc;
+using flip::kPt;
+using flip::kQc;
+static_assert(flip::kQf == 0.5f, "the feature error's power is taken as a square root");
 
 // One pass of a separable filter over a line of `width` pixels, its weights k[0..radius] for
 // offsets 0..radius (flip_filters.h). `neighbors(j)` gives the lines at offsets -j and +j (the
@@ -114,7 +112,7 @@ Color<float> perceived(const Color<float>& filtered_ycxcz) {
 
 // The largest HyAB distance in Hunt-adjusted L*a*b* between two colors of the RGB cube, which the
 // paper takes to be green's and blue's, raised to qc.
-double max_color_distance() {
+double green_blue_distance() {
     const auto adjusted = [](Color<double> rgb) {
         return flip::hunt_adjust(flip::xyz_to_lab(flip::linear_rgb_to_xyz(rgb)));
     };
@@ -165,7 +163,7 @@ LdrFlip::LdrFlip(double pixels_per_degree) : ppd_(pixels_per_degree) {
     csf_ = flip::make_csf_kernels(ppd_);
     features_ = flip::make_feature_kernels(ppd_);
     // The reference computes these in float; here in double, then rounded.
-    const double cmax = max_color_distance();
+    const double cmax = green_blue_distance();
     cmax_ = float(cmax);
     pccmax_ = float(double(kPc) * cmax);
 }

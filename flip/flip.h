@@ -29,6 +29,13 @@
 
 namespace kdop {
 
+namespace flip {
+// The paper's constants (and the reference's FLIPConstants): the color error's exponent qc, and
+// its remapping: distances below pc cmax go to [0, pt], the rest to [pt, 1]; the feature
+// error's exponent qf.
+inline constexpr float kQc = 0.7f, kPc = 0.4f, kPt = 0.95f, kQf = 0.5f;
+} // namespace flip
+
 // The paper's default: a 0.7 m wide 3840-pixel display seen from 0.7 m.
 struct ViewingConditions {
     double distance_m = 0.7, display_width_m = 0.7, display_width_px = 3840;
@@ -71,6 +78,10 @@ public:
     double pixels_per_degree() const { return ppd_; }
     const flip::CsfKernels& csf_kernels() const { return csf_; }
     const flip::FeatureKernels& feature_kernels() const { return features_; }
+    // The color error's remapping as evaluate() applies it, in float: cmax, the largest
+    // exponentiated HyAB distance (green vs blue), and pc cmax, where the two ranges meet.
+    float max_color_distance() const { return cmax_; }
+    float pc_max_color_distance() const { return pccmax_; }
 
     // reference and test: linear RGB in [0, 1] (alpha ignored), the same size, not empty; anything
     // else is an error that names the image, the pixel and the value (nothing is clamped).

@@ -12,11 +12,7 @@ namespace {
 
 constexpr const char* kChannelNames[] = {"R", "G", "B"};
 
-// (a x^2 + b x + c) / (d x^2 + e x + f) per channel (FLIP.h ToneMappingCoefficients). Reinhard's
-// row is what computeExposures solves for it; its tone map itself is by luminance (tone_map).
-struct Curve {
-    float a, b, c, d, e, f;
-};
+using Curve = ToneCurve;
 constexpr Curve kReinhard{0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f};
 constexpr Curve kAces{0.6f * 0.6f * 2.51f, 0.6f * 0.03f, 0.0f, 0.6f * 0.6f * 2.43f, 0.6f * 0.59f, 0.14f};
 constexpr Curve kHable{0.231683f, 0.013791f, 0.0f, 0.18f, 0.3f, 0.018f};
@@ -54,6 +50,8 @@ const char* to_string(ToneMapper t) {
     }
     return "?";
 }
+
+const ToneCurve& tone_curve(ToneMapper t) { return curve(t); }
 
 glm::vec3 tone_map(ToneMapper t, glm::vec3 color) {
     if (t == ToneMapper::reinhard) return color * (1.0f / (1.0f + luminance(color)));
@@ -148,6 +146,7 @@ Result<HdrFlipMaps> HdrFlip::maps(const Image& reference, const Image& test, con
                 out.exposure[p] = where;
             }
     }
+    out.mean = mean_error(out.error);
     return out;
 }
 

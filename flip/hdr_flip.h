@@ -37,6 +37,13 @@ enum class ToneMapper { aces, hable, reinhard };
 std::optional<ToneMapper> parse_tone_mapper(std::string_view name); // "aces", "hable", "reinhard"
 const char* to_string(ToneMapper tone_mapper);
 
+// (a x^2 + b x + c) / (d x^2 + e x + f) per channel (FLIP.h ToneMappingCoefficients). Reinhard's
+// row is what computeExposures solves for it; its tone map itself is by luminance (tone_map).
+struct ToneCurve {
+    float a, b, c, d, e, f;
+};
+const ToneCurve& tone_curve(ToneMapper tone_mapper);
+
 // The tone mapper applied to one linear RGB color (not clamped: HDR-FLIP clamps after it).
 glm::vec3 tone_map(ToneMapper tone_mapper, glm::vec3 color);
 
@@ -63,6 +70,7 @@ Result<void> check_hdr_image(const Image& image, const std::string& what);
 
 struct HdrFlipMaps {
     ExposureRange range;
+    double mean = 0;             // of the error map, as mean_error computes it
     std::vector<float> error;    // per pixel, row-major: the largest LDR-FLIP over the exposures
     std::vector<float> exposure; // per pixel: i / (count - 1) of the exposure that gave it (0 for count 1)
 };

@@ -88,21 +88,6 @@ Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsa
     return {};
 }
 
-Result<void> RectifyPass::create_buffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage) {
-    VkDevice device = context_.device();
-    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    info.size = size;
-    info.usage = usage;
-    KDOP_VK_TRY(vkCreateBuffer(device, &info, nullptr, &b.buffer));
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(device, b.buffer, &req);
-    const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    if (auto ok = allocate(req, host, b.memory); !ok) return ok;
-    KDOP_VK_TRY(vkBindBufferMemory(device, b.buffer, b.memory, 0));
-    KDOP_VK_TRY(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
-    return {};
-}
-
 Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
                                                          TextureFormat format) {
     return create(context, width, height, format, {"current_frame", "history_frame"});
@@ -136,12 +121,15 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
             p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         !ok)
         return std::unexpected(ok.error());
-    if (auto ok =
-            p->create_buffer(p->upload_, input_count * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-        !ok)
-        return std::unexpected(ok.error());
-    if (auto ok = p->create_buffer(p->readback_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT); !ok)
-        return std::unexpected(ok.error());
+    auto upload =
+        DeviceBuffer::create(context, input_count * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             DeviceBuffer::Memory::host, "the inputs' upload");
+    if (!upload) return std::unexpected(upload.error());
+    p->upload_ = std::move(*upload);
+    auto readback = DeviceBuffer::create(context, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                         DeviceBuffer::Memory::host, "the output's read-back");
+    if (!readback) return std::unexpected(readback.error());
+    p->readback_ = std::move(*readback);
 
     // texelFetch ignores filtering and addressing; a combined image sampler still needs a sampler.
     VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -157,13 +145,9 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     pool.pPoolSizes = sizes;
     KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &p->descriptor_pool_));
 
-    VkCommandBufferAllocateInfo cb{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    cb.commandPool = context.command_pool();
-    cb.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    cb.commandBufferCount = 1;
-    KDOP_VK_TRY(vkAllocateCommandBuffers(device, &cb, &p->commands_));
-    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    KDOP_VK_TRY(vkCreateFence(device, &fence, nullptr, &p->fence_));
+    auto commands = OneShotCommands::create(context);
+    if (!commands) return std::unexpected(commands.error());
+    p->commands_ = std::move(*commands);
 
     uint32_t family_count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(context.physical_device(), &family_count, nullptr);
@@ -176,25 +160,6 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
         KDOP_VK_TRY(vkCreateQueryPool(device, &query, nullptr, &p->timestamps_));
     }
     return p;
-}
-
-template <class Record>
-Result<double> RectifyPass::submit(Record record) {
-    VkDevice device = context_.device();
-    KDOP_VK_TRY(vkResetCommandBuffer(commands_, 0));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    KDOP_VK_TRY(vkBeginCommandBuffer(commands_, &begin));
-    record(commands_);
-    KDOP_VK_TRY(vkEndCommandBuffer(commands_));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &commands_;
-    KDOP_VK_TRY(vkResetFences(device, 1, &fence_));
-    auto start = std::chrono::steady_clock::now();
-    KDOP_VK_TRY(vkQueueSubmit(context_.queue(), 1, &submit, fence_));
-    KDOP_VK_TRY(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX));
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 Result<void> RectifyPass::upload(const Image& current, const Image& history) {
@@ -211,7 +176,7 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
             return fail(fmt::format("image is {}x{}, the pass is {}x{}", image->width, image->height, width_, height_));
     const std::size_t pixels = std::size_t(width_) * height_;
     const VkDeviceSize bytes_per_image = VkDeviceSize(pixels) * texel_bytes(format_);
-    auto* bytes = static_cast<std::byte*>(upload_.mapped);
+    auto* bytes = static_cast<std::byte*>(upload_.mapped());
     for (std::size_t i = 0; i < images.size(); ++i) {
         if (!images[i]) continue;
         std::byte* at = bytes + i * bytes_per_image;
@@ -222,7 +187,7 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
             for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(images[i]->pixels[k]);
         }
     }
-    auto copied = submit([&](VkCommandBuffer cb) {
+    auto copied = commands_->run([&](VkCommandBuffer cb) {
         for (std::size_t i = 0; i < images.size(); ++i) {
             if (!images[i]) continue;
             const Texture& t = inputs_[i].texture;
@@ -230,7 +195,7 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT);
             VkBufferImageCopy copy = whole_image(width_, height_, i * bytes_per_image);
-            vkCmdCopyBufferToImage(cb, upload_.buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+            vkCmdCopyBufferToImage(cb, upload_.buffer(), t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
@@ -312,7 +277,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
 
     const uint32_t groups_x = (width_ + kernel.local_size()[0] - 1) / kernel.local_size()[0];
     const uint32_t groups_y = (height_ + kernel.local_size()[1] - 1) / kernel.local_size()[1];
-    auto wall = submit([&](VkCommandBuffer cb) {
+    auto wall = commands_->run([&](VkCommandBuffer cb) {
         // The output's previous contents are not needed: every pixel is written.
         image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
@@ -344,17 +309,17 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
 
 Result<Image> RectifyPass::download() {
     if (!dispatched_) return fail("download before any dispatch");
-    auto copied = submit([&](VkCommandBuffer cb) {
+    auto copied = commands_->run([&](VkCommandBuffer cb) {
         image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT);
         VkBufferImageCopy copy = whole_image(width_, height_, 0);
-        vkCmdCopyImageToBuffer(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &copy);
+        vkCmdCopyImageToBuffer(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
         VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
         host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
         host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        host.buffer = readback_.buffer;
+        host.buffer = readback_.buffer();
         host.size = VK_WHOLE_SIZE;
         vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
                              nullptr);
@@ -362,7 +327,7 @@ Result<Image> RectifyPass::download() {
     if (!copied) return std::unexpected(copied.error());
     dispatched_ = false; // the output left the GENERAL layout; the next dispatch starts it afresh
     Image out(width_, height_);
-    std::memcpy(out.pixels.data(), readback_.mapped, out.pixels.size() * 16);
+    std::memcpy(out.pixels.data(), readback_.mapped(), out.pixels.size() * 16);
     return out;
 }
 
@@ -372,22 +337,14 @@ void RectifyPass::destroy(Texture& t) {
     vkFreeMemory(context_.device(), t.memory, nullptr);
 }
 
-void RectifyPass::destroy(Buffer& b) {
-    vkDestroyBuffer(context_.device(), b.buffer, nullptr);
-    vkFreeMemory(context_.device(), b.memory, nullptr); // unmaps
-}
-
 RectifyPass::~RectifyPass() {
     VkDevice device = context_.device();
     vkDeviceWaitIdle(device);
     vkDestroyQueryPool(device, timestamps_, nullptr);
-    vkDestroyFence(device, fence_, nullptr);
-    if (commands_) vkFreeCommandBuffers(device, context_.command_pool(), 1, &commands_);
     vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     vkDestroySampler(device, sampler_, nullptr);
     for (Input& in : inputs_) destroy(in.texture);
     destroy(output_);
-    for (Buffer* b : {&upload_, &readback_}) destroy(*b);
 }
 
 Result<Image> rectify(const Context& context, const Variant& variant, const Image& current, const Image& history,

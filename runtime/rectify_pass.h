@@ -7,8 +7,10 @@
 #pragma once
 
 #include "context.h"
+#include "device_buffer.h"
 #include "image.h"
 #include "kernel.h"
+#include "one_shot_commands.h"
 
 #include <memory>
 #include <optional>
@@ -67,21 +69,10 @@ private:
         VkDeviceMemory memory = VK_NULL_HANDLE;
         VkImageView view = VK_NULL_HANDLE;
     };
-    struct Buffer {
-        VkBuffer buffer = VK_NULL_HANDLE;
-        VkDeviceMemory memory = VK_NULL_HANDLE;
-        void* mapped = nullptr;
-    };
-
     explicit RectifyPass(const Context& context) : context_(context) {}
     Result<void> allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory);
     Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage);
-    Result<void> create_buffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage);
-    // Records commands with `record`, submits them and waits; returns the wall time in ms.
-    template <class Record>
-    Result<double> submit(Record record);
     void destroy(Texture& t);
-    void destroy(Buffer& b);
 
     const Context& context_;
     uint32_t width_ = 0, height_ = 0;
@@ -93,11 +84,10 @@ private:
     };
     std::vector<Input> inputs_;
     Texture output_;
-    Buffer upload_, readback_;
+    DeviceBuffer upload_, readback_; // host-visible
     VkSampler sampler_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer commands_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
+    std::unique_ptr<OneShotCommands> commands_;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
     bool dispatched_ = false;
 };

@@ -1,0 +1,326 @@
+#include "device_flip.h"
+
+#include "color_spaces.h"
+#include "embedded_files.h"
+#include "glsl_compiler.h"
+#include "runnable_variant.h"
+#include "variant_builder.h"
+#include "vulkan_error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <string>
+
+namespace kdop {
+namespace {
+
+constexpr std::string_view kTemplate = "shader_templates/flip.comp.in";
+constexpr std::uint32_t kLocalSize = 64; // the template's local_size_x
+
+// The template's push constants, as std430 lays them out.
+struct Parameters {
+    std::uint32_t width, height;
+    float exposure_scale, exposure_where;
+    std::uint32_t tone_mapper, write_terms;
+};
+
+// A float as a GLSL literal that reads back as the same float (nine significant digits), always
+// with a point or an exponent so GLSL takes it as a float.
+std::string literal(float v) {
+    std::string s = fmt::format("{:.9g}", v);
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return s;
+}
+
+// weights[0..radius], padded with zeros to `length` so that every offset the unrolled loop
+// names exists (the zeros are never reached: each kernel's taps stop at its radius).
+std::string weights(const char* name, const std::vector<float>& k, int length) {
+    std::string s = fmt::format("const float {}[{}] = float[](", name, length);
+    for (int j = 0; j < length; ++j) s += (j ? ", " : "") + literal(j < int(k.size()) ? k[std::size_t(j)] : 0.0f);
+    return s + ");\n";
+}
+
+// flip_constants.glsl: the pass, the kernels and the color constants, each the float the CPU code
+// computes with.
+std::string constants(const LdrFlip& cpu, int pass) {
+    const flip::CsfKernels& csf = cpu.csf_kernels();
+    const flip::FeatureKernels& features = cpu.feature_kernels();
+    const int max_radius = std::max(csf.radius, features.radius);
+    std::string s = fmt::format("#define FLIP_PASS {}\n#define CSF_RADIUS {}\n#define FEATURE_RADIUS {}\n"
+                                "#define MAX_RADIUS {}\n",
+                                pass, csf.radius, features.radius, max_radius);
+    s += weights("CSF_Y", csf.achromatic, max_radius + 1);
+    s += weights("CSF_CX", csf.red_green, max_radius + 1);
+    s += weights("CSF_CZ1", csf.blue_yellow_1, max_radius + 1);
+    s += weights("CSF_CZ2", csf.blue_yellow_2, max_radius + 1);
+    s += weights("FEATURE_GAUSSIAN", features.gaussian, max_radius + 1);
+    s += weights("FEATURE_EDGE", features.edge, max_radius + 1);
+    s += weights("FEATURE_POINT", features.point, max_radius + 1);
+    auto define = [&](const std::string& name, float v) { s += fmt::format("#define {} {}\n", name, literal(v)); };
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            define(fmt::format("RGB_TO_XYZ_{}{}", r, c), float(flip::kLinearRgbToXyz[r][c]));
+            define(fmt::format("XYZ_TO_RGB_{}{}", r, c), float(flip::kXyzToLinearRgb[r][c]));
+        }
+    define("WHITE_X", float(flip::kD65White[0]));
+    define("WHITE_Y", float(flip::kD65White[1]));
+    define("WHITE_Z", float(flip::kD65White[2]));
+    // The color error's remapping, as LdrFlip::evaluate computes each part in float.
+    const float cmax = cpu.max_color_distance(), pc_cmax = cpu.pc_max_color_distance();
+    define("QC", flip::kQc);
+    define("PT", flip::kPt);
+    define("PC_CMAX", pc_cmax);
+    define("PT_OVER_PC_CMAX", flip::kPt / pc_cmax);
+    define("CMAX_MINUS_PC_CMAX", cmax - pc_cmax);
+    define("ONE_MINUS_PT", 1.0f - flip::kPt);
+    define("INV_SQRT2", float(1.0 / std::numbers::sqrt2));
+    for (auto [name, mapper] : {std::pair{"ACES", ToneMapper::aces}, std::pair{"HABLE", ToneMapper::hable}}) {
+        const ToneCurve& k = tone_curve(mapper);
+        if (k.c != 0.0f) return "#error the tone curve's c is not 0\n"; // the shader leaves it out
+        define(fmt::format("{}_A", name), k.a);
+        define(fmt::format("{}_B", name), k.b);
+        define(fmt::format("{}_D", name), k.d);
+        define(fmt::format("{}_E", name), k.e);
+        define(fmt::format("{}_F", name), k.f);
+    }
+    return s;
+}
+
+Result<std::unique_ptr<RunnableVariant>> build_pass(const LdrFlip& cpu, int pass) {
+    static constexpr const char* kNames[] = {"flip-prepare", "flip-horizontal", "flip-vertical", "flip-row-sums"};
+    auto source = find_embedded_file(kTemplate);
+    if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
+    BuiltVariant built;
+    built.spec.mode = Mode::shader;
+    built.name = kNames[pass];
+    built.compute_glsl = std::string(*source);
+    const std::string file = built.name + ".comp";
+    const std::string defines = constants(cpu, pass);
+    IncludeResolver resolve = [&](std::string_view header, std::string_view) -> std::optional<IncludedSource> {
+        if (header == "flip_constants.glsl") return IncludedSource{built.name + "/flip_constants.glsl", defines};
+        return std::nullopt;
+    };
+    auto compiled = compile_glsl_compute(built.compute_glsl, file, TargetEnv::vulkan1_0, resolve);
+    if (auto ok = compile_into(built, built.compute_glsl, file, TargetEnv::vulkan1_0, std::move(compiled)); !ok)
+        return std::unexpected(ok.error());
+    return std::make_unique<RunnableVariant>(std::move(built));
+}
+
+// Every write of one dispatch visible to the next one's reads and writes.
+void compute_barrier(VkCommandBuffer cb, VkAccessFlags src_access, VkPipelineStageFlags src_stage,
+                     VkAccessFlags dst_access, VkPipelineStageFlags dst_stage) {
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = src_access;
+    b.dstAccessMask = dst_access;
+    vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+constexpr std::uint64_t kInputBytes = 2 * 16, kPreparedBytes = 2 * 16, kHorizontalBytes = 2 * 32, kMapBytes = 4 * 4;
+
+} // namespace
+
+std::uint64_t DeviceFlip::bytes(std::uint32_t width, std::uint32_t height) {
+    const std::uint64_t n = std::uint64_t(width) * height;
+    return n * (kInputBytes + kPreparedBytes + kHorizontalBytes + kMapBytes) + 4ull * height;
+}
+
+Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, double pixels_per_degree,
+                                                       std::uint32_t width, std::uint32_t height) {
+    if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) return std::unexpected(ok.error());
+    if (width == 0 || height == 0) return fail(fmt::format("FLIP of an empty {}x{} image", width, height));
+    const auto& limits = context.properties().limits;
+    const std::uint64_t groups = (width + kLocalSize - 1) / kLocalSize;
+    if (groups > limits.maxComputeWorkGroupCount[0] || height > limits.maxComputeWorkGroupCount[1])
+        return fail(fmt::format("FLIP of {}x{}: {} dispatches at most {}x{} workgroups of {} pixels", width, height,
+                                context.device_name(), limits.maxComputeWorkGroupCount[0],
+                                limits.maxComputeWorkGroupCount[1], kLocalSize));
+    std::unique_ptr<DeviceFlip> f(new DeviceFlip(context, pixels_per_degree, width, height));
+    const LdrFlip cpu(pixels_per_degree); // the kernels and constants, as the CPU code computes them
+    for (int pass = 0; pass < kPasses; ++pass) {
+        auto shader = build_pass(cpu, pass);
+        if (!shader) return std::unexpected(shader.error());
+        auto kernel = Kernel::create(context, (*shader)->variant());
+        if (!kernel) return std::unexpected(kernel.error());
+        f->shaders_[std::size_t(pass)] = std::move(*shader);
+        f->kernels_[std::size_t(pass)] = std::move(*kernel);
+    }
+
+    const std::uint64_t n = std::uint64_t(width) * height;
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    using Memory = DeviceBuffer::Memory;
+    struct Allocation {
+        DeviceBuffer* buffer;
+        std::uint64_t size;
+        VkBufferUsageFlags usage;
+        Memory memory;
+        const char* what;
+    } allocations[] = {
+        {&f->inputs_, n * kInputBytes, storage, Memory::host, "FLIP's inputs"},
+        {&f->prepared_, n * kPreparedBytes, storage, Memory::device, "FLIP's color planes"},
+        {&f->horizontal_, n * kHorizontalBytes, storage, Memory::device, "FLIP's filtered planes"},
+        {&f->maps_, n * kMapBytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host, "FLIP's maps"},
+        {&f->row_sums_, 4ull * height, storage, Memory::host, "FLIP's row sums"},
+    };
+    for (const Allocation& a : allocations) {
+        auto buffer = DeviceBuffer::create(context, a.size, a.usage, a.memory, a.what);
+        if (!buffer) return std::unexpected(buffer.error());
+        *a.buffer = std::move(*buffer);
+    }
+    auto commands = OneShotCommands::create(context);
+    if (!commands) return std::unexpected(commands.error());
+    f->commands_ = std::move(*commands);
+
+    // One set per pass, written once: each reads binding 0 and writes binding 1.
+    VkDevice device = context.device();
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kPasses};
+    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool.maxSets = kPasses;
+    pool.poolSizeCount = 1;
+    pool.pPoolSizes = &size;
+    KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &f->descriptor_pool_));
+    const DeviceBuffer* buffers[kPasses][2] = {{&f->inputs_, &f->prepared_},
+                                               {&f->prepared_, &f->horizontal_},
+                                               {&f->horizontal_, &f->maps_},
+                                               {&f->maps_, &f->row_sums_}};
+    for (int pass = 0; pass < kPasses; ++pass) {
+        const Kernel& kernel = *f->kernels_[std::size_t(pass)];
+        if (kernel.bindings().size() != 2)
+            return fail(
+                fmt::format("internal error: {} has {} bindings, not 2", kernel.name(), kernel.bindings().size()));
+        VkDescriptorSetLayout layout = kernel.set_layout();
+        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        alloc.descriptorPool = f->descriptor_pool_;
+        alloc.descriptorSetCount = 1;
+        alloc.pSetLayouts = &layout;
+        KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &f->sets_[std::size_t(pass)]));
+        VkDescriptorBufferInfo infos[2];
+        VkWriteDescriptorSet writes[2];
+        for (std::uint32_t b = 0; b < 2; ++b) {
+            infos[b] = {buffers[pass][b]->buffer(), 0, VK_WHOLE_SIZE};
+            writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[b].dstSet = f->sets_[std::size_t(pass)];
+            writes[b].dstBinding = b;
+            writes[b].descriptorCount = 1;
+            writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            writes[b].pBufferInfo = &infos[b];
+        }
+        vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+    }
+    return f;
+}
+
+DeviceFlip::~DeviceFlip() {
+    vkDeviceWaitIdle(context_.device());
+    vkDestroyDescriptorPool(context_.device(), descriptor_pool_, nullptr);
+}
+
+Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
+                                    Result<void> (*check_values)(const Image&, const std::string&)) const {
+    for (auto [image, what] : {std::pair{&reference, "reference image"}, std::pair{&test, "test image"}}) {
+        if (image->width != width_ || image->height != height_)
+            return fail(fmt::format("{}: {}x{}, but this FLIP evaluator was made for {}x{}", what, image->width,
+                                    image->height, width_, height_));
+        if (auto ok = check_values(*image, what); !ok) return ok;
+    }
+    return {};
+}
+
+Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, const Image& test,
+                                                    std::optional<ToneMapper> tone_mapper,
+                                                    std::span<const Exposure> exposures, ReadBack read_back) {
+    const std::size_t n = std::size_t(width_) * height_;
+    auto* inputs = static_cast<std::byte*>(inputs_.mapped());
+    std::memcpy(inputs, reference.pixels.data(), n * 16);
+    std::memcpy(inputs + n * 16, test.pixels.data(), n * 16);
+
+    const std::uint32_t mapper = !tone_mapper                        ? 0u
+                                 : *tone_mapper == ToneMapper::aces  ? 1u
+                                 : *tone_mapper == ToneMapper::hable ? 2u
+                                                                     : 3u;
+    const std::uint32_t groups_x = (width_ + kLocalSize - 1) / kLocalSize;
+    const VkAccessFlags shader_rw = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    auto ran = commands_->run([&](VkCommandBuffer cb) {
+        // The error and exposure maps start at 0: every exposure keeps the larger error.
+        vkCmdFillBuffer(cb, maps_.buffer(), 0, VkDeviceSize(n) * 2 * 4, 0);
+        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, shader_rw, compute);
+        auto dispatch = [&](int pass, const Parameters& p, std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+            const Kernel& k = *kernels_[std::size_t(pass)];
+            vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
+            vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &sets_[std::size_t(pass)], 0,
+                                    nullptr);
+            vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                               std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
+            vkCmdDispatch(cb, x, y, z);
+            compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, shader_rw, compute);
+        };
+        for (const Exposure& e : exposures) {
+            const Parameters p{width_, height_, e.scale, e.where, mapper, read_back == ReadBack::terms ? 1u : 0u};
+            dispatch(kPrepare, p, groups_x, height_, 2);
+            dispatch(kHorizontal, p, groups_x, height_, 2);
+            dispatch(kVertical, p, groups_x, height_, 1);
+        }
+        dispatch(kRowSums, Parameters{width_, height_, 1, 0, 0, 0}, (height_ + kLocalSize - 1) / kLocalSize, 1, 1);
+        compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
+    });
+    if (!ran) return std::unexpected(ran.error());
+
+    Evaluation out;
+    const auto* rows = static_cast<const float*>(row_sums_.mapped());
+    double sum = 0;
+    for (std::uint32_t y = 0; y < height_; ++y) sum += double(rows[y]);
+    out.mean = sum / double(n);
+    const auto* maps = static_cast<const float*>(maps_.mapped());
+    auto map = [&](int k) { return std::vector<float>(maps + std::size_t(k) * n, maps + std::size_t(k + 1) * n); };
+    if (read_back != ReadBack::mean) {
+        out.error = map(0);
+        out.exposure = map(1);
+    }
+    if (read_back == ReadBack::terms) {
+        out.color = map(2);
+        out.feature = map(3);
+    }
+    return out;
+}
+
+Result<double> DeviceFlip::mean(const Image& reference, const Image& test) {
+    if (auto ok = check_pair(reference, test, check_ldr_image); !ok) return std::unexpected(ok.error());
+    const Exposure one[1];
+    auto e = evaluate(reference, test, std::nullopt, one, ReadBack::mean);
+    if (!e) return std::unexpected(e.error());
+    return e->mean;
+}
+
+Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
+    if (auto ok = check_pair(reference, test, check_ldr_image); !ok) return std::unexpected(ok.error());
+    const Exposure one[1];
+    auto e = evaluate(reference, test, std::nullopt, one, ReadBack::terms);
+    if (!e) return std::unexpected(e.error());
+    return FlipTerms{std::move(e->color), std::move(e->feature), std::move(e->error)};
+}
+
+Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, const ExposureOptions& options,
+                                    bool read_maps) {
+    if (auto ok = check_pair(reference, test, check_hdr_image); !ok) return std::unexpected(ok.error());
+    auto range = exposure_range(reference, options);
+    if (!range) return std::unexpected(range.error());
+    std::vector<Exposure> exposures(std::size_t(range->count));
+    for (int i = 0; i < range->count; ++i)
+        exposures[std::size_t(i)] = {std::pow(2.0f, range->exposure(i)),
+                                     range->count == 1 ? 0.0f : float(i) / float(range->count - 1)};
+    auto e = evaluate(reference, test, options.tone_mapper, exposures,
+                      read_maps ? ReadBack::error_and_exposure : ReadBack::mean);
+    if (!e) return std::unexpected(e.error());
+    HdrFlipMaps out;
+    out.range = *range;
+    out.mean = e->mean;
+    out.error = std::move(e->error);
+    out.exposure = std::move(e->exposure);
+    return out;
+}
+
+} // namespace kdop

@@ -1,0 +1,95 @@
+// LDR-FLIP and HDR-FLIP on the device: the arithmetic of flip.h and hdr_flip.h, in the same order,
+// as four Vulkan compute passes (shader_templates/flip.comp.in) on any device, lavapipe included.
+// The CPU classes stay the reference this one is tested against (tests/device_flip_test.cpp):
+// per-pixel maps within 1e-5, means within 1e-6 relative.
+//
+// Per evaluation both images are uploaded once; everything after runs on the device in one
+// submission: per exposure (one for LDR-FLIP) the color transform, the horizontal and the vertical
+// filters and the error, kept as each pixel's largest over the exposures; then each row's sum,
+// compensated in float. What comes back is one float per row (the mean, summed in double), and the
+// maps only when asked for. The kernels are made once per ppd, the buffers once per size.
+//
+// Not thread-safe: one object is one set of device buffers. Not copyable.
+#pragma once
+
+#include "context.h"
+#include "device_buffer.h"
+#include "flip.h"
+#include "hdr_flip.h"
+#include "image.h"
+#include "kernel.h"
+#include "one_shot_commands.h"
+#include "result.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+class RunnableVariant;
+
+class DeviceFlip {
+public:
+    // Compiles the passes for `pixels_per_degree` (check_pixels_per_degree's range) and allocates
+    // the buffers of a width x height pair (about 150 bytes a pixel, checked against the device's
+    // buffer and dispatch limits, each named in the error).
+    static Result<std::unique_ptr<DeviceFlip>> create(const Context& context, double pixels_per_degree,
+                                                      std::uint32_t width, std::uint32_t height);
+    ~DeviceFlip();
+    DeviceFlip(const DeviceFlip&) = delete;
+    DeviceFlip& operator=(const DeviceFlip&) = delete;
+
+    double pixels_per_degree() const { return ppd_; }
+    std::uint32_t width() const { return width_; }
+    std::uint32_t height() const { return height_; }
+
+    // Device memory a width x height pair takes.
+    static std::uint64_t bytes(std::uint32_t width, std::uint32_t height);
+
+    // LDR-FLIP as LdrFlip computes it: linear RGB in [0, 1], both of the object's size; anything
+    // else is an error naming the image, the pixel and the value, as LdrFlip's.
+    Result<double> mean(const Image& reference, const Image& test);
+    Result<FlipTerms> terms(const Image& reference, const Image& test);
+
+    // HDR-FLIP as HdrFlip::maps computes it (inputs and range checked the same way). With
+    // `read_maps` false only `range` and `mean` are filled: nothing per pixel comes back.
+    Result<HdrFlipMaps> hdr(const Image& reference, const Image& test, const ExposureOptions& options,
+                            bool read_maps = true);
+
+private:
+    DeviceFlip(const Context& context, double ppd, std::uint32_t width, std::uint32_t height)
+        : context_(context), ppd_(ppd), width_(width), height_(height) {}
+
+    // One exposure: 2^exposure and its place in the exposure map; no tone mapper for LDR-FLIP.
+    struct Exposure {
+        float scale = 1, where = 0;
+    };
+    struct Evaluation {
+        double mean = 0;
+        std::vector<float> error, exposure, color, feature; // filled when asked for
+    };
+    enum class ReadBack { mean, error_and_exposure, terms };
+    Result<Evaluation> evaluate(const Image& reference, const Image& test, std::optional<ToneMapper> tone_mapper,
+                                std::span<const Exposure> exposures, ReadBack read_back);
+    // Both images of the object's size, their values accepted by `check_values`.
+    Result<void> check_pair(const Image& reference, const Image& test,
+                            Result<void> (*check_values)(const Image&, const std::string&)) const;
+
+    const Context& context_;
+    double ppd_;
+    std::uint32_t width_, height_;
+    enum { kPrepare, kHorizontal, kVertical, kRowSums, kPasses };
+    std::array<std::unique_ptr<RunnableVariant>, kPasses> shaders_;
+    std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
+    std::array<VkDescriptorSet, kPasses> sets_{};
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    DeviceBuffer inputs_, prepared_, horizontal_, maps_, row_sums_;
+    std::unique_ptr<OneShotCommands> commands_;
+};
+
+} // namespace kdop

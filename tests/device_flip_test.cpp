@@ -1,0 +1,226 @@
+// FLIP on the device (flip/device_flip.h) against the CPU code it mirrors (flip.h, hdr_flip.h):
+// per-pixel maps within 1e-5 and means within 1e-6 relative, on random, structured and real
+// content, at odd sizes (1x1, 3x7, 1921x1081) and at several ppd; identical images give 0; bad
+// input is refused as the CPU code refuses it. On lavapipe (or $KDOP_DEVICE) with the validation
+// layer on and no message.
+#include "device_flip.h"
+#include "gpu_support.h"
+#include "hdr_flip.h"
+#include "test_textures.h"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace kdop {
+namespace {
+
+constexpr double kPpd = 67.02064327658226; // the default viewing conditions
+constexpr double kMapTolerance = 1e-5, kMeanTolerance = 1e-6;
+
+std::unique_ptr<DeviceFlip> device_flip(double ppd, std::uint32_t w, std::uint32_t h) {
+    auto flip = DeviceFlip::create(test::gpu(), ppd, w, h);
+    if (!flip) ADD_FAILURE() << flip.error().message;
+    return flip ? std::move(*flip) : nullptr;
+}
+
+// Independent uniform noise in [0, 1]: every pixel an edge.
+Image noise(std::uint32_t seed, std::uint32_t w, std::uint32_t h) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    Image image(w, h);
+    for (glm::vec4& p : image.pixels) p = {unit(random), unit(random), unit(random), 1};
+    return image;
+}
+
+// Smooth shapes: a color gradient with a disc on it, the test's disc moved and its colors
+// perturbed: large flat parts, a few edges, small and large errors.
+Image shapes(std::uint32_t seed, std::uint32_t w, std::uint32_t h, float shift) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> small(-0.02f, 0.02f);
+    Image image(w, h);
+    for (std::uint32_t y = 0; y < h; ++y)
+        for (std::uint32_t x = 0; x < w; ++x) {
+            const float u = (float(x) + 0.5f) / float(w), v = (float(y) + 0.5f) / float(h);
+            const float dx = u - 0.5f - shift, dy = v - 0.5f;
+            const bool disc = dx * dx + dy * dy < 0.06f;
+            const glm::vec3 c = disc ? glm::vec3(0.9f, 0.2f, 0.1f) : glm::vec3(u, v, 0.5f * (u + v));
+            image.at(x, y) = glm::vec4(glm::clamp(c + glm::vec3(small(random)), 0.0f, 1.0f), 1.0f);
+        }
+    return image;
+}
+
+// A real game texture (colobot-common-textures, installed by install-deps.sh) and the same
+// texture one pixel to the right, slightly darker: what a resolve's small errors look like.
+std::pair<Image, Image> real_pair(std::uint32_t w, std::uint32_t h) {
+    Image reference(w, h);
+    for (const RealTexture& t : installed_real_textures())
+        if (t.name == "colobot-grass") reference = load_real_texture(t, w, h);
+    Image test = reference;
+    for (std::uint32_t y = 0; y < h; ++y)
+        for (std::uint32_t x = 0; x < w; ++x) test.at(x, y) = reference.at(x > 0 ? x - 1 : 0, y) * glm::vec4(0.97f);
+    return {reference, test};
+}
+
+struct Difference {
+    double largest = 0;
+    std::size_t where = 0;
+};
+Difference largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
+    Difference d;
+    EXPECT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+        const double e = std::abs(double(a[i]) - double(b[i]));
+        if (!(e <= d.largest)) d = {e, i}; // NaN is the largest
+    }
+    return d;
+}
+
+double relative(double a, double b) { return a == b ? 0.0 : std::abs(a - b) / std::max(std::abs(a), std::abs(b)); }
+
+void expect_quiet_validation() {
+    for (const std::string& message : test::gpu().validation_messages()) ADD_FAILURE() << "validation: " << message;
+}
+
+// The device's LDR-FLIP of one pair against LdrFlip's, map by map and the mean.
+void expect_ldr_agrees(const Image& reference, const Image& test, double ppd, const std::string& what) {
+    SCOPED_TRACE(what);
+    auto device = device_flip(ppd, reference.width, reference.height);
+    ASSERT_TRUE(device);
+    const LdrFlip cpu(ppd);
+    auto expected = cpu.terms(reference, test);
+    ASSERT_TRUE(expected) << expected.error().message;
+    auto got = device->terms(reference, test);
+    ASSERT_TRUE(got) << got.error().message;
+    for (auto [name, e, g] :
+         {std::tuple{"error", &expected->error, &got->error}, std::tuple{"color", &expected->color, &got->color},
+          std::tuple{"feature", &expected->feature, &got->feature}}) {
+        const Difference d = largest_difference(*e, *g);
+        EXPECT_LE(d.largest, kMapTolerance)
+            << name << " map at pixel (" << d.where % reference.width << ", " << d.where / reference.width << "): CPU "
+            << (*e)[d.where] << ", device " << (*g)[d.where];
+    }
+    const double cpu_mean = mean_error(expected->error);
+    auto mean = device->mean(reference, test);
+    ASSERT_TRUE(mean) << mean.error().message;
+    EXPECT_LE(relative(*mean, cpu_mean), kMeanTolerance) << "CPU mean " << cpu_mean << ", device " << *mean;
+    EXPECT_GT(cpu_mean, 0.0); // the pair differs, so the agreement is not the trivial 0 = 0
+}
+
+TEST(DeviceFlip, LdrMapsAreTheCpusAtOddSizes) {
+    expect_ldr_agrees(noise(1, 1, 1), noise(2, 1, 1), kPpd, "1x1 noise");
+    expect_ldr_agrees(noise(3, 3, 7), noise(4, 3, 7), kPpd, "3x7 noise");
+    expect_ldr_agrees(shapes(5, 7, 3, 0.0f), shapes(6, 7, 3, 0.2f), kPpd, "7x3 shapes");
+    expect_ldr_agrees(shapes(7, 1921, 1081, 0.0f), shapes(8, 1921, 1081, 0.01f), kPpd, "1921x1081 shapes");
+    expect_quiet_validation();
+}
+
+TEST(DeviceFlip, LdrMapsAreTheCpusAtSeveralPpd) {
+    for (double ppd : {1.0, 9.5, 40.0, kPpd, 150.0}) {
+        expect_ldr_agrees(shapes(9, 97, 61, 0.0f), shapes(10, 97, 61, 0.05f), ppd, fmt::format("shapes, {} ppd", ppd));
+        expect_ldr_agrees(noise(11, 45, 38), noise(12, 45, 38), ppd, fmt::format("noise, {} ppd", ppd));
+    }
+    expect_quiet_validation();
+}
+
+TEST(DeviceFlip, LdrMapsAreTheCpusOnARealTexture) {
+    const auto [reference, test] = real_pair(320, 180);
+    expect_ldr_agrees(reference, test, kPpd, "colobot-grass, shifted and darkened");
+    expect_quiet_validation();
+}
+
+TEST(DeviceFlip, HdrMapsAreTheCpus) {
+    // A gradient over decades of luminance, noise on it; the test's noise differs.
+    auto hdr = [](std::uint32_t seed, std::uint32_t w, std::uint32_t h) {
+        Image image = noise(seed, w, h);
+        for (std::uint32_t y = 0; y < h; ++y)
+            for (std::uint32_t x = 0; x < w; ++x)
+                image.at(x, y) *= glm::vec4(glm::vec3(std::exp2(10.0f * float(x) / float(w) - 5.0f)), 1.0f);
+        return image;
+    };
+    const Image reference = hdr(21, 53, 29), test = hdr(22, 53, 29);
+    const HdrFlip cpu(kPpd);
+    auto device = device_flip(kPpd, 53, 29);
+    ASSERT_TRUE(device);
+    for (ToneMapper mapper : {ToneMapper::aces, ToneMapper::hable, ToneMapper::reinhard}) {
+        SCOPED_TRACE(to_string(mapper));
+        ExposureOptions options;
+        options.tone_mapper = mapper;
+        auto expected = cpu.maps(reference, test, options);
+        ASSERT_TRUE(expected) << expected.error().message;
+        auto got = device->hdr(reference, test, options);
+        ASSERT_TRUE(got) << got.error().message;
+        EXPECT_EQ(got->range.start, expected->range.start);
+        EXPECT_EQ(got->range.stop, expected->range.stop);
+        EXPECT_EQ(got->range.count, expected->range.count);
+        EXPECT_GE(expected->range.count, 5); // a real range, so the maximum over exposures is exercised
+        const Difference d = largest_difference(expected->error, got->error);
+        EXPECT_LE(d.largest, kMapTolerance) << "at pixel " << d.where;
+        // Which exposure gave a pixel's error can differ only where two exposures' errors are closer
+        // than the maps' agreement; here that is never.
+        std::size_t same = 0;
+        for (std::size_t i = 0; i < expected->exposure.size(); ++i) same += expected->exposure[i] == got->exposure[i];
+        EXPECT_EQ(same, expected->exposure.size());
+        EXPECT_LE(relative(got->mean, expected->mean), kMeanTolerance);
+        auto mean_only = device->hdr(reference, test, options, false);
+        ASSERT_TRUE(mean_only) << mean_only.error().message;
+        EXPECT_EQ(mean_only->mean, got->mean);
+        EXPECT_TRUE(mean_only->error.empty());
+    }
+    expect_quiet_validation();
+}
+
+TEST(DeviceFlip, IdenticalImagesGiveZero) {
+    const auto [reference, test] = real_pair(64, 48);
+    auto device = device_flip(kPpd, 64, 48);
+    ASSERT_TRUE(device);
+    auto ldr = device->terms(reference, reference);
+    ASSERT_TRUE(ldr) << ldr.error().message;
+    EXPECT_EQ(*std::max_element(ldr->error.begin(), ldr->error.end()), 0.0f);
+    Image bright = reference;
+    for (glm::vec4& p : bright.pixels) p *= glm::vec4(glm::vec3(40.0f), 1.0f);
+    auto hdr = device->hdr(bright, bright, {});
+    ASSERT_TRUE(hdr) << hdr.error().message;
+    EXPECT_EQ(hdr->mean, 0.0);
+    EXPECT_EQ(*std::max_element(hdr->error.begin(), hdr->error.end()), 0.0f);
+    expect_quiet_validation();
+}
+
+TEST(DeviceFlip, RefusesBadInputNamingIt) {
+    auto device = device_flip(kPpd, 5, 4);
+    ASSERT_TRUE(device);
+    const Image good = noise(31, 5, 4);
+    auto message = [](const auto& result) { return result ? std::string("(accepted)") : result.error().message; };
+
+    EXPECT_EQ(message(device->mean(good, noise(32, 4, 5))),
+              "test image: 4x5, but this FLIP evaluator was made for 5x4");
+    Image nan = good;
+    nan.at(2, 3).g = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_NE(message(device->mean(good, nan)).find("test image: pixel (2, 3) has green = nan"), std::string::npos)
+        << message(device->mean(good, nan));
+    Image above = good;
+    above.at(1, 0).r = 1.5f;
+    EXPECT_NE(message(device->mean(above, good)).find("reference image: pixel (1, 0) has red = 1.5"),
+              std::string::npos);
+    Image negative = good;
+    negative.at(4, 1).b = -0.25f;
+    EXPECT_NE(message(device->hdr(good, negative, {})).find("test image: pixel (4, 1) has B = -0.25"),
+              std::string::npos);
+    ExposureOptions reversed;
+    reversed.start = 2.0f;
+    reversed.stop = -1.0f;
+    EXPECT_EQ(message(device->hdr(good, good, reversed)), "the start exposure 2 is above the stop exposure -1");
+
+    EXPECT_FALSE(DeviceFlip::create(test::gpu(), 0.5, 5, 4));
+    EXPECT_FALSE(DeviceFlip::create(test::gpu(), kPpd, 0, 4));
+    expect_quiet_validation();
+}
+
+} // namespace
+} // namespace kdop
