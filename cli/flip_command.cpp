@@ -2,6 +2,8 @@
 
 #include "color_spaces.h"
 #include "command_line.h"
+#include "context.h"
+#include "device_flip.h"
 #include "flip.h"
 #include "hdr_flip.h"
 #include "image_io.h"
@@ -10,18 +12,40 @@
 #include "magma.h"
 #include "memory_budget.h"
 #include "number_option.h"
+#include "statistics.h"
 #include "write_files.h"
 
 #include <fmt/format.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 
 namespace kdop::cli {
+namespace {
+
+// What one evaluation gives: the mean, and the maps when a file wants them.
+struct FlipResult {
+    double mean = 0;
+    std::vector<float> map, exposure_map;
+    ExposureRange range; // HDR-FLIP's
+};
+
+// CPU seconds this process has used, every thread's (lavapipe's included), user and system.
+double process_cpu_seconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    auto seconds = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+} // namespace
 
 Action add_flip_command(CLI::App& app) {
     struct Options {
@@ -34,6 +58,9 @@ Action add_flip_command(CLI::App& app) {
         std::string tone_mapper = "aces", exposure_map;
         double start_exposure = 0, stop_exposure = 0;
         int exposures = 0;
+        bool cpu = false, validation = false;
+        std::string device;
+        int timing = 0;
     };
     auto o = std::make_shared<Options>();
     CLI::App* flip = app.add_subcommand(
@@ -81,6 +108,17 @@ Action add_flip_command(CLI::App& app) {
                                        "ceil(stop - start))]")
                           ->check(CLI::Range(1, 1000))
                           ->needs(hdr);
+    auto* cpu = flip->add_flag("--cpu", o->cpu,
+                               "Compute on the CPU with the reference code the device passes are tested against, not "
+                               "on the Vulkan device");
+    flip->add_option("--device", o->device,
+                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]")
+        ->excludes(cpu);
+    flip->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)")->excludes(cpu);
+    flip->add_option("--timing", o->timing,
+                     "Evaluate N more times after the first and print the median wall and CPU seconds (all threads) "
+                     "per evaluation, and the set-up's")
+        ->check(CLI::Range(1, 1000));
     flip->add_option("--exposure-map", o->exposure_map,
                      "HDR-FLIP: write, per pixel, which exposure gave its error (0 the first, 1 the last) to this "
                      ".exr (the values) or .png (in magma colors; the reference tool draws it in viridis)")
@@ -132,45 +170,106 @@ Action add_flip_command(CLI::App& app) {
         if (auto ok = check_image(*reference, "--reference " + o->reference); !ok)
             return report_error(ok.error().message);
         if (auto ok = check_image(*test, "--test " + o->test); !ok) return report_error(ok.error().message);
-        // HDR-FLIP holds two tone-mapped copies and the exposure map besides LDR-FLIP's planes.
-        const std::uint64_t pixels = std::uint64_t(reference->width) * reference->height;
-        if (auto ok = check_memory(fmt::format("--reference {}: {}-FLIP of {}x{}", o->reference, o->hdr ? "HDR" : "LDR",
-                                               reference->width, reference->height),
-                                   ldr_flip_bytes(reference->width, reference->height) +
-                                       image_bytes(reference->width, reference->height) * (o->hdr ? 3 : 1) +
-                                       (o->hdr ? pixels * sizeof(float) : 0));
-            !ok)
-            return report_error(ok.error().message);
-
         const char* space = input_space == InputSpace::srgb     ? ", every input decoded from sRGB"
                             : input_space == InputSpace::linear ? ", every input taken as linear"
                                                                 : "";
-        std::vector<float> map, exposure_map;
+        const std::uint32_t w = reference->width, h = reference->height;
+        const std::uint64_t pixels = std::uint64_t(w) * h;
+        // The CPU's HDR-FLIP holds two tone-mapped copies and the exposure map besides LDR-FLIP's
+        // planes; the device holds its planes in device memory (system memory on lavapipe), and
+        // the maps come back as two more planes.
+        const std::uint64_t needed =
+            o->cpu ? ldr_flip_bytes(w, h) + image_bytes(w, h) * (o->hdr ? 3 : 1) + (o->hdr ? pixels * sizeof(float) : 0)
+                   : DeviceFlip::bytes(w, h) + 2 * pixels * sizeof(float);
+        if (auto ok = check_memory(fmt::format("--reference {}: {}-FLIP of {}x{}", o->reference, o->hdr ? "HDR" : "LDR",
+                                               w, h),
+                                   needed);
+            !ok)
+            return report_error(ok.error().message);
+
+        ExposureOptions exposure;
         if (o->hdr) {
-            ExposureOptions exposure;
             exposure.tone_mapper = *parse_tone_mapper(o->tone_mapper);
             if (*start) exposure.start = float(o->start_exposure);
             if (*stop) exposure.stop = float(o->stop_exposure);
             if (*exposures) exposure.count = o->exposures;
-            auto maps = HdrFlip(pixels_per_degree).maps(*reference, *test, exposure);
-            if (!maps) return report_error(fmt::format("--reference {}: {}", o->reference, maps.error().message));
-            map = std::move(maps->error);
-            exposure_map = std::move(maps->exposure);
-            std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
-                                     "exposure{} from {:.4g} to {:.4g})\n",
-                                     mean_error(map), pixels_per_degree, reference->width, reference->height, space,
-                                     o->tone_mapper, maps->range.count, maps->range.count == 1 ? "" : "s",
-                                     maps->range.start, maps->range.stop);
-        } else {
-            auto ldr = LdrFlip(pixels_per_degree).error_map(*reference, *test);
-            if (!ldr) return report_error(ldr.error().message);
-            map = std::move(*ldr);
-            std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{})\n", mean_error(map),
-                                     pixels_per_degree, reference->width, reference->height, space);
         }
+        const bool read_maps = !o->out.empty() || !o->exposure_map.empty();
+        const auto setup_start = std::chrono::steady_clock::now();
+        const double setup_cpu_start = process_cpu_seconds();
+        std::unique_ptr<Context> context;
+        std::unique_ptr<DeviceFlip> device;
+        if (!o->cpu) {
+            auto created = Context::create({o->device, o->validation});
+            if (!created) return report_error(created.error().message);
+            context = std::move(*created);
+            auto flip = DeviceFlip::create(*context, pixels_per_degree, w, h);
+            if (!flip) return report_error(fmt::format("--reference {}: {}", o->reference, flip.error().message));
+            device = std::move(*flip);
+        }
+        const double setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count(),
+                     setup_cpu = process_cpu_seconds() - setup_cpu_start;
+        // One evaluation on the device or the CPU; the CPU code computes the maps in any case.
+        auto evaluate = [&]() -> Result<FlipResult> {
+            FlipResult r;
+            if (o->hdr) {
+                auto maps = device ? device->hdr(*reference, *test, exposure, read_maps)
+                                   : HdrFlip(pixels_per_degree).maps(*reference, *test, exposure);
+                if (!maps) return std::unexpected(maps.error());
+                r.mean = maps->mean;
+                r.range = maps->range;
+                r.map = std::move(maps->error);
+                r.exposure_map = std::move(maps->exposure);
+            } else if (device && !read_maps) {
+                auto mean = device->mean(*reference, *test);
+                if (!mean) return std::unexpected(mean.error());
+                r.mean = *mean;
+            } else {
+                Result<std::vector<float>> map = std::vector<float>{};
+                if (device) {
+                    auto terms = device->terms(*reference, *test);
+                    if (!terms) return std::unexpected(terms.error());
+                    map = std::move(terms->error);
+                } else {
+                    map = LdrFlip(pixels_per_degree).error_map(*reference, *test);
+                }
+                if (!map) return std::unexpected(map.error());
+                r.mean = mean_error(*map);
+                r.map = std::move(*map);
+            }
+            return r;
+        };
+        auto result = evaluate();
+        if (!result) return report_error(fmt::format("--reference {}: {}", o->reference, result.error().message));
+        std::vector<double> wall_s, cpu_s;
+        for (int i = 0; i < o->timing; ++i) {
+            const auto wall_start = std::chrono::steady_clock::now();
+            const double cpu_start = process_cpu_seconds();
+            if (auto again = evaluate(); !again)
+                return report_error(fmt::format("--reference {}: {}", o->reference, again.error().message));
+            wall_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+            cpu_s.push_back(process_cpu_seconds() - cpu_start);
+        }
+        if (context) report_validation_messages(*context);
+
+        const std::string where = context ? "on " + context->device_name() : "on the CPU";
+        if (o->hdr)
+            std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
+                                     "exposure{} from {:.4g} to {:.4g}) {}\n",
+                                     result->mean, pixels_per_degree, w, h, space, o->tone_mapper,
+                                     result->range.count, result->range.count == 1 ? "" : "s", result->range.start,
+                                     result->range.stop, where);
+        else
+            std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", result->mean,
+                                     pixels_per_degree, w, h, space, where);
+        if (o->timing)
+            std::cout << fmt::format("timing: median of {} evaluation{}: {:.4f} s wall, {:.4f} CPU s; set-up {:.3f} s "
+                                     "wall, {:.3f} CPU s\n",
+                                     o->timing, o->timing == 1 ? "" : "s", median(wall_s), median(cpu_s), setup_wall,
+                                     setup_cpu);
+        const std::vector<float>&map = result->map, &exposure_map = result->exposure_map;
 
         // The maps as one set of files: both or neither.
-        const std::uint32_t w = reference->width, h = reference->height;
         auto picture = [&](const std::vector<float>& values, const std::string& path) {
             const bool magma = extension_of(path) == ".png";
             auto image = std::make_shared<Image>(w, h);

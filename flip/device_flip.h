@@ -14,6 +14,7 @@
 
 #include "context.h"
 #include "device_buffer.h"
+#include "device_image.h"
 #include "flip.h"
 #include "hdr_flip.h"
 #include "image.h"
@@ -36,8 +37,8 @@ class RunnableVariant;
 class DeviceFlip {
 public:
     // Compiles the passes for `pixels_per_degree` (check_pixels_per_degree's range) and allocates
-    // the buffers of a width x height pair (about 150 bytes a pixel, checked against the device's
-    // buffer and dispatch limits, each named in the error).
+    // the buffers and images of a width x height pair (about 150 bytes a pixel, checked against the
+    // device's buffer, image and dispatch limits, each named in the error).
     static Result<std::unique_ptr<DeviceFlip>> create(const Context& context, double pixels_per_degree,
                                                       std::uint32_t width, std::uint32_t height);
     ~DeviceFlip();
@@ -62,8 +63,7 @@ public:
                             bool read_maps = true);
 
 private:
-    DeviceFlip(const Context& context, double ppd, std::uint32_t width, std::uint32_t height)
-        : context_(context), ppd_(ppd), width_(width), height_(height) {}
+    DeviceFlip(const Context& context, double ppd, std::uint32_t width, std::uint32_t height);
 
     // One exposure: 2^exposure and its place in the exposure map; no tone mapper for LDR-FLIP.
     struct Exposure {
@@ -88,7 +88,10 @@ private:
     std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
     std::array<VkDescriptorSet, kPasses> sets_{};
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
-    DeviceBuffer inputs_, prepared_, horizontal_, maps_, row_sums_;
+    // Pixels per invocation of the horizontal and the vertical pass (run_length in the .cpp).
+    std::array<std::uint32_t, 2> runs_{1, 1};
+    DeviceBuffer inputs_, maps_, row_sums_;
+    DeviceImage prepared_, horizontal_;
     std::unique_ptr<OneShotCommands> commands_;
 };
 

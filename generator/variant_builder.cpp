@@ -31,13 +31,16 @@ Result<std::string> compute_shader(const VariantSpec& spec, SourceLanguage langu
 } // namespace
 
 Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_view file, TargetEnv env,
-                          Result<std::vector<std::uint32_t>> compiled) {
+                          Result<std::vector<std::uint32_t>> compiled, SpirvOptimization optimization) {
     if (!compiled) return std::unexpected(compiled.error());
     if (auto ok = validate_spirv(*compiled, source, file, "glslang output", env); !ok) return ok;
 
-    auto optimized = optimize_spirv(*compiled, file, env);
-    if (!optimized) return std::unexpected(optimized.error());
-    if (auto ok = validate_spirv(*optimized, source, file, "optimized module", env); !ok) return ok;
+    Result<std::vector<std::uint32_t>> optimized = std::move(*compiled);
+    if (optimization == SpirvOptimization::performance) {
+        optimized = optimize_spirv(*optimized, file, env);
+        if (!optimized) return std::unexpected(optimized.error());
+        if (auto ok = validate_spirv(*optimized, source, file, "optimized module", env); !ok) return ok;
+    }
 
     auto interface = reflect_interface(*optimized);
     if (!interface) return fail(fmt::format("{}: reflection failed: {}", file, interface.error().message));

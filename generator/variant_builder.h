@@ -40,8 +40,13 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage langu
 // The stages after glslang, shared by variants and a project's own shaders, for `env`: validate
 // `compiled`, optimize, validate, reflect into v.interface, drop what does not ship (v.spec.strip_names), validate what
 // ships into v.spirv, count. Messages name `file` and the lines of `source`, the shader `compiled` came from.
+// SpirvOptimization::none skips SPIRV-Tools' optimizer (every other stage still runs), for shaders
+// that are already written unrolled and whose size makes the optimizer take seconds for nothing the
+// driver's compiler would not do: the FLIP passes (flip/device_flip.cpp).
+enum class SpirvOptimization { performance, none };
 Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_view file, TargetEnv env,
-                          Result<std::vector<std::uint32_t>> compiled);
+                          Result<std::vector<std::uint32_t>> compiled,
+                          SpirvOptimization optimization = SpirvOptimization::performance);
 
 // Called after each variant finishes, from the worker that built it (calls are serialized).
 using BuildProgress = std::function<void(std::size_t done, std::size_t total, const std::string& name)>;

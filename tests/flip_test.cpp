@@ -485,22 +485,42 @@ struct FlipFiles {
     std::string inputs() const { return "--reference " + reference_exr + " --test " + test_exr; }
 };
 
+// On the device by default (within DeviceFlip's tolerances of the CPU code), on the CPU with --cpu
+// (exactly the CPU code's figures).
 TEST(CliFlip, PrintsTheMeanAndWritesTheMap) {
     FlipFiles files;
     const LdrFlip flip(kDefaultPpd);
     const std::vector<float> map = *flip.error_map(files.reference_image, files.test_image);
+    const double mean = *flip.mean(files.reference_image, files.test_image);
     const std::string exr = (files.dir / "map.exr").string(), png = (files.dir / "map.png").string();
 
-    auto r = test::run(kdop_flip(files.inputs() + " --out " + exr));
+    auto r = test::run(kdop_flip(files.inputs() + " --out " + exr + " --validation"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("at 67.02 pixels per degree (24x16)"), std::string::npos) << r.out;
-    EXPECT_EQ(printed_mean(r.out), *flip.mean(files.reference_image, files.test_image)) << r.out;
+    EXPECT_NE(r.out.find("at 67.02 pixels per degree (24x16) on llvmpipe"), std::string::npos) << r.out;
+    EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+    EXPECT_NEAR(printed_mean(r.out), mean, 1e-6 * mean) << r.out;
     auto written = read_image(exr);
     ASSERT_TRUE(written) << written.error().message;
     ASSERT_EQ(written->pixels.size(), map.size());
+    for (std::size_t i = 0; i < map.size(); ++i) ASSERT_NEAR(written->pixels[i].r, map[i], 1e-5) << i;
+
+    r = test::run(kdop_flip(files.inputs() + " --out " + exr + " --cpu"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("at 67.02 pixels per degree (24x16) on the CPU"), std::string::npos) << r.out;
+    EXPECT_EQ(printed_mean(r.out), mean) << r.out;
+    written = read_image(exr);
+    ASSERT_TRUE(written) << written.error().message;
     for (std::size_t i = 0; i < map.size(); ++i) ASSERT_EQ(written->pixels[i], glm::vec4(glm::vec3(map[i]), 1)) << i;
 
-    r = test::run(kdop_flip(files.inputs() + " --out " + png));
+    // --timing: the same mean, then the median times of the evaluations after the first.
+    for (const char* where : {"", " --cpu"}) {
+        auto timed = test::run(kdop_flip(files.inputs() + " --timing 2" + where));
+        ASSERT_EQ(timed.exit_code, 0) << timed.err;
+        EXPECT_EQ(printed_mean(timed.out), printed_mean(test::run(kdop_flip(files.inputs() + where)).out));
+        EXPECT_NE(timed.out.find("timing: median of 2 evaluations: "), std::string::npos) << timed.out;
+    }
+
+    r = test::run(kdop_flip(files.inputs() + " --cpu --out " + png));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto colored = read_image(png);
     ASSERT_TRUE(colored) << colored.error().message;
@@ -513,12 +533,13 @@ TEST(CliFlip, PrintsTheMeanAndWritesTheMap) {
     r = test::run(kdop_flip(files.inputs() + " --ppd 30"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("at 30 pixels per degree"), std::string::npos) << r.out;
-    EXPECT_EQ(printed_mean(r.out), *LdrFlip(30).mean(files.reference_image, files.test_image));
-    r = test::run(kdop_flip(files.inputs() + " --distance 0.5 --display-width 0.6 --display-pixels 2560"));
+    const double at_30 = *LdrFlip(30).mean(files.reference_image, files.test_image);
+    EXPECT_NEAR(printed_mean(r.out), at_30, 1e-6 * at_30);
+    r = test::run(kdop_flip(files.inputs() + " --cpu --distance 0.5 --display-width 0.6 --display-pixels 2560"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(printed_mean(r.out),
               *LdrFlip(pixels_per_degree({0.5, 0.6, 2560})).mean(files.reference_image, files.test_image));
-    EXPECT_NE(printed_mean(r.out), printed_mean(test::run(kdop_flip(files.inputs())).out));
+    EXPECT_NE(printed_mean(r.out), printed_mean(test::run(kdop_flip(files.inputs() + " --cpu")).out));
 }
 
 // PNGs hold sRGB-encoded values, and kdop flip decodes them as NVlabs/flip does; --input-space
@@ -534,7 +555,7 @@ TEST(CliFlip, DecodesSrgbInputsAsTheReferenceDoes) {
     Image encoded[2] = {*read_image(reference_png, 0, InputSpace::linear),
                         *read_image(test_png, 0, InputSpace::linear)};
     const LdrFlip flip(kDefaultPpd);
-    const std::string inputs = "--reference " + reference_png + " --test " + test_png;
+    const std::string inputs = "--cpu --reference " + reference_png + " --test " + test_png;
 
     auto r = test::run(kdop_flip(inputs + " --input-space linear"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -587,6 +608,9 @@ TEST(CliFlip, RefusesBadInputAndWritesNothing) {
         {files.inputs() + " --distance 0", 2, "--distance"},
         {files.inputs() + " --display-pixels 10", 2,
          "--distance 0.7 --display-width 0.7 --display-pixels 10: pixels per degree must be a number from 1 to 1000"},
+        {files.inputs() + " --cpu --device llvmpipe", 2, "--cpu excludes --device"},
+        {files.inputs() + " --timing 0", 2, "--timing"},
+        {files.inputs() + " --device no-such-device", 1, "no-such-device"},
     };
     for (const Case& c : cases) {
         auto r = test::run(kdop_flip(c.args + " --out " + out));

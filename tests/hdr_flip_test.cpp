@@ -222,11 +222,12 @@ TEST(CliHdrFlip, PrintsTheMeanAndWritesBothMaps) {
     ASSERT_TRUE(expected);
 
     const fs::path map = dir / "map.exr", exposures = dir / "exposures.exr";
-    auto r = test::run(
-        kdop_flip(inputs + " --tone-mapper hable --out " + map.string() + " --exposure-map " + exposures.string()));
+    const std::string maps = " --tone-mapper hable --out " + map.string() + " --exposure-map " + exposures.string();
+    // --cpu: the CPU code's mean and maps exactly.
+    auto r = test::run(kdop_flip(inputs + maps + " --cpu"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find(fmt::format("HDR-FLIP mean {} at 67.02 pixels per degree (24x16; hable tone mapper, {} "
-                                     "exposures from {:.4g} to {:.4g})",
+                                     "exposures from {:.4g} to {:.4g}) on the CPU",
                                      mean_error(expected->error), expected->range.count, expected->range.start,
                                      expected->range.stop)),
               std::string::npos)
@@ -237,6 +238,24 @@ TEST(CliHdrFlip, PrintsTheMeanAndWritesBothMaps) {
     ASSERT_TRUE(written_exposures);
     for (std::size_t i = 0; i < expected->error.size(); ++i) {
         ASSERT_EQ(written->pixels[i].r, expected->error[i]) << i;
+        ASSERT_EQ(written_exposures->pixels[i].r, expected->exposure[i]) << i;
+    }
+    // By default on the device: the same range, the mean within 1e-6 relative, the maps within 1e-5.
+    r = test::run(kdop_flip(inputs + maps + " --validation"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+    const std::string range = fmt::format("{} exposures from {:.4g} to {:.4g}) on llvmpipe", expected->range.count,
+                                          expected->range.start, expected->range.stop);
+    EXPECT_NE(r.out.find(range), std::string::npos) << r.out;
+    const std::string prefix = "HDR-FLIP mean ";
+    ASSERT_EQ(r.out.find(prefix), 0u) << r.out;
+    EXPECT_NEAR(std::stod(r.out.substr(prefix.size())), expected->mean, 1e-6 * expected->mean) << r.out;
+    written = read_image(map.string());
+    ASSERT_TRUE(written);
+    written_exposures = read_image(exposures.string());
+    ASSERT_TRUE(written_exposures);
+    for (std::size_t i = 0; i < expected->error.size(); ++i) {
+        ASSERT_NEAR(written->pixels[i].r, expected->error[i], 1e-5) << i;
         ASSERT_EQ(written_exposures->pixels[i].r, expected->exposure[i]) << i;
     }
 

@@ -1,0 +1,51 @@
+// A Vulkan 2-D array image in device-local memory with a view of all its layers, released with
+// it: the working planes of passes that read neighbors (flip/device_flip.h). An image rather than
+// a storage buffer because lavapipe fetches texels for all lanes of a SIMD row at once but loads a
+// storage buffer lane by lane wherever the lanes' addresses differ (docs/DESIGN.md's facts).
+#pragma once
+
+#include "context.h"
+#include "result.h"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+namespace kdop {
+
+class DeviceImage {
+public:
+    // A width x height image of `layers` layers of `format`, for `usage`, in optimal tiling and the
+    // undefined layout; sizes beyond the device's limits are refused, naming `what`.
+    static Result<DeviceImage> create(const Context& context, std::uint32_t width, std::uint32_t height,
+                                      std::uint32_t layers, VkFormat format, VkImageUsageFlags usage,
+                                      const char* what);
+
+    DeviceImage() = default;
+    DeviceImage(DeviceImage&& other) noexcept { *this = std::move(other); }
+    DeviceImage& operator=(DeviceImage&& other) noexcept;
+    DeviceImage(const DeviceImage&) = delete;
+    DeviceImage& operator=(const DeviceImage&) = delete;
+    ~DeviceImage() { release(); }
+
+    VkImage image() const { return image_; }
+    VkImageView view() const { return view_; } // VK_IMAGE_VIEW_TYPE_2D_ARRAY, every layer
+    std::uint32_t layers() const { return layers_; }
+
+private:
+    void release();
+
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkImage image_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkImageView view_ = VK_NULL_HANDLE;
+    std::uint32_t layers_ = 0;
+};
+
+// A barrier on every layer of `image` from layout `from` to `to` (which may be equal: a memory
+// dependency only).
+void image_layout_barrier(VkCommandBuffer cb, const DeviceImage& image, VkImageLayout from, VkImageLayout to,
+                          VkAccessFlags src_access, VkPipelineStageFlags src_stage, VkAccessFlags dst_access,
+                          VkPipelineStageFlags dst_stage);
+
+} // namespace kdop
