@@ -181,9 +181,8 @@ Action add_flip_command(CLI::App& app) {
         const std::uint64_t needed =
             o->cpu ? ldr_flip_bytes(w, h) + image_bytes(w, h) * (o->hdr ? 3 : 1) + (o->hdr ? pixels * sizeof(float) : 0)
                    : DeviceFlip::bytes(w, h) + 2 * pixels * sizeof(float);
-        if (auto ok = check_memory(fmt::format("--reference {}: {}-FLIP of {}x{}", o->reference, o->hdr ? "HDR" : "LDR",
-                                               w, h),
-                                   needed);
+        if (auto ok = check_memory(
+                fmt::format("--reference {}: {}-FLIP of {}x{}", o->reference, o->hdr ? "HDR" : "LDR", w, h), needed);
             !ok)
             return report_error(ok.error().message);
 
@@ -256,9 +255,9 @@ Action add_flip_command(CLI::App& app) {
         if (o->hdr)
             std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
                                      "exposure{} from {:.4g} to {:.4g}) {}\n",
-                                     result->mean, pixels_per_degree, w, h, space, o->tone_mapper,
-                                     result->range.count, result->range.count == 1 ? "" : "s", result->range.start,
-                                     result->range.stop, where);
+                                     result->mean, pixels_per_degree, w, h, space, o->tone_mapper, result->range.count,
+                                     result->range.count == 1 ? "" : "s", result->range.start, result->range.stop,
+                                     where);
         else
             std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", result->mean,
                                      pixels_per_degree, w, h, space, where);

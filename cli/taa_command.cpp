@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include "command_line.h"
+#include "device_flip.h"
 #include "flip.h"
 #include "gnuplot.h"
 #include "image_io.h"
@@ -31,6 +32,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
 
 namespace kdop::cli {
@@ -92,7 +94,7 @@ Action add_taa_command(CLI::App& app) {
         unsigned timing_rounds = 15;
         std::uint64_t seed = 1;
         double ppd = 0;
-        bool validation = false, no_charts = false, write_frames = false;
+        bool validation = false, no_charts = false, write_frames = false, cpu_flip = false;
         InputSpace input_space = InputSpace::from_file;
         ResolveOptions resolve;
     };
@@ -133,6 +135,9 @@ Action add_taa_command(CLI::App& app) {
     taa->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
+    taa->add_flag("--cpu-flip", o->cpu_flip,
+                  "Measure ghosting and shimmer with the CPU's LDR-FLIP, the reference code the device's is tested "
+                  "against, instead of on the device");
     taa->add_flag("--no-charts", o->no_charts, "Write the tables, report and pictures without the trade charts");
 
     return [o, taa] {
@@ -213,6 +218,19 @@ Action add_taa_command(CLI::App& app) {
         const std::uint32_t height = builtin ? size->second : sequences.front().height();
         const TaaSchedule schedule{o->warmup, o->frames};
         const LdrFlip flip(ppd);
+        // Ghosting and shimmer on the device by default: one evaluator per frame size, made when a
+        // scene or sequence of that size first needs it.
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> device_flips;
+        auto flip_mean = [&](std::uint32_t w, std::uint32_t h) -> Result<FlipMean> {
+            if (o->cpu_flip) return cpu_flip_mean(flip);
+            std::unique_ptr<DeviceFlip>& device = device_flips[{w, h}];
+            if (!device) {
+                auto created = DeviceFlip::create(**context, ppd, w, h);
+                if (!created) return std::unexpected(created.error());
+                device = std::move(*created);
+            }
+            return [d = device.get()](const Image& reference, const Image& test) { return d->mean(reference, test); };
+        };
         StagedImages written_frames;
         auto write_frame = [&](const std::string& sequence, std::size_t v) {
             return [&, sequence, v](std::size_t index, const Image& output) -> Result<void> {
@@ -238,6 +256,8 @@ Action add_taa_command(CLI::App& app) {
             for (const TaaScene& scene : scenes) {
                 std::vector<std::shared_ptr<const Image>> trails;
                 const std::uint32_t w = scene.background.width, h = scene.background.height;
+                auto mean = flip_mean(w, h);
+                if (!mean) return report_error(fmt::format("{}: {}", scene.name, mean.error().message));
                 for (std::size_t v = 0; v < specs->size(); ++v) {
                     auto resolve = TaaResolve::create(**context, **shader_for(v, false), w, h, o->resolve);
                     if (!resolve) return report_error(resolve.error().message);
@@ -245,7 +265,7 @@ Action add_taa_command(CLI::App& app) {
                                                       const Image& output) {
                         return write_frame(sequence, v)(index, output);
                     };
-                    auto m = measure_scene(**resolve, scene.name, scene.background, schedule, flip, written);
+                    auto m = measure_scene(**resolve, scene.name, scene.background, schedule, *mean, written);
                     if (!m)
                         return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
                     row(v, scene.name, m->shimmer, m->ghosting, "aliased");
@@ -266,6 +286,8 @@ Action add_taa_command(CLI::App& app) {
                 pictures.push_back(trail_picture_name(scene.name));
             }
             for (const SequenceFrames& sequence : sequences) {
+                auto mean = flip_mean(sequence.width(), sequence.height());
+                if (!mean) return report_error(fmt::format("{}: {}", sequence.name(), mean.error().message));
                 for (std::size_t v = 0; v < specs->size(); ++v) {
                     auto shader = shader_for(v, sequence.sequence().depth_nearer_larger);
                     if (!shader) return report_error(shader.error().message);
@@ -273,7 +295,7 @@ Action add_taa_command(CLI::App& app) {
                         TaaResolve::create(**context, **shader, sequence.width(), sequence.height(), o->resolve);
                     if (!resolve) return report_error(resolve.error().message);
                     auto m =
-                        measure_sequence(**resolve, sequence, o->warmup, flip, {}, write_frame(sequence.name(), v));
+                        measure_sequence(**resolve, sequence, o->warmup, *mean, {}, write_frame(sequence.name(), v));
                     if (!m)
                         return report_error(
                             fmt::format("{} on {}: {}", keys[v].name(), sequence.name(), m.error().message));
@@ -303,7 +325,7 @@ Action add_taa_command(CLI::App& app) {
         outputs->add_table("taa", taa_table(rows), run_info);
         outputs->add("report.md", taa_report_markdown(rows, run_info,
                                                       {width, height, o->warmup, o->frames, ppd, pictures, charts,
-                                                       o->resolve, sequence_names(sequences)}));
+                                                       o->resolve, sequence_names(sequences), !o->cpu_flip}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
                                  scenes.size() + sequences.size(), run_info.device, run_info.driver,

@@ -21,7 +21,7 @@ namespace kdop {
 namespace {
 
 constexpr std::string_view kTemplate = "shader_templates/flip.comp.in";
-constexpr std::uint32_t kLocalSize = 64; // the template's local_size_x
+constexpr std::uint32_t kLocalSize = 64;                         // the template's local_size_x
 constexpr VkFormat kPlaneFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the template's rgba32f images
 
 // Pixels each invocation of the filter passes computes along the filter's direction (the
@@ -204,7 +204,8 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
 
     // One set per pass, written once: each reads binding 0 and writes binding 1, a buffer or an image.
     VkDevice device = context.device();
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4}};
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4}};
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool.maxSets = kPasses;
     pool.poolSizeCount = 2;

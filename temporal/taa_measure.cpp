@@ -64,7 +64,7 @@ Result<void> check_ldr(const Image& image, const std::string& label, std::string
 } // namespace
 
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const LdrFlip& flip, TaaMetrics metrics, const OutputObserver& on_output,
+                                             const FlipMean& flip, TaaMetrics metrics, const OutputObserver& on_output,
                                              const std::function<void()>& on_frame) {
     const std::size_t count = source.frame_count();
     if (warmup >= count)
@@ -97,12 +97,12 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
                     truth = &*frame->reference;
                 }
                 if (metrics.ghosting) {
-                    auto ghosting = flip.mean(*truth, *current);
+                    auto ghosting = flip(*truth, *current);
                     if (!ghosting) return std::unexpected(ghosting.error());
                     ghosting_sum += *ghosting;
                 }
                 if (metrics.shimmer && !source.starts_history(i)) {
-                    auto shimmer = flip.mean(previous, *current);
+                    auto shimmer = flip(previous, *current);
                     if (!shimmer) return std::unexpected(shimmer.error());
                     shimmer_sum += *shimmer;
                     ++shimmer_pairs;
@@ -129,7 +129,7 @@ SceneFrames ghosting_frames(const std::string& name, const Image& background, co
 }
 
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const std::string& name, const Image& background,
-                                     const TaaSchedule& schedule, const LdrFlip& flip,
+                                     const TaaSchedule& schedule, const FlipMean& flip,
                                      const SceneOutputObserver& on_output, const std::function<void()>& on_frame) {
     TaaMeasurement m;
     const SceneFrames still = shimmer_frames(name, background, schedule);

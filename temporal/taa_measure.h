@@ -24,6 +24,13 @@
 
 namespace kdop {
 
+// The mean LDR-FLIP of a pair, where it is computed: the CPU code (cpu_flip_mean) or the device
+// (flip/device_flip.h, what kdop taa uses).
+using FlipMean = std::function<Result<double>(const Image& reference, const Image& test)>;
+inline FlipMean cpu_flip_mean(const LdrFlip& flip) {
+    return [&flip](const Image& reference, const Image& test) { return flip.mean(reference, test); };
+}
+
 struct SequenceMeasurement {
     double shimmer = 0, ghosting = 0;
     bool against_reference = false; // ghosting against the frames' references, not their own color
@@ -42,7 +49,7 @@ struct TaaMetrics {
 // must lie in [0, 1] (LDR-FLIP's range): a value outside is refused, naming the frame, the pixel
 // and the value, never clamped. `on_frame` is called after each frame, measured or not.
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const LdrFlip& flip, TaaMetrics metrics = {},
+                                             const FlipMean& flip, TaaMetrics metrics = {},
                                              const OutputObserver& on_output = {},
                                              const std::function<void()>& on_frame = {});
 
@@ -69,7 +76,7 @@ using SceneOutputObserver =
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const std::string& name, const Image& background,
-                                     const TaaSchedule& schedule, const LdrFlip& flip,
+                                     const TaaSchedule& schedule, const FlipMean& flip,
                                      const SceneOutputObserver& on_output = {},
                                      const std::function<void()>& on_frame = {});
 

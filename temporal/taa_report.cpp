@@ -122,7 +122,8 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
     std::string md = "# kdop taa: ghosting and shimmer over TAA sequences\n\n";
     md += fmt::format(
         "Each variant rectifies the history of one TAA resolve on the device ({}x{} frames; {}), as in Ikkala et "
-        "al. 2024, Sec. 4, in LDR-FLIP at {:.1f} pixels per degree. kdop's own scenes are measured on two "
+        "al. 2024, Sec. 4, in LDR-FLIP at {:.1f} pixels per degree (computed {}). kdop's own scenes are measured on "
+        "two "
         "sequences each, as the paper does:\n\n"
         "- **shimmer**: jitter on (R2, 10 entries), no animation; after {} frames, the mean FLIP between "
         "successive frames over {} frames;\n"
@@ -132,7 +133,9 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
         "resolve's reprojection and blend), with its quartiles Q1 and Q3 over the interleaved rounds; a variant "
         "whose median is within the larger interquartile range of its own and the fastest variant's is *within "
         "noise* of the fastest: that difference is not to be believed.\n\n",
-        s.width, s.height, describe(s.resolve), s.pixels_per_degree, s.warmup, s.frames, s.warmup, s.frames);
+        s.width, s.height, describe(s.resolve), s.pixels_per_degree,
+        s.flip_on_device ? "on the device, kdop's flip/device_flip.h" : "on the CPU, kdop's flip/flip.h", s.warmup,
+        s.frames, s.warmup, s.frames);
     if (!s.sequences.empty())
         md += fmt::format("Sequences given with --sequence ({}) are measured once each, after {} frames, over all "
                           "the frames that follow: ghosting against each frame's reference where the sequence has "

@@ -39,6 +39,7 @@ struct TaaReportSettings {
     ResolveOptions resolve;
     // The sequences measured (`kdop taa --sequence`), by name, beside kdop's own scenes.
     std::vector<std::string> sequences;
+    bool flip_on_device = false; // ghosting and shimmer measured by the device's LDR-FLIP, not the CPU's
 };
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,

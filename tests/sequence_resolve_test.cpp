@@ -233,7 +233,7 @@ TEST_F(ResolveGpu, AStillUnjitteredSequenceNeitherGhostsNorShimmers) {
         ASSERT_TRUE(shader);
         auto resolve = make_resolve(*shader, w, h, options);
         ASSERT_TRUE(resolve);
-        auto m = measure_sequence(*resolve, still, 2, flip);
+        auto m = measure_sequence(*resolve, still, 2, cpu_flip_mean(flip));
         ASSERT_TRUE(m) << m.error().message;
         if (options.color_map.kind == ColorMap::Kind::linear) {
             EXPECT_EQ(m->ghosting, 0.0);

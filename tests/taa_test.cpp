@@ -3,6 +3,7 @@
 // and the paper's central ordering, then the command's outputs and its refusals. The resolve's
 // options against a CPU restatement, and sequences on disk: tests/sequence_resolve_test.cpp.
 #include "cpu_clip.h"
+#include "device_flip.h"
 #include "flip.h"
 #include "gpu_support.h"
 #include "image_io.h"
@@ -216,8 +217,8 @@ TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     auto none_resolve = make_resolve(**current_only, w, h);
     auto dop32_resolve = make_resolve(*dop32, w, h);
     ASSERT_TRUE(none_resolve && dop32_resolve);
-    auto none = measure_scene(*none_resolve, "grass", background, schedule, flip);
-    auto clipped = measure_scene(*dop32_resolve, "grass", background, schedule, flip);
+    auto none = measure_scene(*none_resolve, "grass", background, schedule, cpu_flip_mean(flip));
+    auto clipped = measure_scene(*dop32_resolve, "grass", background, schedule, cpu_flip_mean(flip));
     ASSERT_TRUE(none && clipped);
     EXPECT_EQ(none->ghosting, 0.0);
     EXPECT_GT(none->shimmer, 0.0);
@@ -239,11 +240,40 @@ TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
         ASSERT_TRUE(shader);
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
-        auto m = measure_scene(*resolve, "grass", background, schedule, flip);
+        auto m = measure_scene(*resolve, "grass", background, schedule, cpu_flip_mean(flip));
         ASSERT_TRUE(m) << m.error().message;
         ghosting[i++] = m->ghosting;
     }
     EXPECT_LT(ghosting[1], ghosting[0]) << "dop32 " << ghosting[1] << ", aabb " << ghosting[0];
+}
+
+// kdop taa measures on the device (flip/device_flip.h): the figures are the CPU code's, within
+// DeviceFlip's tolerance of 1e-6 relative per mean.
+TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
+    constexpr std::uint32_t w = 64, h = 36;
+    const Image background = make_texture(TextureFamily::grass, w, h, 2);
+    const double ppd = pixels_per_degree(ViewingConditions{});
+    const LdrFlip flip(ppd);
+    auto device = DeviceFlip::create(test::gpu(), ppd, w, h);
+    ASSERT_TRUE(device) << device.error().message;
+    const FlipMean on_device = [&](const Image& reference, const Image& test) {
+        return (*device)->mean(reference, test);
+    };
+    auto shader = taa_shader("dop16-grass", Mode::clip);
+    ASSERT_TRUE(shader);
+    const TaaSchedule schedule{8, 5};
+    TaaMeasurement m[2];
+    for (int i = 0; i < 2; ++i) {
+        auto resolve = make_resolve(*shader, w, h);
+        ASSERT_TRUE(resolve);
+        auto measured = measure_scene(*resolve, "grass", background, schedule, i ? on_device : cpu_flip_mean(flip));
+        ASSERT_TRUE(measured) << measured.error().message;
+        m[i] = std::move(*measured);
+    }
+    ASSERT_GT(m[0].shimmer, 0.0);
+    ASSERT_GT(m[0].ghosting, 0.0);
+    EXPECT_NEAR(m[1].shimmer, m[0].shimmer, 1e-6 * m[0].shimmer);
+    EXPECT_NEAR(m[1].ghosting, m[0].ghosting, 1e-6 * m[0].ghosting);
 }
 
 // ---------------------------------------------------------------------------------------------
