@@ -67,4 +67,4 @@ fuzz sequence 100000
 export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
 # OpenEXR 3.1 allocates up to about 2 GB for some damaged headers (a 600-byte file) before it finds
 # the file short and throws, which read_image reports as an error; the limit leaves room for that.
-fuzz image 6000 -rss_limit_mb=4096
+fuzz image 3000 -rss_limit_mb=4096

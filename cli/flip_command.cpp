@@ -203,7 +203,9 @@ Action add_flip_command(CLI::App& app) {
             if (!created) return report_error(created.error().message);
             context = std::move(*created);
             auto flip = DeviceFlip::create(*context, pixels_per_degree, w, h);
-            if (!flip) return report_error(fmt::format("--reference {}: {}", o->reference, flip.error().message));
+            if (!flip)
+                return report_error(fmt::format("--reference {}: {} (--cpu computes FLIP on the CPU instead)",
+                                                o->reference, flip.error().message));
             device = std::move(*flip);
         }
         const double setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count(),

@@ -27,10 +27,10 @@ constexpr VkFormat kPlaneFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the template
 // Pixels each invocation of the filter passes computes along the filter's direction (the
 // template's FLIP_RUN; `pass` is its FLIP_PASS: 1 horizontal, 2 vertical). On a CPU device
 // (lavapipe) the neighbors' loads are then shared within an invocation, in registers: at 480x270
-// one pixel per invocation took 5.5x the CPU time of runs of 16 (planes in buffers). Runs of 8 for the horizontal
-// pass and 24 for the vertical one measured best, by 5 to 10% and within the noise of this
-// machine; longer runs compile slower and gain nothing. A GPU has the loads cached and lanes to
-// spare.
+// one pixel per invocation took 5.5x the CPU time of runs of 16 (planes in buffers). Runs of 8
+// for the horizontal pass and 24 for the vertical one measured best, by 5 to 10%, about the noise
+// of this machine; longer runs compile slower and gain nothing. A GPU has the loads cached and
+// lanes to spare.
 std::uint32_t run_length(const Context& context, int pass) {
     if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return 1;
     return pass == 1 ? 8u : pass == 2 ? 24u : 1u;
@@ -155,7 +155,7 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) return std::unexpected(ok.error());
     if (width == 0 || height == 0) return fail(fmt::format("FLIP of an empty {}x{} image", width, height));
     const auto& limits = context.properties().limits;
-    // The largest grid is the vertical pass's or the prepare pass's: one row of invocations per image row.
+    // The largest grid is the prepare pass's: a row of workgroups per image row.
     if (ceil_div(width, kLocalSize) > limits.maxComputeWorkGroupCount[0] || height > limits.maxComputeWorkGroupCount[1])
         return fail(fmt::format("FLIP of {}x{}: {} dispatches at most {}x{} workgroups of {} pixels", width, height,
                                 context.device_name(), limits.maxComputeWorkGroupCount[0],
@@ -313,6 +313,7 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
         compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
     });
     if (!ran) return std::unexpected(ran.error());
+
     Evaluation out;
     const auto* rows = static_cast<const float*>(row_sums_.mapped());
     double sum = 0;
