@@ -288,8 +288,8 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
     auto ran = commands_->run([&](VkCommandBuffer cb) {
         // The planes are written before they are read in every evaluation: what they held is dropped.
         for (const DeviceImage* plane : {&prepared_, &horizontal_})
-            image_layout_barrier(cb, *plane, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
-                                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, shader_rw, compute);
+            image_barrier(cb, plane->image(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, shader_rw,
+                          VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, compute, plane->layers());
         // The error and exposure maps start at 0: every exposure keeps the larger error.
         vkCmdFillBuffer(cb, maps_.buffer(), 0, VkDeviceSize(n) * 2 * 4, 0);
         compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, shader_rw, compute);

@@ -41,10 +41,10 @@ private:
     std::uint32_t layers_ = 0;
 };
 
-// A barrier on every layer of `image` from layout `from` to `to` (which may be equal: a memory
-// dependency only).
-void image_layout_barrier(VkCommandBuffer cb, const DeviceImage& image, VkImageLayout from, VkImageLayout to,
-                          VkAccessFlags src_access, VkPipelineStageFlags src_stage, VkAccessFlags dst_access,
-                          VkPipelineStageFlags dst_stage);
+// A barrier on the first `layers` layers of a color image (mip level 0), from layout `from` to `to`
+// (which may be equal: a memory dependency only). RectifyPass's textures and DeviceImage's use it.
+void image_barrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                   VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage,
+                   std::uint32_t layers = 1);
 
 } // namespace kdop

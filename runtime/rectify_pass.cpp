@@ -1,5 +1,6 @@
 #include "rectify_pass.h"
 
+#include "device_image.h"
 #include "vulkan_error.h"
 
 #include <fmt/format.h>
@@ -20,19 +21,6 @@ VkFormat vk_format(TextureFormat f) {
     return f == TextureFormat::rgba16f ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
 }
 VkDeviceSize texel_bytes(TextureFormat f) { return f == TextureFormat::rgba16f ? 8 : 16; }
-
-void image_barrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
-                   VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
-    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    b.srcAccessMask = src_access;
-    b.dstAccessMask = dst_access;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
-}
 
 VkBufferImageCopy whole_image(uint32_t w, uint32_t h, VkDeviceSize offset) {
     VkBufferImageCopy copy{};
