@@ -6,6 +6,7 @@
 #include "device_flip.h"
 #include "flip.h"
 #include "hdr_flip.h"
+#include "hdr_flip_option.h"
 #include "image_io.h"
 #include "input_files.h"
 #include "input_space_option.h"
@@ -55,9 +56,8 @@ Action add_flip_command(CLI::App& app) {
         bool srgb = false;
         InputSpace input_space = InputSpace::from_file;
         bool hdr = false;
-        std::string tone_mapper = "aces", exposure_map;
-        double start_exposure = 0, stop_exposure = 0;
-        int exposures = 0;
+        ExposureOptions exposure;
+        std::string exposure_map;
         bool cpu = false, validation = false;
         std::string device;
         int timing = 0;
@@ -91,23 +91,7 @@ Action add_flip_command(CLI::App& app) {
                      "Error map to write: .exr holds the values (gray), .png shows them in the magma color map");
     auto* hdr = flip->add_flag("--hdr", o->hdr,
                                "HDR-FLIP: linear RGB from 0 up, compared at a range of exposures after tone mapping");
-    flip->add_option("--tone-mapper", o->tone_mapper, "HDR-FLIP's tone mapper [default: aces]")
-        ->check(CLI::IsMember({"aces", "hable", "reinhard"}))
-        ->needs(hdr);
-    auto* start = flip->add_option("--start-exposure", o->start_exposure,
-                                   "HDR-FLIP's first exposure in stops [default: from the reference's largest "
-                                   "luminance, as NVlabs/flip derives it]")
-                      ->check(finite_number(-1000, 1000))
-                      ->needs(hdr);
-    auto* stop = flip->add_option("--stop-exposure", o->stop_exposure,
-                                  "HDR-FLIP's last exposure in stops [default: from the reference's median luminance]")
-                     ->check(finite_number(-1000, 1000))
-                     ->needs(hdr);
-    auto* exposures = flip->add_option("--exposures", o->exposures,
-                                       "HDR-FLIP's number of exposures, from 1 to 1000 [default: max(2, "
-                                       "ceil(stop - start))]")
-                          ->check(CLI::Range(1, 1000))
-                          ->needs(hdr);
+    for (CLI::Option* option : add_hdr_flip_options(*flip, o->exposure)) option->needs(hdr);
     auto* cpu = flip->add_flag("--cpu", o->cpu,
                                "Compute on the CPU with the reference code the device passes are tested against, not "
                                "on the Vulkan device");
@@ -124,7 +108,7 @@ Action add_flip_command(CLI::App& app) {
                      ".exr (the values) or .png (in magma colors; the reference tool draws it in viridis)")
         ->needs(hdr);
 
-    return [o, ppd, start, stop, exposures] {
+    return [o, ppd] {
         const bool viewing = !*ppd;
         const double pixels_per_degree = viewing ? kdop::pixels_per_degree(o->viewing) : o->ppd;
         if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok)
@@ -186,13 +170,7 @@ Action add_flip_command(CLI::App& app) {
             !ok)
             return report_error(ok.error().message);
 
-        ExposureOptions exposure;
-        if (o->hdr) {
-            exposure.tone_mapper = *parse_tone_mapper(o->tone_mapper);
-            if (*start) exposure.start = float(o->start_exposure);
-            if (*stop) exposure.stop = float(o->stop_exposure);
-            if (*exposures) exposure.count = o->exposures;
-        }
+        const ExposureOptions& exposure = o->exposure;
         const bool read_maps = !o->out.empty() || !o->exposure_map.empty();
         const auto setup_start = std::chrono::steady_clock::now();
         const double setup_cpu_start = process_cpu_seconds();
@@ -257,9 +235,9 @@ Action add_flip_command(CLI::App& app) {
         if (o->hdr)
             std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
                                      "exposure{} from {:.4g} to {:.4g}) {}\n",
-                                     result->mean, pixels_per_degree, w, h, space, o->tone_mapper, result->range.count,
-                                     result->range.count == 1 ? "" : "s", result->range.start, result->range.stop,
-                                     where);
+                                     result->mean, pixels_per_degree, w, h, space, to_string(exposure.tone_mapper),
+                                     result->range.count, result->range.count == 1 ? "" : "s", result->range.start,
+                                     result->range.stop, where);
         else
             std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", result->mean,
                                      pixels_per_degree, w, h, space, where);

@@ -4,6 +4,7 @@
 #include "device_flip.h"
 #include "flip.h"
 #include "gnuplot.h"
+#include "hdr_flip_option.h"
 #include "image_io.h"
 #include "input_files.h"
 #include "input_space_option.h"
@@ -97,12 +98,14 @@ Action add_taa_command(CLI::App& app) {
         bool validation = false, no_charts = false, write_frames = false, cpu_flip = false;
         InputSpace input_space = InputSpace::from_file;
         ResolveOptions resolve;
+        ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
     };
     auto o = std::make_shared<Options>();
     CLI::App* taa = app.add_subcommand(
         "taa", "Run every variant in one TAA resolve on the device over kdop's scenes or your own frame sequences "
-               "and measure the ghosting and shimmer a viewer sees, in LDR-FLIP, as Ikkala et al. 2024 do (Tables 1 "
-               "and 2); writes taa.csv (and JSON), report.md, selected frames as EXR and PNG and one labeled ghosting "
+               "and measure the ghosting and shimmer a viewer sees, in LDR-FLIP (HDR sequences in HDR-FLIP), as Ikkala "
+               "et al. 2024 do (Tables 1 and 2); writes taa.csv (and JSON), report.md, selected frames as EXR and PNG "
+               "and one labeled ghosting "
                "picture per built-in scene");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true);
@@ -136,11 +139,13 @@ Action add_taa_command(CLI::App& app) {
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
     taa->add_flag("--cpu-flip", o->cpu_flip,
-                  "Measure ghosting and shimmer with the CPU's LDR-FLIP, the reference code the device's is tested "
+                  "Measure ghosting and shimmer with the CPU's FLIP, the reference code the device's is tested "
                   "against, instead of on the device");
+    // HDR sequences ("color": {"range": "hdr"}) are measured in HDR-FLIP at these.
+    const std::vector<CLI::Option*> hdr_options = add_hdr_flip_options(*taa, o->exposure);
     taa->add_flag("--no-charts", o->no_charts, "Write the tables, report and pictures without the trade charts");
 
-    return [o, taa] {
+    return [o, taa, hdr_options] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
@@ -184,6 +189,14 @@ Action add_taa_command(CLI::App& app) {
                                                 dir, sequence->frames.size(), o->warmup));
             sequences.emplace_back(std::move(*sequence), o->input_space);
         }
+        const bool any_hdr = std::any_of(sequences.begin(), sequences.end(),
+                                         [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
+        for (const CLI::Option* option : hdr_options)
+            if (option->count() && !any_hdr)
+                return usage_error(
+                    fmt::format("{}: only HDR sequences (\"color\": {{\"range\": \"hdr\"}} in "
+                                "sequence.json) are measured in HDR-FLIP, and no --sequence given is one",
+                                option->get_name()));
         auto sources = o->selection.set_sources();
         if (!sources) return report_error(sources.error().message);
         auto catalog = VariantCatalog::create(*sources, o->selection.style());
@@ -217,19 +230,20 @@ Action add_taa_command(CLI::App& app) {
         const std::uint32_t width = builtin ? size->first : sequences.front().width();
         const std::uint32_t height = builtin ? size->second : sequences.front().height();
         const TaaSchedule schedule{o->warmup, o->frames};
-        const LdrFlip flip(ppd);
+        const HdrFlip cpu_flip(ppd);
+        const LdrFlip& flip = cpu_flip.ldr();
         // Ghosting and shimmer on the device by default: one evaluator per frame size, made when a
         // scene or sequence of that size first needs it.
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> device_flips;
         auto flip_mean = [&](std::uint32_t w, std::uint32_t h) -> Result<FlipMean> {
-            if (o->cpu_flip) return cpu_flip_mean(flip);
+            if (o->cpu_flip) return cpu_flip_mean(cpu_flip, o->exposure);
             std::unique_ptr<DeviceFlip>& device = device_flips[{w, h}];
             if (!device) {
                 auto created = DeviceFlip::create(**context, ppd, w, h);
                 if (!created) return std::unexpected(created.error());
                 device = std::move(*created);
             }
-            return [d = device.get()](const Image& reference, const Image& test) { return d->mean(reference, test); };
+            return device_flip_mean(*device, o->exposure);
         };
         StagedImages written_frames;
         auto write_frame = [&](const std::string& sequence, std::size_t v) {
@@ -249,9 +263,9 @@ Action add_taa_command(CLI::App& app) {
             auto timing = bench::time_interleaved(**context, *rectifiers, width, height, o->timing_rounds, progress);
             if (!timing) return report_error(timing.error().message);
             auto row = [&](std::size_t v, const std::string& scene, double shimmer, double ghosting,
-                           const char* against) {
+                           const char* against, ColorRange range) {
                 rows.push_back({keys[v], scene, median(timing->ms[v]), quantile(timing->ms[v], 0.25),
-                                quantile(timing->ms[v], 0.75), shimmer, ghosting, against});
+                                quantile(timing->ms[v], 0.75), shimmer, ghosting, against, range});
             };
             for (const TaaScene& scene : scenes) {
                 std::vector<std::shared_ptr<const Image>> trails;
@@ -268,7 +282,7 @@ Action add_taa_command(CLI::App& app) {
                     auto m = measure_scene(**resolve, scene.name, scene.background, schedule, *mean, written);
                     if (!m)
                         return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
-                    row(v, scene.name, m->shimmer, m->ghosting, "aliased");
+                    row(v, scene.name, m->shimmer, m->ghosting, "aliased", ColorRange::ldr);
                     trails.push_back(std::make_shared<const Image>(std::move(m->trail)));
                     progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
                 }
@@ -299,7 +313,8 @@ Action add_taa_command(CLI::App& app) {
                     if (!m)
                         return report_error(
                             fmt::format("{} on {}: {}", keys[v].name(), sequence.name(), m.error().message));
-                    row(v, sequence.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased");
+                    row(v, sequence.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased",
+                        m->range);
                     progress.advance(fmt::format("{} on {}", keys[v].name(), sequence.name()));
                 }
             }
@@ -323,9 +338,10 @@ Action add_taa_command(CLI::App& app) {
             }
         }
         outputs->add_table("taa", taa_table(rows), run_info);
-        outputs->add("report.md", taa_report_markdown(rows, run_info,
-                                                      {width, height, o->warmup, o->frames, ppd, pictures, charts,
-                                                       o->resolve, sequence_names(sequences), !o->cpu_flip}));
+        outputs->add("report.md",
+                     taa_report_markdown(rows, run_info,
+                                         {width, height, o->warmup, o->frames, ppd, pictures, charts, o->resolve,
+                                          sequence_names(sequences), !o->cpu_flip, o->exposure}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
                                  scenes.size() + sequences.size(), run_info.device, run_info.driver,

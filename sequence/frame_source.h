@@ -22,6 +22,8 @@ public:
     virtual std::uint32_t width() const = 0;
     virtual std::uint32_t height() const = 0;
     virtual std::size_t frame_count() const = 0;
+    // The range the frames' color and reference keep to, and so the FLIP they are measured in.
+    virtual ColorRange color_range() const = 0;
     // Whether frame `index` starts without a history: the first frame and every camera cut.
     virtual bool starts_history(std::size_t index) const = 0;
     virtual std::optional<glm::vec2> jitter(std::size_t index) const = 0;
@@ -44,6 +46,7 @@ public:
     std::uint32_t width() const override { return s_.width; }
     std::uint32_t height() const override { return s_.height; }
     std::size_t frame_count() const override { return s_.frames.size(); }
+    ColorRange color_range() const override { return s_.color_range; }
     bool starts_history(std::size_t index) const override { return s_.starts_history(index); }
     std::optional<glm::vec2> jitter(std::size_t index) const override { return s_.frames[index].jitter; }
     bool has_depth() const override;

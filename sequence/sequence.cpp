@@ -108,6 +108,8 @@ private:
 
 } // namespace
 
+const char* to_string(ColorRange range) { return range == ColorRange::hdr ? "hdr" : "ldr"; }
+
 glm::vec2 canonical_motion(glm::vec2 stored, const MotionConvention& c, std::uint32_t width, std::uint32_t height) {
     glm::vec2 m = stored;
     if (c.units == MotionConvention::Units::uv) m *= glm::vec2(float(width), float(height));
@@ -137,8 +139,8 @@ Result<Sequence> read_sequence(const fs::path& dir) {
     }
     const Reader reader(path);
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
-    if (auto ok =
-            reader.known_keys(root, {"kdop_sequence", "width", "height", "motion", "depth", "frames"}, "the top level");
+    if (auto ok = reader.known_keys(root, {"kdop_sequence", "width", "height", "color", "motion", "depth", "frames"},
+                                    "the top level");
         !ok)
         return std::unexpected(ok.error());
     const auto version = root.find("kdop_sequence");
@@ -158,6 +160,14 @@ Result<Sequence> read_sequence(const fs::path& dir) {
     if (!height) return std::unexpected(height.error());
     s.width = *width;
     s.height = *height;
+
+    if (const auto color = root.find("color"); color != root.end()) {
+        if (!color->is_object()) return std::unexpected(reader.error("color", "expected an object"));
+        if (auto ok = reader.known_keys(*color, {"range"}, "color"); !ok) return std::unexpected(ok.error());
+        auto range = reader.choice(*color, "range", {"ldr", "hdr"}, "color");
+        if (!range) return std::unexpected(range.error());
+        s.color_range = ColorRange(*range);
+    }
 
     if (const auto motion = root.find("motion"); motion != root.end()) {
         if (!motion->is_object()) return std::unexpected(reader.error("motion", "expected an object"));

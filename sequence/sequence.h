@@ -2,7 +2,7 @@
 // captured frames, Blender, a 3-D testbed) and the one TAA resolve. A folder holds sequence.json
 // and per-frame EXR files; README "Frame sequences" documents the format, version 1:
 //
-//     {"kdop_sequence": 1, "width": 320, "height": 180,
+//     {"kdop_sequence": 1, "width": 320, "height": 180, "color": {"range": "ldr"},
 //      "motion": {"units": "pixels", "points_to": "previous", "y_axis": "down"},
 //      "depth": {"nearer": "smaller"},
 //      "frames": [{"color": "color/0000.exr", "motion": "motion/0000.exr", "jitter": [0.12, -0.31],
@@ -32,6 +32,11 @@ namespace kdop {
 
 inline constexpr int kSequenceFormatVersion = 1;
 
+// What a sequence's color and reference files hold, and so what ghosting and shimmer are measured
+// in: `ldr`, linear values from 0 to 1, in LDR-FLIP; `hdr`, linear values from 0 up, in HDR-FLIP.
+enum class ColorRange { ldr, hdr };
+const char* to_string(ColorRange range); // "ldr", "hdr"
+
 // How a sequence's motion files are to be read. Whatever they say, load_frame() gives motion in
 // pixels, pointing to where the surface at the pixel's center was in the previous frame, y down.
 struct MotionConvention {
@@ -55,6 +60,9 @@ struct Sequence {
     std::filesystem::path dir;
     std::string name; // the folder's name, for tables
     std::uint32_t width = 0, height = 0;
+    // "color": {"range": "ldr" | "hdr"}: the range the color and reference files keep to. Reading
+    // a frame does not check it (every finite value is read); the measurement does.
+    ColorRange color_range = ColorRange::ldr;
     MotionConvention motion;
     // "depth": {"nearer": "smaller" | "larger"}: which way depth files count (larger: reversed Z,
     // as Unreal writes it). Only --dilate-motion reads depth.

@@ -41,6 +41,7 @@ std::string sequence_json(const FrameSource& source) {
     ordered_json root{{"kdop_sequence", kSequenceFormatVersion},
                       {"width", source.width()},
                       {"height", source.height()},
+                      {"color", {{"range", to_string(source.color_range())}}},
                       {"motion", {{"units", "pixels"}, {"points_to", "previous"}, {"y_axis", "down"}}}};
     ordered_json frames = ordered_json::array();
     for (std::size_t i = 0; i < source.frame_count(); ++i) {

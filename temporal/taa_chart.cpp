@@ -43,8 +43,10 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
         std::vector<double> ms, ghosting, shimmer;
         std::string plot[2]; // ghosting, shimmer
         std::vector<std::string> groups;
+        const TaaRow* any = nullptr; // what the scene's rows were measured in and against
         for (const TaaRow& r : rows)
             if (r.scene == scenes[s]) {
+                any = &r;
                 ms.push_back(r.ms);
                 ghosting.push_back(r.ghosting);
                 shimmer.push_back(r.shimmer);
@@ -73,9 +75,11 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
                               "the time); lower left is better'\n",
                               (scratch / names[s]).string(), scenes[s]);
         script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
-        script += axis_scale('y', ghosting, "ghosting (mean LDR-FLIP against the aliased frame)", false);
+        const char* flip = any && any->range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
+        const char* against = any && any->ghosting_against == "reference" ? "reference" : "aliased frame";
+        script += axis_scale('y', ghosting, fmt::format("ghosting (mean {} against the {})", flip, against), false);
         script += fmt::format("plot {}\n", plot[0]);
-        script += axis_scale('y', shimmer, "shimmer (mean LDR-FLIP between successive frames)", false);
+        script += axis_scale('y', shimmer, fmt::format("shimmer (mean {} between successive frames)", flip), false);
         script += fmt::format("plot {}{}\nunset multiplot\n", plot[1], style.key_entries(keys));
     }
     return draw_charts(script, names, scratch, out_dir);

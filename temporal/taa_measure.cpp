@@ -7,19 +7,44 @@
 
 namespace kdop {
 
-Result<Image> within_unit_range(const Image& frame, std::string_view what) {
+Result<Image> within_range(const Image& frame, ColorRange range, std::string_view what) {
     constexpr float kRounding = 1e-4f;
+    const bool hdr = range == ColorRange::hdr;
     Image out = frame;
     for (std::uint32_t y = 0; y < frame.height; ++y)
-        for (std::uint32_t x = 0; x < frame.width; ++x)
+        for (std::uint32_t x = 0; x < frame.width; ++x) {
+            glm::vec4& pixel = out.at(x, y);
+            // Rounding scales with the colors the resolve blended: for HDR, the pixel's largest.
+            const float scale = hdr ? std::max({1.0f, pixel.r, pixel.g, pixel.b}) : 1.0f;
             for (int c = 0; c < 3; ++c) {
-                float& v = out.at(x, y)[c];
-                if (!(v >= -kRounding && v <= 1 + kRounding))
-                    return fail(fmt::format("{}: pixel ({}, {}) has {} {}, outside [0, 1] by more than rounding", what,
-                                            x, y, "RGB"[c], v));
-                v = std::clamp(v, 0.0f, 1.0f);
+                float& v = pixel[c];
+                const bool within =
+                    v >= -kRounding * scale && (hdr ? std::isfinite(scale) : v <= 1 + kRounding); // NaN fails
+                if (!within)
+                    return fail(fmt::format("{}: pixel ({}, {}) has {} {}, outside {} by more than rounding", what, x,
+                                            y, "RGB"[c], v, hdr ? "[0, inf)" : "[0, 1]"));
+                v = hdr ? std::max(v, 0.0f) : std::clamp(v, 0.0f, 1.0f);
             }
+        }
     return out;
+}
+
+FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<double> {
+        if (range == ColorRange::ldr) return flip.ldr().mean(reference, test);
+        auto maps = flip.maps(reference, test, exposures);
+        if (!maps) return std::unexpected(maps.error());
+        return maps->mean;
+    };
+}
+
+FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<double> {
+        if (range == ColorRange::ldr) return flip.mean(reference, test);
+        auto maps = flip.hdr(reference, test, exposures, false);
+        if (!maps) return std::unexpected(maps.error());
+        return maps->mean;
+    };
 }
 
 std::uint32_t trail_frame(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height) {
@@ -46,16 +71,22 @@ TrailCrop trail_crop(const TaaSchedule& schedule, std::uint32_t width, std::uint
 
 namespace {
 
-// Refuses a color outside LDR-FLIP's range, naming where it is.
-Result<void> check_ldr(const Image& image, const std::string& label, std::string_view what) {
+// Refuses a color outside the range the source keeps to, naming where it is.
+Result<void> check_range(const Image& image, ColorRange range, const std::string& label, std::string_view what) {
+    const bool hdr = range == ColorRange::hdr;
     for (std::uint32_t y = 0; y < image.height; ++y)
         for (std::uint32_t x = 0; x < image.width; ++x)
             for (int c = 0; c < 3; ++c) {
                 const float v = image.at(x, y)[c];
-                if (!(v >= 0.0f && v <= 1.0f))
-                    return fail(fmt::format("{}: {} pixel ({}, {}) has {} {}, outside [0, 1]; ghosting and shimmer "
-                                            "are measured in LDR-FLIP, which takes linear values from 0 to 1, so an "
-                                            "HDR sequence must be tone-mapped first (kdop does not clamp it)",
+                if (hdr && !(v >= 0.0f && std::isfinite(v)))
+                    return fail(fmt::format("{}: {} pixel ({}, {}) has {} {}; HDR-FLIP takes finite linear values "
+                                            "from 0 up (kdop does not clamp them)",
+                                            label, what, x, y, "RGB"[c], v));
+                if (!hdr && !(v >= 0.0f && v <= 1.0f))
+                    return fail(fmt::format("{}: {} pixel ({}, {}) has {} {}, outside [0, 1]; this sequence is "
+                                            "measured in LDR-FLIP, which takes linear values from 0 to 1: an HDR "
+                                            "sequence says so in its sequence.json, \"color\": {{\"range\": "
+                                            "\"hdr\"}}, and is measured in HDR-FLIP (kdop does not clamp it)",
                                             label, what, x, y, "RGB"[c], v));
             }
     return {};
@@ -72,6 +103,7 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
             fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
     SequenceMeasurement m;
     m.against_reference = source.has_reference();
+    m.range = source.color_range();
     Image previous;
     double shimmer_sum = 0, ghosting_sum = 0;
     std::size_t shimmer_pairs = 0;
@@ -79,7 +111,7 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
         auto frame = source.frame(i);
         if (!frame) return std::unexpected(frame.error());
         const std::string label = source.frame_label(i);
-        if (auto ok = check_ldr(frame->color, label, "color"); !ok) return std::unexpected(ok.error());
+        if (auto ok = check_range(frame->color, m.range, label, "color"); !ok) return std::unexpected(ok.error());
         if (frame->reference.has_value() != m.against_reference)
             return fail(fmt::format("{}: {} a reference, unlike the sequence's others; give every frame a reference "
                                     "or none",
@@ -87,22 +119,22 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
         auto output = resolve.advance(*frame, source.starts_history(i));
         if (!output) return fail(fmt::format("{}: {}", label, output.error().message));
         if (i + 1 >= warmup) {
-            auto current = within_unit_range(**output, label);
+            auto current = within_range(**output, m.range, label);
             if (!current) return std::unexpected(current.error());
             if (i >= warmup) {
                 const Image* truth = &frame->color;
                 if (m.against_reference) {
-                    if (auto ok = check_ldr(*frame->reference, label, "reference"); !ok)
+                    if (auto ok = check_range(*frame->reference, m.range, label, "reference"); !ok)
                         return std::unexpected(ok.error());
                     truth = &*frame->reference;
                 }
                 if (metrics.ghosting) {
-                    auto ghosting = flip(*truth, *current);
+                    auto ghosting = flip(*truth, *current, m.range);
                     if (!ghosting) return std::unexpected(ghosting.error());
                     ghosting_sum += *ghosting;
                 }
                 if (metrics.shimmer && !source.starts_history(i)) {
-                    auto shimmer = flip(previous, *current);
+                    auto shimmer = flip(previous, *current, m.range);
                     if (!shimmer) return std::unexpected(shimmer.error());
                     shimmer_sum += *shimmer;
                     ++shimmer_pairs;

@@ -1,5 +1,6 @@
 // Shimmer and ghosting of one TAA resolve over one frame source, as Ikkala et al. 2024 measure them
-// (Sec. 4), in LDR-FLIP (flip/flip.h). After `warmup` frames, so the history is full:
+// (Sec. 4), in LDR-FLIP (flip/flip.h), or in HDR-FLIP (flip/hdr_flip.h) where the source's frames
+// are HDR (FrameSource::color_range). After `warmup` frames, so the history is full:
 //   ghosting: the mean FLIP between each output and its frame's reference, or, where the source has
 //             none, the frame's own color: the aliased frame a renderer without TAA shows, which
 //             is the paper's ground truth for jitter-off sequences (with jitter off the resolve no
@@ -11,8 +12,9 @@
 // ghosting on a moving one without jitter (measure_scene below); a captured sequence gives both.
 #pragma once
 
-#include "flip.h"
+#include "device_flip.h"
 #include "frame_source.h"
+#include "hdr_flip.h"
 #include "image.h"
 #include "result.h"
 #include "taa_resolve.h"
@@ -24,17 +26,19 @@
 
 namespace kdop {
 
-// The mean LDR-FLIP of a pair, where it is computed: the CPU code (cpu_flip_mean) or the device
-// (flip/device_flip.h, what kdop taa uses).
-using FlipMean = std::function<Result<double>(const Image& reference, const Image& test)>;
-inline FlipMean cpu_flip_mean(const LdrFlip& flip) {
-    return [&flip](const Image& reference, const Image& test) { return flip.mean(reference, test); };
-}
+// The mean FLIP of a pair, LDR-FLIP for an `ldr` range and HDR-FLIP for `hdr`, where it is
+// computed: the CPU code (cpu_flip_mean) or the device (flip/device_flip.h, what kdop taa uses).
+using FlipMean = std::function<Result<double>(const Image& reference, const Image& test, ColorRange range)>;
+// HDR-FLIP at `exposures` (by default each pair's range, derived from its reference, as
+// NVlabs/flip derives it). `flip` must outlive what this returns.
+FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});
+FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures = {});
 
 struct SequenceMeasurement {
     double shimmer = 0, ghosting = 0;
-    bool against_reference = false; // ghosting against the frames' references, not their own color
-    std::size_t frames = 0;         // frames measured
+    ColorRange range = ColorRange::ldr; // the source's: measured in LDR-FLIP or in HDR-FLIP
+    bool against_reference = false;     // ghosting against the frames' references, not their own color
+    std::size_t frames = 0;             // frames measured
 };
 
 // Called with each measured frame's index and output; an error stops the measurement.
@@ -46,8 +50,9 @@ struct TaaMetrics {
 };
 
 // Resolves every frame of `source` on `resolve`, measuring after `warmup`. Frames and references
-// must lie in [0, 1] (LDR-FLIP's range): a value outside is refused, naming the frame, the pixel
-// and the value, never clamped. `on_frame` is called after each frame, measured or not.
+// must keep to the source's range ([0, 1] for ldr, not negative for hdr): a value outside is
+// refused, naming the frame, the pixel and the value, never clamped. `on_frame` is called after
+// each frame, measured or not.
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
                                              const FlipMean& flip, TaaMetrics metrics = {},
                                              const OutputObserver& on_output = {},
@@ -88,9 +93,11 @@ std::uint32_t trail_frame(const TaaSchedule& schedule, std::uint32_t width, std:
 // shifted toward where it came from, so its trail is in view.
 TrailCrop trail_crop(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height);
 
-// `frame` ready for LDR-FLIP and PNG: the resolve's blends and clips land on segments between
-// colors in [0, 1], so anything beyond it is float rounding; values within 1e-4 outside are moved
-// onto the range, and anything further (a bug, not rounding) is an error naming the pixel.
-Result<Image> within_unit_range(const Image& frame, std::string_view what);
+// A resolve's output ready for FLIP (and, for ldr, PNG): the resolve's blends and clips land on
+// segments between colors in the range, so anything beyond it is float rounding. Values outside
+// by no more than 1e-4 (for hdr, 1e-4 times the pixel's largest channel, when that is above 1)
+// are moved onto the range; anything further, or not finite (a bug, not rounding), is an error
+// naming the pixel.
+Result<Image> within_range(const Image& frame, ColorRange range, std::string_view what);
 
 } // namespace kdop

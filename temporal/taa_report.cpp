@@ -94,6 +94,19 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
     return md;
 }
 
+// HDR-FLIP's exposures as the run set them, or as each pair's reference gives them.
+std::string describe_exposures(const ExposureOptions& o) {
+    auto given = [](const std::optional<float>& e, const char* derived) {
+        return e ? fmt::format("{:g}", *e) : std::string(derived);
+    };
+    const std::string count = o.count ? fmt::format("{} exposures", *o.count) : "max(2, ceil(stop - start)) exposures";
+    if (!o.start && !o.stop && !o.count)
+        return "at the exposures NVlabs/flip derives from each pair's reference (from its largest luminance to its "
+               "median)";
+    return fmt::format("{} from {} to {}", count, given(o.start, "the one the reference's largest luminance gives"),
+                       given(o.stop, "the one the reference's median luminance gives"));
+}
+
 } // namespace
 
 bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows) {
@@ -110,11 +123,13 @@ Table taa_table(const std::vector<TaaRow>& rows) {
                     Column("ms_q1", "ms", Shown::fixed, 3, "Q1"), Column("ms_q3", "ms", Shown::fixed, 3, "Q3"),
                     Column("ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"),
                     Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4),
-                    Column("ghosting_against", "", Shown::text, 0, "ghosting against")}));
+                    Column("ghosting_against", "", Shown::text, 0, "ghosting against"),
+                    Column("flip", "", Shown::text, 0, "measured in")}));
     for (const TaaRow& r : rows)
         t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.ms_q1), maybe(r.ms_q3),
                                              std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value(),
-                                             maybe(r.shimmer), maybe(r.ghosting), r.ghosting_against}));
+                                             maybe(r.shimmer), maybe(r.ghosting), r.ghosting_against,
+                                             std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP")}));
     return t;
 }
 
@@ -136,6 +151,11 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
         s.width, s.height, describe(s.resolve), s.pixels_per_degree,
         s.flip_on_device ? "on the device, kdop's flip/device_flip.h" : "on the CPU, kdop's flip/flip.h", s.warmup,
         s.frames, s.warmup, s.frames);
+    if (std::any_of(rows.begin(), rows.end(), [](const TaaRow& r) { return r.range == ColorRange::hdr; }))
+        md += fmt::format("HDR sequences (flip = HDR-FLIP in the tables) are measured in HDR-FLIP instead, as "
+                          "NVlabs/flip computes it: with the {} tone mapper, {}, each pair's error the largest "
+                          "LDR-FLIP over the exposures.\n\n",
+                          to_string(s.hdr.tone_mapper), describe_exposures(s.hdr));
     if (!s.sequences.empty())
         md += fmt::format("Sequences given with --sequence ({}) are measured once each, after {} frames, over all "
                           "the frames that follow: ghosting against each frame's reference where the sequence has "
@@ -145,8 +165,8 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-    const std::vector<std::string> shown{"variant",  "ms",      "ms_q1",    "ms_q3",
-                                         "ms_noise", "shimmer", "ghosting", "ghosting_against"};
+    const std::vector<std::string> shown{"variant",          "ms",  "ms_q1", "ms_q3", "ms_noise", "shimmer", "ghosting",
+                                         "ghosting_against", "flip"};
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<TaaRow> in_scene;
         std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),

@@ -3,8 +3,10 @@
 // Ikkala et al. 2024 with each method's rank, so the orderings can be compared at a glance.
 #pragma once
 
+#include "hdr_flip.h"
 #include "resolve_options.h"
 #include "run_metadata.h"
+#include "sequence.h"
 #include "table.h"
 #include "variant_key.h"
 
@@ -23,6 +25,8 @@ struct TaaRow {
     // What the ghosting was measured against: "aliased" (each frame's own color, the paper's
     // ground truth with jitter off) or "reference" (the sequence's reference frames).
     std::string ghosting_against = "aliased";
+    // What shimmer and ghosting were measured in: LDR-FLIP, or HDR-FLIP for an HDR sequence.
+    ColorRange range = ColorRange::ldr;
 };
 
 // Whether `row`'s time differs from the fastest row's by no more than the larger interquartile
@@ -39,7 +43,8 @@ struct TaaReportSettings {
     ResolveOptions resolve;
     // The sequences measured (`kdop taa --sequence`), by name, beside kdop's own scenes.
     std::vector<std::string> sequences;
-    bool flip_on_device = false; // ghosting and shimmer measured by the device's LDR-FLIP, not the CPU's
+    bool flip_on_device = false; // ghosting and shimmer measured by the device's FLIP, not the CPU's
+    ExposureOptions hdr;         // HDR-FLIP's tone mapper and exposures, for the HDR sequences
 };
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,

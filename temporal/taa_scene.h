@@ -77,6 +77,7 @@ public:
     std::uint32_t width() const override { return background_.width; }
     std::uint32_t height() const override { return background_.height; }
     std::size_t frame_count() const override { return count_; }
+    ColorRange color_range() const override { return ColorRange::ldr; }
     bool starts_history(std::size_t index) const override { return index == 0; }
     std::optional<glm::vec2> jitter(std::size_t index) const override;
     bool has_depth() const override { return true; }

@@ -2,11 +2,13 @@
 // against a CPU restatement of it, the properties the measurements rest on (a still, unjittered
 // sequence neither ghosts nor shimmers; a camera cut drops the history; the four motion
 // conventions describing one motion resolve bit for bit alike; Catmull-Rom keeps a ramp), and
-// `kdop scene` + `kdop taa --sequence`: a replay equals the in-memory run, bad sequences are
-// refused, naming the file, with nothing written.
+// `kdop scene` + `kdop taa --sequence`: a replay equals the in-memory run, an HDR sequence is
+// measured in HDR-FLIP (the CPU code's figures), bad sequences are refused, naming the file, with
+// nothing written.
 #include "cpu_clip.h"
 #include "flip.h"
 #include "gpu_support.h"
+#include "hdr_flip.h"
 #include "image_io.h"
 #include "sequence_writer.h"
 #include "taa_measure.h"
@@ -225,7 +227,7 @@ TEST_F(ResolveGpu, DilationTakesTheNearestNeighborsMotionInEitherDepthConvention
 TEST_F(ResolveGpu, AStillUnjitteredSequenceNeitherGhostsNorShimmers) {
     constexpr std::uint32_t w = 48, h = 32;
     const SceneFrames still("grass", make_texture(TextureFamily::grass, w, h, 2), 10, false, false);
-    const LdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
     for (const char* map : {"linear", "gamma:2"}) {
         ResolveOptions options;
         options.color_map = *parse_color_map(map);
@@ -256,6 +258,7 @@ public:
     std::uint32_t width() const override { return inner_.width(); }
     std::uint32_t height() const override { return inner_.height(); }
     std::size_t frame_count() const override { return inner_.frame_count(); }
+    ColorRange color_range() const override { return inner_.color_range(); }
     bool starts_history(std::size_t i) const override { return i == cut_ || inner_.starts_history(i); }
     std::optional<glm::vec2> jitter(std::size_t i) const override { return inner_.jitter(i); }
     bool has_depth() const override { return inner_.has_depth(); }
@@ -427,7 +430,7 @@ std::string figures(const std::string& csv, const std::string& variant, const st
             e = std::min(line.find(',', b), line.size());
             cells.push_back(line.substr(b, e - b));
         }
-        if (cells.size() == 12 && cells[4] == scene) return cells[9] + "," + cells[10];
+        if (cells.size() == 13 && cells[4] == scene) return cells[9] + "," + cells[10];
     }
     return "no row for " + variant + " on " + scene;
 }
@@ -481,13 +484,124 @@ TEST(CliSequence, WritesEveryMeasuredFrameAndMeasuresAgainstReferences) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = test::read_file(out / "taa.csv");
     EXPECT_NE(csv.find(",grass-ghosting,"), std::string::npos) << csv;
-    EXPECT_NE(csv.find(",reference\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",reference,LDR-FLIP\n"), std::string::npos) << csv;
     for (int f = 0; f < 8; ++f)
         EXPECT_EQ(fs::exists(out / "frames" / "grass-ghosting" / "aabb-clip-n9" / fmt::format("{:04}.exr", f)), f >= 3)
             << "frame " << f;
     auto last = read_image((out / "frames" / "grass-ghosting" / "aabb-clip-n9" / "0007.exr").string());
     ASSERT_TRUE(last) << last.error().message;
     EXPECT_EQ(last->width, 48u);
+}
+
+// `dir`'s sequence.json with `from` replaced by `to`.
+void replace_in_json(const fs::path& dir, const std::string& from, const std::string& to) {
+    std::string json = test::read_file(dir / "sequence.json");
+    ASSERT_NE(json.find(from), std::string::npos) << from;
+    json.replace(json.find(from), from.size(), to);
+    test::write_file(dir / "sequence.json", json);
+}
+
+// A number of a row of taa.csv, as written (every digit).
+double figure(const std::string& csv, const std::string& variant, const std::string& scene, bool ghosting) {
+    const std::string both = figures(csv, variant, scene);
+    return std::stod(ghosting ? both.substr(both.find(',') + 1) : both.substr(0, both.find(',')));
+}
+
+// The moving grass scene made HDR: every color times 6 and a highlight of 40 moving along row 5,
+// in a sequence that says so ("color": {"range": "hdr"}). Measured in HDR-FLIP on the device, its
+// ghosting is the CPU's HDR-FLIP of each written output against its frame, and --cpu-flip gives
+// the device's figures (within DeviceFlip's 1e-6 relative); exposures set on the command line are
+// the ones used.
+TEST(CliSequence, AnHdrSequenceIsMeasuredInHdrFlip) {
+    SequenceRun t;
+    const fs::path hdr = t.scenes() / "grass-ghosting";
+    for (int f = 0; f < 8; ++f) {
+        const std::string file = (hdr / "color" / fmt::format("{:04}.exr", f)).string();
+        auto color = read_image(file);
+        ASSERT_TRUE(color) << color.error().message;
+        for (glm::vec4& p : color->pixels) p = glm::vec4(glm::vec3(p) * 6.0f, 1.0f);
+        color->at(4 + 3 * f, 5) = glm::vec4(40.0f, 36.0f, 30.0f, 1.0f);
+        ASSERT_TRUE(write_image(file, *color));
+    }
+    replace_in_json(hdr, R"("range": "ldr")", R"("range": "hdr")");
+    const std::string common = " --sets aabb dop32 --modes clip --warmup 3 --timing-rounds 2 --no-charts";
+    const fs::path device = t.dir / "device", cpu = t.dir / "cpu";
+    auto r = t.kdop("taa --sequence " + hdr.string() + common + " --write-frames --out " + device.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto c = t.kdop("taa --sequence " + hdr.string() + common + " --cpu-flip --out " + cpu.string());
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    const std::string csv = test::read_file(device / "taa.csv"), cpu_csv = test::read_file(cpu / "taa.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3) << csv;
+    EXPECT_EQ(csv.find(",LDR-FLIP"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",aliased,HDR-FLIP\n"), std::string::npos) << csv;
+    EXPECT_NE(test::read_file(device / "report.md").find("measured in HDR-FLIP instead"), std::string::npos);
+
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    for (const char* variant : {"aabb-clip-n9", "dop32-clip-n9"}) {
+        double sum = 0;
+        for (int f = 3; f < 8; ++f) {
+            auto color = read_image((hdr / "color" / fmt::format("{:04}.exr", f)).string());
+            auto output =
+                read_image((device / "frames" / "grass-ghosting" / variant / fmt::format("{:04}.exr", f)).string());
+            ASSERT_TRUE(color && output) << variant << " frame " << f;
+            auto maps = flip.maps(*color, *output, {});
+            ASSERT_TRUE(maps) << maps.error().message;
+            sum += maps->mean;
+        }
+        const double ghosting = figure(csv, variant, "grass-ghosting", true);
+        EXPECT_GT(ghosting, 0.0) << variant;
+        EXPECT_NEAR(ghosting, sum / 5, 1e-6 * ghosting) << variant;
+        EXPECT_NEAR(figure(cpu_csv, variant, "grass-ghosting", true), ghosting, 1e-6 * ghosting) << variant;
+        const double shimmer = figure(csv, variant, "grass-ghosting", false);
+        EXPECT_GT(shimmer, 0.0) << variant;
+        EXPECT_NEAR(figure(cpu_csv, variant, "grass-ghosting", false), shimmer, 1e-6 * shimmer) << variant;
+    }
+
+    // Exposures from the command line: the CPU's HDR-FLIP at those.
+    const fs::path given = t.dir / "given";
+    auto g = t.kdop("taa --sequence " + hdr.string() + common +
+                    " --tone-mapper hable --start-exposure -3 --stop-exposure 1 --exposures 3 --write-frames --out " +
+                    given.string());
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+    double sum = 0;
+    for (int f = 3; f < 8; ++f) {
+        auto color = read_image((hdr / "color" / fmt::format("{:04}.exr", f)).string());
+        auto output =
+            read_image((given / "frames" / "grass-ghosting" / "aabb-clip-n9" / fmt::format("{:04}.exr", f)).string());
+        ASSERT_TRUE(color && output);
+        auto maps = flip.maps(*color, *output, {ToneMapper::hable, -3.0f, 1.0f, 3});
+        ASSERT_TRUE(maps) << maps.error().message;
+        sum += maps->mean;
+    }
+    const double ghosting = figure(test::read_file(given / "taa.csv"), "aabb-clip-n9", "grass-ghosting", true);
+    EXPECT_NEAR(ghosting, sum / 5, 1e-6 * ghosting);
+    EXPECT_NE(test::read_file(given / "report.md").find("hable tone mapper, 3 exposures from -3 to 1"),
+              std::string::npos);
+
+    // The same frames in a sequence that does not say it is HDR are refused, pointing at the key;
+    // a negative value in an HDR one is refused; HDR-FLIP's options without an HDR sequence are a
+    // wrong command line. Nothing is written.
+    replace_in_json(hdr, R"("range": "hdr")", R"("range": "ldr")");
+    auto ldr = t.kdop("taa --sequence " + hdr.string() + common + " --out " + (t.dir / "out").string());
+    EXPECT_EQ(ldr.exit_code, 1);
+    EXPECT_NE(ldr.err.find(R"(0000.exr (frame 0): color pixel ()"), std::string::npos) << ldr.err;
+    EXPECT_NE(ldr.err.find(R"(outside [0, 1]; this sequence is measured in LDR-FLIP)"), std::string::npos) << ldr.err;
+    EXPECT_NE(ldr.err.find(R"("color": {"range": "hdr"})"), std::string::npos) << ldr.err;
+    auto options =
+        t.kdop("taa --sequence " + hdr.string() + common + " --tone-mapper hable --out " + (t.dir / "out").string());
+    EXPECT_EQ(options.exit_code, 2);
+    EXPECT_NE(options.err.find("--tone-mapper: only HDR sequences"), std::string::npos) << options.err;
+    replace_in_json(hdr, R"("range": "ldr")", R"("range": "hdr")");
+    Image negative(48, 32, glm::vec4(0.5f, 0.5f, 0.5f, 1));
+    negative.at(9, 2).g = -0.5f;
+    ASSERT_TRUE(write_image((hdr / "color" / "0004.exr").string(), negative));
+    auto below = t.kdop("taa --sequence " + hdr.string() + common + " --out " + (t.dir / "out").string());
+    EXPECT_EQ(below.exit_code, 1);
+    EXPECT_NE(below.err.find("0004.exr (frame 4): color pixel (9, 2) has G -0.5; HDR-FLIP takes finite linear "
+                             "values from 0 up"),
+              std::string::npos)
+        << below.err;
+    EXPECT_FALSE(fs::exists(t.dir / "out"));
 }
 
 TEST(CliSequence, RefusesBadSequencesNamingTheFileAndWritesNothing) {
@@ -501,11 +615,6 @@ TEST(CliSequence, RefusesBadSequencesNamingTheFileAndWritesNothing) {
         fs::copy(good, copy, fs::copy_options::recursive);
         spoil(copy);
         return copy;
-    };
-    auto replace_in_json = [](const fs::path& dir, const std::string& from, const std::string& to) {
-        std::string json = test::read_file(dir / "sequence.json");
-        json.replace(json.find(from), from.size(), to);
-        test::write_file(dir / "sequence.json", json);
     };
     const struct {
         fs::path sequence;

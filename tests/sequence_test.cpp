@@ -127,6 +127,28 @@ TEST(Sequence, ReadsTheDepthConvention) {
     }
 }
 
+// "color": {"range": ...} says what the frames are measured in; reading a frame checks no range.
+TEST(Sequence, ReadsTheColorRange) {
+    SequenceDir s;
+    s.json("{}", {s.frame(0)});
+    auto plain = read_sequence(s.dir.path());
+    ASSERT_TRUE(plain) << plain.error().message;
+    EXPECT_EQ(plain->color_range, ColorRange::ldr) << "ldr by default";
+    auto frame = load_frame(*plain, 0);
+    ASSERT_TRUE(frame) << frame.error().message;
+    EXPECT_EQ(frame->color.at(0, 0).b, 2.0f) << "reading does not clamp";
+    s.json(R"({}, "color": {"range": "hdr"})", {s.frame(0)});
+    auto hdr = read_sequence(s.dir.path());
+    ASSERT_TRUE(hdr) << hdr.error().message;
+    EXPECT_EQ(hdr->color_range, ColorRange::hdr);
+    for (const char* bad : {R"({"range": "high"})", R"({"ranges": "hdr"})", R"("hdr")"}) {
+        s.json(std::string(R"({}, "color": )") + bad, {s.frame(0)});
+        auto refused = read_sequence(s.dir.path());
+        ASSERT_FALSE(refused) << bad;
+        EXPECT_NE(refused.error().message.find("sequence.json: color"), std::string::npos) << refused.error().message;
+    }
+}
+
 TEST(Sequence, BadInputIsRefusedNamingTheFileAndTheReason) {
     struct Case {
         std::string what, expected;

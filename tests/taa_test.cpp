@@ -205,7 +205,7 @@ TEST_F(TaaGpu, TheSameSequenceGivesTheSameFrames) {
 TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     constexpr std::uint32_t w = 64, h = 36;
     const Image background = make_texture(TextureFamily::grass, w, h, 4);
-    const LdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
     auto current_only = build_taa_shader("#define KDOP_NEIGHBORS 9\n"
                                          "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 n[9])\n"
                                          "{\n    return current;\n}\n",
@@ -231,7 +231,7 @@ TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
 TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
     constexpr std::uint32_t w = 96, h = 54;
     const Image background = make_texture(TextureFamily::grass, w, h, 1);
-    const LdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
     const TaaSchedule schedule{40, 12};
     double ghosting[2];
     int i = 0;
@@ -253,12 +253,10 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     constexpr std::uint32_t w = 64, h = 36;
     const Image background = make_texture(TextureFamily::grass, w, h, 2);
     const double ppd = pixels_per_degree(ViewingConditions{});
-    const LdrFlip flip(ppd);
+    const HdrFlip flip(ppd);
     auto device = DeviceFlip::create(test::gpu(), ppd, w, h);
     ASSERT_TRUE(device) << device.error().message;
-    const FlipMean on_device = [&](const Image& reference, const Image& test) {
-        return (*device)->mean(reference, test);
-    };
+    const FlipMean on_device = device_flip_mean(**device);
     auto shader = taa_shader("dop16-grass", Mode::clip);
     ASSERT_TRUE(shader);
     const TaaSchedule schedule{8, 5};
@@ -294,8 +292,9 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     auto r = t.kdop("--sets aabb dop22 --modes clip --scenes grass asphalt --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = test::read_file(out / "taa.csv");
-    EXPECT_EQ(csv.substr(0, csv.find('\n')),
-              "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,ghosting,ghosting_against");
+    EXPECT_EQ(
+        csv.substr(0, csv.find('\n')),
+        "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,ghosting,ghosting_against,flip");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << "2 variants x 2 scenes:\n" << csv;
     EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,"), std::string::npos) << csv;
     for (const char* scene : {"grass", "asphalt"}) {
