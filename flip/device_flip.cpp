@@ -25,15 +25,17 @@ constexpr std::uint32_t kLocalSize = 64;                         // the template
 constexpr VkFormat kPlaneFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the template's rgba32f images
 
 // Pixels each invocation of the filter passes computes along the filter's direction (the
-// template's FLIP_RUN; `pass` is its FLIP_PASS: 1 horizontal, 2 vertical). On a CPU device
-// (lavapipe) the neighbors' loads are then shared within an invocation, in registers: at 480x270
-// one pixel per invocation took 5.5x the CPU time of runs of 16 (planes in buffers). Runs of 8
-// for the horizontal pass and 24 for the vertical one measured best, by 5 to 10%, about the noise
-// of this machine; longer runs compile slower and gain nothing. A GPU has the loads cached and
+// template's FLIP_RUN; `pass` is its FLIP_PASS: 0 horizontal, 1 vertical). On a CPU device
+// (lavapipe) the neighbors' fetches (and, horizontally, their color transforms) are then shared
+// within an invocation, in registers: at 480x270 one pixel per invocation took 5.5x the CPU time
+// of runs of 16 (planes in buffers). Callgrind, per pixel of a 480x272 LDR evaluation: horizontal
+// runs of 4, 6, 8, 10, 12 and 16 cost 1042, 1164, 909, 971, 1032 and 1152 instructions (LLVM's
+// register allocation, not the fetches, decides), vertical runs of 16, 24 and 32 cost 899, 909
+// and 905; the wall times order alike. Longer runs compile slower. A GPU has the loads cached and
 // lanes to spare.
 std::uint32_t run_length(const Context& context, int pass) {
     if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return 1;
-    return pass == 1 ? 8u : pass == 2 ? 24u : 1u;
+    return pass == 0 ? 8u : pass == 1 ? 24u : 1u;
 }
 
 std::uint32_t ceil_div(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
@@ -42,8 +44,10 @@ std::uint32_t ceil_div(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / 
 struct Parameters {
     std::uint32_t width, height;
     float exposure_scale, exposure_where;
-    std::uint32_t tone_mapper, write_terms;
+    std::uint32_t tone_mapper, maps;
 };
+// Parameters::maps, the template's kMap* bits.
+constexpr std::uint32_t kMapFirstExposure = 1, kMapExposure = 2, kMapTerms = 4;
 
 // A float as a GLSL literal that reads back as the same float (nine significant digits), always
 // with a point or an exponent so GLSL takes it as a float.
@@ -108,7 +112,7 @@ std::string constants(const LdrFlip& cpu, int pass, std::uint32_t run) {
 }
 
 Result<std::unique_ptr<RunnableVariant>> build_pass(const LdrFlip& cpu, int pass, std::uint32_t run) {
-    static constexpr const char* kNames[] = {"flip-prepare", "flip-horizontal", "flip-vertical", "flip-row-sums"};
+    static constexpr const char* kNames[] = {"flip-horizontal", "flip-vertical", "flip-row-sums"};
     auto source = find_embedded_file(kTemplate);
     if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
     BuiltVariant built;
@@ -140,14 +144,14 @@ void compute_barrier(VkCommandBuffer cb, VkAccessFlags src_access, VkPipelineSta
     vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
-// Per pixel: both images' inputs, color planes and filtered planes (two vec4 each), the four maps.
-constexpr std::uint64_t kInputBytes = 2 * 16, kPreparedBytes = 2 * 16, kHorizontalBytes = 2 * 32, kMapBytes = 4 * 4;
+// Per pixel: both images' inputs (a vec4 each) and filtered planes (two vec4 each), the four maps.
+constexpr std::uint64_t kInputBytes = 2 * 16, kHorizontalBytes = 2 * 32, kMapBytes = 4 * 4;
 
 } // namespace
 
 std::uint64_t DeviceFlip::bytes(std::uint32_t width, std::uint32_t height) {
     const std::uint64_t n = std::uint64_t(width) * height;
-    return n * (kInputBytes + kPreparedBytes + kHorizontalBytes + kMapBytes) + 4ull * height;
+    return n * (kInputBytes + kHorizontalBytes + kMapBytes) + 4ull * height;
 }
 
 Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, double pixels_per_degree,
@@ -155,11 +159,15 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) return std::unexpected(ok.error());
     if (width == 0 || height == 0) return fail(fmt::format("FLIP of an empty {}x{} image", width, height));
     const auto& limits = context.properties().limits;
-    // The largest grid is the prepare pass's: a row of workgroups per image row.
+    // The largest grid is the vertical pass's on a GPU (runs of 1): a row of workgroups per image row.
     if (ceil_div(width, kLocalSize) > limits.maxComputeWorkGroupCount[0] || height > limits.maxComputeWorkGroupCount[1])
         return fail(fmt::format("FLIP of {}x{}: {} dispatches at most {}x{} workgroups of {} pixels", width, height,
                                 context.device_name(), limits.maxComputeWorkGroupCount[0],
                                 limits.maxComputeWorkGroupCount[1], kLocalSize));
+    if (2ull * width * height > limits.maxTexelBufferElements)
+        return fail(fmt::format("FLIP of {}x{}: the pair is {} texels, and {} takes at most {} in a texel buffer",
+                                width, height, 2ull * width * height, context.device_name(),
+                                limits.maxTexelBufferElements));
     std::unique_ptr<DeviceFlip> f(new DeviceFlip(context, pixels_per_degree, width, height));
     f->runs_ = {run_length(context, kHorizontal), run_length(context, kVertical)};
     const LdrFlip cpu(pixels_per_degree); // the kernels and constants, as the CPU code computes them
@@ -182,8 +190,8 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
         Memory memory;
         const char* what;
     } allocations[] = {
-        {&f->inputs_, n * kInputBytes, storage, Memory::host, "FLIP's inputs"},
-        {&f->maps_, n * kMapBytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host, "FLIP's maps"},
+        {&f->inputs_, n * kInputBytes, VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT, Memory::host, "FLIP's inputs"},
+        {&f->maps_, n * kMapBytes, storage, Memory::host, "FLIP's maps"},
         {&f->row_sums_, 4ull * height, storage, Memory::host, "FLIP's row sums"},
     };
     for (const Allocation& a : allocations) {
@@ -191,31 +199,33 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
         if (!buffer) return std::unexpected(buffer.error());
         *a.buffer = std::move(*buffer);
     }
-    for (auto [image, layers, what] : {std::tuple{&f->prepared_, 2u, "FLIP's color planes"},
-                                       std::tuple{&f->horizontal_, 4u, "FLIP's filtered planes"}}) {
-        auto created =
-            DeviceImage::create(context, width, height, layers, kPlaneFormat, VK_IMAGE_USAGE_STORAGE_BIT, what);
-        if (!created) return std::unexpected(created.error());
-        *image = std::move(*created);
-    }
+    VkBufferViewCreateInfo view{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    view.buffer = f->inputs_.buffer();
+    view.format = kPlaneFormat;
+    view.range = n * kInputBytes;
+    KDOP_VK_TRY(vkCreateBufferView(context.device(), &view, nullptr, &f->inputs_view_));
+    auto horizontal = DeviceImage::create(context, width, height, 4, kPlaneFormat, VK_IMAGE_USAGE_STORAGE_BIT,
+                                          "FLIP's filtered planes");
+    if (!horizontal) return std::unexpected(horizontal.error());
+    f->horizontal_ = std::move(*horizontal);
     auto commands = OneShotCommands::create(context);
     if (!commands) return std::unexpected(commands.error());
     f->commands_ = std::move(*commands);
 
-    // One set per pass, written once: each reads binding 0 and writes binding 1, a buffer or an image.
+    // One set per pass, written once: each reads binding 0 and writes binding 1, a buffer, an image
+    // or (the inputs) a texel buffer.
     VkDevice device = context.device();
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4}};
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 1}};
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool.maxSets = kPasses;
-    pool.poolSizeCount = 2;
+    pool.poolSizeCount = 3;
     pool.pPoolSizes = sizes;
     KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &f->descriptor_pool_));
-    using Binding = std::variant<const DeviceBuffer*, const DeviceImage*>;
-    const Binding bindings[kPasses][2] = {{&f->inputs_, &f->prepared_},
-                                          {&f->prepared_, &f->horizontal_},
-                                          {&f->horizontal_, &f->maps_},
-                                          {&f->maps_, &f->row_sums_}};
+    using Binding = std::variant<const DeviceBuffer*, const DeviceImage*, const VkBufferView*>;
+    const Binding bindings[kPasses][2] = {
+        {&f->inputs_view_, &f->horizontal_}, {&f->horizontal_, &f->maps_}, {&f->maps_, &f->row_sums_}};
     for (int pass = 0; pass < kPasses; ++pass) {
         const Kernel& kernel = *f->kernels_[std::size_t(pass)];
         if (kernel.bindings().size() != 2)
@@ -239,6 +249,9 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
                 buffer_infos[b] = {(*buffer)->buffer(), 0, VK_WHOLE_SIZE};
                 writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
                 writes[b].pBufferInfo = &buffer_infos[b];
+            } else if (auto* texels = std::get_if<const VkBufferView*>(&bindings[pass][b])) {
+                writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+                writes[b].pTexelBufferView = *texels;
             } else {
                 image_infos[b] = {VK_NULL_HANDLE, std::get<const DeviceImage*>(bindings[pass][b])->view(),
                                   VK_IMAGE_LAYOUT_GENERAL};
@@ -257,6 +270,7 @@ DeviceFlip::DeviceFlip(const Context& context, double ppd, std::uint32_t width, 
 DeviceFlip::~DeviceFlip() {
     vkDeviceWaitIdle(context_.device());
     vkDestroyDescriptorPool(context_.device(), descriptor_pool_, nullptr);
+    vkDestroyBufferView(context_.device(), inputs_view_, nullptr);
 }
 
 Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
@@ -287,12 +301,8 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
     const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     auto ran = commands_->run([&](VkCommandBuffer cb) {
         // The planes are written before they are read in every evaluation: what they held is dropped.
-        for (const DeviceImage* plane : {&prepared_, &horizontal_})
-            image_barrier(cb, plane->image(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, shader_rw,
-                          VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, compute, plane->layers());
-        // The error and exposure maps start at 0: every exposure keeps the larger error.
-        vkCmdFillBuffer(cb, maps_.buffer(), 0, VkDeviceSize(n) * 2 * 4, 0);
-        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, shader_rw, compute);
+        image_barrier(cb, horizontal_.image(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, shader_rw,
+                      VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, compute, horizontal_.layers());
         auto dispatch = [&](int pass, const Parameters& p, std::uint32_t x, std::uint32_t y, std::uint32_t z) {
             const Kernel& k = *kernels_[std::size_t(pass)];
             vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
@@ -303,9 +313,13 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
             vkCmdDispatch(cb, x, y, z);
             compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, shader_rw, compute);
         };
-        for (const Exposure& e : exposures) {
-            const Parameters p{width_, height_, e.scale, e.where, mapper, read_back == ReadBack::terms ? 1u : 0u};
-            dispatch(kPrepare, p, groups_x, height_, 2);
+        // The maps the vertical pass writes: what is read back, and, from the second exposure on,
+        // the error only where it grows.
+        const std::uint32_t maps = (read_back == ReadBack::error_and_exposure ? kMapExposure : 0u) |
+                                   (read_back == ReadBack::terms ? kMapTerms : 0u);
+        for (std::size_t i = 0; i < exposures.size(); ++i) {
+            const Exposure& e = exposures[i];
+            const Parameters p{width_, height_, e.scale, e.where, mapper, maps | (i == 0 ? kMapFirstExposure : 0u)};
             dispatch(kHorizontal, p, ceil_div(ceil_div(width_, runs_[0]), kLocalSize), height_, 2);
             dispatch(kVertical, p, groups_x, ceil_div(height_, runs_[1]), 1);
         }

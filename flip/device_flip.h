@@ -1,11 +1,11 @@
 // LDR-FLIP and HDR-FLIP on the device: the arithmetic of flip.h and hdr_flip.h, in the same order,
-// as four Vulkan compute passes (shader_templates/flip.comp.in) on any device, lavapipe included.
+// as three Vulkan compute passes (shader_templates/flip.comp.in) on any device, lavapipe included.
 // The CPU classes stay the reference this one is tested against (tests/device_flip_test.cpp):
 // per-pixel maps within 1e-5, means within 1e-6 relative.
 //
 // Per evaluation both images are uploaded once; everything after runs on the device in one
-// submission: per exposure (one for LDR-FLIP) the color transform, the horizontal and the vertical
-// filters and the error, kept as each pixel's largest over the exposures; then each row's sum,
+// submission: per exposure (one for LDR-FLIP) the color transform with the horizontal filters, the
+// vertical filters and the error, kept as each pixel's largest over the exposures; then each row's sum,
 // compensated in float. What comes back is one float per row (the mean, summed in double), and the
 // maps only when asked for. The kernels are made once per ppd, the buffers once per size.
 //
@@ -37,8 +37,8 @@ class RunnableVariant;
 class DeviceFlip {
 public:
     // Compiles the passes for `pixels_per_degree` (check_pixels_per_degree's range) and allocates
-    // the buffers and images of a width x height pair (about 150 bytes a pixel, checked against the
-    // device's buffer, image and dispatch limits, each named in the error).
+    // the buffers and images of a width x height pair (112 bytes a pixel, checked against the
+    // device's buffer, texel buffer, image and dispatch limits, each named in the error).
     static Result<std::unique_ptr<DeviceFlip>> create(const Context& context, double pixels_per_degree,
                                                       std::uint32_t width, std::uint32_t height);
     ~DeviceFlip();
@@ -83,7 +83,7 @@ private:
     const Context& context_;
     double ppd_;
     std::uint32_t width_, height_;
-    enum { kPrepare, kHorizontal, kVertical, kRowSums, kPasses };
+    enum { kHorizontal, kVertical, kRowSums, kPasses }; // the template's FLIP_PASS values
     std::array<std::unique_ptr<RunnableVariant>, kPasses> shaders_;
     std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
     std::array<VkDescriptorSet, kPasses> sets_{};
@@ -91,7 +91,8 @@ private:
     // Pixels per invocation of the horizontal and the vertical pass (run_length in the .cpp).
     std::array<std::uint32_t, 2> runs_{1, 1};
     DeviceBuffer inputs_, maps_, row_sums_;
-    DeviceImage prepared_, horizontal_;
+    VkBufferView inputs_view_ = VK_NULL_HANDLE; // the inputs as the texel buffer the passes fetch from
+    DeviceImage horizontal_;
     std::unique_ptr<OneShotCommands> commands_;
 };
 

@@ -135,22 +135,26 @@ Table taa_table(const std::vector<TaaRow>& rows) {
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run, const TaaReportSettings& s) {
     std::string md = "# kdop taa: ghosting and shimmer over TAA sequences\n\n";
-    md += fmt::format(
-        "Each variant rectifies the history of one TAA resolve on the device ({}x{} frames; {}), as in Ikkala et "
-        "al. 2024, Sec. 4, in LDR-FLIP at {:.1f} pixels per degree (computed {}). kdop's own scenes are measured on "
-        "two "
-        "sequences each, as the paper does:\n\n"
-        "- **shimmer**: jitter on (R2, 10 entries), no animation; after {} frames, the mean FLIP between "
-        "successive frames over {} frames;\n"
-        "- **ghosting**: jitter off, animation on; after {} frames, the mean FLIP against the aliased frame of "
-        "the same instant over {} frames;\n"
-        "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the "
-        "resolve's reprojection and blend), with its quartiles Q1 and Q3 over the interleaved rounds; a variant "
-        "whose median is within the larger interquartile range of its own and the fastest variant's is *within "
-        "noise* of the fastest: that difference is not to be believed.\n\n",
-        s.width, s.height, describe(s.resolve), s.pixels_per_degree,
-        s.flip_on_device ? "on the device, kdop's flip/device_flip.h" : "on the CPU, kdop's flip/flip.h", s.warmup,
-        s.frames, s.warmup, s.frames);
+    md += fmt::format("Each variant rectifies the history of one TAA resolve on the device ({}x{} frames; {}), as in "
+                      "Ikkala et al. 2024, Sec. 4, in LDR-FLIP at {:.1f} pixels per degree (computed {}).",
+                      s.width, s.height, describe(s.resolve), s.pixels_per_degree,
+                      s.flip_on_device ? "on the device, kdop's flip/device_flip.h" : "on the CPU, kdop's flip/flip.h");
+    // kdop's own scenes are the rows whose scene is not a sequence's.
+    const bool own_scenes = std::any_of(rows.begin(), rows.end(), [&](const TaaRow& r) {
+        return std::find(s.sequences.begin(), s.sequences.end(), r.scene) == s.sequences.end();
+    });
+    if (own_scenes)
+        md += fmt::format(" kdop's own scenes are measured on two sequences each, as the paper does:\n\n"
+                          "- **shimmer**: jitter on (R2, 10 entries), no animation; after {} frames, the mean FLIP "
+                          "between successive frames over {} frames;\n"
+                          "- **ghosting**: jitter off, animation on; after {} frames, the mean FLIP against the "
+                          "aliased frame of the same instant over {} frames;\n",
+                          s.warmup, s.frames, s.warmup, s.frames);
+    md += own_scenes ? "" : "\n\n";
+    md += "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the "
+          "resolve's reprojection and blend), with its quartiles Q1 and Q3 over the interleaved rounds; a variant "
+          "whose median is within the larger interquartile range of its own and the fastest variant's is *within "
+          "noise* of the fastest: that difference is not to be believed.\n\n";
     if (std::any_of(rows.begin(), rows.end(), [](const TaaRow& r) { return r.range == ColorRange::hdr; }))
         md += fmt::format("HDR sequences (flip = HDR-FLIP in the tables) are measured in HDR-FLIP instead, as "
                           "NVlabs/flip computes it: with the {} tone mapper, {}, each pair's error the largest "

@@ -16,19 +16,25 @@ How to run it (Blender 3.4 or later, no .blend file, nothing downloaded):
 
     blender --background --factory-startup \
         --python examples/blender/render_sequence.py -- \
-        --out DIR [--frames N] [--size WxH] [--samples S] [--seed K]
+        --out DIR [--frames N] [--size WxH] [--samples S] [--seed K] [--hdr]
 
     kdop taa --sequence DIR --out RESULTS
 
 Defaults: 48 frames, 160x90, 16 samples, seed 1.
 
+With --hdr the frames are HDR, as a renderer's are before tone mapping: the sun
+is 4x stronger (the lit ground reaches about 2), the car has two emissive
+headlights (about 40), the color is not clamped, and sequence.json says
+"color": {"range": "hdr"}, so kdop taa measures it in HDR-FLIP.
+
 What it writes under DIR, frames numbered from 0000:
 
-    color/NNNN.exr   the Combined pass, linear RGB, 32-bit float. The
-                     compositor clamps it to [0, 1] (a Mix node with Clamp on)
-                     because kdop measures LDR-FLIP and refuses values outside
-                     that range. It is a safeguard: with this lighting the
-                     default render peaks near 0.8 and nothing is clamped.
+    color/NNNN.exr   the Combined pass, linear RGB, 32-bit float. Without
+                     --hdr the compositor clamps it to [0, 1] (a Mix node
+                     with Clamp on), the range of an "ldr" sequence, which
+                     kdop measures in LDR-FLIP. It is a safeguard: with this
+                     lighting the default render peaks near 0.8 and nothing
+                     is clamped.
     motion/NNNN.exr  the Vector pass, for every frame but the first. Cycles
                      writes it only with motion blur off. R, G: X, Y, the
                      offset to where the surface was in the previous frame;
@@ -39,7 +45,8 @@ What it writes under DIR, frames numbered from 0000:
                      nearer, kdop's default.
     sequence.json    format version 1, with the motion settings README's
                      Blender row gives: "units": "pixels",
-                     "points_to": "previous", "y_axis": "up".
+                     "points_to": "previous", "y_axis": "up"; and the color
+                     range, "ldr" or (--hdr) "hdr".
 
 Blender writes motion/0000.exr too (motion toward a frame before the first);
 the script deletes it so that the folder holds only the files sequence.json
@@ -62,6 +69,8 @@ CAR_END = (5.5, 2.0, 0.55)      # on the last: right, away, up in the image
 CAR_SIZE = (2.0, 1.0, 0.7)
 WHEEL_RADIUS = 0.3
 SUN_STRENGTH = 3.5
+HDR_SUN_STRENGTH = 14.0  # --hdr: the lit ground reaches about 2
+HEADLIGHT_STRENGTH = 40.0  # --hdr: emission of the car's two headlights
 WORLD_STRENGTH = 0.15
 PASSES = ("color", "motion", "depth")
 
@@ -84,6 +93,10 @@ def parse_args(argv):
                         help="Cycles samples per pixel (default 16)")
     parser.add_argument("--seed", type=int, default=1,
                         help="Cycles seed (default 1)")
+    parser.add_argument("--hdr", action="store_true",
+                        help="HDR frames: a stronger sun, emissive "
+                             "headlights, no clamp (default: clamped to "
+                             "[0, 1])")
     args = parser.parse_args(argv)
     try:
         width, height = (int(v) for v in args.size.lower().split("x"))
@@ -216,8 +229,23 @@ def make_ground():
     return ground
 
 
-def make_car():
-    """The saturated red box with four near-black wheels parented to it."""
+def emissive_material(name, color, strength):
+    """A light-emitting surface (the --hdr headlights)."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = (*color, 1.0)
+    emission.inputs["Strength"].default_value = strength
+    mat.node_tree.links.new(emission.outputs["Emission"],
+                            nodes["Material Output"].inputs["Surface"])
+    return mat
+
+
+def make_car(headlights):
+    """The saturated red box with four near-black wheels parented to it and,
+    with `headlights`, two emissive boxes on its front."""
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=CAR_START)
     car = bpy.context.active_object
     car.name = "Car"
@@ -237,6 +265,16 @@ def make_car():
             wheel.data.materials.append(tire)
             wheel.parent = car
             wheel.location = (dx, dy, wheel_z)  # in the car's space
+    if headlights:
+        light = emissive_material("Headlight", (1.0, 0.95, 0.8),
+                                  HEADLIGHT_STRENGTH)
+        for dy in (-0.3, 0.3):
+            bpy.ops.mesh.primitive_cube_add(size=0.18)
+            lamp = bpy.context.active_object
+            lamp.name = "Headlight"
+            lamp.data.materials.append(light)
+            lamp.parent = car
+            lamp.location = (CAR_SIZE[0] * 0.5 + 0.05, dy, 0.1)
     return car
 
 
@@ -266,10 +304,10 @@ def make_camera(scene):
     return camera
 
 
-def make_sun(scene):
+def make_sun(scene, strength):
     """A sun from the side and above, for shading and shadows."""
     sun_data = bpy.data.lights.new("Sun", type="SUN")
-    sun_data.energy = SUN_STRENGTH
+    sun_data.energy = strength
     sun_data.angle = math.radians(2.0)
     sun = bpy.data.objects.new("Sun", sun_data)
     scene.collection.objects.link(sun)
@@ -293,11 +331,11 @@ def file_output(tree, out_dir, kind, color_mode):
     return node
 
 
-def build_compositor(scene, out_dir):
+def build_compositor(scene, out_dir, hdr):
     """Render Layers -> clamp -> color/, Vector -> motion/, Depth -> depth/.
 
     The clamp (a Mix node with Clamp on, mixing nothing in) keeps the color in
-    [0, 1] for kdop's LDR-FLIP."""
+    [0, 1], an "ldr" sequence's range; with `hdr` it mixes without clamping."""
     scene.use_nodes = True
     tree = scene.node_tree
     for node in list(tree.nodes):
@@ -306,7 +344,7 @@ def build_compositor(scene, out_dir):
 
     clamp = tree.nodes.new("CompositorNodeMixRGB")
     clamp.blend_type = "MIX"
-    clamp.use_clamp = True
+    clamp.use_clamp = not hdr
     clamp.inputs["Fac"].default_value = 0.0
     tree.links.new(layers.outputs["Image"], clamp.inputs[1])
 
@@ -371,6 +409,7 @@ def write_sequence_json(out_dir, args):
         "kdop_sequence": 1,
         "width": args.width,
         "height": args.height,
+        "color": {"range": "hdr" if args.hdr else "ldr"},
         "motion": {"units": "pixels", "points_to": "previous",
                    "y_axis": "up"},
         "frames": frames,
@@ -389,10 +428,10 @@ def main():
     configure_render(scene, args)
     make_world(scene)
     make_ground()
-    animate_car(make_car(), args.frames - 1)
+    animate_car(make_car(args.hdr), args.frames - 1)
     make_camera(scene)
-    make_sun(scene)
-    build_compositor(scene, args.out)
+    make_sun(scene, HDR_SUN_STRENGTH if args.hdr else SUN_STRENGTH)
+    build_compositor(scene, args.out, args.hdr)
 
     start = time.monotonic()
     render_frames(scene, args.out, args.frames)
@@ -400,7 +439,8 @@ def main():
     drop_first_motion(args.out)
     write_sequence_json(args.out, args)
     print(f"render_sequence.py: {args.frames} frames, {args.width}x"
-          f"{args.height}, {args.samples} samples, in {seconds:.1f} s: "
+          f"{args.height}, {args.samples} samples"
+          f"{', HDR' if args.hdr else ''}, in {seconds:.1f} s: "
           f"{args.out}/sequence.json")
 
 
