@@ -23,8 +23,8 @@ How to run it (Blender 3.4 or later, no .blend file, nothing downloaded):
 Defaults: 48 frames, 160x90, 16 samples, seed 1.
 
 With --hdr the frames are HDR, as a renderer's are before tone mapping: the sun
-is 4x stronger (the lit ground reaches about 2), the car has two emissive
-headlights (about 40), the color is not clamped, and sequence.json says
+is 4x stronger (the ground's luminance is about 0.6 to 1), the car has two
+emissive headlights (up to 38), the color is not clamped, and sequence.json says
 "color": {"range": "hdr"}, so kdop taa measures it in HDR-FLIP.
 
 What it writes under DIR, frames numbered from 0000:
@@ -69,7 +69,7 @@ CAR_END = (5.5, 2.0, 0.55)      # on the last: right, away, up in the image
 CAR_SIZE = (2.0, 1.0, 0.7)
 WHEEL_RADIUS = 0.3
 SUN_STRENGTH = 3.5
-HDR_SUN_STRENGTH = 14.0  # --hdr: the lit ground reaches about 2
+HDR_SUN_STRENGTH = 14.0  # --hdr: the ground's luminance about 0.6 to 1
 HEADLIGHT_STRENGTH = 40.0  # --hdr: emission of the car's two headlights
 WORLD_STRENGTH = 0.15
 PASSES = ("color", "motion", "depth")
