@@ -1,6 +1,5 @@
 #include "test_textures.h"
 
-#include "image_io.h"
 #include "random.h"
 
 #include <glm/common.hpp>
@@ -8,7 +7,6 @@
 #include <glm/vec3.hpp>
 
 #include <cmath>
-#include <filesystem>
 
 namespace kdop {
 namespace {
@@ -205,45 +203,6 @@ Image make_history(const Image& current, HistoryModel model, const Image& other)
     case HistoryModel::other_texture: history = other; break;
     }
     return history;
-}
-
-std::vector<RealTexture> installed_real_textures() {
-    const RealTexture candidates[] = {
-        {"colobot-grass", "/usr/share/games/colobot/textures/green01.png"},
-        {"colobot-dirt", "/usr/share/games/colobot/textures/dirty01.png"},
-        {"colobot-rock", "/usr/share/games/colobot/textures/mars005.png"},
-    };
-    std::vector<RealTexture> found;
-    for (const RealTexture& t : candidates)
-        if (std::filesystem::exists(t.path)) found.push_back(t);
-    return found;
-}
-
-Image load_real_texture(const RealTexture& texture, std::uint32_t w, std::uint32_t h) {
-    auto source = read_image(texture.path); // decoded from sRGB, as the file says
-    if (!source) return {};
-    Image image(w, h);
-    for (std::uint32_t y = 0; y < h; ++y)
-        for (std::uint32_t x = 0; x < w; ++x)
-            image.at(x, y) = glm::vec4(glm::vec3(source->at(x % source->width, y % source->height)), 1.0f);
-    return image;
-}
-
-std::vector<TestCase> make_test_cases(std::uint32_t w, std::uint32_t h, std::uint64_t seed, bool real) {
-    std::vector<std::pair<std::string, Image>> textures;
-    for (TextureFamily f : kFamilies) textures.emplace_back(to_string(f), make_texture(f, w, h, seed));
-    if (real)
-        for (const RealTexture& t : installed_real_textures()) {
-            Image image = load_real_texture(t, w, h);
-            if (!image.pixels.empty()) textures.emplace_back(t.name, std::move(image));
-        }
-    std::vector<TestCase> cases;
-    for (std::size_t i = 0; i < textures.size(); ++i) {
-        const Image& other = textures[(i + 1) % textures.size()].second;
-        for (HistoryModel m : kModels)
-            cases.push_back({textures[i].first, m, textures[i].second, make_history(textures[i].second, m, other)});
-    }
-    return cases;
 }
 
 } // namespace kdop

@@ -1,6 +1,7 @@
 // Neighborhood test content: seeded synthetic texture families, real game textures when Debian's
 // colobot-common-textures is installed, and history images that model ghosting. The same seed
-// and size give the same pixels on every machine (see random.h).
+// and size give the same pixels on every machine (see random.h). The synthetic content is in
+// kdop_image_content; what reads files (the real textures, make_test_cases) in kdop_images.
 #pragma once
 
 #include "image.h"

@@ -88,6 +88,39 @@ TEST(TaaScene, ABackgroundOutsideTheUnitRangeIsRefused) {
 
 // A time is within noise of the fastest where the difference is no more than the larger of the two
 // interquartile ranges.
+// A resolve's output goes to FLIP only within its range: float rounding beyond it (1e-4, scaled by
+// the pixel's largest channel for HDR) is moved onto the range, anything further is an error
+// naming the pixel, whatever the range.
+TEST(TaaMeasure, AnOutputIsCheckedAgainstItsRange) {
+    auto one = [](glm::vec4 pixel, ColorRange range) {
+        Image image(3, 2, glm::vec4(0.5f, 0.5f, 0.5f, 1));
+        image.at(2, 1) = pixel;
+        return within_range(image, range, "frame 7");
+    };
+    auto kept = one({1.00005f, -0.00005f, 0.3f, 1}, ColorRange::ldr);
+    ASSERT_TRUE(kept) << kept.error().message;
+    EXPECT_EQ(kept->at(2, 1), glm::vec4(1, 0, 0.3f, 1));
+    auto bright = one({5000, -0.4f, 20, 1}, ColorRange::hdr);
+    ASSERT_TRUE(bright) << bright.error().message;
+    EXPECT_EQ(bright->at(2, 1), glm::vec4(5000, 0, 20, 1)) << "-0.4 is rounding beside 5000";
+    const struct {
+        glm::vec4 pixel;
+        ColorRange range;
+        const char* message;
+    } refused[] = {
+        {{1.5f, 0, 0, 1}, ColorRange::ldr, "frame 7: pixel (2, 1) has R 1.5, outside [0, 1] by more than rounding"},
+        {{0, -0.01f, 0, 1}, ColorRange::ldr, "pixel (2, 1) has G -0.01, outside [0, 1]"},
+        {{0.5f, 0, -0.01f, 1}, ColorRange::hdr, "frame 7: pixel (2, 1) has B -0.01, outside [0, inf)"},
+        {{INFINITY, 0, 0, 1}, ColorRange::hdr, "pixel (2, 1) has R inf, outside [0, inf)"},
+        {{0, NAN, 0, 1}, ColorRange::hdr, "pixel (2, 1) has G nan"},
+    };
+    for (const auto& r : refused) {
+        auto checked = one(r.pixel, r.range);
+        ASSERT_FALSE(checked) << r.message;
+        EXPECT_NE(checked.error().message.find(r.message), std::string::npos) << checked.error().message;
+    }
+}
+
 TEST(TaaReport, MarksTimesWithinNoiseOfTheFastest) {
     auto row = [](double ms, double q1, double q3) {
         TaaRow r;
