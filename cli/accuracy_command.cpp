@@ -80,6 +80,7 @@ Action add_accuracy_command(CLI::App& app) {
         if (!outputs) return report_error(outputs.error().message);
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
+        warn_fitted_space(*specs, ColorMap{}, "kdop accuracy (on linear values)");
         auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
         std::map<VariantKey, LavapipeCost> costs;

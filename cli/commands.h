@@ -2,11 +2,15 @@
 // action to run when that subcommand was chosen; the action returns the process exit code.
 #pragma once
 
+#include "color_map.h"
 #include "context.h"
+#include "variant_spec.h"
 
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <span>
+#include <string_view>
 
 namespace kdop::cli {
 
@@ -34,5 +38,9 @@ int usage_error(const std::string& message);
 
 // Prints what the validation layer reported on `context` (nothing when it was off) to stderr.
 void report_validation_messages(const Context& context);
+
+// Warns on stderr, once per set, about every set of `specs` fitted in another space than `used`,
+// the one `clipping` clips in (generator/axis_set.h, fitted_space_mismatch).
+void warn_fitted_space(std::span<const VariantSpec> specs, const ColorMap& used, std::string_view clipping);
 
 } // namespace kdop::cli

@@ -6,6 +6,7 @@
 #include "analytic_cost.h"
 #include "axis_fit.h"
 #include "builtin_sets.h"
+#include "color_map_option.h"
 #include "command_line.h"
 #include "cpu_clip.h"
 #include "fitted_set.h"
@@ -49,6 +50,7 @@ struct Options {
     bool lavapipe_cost = false;
     std::size_t accuracy_samples = 8192;
     InputSpace input_space = InputSpace::from_file;
+    ColorMap color_map; // the space the images' colors are fitted in
 };
 
 // A set next to the fitted one in the output: its objective on the same content and, on images,
@@ -76,6 +78,8 @@ std::vector<Compared> compared_sets(const Options& o, const Neighborhoods* neigh
 Result<std::size_t> measure_distances(const Options& o, Neighborhood shape, std::vector<Compared>& sets) {
     auto pairs = image_pairs(o.images, o.input_space);
     if (!pairs) return std::unexpected(pairs.error());
+    for (AccuracyPair& pair : *pairs)
+        for (Image* image : {&pair.current, &pair.history}) map_colors(o.color_map, image->pixels);
     std::vector<std::vector<glm::dvec3>> axes;
     for (const Compared& set : sets) axes.push_back(set.axes);
     Progress progress(fmt::format("distance to the ideal clip on up to {} sampled pixels of", o.accuracy_samples),
@@ -113,7 +117,7 @@ int run(const Options& o) {
     if (auto ok = check_output_directory(std::filesystem::path(o.out).parent_path()); !ok)
         return report_error(ok.error().message);
 
-    // Every neighborhood of every image, in linear values as decoded (--input-space).
+    // Every neighborhood of every image, as decoded (--input-space), in the clip's space (--color-map).
     const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
     Neighborhoods neighborhoods;
     if (!o.sphere) {
@@ -136,6 +140,7 @@ int run(const Options& o) {
                                                 "there is nothing to fit to; give images with the scene's detail",
                                                 path, image->pixels[0].r, image->pixels[0].g, image->pixels[0].b));
             pixels += std::uint64_t(image->width) * image->height;
+            map_colors(o.color_map, image->pixels);
             images.push_back(std::move(*image));
         }
         if (auto ok = check_memory("the neighborhoods", pixels * neighborhood_offsets(shape).size() * 24); !ok)
@@ -148,10 +153,12 @@ int run(const Options& o) {
         fit.deadline =
             std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                    std::chrono::duration<double>(o.time_limit));
+    const std::string in_space =
+        o.color_map.kind == ColorMap::Kind::linear ? "" : fmt::format(", in {} space", to_string(o.color_map));
     const std::string objective =
         o.sphere ? "volume of the k-DOP around the unit sphere"
-                 : fmt::format("mean k-DOP volume over all {} {} neighborhoods of {}", neighborhoods.count(),
-                               o.neighborhood == "n9" ? "3x3" : "plus-shaped", fmt::join(o.images, ", "));
+                 : fmt::format("mean k-DOP volume over all {} {} neighborhoods of {}{}", neighborhoods.count(),
+                               o.neighborhood == "n9" ? "3x3" : "plus-shaped", fmt::join(o.images, ", "), in_space);
     auto fit_axes = [&](std::size_t axes) {
         fit.axes = axes;
         std::unique_ptr<Progress> progress;
@@ -243,8 +250,8 @@ int run(const Options& o) {
         if (!pixels) return report_error(pixels.error().message);
         distance_measure = fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) "
                                        "over {} sampled pixels: up to {} of each image under each of its 3 ghosting "
-                                       "histories, seed {}",
-                                       *pixels, o.accuracy_samples, o.seed);
+                                       "histories, seed {}{}",
+                                       *pixels, o.accuracy_samples, o.seed, in_space);
     }
     // A built-in set of no more axes that lands closer to the ideal clip than the fit: a tighter
     // volume is not always a nearer clip (an 8-axis fit to colobot's desert5 has a 2.2x smaller
@@ -276,7 +283,9 @@ int run(const Options& o) {
     FittedSetText text{
         name,
         fmt::format("fitted by kdop {} optimize (seed {}): {} = {:.6g}", KDOP_VERSION, o.seed, objective, result.score),
-        {}};
+        {},
+        // An image fit is a fit in one space; a sphere fit, to no colors, is for any.
+        o.sphere ? std::nullopt : std::optional(o.color_map)};
     text.comments.push_back(fmt::format("Fitted by `kdop optimize` {}: {} axes{}, seed {}, {} starts x {} steps{}.",
                                         KDOP_VERSION, result.axes.size(), o.force_rgb ? " (R, G, B forced)" : "",
                                         o.seed, o.starts ? fmt::format("{}", o.starts) : "default",
@@ -328,6 +337,10 @@ Action add_optimize_command(CLI::App& app) {
     auto* sphere = cmd->add_flag("--sphere", o->sphere, "Fit around the unit sphere instead: a scene-independent set");
     images->excludes(sphere);
     add_input_space_option(*cmd, o->input_space)->excludes(sphere);
+    add_color_map_option(*cmd, o->color_map,
+                         "The space to fit in, that of the resolve the set is for (kdop taa --color-map): linear, "
+                         "gamma:G or log; the file records it as color_map: [default: linear]")
+        ->excludes(sphere);
     cmd->add_option("--axes", o->axes, "Axes to fit (k = 2 x axes); with --target, the most to try")
         ->required()
         ->check(CLI::Range(3, 32));

@@ -3,6 +3,7 @@
 #include "command_line.h"
 
 #include <iostream>
+#include <set>
 
 namespace kdop::cli {
 
@@ -18,6 +19,14 @@ int usage_error(const std::string& message) {
 
 void report_validation_messages(const Context& context) {
     for (const std::string& message : context.validation_messages()) std::cerr << "validation: " << message << "\n";
+}
+
+void warn_fitted_space(std::span<const VariantSpec> specs, const ColorMap& used, std::string_view clipping) {
+    std::set<std::string> warned;
+    for (const VariantSpec& spec : specs)
+        if (auto warning = fitted_space_mismatch(spec.set, used, clipping);
+            warning && warned.insert(spec.set.name).second)
+            std::cerr << "warning: " << *warning << "\n";
 }
 
 } // namespace kdop::cli

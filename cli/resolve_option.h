@@ -2,6 +2,7 @@
 // frames: --history-filter, --color-map, --dilate-motion, --current-weight, --gamma.
 #pragma once
 
+#include "color_map_option.h"
 #include "number_option.h"
 #include "resolve_options.h"
 
@@ -20,27 +21,17 @@ inline void add_resolve_options(CLI::App& app, ResolveOptions& options) {
             return {};
         },
         "bilinear|catmull-rom");
-    const CLI::Validator map(
-        [&options](std::string& text) -> std::string {
-            auto parsed = parse_color_map(text);
-            if (!parsed) return parsed.error().message;
-            options.color_map = *parsed;
-            return {};
-        },
-        "linear|gamma:G|log");
-    // The validators parse and store the value; the options' own functions have nothing left to do.
+    // The validator parses and stores the value; the option's own function has nothing left to do.
     auto stored = [](const std::string&) {};
     app.add_option_function<std::string>(
            "--history-filter", stored,
            "How the history is sampled at the reprojected position: bilinear, or catmull-rom (the 4x4 "
            "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]")
         ->check(filter);
-    app.add_option_function<std::string>(
-           "--color-map", stored,
-           "The space the clip and the blend work in: linear, gamma:G (values raised to G, as the paper's "
-           "own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which damps "
-           "bright outliers) [default: linear]")
-        ->check(map);
+    add_color_map_option(app, options.color_map,
+                         "The space the clip and the blend work in: linear, gamma:G (values raised to G, as the "
+                         "paper's own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which "
+                         "damps bright outliers) [default: linear]");
     app.add_flag("--dilate-motion", options.dilate_motion,
                  "Take the motion of the nearest of the 3x3 neighbors by depth, so edges follow the nearer surface "
                  "(needs depth on every frame)");

@@ -158,6 +158,7 @@ Action add_taa_command(CLI::App& app) {
         if (o->selection.manifest.empty() && o->selection.neighborhoods.empty()) o->selection.neighborhoods = {"n9"};
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
+        warn_fitted_space(*specs, o->resolve.color_map, "this run (--color-map)");
         // A scene given twice would only give the same rows twice.
         for (std::size_t i = 0; i < o->scenes.size(); ++i)
             if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)

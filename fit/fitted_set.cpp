@@ -8,6 +8,7 @@ Result<std::string> fitted_set_file(const FittedSetText& text, std::span<const g
     std::string out;
     for (const std::string& line : text.comments) out += line.empty() ? "#\n" : "# " + line + "\n";
     out += fmt::format("name: {}\nprovenance: {}\n", text.name, text.provenance);
+    if (text.color_map) out += fmt::format("color_map: {}\n", to_string(*text.color_map));
     // Nine decimals: the fitted directions to about 1e-9 rad, far below what moves the volume.
     for (const glm::dvec3& a : axes) out += fmt::format("vec3({:.9f}, {:.9f}, {:.9f}),\n", a.x, a.y, a.z);
     if (auto parsed = parse_axis_set(out, text.name + ".axes"); !parsed)

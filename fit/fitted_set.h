@@ -4,10 +4,12 @@
 #pragma once
 
 #include "axis_set.h"
+#include "color_map.h"
 #include "result.h"
 
 #include <glm/vec3.hpp>
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +20,7 @@ struct FittedSetText {
     std::string name;                  // a valid set name
     std::string provenance;            // one line
     std::vector<std::string> comments; // lines of the comment block, without '#'
+    std::optional<ColorMap> color_map; // the space it was fitted in, written as `color_map:` when given
 };
 
 // The file's text, checked by parsing it back: an axis the parser would refuse (two fitted axes

@@ -154,10 +154,17 @@ bool spans_3d(const std::vector<Axis>& axes) {
 
 } // namespace
 
+std::optional<std::string> fitted_space_mismatch(const AxisSet& set, const ColorMap& used, std::string_view clipping) {
+    if (!set.color_map || *set.color_map == used) return std::nullopt;
+    return fmt::format("set '{}' was fitted in {} space (color_map: in {}), and {} clips in {} space: it is not the "
+                       "fit this clip needs; fit it again with kdop optimize --color-map {}",
+                       set.name, to_string(*set.color_map), set.origin, clipping, to_string(used), to_string(used));
+}
+
 Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
     AxisSet set;
     set.origin = std::string(origin);
-    int name_line = 0, provenance_line = 0;
+    int name_line = 0, provenance_line = 0, color_map_line = 0;
     int line_number = 0;
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3); // a UTF-8 byte-order mark some editors write
     while (!text.empty()) {
@@ -179,8 +186,13 @@ Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
         if (is_key) {
             std::string_view key = line.substr(0, colon);
             std::string_view value = trim(line.substr(colon + 1));
-            int* seen = key == "name" ? &name_line : key == "provenance" ? &provenance_line : nullptr;
-            if (!seen) return fail(fmt::format("{}unknown key '{}' (expected 'name:' or 'provenance:')", where, key));
+            int* seen = key == "name"         ? &name_line
+                        : key == "provenance" ? &provenance_line
+                        : key == "color_map"  ? &color_map_line
+                                              : nullptr;
+            if (!seen)
+                return fail(
+                    fmt::format("{}unknown key '{}' (expected 'name:', 'provenance:' or 'color_map:')", where, key));
             if (*seen) return fail(fmt::format("{}second '{}:' line (the first is on line {})", where, key, *seen));
             if (value.empty()) return fail(fmt::format("{}'{}:' has no value", where, key));
             *seen = line_number;
@@ -191,6 +203,10 @@ Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
                                     "starting with a letter, with single '-' between words (at most 48 characters)",
                                     where, quoted(value)));
                 set.name = std::string(value);
+            } else if (key == "color_map") {
+                auto map = parse_color_map(value);
+                if (!map) return fail(fmt::format("{}color_map: {}", where, map.error().message));
+                set.color_map = *map;
             } else {
                 set.provenance = std::string(value);
             }

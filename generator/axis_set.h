@@ -4,6 +4,7 @@
 //   # comment (anywhere; '#' to end of line)
 //   name: dop22                      lowercase letters, digits and single '-' between them
 //   provenance: where the numbers come from
+//   color_map: log                   optional: the space the set was fitted in (color_map.h)
 //   vec3(1, 0, 0),                   one axis per line: three numbers separated by spaces or
 //   0.5, 0, -0.5                     commas, optionally wrapped in vec3(...) and followed by ','
 //
@@ -12,11 +13,13 @@
 // one (both give the same slab), and sets whose axes do not span 3-D (the k-DOP would be unbounded).
 #pragma once
 
+#include "color_map.h"
 #include "result.h"
 #include "variant_key.h" // is_valid_set_name
 
 #include <glm/vec3.hpp>
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +35,9 @@ struct AxisSet {
     std::string name;       // set name used in variant names, e.g. "dop16-grass"
     std::string provenance; // where the numbers come from
     std::string origin;     // file the set was read from, as shown in messages and generated code
+    // The space the set was fitted in (kdop optimize --color-map), where its file says; a clip in
+    // another space is not the one it was fitted for. The built-in sets say nothing.
+    std::optional<ColorMap> color_map;
     std::vector<Axis> axes;
 };
 
@@ -45,5 +51,10 @@ glm::dvec3 unit_direction(const glm::dvec3& direction);
 
 // Parses and validates the text of an axis-set file; `origin` names it in error messages.
 Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin);
+
+// Where `set` was fitted in another space than the one `used` by a clip (`clipping`, e.g.
+// "this run (--color-map)"), the warning to print; nothing where it was, or where the set does
+// not say (the built-in sets).
+std::optional<std::string> fitted_space_mismatch(const AxisSet& set, const ColorMap& used, std::string_view clipping);
 
 } // namespace kdop

@@ -5,6 +5,7 @@
 // the shader tests an option.
 #pragma once
 
+#include "color_map.h"
 #include "result.h"
 
 #include <string>
@@ -14,16 +15,9 @@ namespace kdop {
 
 enum class HistoryFilter { bilinear, catmull_rom };
 
-// The space the clip and the blend happen in: linear values, c^exponent, or log(c + 1e-5).
-struct ColorMap {
-    enum class Kind { linear, power, log };
-    Kind kind = Kind::linear;
-    float exponent = 1; // Kind::power only: > 0
-};
-
 struct ResolveOptions {
     HistoryFilter history_filter = HistoryFilter::bilinear;
-    ColorMap color_map;
+    ColorMap color_map;               // the space the clip and the blend happen in (color_map.h)
     bool dilate_motion = false;       // the motion of the nearest 3x3 neighbor, by depth
     bool depth_nearer_larger = false; // the sequence's depth convention (reversed Z), for dilate_motion
     // The current frame's share of the blend. The introduction to TAA in shared/reference gives 0.05
@@ -35,10 +29,7 @@ struct ResolveOptions {
 
 // "bilinear" or "catmull-rom".
 Result<HistoryFilter> parse_history_filter(std::string_view text);
-// "linear", "gamma:G" (G finite and > 0; the clip works on c^G, as Tauray's map_color) or "log".
-Result<ColorMap> parse_color_map(std::string_view text);
 std::string to_string(HistoryFilter filter);
-std::string to_string(const ColorMap& map);
 
 // What the options say, for a report: "bilinear history, linear colors, w = 0.1".
 std::string describe(const ResolveOptions& options);

@@ -17,9 +17,10 @@ std::string option_defines(const ResolveOptions& o) {
     const int map = o.color_map.kind == ColorMap::Kind::power ? 1 : o.color_map.kind == ColorMap::Kind::log ? 2 : 0;
     // The exponent with every digit a float has, so the shader's constant is the option's value.
     return fmt::format("#define KDOP_HISTORY_FILTER {}\n#define KDOP_COLOR_MAP {}\n#define KDOP_MAP_EXPONENT {:.9g}\n"
-                       "#define KDOP_DILATE_MOTION {}\n#define KDOP_DEPTH_NEARER_LARGER {}\n",
+                       "#define KDOP_MAP_LOG_OFFSET {:.9g}\n#define KDOP_DILATE_MOTION {}\n"
+                       "#define KDOP_DEPTH_NEARER_LARGER {}\n",
                        o.history_filter == HistoryFilter::catmull_rom ? 1 : 0, map, o.color_map.exponent,
-                       o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0);
+                       kColorMapLogOffset, o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0);
 }
 
 } // namespace

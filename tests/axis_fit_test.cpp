@@ -2,6 +2,7 @@
 // sets, the result depends on the seed alone, a fitted set beats the paper's scene sets on its
 // scene, and the command round-trips through gen, run and accuracy and refuses bad input.
 #include "axis_fit.h"
+#include "color_map.h"
 #include "cpu_clip.h"
 #include "image_io.h"
 #include "test_support.h"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
+#include <glm/exponential.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -108,6 +110,27 @@ TEST(AxisFit, AFittedEightAxisSetBeatsBothPaper16DopsOnItsImage) {
     const FitResult fitted = fit_to_neighborhoods(n, options);
     for (const char* paper : {"dop16-grass", "dop16-asphalt"})
         EXPECT_LT(fitted.score, mean_volume(unit_axes(*resolve_axis_set(paper)), n)) << paper;
+}
+
+// A resolve that clips in log space wants a set fitted there (--color-map log): on the real grass
+// texture, the log fit's mean volume in log space is smaller than that of the linear fit measured
+// in log space.
+TEST(AxisFit, AFitInTheClipsColorSpaceIsTighterThere) {
+    const Image linear = grass(32);
+    Image logarithmic = linear;
+    const ColorMap log_map{ColorMap::Kind::log, 1};
+    map_colors(log_map, logarithmic.pixels);
+    EXPECT_EQ(glm::vec3(logarithmic.at(5, 7)), glm::log(glm::vec3(linear.at(5, 7)) + kColorMapLogOffset));
+    const Neighborhoods in_linear = gather_neighborhoods({&linear, 1}, Neighborhood::n9);
+    const Neighborhoods in_log = gather_neighborhoods({&logarithmic, 1}, Neighborhood::n9);
+    FitOptions options;
+    options.axes = 5;
+    options.iterations = 20;
+    const FitResult fit_linear = fit_to_neighborhoods(in_linear, options);
+    const FitResult fit_log = fit_to_neighborhoods(in_log, options);
+    const double linear_fit_in_log = mean_volume(fit_linear.axes, in_log);
+    EXPECT_LT(fit_log.score, linear_fit_in_log);
+    EXPECT_DOUBLE_EQ(fit_log.score, mean_volume(fit_log.axes, in_log));
 }
 
 struct OptimizeInputs {
@@ -209,6 +232,50 @@ TEST(CliOptimize, SaysWhenABuiltInSetOfNoMoreAxesLandsCloser) {
     }
 }
 
+// --color-map: the fit in the clip's space, recorded in the file; kdop taa warns when a set is used
+// in another space than it was fitted in, and kdop accuracy (linear values) when it was not linear.
+TEST(CliOptimize, RecordsTheColorMapAndTaaWarnsOfAnotherOne) {
+    OptimizeInputs in;
+    const std::string set = (in.dir / "logfit.axes").string();
+    auto fit =
+        in.kdop("optimize --images " + in.image + " --axes 4 --starts 1 --iterations 3 --color-map log --out " + set);
+    ASSERT_EQ(fit.exit_code, 0) << fit.err;
+    const std::string text = test::read_file(set);
+    EXPECT_NE(text.find("\ncolor_map: log\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("neighborhoods of " + in.image + ", in log space = "), std::string::npos) << text;
+    auto parsed = parse_axis_set(text, set);
+    ASSERT_TRUE(parsed) << parsed.error().message;
+    EXPECT_EQ(*parsed->color_map, (ColorMap{ColorMap::Kind::log, 1}));
+
+    const std::string warning = "warning: set 'logfit' was fitted in log space";
+    const std::string taa = "taa --sets " + set +
+                            " --modes clip --scenes grass --size 32x18 --warmup 2 --frames 1 "
+                            "--timing-rounds 1 --no-charts --out ";
+    auto linear = in.kdop(taa + (in.dir / "linear").string());
+    ASSERT_EQ(linear.exit_code, 0) << linear.err;
+    EXPECT_NE(linear.err.find(warning + " (color_map: in " + set +
+                              "), and this run (--color-map) clips in linear "
+                              "space"),
+              std::string::npos)
+        << linear.err;
+    EXPECT_EQ(linear.err.find(warning), linear.err.rfind(warning)) << "once per set";
+    auto matching = in.kdop(taa + (in.dir / "log").string() + " --color-map log");
+    ASSERT_EQ(matching.exit_code, 0) << matching.err;
+    EXPECT_EQ(matching.err.find("warning"), std::string::npos) << matching.err;
+    auto accuracy =
+        in.kdop("accuracy --sets " + set + " --modes clip --neighborhoods n9 --current " + in.image + " --history " +
+                in.image + " --volume-samples 16 --no-charts --out " + (in.dir / "accuracy").string());
+    ASSERT_EQ(accuracy.exit_code, 0) << accuracy.err;
+    EXPECT_NE(accuracy.err.find(warning), std::string::npos) << accuracy.err;
+    EXPECT_NE(accuracy.err.find("and kdop accuracy (on linear values) clips in linear space"), std::string::npos)
+        << accuracy.err;
+    auto sphere =
+        in.kdop("optimize --sphere --axes 4 --starts 2 --iterations 2 --out " + (in.dir / "sphere.axes").string());
+    ASSERT_EQ(sphere.exit_code, 0) << sphere.err;
+    EXPECT_EQ(test::read_file(in.dir / "sphere.axes").find("color_map"), std::string::npos)
+        << "a sphere fit is for any space";
+}
+
 // --target: the smallest axis count whose fitted set reaches the score, with the table of those tried.
 TEST(CliOptimize, TargetKeepsTheFewestAxesThatReachIt) {
     OptimizeInputs in;
@@ -287,6 +354,8 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--images " + in.image + " --axes 5 --max-nonzero 9 --target 1" + out, "excludes", 2},
         {"--sphere --axes 4 --lavapipe-cost" + out, "--lavapipe-cost: counts the rows of --target's or", 2},
         {"--sphere --axes 4 --accuracy-samples 10" + out, "excludes", 2},
+        {"--sphere --axes 4 --color-map log" + out, "excludes", 2},
+        {"--images " + in.image + " --axes 4 --color-map srgb" + out, "'srgb' is not a color map", 2},
     };
     for (const Case& c : cases) {
         auto r = in.kdop("optimize " + c.args);

@@ -113,9 +113,27 @@ TEST(AxisSet, RefusesMissingOrBadHeaderLines) {
     EXPECT_EQ(error_of("name: a\n1 0 0\n0 1 0\n0 0 1\n"),
               "t.axes: missing 'provenance:' line (say where the numbers come from)");
     EXPECT_EQ(error_of("name: a\nname: b\n"), "t.axes:2: second 'name:' line (the first is on line 1)");
-    EXPECT_EQ(error_of("nmae: a\n"), "t.axes:1: unknown key 'nmae' (expected 'name:' or 'provenance:')");
+    EXPECT_EQ(error_of("nmae: a\n"), "t.axes:1: unknown key 'nmae' (expected 'name:', 'provenance:' or 'color_map:')");
     EXPECT_EQ(error_of("name:\n"), "t.axes:1: 'name:' has no value");
     EXPECT_NE(error_of("name: My_Set\n").find("t.axes:1: set name 'My_Set' is not valid"), std::string::npos);
+}
+
+// `color_map:` records the space a fitted set was fitted in; a set without it says nothing.
+TEST(AxisSet, ReadsTheColorMapItWasFittedIn) {
+    const std::string axes = "1 0 0\n0 1 0\n0 0 1\n";
+    auto plain = parse_axis_set(std::string(kHeader) + axes, "t.axes");
+    ASSERT_TRUE(plain) << plain.error().message;
+    EXPECT_FALSE(plain->color_map);
+    auto log = parse_axis_set(std::string(kHeader) + "color_map: log\n" + axes, "t.axes");
+    ASSERT_TRUE(log) << log.error().message;
+    EXPECT_EQ(*log->color_map, (ColorMap{ColorMap::Kind::log, 1}));
+    auto gamma = parse_axis_set(std::string(kHeader) + "color_map: gamma:0.5\n" + axes, "t.axes");
+    ASSERT_TRUE(gamma) << gamma.error().message;
+    EXPECT_EQ(*gamma->color_map, (ColorMap{ColorMap::Kind::power, 0.5f}));
+    EXPECT_EQ(error_of(std::string(kHeader) + "color_map: srgb\n" + axes),
+              "t.axes:3: color_map: 'srgb' is not a color map; use linear, gamma:G (G > 0) or log");
+    EXPECT_EQ(error_of(std::string(kHeader) + "color_map: log\ncolor_map: log\n" + axes),
+              "t.axes:4: second 'color_map:' line (the first is on line 3)");
 }
 
 // What the adversarial run found: each is now accepted as meant or refused with a message that

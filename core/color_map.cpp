@@ -1,0 +1,54 @@
+#include "color_map.h"
+
+#include "shown_text.h"
+
+#include <fmt/format.h>
+
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
+#include <cmath>
+#include <cstdlib>
+
+namespace kdop {
+
+Result<ColorMap> parse_color_map(std::string_view text) {
+    if (text == "linear") return ColorMap{};
+    if (text == "log") return ColorMap{ColorMap::Kind::log, 1};
+    constexpr std::string_view prefix = "gamma:";
+    if (text.starts_with(prefix)) {
+        const std::string number(text.substr(prefix.size()));
+        char* end = nullptr;
+        const double g = number.empty() ? NAN : std::strtod(number.c_str(), &end);
+        if (end && *end == '\0' && std::isfinite(g) && g > 0 && g <= 100)
+            return ColorMap{ColorMap::Kind::power, float(g)};
+        return fail(fmt::format("'{}': the exponent of gamma:G must be a number above 0 and at most 100",
+                                shown_text(text, 40)));
+    }
+    return fail(fmt::format("'{}' is not a color map; use linear, gamma:G (G > 0) or log", shown_text(text, 40)));
+}
+
+std::string to_string(const ColorMap& map) {
+    switch (map.kind) {
+    case ColorMap::Kind::power: return fmt::format("gamma:{}", map.exponent);
+    case ColorMap::Kind::log: return "log";
+    case ColorMap::Kind::linear: break;
+    }
+    return "linear";
+}
+
+glm::vec3 map_color(const ColorMap& map, glm::vec3 c) {
+    switch (map.kind) {
+    case ColorMap::Kind::power: return glm::pow(glm::max(c, 0.0f), glm::vec3(map.exponent));
+    case ColorMap::Kind::log: return glm::log(glm::max(c, 0.0f) + kColorMapLogOffset);
+    case ColorMap::Kind::linear: break;
+    }
+    return c;
+}
+
+void map_colors(const ColorMap& map, std::span<glm::vec4> pixels) {
+    if (map.kind == ColorMap::Kind::linear) return;
+    for (glm::vec4& p : pixels) p = glm::vec4(map_color(map, glm::vec3(p)), p.a);
+}
+
+} // namespace kdop
