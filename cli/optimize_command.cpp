@@ -50,7 +50,8 @@ struct Options {
     bool lavapipe_cost = false;
     std::size_t accuracy_samples = 8192;
     InputSpace input_space = InputSpace::from_file;
-    ColorMap color_map; // the space the images' colors are fitted in
+    ColorMap color_map;                // the space the images' colors are fitted in
+    std::optional<std::size_t> sample; // fit on this many sampled neighborhoods, then score on all
 };
 
 // A set next to the fitted one in the output: its objective on the same content and, on images,
@@ -119,7 +120,7 @@ int run(const Options& o) {
 
     // Every neighborhood of every image, as decoded (--input-space), in the clip's space (--color-map).
     const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
-    Neighborhoods neighborhoods;
+    Neighborhoods neighborhoods, sampled;
     if (!o.sphere) {
         // An image given twice would only weigh twice, and the distance's image pairs refuse it.
         if (auto ok = check_distinct_files(o.images, "--images"); !ok) return report_error(ok.error().message);
@@ -146,7 +147,10 @@ int run(const Options& o) {
         if (auto ok = check_memory("the neighborhoods", pixels * neighborhood_offsets(shape).size() * 24); !ok)
             return report_error(ok.error().message);
         neighborhoods = gather_neighborhoods(images, shape);
+        if (o.sample) sampled = sample_neighborhoods(images, shape, *o.sample, o.seed);
     }
+    // What the search sees: the sample where one is asked for, else every neighborhood.
+    const Neighborhoods& fitted_to = o.sample ? sampled : neighborhoods;
 
     FitOptions fit{o.axes, o.force_rgb, o.seed, o.threads, o.starts, o.iterations, {}};
     if (o.time_limit > 0)
@@ -166,7 +170,7 @@ int run(const Options& o) {
             if (!progress) progress = std::make_unique<Progress>(fmt::format("fitting {} axes", axes), total);
             if (done <= total) progress->advance(fmt::format("best {:.6g}", best));
         };
-        return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(neighborhoods, fit, on_step);
+        return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(fitted_to, fit, on_step);
     };
 
     // What a set's hardened clip costs: float ops as the generator counts them (analytic_cost.h),
@@ -220,7 +224,7 @@ int run(const Options& o) {
     // With --max-nonzero, components pinned at 0 one by one, and the curve of score against them.
     if (o.max_nonzero) {
         std::unique_ptr<Progress> progress;
-        auto steps = fit_sparser(o.sphere ? nullptr : &neighborhoods, result, *o.max_nonzero, fit,
+        auto steps = fit_sparser(o.sphere ? nullptr : &fitted_to, result, *o.max_nonzero, fit,
                                  [&](std::size_t, std::size_t total, double best) {
                                      if (!progress) progress = std::make_unique<Progress>("pinning zeros", total);
                                      progress->advance(fmt::format("score {:.6g}", best));
@@ -240,6 +244,17 @@ int run(const Options& o) {
                                             *o.max_nonzero, steps.back().nonzero));
         result.axes = steps.back().axes;
         result.score = steps.back().score;
+    }
+    // A sampled fit is scored on every neighborhood too: what it is worth on the data, beside what
+    // the search saw. The comparison with the built-in sets is on every neighborhood.
+    const double sample_score = result.score;
+    std::string sample_line; // empty without --sample
+    if (o.sample) {
+        result.score = mean_volume(result.axes, neighborhoods, o.threads);
+        sample_line = fmt::format("fitted to {} of the {} neighborhoods, sampled by luminance (seed {}): {:.6g} on "
+                                  "the sample, {:.6g} on all ({:+.2f}%)",
+                                  sampled.count(), neighborhoods.count(), o.seed, sample_score, result.score,
+                                  100.0 * (result.score / sample_score - 1.0));
     }
     std::vector<Compared> sets = compared_sets(o, o.sphere ? nullptr : &neighborhoods, result);
     // Freed before the image pairs are read, so the peak stays within the memory checked above.
@@ -292,6 +307,7 @@ int run(const Options& o) {
                                         o.iterations ? fmt::format("{}", o.iterations) : "default",
                                         result.stopped_early ? ", stopped early by --time-limit" : ""));
     text.comments.push_back(fmt::format("Objective: {}.", objective));
+    if (o.sample) text.comments.push_back(fmt::format("Sampled: {}.", sample_line));
     if (o.target) text.comments.push_back(fmt::format("The fewest axes that reach --target {:.6g}:", *o.target));
     if (o.max_nonzero)
         text.comments.push_back(fmt::format("Components pinned at 0 one by one, to at most {}:", *o.max_nonzero));
@@ -306,6 +322,7 @@ int run(const Options& o) {
     if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
 
     std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), objective, result.score);
+    if (o.sample) std::cout << sample_line << "\n";
     if (!distance_measure.empty()) std::cout << fmt::format("{}: {:.6g}\n", distance_measure, sets[0].distance);
     std::cout << fmt::format("  {:<14} {:>23}{}\n", "set", "objective (x this set's)",
                              distance_measure.empty() ? "" : fmt::format("  {:>23}", "distance (x this set's)"));
@@ -373,6 +390,11 @@ Action add_optimize_command(CLI::App& app) {
                     "With --images: also report each set's mean distance to the ideal clip (as `kdop accuracy` "
                     "measures it, in the CPU reference) on this many seeded pixels of each image under each of its "
                     "3 ghosting histories; 0 skips it [default: 8192]")
+        ->excludes(sphere);
+    cmd->add_option("--sample", o->sample,
+                    "Fit to this many neighborhoods, seeded (--seed) and stratified by luminance within each image, "
+                    "then score the set on all of them too (with --target, the sample's score is compared)")
+        ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
         ->excludes(sphere);
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");

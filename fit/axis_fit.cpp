@@ -190,33 +190,98 @@ FitResult best_of(std::size_t starts, unsigned threads, Descend descend_from) {
 
 } // namespace
 
+namespace {
+
+// Neighborhoods made one pixel at a time: a repeat of an earlier one only counts.
+class NeighborhoodGatherer {
+public:
+    NeighborhoodGatherer(Neighborhood shape, std::size_t total) : offsets_(neighborhood_offsets(shape)) {
+        out_.size = offsets_.size();
+        out_.total = total;
+        // Room for every neighborhood, so the keys (views of the points' bytes) stay where they are.
+        out_.points.reserve(total * out_.size);
+        seen_.reserve(total);
+    }
+    void add(const Image& image, std::uint32_t x, std::uint32_t y) {
+        const std::size_t start = out_.points.size();
+        for (const glm::ivec2& o : offsets_)
+            out_.points.emplace_back(glm::dvec3(image.clamped(int(x) + o.x, int(y) + o.y)));
+        const std::string_view key(reinterpret_cast<const char*>(out_.points.data() + start),
+                                   out_.size * sizeof(glm::dvec3));
+        const auto [at, added] = seen_.try_emplace(key, static_cast<std::uint32_t>(out_.repeats.size()));
+        if (added) {
+            out_.repeats.push_back(1);
+        } else {
+            ++out_.repeats[at->second];
+            out_.points.resize(start);
+        }
+    }
+    Neighborhoods finish() {
+        seen_ = {};
+        out_.points.shrink_to_fit(); // the keys are no longer needed
+        return std::move(out_);
+    }
+
+private:
+    std::span<const glm::ivec2> offsets_;
+    Neighborhoods out_;
+    std::unordered_map<std::string_view, std::uint32_t> seen_; // a distinct neighborhood's bytes -> its index
+};
+
+} // namespace
+
 Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape) {
-    Neighborhoods out;
-    const auto offsets = neighborhood_offsets(shape);
-    out.size = offsets.size();
-    for (const Image& image : images) out.total += std::size_t(image.width) * image.height;
-    // Room for every neighborhood, so the keys (views of the points' bytes) stay where they are.
-    out.points.reserve(out.total * out.size);
-    std::unordered_map<std::string_view, std::uint32_t> seen; // a distinct neighborhood's bytes -> its index
-    seen.reserve(out.total);
-    const std::size_t bytes = out.size * sizeof(glm::dvec3);
+    std::size_t total = 0;
+    for (const Image& image : images) total += std::size_t(image.width) * image.height;
+    NeighborhoodGatherer gather(shape, total);
     for (const Image& image : images)
         for (std::uint32_t y = 0; y < image.height; ++y)
-            for (std::uint32_t x = 0; x < image.width; ++x) {
-                const std::size_t start = out.points.size();
-                for (const glm::ivec2& o : offsets)
-                    out.points.emplace_back(glm::dvec3(image.clamped(int(x) + o.x, int(y) + o.y)));
-                const std::string_view key(reinterpret_cast<const char*>(out.points.data() + start), bytes);
-                const auto [at, added] = seen.try_emplace(key, static_cast<std::uint32_t>(out.repeats.size()));
-                if (added) {
-                    out.repeats.push_back(1);
-                } else {
-                    ++out.repeats[at->second];
-                    out.points.resize(start);
-                }
-            }
-    out.points.shrink_to_fit(); // the keys are no longer needed
-    return out;
+            for (std::uint32_t x = 0; x < image.width; ++x) gather.add(image, x, y);
+    return gather.finish();
+}
+
+Neighborhoods sample_neighborhoods(std::span<const Image> images, Neighborhood shape, std::size_t count,
+                                   std::uint64_t seed) {
+    std::size_t total = 0;
+    for (const Image& image : images) total += std::size_t(image.width) * image.height;
+    count = std::min(count, total);
+    // Each image's share of `count`, by its pixel count, the remainders to the largest fractions
+    // (the earlier image on a tie), so the shares add up to `count` exactly.
+    std::vector<std::size_t> share(images.size());
+    std::vector<std::pair<double, std::size_t>> fractions;
+    std::size_t given = 0;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const double exact = double(count) * double(std::size_t(images[i].width) * images[i].height) / double(total);
+        share[i] = std::size_t(exact);
+        given += share[i];
+        fractions.emplace_back(-(exact - double(share[i])), i);
+    }
+    std::sort(fractions.begin(), fractions.end());
+    for (std::size_t k = 0; given < count; ++k, ++given) ++share[fractions[k].second];
+
+    NeighborhoodGatherer gather(shape, count);
+    Random random(seed);
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const Image& image = images[i];
+        if (share[i] == 0) continue;
+        // The pixels by luminance (then position, so ties are ordered), cut into share[i] strata of
+        // equal size; one pixel drawn from each.
+        std::vector<std::pair<float, std::uint32_t>> by_luminance(std::size_t(image.width) * image.height);
+        for (std::uint32_t p = 0; p < by_luminance.size(); ++p) {
+            const glm::vec4& c = image.pixels[p];
+            by_luminance[p] = {0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b, p};
+        }
+        std::sort(by_luminance.begin(), by_luminance.end());
+        const std::size_t pixels = by_luminance.size();
+        for (std::size_t k = 0; k < share[i]; ++k) {
+            const std::size_t first = k * pixels / share[i], end = (k + 1) * pixels / share[i];
+            const std::size_t pick =
+                first + std::min(end - first - 1, std::size_t(random.uniform() * double(end - first)));
+            const std::uint32_t p = by_luminance[pick].second;
+            gather.add(image, p % image.width, p / image.width);
+        }
+    }
+    return gather.finish();
 }
 
 double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads,

@@ -45,6 +45,13 @@ struct Neighborhoods {
 };
 Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape);
 
+// `count` of those neighborhoods (all of them where there are fewer), seeded and stratified: each
+// image gives its share by pixel count, and within an image the pixels, ordered by luminance, are
+// cut into that many strata of equal size, one pixel drawn from each. So dark and bright areas are
+// sampled as often as they occur, and the same seed draws the same pixels.
+Neighborhoods sample_neighborhoods(std::span<const Image> images, Neighborhood shape, std::size_t count,
+                                   std::uint64_t seed);
+
 struct FitOptions {
     std::size_t axes = 8;
     bool force_rgb = false; // the first three axes are R, G and B and stay so

@@ -133,6 +133,34 @@ TEST(AxisFit, AFitInTheClipsColorSpaceIsTighterThere) {
     EXPECT_DOUBLE_EQ(fit_log.score, mean_volume(fit_log.axes, in_log));
 }
 
+// A sample is seeded, exactly as large as asked, shared among the images by pixel count, and
+// stratified by luminance: on a ramp of 64 luminances, 4 draws take one from each quarter.
+TEST(AxisFit, SamplesAreSeededStratifiedByLuminanceAndSharedByPixelCount) {
+    Image ramp(8, 8);
+    for (std::uint32_t i = 0; i < 64; ++i) ramp.pixels[(i * 37) % 64] = glm::vec4(glm::vec3(float(i) / 64.0f), 1);
+    const Image image = grass(16);
+    const Image both[] = {ramp, image};
+    const Neighborhoods four = sample_neighborhoods({&ramp, 1}, Neighborhood::n9, 4, 3);
+    ASSERT_EQ(four.count(), 4u);
+    std::vector<int> quarters;
+    for (std::size_t i = 0; i < four.distinct(); ++i) quarters.push_back(int(four.at(i)[4].r * 64.0) / 16);
+    std::sort(quarters.begin(), quarters.end());
+    EXPECT_EQ(quarters, (std::vector<int>{0, 1, 2, 3})) << "one center from each quarter of the luminances";
+
+    const Neighborhoods a = sample_neighborhoods(both, Neighborhood::n9, 100, 7);
+    const Neighborhoods b = sample_neighborhoods(both, Neighborhood::n9, 100, 7);
+    const Neighborhoods c = sample_neighborhoods(both, Neighborhood::n9, 100, 8);
+    EXPECT_EQ(a.count(), 100u);
+    EXPECT_EQ(a.points, b.points) << "the same seed draws the same pixels";
+    EXPECT_NE(a.points, c.points);
+    // 64 of 320 pixels are the ramp's: 20 of 100 draws, each a gray neighborhood.
+    std::size_t gray = 0;
+    for (std::size_t i = 0; i < a.distinct(); ++i)
+        gray += a.at(i)[4].r == a.at(i)[4].g && a.at(i)[4].g == a.at(i)[4].b ? a.repeats[i] : 0;
+    EXPECT_EQ(gray, 20u);
+    EXPECT_EQ(sample_neighborhoods(both, Neighborhood::n9, 10000, 1).count(), 320u) << "at most every pixel";
+}
+
 struct OptimizeInputs {
     test::TempDir dir;
     std::string image = (dir / "grass.exr").string();
@@ -276,6 +304,32 @@ TEST(CliOptimize, RecordsTheColorMapAndTaaWarnsOfAnotherOne) {
         << "a sphere fit is for any space";
 }
 
+// --sample: the fit sees a sample, and its score on all the neighborhoods, printed and in the file,
+// is the full objective of the set written, computed here on its own.
+TEST(CliOptimize, ASampledFitIsScoredOnAllTheNeighborhoods) {
+    OptimizeInputs in;
+    const std::string set = (in.dir / "sampled.axes").string();
+    auto r = in.kdop("optimize --images " + in.image + " --axes 5 --sample 60 --starts 1 --iterations 5 --out " + set);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string text = test::read_file(set);
+    EXPECT_NE(text.find("# Sampled: fitted to 60 of the 256 neighborhoods, sampled by luminance (seed 1): "),
+              std::string::npos)
+        << text;
+    auto parsed = parse_axis_set(text, set);
+    ASSERT_TRUE(parsed) << parsed.error().message;
+    std::vector<glm::dvec3> axes;
+    for (const Axis& a : parsed->axes) axes.push_back(a.direction);
+    auto image = read_image(in.image);
+    ASSERT_TRUE(image);
+    const double full = mean_volume(axes, gather_neighborhoods({&*image, 1}, Neighborhood::n9));
+    const std::size_t at = r.out.find(" on the sample, ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const double printed = std::stod(r.out.substr(at + 16));
+    EXPECT_NEAR(printed, full, 1e-5 * full) << r.out;
+    const std::string provenance = text.substr(text.find("provenance:"));
+    EXPECT_NEAR(std::stod(provenance.substr(provenance.find(" = ") + 3)), full, 1e-5 * full) << provenance;
+}
+
 // --target: the smallest axis count whose fitted set reaches the score, with the table of those tried.
 TEST(CliOptimize, TargetKeepsTheFewestAxesThatReachIt) {
     OptimizeInputs in;
@@ -355,6 +409,8 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--sphere --axes 4 --lavapipe-cost" + out, "--lavapipe-cost: counts the rows of --target's or", 2},
         {"--sphere --axes 4 --accuracy-samples 10" + out, "excludes", 2},
         {"--sphere --axes 4 --color-map log" + out, "excludes", 2},
+        {"--images " + in.image + " --axes 4 --sample 0" + out, "--sample: Value 0 not in range", 2},
+        {"--sphere --axes 4 --sample 10" + out, "excludes", 2},
         {"--images " + in.image + " --axes 4 --color-map srgb" + out, "'srgb' is not a color map", 2},
     };
     for (const Case& c : cases) {
