@@ -12,13 +12,10 @@
 
 namespace kdop {
 
-Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> pairs,
-                                                 std::span<const std::vector<glm::dvec3>> sets, Neighborhood shape,
-                                                 std::size_t per_pair, std::uint64_t seed, Progress* progress) {
-    SampledDistances out;
-    std::vector<double> sums(sets.size(), 0.0);
+Result<std::vector<ClipSample>> ideal_clip_samples(std::span<const AccuracyPair> pairs, Neighborhood shape,
+                                                   std::size_t per_pair, std::uint64_t seed, Progress* progress) {
+    std::vector<ClipSample> samples;
     const std::vector<glm::ivec2> offsets = reference_offsets(shape);
-    std::vector<glm::dvec3> neighborhood(offsets.size());
     IdealClipper ideal;
     Random random(seed);
     for (const AccuracyPair& pair : pairs) {
@@ -29,23 +26,45 @@ Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> p
             std::swap(order[i], order[i + random.next() % (order.size() - i)]);
         for (std::size_t i = 0; i < count; ++i) {
             const std::uint32_t x = order[i] % pair.current.width, y = order[i] / pair.current.width;
-            gather_neighborhood(pair.current, x, y, offsets, neighborhood);
+            ClipSample s;
+            s.neighborhood.resize(offsets.size());
+            gather_neighborhood(pair.current, x, y, offsets, s.neighborhood);
             const glm::vec4& pixel = pair.current.pixels[order[i]];
-            const glm::dvec3 c(pixel), h(pair.history.pixels[order[i]]);
-            const std::optional<double> t = ideal.exit(neighborhood, c, h);
+            s.current = glm::dvec3(pixel);
+            s.history = glm::dvec3(pair.history.pixels[order[i]]);
+            const std::optional<double> t = ideal.exit(s.neighborhood, s.current, s.history);
             if (!t || !std::isfinite(*t))
                 return std::unexpected(
                     Error{fmt::format("{}: the ideal clip at pixel ({}, {}) has no solution", pair.name, x, y)});
-            const glm::dvec3 target = c + *t * (h - c);
-            const double s = pixel_magnitude(pixel);
-            for (std::size_t k = 0; k < sets.size(); ++k)
-                sums[k] += glm::distance(reference_clip(sets[k], neighborhood, c, h, Mode::clip, 1.0), target) / s;
+            s.ideal = s.current + *t * (s.history - s.current);
+            s.scale = pixel_magnitude(pixel);
+            samples.push_back(std::move(s));
         }
-        out.pixels += count;
         if (progress) progress->advance(pair.name);
     }
-    for (double sum : sums) out.mean.push_back(out.pixels ? sum / double(out.pixels) : NAN);
+    return samples;
+}
+
+SampledDistances sampled_ideal_distances(std::span<const ClipSample> samples,
+                                         std::span<const std::vector<glm::dvec3>> sets) {
+    SampledDistances out;
+    out.pixels = samples.size();
+    for (const std::vector<glm::dvec3>& axes : sets) {
+        double sum = 0;
+        for (const ClipSample& s : samples)
+            sum += glm::distance(reference_clip(axes, s.neighborhood, s.current, s.history, Mode::clip, 1.0), s.ideal) /
+                   s.scale;
+        out.mean.push_back(samples.empty() ? NAN : sum / double(samples.size()));
+    }
     return out;
+}
+
+Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> pairs,
+                                                 std::span<const std::vector<glm::dvec3>> sets, Neighborhood shape,
+                                                 std::size_t per_pair, std::uint64_t seed, Progress* progress) {
+    auto samples = ideal_clip_samples(pairs, shape, per_pair, seed, progress);
+    if (!samples) return std::unexpected(samples.error());
+    return sampled_ideal_distances(*samples, sets);
 }
 
 } // namespace kdop

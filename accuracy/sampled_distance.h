@@ -5,6 +5,7 @@
 #pragma once
 
 #include "accuracy_inputs.h"
+#include "axis_fit.h"
 #include "progress.h"
 #include "result.h"
 #include "variant_spec.h"
@@ -23,10 +24,19 @@ struct SampledDistances {
 };
 
 // Up to `per_pair` pixels of each pair, in a random order fixed by `seed` (every pixel where the
-// pair has fewer). Each set is given by its unit axes. `progress` advances once per pair.
+// pair has fewer), each with where the ideal clip stops its history. `progress` advances once per
+// pair. An ideal clip without a solution is an error naming the pair and the pixel.
+Result<std::vector<ClipSample>> ideal_clip_samples(std::span<const AccuracyPair> pairs, Neighborhood shape,
+                                                   std::size_t per_pair, std::uint64_t seed,
+                                                   Progress* progress = nullptr);
+
+// The mean distance of each set's clip (the CPU reference's, hardened) to the ideal clip on those
+// samples. Each set is given by its unit axes.
 Result<SampledDistances> sampled_ideal_distances(std::span<const AccuracyPair> pairs,
                                                  std::span<const std::vector<glm::dvec3>> sets, Neighborhood shape,
                                                  std::size_t per_pair, std::uint64_t seed,
                                                  Progress* progress = nullptr);
+SampledDistances sampled_ideal_distances(std::span<const ClipSample> samples,
+                                         std::span<const std::vector<glm::dvec3>> sets);
 
 } // namespace kdop

@@ -52,6 +52,7 @@ struct Options {
     InputSpace input_space = InputSpace::from_file;
     ColorMap color_map;                // the space the images' colors are fitted in
     std::optional<std::size_t> sample; // fit on this many sampled neighborhoods, then score on all
+    std::string objective = "volume";  // or "distance": then refined on the distance to the ideal clip
 };
 
 // A set next to the fitted one in the output: its objective on the same content and, on images,
@@ -74,26 +75,25 @@ std::vector<Compared> compared_sets(const Options& o, const Neighborhoods* neigh
     return sets;
 }
 
-// `kdop accuracy`'s measure on a sample: each set's mean distance to the ideal clip, over
-// --accuracy-samples pixels of each image under each of its ghosting histories.
-Result<std::size_t> measure_distances(const Options& o, Neighborhood shape, std::vector<Compared>& sets) {
+// The pixels `kdop accuracy`'s measure is taken on: --accuracy-samples pixels of each image under
+// each of its ghosting histories, in the fit's space, with where the ideal clip stops each history.
+Result<std::vector<ClipSample>> distance_samples(const Options& o, Neighborhood shape) {
     auto pairs = image_pairs(o.images, o.input_space);
     if (!pairs) return std::unexpected(pairs.error());
     for (AccuracyPair& pair : *pairs)
         for (Image* image : {&pair.current, &pair.history}) map_colors(o.color_map, image->pixels);
-    std::vector<std::vector<glm::dvec3>> axes;
-    for (const Compared& set : sets) axes.push_back(set.axes);
-    Progress progress(fmt::format("distance to the ideal clip on up to {} sampled pixels of", o.accuracy_samples),
-                      pairs->size());
-    auto distances = sampled_ideal_distances(*pairs, axes, shape, o.accuracy_samples, o.seed, &progress);
+    Progress progress(fmt::format("the ideal clip on up to {} sampled pixels of", o.accuracy_samples), pairs->size());
+    auto samples = ideal_clip_samples(*pairs, shape, o.accuracy_samples, o.seed, &progress);
     progress.finish();
-    if (!distances) return std::unexpected(distances.error());
-    for (std::size_t i = 0; i < sets.size(); ++i) sets[i].distance = distances->mean[i];
-    return distances->pixels;
+    return samples;
 }
 
 int run(const Options& o) {
     // Everything the command line decides is checked here, before the fit, which can take minutes.
+    const bool by_distance = o.objective == "distance";
+    if (by_distance && o.accuracy_samples == 0)
+        return usage_error(
+            "--objective distance: the distance is taken on --accuracy-samples pixels; give more than 0");
     if (o.lavapipe_cost && !o.target && !o.max_nonzero)
         return usage_error("--lavapipe-cost: counts the rows of --target's or --max-nonzero's table; give one of them");
     if (o.force_rgb && o.axes <= 3)
@@ -144,7 +144,11 @@ int run(const Options& o) {
             map_colors(o.color_map, image->pixels);
             images.push_back(std::move(*image));
         }
-        if (auto ok = check_memory("the neighborhoods", pixels * neighborhood_offsets(shape).size() * 24); !ok)
+        // With --objective distance the image pairs (three histories, two images each, 16 bytes a pixel)
+        // are held beside the neighborhoods.
+        if (auto ok = check_memory("the neighborhoods",
+                                   pixels * (neighborhood_offsets(shape).size() * 24 + (by_distance ? 6 * 16 : 0)));
+            !ok)
             return report_error(ok.error().message);
         neighborhoods = gather_neighborhoods(images, shape);
         if (o.sample) sampled = sample_neighborhoods(images, shape, *o.sample, o.seed);
@@ -256,17 +260,53 @@ int run(const Options& o) {
                                   sampled.count(), neighborhoods.count(), o.seed, sample_score, result.score,
                                   100.0 * (result.score / sample_score - 1.0));
     }
+    // The distance's pixels: for --objective distance, then for the distance every set is reported
+    // at. Read after the neighborhoods are freed (so the peak stays within the memory checked
+    // above) unless the distance objective needs both.
+    std::vector<ClipSample> samples;
+    auto read_samples = [&]() -> Result<void> {
+        auto read = distance_samples(o, shape);
+        if (!read) return std::unexpected(read.error());
+        samples = std::move(*read);
+        return {};
+    };
+    // --objective distance: the volume fit, refined on the distance (the clip's own, in double).
+    std::string refined_line;
+    double refined_score = NAN;
+    if (by_distance) {
+        if (auto ok = read_samples(); !ok) return report_error(ok.error().message);
+        const double from = mean_clip_distance(result.axes, samples, o.threads);
+        std::unique_ptr<Progress> progress;
+        FitResult refined =
+            refine_for_distance(result.axes, samples, fit, [&](std::size_t done, std::size_t total, double best) {
+                if (!progress) progress = std::make_unique<Progress>("descending on the distance", total);
+                if (done <= total) progress->advance(fmt::format("distance {:.6g}", best));
+            });
+        if (progress) progress->finish();
+        refined_line = fmt::format("descended on the distance to the ideal clip from the volume fit: {:.6g} to {:.6g} "
+                                   "({:+.2f}%) in {:.1f} s",
+                                   from, refined.score, 100.0 * (refined.score / from - 1.0), refined.seconds);
+        refined_score = refined.score;
+        result.axes = std::move(refined.axes);
+        result.score = mean_volume(result.axes, neighborhoods, o.threads); // the table's volume column
+        result.stopped_early |= refined.stopped_early;
+    }
     std::vector<Compared> sets = compared_sets(o, o.sphere ? nullptr : &neighborhoods, result);
-    // Freed before the image pairs are read, so the peak stays within the memory checked above.
     neighborhoods = {};
-    std::string distance_measure; // empty where not measured
-    if (!o.sphere && o.accuracy_samples > 0) {
-        auto pixels = measure_distances(o, shape, sets);
-        if (!pixels) return report_error(pixels.error().message);
-        distance_measure = fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) "
-                                       "over {} sampled pixels: up to {} of each image under each of its 3 ghosting "
-                                       "histories, seed {}{}",
-                                       *pixels, o.accuracy_samples, o.seed, in_space);
+    if (!by_distance && !o.sphere && o.accuracy_samples > 0)
+        if (auto ok = read_samples(); !ok) return report_error(ok.error().message);
+    const std::string distance_measure =
+        samples.empty()
+            ? ""
+            : fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) over {} "
+                          "sampled pixels: up to {} of each image under each of its 3 ghosting histories, "
+                          "seed {}{}",
+                          samples.size(), o.accuracy_samples, o.seed, in_space);
+    if (!samples.empty()) {
+        std::vector<std::vector<glm::dvec3>> axes;
+        for (const Compared& set : sets) axes.push_back(set.axes);
+        const SampledDistances distances = sampled_ideal_distances(samples, axes);
+        for (std::size_t i = 0; i < sets.size(); ++i) sets[i].distance = distances.mean[i];
     }
     // A built-in set of no more axes that lands closer to the ideal clip than the fit: a tighter
     // volume is not always a nearer clip (an 8-axis fit to colobot's desert5 has a 2.2x smaller
@@ -295,25 +335,31 @@ int run(const Options& o) {
     };
 
     // The file: what was fitted to and how, and the objective next to the built-in sets'.
-    FittedSetText text{
-        name,
-        fmt::format("fitted by kdop {} optimize (seed {}): {} = {:.6g}", KDOP_VERSION, o.seed, objective, result.score),
-        {},
-        // An image fit is a fit in one space; a sphere fit, to no colors, is for any.
-        o.sphere ? std::nullopt : std::optional(o.color_map)};
+    const std::string fitted_objective =
+        by_distance ? fmt::format("{}, then the mean distance to the ideal clip on {} sampled pixels", objective,
+                                  samples.size())
+                    : objective;
+    const double fitted_score = by_distance ? refined_score : result.score;
+    FittedSetText text{name,
+                       fmt::format("fitted by kdop {} optimize (seed {}): {} = {:.6g}", KDOP_VERSION, o.seed,
+                                   fitted_objective, fitted_score),
+                       {},
+                       // An image fit is a fit in one space; a sphere fit, to no colors, is for any.
+                       o.sphere ? std::nullopt : std::optional(o.color_map)};
     text.comments.push_back(fmt::format("Fitted by `kdop optimize` {}: {} axes{}, seed {}, {} starts x {} steps{}.",
                                         KDOP_VERSION, result.axes.size(), o.force_rgb ? " (R, G, B forced)" : "",
                                         o.seed, o.starts ? fmt::format("{}", o.starts) : "default",
                                         o.iterations ? fmt::format("{}", o.iterations) : "default",
                                         result.stopped_early ? ", stopped early by --time-limit" : ""));
-    text.comments.push_back(fmt::format("Objective: {}.", objective));
+    text.comments.push_back(fmt::format("Objective: {}.", fitted_objective));
     if (o.sample) text.comments.push_back(fmt::format("Sampled: {}.", sample_line));
+    if (by_distance) text.comments.push_back(fmt::format("Refined: {}.", refined_line));
     if (o.target) text.comments.push_back(fmt::format("The fewest axes that reach --target {:.6g}:", *o.target));
     if (o.max_nonzero)
         text.comments.push_back(fmt::format("Components pinned at 0 one by one, to at most {}:", *o.max_nonzero));
     for (const std::string& row : table) text.comments.push_back("  " + row);
     if (!distance_measure.empty()) text.comments.push_back(fmt::format("Distance: {}.", distance_measure));
-    text.comments.push_back(fmt::format("Objective{} of this set and the built-in sets (x this set's):",
+    text.comments.push_back(fmt::format("Volume{} of this set and the built-in sets (x this set's):",
                                         distance_measure.empty() ? "" : ", then distance,"));
     for (const Compared& set : sets) text.comments.push_back("  " + compared_row(set));
     if (closer) text.comments.push_back(fmt::format("Warning: {}.", closer_warning));
@@ -321,10 +367,11 @@ int run(const Options& o) {
     if (!file) return report_error(file.error().message);
     if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
 
-    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), objective, result.score);
+    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), fitted_objective, fitted_score);
     if (o.sample) std::cout << sample_line << "\n";
+    if (by_distance) std::cout << refined_line << "\n";
     if (!distance_measure.empty()) std::cout << fmt::format("{}: {:.6g}\n", distance_measure, sets[0].distance);
-    std::cout << fmt::format("  {:<14} {:>23}{}\n", "set", "objective (x this set's)",
+    std::cout << fmt::format("  {:<14} {:>23}{}\n", "set", "volume (x this set's)",
                              distance_measure.empty() ? "" : fmt::format("  {:>23}", "distance (x this set's)"));
     for (const Compared& set : sets) std::cout << "  " << compared_row(set) << "\n";
     if (closer) std::cout << fmt::format("warning: {}\n", closer_warning);
@@ -396,6 +443,15 @@ Action add_optimize_command(CLI::App& app) {
                     "then score the set on all of them too (with --target, the sample's score is compared)")
         ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
         ->excludes(sphere);
+    cmd->add_option("--objective", o->objective,
+                    "volume: the mean k-DOP volume over every neighborhood, or distance: that fit, then descended on "
+                    "the mean distance to the ideal clip over the --accuracy-samples pixels (the clip's exact "
+                    "subgradient) [default: volume]")
+        ->check(CLI::IsMember({"volume", "distance"}))
+        ->excludes(sphere)
+        ->excludes("--target")
+        ->excludes("--max-nonzero")
+        ->excludes("--sample");
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
     return [o, images, sphere] {

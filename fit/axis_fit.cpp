@@ -1,6 +1,7 @@
 #include "axis_fit.h"
 
 #include "axis_set.h"
+#include "cpu_clip.h"
 #include "random.h"
 #include "variant_spec.h"
 
@@ -78,6 +79,62 @@ Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighb
     const double counted = static_cast<double>(std::max<std::size_t>(total.volumes - total.failed, 1));
     total.value /= counted;
     for (glm::dvec3& g : total.gradient) g /= counted;
+    return total;
+}
+
+// The k-DOP clip of one sample, as the CPU reference's hardened clip computes it (cpu_clip.h: the
+// slabs padded by kReferencePadding, an unusable history dropped), and its distance to the ideal
+// clip, with the distance's gradient in the axes added to `gradient` (see refine_for_distance).
+double clip_distance(std::span<const glm::dvec3> axes, const ClipSample& s, std::vector<glm::dvec3>* gradient) {
+    if (!reference_history_usable(s.current, s.history)) return glm::distance(s.current, s.ideal) / s.scale;
+    const glm::dvec3 ray = s.history - s.current;
+    double t = 1;
+    std::size_t exit_axis = axes.size();
+    glm::dvec3 bound{0.0}; // the neighbor setting the exit axis' bound
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        const double along = glm::dot(axes[i], ray);
+        if (along == 0) continue; // parallel to the slab: it never exits
+        // The bound the ray heads for: the highest projection going up, the lowest going down.
+        const glm::dvec3* extreme = &s.neighborhood[0];
+        for (const glm::dvec3& n : s.neighborhood)
+            if (along > 0 ? glm::dot(axes[i], n) > glm::dot(axes[i], *extreme)
+                          : glm::dot(axes[i], n) < glm::dot(axes[i], *extreme))
+                extreme = &n;
+        const double padding = along > 0 ? kReferencePadding : -kReferencePadding;
+        const double exit = (glm::dot(axes[i], *extreme - s.current) + padding) / along;
+        if (exit < t) t = std::max(exit, 0.0), exit_axis = i, bound = *extreme;
+    }
+    const glm::dvec3 miss = s.current + t * ray - s.ideal;
+    const double distance = glm::length(miss);
+    if (gradient && exit_axis < axes.size() && distance > 0 && t > 0) {
+        const glm::dvec3& a = axes[exit_axis];
+        const glm::dvec3 dt = ((bound - s.current) - t * ray) / glm::dot(a, ray);
+        (*gradient)[exit_axis] += glm::dot(miss / distance, ray) / s.scale * dt;
+    }
+    return distance / s.scale;
+}
+
+Evaluation evaluate_clip_samples(std::span<const glm::dvec3> axes, std::span<const ClipSample> samples,
+                                 unsigned threads) {
+    const std::size_t chunks = (samples.size() + kChunk - 1) / kChunk;
+    std::vector<Evaluation> partial(chunks);
+    parallel_for(chunks, threads, [&](std::size_t c) {
+        Evaluation& e = partial[c];
+        e.gradient.assign(axes.size(), glm::dvec3(0.0));
+        for (std::size_t i = c * kChunk; i < std::min(samples.size(), (c + 1) * kChunk); ++i)
+            e.value += clip_distance(axes, samples[i], &e.gradient);
+    });
+    // Summed in chunk order, so the result does not depend on the thread count.
+    Evaluation total;
+    total.gradient.assign(axes.size(), glm::dvec3(0.0));
+    for (const Evaluation& e : partial) {
+        total.value += e.value;
+        for (std::size_t i = 0; i < axes.size(); ++i) total.gradient[i] += e.gradient[i];
+    }
+    const double count = double(std::max<std::size_t>(samples.size(), 1));
+    total.value /= count;
+    for (glm::dvec3& g : total.gradient) g /= count;
+    total.volumes = total.computed = samples.size();
     return total;
 }
 
@@ -348,6 +405,29 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
         result.stopped_early = stopped;
         if (stopped) break;
     }
+    result.seconds = std::chrono::duration<double>(Clock::now() - start_time).count();
+    return result;
+}
+
+double mean_clip_distance(std::span<const glm::dvec3> axes, std::span<const ClipSample> samples, unsigned threads,
+                          std::vector<glm::dvec3>* gradient) {
+    Evaluation e = evaluate_clip_samples(axes, samples, thread_count(threads));
+    if (gradient) *gradient = std::move(e.gradient);
+    return e.value;
+}
+
+FitResult refine_for_distance(std::vector<glm::dvec3> from, std::span<const ClipSample> samples,
+                              const FitOptions& options, const FitProgress& progress) {
+    const auto start_time = Clock::now();
+    const std::size_t iterations = options.iterations ? options.iterations : 60;
+    const unsigned threads = thread_count(options.threads);
+    std::size_t done = 0;
+    FitResult result = descend(
+        std::move(from), options.force_rgb ? 3 : 0, iterations, options.deadline,
+        [&](std::span<const glm::dvec3> axes) { return evaluate_clip_samples(axes, samples, threads); },
+        [&](double score) {
+            if (progress) progress(++done, iterations, score);
+        });
     result.seconds = std::chrono::duration<double>(Clock::now() - start_time).count();
     return result;
 }

@@ -80,6 +80,30 @@ FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress =
 FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOptions& options,
                                const FitProgress& progress = {});
 
+// One pixel of the distance objective (kdop optimize --objective distance): its neighborhood, its
+// current and history colors, the point where the ideal clip (the neighborhood's hull) stops the
+// history, and the pixel's magnitude S, the unit the distance is measured in (accuracy_metrics.h).
+// accuracy/sampled_distance.h makes them.
+struct ClipSample {
+    std::vector<glm::dvec3> neighborhood;
+    glm::dvec3 current{0.0}, history{0.0}, ideal{0.0};
+    double scale = 1;
+};
+
+// The mean distance, in S, from the k-DOP clip of `axes` (unit) to the ideal clip over `samples`,
+// and with `gradient` its gradient in the axes. The clip is the CPU reference's hardened one
+// (reference/cpu_clip.h): the same figure kdop optimize reports as the distance.
+double mean_clip_distance(std::span<const glm::dvec3> axes, std::span<const ClipSample> samples, unsigned threads = 0,
+                          std::vector<glm::dvec3>* gradient = nullptr);
+
+// Descends from `from` on that distance with its exact subgradient: where the exit slab of axis a
+// stops the ray at t = a.(n* - c) / a.(h - c) (n* the neighbor setting the bound), dt/da =
+// ((n* - c) - t (h - c)) / a.(h - c); the ideal clip does not depend on the axes. Only steps that
+// lower the distance are taken, so the result is never farther than `from` on these samples.
+// `options.iterations` (0: 60) steps; the starts are not used.
+FitResult refine_for_distance(std::vector<glm::dvec3> from, std::span<const ClipSample> samples,
+                              const FitOptions& options, const FitProgress& progress = {});
+
 // The mean k-DOP volume of `axes` over the neighborhoods (polytopes that fail are left out and
 // counted in `failed`), on `threads` threads in a fixed order.
 double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads = 0,

@@ -1,10 +1,12 @@
 // Fitting axis sets (fit/axis_fit.h, kdop optimize): the sphere fits reach the supplement's general
 // sets, the result depends on the seed alone, a fitted set beats the paper's scene sets on its
 // scene, and the command round-trips through gen, run and accuracy and refuses bad input.
+#include "accuracy_inputs.h"
 #include "axis_fit.h"
 #include "color_map.h"
 #include "cpu_clip.h"
 #include "image_io.h"
+#include "sampled_distance.h"
 #include "test_support.h"
 #include "test_textures.h"
 #include "variant_spec.h"
@@ -161,6 +163,49 @@ TEST(AxisFit, SamplesAreSeededStratifiedByLuminanceAndSharedByPixelCount) {
     EXPECT_EQ(sample_neighborhoods(both, Neighborhood::n9, 10000, 1).count(), 320u) << "at most every pixel";
 }
 
+// The distance objective is the distance kdop optimize reports (the hardened CPU reference's clip),
+// its gradient is the derivative of that distance (central differences along each axis' tangents),
+// and descending on it never ends farther than it started.
+TEST(AxisFit, TheDistanceObjectiveIsTheReportedDistanceWithItsGradient) {
+    std::vector<Image> images{grass(24)};
+    const std::string file = (fs::temp_directory_path() / "kdop-distance-objective.exr").string();
+    ASSERT_TRUE(write_image(file, images[0]));
+    auto pairs = image_pairs({file});
+    fs::remove(file);
+    ASSERT_TRUE(pairs) << pairs.error().message;
+    auto samples = ideal_clip_samples(*pairs, Neighborhood::n9, 200, 5);
+    ASSERT_TRUE(samples) << samples.error().message;
+    ASSERT_EQ(samples->size(), 600u);
+    const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set("dop16-grass"));
+    std::vector<glm::dvec3> gradient;
+    const double distance = mean_clip_distance(axes, *samples, 0, &gradient);
+    const std::vector<glm::dvec3> sets[] = {axes};
+    EXPECT_NEAR(distance, sampled_ideal_distances(*samples, sets).mean[0], 1e-12 * distance);
+    EXPECT_EQ(mean_clip_distance(axes, *samples, 1), distance) << "the same on any thread count";
+
+    // The objective is piecewise smooth: the exit slab of a sample can change within a step, so the
+    // difference quotient is compared over a small step and with room for the kinks crossed.
+    const double h = 1e-6;
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+        const glm::dvec3 u = glm::normalize(glm::cross(axes[i], glm::dvec3(0.3, -0.5, 0.8)));
+        std::vector<glm::dvec3> plus = axes, minus = axes;
+        plus[i] = glm::normalize(axes[i] + h * u);
+        minus[i] = glm::normalize(axes[i] - h * u);
+        const double numeric = (mean_clip_distance(plus, *samples) - mean_clip_distance(minus, *samples)) / (2 * h);
+        const double analytic = glm::dot(gradient[i], u);
+        EXPECT_NEAR(analytic, numeric, 1e-3 * std::abs(numeric) + 1e-6) << "axis " << i;
+        checked += std::abs(numeric) > 1e-4;
+    }
+    EXPECT_GE(checked, 4u) << "most axes move the distance";
+
+    FitOptions options;
+    options.iterations = 15;
+    const FitResult refined = refine_for_distance(axes, *samples, options);
+    EXPECT_LT(refined.score, distance);
+    EXPECT_DOUBLE_EQ(refined.score, mean_clip_distance(refined.axes, *samples));
+}
+
 struct OptimizeInputs {
     test::TempDir dir;
     std::string image = (dir / "grass.exr").string();
@@ -177,7 +222,7 @@ TEST(CliOptimize, AFittedSetGoesThroughGenRunAndAccuracy) {
     EXPECT_NE(text.find("name: scene\nprovenance: fitted by kdop"), std::string::npos) << text;
     EXPECT_NE(text.find("\n#   dop16-grass "), std::string::npos) << "the built-in sets' scores for comparison";
     // Beside the volume it minimizes, each set's distance to the ideal clip on sampled pixels.
-    EXPECT_NE(text.find("Objective, then distance,"), std::string::npos) << text;
+    EXPECT_NE(text.find("Volume, then distance,"), std::string::npos) << text;
     EXPECT_NE(fit.out.find("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) over 768 "
                            "sampled pixels: up to 8192 of each image"),
               std::string::npos)
@@ -330,6 +375,28 @@ TEST(CliOptimize, ASampledFitIsScoredOnAllTheNeighborhoods) {
     EXPECT_NEAR(std::stod(provenance.substr(provenance.find(" = ") + 3)), full, 1e-5 * full) << provenance;
 }
 
+// --objective distance: the volume fit descended on the distance, which it lowers; the file says so.
+TEST(CliOptimize, TheDistanceObjectiveLowersTheDistanceOfTheVolumeFit) {
+    OptimizeInputs in;
+    const std::string volume = (in.dir / "volume.axes").string(), distance = (in.dir / "distance.axes").string();
+    const std::string common = "optimize --images " + in.image + " --axes 6 --starts 1 --iterations 10 --out ";
+    auto by_volume = in.kdop(common + volume);
+    ASSERT_EQ(by_volume.exit_code, 0) << by_volume.err;
+    auto by_distance = in.kdop(common + distance + " --objective distance");
+    ASSERT_EQ(by_distance.exit_code, 0) << by_distance.err;
+    const std::vector<PrintedSet> v = printed_sets(by_volume.out), d = printed_sets(by_distance.out);
+    ASSERT_EQ(v.size(), 7u) << by_volume.out;
+    ASSERT_EQ(d.size(), 7u) << by_distance.out;
+    EXPECT_LT(d[0].distance, v[0].distance) << by_volume.out << by_distance.out;
+    for (std::size_t i = 1; i < 7; ++i) EXPECT_EQ(d[i].distance, v[i].distance) << "the same samples, " << d[i].name;
+    const std::string text = test::read_file(distance);
+    EXPECT_NE(text.find("# Refined: descended on the distance to the ideal clip from the volume fit: "),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find(", then the mean distance to the ideal clip on 768 sampled pixels = "), std::string::npos)
+        << text;
+}
+
 // --target: the smallest axis count whose fitted set reaches the score, with the table of those tried.
 TEST(CliOptimize, TargetKeepsTheFewestAxesThatReachIt) {
     OptimizeInputs in;
@@ -411,6 +478,10 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--sphere --axes 4 --color-map log" + out, "excludes", 2},
         {"--images " + in.image + " --axes 4 --sample 0" + out, "--sample: Value 0 not in range", 2},
         {"--sphere --axes 4 --sample 10" + out, "excludes", 2},
+        {"--images " + in.image + " --axes 4 --objective distance --accuracy-samples 0" + out,
+         "--objective distance: the distance is taken on --accuracy-samples pixels", 2},
+        {"--images " + in.image + " --axes 4 --objective distance --sample 20" + out, "excludes", 2},
+        {"--images " + in.image + " --axes 4 --objective size" + out, "--objective: size not in", 2},
         {"--images " + in.image + " --axes 4 --color-map srgb" + out, "'srgb' is not a color map", 2},
     };
     for (const Case& c : cases) {
