@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 
 #include <cmath>
 #include <filesystem>
@@ -49,12 +50,18 @@ Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& pa
         const std::string family = shared_stem ? path : stem(path);
         auto current = read_finite_image(path, kFiniteForAccuracy, space);
         if (!current) return std::unexpected(current.error());
-        const Image other = rotated_half_turn(*current);
-        for (HistoryModel m : history_models())
-            if (m != HistoryModel::same)
-                pairs.push_back(
-                    {family, fmt::format("{}/{}", family, to_string(m)), *current, make_history(*current, m, other)});
+        std::ranges::move(ghosting_pairs(family, *current), std::back_inserter(pairs));
     }
+    return pairs;
+}
+
+std::vector<AccuracyPair> ghosting_pairs(const std::string& family, const Image& current) {
+    std::vector<AccuracyPair> pairs;
+    const Image other = rotated_half_turn(current);
+    for (HistoryModel m : history_models())
+        if (m != HistoryModel::same)
+            pairs.push_back(
+                {family, fmt::format("{}/{}", family, to_string(m)), current, make_history(current, m, other)});
     return pairs;
 }
 

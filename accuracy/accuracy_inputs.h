@@ -29,6 +29,9 @@ std::vector<AccuracyPair> builtin_pairs(std::uint32_t width, std::uint32_t heigh
 Result<std::vector<AccuracyPair>> image_pairs(const std::vector<std::string>& paths,
                                               InputSpace space = InputSpace::from_file);
 
+// `current` x those models, as image_pairs() makes them for one image of `family`.
+std::vector<AccuracyPair> ghosting_pairs(const std::string& family, const Image& current);
+
 // One given pair, named after the current frame's file.
 Result<AccuracyPair> given_pair(const std::string& current_path, const std::string& history_path,
                                 InputSpace space = InputSpace::from_file);

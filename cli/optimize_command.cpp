@@ -9,6 +9,7 @@
 #include "color_map_option.h"
 #include "command_line.h"
 #include "cpu_clip.h"
+#include "fit_inputs.h"
 #include "fitted_set.h"
 #include "image_io.h"
 #include "input_files.h"
@@ -32,11 +33,13 @@
 #include <optional>
 #include <span>
 
+#include <sys/resource.h>
+
 namespace kdop::cli {
 namespace {
 
 struct Options {
-    std::vector<std::string> images;
+    FitInputOptions input; // images and sequences, their decoding and the fit's color space
     bool sphere = false;
     std::size_t axes = 0;
     bool force_rgb = false;
@@ -49,8 +52,7 @@ struct Options {
     std::optional<std::size_t> max_nonzero;
     bool lavapipe_cost = false;
     std::size_t accuracy_samples = 8192;
-    InputSpace input_space = InputSpace::from_file;
-    ColorMap color_map;                // the space the images' colors are fitted in
+    std::optional<double> memory;      // MB of neighborhoods held between passes
     std::optional<std::size_t> sample; // fit on this many sampled neighborhoods, then score on all
     std::string objective = "volume";  // or "distance": then refined on the distance to the ideal clip
 };
@@ -63,29 +65,26 @@ struct Compared {
     double score = NAN, distance = NAN;
 };
 
-// The fitted set first, then every built-in set, with their objectives.
-std::vector<Compared> compared_sets(const Options& o, const Neighborhoods* neighborhoods, const FitResult& fitted) {
-    std::vector<Compared> sets{{"this set", fitted.axes, fitted.score}};
-    for (const std::string& name : builtin_set_names()) {
-        const std::vector<glm::dvec3> axes = unit_axes(*resolve_axis_set(name)); // built in: cannot fail
-        const double score =
-            neighborhoods ? mean_volume(axes, *neighborhoods, o.threads) : KdopPolytope(axes).sphere_volume();
-        sets.push_back({name, axes, score});
-    }
+// The fitted set first, then every built-in set, with their objectives: on the frames, in one pass
+// over them (each frame read once for all the sets), or around the sphere.
+std::vector<Compared> compared_sets(const Options& o, const FrameNeighborhoods* frames,
+                                    const std::vector<glm::dvec3>& fitted) {
+    std::vector<Compared> sets{{"this set", fitted}};
+    for (const std::string& name : builtin_set_names())
+        sets.push_back({name, unit_axes(*resolve_axis_set(name))}); // built in: cannot fail
+    std::vector<std::vector<glm::dvec3>> axes;
+    for (const Compared& set : sets) axes.push_back(set.axes);
+    const std::vector<double> scores = frames ? mean_volumes(axes, *frames, o.threads) : std::vector<double>{};
+    for (std::size_t i = 0; i < sets.size(); ++i)
+        sets[i].score = frames ? scores[i] : KdopPolytope(sets[i].axes).sphere_volume();
     return sets;
 }
 
-// The pixels `kdop accuracy`'s measure is taken on: --accuracy-samples pixels of each image under
-// each of its ghosting histories, in the fit's space, with where the ideal clip stops each history.
-Result<std::vector<ClipSample>> distance_samples(const Options& o, Neighborhood shape) {
-    auto pairs = image_pairs(o.images, o.input_space);
-    if (!pairs) return std::unexpected(pairs.error());
-    for (AccuracyPair& pair : *pairs)
-        for (Image* image : {&pair.current, &pair.history}) map_colors(o.color_map, image->pixels);
-    Progress progress(fmt::format("the ideal clip on up to {} sampled pixels of", o.accuracy_samples), pairs->size());
-    auto samples = ideal_clip_samples(*pairs, shape, o.accuracy_samples, o.seed, &progress);
-    progress.finish();
-    return samples;
+// This process's peak resident memory, in MB.
+double peak_memory_mb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
 }
 
 int run(const Options& o) {
@@ -113,60 +112,53 @@ int run(const Options& o) {
                                        name_option, name));
     if (std::error_code ec; std::filesystem::is_directory(o.out, ec))
         return usage_error(fmt::format("--out {}: is a directory; name the axis-set file to write", o.out));
-    std::vector<std::filesystem::path> inputs(o.images.begin(), o.images.end());
-    if (auto ok = check_not_an_input(o.out, "--out", inputs); !ok) return report_error(ok.error().message);
     if (auto ok = check_output_directory(std::filesystem::path(o.out).parent_path()); !ok)
         return report_error(ok.error().message);
 
-    // Every neighborhood of every image, as decoded (--input-space), in the clip's space (--color-map).
+    // Every neighborhood of every frame, as decoded (--input-space), in the clip's space (--color-map),
+    // and with --sample the sample, both from one read of each frame.
     const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
-    Neighborhoods neighborhoods, sampled;
+    FitInputs inputs;
+    std::optional<FrameNeighborhoods> neighborhoods, sampled;
     if (!o.sphere) {
-        // An image given twice would only weigh twice, and the distance's image pairs refuse it.
-        if (auto ok = check_distinct_files(o.images, "--images"); !ok) return report_error(ok.error().message);
-        std::vector<Image> images;
-        std::uint64_t pixels = 0;
-        for (const std::string& path : o.images) {
-            // A NaN bound would make a slab of no width, a k-DOP of no volume: refused, not fitted.
-            auto image = read_finite_image(path, "fitting needs finite colors", o.input_space);
-            if (!image) return report_error(image.error().message);
-            if (image->width < 3 || image->height < 3)
-                return report_error(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels",
-                                                path, image->width, image->height));
-            // One color throughout: every neighborhood is a point, every k-DOP has volume 0, and the
-            // fit would choose among sets that all score 0.
-            if (std::ranges::all_of(image->pixels,
-                                    [&](const glm::vec4& p) { return glm::vec3(p) == glm::vec3(image->pixels[0]); }))
-                return report_error(fmt::format("{}: every pixel is ({}, {}, {}), so every neighborhood is flat and "
-                                                "there is nothing to fit to; give images with the scene's detail",
-                                                path, image->pixels[0].r, image->pixels[0].g, image->pixels[0].b));
-            pixels += std::uint64_t(image->width) * image->height;
-            map_colors(o.color_map, image->pixels);
-            images.push_back(std::move(*image));
-        }
-        // With --objective distance the image pairs (three histories, two images each, 16 bytes a pixel)
-        // are held beside the neighborhoods.
-        if (auto ok = check_memory("the neighborhoods",
-                                   pixels * (neighborhood_offsets(shape).size() * 24 + (by_distance ? 6 * 16 : 0)));
-            !ok)
-            return report_error(ok.error().message);
-        neighborhoods = gather_neighborhoods(images, shape);
-        if (o.sample) sampled = sample_neighborhoods(images, shape, *o.sample, o.seed);
+        auto read = fit_inputs(o.input);
+        if (!read) return report_error(read.error().message);
+        inputs = std::move(*read);
+        if (auto ok = check_not_an_input(o.out, "--out", inputs.paths); !ok) return report_error(ok.error().message);
+        // Held between passes while they take at most --memory MB (by default half what is
+        // available); the frames beyond are read and gathered again on each pass.
+        const std::uint64_t budget = o.memory ? std::uint64_t(*o.memory * 1024 * 1024)
+                                              : (available_memory() ? available_memory() / 2 : std::uint64_t(4) << 30);
+        std::vector<std::uint64_t> pixels;
+        for (const FitFrame& frame : inputs.frames) pixels.push_back(frame.pixels);
+        std::optional<NeighborhoodSampler> sampler;
+        if (o.sample) sampler.emplace(shape, pixels, *o.sample, o.seed);
+        Progress progress("reading frames", inputs.frames.size());
+        auto gathered =
+            FrameNeighborhoods::gather(inputs.frames, shape, budget, {}, [&](std::size_t frame, const Image& image) {
+                if (sampler) sampler->add(frame, image);
+                progress.advance(inputs.frames[frame].label);
+            });
+        progress.finish();
+        if (!gathered) return report_error(gathered.error().message);
+        neighborhoods = std::move(*gathered);
+        if (sampler) sampled.emplace(sampler->finish());
     }
     // What the search sees: the sample where one is asked for, else every neighborhood.
-    const Neighborhoods& fitted_to = o.sample ? sampled : neighborhoods;
+    const FrameNeighborhoods* fitted_to = sampled ? &*sampled : neighborhoods ? &*neighborhoods : nullptr;
 
     FitOptions fit{o.axes, o.force_rgb, o.seed, o.threads, o.starts, o.iterations, {}};
     if (o.time_limit > 0)
         fit.deadline =
             std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                    std::chrono::duration<double>(o.time_limit));
-    const std::string in_space =
-        o.color_map.kind == ColorMap::Kind::linear ? "" : fmt::format(", in {} space", to_string(o.color_map));
+    const std::string in_space = o.input.color_map.kind == ColorMap::Kind::linear
+                                     ? ""
+                                     : fmt::format(", in {} space", to_string(o.input.color_map));
     const std::string objective =
         o.sphere ? "volume of the k-DOP around the unit sphere"
-                 : fmt::format("mean k-DOP volume over all {} {} neighborhoods of {}{}", neighborhoods.count(),
-                               o.neighborhood == "n9" ? "3x3" : "plus-shaped", fmt::join(o.images, ", "), in_space);
+                 : fmt::format("mean k-DOP volume over all {} {} neighborhoods of {}{}", neighborhoods->count(),
+                               o.neighborhood == "n9" ? "3x3" : "plus-shaped", inputs.description, in_space);
     auto fit_axes = [&](std::size_t axes) {
         fit.axes = axes;
         std::unique_ptr<Progress> progress;
@@ -174,7 +166,7 @@ int run(const Options& o) {
             if (!progress) progress = std::make_unique<Progress>(fmt::format("fitting {} axes", axes), total);
             if (done <= total) progress->advance(fmt::format("best {:.6g}", best));
         };
-        return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(fitted_to, fit, on_step);
+        return o.sphere ? fit_to_sphere(fit, on_step) : fit_to_neighborhoods(*fitted_to, fit, on_step);
     };
 
     // What a set's hardened clip costs: float ops as the generator counts them (analytic_cost.h),
@@ -189,7 +181,7 @@ int run(const Options& o) {
         return report_error(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
                                         callgrind.probe.string()));
     auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<std::string> {
-        auto text = fitted_set_file({name, "-", {}}, axes);
+        auto text = fitted_set_file({name, "-", {}, std::nullopt}, axes);
         if (!text) return std::unexpected(text.error());
         auto set = parse_axis_set(*text, o.out);
         if (!set) return std::unexpected(set.error());
@@ -228,11 +220,11 @@ int run(const Options& o) {
     // With --max-nonzero, components pinned at 0 one by one, and the curve of score against them.
     if (o.max_nonzero) {
         std::unique_ptr<Progress> progress;
-        auto steps = fit_sparser(o.sphere ? nullptr : &fitted_to, result, *o.max_nonzero, fit,
-                                 [&](std::size_t, std::size_t total, double best) {
-                                     if (!progress) progress = std::make_unique<Progress>("pinning zeros", total);
-                                     progress->advance(fmt::format("score {:.6g}", best));
-                                 });
+        auto steps =
+            fit_sparser(fitted_to, result, *o.max_nonzero, fit, [&](std::size_t, std::size_t total, double best) {
+                if (!progress) progress = std::make_unique<Progress>("pinning zeros", total);
+                progress->advance(fmt::format("score {:.6g}", best));
+            });
         if (progress) progress->finish();
         table.push_back(fmt::format("{:>7} {:>14} {}", "nonzero", "score", cost_header));
         for (const SparserStep& step : steps) {
@@ -249,23 +241,12 @@ int run(const Options& o) {
         result.axes = steps.back().axes;
         result.score = steps.back().score;
     }
-    // A sampled fit is scored on every neighborhood too: what it is worth on the data, beside what
-    // the search saw. The comparison with the built-in sets is on every neighborhood.
-    const double sample_score = result.score;
-    std::string sample_line; // empty without --sample
-    if (o.sample) {
-        result.score = mean_volume(result.axes, neighborhoods, o.threads);
-        sample_line = fmt::format("fitted to {} of the {} neighborhoods, sampled by luminance (seed {}): {:.6g} on "
-                                  "the sample, {:.6g} on all ({:+.2f}%)",
-                                  sampled.count(), neighborhoods.count(), o.seed, sample_score, result.score,
-                                  100.0 * (result.score / sample_score - 1.0));
-    }
     // The distance's pixels: for --objective distance, then for the distance every set is reported
-    // at. Read after the neighborhoods are freed (so the peak stays within the memory checked
-    // above) unless the distance objective needs both.
+    // at. Read after the neighborhoods are freed (so the peak stays within the memory held)
+    // unless the distance objective needs both.
     std::vector<ClipSample> samples;
     auto read_samples = [&]() -> Result<void> {
-        auto read = distance_samples(o, shape);
+        auto read = fit_distance_samples(o.input, inputs, shape, o.accuracy_samples, o.seed);
         if (!read) return std::unexpected(read.error());
         samples = std::move(*read);
         return {};
@@ -303,20 +284,34 @@ int run(const Options& o) {
                         100.0 * (best.score / from - 1.0));
         refined_score = best.score;
         result.axes = std::move(best.axes);
-        result.score = mean_volume(result.axes, neighborhoods, o.threads); // the table's volume column
         result.stopped_early |= best.stopped_early;
     }
-    std::vector<Compared> sets = compared_sets(o, o.sphere ? nullptr : &neighborhoods, result);
-    neighborhoods = {};
+    // Every set's volume on every neighborhood, in one more pass over the frames: a sampled fit's
+    // worth on the data beside what the search saw, a refined fit's volume, the built-in sets'.
+    std::vector<Compared> sets = compared_sets(o, neighborhoods ? &*neighborhoods : nullptr, result.axes);
+    const double sample_score = result.score;
+    result.score = sets[0].score;
+    std::string sample_line; // empty without --sample
+    if (o.sample)
+        sample_line = fmt::format("fitted to {} of the {} neighborhoods, sampled by luminance (seed {}): {:.6g} on "
+                                  "the sample, {:.6g} on all ({:+.2f}%)",
+                                  sampled->count(), neighborhoods->count(), o.seed, sample_score, result.score,
+                                  100.0 * (result.score / sample_score - 1.0));
+    const std::size_t frames = neighborhoods ? neighborhoods->frame_count() : 0,
+                      held = neighborhoods ? neighborhoods->held_frames() : 0;
+    neighborhoods.reset();
+    sampled.reset();
     if (!by_distance && !o.sphere && o.accuracy_samples > 0)
         if (auto ok = read_samples(); !ok) return report_error(ok.error().message);
     const std::string distance_measure =
         samples.empty()
             ? ""
             : fmt::format("mean distance to the ideal clip (kdop accuracy's measure, CPU reference) over {} "
-                          "sampled pixels: up to {} of each image under each of its 3 ghosting histories, "
+                          "sampled pixels: up to {} of each {} under each of its 3 ghosting histories, "
                           "seed {}{}",
-                          samples.size(), o.accuracy_samples, o.seed, in_space);
+                          samples.size(), o.accuracy_samples,
+                          o.input.sequences.empty() ? "image" : "image and sequence (spread over its frames)", o.seed,
+                          in_space);
     if (!samples.empty()) {
         std::vector<std::vector<glm::dvec3>> axes;
         for (const Compared& set : sets) axes.push_back(set.axes);
@@ -360,7 +355,7 @@ int run(const Options& o) {
                                    fitted_objective, fitted_score),
                        {},
                        // An image fit is a fit in one space; a sphere fit, to no colors, is for any.
-                       o.sphere ? std::nullopt : std::optional(o.color_map)};
+                       o.sphere ? std::nullopt : std::optional(o.input.color_map)};
     text.comments.push_back(fmt::format("Fitted by `kdop optimize` {}: {} axes{}, seed {}, {} starts x {} steps{}.",
                                         KDOP_VERSION, result.axes.size(), o.force_rgb ? " (R, G, B forced)" : "",
                                         o.seed, o.starts ? fmt::format("{}", o.starts) : "default",
@@ -398,6 +393,11 @@ int run(const Options& o) {
                                          : "",
         result.failed ? fmt::format(", {} polytopes left out (could not be built)", result.failed) : "",
         result.stopped_early ? "; stopped early by --time-limit" : "");
+    // What the frames cost in memory: bounded by what is held, whatever the frame count.
+    if (frames)
+        std::cout << fmt::format("peak memory {:.0f} MB; {} of {} frames held between passes, the rest read again on "
+                                 "each\n",
+                                 peak_memory_mb(), held, frames);
     return 0;
 }
 
@@ -410,13 +410,28 @@ Action add_optimize_command(CLI::App& app) {
                     "the k-DOP volume, and write it as an axis-set file");
     auto* images =
         cmd->add_option(
-               "--images", o->images,
+               "--images", o->input.images,
                "Images to fit to, any format OpenImageIO reads (EXR included), decoded to linear RGB (--input-space)")
             ->check(CLI::ExistingFile);
+    auto* sequences = cmd->add_option("--sequence", o->input.sequences,
+                                      "Frame sequences to fit to (folders with sequence.json, README \"Frame "
+                                      "sequences\"): their frames' colors, with --images or alone")
+                          ->check(CLI::ExistingDirectory);
+    cmd->add_option("--frame-step", o->input.frame_step,
+                    "Of each sequence, every Nth frame from the first [default: 1, every frame]")
+        ->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))
+        ->needs(sequences);
     auto* sphere = cmd->add_flag("--sphere", o->sphere, "Fit around the unit sphere instead: a scene-independent set");
     images->excludes(sphere);
-    add_input_space_option(*cmd, o->input_space)->excludes(sphere);
-    add_color_map_option(*cmd, o->color_map,
+    sequences->excludes(sphere);
+    cmd->add_option("--memory", o->memory,
+                    "Hold the frames' neighborhoods between the search's passes up to this many MB (216 bytes a "
+                    "pixel at most); the frames beyond are read and gathered again on each pass [default: half the "
+                    "available memory]")
+        ->check(positive_number(1e9, " MB"))
+        ->excludes(sphere);
+    add_input_space_option(*cmd, o->input.input_space)->excludes(sphere);
+    add_color_map_option(*cmd, o->input.color_map,
                          "The space to fit in, that of the resolve the set is for (kdop taa --color-map): linear, "
                          "gamma:G or log; the file records it as color_map: [default: linear]")
         ->excludes(sphere);
@@ -448,13 +463,14 @@ Action add_optimize_command(CLI::App& app) {
     cmd->add_flag("--lavapipe-cost", o->lavapipe_cost,
                   "With --target or --max-nonzero: also count each row's clip on lavapipe with callgrind, in "
                   "instructions per pixel beyond the gather, as `kdop bench` does (seconds per row)");
-    cmd->add_option("--accuracy-samples", o->accuracy_samples,
-                    "With --images: also report each set's mean distance to the ideal clip (as `kdop accuracy` "
-                    "measures it, in the CPU reference) on this many seeded pixels of each image under each of its "
-                    "3 ghosting histories; 0 skips it [default: 8192]")
+    cmd->add_option(
+           "--accuracy-samples", o->accuracy_samples,
+           "With --images or --sequence: also report each set's mean distance to the ideal clip (as `kdop accuracy` "
+           "measures it, in the CPU reference) on this many seeded pixels of each image under each of its "
+           "3 ghosting histories (of each sequence as many, spread over its frames); 0 skips it [default: 8192]")
         ->excludes(sphere);
     cmd->add_option("--sample", o->sample,
-                    "Fit to this many neighborhoods, seeded (--seed) and stratified by luminance within each image, "
+                    "Fit to this many neighborhoods, seeded (--seed) and stratified by luminance within each frame, "
                     "then score the set on all of them too (with --target, the sample's score is compared)")
         ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
         ->excludes(sphere);
@@ -469,10 +485,9 @@ Action add_optimize_command(CLI::App& app) {
         ->excludes("--sample");
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();
     cmd->add_option("--name", o->name, "The set's name [default: the --out file's stem]");
-    return [o, images, sphere] {
-        if (!*images && !*sphere) {
-            return usage_error("optimize: give --images FILE... to fit to, or --sphere");
-        }
+    return [o, images, sequences, sphere] {
+        if (!*images && !*sequences && !*sphere)
+            return usage_error("optimize: give --images FILE... or --sequence DIR... to fit to, or --sphere");
         return run(*o);
     };
 }

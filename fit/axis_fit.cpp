@@ -12,9 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <string_view>
 #include <thread>
-#include <unordered_map>
 
 namespace kdop {
 namespace {
@@ -47,8 +45,17 @@ struct Evaluation {
     std::size_t volumes = 0, computed = 0, failed = 0;
 };
 
-Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods,
-                                  unsigned threads) {
+void add_to(Evaluation& total, const Evaluation& e) {
+    total.value += e.value;
+    total.volumes += e.volumes;
+    total.computed += e.computed;
+    total.failed += e.failed;
+    for (std::size_t i = 0; i < total.gradient.size(); ++i) total.gradient[i] += e.gradient[i];
+}
+
+// The objective's sums over one frame's neighborhoods (not yet divided by the count), in chunks
+// each summed on one thread and added in chunk order.
+Evaluation sum_neighborhoods(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads) {
     const KdopPolytope kdop(axes);
     const std::size_t chunks = (neighborhoods.distinct() + kChunk - 1) / kChunk;
     std::vector<Evaluation> partial(chunks);
@@ -69,17 +76,72 @@ Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighb
     });
     Evaluation total;
     total.gradient.assign(axes.size(), glm::dvec3(0.0));
-    for (const Evaluation& e : partial) {
-        total.value += e.value;
-        total.volumes += e.volumes;
-        total.computed += e.computed;
-        total.failed += e.failed;
-        for (std::size_t i = 0; i < axes.size(); ++i) total.gradient[i] += e.gradient[i];
-    }
-    const double counted = static_cast<double>(std::max<std::size_t>(total.volumes - total.failed, 1));
-    total.value /= counted;
-    for (glm::dvec3& g : total.gradient) g /= counted;
+    for (const Evaluation& e : partial) add_to(total, e);
     return total;
+}
+
+// Sums to means: over the volumes that could be computed.
+Evaluation& divide(Evaluation& e) {
+    const double counted = static_cast<double>(std::max<std::size_t>(e.volumes - e.failed, 1));
+    e.value /= counted;
+    for (glm::dvec3& g : e.gradient) g /= counted;
+    return e;
+}
+
+Evaluation evaluate_neighborhoods(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods,
+                                  unsigned threads) {
+    Evaluation e = sum_neighborhoods(axes, neighborhoods, threads);
+    return divide(e);
+}
+
+// Each frame's sums as doubles (exact for counts below 2^53), the layout FrameShare hands around:
+// value, volumes, computed, failed, then the gradient.
+constexpr std::size_t kPackedCounts = 4;
+void pack(const Evaluation& e, double* out) {
+    out[0] = e.value, out[1] = double(e.volumes), out[2] = double(e.computed), out[3] = double(e.failed);
+    for (std::size_t i = 0; i < e.gradient.size(); ++i)
+        for (int c = 0; c < 3; ++c) out[kPackedCounts + 3 * i + c] = e.gradient[i][c];
+}
+Evaluation unpack(const double* in, std::size_t axes) {
+    Evaluation e;
+    e.value = in[0], e.volumes = std::size_t(in[1]), e.computed = std::size_t(in[2]), e.failed = std::size_t(in[3]);
+    e.gradient.resize(axes);
+    for (std::size_t i = 0; i < axes; ++i)
+        for (int c = 0; c < 3; ++c) e.gradient[i][c] = in[kPackedCounts + 3 * i + c];
+    return e;
+}
+
+// Each set's sums over every frame (this process's frames read once, for all the sets), shared
+// with the other processes, and added up in frame order.
+std::vector<Evaluation> evaluate_frames(std::span<const std::vector<glm::dvec3>> sets, const FrameNeighborhoods& frames,
+                                        unsigned threads) {
+    std::size_t stride = 0;
+    for (const std::vector<glm::dvec3>& axes : sets) stride += kPackedCounts + 3 * axes.size();
+    std::vector<double> sums(frames.frame_count() * stride, 0.0);
+    frames.visit([&](std::size_t frame, const Neighborhoods& neighborhoods) {
+        double* out = sums.data() + frame * stride;
+        for (const std::vector<glm::dvec3>& axes : sets) {
+            pack(sum_neighborhoods(axes, neighborhoods, threads), out);
+            out += kPackedCounts + 3 * axes.size();
+        }
+    });
+    if (frames.share().share) frames.share().share(sums, stride);
+    std::vector<Evaluation> totals;
+    for (const std::vector<glm::dvec3>& axes : sets) totals.push_back({0, std::vector(axes.size(), glm::dvec3(0.0))});
+    for (std::size_t frame = 0; frame < frames.frame_count(); ++frame) {
+        const double* in = sums.data() + frame * stride;
+        for (std::size_t s = 0; s < sets.size(); ++s) {
+            add_to(totals[s], unpack(in, sets[s].size()));
+            in += kPackedCounts + 3 * sets[s].size();
+        }
+    }
+    for (Evaluation& e : totals) divide(e);
+    return totals;
+}
+
+Evaluation evaluate_frames(std::span<const glm::dvec3> axes, const FrameNeighborhoods& frames, unsigned threads) {
+    const std::vector<glm::dvec3> set(axes.begin(), axes.end());
+    return std::move(evaluate_frames({&set, 1}, frames, threads)[0]);
 }
 
 // The k-DOP clip of one sample, as the CPU reference's hardened clip computes it (cpu_clip.h: the
@@ -247,100 +309,6 @@ FitResult best_of(std::size_t starts, unsigned threads, Descend descend_from) {
 
 } // namespace
 
-namespace {
-
-// Neighborhoods made one pixel at a time: a repeat of an earlier one only counts.
-class NeighborhoodGatherer {
-public:
-    NeighborhoodGatherer(Neighborhood shape, std::size_t total) : offsets_(neighborhood_offsets(shape)) {
-        out_.size = offsets_.size();
-        out_.total = total;
-        // Room for every neighborhood, so the keys (views of the points' bytes) stay where they are.
-        out_.points.reserve(total * out_.size);
-        seen_.reserve(total);
-    }
-    void add(const Image& image, std::uint32_t x, std::uint32_t y) {
-        const std::size_t start = out_.points.size();
-        for (const glm::ivec2& o : offsets_)
-            out_.points.emplace_back(glm::dvec3(image.clamped(int(x) + o.x, int(y) + o.y)));
-        const std::string_view key(reinterpret_cast<const char*>(out_.points.data() + start),
-                                   out_.size * sizeof(glm::dvec3));
-        const auto [at, added] = seen_.try_emplace(key, static_cast<std::uint32_t>(out_.repeats.size()));
-        if (added) {
-            out_.repeats.push_back(1);
-        } else {
-            ++out_.repeats[at->second];
-            out_.points.resize(start);
-        }
-    }
-    Neighborhoods finish() {
-        seen_ = {};
-        out_.points.shrink_to_fit(); // the keys are no longer needed
-        return std::move(out_);
-    }
-
-private:
-    std::span<const glm::ivec2> offsets_;
-    Neighborhoods out_;
-    std::unordered_map<std::string_view, std::uint32_t> seen_; // a distinct neighborhood's bytes -> its index
-};
-
-} // namespace
-
-Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape) {
-    std::size_t total = 0;
-    for (const Image& image : images) total += std::size_t(image.width) * image.height;
-    NeighborhoodGatherer gather(shape, total);
-    for (const Image& image : images)
-        for (std::uint32_t y = 0; y < image.height; ++y)
-            for (std::uint32_t x = 0; x < image.width; ++x) gather.add(image, x, y);
-    return gather.finish();
-}
-
-Neighborhoods sample_neighborhoods(std::span<const Image> images, Neighborhood shape, std::size_t count,
-                                   std::uint64_t seed) {
-    std::size_t total = 0;
-    for (const Image& image : images) total += std::size_t(image.width) * image.height;
-    count = std::min(count, total);
-    // Each image's share of `count`, by its pixel count, the remainders to the largest fractions
-    // (the earlier image on a tie), so the shares add up to `count` exactly.
-    std::vector<std::size_t> share(images.size());
-    std::vector<std::pair<double, std::size_t>> fractions;
-    std::size_t given = 0;
-    for (std::size_t i = 0; i < images.size(); ++i) {
-        const double exact = double(count) * double(std::size_t(images[i].width) * images[i].height) / double(total);
-        share[i] = std::size_t(exact);
-        given += share[i];
-        fractions.emplace_back(-(exact - double(share[i])), i);
-    }
-    std::sort(fractions.begin(), fractions.end());
-    for (std::size_t k = 0; given < count; ++k, ++given) ++share[fractions[k].second];
-
-    NeighborhoodGatherer gather(shape, count);
-    Random random(seed);
-    for (std::size_t i = 0; i < images.size(); ++i) {
-        const Image& image = images[i];
-        if (share[i] == 0) continue;
-        // The pixels by luminance (then position, so ties are ordered), cut into share[i] strata of
-        // equal size; one pixel drawn from each.
-        std::vector<std::pair<float, std::uint32_t>> by_luminance(std::size_t(image.width) * image.height);
-        for (std::uint32_t p = 0; p < by_luminance.size(); ++p) {
-            const glm::vec4& c = image.pixels[p];
-            by_luminance[p] = {0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b, p};
-        }
-        std::sort(by_luminance.begin(), by_luminance.end());
-        const std::size_t pixels = by_luminance.size();
-        for (std::size_t k = 0; k < share[i]; ++k) {
-            const std::size_t first = k * pixels / share[i], end = (k + 1) * pixels / share[i];
-            const std::size_t pick =
-                first + std::min(end - first - 1, std::size_t(random.uniform() * double(end - first)));
-            const std::uint32_t p = by_luminance[pick].second;
-            gather.add(image, p % image.width, p / image.width);
-        }
-    }
-    return gather.finish();
-}
-
 double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads,
                    std::size_t* failed) {
     const Evaluation e = evaluate_neighborhoods(axes, neighborhoods, thread_count(threads));
@@ -367,7 +335,19 @@ FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress) 
     return result;
 }
 
+std::vector<double> mean_volumes(std::span<const std::vector<glm::dvec3>> sets, const FrameNeighborhoods& frames,
+                                 unsigned threads) {
+    std::vector<double> means;
+    for (const Evaluation& e : evaluate_frames(sets, frames, thread_count(threads))) means.push_back(e.value);
+    return means;
+}
+
 FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOptions& options,
+                               const FitProgress& progress) {
+    return fit_to_neighborhoods(FrameNeighborhoods(neighborhoods), options, progress);
+}
+
+FitResult fit_to_neighborhoods(const FrameNeighborhoods& neighborhoods, const FitOptions& options,
                                const FitProgress& progress) {
     const auto start_time = Clock::now();
     const std::size_t starts = options.starts ? options.starts : 4;
@@ -389,7 +369,7 @@ FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOpti
         }
         FitResult r = descend(
             std::move(from), options.force_rgb ? 3 : 0, iterations, options.deadline,
-            [&](std::span<const glm::dvec3> axes) { return evaluate_neighborhoods(axes, neighborhoods, threads); },
+            [&](std::span<const glm::dvec3> axes) { return evaluate_frames(axes, neighborhoods, threads); },
             [&](double score) {
                 best = std::min(best, score);
                 if (progress) progress(++done, starts * iterations, best);
@@ -438,13 +418,13 @@ std::size_t nonzero_components(std::span<const glm::dvec3> axes) {
     return count;
 }
 
-std::vector<SparserStep> fit_sparser(const Neighborhoods* neighborhoods, const FitResult& start,
+std::vector<SparserStep> fit_sparser(const FrameNeighborhoods* neighborhoods, const FitResult& start,
                                      std::size_t max_nonzero, const FitOptions& options, const FitProgress& progress) {
     const unsigned threads = thread_count(options.threads);
     const std::size_t fixed = options.force_rgb ? 3 : 0;
     const std::size_t iterations = options.iterations ? options.iterations : (neighborhoods ? 30 : 200);
     auto evaluate = [&](std::span<const glm::dvec3> axes) {
-        return neighborhoods ? evaluate_neighborhoods(axes, *neighborhoods, threads) : evaluate_sphere(axes);
+        return neighborhoods ? evaluate_frames(axes, *neighborhoods, threads) : evaluate_sphere(axes);
     };
     std::vector<glm::dvec3> axes = start.axes;
     std::vector<glm::bvec3> zeros(axes.size(), glm::bvec3(false));

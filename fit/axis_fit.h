@@ -13,8 +13,9 @@
 // makes it depend on speed.
 #pragma once
 
-#include "image.h"
+#include "frame_neighborhoods.h"
 #include "kdop_polytope.h"
+#include "neighborhoods.h"
 
 #include <kdop/variant.h>
 
@@ -29,28 +30,6 @@
 #include <vector>
 
 namespace kdop {
-
-// Every neighborhood of every image (clamp to edge, as the shaders read them), as points. A
-// neighborhood that repeats one before it exactly (flat areas, repeated texels: on the colobot
-// grass texture, 46% of them) is kept once with how many times it appears, so the objective
-// computes its k-DOP once and weighs it by that count.
-struct Neighborhoods {
-    std::size_t size = 9;               // points per neighborhood: 9 (n9) or 5 (n5)
-    std::vector<glm::dvec3> points;     // distinct() x size, in order of first appearance
-    std::vector<std::uint32_t> repeats; // how many times each distinct neighborhood appears
-    std::size_t total = 0;              // neighborhoods, repeats included
-    std::size_t count() const { return total; }
-    std::size_t distinct() const { return repeats.size(); }
-    std::span<const glm::dvec3> at(std::size_t i) const { return {points.data() + i * size, size}; }
-};
-Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape);
-
-// `count` of those neighborhoods (all of them where there are fewer), seeded and stratified: each
-// image gives its share by pixel count, and within an image the pixels, ordered by luminance, are
-// cut into that many strata of equal size, one pixel drawn from each. So dark and bright areas are
-// sampled as often as they occur, and the same seed draws the same pixels.
-Neighborhoods sample_neighborhoods(std::span<const Image> images, Neighborhood shape, std::size_t count,
-                                   std::uint64_t seed);
 
 struct FitOptions {
     std::size_t axes = 8;
@@ -77,6 +56,8 @@ struct FitResult {
 using FitProgress = std::function<void(std::size_t done, std::size_t total, double best)>;
 
 FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress = {});
+FitResult fit_to_neighborhoods(const FrameNeighborhoods& neighborhoods, const FitOptions& options,
+                               const FitProgress& progress = {});
 FitResult fit_to_neighborhoods(const Neighborhoods& neighborhoods, const FitOptions& options,
                                const FitProgress& progress = {});
 
@@ -108,6 +89,9 @@ FitResult refine_for_distance(std::vector<glm::dvec3> from, std::span<const Clip
 // counted in `failed`), on `threads` threads in a fixed order.
 double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads = 0,
                    std::size_t* failed = nullptr);
+// The same for several sets in one pass over the frames (each frame read once for all of them).
+std::vector<double> mean_volumes(std::span<const std::vector<glm::dvec3>> sets, const FrameNeighborhoods& frames,
+                                 unsigned threads = 0);
 
 // Components equal to 0 over all axes: what a clip spends multiply-adds on (a zero costs nothing).
 std::size_t nonzero_components(std::span<const glm::dvec3> axes);
@@ -121,7 +105,7 @@ struct SparserStep {
     double score;
     std::vector<glm::dvec3> axes;
 };
-std::vector<SparserStep> fit_sparser(const Neighborhoods* neighborhoods, const FitResult& start,
+std::vector<SparserStep> fit_sparser(const FrameNeighborhoods* neighborhoods, const FitResult& start,
                                      std::size_t max_nonzero, const FitOptions& options,
                                      const FitProgress& progress = {});
 

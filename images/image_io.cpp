@@ -124,6 +124,23 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputS
     }
 }
 
+Result<glm::uvec2> read_image_size(const std::string& path) {
+    if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
+    try {
+        auto in = OIIO::ImageInput::open(path);
+        if (!in) {
+            const std::string reason = library_message(OIIO::geterror());
+            return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
+        }
+        const OIIO::ImageSpec& spec = in->spec();
+        if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
+            return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
+        return glm::uvec2(spec.width, spec.height);
+    } catch (const std::exception& e) {
+        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
+    }
+}
+
 Result<Image> read_data_image(const std::string& path, int channels) {
     try {
         return read_checked(path, 0, InputSpace::linear, channels);

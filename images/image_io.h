@@ -10,6 +10,8 @@
 #include "result.h"
 #include "write_files.h"
 
+#include <glm/vec2.hpp>
+
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -34,6 +36,10 @@ std::optional<InputSpace> parse_input_space(std::string_view text);
 // maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory are refused,
 // so a small file claiming an enormous image is an error, not an allocation failure.
 Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0, InputSpace space = InputSpace::from_file);
+
+// The width and height in `path`'s header, no pixel read: what a caller planning the reads of many
+// frames (kdop optimize's sample shares) needs before it reads any of them.
+Result<glm::uvec2> read_image_size(const std::string& path);
 
 // An image of data, not color (motion vectors, depth): its values as stored, never decoded, from a
 // file with at least `channels` channels (1 to 4); the channels it lacks are 0 (alpha 1).

@@ -271,6 +271,10 @@ Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace spa
 
 } // namespace
 
+Result<Image> load_frame_color(const Sequence& s, std::size_t index, InputSpace space) {
+    return read_color(s.frames.at(index).color, s, space, "color");
+}
+
 Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace space) {
     const SequenceFrame& f = s.frames.at(index);
     LoadedFrame out;

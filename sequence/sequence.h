@@ -91,6 +91,9 @@ struct LoadedFrame {
 // whatever it says); motion and depth are data, read as stored.
 Result<LoadedFrame> load_frame(const Sequence& sequence, std::size_t index, InputSpace space = InputSpace::from_file);
 
+// Only frame `index`'s color, checked as load_frame() checks it: what a fit to the sequence reads.
+Result<Image> load_frame_color(const Sequence& sequence, std::size_t index, InputSpace space = InputSpace::from_file);
+
 // The motion of one pixel, as stored in a file of `convention`, in load_frame()'s convention.
 glm::vec2 canonical_motion(glm::vec2 stored, const MotionConvention& convention, std::uint32_t width,
                            std::uint32_t height);

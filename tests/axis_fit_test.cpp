@@ -206,6 +206,59 @@ TEST(AxisFit, TheDistanceObjectiveIsTheReportedDistanceWithItsGradient) {
     EXPECT_DOUBLE_EQ(refined.score, mean_clip_distance(refined.axes, *samples));
 }
 
+// Frames held between passes or read and gathered again on each: the same sums in the same order,
+// so the same objective to the last bit and the same fit; the budget decides only what is read.
+TEST(AxisFit, FramesHeldOrReadAgainGiveTheSameObjective) {
+    const Image a = grass(24), b = grass(16), c = grass(20);
+    std::size_t loads = 0;
+    auto frames = [&] {
+        std::vector<FitFrame> out;
+        for (const Image* image : {&a, &b, &c})
+            out.push_back({"frame", std::uint64_t(image->width) * image->height, [image, &loads]() -> Result<Image> {
+                               ++loads;
+                               return *image;
+                           }});
+        return out;
+    };
+    auto held = FrameNeighborhoods::gather(frames(), Neighborhood::n9, std::uint64_t(1) << 30);
+    auto streamed = FrameNeighborhoods::gather(frames(), Neighborhood::n9, 0);
+    ASSERT_TRUE(held && streamed);
+    EXPECT_EQ(held->held_frames(), 3u);
+    EXPECT_EQ(streamed->held_frames(), 0u);
+    EXPECT_EQ(held->count(), 24u * 24 + 16 * 16 + 20 * 20);
+    const std::vector<std::vector<glm::dvec3>> sets{unit_axes(*resolve_axis_set("dop16-grass")),
+                                                    unit_axes(*resolve_axis_set("dop32"))};
+    loads = 0;
+    const std::vector<double> from_held = mean_volumes(sets, *held, 2),
+                              from_streamed = mean_volumes(sets, *streamed, 1);
+    EXPECT_EQ(loads, 3u) << "each streamed frame read once for both sets, the held ones not at all";
+    EXPECT_EQ(from_held, from_streamed);
+    // The mean over the frames is every neighborhood's mean, weighed by pixel count.
+    double weighed = 0;
+    for (const Image* image : {&a, &b, &c})
+        weighed += mean_volume(sets[0], gather_neighborhoods({image, 1}, Neighborhood::n9)) * image->pixels.size();
+    EXPECT_NEAR(from_held[0], weighed / double(held->count()), 1e-12 * from_held[0]);
+
+    FitOptions options;
+    options.axes = 5;
+    options.starts = 1;
+    options.iterations = 4;
+    const FitResult one = fit_to_neighborhoods(*held, options), two = fit_to_neighborhoods(*streamed, options);
+    EXPECT_EQ(one.axes, two.axes);
+    EXPECT_EQ(one.score, two.score);
+
+    // A frame that read on the first pass and no longer does stops the search with its error.
+    bool broken = false;
+    std::vector<FitFrame> breaking{{"frame", 256, [&]() -> Result<Image> {
+                                        if (broken) return fail("frame.exr: cannot read image: gone");
+                                        return b;
+                                    }}};
+    auto later = FrameNeighborhoods::gather(breaking, Neighborhood::n9, 0);
+    ASSERT_TRUE(later);
+    broken = true;
+    EXPECT_THROW(mean_volumes(sets, *later), FitInputError);
+}
+
 struct OptimizeInputs {
     test::TempDir dir;
     std::string image = (dir / "grass.exr").string();
@@ -450,6 +503,70 @@ TEST(AxisFit, PinningZerosTradesScoreForFloatOps) {
         << "with the 22-DOP's 23 nonzero components, as tight as it";
 }
 
+// Sequences as input: kdop scene's frames, with an image, streamed frame by frame or held, give the
+// same file; --frame-step takes every Nth frame; a frame that cannot be read stops the fit.
+TEST(CliOptimize, FitsToSequencesHeldOrStreamedAlike) {
+    OptimizeInputs in;
+    const fs::path sequences = in.dir / "scenes";
+    auto scene = in.kdop("scene --scenes grass --size 40x24 --frames 12 --out " + sequences.string());
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    const std::string sequence = (sequences / "grass-ghosting").string();
+    const std::string args = "optimize --sequence " + sequence + " --images " + in.image +
+                             " --axes 4 --starts 1 --iterations 3 --accuracy-samples 40 --threads 2 --name fit";
+    const fs::path held = in.dir / "held.axes", streamed = in.dir / "streamed.axes";
+    auto a = in.kdop(args + " --memory 1000 --out " + held.string());
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    auto b = in.kdop(args + " --memory 0.001 --out " + streamed.string());
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_NE(a.out.find("13 of 13 frames held between passes"), std::string::npos) << a.out;
+    EXPECT_NE(b.out.find("0 of 13 frames held between passes"), std::string::npos) << b.out;
+    EXPECT_EQ(test::read_file(held), test::read_file(streamed)) << "the same sums in the same order";
+    const std::string text = test::read_file(held);
+    EXPECT_NE(text.find(fmt::format("mean k-DOP volume over all {} 3x3 neighborhoods of {}, {} (12 frames)",
+                                    16 * 16 + 12 * 40 * 24, in.image, sequence)),
+              std::string::npos)
+        << text;
+    EXPECT_NE(a.out.find("up to 40 of each image and sequence (spread over its frames)"), std::string::npos) << a.out;
+
+    auto stepped = in.kdop("optimize --sequence " + sequence +
+                           " --frame-step 5 --axes 4 --starts 1 --iterations 2 --accuracy-samples 0 --out " +
+                           (in.dir / "stepped.axes").string());
+    ASSERT_EQ(stepped.exit_code, 0) << stepped.err;
+    EXPECT_NE(stepped.out.find(fmt::format("{} (3 of 12 frames, every 5)", sequence)), std::string::npos)
+        << stepped.out;
+
+    test::write_file(sequences / "grass-ghosting" / "color" / "0007.exr", "not an image");
+    const fs::path out = in.dir / "bad.axes";
+    for (const std::string extra : {"", " --sample 100"}) {
+        auto bad = in.kdop(args + extra + " --out " + out.string());
+        EXPECT_EQ(bad.exit_code, 1) << bad.err;
+        EXPECT_NE(bad.err.find("color/0007.exr: cannot read image"), std::string::npos) << bad.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+}
+
+// Streamed, a sequence's frames cost the same memory however many there are; held, they grow.
+TEST(CliOptimize, StreamingKeepsPeakMemoryFlatInTheFrameCount) {
+    OptimizeInputs in;
+    auto peak = [&](std::size_t frames, const std::string& memory) {
+        const fs::path dir = in.dir / fmt::format("scenes{}", frames);
+        auto scene =
+            in.kdop(fmt::format("scene --scenes grass --size 64x64 --frames {} --out {}", frames, dir.string()));
+        EXPECT_EQ(scene.exit_code, 0) << scene.err;
+        auto r = in.kdop("optimize --sequence " + (dir / "grass-ghosting").string() + " --memory " + memory +
+                         " --sample 200 --axes 4 --starts 1 --iterations 2 --accuracy-samples 0 --out " +
+                         (in.dir / "fitted.axes").string());
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        std::smatch m;
+        EXPECT_TRUE(std::regex_search(r.out, m, std::regex("peak memory ([0-9]+) MB"))) << r.out;
+        return m.empty() ? 0.0 : std::stod(m[1]);
+    };
+    const double twenty = peak(20, "0.5"), two_hundred = peak(200, "0.5"), held = peak(200, "4000");
+    EXPECT_LT(two_hundred, twenty + 10) << "streamed: one frame at a time";
+    // 200 frames of 4,096 neighborhoods, 9 points of 24 bytes each: about 180 MB held.
+    EXPECT_GT(held, twenty + 100) << "the same frames held: the bound above is not loose";
+}
+
 TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
     OptimizeInputs in;
     const std::string tiny = (in.dir / "tiny.exr").string();
@@ -472,7 +589,7 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--images " + in.image + " --axes 2" + out, "--axes: Value 2 not in range", 2},
         {"--images " + in.image + " --axes 3 --force-rgb" + out, "--force-rgb fixes 3 axes; --axes 3 leaves none", 2},
         {"--images " + in.image + " --sphere --axes 4" + out, "excludes", 2},
-        {"--axes 4" + out, "give --images FILE... to fit to, or --sphere", 2},
+        {"--axes 4" + out, "give --images FILE... or --sequence DIR... to fit to, or --sphere", 2},
         {"--sphere --axes 4 --out " + (in.dir / "Bad_Name.axes").string(), "'Bad_Name' is not a set name", 2},
         {"--sphere --axes 5 --max-nonzero 4" + out, "--max-nonzero 4: each of the 5 axes keeps at least one", 2},
         {"--sphere --axes 11 --force-rgb --max-nonzero 11" + out, "--max-nonzero 11: pinning stops at", 1},
@@ -487,6 +604,9 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--images " + in.image + " --axes 4 --objective distance --sample 20" + out, "excludes", 2},
         {"--images " + in.image + " --axes 4 --objective size" + out, "--objective: size not in", 2},
         {"--images " + in.image + " --axes 4 --color-map srgb" + out, "'srgb' is not a color map", 2},
+        {"--sequence " + (in.dir / "").string() + " --axes 4" + out, "sequence.json", 1},
+        {"--images " + in.image + " --frame-step 2 --axes 4" + out, "--frame-step requires --sequence", 2},
+        {"--images " + in.image + " --memory 0 --axes 4" + out, "--memory", 2},
     };
     for (const Case& c : cases) {
         auto r = in.kdop("optimize " + c.args);

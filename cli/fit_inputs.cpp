@@ -1,0 +1,127 @@
+#include "fit_inputs.h"
+
+#include "accuracy_inputs.h"
+#include "input_files.h"
+#include "sampled_distance.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace kdop::cli {
+namespace {
+
+constexpr std::string_view kFiniteForFitting = "fitting needs finite colors";
+
+Result<Image> load_image(const std::string& path, InputSpace space, const ColorMap& map) {
+    auto image = read_finite_image(path, kFiniteForFitting, space);
+    if (!image) return image;
+    // One color throughout: every neighborhood is a point, every k-DOP has volume 0, and the fit
+    // would choose among sets that all score 0.
+    if (std::ranges::all_of(image->pixels,
+                            [&](const glm::vec4& p) { return glm::vec3(p) == glm::vec3(image->pixels[0]); }))
+        return fail(fmt::format("{}: every pixel is ({}, {}, {}), so every neighborhood is flat and there is "
+                                "nothing to fit to; give images with the scene's detail",
+                                path, image->pixels[0].r, image->pixels[0].g, image->pixels[0].b));
+    map_colors(map, image->pixels);
+    return image;
+}
+
+// The frames of `sequence` a fit reads: every frame_step-th from the first.
+std::vector<std::size_t> stepped_frames(const Sequence& sequence, std::size_t step) {
+    std::vector<std::size_t> frames;
+    for (std::size_t i = 0; i < sequence.frames.size(); i += step) frames.push_back(i);
+    return frames;
+}
+
+} // namespace
+
+Result<FitInputs> fit_inputs(const FitInputOptions& o) {
+    // An input given twice would only weigh twice, and the distance's image pairs refuse it.
+    if (auto ok = check_distinct_files(o.images, "--images"); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_distinct_files(o.sequences, "--sequence"); !ok) return std::unexpected(ok.error());
+    FitInputs in;
+    std::vector<std::string> described;
+    for (const std::string& path : o.images) {
+        auto size = read_image_size(path);
+        if (!size) return std::unexpected(size.error());
+        if (size->x < 3 || size->y < 3)
+            return fail(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels", path,
+                                    size->x, size->y));
+        in.frames.push_back({path, std::uint64_t(size->x) * size->y, [path, space = o.input_space, map = o.color_map] {
+                                 return load_image(path, space, map);
+                             }});
+        in.paths.emplace_back(path);
+        described.push_back(path);
+    }
+    for (const std::string& dir : o.sequences) {
+        auto sequence = read_sequence(dir);
+        if (!sequence) return std::unexpected(sequence.error());
+        if (sequence->width < 3 || sequence->height < 3)
+            return fail(fmt::format("{}: {}x{} frames have no 3x3 neighborhood; a frame needs at least 3x3 pixels", dir,
+                                    sequence->width, sequence->height));
+        in.sequences.push_back(std::make_shared<const Sequence>(std::move(*sequence)));
+    }
+    for (const std::shared_ptr<const Sequence>& shared : in.sequences) {
+        const Sequence& sequence = *shared;
+        const std::vector<std::size_t> frames = stepped_frames(sequence, o.frame_step);
+        for (std::size_t index : frames) {
+            const std::string label = sequence.frames[index].color.string();
+            in.frames.push_back({label, std::uint64_t(sequence.width) * sequence.height,
+                                 [shared, index, space = o.input_space, map = o.color_map]() -> Result<Image> {
+                                     auto color = load_frame_color(*shared, index, space);
+                                     if (color) map_colors(map, color->pixels);
+                                     return color;
+                                 }});
+            in.paths.push_back(sequence.frames[index].color);
+        }
+        in.paths.push_back(sequence.dir / "sequence.json");
+        described.push_back(frames.size() == sequence.frames.size()
+                                ? fmt::format("{} ({} frames)", sequence.dir.string(), frames.size())
+                                : fmt::format("{} ({} of {} frames, every {})", sequence.dir.string(), frames.size(),
+                                              sequence.frames.size(), o.frame_step));
+    }
+    in.description = fmt::format("{}", fmt::join(described, ", "));
+    return in;
+}
+
+Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& o, const FitInputs& inputs,
+                                                     Neighborhood shape, std::size_t per_input, std::uint64_t seed) {
+    std::size_t frames = o.images.size();
+    for (const auto& sequence : inputs.sequences) frames += stepped_frames(*sequence, o.frame_step).size();
+    Progress progress(fmt::format("the ideal clip on up to {} sampled pixels of", per_input), frames);
+    std::vector<ClipSample> samples;
+    if (!o.images.empty()) {
+        auto pairs = image_pairs(o.images, o.input_space);
+        if (!pairs) return std::unexpected(pairs.error());
+        for (AccuracyPair& pair : *pairs)
+            for (Image* image : {&pair.current, &pair.history}) map_colors(o.color_map, image->pixels);
+        auto drawn = ideal_clip_samples(*pairs, shape, per_input, seed);
+        if (!drawn) return std::unexpected(drawn.error());
+        samples = std::move(*drawn);
+        for (const std::string& image : o.images) progress.advance(image);
+    }
+    // A sequence's pixels are spread over its frames, each frame drawing with its own generator.
+    for (const auto& shared : inputs.sequences) {
+        const Sequence& sequence = *shared;
+        const std::vector<std::size_t> stepped = stepped_frames(sequence, o.frame_step);
+        const std::size_t per_frame = (per_input + stepped.size() - 1) / stepped.size();
+        for (std::size_t index : stepped) {
+            auto color = load_frame_color(sequence, index, o.input_space);
+            if (!color) return std::unexpected(color.error());
+            map_colors(o.color_map, color->pixels);
+            const std::string family = fmt::format("{} frame {}", sequence.name, index);
+            auto drawn = ideal_clip_samples(ghosting_pairs(family, *color), shape, per_frame,
+                                            seed + (index + 1) * 0x9e3779b97f4a7c15ull);
+            if (!drawn) return std::unexpected(drawn.error());
+            std::ranges::move(*drawn, std::back_inserter(samples));
+            progress.advance(family);
+        }
+    }
+    progress.finish();
+    return samples;
+}
+
+} // namespace kdop::cli

@@ -1,0 +1,42 @@
+// What kdop optimize fits to: images and frame sequences together, as frames read one at a time
+// (fit/frame_neighborhoods.h), and the pixels its distance to the ideal clip is measured on.
+#pragma once
+
+#include "axis_fit.h"
+#include "color_map.h"
+#include "image_io.h"
+#include "progress.h"
+#include "result.h"
+#include "sequence.h"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop::cli {
+
+struct FitInputOptions {
+    std::vector<std::string> images, sequences; // files; sequence folders
+    std::size_t frame_step = 1;                 // every frame_step-th frame of each sequence, from the first
+    InputSpace input_space = InputSpace::from_file;
+    ColorMap color_map; // the fit's space: every color is mapped on reading
+};
+
+struct FitInputs {
+    std::vector<FitFrame> frames;                           // the images, then each sequence's frames
+    std::vector<std::shared_ptr<const Sequence>> sequences; // as read, frames not yet stepped; frames share them
+    std::vector<std::filesystem::path> paths;               // every file read, for outputs to keep clear of
+    std::string description;                                // "desert5.png, intro (48 of 96 frames)"
+};
+
+// Reads the sequences' manifests and the images' headers (no pixel yet). Refuses an image or
+// sequence given twice and frames smaller than 3x3; a frame's pixels are checked when it is read.
+Result<FitInputs> fit_inputs(const FitInputOptions& options);
+
+// The distance's pixels: `per_input` seeded pixels of each image under each of its ghosting
+// histories (kdop accuracy's measure), and of each sequence as many, spread over its frames.
+Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& options, const FitInputs& inputs,
+                                                     Neighborhood shape, std::size_t per_input, std::uint64_t seed);
+
+} // namespace kdop::cli
