@@ -13,6 +13,8 @@ set -eu
 # clang-format: the test format_is_applied checks the tree against .clang-format.
 # nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
 # fonts-dejavu-core: the font of the labels in `kdop taa`'s pictures (temporal/trail_picture.h).
+# libopenmpi-dev and openmpi-bin: `mpirun -np R kdop optimize` shares a fit's frames over ranks
+# (the build leaves MPI out where it is not installed).
 # nodejs and npm: the WGSL tests compile with Tint, from the npm package `webgpu` (installed below).
 packages="
   build-essential cmake ninja-build pkg-config
@@ -21,6 +23,7 @@ packages="
   libopenimageio-dev
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libglpk-dev libqhull-dev
+  libopenmpi-dev openmpi-bin
   libgtest-dev valgrind gnuplot-nox clang-format
   colobot-common-textures fonts-dejavu-core
 "

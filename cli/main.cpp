@@ -2,7 +2,10 @@
 #include "commands.h"
 
 #include "command_line.h"
+#include "ranks.h"
 #include "run_metadata.h"
+
+#include <fmt/format.h>
 
 #include <map>
 
@@ -20,7 +23,14 @@ int main(int argc, char** argv) {
         {"taa", kdop::cli::add_taa_command(app)},           {"scene", kdop::cli::add_scene_command(app)},
     };
     return kdop::run_command_line(app, "kdop", argc, argv, [&] {
-        for (CLI::App* chosen : app.get_subcommands()) return actions.at(chosen->get_name())();
+        for (CLI::App* chosen : app.get_subcommands()) {
+            // Every rank would do the whole of any other command and write the same outputs.
+            if (chosen->get_name() != "optimize" && kdop::cli::launched_ranks() > 1)
+                return kdop::cli::usage_error(
+                    fmt::format("{}: only kdop optimize shares its work over MPI ranks; run kdop {} without mpirun",
+                                chosen->get_name(), chosen->get_name()));
+            return actions.at(chosen->get_name())();
+        }
         return 1;
     });
 }

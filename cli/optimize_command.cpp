@@ -17,6 +17,7 @@
 #include "memory_budget.h"
 #include "number_option.h"
 #include "progress.h"
+#include "ranks.h"
 #include "sampled_distance.h"
 #include "scratch_directory.h"
 #include "set_cost.h"
@@ -27,11 +28,13 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <span>
+#include <thread>
 
 #include <sys/resource.h>
 
@@ -80,6 +83,22 @@ std::vector<Compared> compared_sets(const Options& o, const FrameNeighborhoods* 
     return sets;
 }
 
+// Every rank's drawn neighborhoods to every rank, so each holds the whole sample.
+void share_sample(const Ranks& ranks, NeighborhoodSampler& sampler, std::size_t frames) {
+    std::vector<std::size_t> per_frame;
+    for (std::size_t f = 0; f < frames; ++f) per_frame.push_back(sampler.drawn_points(f) * 3);
+    std::vector<double> all;
+    for (std::size_t f = 0; f < frames; ++f) {
+        std::vector<glm::dvec3>& drawn = sampler.drawn(f);
+        drawn.resize(per_frame[f] / 3); // another rank's frame: zeros until gathered
+        for (const glm::dvec3& p : drawn) all.insert(all.end(), {p.x, p.y, p.z});
+    }
+    ranks.all_gather(all, per_frame);
+    const double* at = all.data();
+    for (std::size_t f = 0; f < frames; ++f)
+        for (glm::dvec3& p : sampler.drawn(f)) p = glm::dvec3(at[0], at[1], at[2]), at += 3;
+}
+
 // This process's peak resident memory, in MB.
 double peak_memory_mb() {
     rusage usage{};
@@ -87,7 +106,7 @@ double peak_memory_mb() {
     return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
 }
 
-int run(const Options& o) {
+int run(const Options& o, const Ranks& ranks) {
     // Everything the command line decides is checked here, before the fit, which can take minutes.
     const bool by_distance = o.objective == "distance";
     if (by_distance && o.accuracy_samples == 0)
@@ -125,6 +144,13 @@ int run(const Options& o) {
         if (!read) return report_error(read.error().message);
         inputs = std::move(*read);
         if (auto ok = check_not_an_input(o.out, "--out", inputs.paths); !ok) return report_error(ok.error().message);
+        // Each rank reads and evaluates whole frames: the sums of a frame are the unit whose
+        // fixed order makes the result the same for any rank count.
+        if (std::size_t(ranks.size()) > inputs.frames.size())
+            return usage_error(fmt::format("mpirun -np {}: {} ranks share {} frame{}; give at most as many ranks as "
+                                           "frames",
+                                           ranks.size(), ranks.size(), inputs.frames.size(),
+                                           inputs.frames.size() == 1 ? "" : "s"));
         // Held between passes while they take at most --memory MB (by default half what is
         // available); the frames beyond are read and gathered again on each pass.
         const std::uint64_t budget = o.memory ? std::uint64_t(*o.memory * 1024 * 1024)
@@ -133,16 +159,29 @@ int run(const Options& o) {
         for (const FitFrame& frame : inputs.frames) pixels.push_back(frame.pixels);
         std::optional<NeighborhoodSampler> sampler;
         if (o.sample) sampler.emplace(shape, pixels, *o.sample, o.seed);
-        Progress progress("reading frames", inputs.frames.size());
+        const auto [first, end] = ranks.share(inputs.frames.size());
+        FrameShare share{first, end, {}};
+        if (ranks.size() > 1)
+            share.share = [&ranks](std::span<double> sums, std::size_t per_frame) {
+                ranks.all_gather(sums, std::vector<std::size_t>(sums.size() / per_frame, per_frame));
+            };
+        Progress progress(ranks.size() > 1 ? fmt::format("reading frames on rank 0 of {}", ranks.size())
+                                           : std::string("reading frames"),
+                          end - first);
         auto gathered =
-            FrameNeighborhoods::gather(inputs.frames, shape, budget, {}, [&](std::size_t frame, const Image& image) {
+            FrameNeighborhoods::gather(inputs.frames, shape, budget, share, [&](std::size_t frame, const Image& image) {
                 if (sampler) sampler->add(frame, image);
                 progress.advance(inputs.frames[frame].label);
             });
         progress.finish();
-        if (!gathered) return report_error(gathered.error().message);
+        // A frame that a rank could not read stops every rank, with its error, before any output.
+        if (auto ok = ranks.agree(gathered ? Result<void>{} : std::unexpected(gathered.error())); !ok)
+            return report_error(ok.error().message);
         neighborhoods = std::move(*gathered);
-        if (sampler) sampled.emplace(sampler->finish());
+        if (sampler) {
+            if (ranks.size() > 1) share_sample(ranks, *sampler, inputs.frames.size());
+            sampled.emplace(sampler->finish());
+        }
     }
     // What the search sees: the sample where one is asked for, else every neighborhood.
     const FrameNeighborhoods* fitted_to = sampled ? &*sampled : neighborhoods ? &*neighborhoods : nullptr;
@@ -247,7 +286,7 @@ int run(const Options& o) {
     std::vector<ClipSample> samples;
     auto read_samples = [&]() -> Result<void> {
         auto read = fit_distance_samples(o.input, inputs, shape, o.accuracy_samples, o.seed);
-        if (!read) return std::unexpected(read.error());
+        if (auto ok = ranks.agree(read ? Result<void>{} : std::unexpected(read.error())); !ok) return ok;
         samples = std::move(*read);
         return {};
     };
@@ -297,7 +336,7 @@ int run(const Options& o) {
                                   "the sample, {:.6g} on all ({:+.2f}%)",
                                   sampled->count(), neighborhoods->count(), o.seed, sample_score, result.score,
                                   100.0 * (result.score / sample_score - 1.0));
-    const std::size_t frames = neighborhoods ? neighborhoods->frame_count() : 0,
+    const std::size_t frames = neighborhoods ? neighborhoods->own_frames() : 0,
                       held = neighborhoods ? neighborhoods->held_frames() : 0;
     neighborhoods.reset();
     sampled.reset();
@@ -375,6 +414,7 @@ int run(const Options& o) {
     if (closer) text.comments.push_back(fmt::format("Warning: {}.", closer_warning));
     auto file = fitted_set_file(text, result.axes);
     if (!file) return report_error(file.error().message);
+    if (!ranks.is_root()) return 0; // the same file on every rank: rank 0 writes it
     if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
 
     std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), fitted_objective, fitted_score);
@@ -396,8 +436,11 @@ int run(const Options& o) {
     // What the frames cost in memory: bounded by what is held, whatever the frame count.
     if (frames)
         std::cout << fmt::format("peak memory {:.0f} MB; {} of {} frames held between passes, the rest read again on "
-                                 "each\n",
-                                 peak_memory_mb(), held, frames);
+                                 "each{}\n",
+                                 peak_memory_mb(), held, frames,
+                                 ranks.size() > 1 ? fmt::format(" (on rank 0 of {}, which reads {} of the {} frames)",
+                                                                ranks.size(), frames, inputs.frames.size())
+                                                  : "");
     return 0;
 }
 
@@ -488,7 +531,20 @@ Action add_optimize_command(CLI::App& app) {
     return [o, images, sequences, sphere] {
         if (!*images && !*sequences && !*sphere)
             return usage_error("optimize: give --images FILE... or --sequence DIR... to fit to, or --sphere");
-        return run(*o);
+        auto ranks = Ranks::world();
+        if (!ranks) return report_error(ranks.error().message);
+        (*ranks)->quiet_unless_root();
+        // One process's threads share its cores with the other ranks on the machine.
+        Options options = *o;
+        if (const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE"); local && options.threads == 0)
+            options.threads =
+                std::max(1u, std::thread::hardware_concurrency() / unsigned(std::max(1, std::atoi(local))));
+        try {
+            return run(options, **ranks);
+        } catch (const FitInputError& e) {
+            if ((*ranks)->size() > 1) (*ranks)->abort(e.what()); // the others wait in a collective
+            return report_error(e.what());
+        }
     };
 }
 

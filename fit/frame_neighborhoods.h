@@ -58,7 +58,8 @@ public:
                                              const std::function<void(std::size_t, const Image&)>& on_frame = {});
 
     std::size_t frame_count() const { return frames_.size(); }
-    std::size_t held_frames() const;
+    std::size_t own_frames() const { return share_.end - share_.first; } // this process's
+    std::size_t held_frames() const;                                     // of those, held
     std::uint64_t held_bytes() const { return held_bytes_; }
     // Neighborhoods of all frames (every process's), repeats included.
     std::size_t count() const { return total_; }

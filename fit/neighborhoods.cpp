@@ -70,7 +70,8 @@ Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood s
 
 NeighborhoodSampler::NeighborhoodSampler(Neighborhood shape, std::span<const std::uint64_t> frame_pixels,
                                          std::size_t count, std::uint64_t seed)
-    : shape_(shape), seed_(seed), share_(frame_pixels.size()), drawn_(frame_pixels.size()) {
+    : shape_(shape), seed_(seed), share_(frame_pixels.size()), pixels_(frame_pixels.begin(), frame_pixels.end()),
+      drawn_(frame_pixels.size()) {
     std::uint64_t total = 0;
     for (std::uint64_t pixels : frame_pixels) total += pixels;
     count = std::size_t(std::min<std::uint64_t>(count, total));
@@ -86,6 +87,10 @@ NeighborhoodSampler::NeighborhoodSampler(Neighborhood shape, std::span<const std
     }
     std::sort(fractions.begin(), fractions.end());
     for (std::size_t k = 0; given < count; ++k, ++given) ++share_[fractions[k].second];
+}
+
+std::size_t NeighborhoodSampler::drawn_points(std::size_t frame) const {
+    return std::size_t(std::min<std::uint64_t>(share_[frame], pixels_[frame])) * neighborhood_offsets(shape_).size();
 }
 
 void NeighborhoodSampler::add(std::size_t frame, const Image& image) {

@@ -44,14 +44,17 @@ public:
     std::size_t share(std::size_t frame) const { return share_[frame]; }
     // Draws frame `frame`'s share from its image.
     void add(std::size_t frame, const Image& image);
-    // Each frame's drawn points (share x neighborhood size), for a process to hand to the others.
-    std::vector<std::vector<glm::dvec3>>& drawn() { return drawn_; }
+    // Frame `frame`'s drawn points (its share, at most its pixels, x the neighborhood's size), for
+    // a process to hand to the others, and how many it draws whoever reads it.
+    std::vector<glm::dvec3>& drawn(std::size_t frame) { return drawn_[frame]; }
+    std::size_t drawn_points(std::size_t frame) const;
     Neighborhoods finish();
 
 private:
     Neighborhood shape_;
     std::uint64_t seed_;
     std::vector<std::size_t> share_;
+    std::vector<std::uint64_t> pixels_;
     std::vector<std::vector<glm::dvec3>> drawn_;
 };
 

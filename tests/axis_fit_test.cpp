@@ -23,6 +23,8 @@
 #include <span>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace kdop {
 namespace {
 namespace fs = std::filesystem;
@@ -565,6 +567,57 @@ TEST(CliOptimize, StreamingKeepsPeakMemoryFlatInTheFrameCount) {
     EXPECT_LT(two_hundred, twenty + 10) << "streamed: one frame at a time";
     // 200 frames of 4,096 neighborhoods, 9 points of 24 bytes each: about 180 MB held.
     EXPECT_GT(held, twenty + 100) << "the same frames held: the bound above is not loose";
+}
+
+// mpirun -np R: each rank reads and evaluates its own frames, and the fixed frame order of the
+// sums gives the same file for any rank and thread count, with or without mpirun, sampled or not.
+// A frame on another rank's share that cannot be read stops every rank with its error, and
+// nothing is written; more ranks than frames are refused.
+TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
+#ifndef KDOP_MPIEXEC
+    GTEST_SKIP() << "kdop was built without MPI (libopenmpi-dev)";
+#else
+    OptimizeInputs in;
+    const fs::path sequences = in.dir / "scenes";
+    auto scene = in.kdop("scene --scenes grass --size 40x24 --frames 9 --out " + sequences.string());
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    const std::string sequence = (sequences / "grass-ghosting").string();
+    // Open MPI refuses root unless told; CI runs as root.
+    const std::string mpirun =
+        fmt::format("{} --oversubscribe{} -np ", KDOP_MPIEXEC, geteuid() == 0 ? " --allow-run-as-root" : "");
+    auto optimize = [&](const std::string& launch, const std::string& args, const fs::path& out) {
+        return test::run(launch + test::kdop_binary() + " optimize --sequence " + sequence + " --images " + in.image +
+                         " --axes 4 --starts 2 --iterations 3 --accuracy-samples 30 --name fit " + args + " --out " +
+                         out.string());
+    };
+    for (const std::string sample : {"", " --sample 150"}) {
+        const fs::path alone = in.dir / "alone.axes";
+        auto reference = optimize("", "--threads 2" + sample, alone);
+        ASSERT_EQ(reference.exit_code, 0) << reference.err;
+        for (int ranks : {1, 2, 3})
+            for (int threads : {1, 2}) {
+                const fs::path out = in.dir / fmt::format("ranks{}-threads{}.axes", ranks, threads);
+                auto r =
+                    optimize(fmt::format("{}{} ", mpirun, ranks), fmt::format("--threads {}{}", threads, sample), out);
+                ASSERT_EQ(r.exit_code, 0) << r.err;
+                EXPECT_EQ(test::read_file(out), test::read_file(alone)) << ranks << " ranks, " << threads << " threads";
+                if (ranks > 1) {
+                    EXPECT_NE(r.out.find(fmt::format("(on rank 0 of {}, which reads", ranks)), std::string::npos)
+                        << r.out;
+                }
+            }
+    }
+
+    const fs::path out = in.dir / "refused.axes";
+    auto too_many = optimize(mpirun + "11 ", "", out);
+    EXPECT_NE(too_many.exit_code, 0);
+    EXPECT_NE(too_many.err.find("mpirun -np 11: 11 ranks share 10 frames"), std::string::npos) << too_many.err;
+    test::write_file(sequences / "grass-ghosting" / "color" / "0008.exr", "not an image"); // the last rank's
+    auto bad = optimize(mpirun + "3 ", "", out);
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.err.find("color/0008.exr: cannot read image"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(out));
+#endif
 }
 
 TEST(CliOptimize, RefusesBadInputAndWritesNothing) {

@@ -166,7 +166,9 @@ TEST(ImageIo, PngHoldsSrgbAndSaysSo) {
         at += 12 + word(at);
     }
     EXPECT_TRUE(srgb) << "no sRGB chunk";
-    if (gamma) EXPECT_EQ(*gamma, 45455u) << "gAMA, if any, must agree: 1/2.2 x 100000";
+    if (gamma) {
+        EXPECT_EQ(*gamma, 45455u) << "gAMA, if any, must agree: 1/2.2 x 100000";
+    }
     // The bytes are the encoded values: 0.25, 0.5, 0.75 become 137, 188, 225.
     auto stored = read_image(path.string(), 0, InputSpace::linear);
     auto back = read_image(path.string());

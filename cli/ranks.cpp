@@ -1,0 +1,113 @@
+#include "ranks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <numeric>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#ifdef KDOP_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace kdop::cli {
+
+bool started_by_launcher() {
+    for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+        if (std::getenv(variable)) return true;
+    return false;
+}
+
+int launched_ranks() {
+    for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+        if (const char* size = std::getenv(variable)) return std::max(1, std::atoi(size));
+    return 1;
+}
+
+Result<Ranks*> Ranks::world() {
+    static Ranks ranks;
+    static bool started = false;
+    if (started || !started_by_launcher()) return &ranks;
+    started = true;
+#ifdef KDOP_WITH_MPI
+    // Only the main thread calls MPI; the worker threads of an evaluation never do.
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    std::atexit([] { MPI_Finalize(); });
+    MPI_Comm_rank(MPI_COMM_WORLD, &ranks.rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks.size_);
+    return &ranks;
+#else
+    if (launched_ranks() > 1)
+        return fail("this kdop was built without MPI (install libopenmpi-dev and rebuild) and cannot run as "
+                    "several ranks; run it without mpirun");
+    return &ranks;
+#endif
+}
+
+std::pair<std::size_t, std::size_t> Ranks::share(std::size_t count) const {
+    const auto at = [&](int r) { return count * std::size_t(r) / std::size_t(size_); };
+    return {at(rank_), at(rank_ + 1)};
+}
+
+void Ranks::all_gather(std::span<double> all, std::span<const std::size_t> per_item) const {
+    if (size_ == 1) return;
+#ifdef KDOP_WITH_MPI
+    // Each rank's items are contiguous in `all`: one block of doubles per rank, gathered in place.
+    std::vector<std::size_t> offset(per_item.size() + 1, 0);
+    std::partial_sum(per_item.begin(), per_item.end(), offset.begin() + 1);
+    std::vector<int> counts(size_), displacements(size_);
+    for (int r = 0; r < size_; ++r) {
+        const std::size_t first = per_item.size() * std::size_t(r) / std::size_t(size_),
+                          end = per_item.size() * std::size_t(r + 1) / std::size_t(size_);
+        displacements[r] = int(offset[first]);
+        counts[r] = int(offset[end] - offset[first]);
+    }
+    MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, all.data(), counts.data(), displacements.data(), MPI_DOUBLE,
+                   MPI_COMM_WORLD);
+#endif
+}
+
+Result<void> Ranks::agree(Result<void> mine) const {
+    if (size_ == 1) return mine;
+#ifdef KDOP_WITH_MPI
+    // The lowest failing rank, then its message, broadcast from it.
+    int failed = mine ? size_ : rank_, first = size_;
+    MPI_Allreduce(&failed, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first == size_) return {};
+    std::string message = mine ? std::string() : mine.error().message;
+    unsigned long length = message.size();
+    MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG, first, MPI_COMM_WORLD);
+    message.resize(length);
+    MPI_Bcast(message.data(), int(length), MPI_CHAR, first, MPI_COMM_WORLD);
+    return fail(message);
+#else
+    return mine;
+#endif
+}
+
+void Ranks::quiet_unless_root() {
+    if (is_root()) return;
+    std::cout.flush();
+    std::cerr.flush();
+    stderr_ = dup(2);
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    close(null);
+}
+
+void Ranks::abort(const std::string& message) const {
+    const std::string line = fmt::format("kdop: rank {} of {}: {}\n", rank_, size_, message);
+    [[maybe_unused]] const auto written = write(stderr_, line.data(), line.size());
+#ifdef KDOP_WITH_MPI
+    if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, 1);
+#endif
+    std::exit(1);
+}
+
+} // namespace kdop::cli
