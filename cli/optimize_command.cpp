@@ -18,8 +18,10 @@
 #include "number_option.h"
 #include "progress.h"
 #include "ranks.h"
+#include "resolve_option.h"
 #include "sampled_distance.h"
 #include "scratch_directory.h"
+#include "sequence_ghosting.h"
 #include "set_cost.h"
 #include "variant_spec.h"
 #include "write_files.h"
@@ -51,7 +53,9 @@ struct Options {
     std::size_t starts = 0, iterations = 0;
     unsigned threads = 0;
     double time_limit = 0;
-    std::optional<double> target;
+    std::optional<double> target, target_ghosting;
+    ResolveOptions resolve;     // of --target-ghosting's measurement; its color map is --color-map
+    std::uint32_t warmup = 100; // frames of each sequence before --target-ghosting measures
     std::optional<std::size_t> max_nonzero;
     bool lavapipe_cost = false;
     std::size_t accuracy_samples = 8192;
@@ -112,8 +116,9 @@ int run(const Options& o, const Ranks& ranks) {
     if (by_distance && o.accuracy_samples == 0)
         return usage_error(
             "--objective distance: the distance is taken on --accuracy-samples pixels; give more than 0");
-    if (o.lavapipe_cost && !o.target && !o.max_nonzero)
-        return usage_error("--lavapipe-cost: counts the rows of --target's or --max-nonzero's table; give one of them");
+    if (o.lavapipe_cost && !o.target && !o.target_ghosting && !o.max_nonzero)
+        return usage_error("--lavapipe-cost: counts the rows of --target's, --target-ghosting's or --max-nonzero's "
+                           "table; give one of them");
     if (o.force_rgb && o.axes <= 3)
         return usage_error(fmt::format("--force-rgb fixes 3 axes; --axes {} leaves none to fit", o.axes));
     if (o.max_nonzero && *o.max_nonzero < o.axes)
@@ -219,10 +224,14 @@ int run(const Options& o, const Ranks& ranks) {
     if (o.lavapipe_cost && (callgrind.scratch.empty() || !std::filesystem::exists(callgrind.probe)))
         return report_error(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
                                         callgrind.probe.string()));
-    auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<std::string> {
-        auto text = fitted_set_file({name, "-", {}, std::nullopt}, axes);
+    // A row's axes as the set the file will hold: what the generator costs and the resolve runs.
+    auto as_axis_set = [&](std::span<const glm::dvec3> axes) -> Result<AxisSet> {
+        auto text = fitted_set_file({name, "-", {}, o.sphere ? std::nullopt : std::optional(o.input.color_map)}, axes);
         if (!text) return std::unexpected(text.error());
-        auto set = parse_axis_set(*text, o.out);
+        return parse_axis_set(*text, o.out);
+    };
+    auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<std::string> {
+        auto set = as_axis_set(axes);
         if (!set) return std::unexpected(set.error());
         std::string cost = fmt::format("{:>22}", analytic_min_float_ops(*set, Mode::clip, shape));
         if (!o.lavapipe_cost) return cost;
@@ -234,24 +243,80 @@ int run(const Options& o, const Ranks& ranks) {
     const std::string cost_header = fmt::format("{:>22}", "float ops (clip, hardened)") +
                                     (o.lavapipe_cost ? fmt::format(" {:>18}", "lavapipe instr/px") : "");
 
-    // With --target, the smallest axis count that reaches it, and the table of every count tried.
+    // With --target-ghosting, each row's set resolved over the sequences as kdop taa --sequence
+    // does, on rank 0 (its figures broadcast): its ghosting and shimmer columns.
+    std::unique_ptr<SequenceGhosting> ghosting;
+    if (o.target_ghosting) {
+        Result<void> opened;
+        if (ranks.is_root()) {
+            ResolveOptions resolve = o.resolve;
+            resolve.color_map = o.input.color_map; // the space the set is fitted in is the one it clips in
+            auto created = SequenceGhosting::create(o.input.sequences, o.input.input_space, resolve, o.warmup);
+            if (created)
+                ghosting = std::move(*created);
+            else
+                opened = std::unexpected(created.error());
+        }
+        if (auto ok = ranks.agree(opened); !ok) return report_error(ok.error().message);
+    }
+    auto measure_ghosting = [&](std::span<const glm::dvec3> axes) -> Result<std::vector<double>> {
+        std::vector<double> figures(2 * o.input.sequences.size()); // ghosting, shimmer per sequence
+        Result<void> measured;
+        if (ranks.is_root()) {
+            Progress progress("measuring ghosting and shimmer on the sequences", 1);
+            auto set = as_axis_set(axes);
+            auto m = set ? ghosting->measure(*set, shape) : std::unexpected(set.error());
+            if (m)
+                for (std::size_t i = 0; i < m->size(); ++i)
+                    figures[2 * i] = (*m)[i].ghosting, figures[2 * i + 1] = (*m)[i].shimmer;
+            else
+                measured = std::unexpected(m.error());
+        }
+        if (auto ok = ranks.agree(measured); !ok) return std::unexpected(ok.error());
+        ranks.broadcast(figures);
+        return figures;
+    };
+
+    // With --target or --target-ghosting, the smallest axis count that reaches it, and the table of
+    // every count tried.
     std::vector<std::string> table;
     FitResult result;
-    if (o.target) {
-        table.push_back(fmt::format("{:>4} {:>4} {:>14} {}", "axes", "k", "score", cost_header));
+    if (o.target || o.target_ghosting) {
+        std::string measured_header; // a ghosting and a shimmer column per sequence, in the order given
+        for (std::size_t i = 0; i < o.input.sequences.size(); ++i)
+            measured_header += fmt::format(" {:>12} {:>12}", "ghosting", "shimmer");
+        table.push_back(fmt::format("{:>4} {:>4} {:>14}{} {}", "axes", "k", "volume",
+                                    o.target_ghosting ? measured_header : "", cost_header));
+        std::cout << table.back() << "\n";
         bool reached = false;
+        double worst = 0; // the largest ghosting over the sequences, with --target-ghosting
         for (std::size_t axes = o.force_rgb ? 4 : 3; axes <= o.axes && !reached; ++axes) {
             result = fit_axes(axes);
             auto cost = clip_cost(result.axes);
             if (!cost) return report_error(cost.error().message);
-            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g} {}", axes, 2 * axes, result.score, *cost));
+            std::string measured;
+            if (o.target_ghosting) {
+                auto figures = measure_ghosting(result.axes);
+                if (!figures) return report_error(figures.error().message);
+                worst = 0;
+                for (std::size_t i = 0; i < figures->size(); i += 2) {
+                    measured += fmt::format(" {:>12.6f} {:>12.6f}", (*figures)[i], (*figures)[i + 1]);
+                    worst = std::max(worst, (*figures)[i]);
+                }
+            }
+            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g}{} {}", axes, 2 * axes, result.score, measured, *cost));
             std::cout << table.back() << "\n";
-            reached = result.score <= *o.target;
+            reached = o.target ? result.score <= *o.target : worst <= *o.target_ghosting;
             if (result.stopped_early) break;
         }
-        if (!reached)
+        if (!reached && o.target)
             return report_error(fmt::format("--target {:.6g}: no set of up to {} axes reaches it (the last: {:.6g}{})",
                                             *o.target, o.axes, result.score,
+                                            result.stopped_early ? ", stopped by --time-limit" : ""));
+        if (!reached)
+            return report_error(fmt::format("--target-ghosting {:.6g}: no set of up to {} axes reaches it (the last "
+                                            "ghosts {:.6g}{}); the table above shows the trade",
+                                            *o.target_ghosting, o.axes, worst,
                                             result.stopped_early ? ", stopped by --time-limit" : ""));
     } else {
         result = fit_axes(o.axes);
@@ -404,6 +469,11 @@ int run(const Options& o, const Ranks& ranks) {
     if (o.sample) text.comments.push_back(fmt::format("Sampled: {}.", sample_line));
     if (by_distance) text.comments.push_back(fmt::format("Refined: {}.", refined_line));
     if (o.target) text.comments.push_back(fmt::format("The fewest axes that reach --target {:.6g}:", *o.target));
+    if (o.target_ghosting)
+        text.comments.push_back(fmt::format("The fewest axes whose ghosting reaches --target-ghosting {:.6g} on {} "
+                                            "(kdop taa --sequence's measure, warmup {}, LDR- or HDR-FLIP as each "
+                                            "sequence says):",
+                                            *o.target_ghosting, fmt::join(o.input.sequences, ", "), o.warmup));
     if (o.max_nonzero)
         text.comments.push_back(fmt::format("Components pinned at 0 one by one, to at most {}:", *o.max_nonzero));
     for (const std::string& row : table) text.comments.push_back("  " + row);
@@ -498,11 +568,26 @@ Action add_optimize_command(CLI::App& app) {
                     "Fit 3, 4, ... up to --axes axes and keep the first whose score reaches this (a mean volume: "
                     "compare the built-in sets' scores a plain run prints); prints the table of axes, score and cost")
         ->check(positive_number(1e30));
+    auto* target_ghosting =
+        cmd->add_option("--target-ghosting", o->target_ghosting,
+                        "Fit 3, 4, ... up to --axes axes and keep the first whose ghosting on every --sequence, "
+                        "measured as `kdop taa --sequence` measures it (the resolve in --color-map, with the "
+                        "resolve options below, after --warmup frames), is at most this; prints the table of axes, "
+                        "volume, ghosting, shimmer and cost")
+            ->check(positive_number(1))
+            ->needs(sequences)
+            ->excludes("--target");
+    auto* resolve_options = cmd->add_option_group("Resolve options", "The resolve --target-ghosting measures with");
+    add_resolve_options(*resolve_options, o->resolve, false);
+    for (CLI::Option* option : resolve_options->get_options()) option->needs(target_ghosting);
+    cmd->add_option("--warmup", o->warmup, "With --target-ghosting: frames before measuring [default: 100]")
+        ->needs(target_ghosting);
     cmd->add_option("--max-nonzero", o->max_nonzero,
                     "Then pin the smallest components at 0, refitting after each, until at most this many are "
                     "nonzero over all axes (a zero costs the clip nothing); prints the curve of score and cost")
         ->check(CLI::Range(1, 96))
-        ->excludes("--target");
+        ->excludes("--target")
+        ->excludes(target_ghosting);
     cmd->add_flag("--lavapipe-cost", o->lavapipe_cost,
                   "With --target or --max-nonzero: also count each row's clip on lavapipe with callgrind, in "
                   "instructions per pixel beyond the gather, as `kdop bench` does (seconds per row)");
@@ -524,6 +609,7 @@ Action add_optimize_command(CLI::App& app) {
         ->check(CLI::IsMember({"volume", "distance"}))
         ->excludes(sphere)
         ->excludes("--target")
+        ->excludes("--target-ghosting")
         ->excludes("--max-nonzero")
         ->excludes("--sample");
     cmd->add_option("--out", o->out, "Axis-set file to write")->required();

@@ -72,6 +72,13 @@ void Ranks::all_gather(std::span<double> all, std::span<const std::size_t> per_i
 #endif
 }
 
+void Ranks::broadcast(std::span<double> values) const {
+    if (size_ == 1) return;
+#ifdef KDOP_WITH_MPI
+    MPI_Bcast(values.data(), int(values.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+#endif
+}
+
 Result<void> Ranks::agree(Result<void> mine) const {
     if (size_ == 1) return mine;
 #ifdef KDOP_WITH_MPI

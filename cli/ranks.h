@@ -34,6 +34,9 @@ public:
     // items [share(items).first, .end), each `per_item[i]` doubles long, and receives the others'.
     void all_gather(std::span<double> all, std::span<const std::size_t> per_item) const;
 
+    // Rank 0's `values` on every rank.
+    void broadcast(std::span<double> values) const;
+
     // Whether every rank succeeded: the first failing rank's error (in rank order) on every rank.
     Result<void> agree(Result<void> mine) const;
 

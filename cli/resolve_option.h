@@ -12,7 +12,8 @@
 
 namespace kdop::cli {
 
-inline void add_resolve_options(CLI::App& app, ResolveOptions& options) {
+// `with_color_map` false leaves --color-map to the command (kdop optimize's fits in it too).
+inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool with_color_map = true) {
     const CLI::Validator filter(
         [&options](std::string& text) -> std::string {
             auto parsed = parse_history_filter(text);
@@ -28,10 +29,11 @@ inline void add_resolve_options(CLI::App& app, ResolveOptions& options) {
            "How the history is sampled at the reprojected position: bilinear, or catmull-rom (the 4x4 "
            "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]")
         ->check(filter);
-    add_color_map_option(app, options.color_map,
-                         "The space the clip and the blend work in: linear, gamma:G (values raised to G, as the "
-                         "paper's own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which "
-                         "damps bright outliers) [default: linear]");
+    if (with_color_map)
+        add_color_map_option(app, options.color_map,
+                             "The space the clip and the blend work in: linear, gamma:G (values raised to G, as the "
+                             "paper's own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which "
+                             "damps bright outliers) [default: linear]");
     app.add_flag("--dilate-motion", options.dilate_motion,
                  "Take the motion of the nearest of the 3x3 neighbors by depth, so edges follow the nearer surface "
                  "(needs depth on every frame)");

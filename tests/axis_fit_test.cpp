@@ -620,6 +620,66 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
 #endif
 }
 
+// --target-ghosting: each axis count's fit resolved over the sequence and measured as kdop taa
+// --sequence measures it; the first that reaches the target is kept, and kdop taa measures the
+// written set at the ghosting the table printed.
+TEST(CliOptimize, TargetGhostingKeepsTheFewestAxesThatGhostNoMoreThanIt) {
+    OptimizeInputs in;
+    const fs::path sequences = in.dir / "scenes";
+    auto scene = in.kdop("scene --scenes grass --size 48x32 --frames 14 --out " + sequences.string());
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    const std::string sequence = (sequences / "grass-ghosting").string();
+    const fs::path set = in.dir / "ghost.axes";
+    auto optimize = [&](double target) {
+        return in.kdop(fmt::format("optimize --sequence {} --axes 4 --sample 1500 --starts 1 --iterations 5 "
+                                   "--accuracy-samples 0 --warmup 6 --target-ghosting {} --out {}",
+                                   sequence, target, set.string()));
+    };
+    // Unreachable: every count's row, then the refusal, and no file.
+    auto all = optimize(1e-9);
+    EXPECT_EQ(all.exit_code, 1) << all.err;
+    EXPECT_NE(all.err.find("--target-ghosting 1e-09: no set of up to 4 axes reaches it"), std::string::npos) << all.err;
+    EXPECT_FALSE(fs::exists(set));
+    std::map<int, double> ghosting;
+    std::smatch m;
+    const std::regex row(R"(\n +([34]) +[68] +\S+ +(\S+) +\S+ +\d+)");
+    for (auto at = all.out.cbegin(); std::regex_search(at, all.out.cend(), m, row); at = m.suffix().first)
+        ghosting[std::stoi(m[1])] = std::stod(m[2]);
+    ASSERT_EQ(ghosting.size(), 2u) << all.out;
+    EXPECT_NE(all.out.find("ghosting      shimmer float ops (clip, hardened)"), std::string::npos) << all.out;
+
+    // Reachable: the first count at or under the target is kept.
+    const double target = std::min(ghosting[3], ghosting[4]);
+    const int kept = ghosting[3] <= target ? 3 : 4;
+    auto reached = optimize(target);
+    ASSERT_EQ(reached.exit_code, 0) << reached.err;
+    auto parsed = parse_axis_set(test::read_file(set), set.string());
+    ASSERT_TRUE(parsed) << parsed.error().message;
+    EXPECT_EQ(parsed->axes.size(), std::size_t(kept));
+    EXPECT_NE(test::read_file(set).find("The fewest axes whose ghosting reaches --target-ghosting"), std::string::npos);
+
+    auto taa = in.kdop("taa --sequence " + sequence + " --warmup 6 --sets " + set.string() + " --modes clip --out " +
+                       (in.dir / "taa").string());
+    ASSERT_EQ(taa.exit_code, 0) << taa.err;
+    const std::string csv = test::read_file(in.dir / "taa" / "taa.csv");
+    ASSERT_TRUE(std::regex_search(csv, m, std::regex(R"(ghost-clip-n9,[^\n]*,grass-ghosting,(?:[^,]*,){5}([^,]+),)")))
+        << csv;
+    EXPECT_NEAR(std::stod(m[1]), ghosting[kept], 1e-6) << "kdop taa's measure of the written set";
+
+    const std::string base = "optimize --images " + in.image + " --axes 4 --out " + set.string() + " ";
+    auto needs = in.kdop(base + "--target-ghosting 0.1");
+    EXPECT_EQ(needs.exit_code, 2);
+    EXPECT_NE(needs.err.find("--target-ghosting requires --sequence"), std::string::npos) << needs.err;
+    auto filter = in.kdop(base + "--history-filter catmull-rom");
+    EXPECT_EQ(filter.exit_code, 2);
+    EXPECT_NE(filter.err.find("--history-filter requires --target-ghosting"), std::string::npos) << filter.err;
+    auto warmup = in.kdop("optimize --sequence " + sequence + " --axes 4 --warmup 14 --target-ghosting 0.1 --out " +
+                          (in.dir / "none.axes").string());
+    EXPECT_EQ(warmup.exit_code, 1);
+    EXPECT_NE(warmup.err.find("14 frames, and --warmup 14 leaves none to measure"), std::string::npos) << warmup.err;
+    EXPECT_FALSE(fs::exists(in.dir / "none.axes"));
+}
+
 TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
     OptimizeInputs in;
     const std::string tiny = (in.dir / "tiny.exr").string();

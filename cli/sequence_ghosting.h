@@ -1,0 +1,44 @@
+// The shimmer and ghosting of fitted axis sets on frame sequences, measured as `kdop taa
+// --sequence` measures them: the set's clip generated and built into the TAA resolve with the
+// given resolve options, run over each sequence on the device after the warmup, measured with the
+// device's FLIP (HDR-FLIP for an HDR sequence). kdop optimize --target-ghosting chooses k by it.
+#pragma once
+
+#include "axis_set.h"
+#include "context.h"
+#include "device_flip.h"
+#include "frame_source.h"
+#include "resolve_options.h"
+#include "result.h"
+#include "taa_measure.h"
+
+#include <kdop/variant.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop::cli {
+
+class SequenceGhosting {
+public:
+    // Reads the sequences' manifests and opens the device (lavapipe unless KDOP_DEVICE says
+    // otherwise). Refuses a sequence with no frame left after the warmup.
+    static Result<std::unique_ptr<SequenceGhosting>> create(const std::vector<std::string>& dirs, InputSpace space,
+                                                            const ResolveOptions& options, std::uint32_t warmup);
+
+    // `set`'s clip on every sequence, in the order given.
+    Result<std::vector<SequenceMeasurement>> measure(const AxisSet& set, Neighborhood shape);
+
+    const std::vector<SequenceFrames>& sequences() const { return sequences_; }
+
+private:
+    std::vector<SequenceFrames> sequences_;
+    ResolveOptions options_;
+    std::uint32_t warmup_ = 0;
+    std::unique_ptr<Context> context_;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> flips_; // by frame size
+};
+
+} // namespace kdop::cli
