@@ -144,6 +144,10 @@ int run(const Options& o, const Ranks& ranks) {
     const Neighborhood shape = *parse_neighborhood(o.neighborhood); // checked by CLI11
     FitInputs inputs;
     std::optional<FrameNeighborhoods> neighborhoods, sampled;
+    if (o.sphere && ranks.size() > 1)
+        return usage_error(fmt::format("mpirun -np {}: --sphere has no frames to share over ranks (it takes well under "
+                                       "a second); run it without mpirun",
+                                       ranks.size()));
     if (!o.sphere) {
         auto read = fit_inputs(o.input);
         if (!read) return report_error(read.error().message);

@@ -613,6 +613,9 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
     EXPECT_NE(too_many.exit_code, 0);
     EXPECT_NE(too_many.err.find("mpirun -np 11: 11 ranks share 10 frames"), std::string::npos) << too_many.err;
     test::write_file(sequences / "grass-ghosting" / "color" / "0008.exr", "not an image"); // the last rank's
+    auto sphere = test::run(mpirun + "2 " + test::kdop_binary() + " optimize --sphere --axes 4 --out " + out.string());
+    EXPECT_NE(sphere.exit_code, 0);
+    EXPECT_NE(sphere.err.find("--sphere has no frames to share over ranks"), std::string::npos) << sphere.err;
     auto bad = optimize(mpirun + "3 ", "", out);
     EXPECT_NE(bad.exit_code, 0);
     EXPECT_NE(bad.err.find("color/0008.exr: cannot read image"), std::string::npos) << bad.err;
@@ -707,7 +710,8 @@ TEST(CliOptimize, RefusesBadInputAndWritesNothing) {
         {"--sphere --axes 5 --max-nonzero 4" + out, "--max-nonzero 4: each of the 5 axes keeps at least one", 2},
         {"--sphere --axes 11 --force-rgb --max-nonzero 11" + out, "--max-nonzero 11: pinning stops at", 1},
         {"--images " + in.image + " --axes 5 --max-nonzero 9 --target 1" + out, "excludes", 2},
-        {"--sphere --axes 4 --lavapipe-cost" + out, "--lavapipe-cost: counts the rows of --target's or", 2},
+        {"--sphere --axes 4 --lavapipe-cost" + out,
+         "--lavapipe-cost: counts the rows of --target's, --target-ghosting's or", 2},
         {"--sphere --axes 4 --accuracy-samples 10" + out, "excludes", 2},
         {"--sphere --axes 4 --color-map log" + out, "excludes", 2},
         {"--images " + in.image + " --axes 4 --sample 0" + out, "--sample: Value 0 not in range", 2},
