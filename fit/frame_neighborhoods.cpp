@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace kdop {
 
@@ -34,14 +35,15 @@ Result<FrameNeighborhoods> FrameNeighborhoods::gather(std::vector<FitFrame> fram
     for (std::size_t i = out.share_.first; i < out.share_.end; ++i) {
         auto image = frames[i].load();
         if (!image) return std::unexpected(image.error());
-        Neighborhoods gathered = gather_neighborhoods({&*image, 1}, shape);
+        gather_neighborhoods({&*image, 1}, shape, out.scratch_);
         const std::uint64_t bytes =
-            gathered.points.size() * sizeof(glm::dvec3) + gathered.repeats.size() * sizeof(std::uint32_t);
+            out.scratch_.points.size() * sizeof(glm::dvec3) + out.scratch_.repeats.size() * sizeof(std::uint32_t);
         // Held in frame order while the budget lasts: the first frames stay, the later ones are
         // read again on each pass.
         if (out.held_bytes_ + bytes <= budget && (i == out.share_.first || out.is_held_[i - 1])) {
             out.held_bytes_ += bytes;
-            out.held_[i] = std::move(gathered);
+            out.held_[i] = std::exchange(out.scratch_, {});
+            out.held_[i].points.shrink_to_fit(); // the room repeats left unused
             out.is_held_[i] = true;
         }
         if (on_frame) on_frame(i, *image);
@@ -64,7 +66,8 @@ void FrameNeighborhoods::visit(const std::function<void(std::size_t, const Neigh
         if (!image)
             throw FitInputError(
                 fmt::format("{} (it was read on the first pass; has it changed since?)", image.error().message));
-        visit(i, gather_neighborhoods({&*image, 1}, shape_));
+        gather_neighborhoods({&*image, 1}, shape_, scratch_);
+        visit(i, scratch_);
     }
 }
 

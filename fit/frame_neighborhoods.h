@@ -74,6 +74,7 @@ private:
     std::vector<FitFrame> frames_;
     std::vector<Neighborhoods> held_; // by frame; empty where a frame is gathered on each visit
     std::vector<bool> is_held_;
+    mutable Neighborhoods scratch_; // where a frame that is not held is gathered on each visit
     std::uint64_t held_bytes_ = 0;
     std::size_t total_ = 0;
     Neighborhood shape_ = Neighborhood::n9;

@@ -13,9 +13,13 @@ namespace {
 // Neighborhoods made one at a time: a repeat of an earlier one only counts.
 class NeighborhoodGatherer {
 public:
-    NeighborhoodGatherer(std::size_t size, std::size_t total) {
+    // Into `reuse`'s storage: a frame gathered again on each pass of a search writes where the last
+    // one was instead of faulting in hundreds of megabytes of new pages.
+    NeighborhoodGatherer(std::size_t size, std::size_t total, Neighborhoods reuse = {}) : out_(std::move(reuse)) {
         out_.size = size;
         out_.total = total;
+        out_.points.clear();
+        out_.repeats.clear();
         // Room for every neighborhood, so the keys (views of the points' bytes) stay where they are.
         out_.points.reserve(total * out_.size);
         seen_.reserve(total);
@@ -33,9 +37,11 @@ public:
             out_.points.resize(start);
         }
     }
-    Neighborhoods finish() {
+    // `shrink`: give back the room repeats left unused (a copy of every point), for neighborhoods
+    // that are kept.
+    Neighborhoods finish(bool shrink = true) {
         seen_ = {};
-        out_.points.shrink_to_fit(); // the keys are no longer needed
+        if (shrink) out_.points.shrink_to_fit();
         return std::move(out_);
     }
 
@@ -53,10 +59,18 @@ void append_neighborhood(const Image& image, std::uint32_t x, std::uint32_t y, s
 } // namespace
 
 Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape) {
+    Neighborhoods out;
+    gather_neighborhoods(images, shape, out);
+    // Kept: the room that repeats left unused is given back, where it is worth a copy.
+    if (out.points.size() < out.points.capacity() / 4 * 3) out.points.shrink_to_fit();
+    return out;
+}
+
+void gather_neighborhoods(std::span<const Image> images, Neighborhood shape, Neighborhoods& out) {
     const std::span<const glm::ivec2> offsets = neighborhood_offsets(shape);
     std::size_t total = 0;
     for (const Image& image : images) total += std::size_t(image.width) * image.height;
-    NeighborhoodGatherer gather(offsets.size(), total);
+    NeighborhoodGatherer gather(offsets.size(), total, std::move(out));
     std::vector<glm::dvec3> one;
     for (const Image& image : images)
         for (std::uint32_t y = 0; y < image.height; ++y)
@@ -65,7 +79,7 @@ Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood s
                 append_neighborhood(image, x, y, offsets, one);
                 gather.add(one);
             }
-    return gather.finish();
+    out = gather.finish(false);
 }
 
 NeighborhoodSampler::NeighborhoodSampler(Neighborhood shape, std::span<const std::uint64_t> frame_pixels,

@@ -30,6 +30,8 @@ struct Neighborhoods {
 
 // Every neighborhood of the images.
 Neighborhoods gather_neighborhoods(std::span<const Image> images, Neighborhood shape);
+// The same into `out`, reusing its storage: for a frame gathered again and again.
+void gather_neighborhoods(std::span<const Image> images, Neighborhood shape, Neighborhoods& out);
 
 // `count` neighborhoods of a scene's frames (all of them where there are fewer), seeded and
 // stratified: each frame gives its share by pixel count, and within a frame the pixels, ordered by
