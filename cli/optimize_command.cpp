@@ -523,8 +523,8 @@ int run(const Options& o, const Ranks& ranks) {
 Action add_optimize_command(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand(
-        "optimize", "Fit an axis set to a scene's images (every neighborhood) or around the unit sphere, minimizing "
-                    "the k-DOP volume, and write it as an axis-set file");
+        "optimize", "Fit an axis set to a scene's images and frame sequences (every neighborhood) or around the unit "
+                    "sphere, minimizing the k-DOP volume, and write it as an axis-set file; under mpirun, over ranks");
     auto* images =
         cmd->add_option(
                "--images", o->input.images,

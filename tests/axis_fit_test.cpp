@@ -605,6 +605,10 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
                     EXPECT_NE(r.out.find(fmt::format("(on rank 0 of {}, which reads", ranks)), std::string::npos)
                         << r.out;
                 }
+                // Rank 0 alone speaks: one table, one summary.
+                std::size_t summaries = 0;
+                for (std::size_t at = 0; (at = r.out.find("peak memory", at)) != std::string::npos; ++at) ++summaries;
+                EXPECT_EQ(summaries, 1u) << r.out;
             }
     }
 
