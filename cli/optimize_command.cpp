@@ -160,6 +160,13 @@ int run(const Options& o, const Ranks& ranks) {
                                            "frames",
                                            ranks.size(), ranks.size(), inputs.frames.size(),
                                            inputs.frames.size() == 1 ? "" : "s"));
+        // A frame's neighborhoods are gathered whole, held or not: refused up front if the largest
+        // frame's would not fit, rather than failing to allocate after minutes of reading.
+        std::uint64_t largest = 0;
+        for (const FitFrame& frame : inputs.frames)
+            largest = std::max(largest, neighborhood_bytes(frame.pixels, shape));
+        if (auto ok = check_memory("the neighborhoods of the largest frame", largest); !ok)
+            return report_error(ok.error().message);
         // Held between passes while they take at most --memory MB (by default half what is
         // available); the frames beyond are read and gathered again on each pass.
         const std::uint64_t budget = o.memory ? std::uint64_t(*o.memory * 1024 * 1024)

@@ -596,6 +596,7 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
         ASSERT_EQ(reference.exit_code, 0) << reference.err;
         for (int ranks : {1, 2, 3})
             for (int threads : {1, 2}) {
+                if (!sample.empty() && threads == 2 && ranks != 2) continue; // sampled: enough to vary each once
                 const fs::path out = in.dir / fmt::format("ranks{}-threads{}.axes", ranks, threads);
                 auto r =
                     optimize(fmt::format("{}{} ", mpirun, ranks), fmt::format("--threads {}{}", threads, sample), out);
