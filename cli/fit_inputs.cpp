@@ -29,6 +29,14 @@ Result<Image> load_image(const std::string& path, InputSpace space, const ColorM
     return image;
 }
 
+// A 3x3 neighborhood needs 3x3 pixels: in an image, or in each frame of a sequence.
+Result<void> check_neighborhood_fits(const std::string& name, std::uint32_t width, std::uint32_t height,
+                                     bool sequence) {
+    if (width >= 3 && height >= 3) return {};
+    return fail(fmt::format("{}: {}x{} {} no 3x3 neighborhood; {} needs at least 3x3 pixels", name, width, height,
+                            sequence ? "frames have" : "has", sequence ? "a frame" : "an image"));
+}
+
 // The frames of `sequence` a fit reads: every frame_step-th from the first.
 std::vector<std::size_t> stepped_frames(const Sequence& sequence, std::size_t step) {
     std::vector<std::size_t> frames;
@@ -47,9 +55,7 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
     for (const std::string& path : o.images) {
         auto size = read_image_size(path);
         if (!size) return std::unexpected(size.error());
-        if (size->x < 3 || size->y < 3)
-            return fail(fmt::format("{}: {}x{} has no 3x3 neighborhood; an image needs at least 3x3 pixels", path,
-                                    size->x, size->y));
+        if (auto ok = check_neighborhood_fits(path, size->x, size->y, false); !ok) return std::unexpected(ok.error());
         in.frames.push_back({path, std::uint64_t(size->x) * size->y, [path, space = o.input_space, map = o.color_map] {
                                  return load_image(path, space, map);
                              }});
@@ -57,14 +63,13 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
         described.push_back(path);
     }
     for (const std::string& dir : o.sequences) {
-        auto sequence = read_sequence(dir);
-        if (!sequence) return std::unexpected(sequence.error());
-        if (sequence->width < 3 || sequence->height < 3)
-            return fail(fmt::format("{}: {}x{} frames have no 3x3 neighborhood; a frame needs at least 3x3 pixels", dir,
-                                    sequence->width, sequence->height));
-        in.sequences.push_back(std::make_shared<const Sequence>(std::move(*sequence)));
-    }
-    for (const std::shared_ptr<const Sequence>& shared : in.sequences) {
+        auto read = read_sequence(dir);
+        if (!read) return std::unexpected(read.error());
+        if (auto ok = check_neighborhood_fits(dir, read->width, read->height, true); !ok)
+            return std::unexpected(ok.error());
+        // Shared by the frames' loaders, which outlive this function.
+        const auto shared = std::make_shared<const Sequence>(std::move(*read));
+        in.sequences.push_back(shared);
         const Sequence& sequence = *shared;
         const std::vector<std::size_t> frames = stepped_frames(sequence, o.frame_step);
         for (std::size_t index : frames) {

@@ -49,9 +49,15 @@ Result<Ranks*> Ranks::world() {
 #endif
 }
 
+namespace {
+
+// Where rank r's share of `count` items starts (r = size: where the last one ends).
+std::size_t share_start(std::size_t count, int r, int size) { return count * std::size_t(r) / std::size_t(size); }
+
+} // namespace
+
 std::pair<std::size_t, std::size_t> Ranks::share(std::size_t count) const {
-    const auto at = [&](int r) { return count * std::size_t(r) / std::size_t(size_); };
-    return {at(rank_), at(rank_ + 1)};
+    return {share_start(count, rank_, size_), share_start(count, rank_ + 1, size_)};
 }
 
 void Ranks::all_gather(std::span<double> all, std::span<const std::size_t> per_item) const {
@@ -62,8 +68,8 @@ void Ranks::all_gather(std::span<double> all, std::span<const std::size_t> per_i
     std::partial_sum(per_item.begin(), per_item.end(), offset.begin() + 1);
     std::vector<int> counts(size_), displacements(size_);
     for (int r = 0; r < size_; ++r) {
-        const std::size_t first = per_item.size() * std::size_t(r) / std::size_t(size_),
-                          end = per_item.size() * std::size_t(r + 1) / std::size_t(size_);
+        const std::size_t first = share_start(per_item.size(), r, size_),
+                          end = share_start(per_item.size(), r + 1, size_);
         displacements[r] = int(offset[first]);
         counts[r] = int(offset[end] - offset[first]);
     }

@@ -31,8 +31,6 @@ public:
     // `set`'s clip on every sequence, in the order given.
     Result<std::vector<SequenceMeasurement>> measure(const AxisSet& set, Neighborhood shape);
 
-    const std::vector<SequenceFrames>& sequences() const { return sequences_; }
-
 private:
     std::vector<SequenceFrames> sequences_;
     ResolveOptions options_;

@@ -7,7 +7,7 @@
 // The objective is summed frame by frame in frame order (each frame's sum in fixed chunks,
 // axis_fit.cpp), so it is the same figure whether a frame was held or read again, on any number
 // of threads, and on any number of processes: a process evaluates its own range of frames and
-// `share` (an MPI all-gather, cli/mpi_ranks.h) hands every process every frame's sums before they
+// `share` (an MPI all-gather, cli/ranks.h) hands every process every frame's sums before they
 // are added up in frame order.
 #pragma once
 
@@ -60,7 +60,6 @@ public:
     std::size_t frame_count() const { return frames_.size(); }
     std::size_t own_frames() const { return share_.end - share_.first; } // this process's
     std::size_t held_frames() const;                                     // of those, held
-    std::uint64_t held_bytes() const { return held_bytes_; }
     // Neighborhoods of all frames (every process's), repeats included.
     std::size_t count() const { return total_; }
     const FrameShare& share() const { return share_; }

@@ -266,6 +266,14 @@ struct OptimizeInputs {
     std::string image = (dir / "grass.exr").string();
     OptimizeInputs() { EXPECT_TRUE(write_image(image, grass(16))); }
     test::CommandResult kdop(const std::string& args) const { return test::run(test::kdop_binary() + " " + args); }
+    // kdop scene's moving grass sequence (`frames` at `size`) under `folder`, and its path.
+    std::string grass_sequence(const std::string& folder, const std::string& size, std::size_t frames) const {
+        const fs::path out = dir / folder;
+        auto scene =
+            kdop(fmt::format("scene --scenes grass --size {} --frames {} --out {}", size, frames, out.string()));
+        EXPECT_EQ(scene.exit_code, 0) << scene.err;
+        return (out / "grass-ghosting").string();
+    }
 };
 
 TEST(CliOptimize, AFittedSetGoesThroughGenRunAndAccuracy) {
@@ -509,10 +517,7 @@ TEST(AxisFit, PinningZerosTradesScoreForFloatOps) {
 // same file; --frame-step takes every Nth frame; a frame that cannot be read stops the fit.
 TEST(CliOptimize, FitsToSequencesHeldOrStreamedAlike) {
     OptimizeInputs in;
-    const fs::path sequences = in.dir / "scenes";
-    auto scene = in.kdop("scene --scenes grass --size 40x24 --frames 12 --out " + sequences.string());
-    ASSERT_EQ(scene.exit_code, 0) << scene.err;
-    const std::string sequence = (sequences / "grass-ghosting").string();
+    const std::string sequence = in.grass_sequence("scenes", "40x24", 12);
     const std::string args = "optimize --sequence " + sequence + " --images " + in.image +
                              " --axes 4 --starts 1 --iterations 3 --accuracy-samples 40 --threads 2 --name fit";
     const fs::path held = in.dir / "held.axes", streamed = in.dir / "streamed.axes";
@@ -537,7 +542,7 @@ TEST(CliOptimize, FitsToSequencesHeldOrStreamedAlike) {
     EXPECT_NE(stepped.out.find(fmt::format("{} (3 of 12 frames, every 5)", sequence)), std::string::npos)
         << stepped.out;
 
-    test::write_file(sequences / "grass-ghosting" / "color" / "0007.exr", "not an image");
+    test::write_file(fs::path(sequence) / "color" / "0007.exr", "not an image");
     const fs::path out = in.dir / "bad.axes";
     for (const std::string extra : {"", " --sample 100"}) {
         auto bad = in.kdop(args + extra + " --out " + out.string());
@@ -551,11 +556,8 @@ TEST(CliOptimize, FitsToSequencesHeldOrStreamedAlike) {
 TEST(CliOptimize, StreamingKeepsPeakMemoryFlatInTheFrameCount) {
     OptimizeInputs in;
     auto peak = [&](std::size_t frames, const std::string& memory) {
-        const fs::path dir = in.dir / fmt::format("scenes{}", frames);
-        auto scene =
-            in.kdop(fmt::format("scene --scenes grass --size 64x64 --frames {} --out {}", frames, dir.string()));
-        EXPECT_EQ(scene.exit_code, 0) << scene.err;
-        auto r = in.kdop("optimize --sequence " + (dir / "grass-ghosting").string() + " --memory " + memory +
+        const std::string sequence = in.grass_sequence(fmt::format("scenes{}", frames), "64x64", frames);
+        auto r = in.kdop("optimize --sequence " + sequence + " --memory " + memory +
                          " --sample 200 --axes 4 --starts 1 --iterations 2 --accuracy-samples 0 --out " +
                          (in.dir / "fitted.axes").string());
         EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -578,10 +580,7 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
     GTEST_SKIP() << "kdop was built without MPI (libopenmpi-dev)";
 #else
     OptimizeInputs in;
-    const fs::path sequences = in.dir / "scenes";
-    auto scene = in.kdop("scene --scenes grass --size 40x24 --frames 9 --out " + sequences.string());
-    ASSERT_EQ(scene.exit_code, 0) << scene.err;
-    const std::string sequence = (sequences / "grass-ghosting").string();
+    const std::string sequence = in.grass_sequence("scenes", "40x24", 9);
     // Open MPI refuses root unless told; CI runs as root.
     const std::string mpirun =
         fmt::format("{} --oversubscribe{} -np ", KDOP_MPIEXEC, geteuid() == 0 ? " --allow-run-as-root" : "");
@@ -617,7 +616,7 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
     auto too_many = optimize(mpirun + "11 ", "", out);
     EXPECT_NE(too_many.exit_code, 0);
     EXPECT_NE(too_many.err.find("mpirun -np 11: 11 ranks share 10 frames"), std::string::npos) << too_many.err;
-    test::write_file(sequences / "grass-ghosting" / "color" / "0008.exr", "not an image"); // the last rank's
+    test::write_file(fs::path(sequence) / "color" / "0008.exr", "not an image"); // the last rank's
     auto sphere = test::run(mpirun + "2 " + test::kdop_binary() + " optimize --sphere --axes 4 --out " + out.string());
     EXPECT_NE(sphere.exit_code, 0);
     EXPECT_NE(sphere.err.find("--sphere has no frames to share over ranks"), std::string::npos) << sphere.err;
@@ -633,10 +632,7 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
 // written set at the ghosting the table printed.
 TEST(CliOptimize, TargetGhostingKeepsTheFewestAxesThatGhostNoMoreThanIt) {
     OptimizeInputs in;
-    const fs::path sequences = in.dir / "scenes";
-    auto scene = in.kdop("scene --scenes grass --size 48x32 --frames 14 --out " + sequences.string());
-    ASSERT_EQ(scene.exit_code, 0) << scene.err;
-    const std::string sequence = (sequences / "grass-ghosting").string();
+    const std::string sequence = in.grass_sequence("scenes", "48x32", 14);
     const fs::path set = in.dir / "ghost.axes";
     auto optimize = [&](double target) {
         return in.kdop(fmt::format("optimize --sequence {} --axes 4 --sample 1500 --starts 1 --iterations 5 "
