@@ -10,7 +10,7 @@ namespace kdop {
 
 Result<DeviceImage> DeviceImage::create(const Context& context, std::uint32_t width, std::uint32_t height,
                                         std::uint32_t layers, VkFormat format, VkImageUsageFlags usage,
-                                        const char* what) {
+                                        const char* what, VkImageAspectFlags aspect) {
     const auto& limits = context.properties().limits;
     if (width == 0 || height == 0 || layers == 0)
         return fail(fmt::format("{}: an empty {}x{} image of {} layers", what, width, height, layers));
@@ -49,7 +49,7 @@ Result<DeviceImage> DeviceImage::create(const Context& context, std::uint32_t wi
     view.image = i.image_;
     view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
     view.format = format;
-    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+    view.subresourceRange = {aspect, 0, 1, 0, layers};
     KDOP_VK_TRY(vkCreateImageView(i.device_, &view, nullptr, &i.view_));
     return i;
 }

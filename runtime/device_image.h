@@ -16,9 +16,11 @@ namespace kdop {
 class DeviceImage {
 public:
     // A width x height image of `layers` layers of `format`, for `usage`, in optimal tiling and the
-    // undefined layout; sizes beyond the device's limits are refused, naming `what`.
+    // undefined layout, its view of `aspect`; sizes beyond the device's limits are refused, naming
+    // `what`.
     static Result<DeviceImage> create(const Context& context, std::uint32_t width, std::uint32_t height,
-                                      std::uint32_t layers, VkFormat format, VkImageUsageFlags usage, const char* what);
+                                      std::uint32_t layers, VkFormat format, VkImageUsageFlags usage, const char* what,
+                                      VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
 
     DeviceImage() = default;
     DeviceImage(DeviceImage&& other) noexcept { *this = std::move(other); }

@@ -121,14 +121,6 @@ Result<std::vector<TaaScene>> select_taa_scenes(const std::vector<std::string>& 
     return out;
 }
 
-glm::vec2 r2_jitter(std::uint32_t index) {
-    // R2: the plastic number g solves g^3 = g + 1; entry n is frac(0.5 + n * (1/g, 1/g^2)).
-    constexpr double g = 1.32471795724474602596;
-    const double n = index % 10;
-    const double x = 0.5 + n / g, y = 0.5 + n / (g * g);
-    return {float(x - std::floor(x) - 0.5), float(y - std::floor(y) - 0.5)};
-}
-
 LoadedFrame render_scene(const Image& background, const FrameState& s) {
     const std::uint32_t width = background.width, height = background.height;
     const glm::vec2 frame{float(width), float(height)};

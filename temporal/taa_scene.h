@@ -18,6 +18,7 @@
 #include "frame_source.h"
 #include "image.h"
 #include "image_io.h"
+#include "jitter.h"
 #include "result.h"
 
 #include <glm/vec2.hpp>
@@ -57,9 +58,6 @@ struct FrameState {
 // Frame `frame` of a sequence of frames `width` x `height`. Without `animate` the objects stay
 // where they are on frame 0 and do not move; without `jitter` every sample is at the pixel center.
 FrameState frame_state(std::uint32_t frame, std::uint32_t width, std::uint32_t height, bool animate, bool jitter);
-
-// Entry `index` (mod 10) of the R2 jitter, in (-0.5, 0.5) pixels.
-glm::vec2 r2_jitter(std::uint32_t index);
 
 // The frame at `state`: color at each pixel's sample; motion of the surface seen there, pointing
 // to where it was last frame; depth 0.5 on the box, 1 on the ground (the ellipse lies on it).

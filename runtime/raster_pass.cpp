@@ -1,0 +1,373 @@
+#include "raster_pass.h"
+
+#include "vulkan_error.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cstring>
+
+namespace kdop {
+namespace {
+
+constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT, kMotionFormat = VK_FORMAT_R32G32_SFLOAT,
+                   kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr VkDeviceSize kColorBytes = 16, kMotionBytes = 8, kDepthBytes = 4;
+
+Result<VkShaderModule> shader_module(VkDevice device, const std::vector<std::uint32_t>& spirv) {
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = spirv.size() * sizeof(std::uint32_t);
+    info.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    KDOP_VK_TRY(vkCreateShaderModule(device, &info, nullptr, &module));
+    return module;
+}
+
+} // namespace
+
+Result<std::unique_ptr<RasterPass>> RasterPass::create(const Context& context, std::uint32_t width,
+                                                       std::uint32_t height, const RasterPipeline& pipeline,
+                                                       const Image& texture) {
+    if (!(context.queue_flags() & VK_QUEUE_GRAPHICS_BIT))
+        return fail(fmt::format("{} has no graphics queue to rasterize on", context.device_name()));
+    if (pipeline.attribute_floats.empty()) return fail("a raster pipeline without vertex attributes");
+    std::unique_ptr<RasterPass> p(new RasterPass(context));
+    p->width_ = width;
+    p->height_ = height;
+    p->uniform_bytes_ = pipeline.uniform_bytes;
+    p->clear_color_ = pipeline.clear_color;
+    for (std::uint32_t floats : pipeline.attribute_floats) {
+        if (floats < 1 || floats > 4) return fail(fmt::format("a vertex attribute of {} floats", floats));
+        p->stride_ += floats * 4;
+    }
+    const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    auto color = DeviceImage::create(context, width, height, 1, kColorFormat, attachment, "the color attachment");
+    if (!color) return std::unexpected(color.error());
+    p->color_ = std::move(*color);
+    auto motion = DeviceImage::create(context, width, height, 1, kMotionFormat, attachment, "the motion attachment");
+    if (!motion) return std::unexpected(motion.error());
+    p->motion_ = std::move(*motion);
+    auto depth = DeviceImage::create(context, width, height, 1, kDepthFormat,
+                                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                     "the depth attachment", VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (!depth) return std::unexpected(depth.error());
+    p->depth_ = std::move(*depth);
+
+    auto uniforms = DeviceBuffer::create(context, std::max<VkDeviceSize>(pipeline.uniform_bytes, 1),
+                                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, DeviceBuffer::Memory::host,
+                                         "the raster pass's uniform block");
+    if (!uniforms) return std::unexpected(uniforms.error());
+    p->uniforms_ = std::move(*uniforms);
+    const VkDeviceSize pixels = VkDeviceSize(width) * height;
+    auto readback = DeviceBuffer::create(context, pixels * (kColorBytes + kMotionBytes + kDepthBytes),
+                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, DeviceBuffer::Memory::host,
+                                         "the raster pass's read-back");
+    if (!readback) return std::unexpected(readback.error());
+    p->readback_ = std::move(*readback);
+    auto commands = OneShotCommands::create(context);
+    if (!commands) return std::unexpected(commands.error());
+    p->commands_ = std::move(*commands);
+
+    if (auto ok = p->create_pipeline(pipeline); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->upload_texture(texture); !ok) return std::unexpected(ok.error());
+    return p;
+}
+
+Result<void> RasterPass::create_pipeline(const RasterPipeline& pipeline) {
+    const VkDevice device = context_.device();
+    // Every attachment is cleared, kept, and left ready to be copied out; the dependencies order
+    // the last draw's copies before this draw's writes and this draw's writes before its copies.
+    std::array<VkAttachmentDescription, 3> attachments{};
+    const std::array<VkFormat, 3> formats{kColorFormat, kMotionFormat, kDepthFormat};
+    for (std::size_t i = 0; i < attachments.size(); ++i) {
+        attachments[i].format = formats[i];
+        attachments[i].samples = VK_SAMPLE_COUNT_1_BIT;
+        attachments[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        attachments[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        attachments[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        attachments[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        attachments[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        attachments[i].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    }
+    const std::array<VkAttachmentReference, 2> outputs{
+        {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}, {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}}};
+    const VkAttachmentReference depth_ref{2, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = std::uint32_t(outputs.size());
+    subpass.pColorAttachments = outputs.data();
+    subpass.pDepthStencilAttachment = &depth_ref;
+    const VkPipelineStageFlags writes = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                        VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    const VkAccessFlags write_access =
+        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    const std::array<VkSubpassDependency, 2> dependencies{{
+        {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, writes, VK_ACCESS_TRANSFER_READ_BIT,
+         write_access | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT, 0},
+        {0, VK_SUBPASS_EXTERNAL, writes, VK_PIPELINE_STAGE_TRANSFER_BIT, write_access, VK_ACCESS_TRANSFER_READ_BIT, 0},
+    }};
+    VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rp.attachmentCount = std::uint32_t(attachments.size());
+    rp.pAttachments = attachments.data();
+    rp.subpassCount = 1;
+    rp.pSubpasses = &subpass;
+    rp.dependencyCount = std::uint32_t(dependencies.size());
+    rp.pDependencies = dependencies.data();
+    KDOP_VK_TRY(vkCreateRenderPass(device, &rp, nullptr, &render_pass_));
+
+    const std::array<VkImageView, 3> views{color_.view(), motion_.view(), depth_.view()};
+    VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fb.renderPass = render_pass_;
+    fb.attachmentCount = std::uint32_t(views.size());
+    fb.pAttachments = views.data();
+    fb.width = width_;
+    fb.height = height_;
+    fb.layers = 1;
+    KDOP_VK_TRY(vkCreateFramebuffer(device, &fb, nullptr, &framebuffer_));
+
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = sampler.minFilter = VK_FILTER_LINEAR;
+    sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    sampler.maxLod = 0;
+    KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &sampler_));
+
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, both, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+    }};
+    VkDescriptorSetLayoutCreateInfo sl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    sl.bindingCount = std::uint32_t(bindings.size());
+    sl.pBindings = bindings.data();
+    KDOP_VK_TRY(vkCreateDescriptorSetLayout(device, &sl, nullptr, &set_layout_));
+    VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pl.setLayoutCount = 1;
+    pl.pSetLayouts = &set_layout_;
+    KDOP_VK_TRY(vkCreatePipelineLayout(device, &pl, nullptr, &pipeline_layout_));
+
+    auto vertex = shader_module(device, pipeline.vertex_spirv);
+    if (!vertex) return std::unexpected(vertex.error());
+    auto fragment = shader_module(device, pipeline.fragment_spirv);
+    if (!fragment) {
+        vkDestroyShaderModule(device, *vertex, nullptr);
+        return std::unexpected(fragment.error());
+    }
+    std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
+    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                 nullptr,
+                 0,
+                 VK_SHADER_STAGE_VERTEX_BIT,
+                 *vertex,
+                 "main",
+                 nullptr};
+    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                 nullptr,
+                 0,
+                 VK_SHADER_STAGE_FRAGMENT_BIT,
+                 *fragment,
+                 "main",
+                 nullptr};
+    const VkVertexInputBindingDescription binding{0, stride_, VK_VERTEX_INPUT_RATE_VERTEX};
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    std::uint32_t offset = 0;
+    for (std::uint32_t floats : pipeline.attribute_floats) {
+        const std::array<VkFormat, 4> format{VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32_SFLOAT,
+                                             VK_FORMAT_R32G32B32A32_SFLOAT};
+        attributes.push_back({std::uint32_t(attributes.size()), 0, format[floats - 1], offset});
+        offset += floats * 4;
+    }
+    VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    input.vertexBindingDescriptionCount = 1;
+    input.pVertexBindingDescriptions = &binding;
+    input.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
+    input.pVertexAttributeDescriptions = attributes.data();
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    const VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
+    const VkRect2D scissor{{0, 0}, {width_, height_}};
+    VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vp.viewportCount = vp.scissorCount = 1;
+    vp.pViewports = &viewport;
+    vp.pScissors = &scissor;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    // Identical for both attachments (without the independentBlend feature they must be); the
+    // motion attachment has no blue or alpha to write.
+    std::array<VkPipelineColorBlendAttachmentState, 2> blend{};
+    for (VkPipelineColorBlendAttachmentState& b : blend)
+        b.colorWriteMask =
+            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo blending{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blending.attachmentCount = std::uint32_t(blend.size());
+    blending.pAttachments = blend.data();
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.stageCount = std::uint32_t(stages.size());
+    info.pStages = stages.data();
+    info.pVertexInputState = &input;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &vp;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blending;
+    info.layout = pipeline_layout_;
+    info.renderPass = render_pass_;
+    const VkResult created = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+    vkDestroyShaderModule(device, *vertex, nullptr);
+    vkDestroyShaderModule(device, *fragment, nullptr);
+    if (created != VK_SUCCESS) return vk_failure("vkCreateGraphicsPipelines", created);
+
+    const std::array<VkDescriptorPoolSize, 2> sizes{
+        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}}};
+    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool.maxSets = 1;
+    pool.poolSizeCount = std::uint32_t(sizes.size());
+    pool.pPoolSizes = sizes.data();
+    KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &descriptor_pool_));
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = descriptor_pool_;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &set_layout_;
+    KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &set_));
+    return {};
+}
+
+Result<void> RasterPass::upload_texture(const Image& texture) {
+    if (texture.pixels.empty()) return fail("a raster pass's texture is empty");
+    auto image =
+        DeviceImage::create(context_, texture.width, texture.height, 1, kColorFormat,
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "the raster pass's texture");
+    if (!image) return std::unexpected(image.error());
+    texture_ = std::move(*image);
+    const VkDeviceSize bytes = texture.pixels.size() * sizeof(glm::vec4);
+    auto staging = DeviceBuffer::create(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, DeviceBuffer::Memory::host,
+                                        "the raster pass's texture upload");
+    if (!staging) return std::unexpected(staging.error());
+    std::memcpy(staging->mapped(), texture.pixels.data(), bytes);
+    auto ran = commands_->run([&](VkCommandBuffer cb) {
+        image_barrier(cb, texture_.image(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {texture.width, texture.height, 1};
+        vkCmdCopyBufferToImage(cb, staging->buffer(), texture_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        image_barrier(cb, texture_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    });
+    if (!ran) return std::unexpected(ran.error());
+
+    const VkDescriptorBufferInfo uniform{uniforms_.buffer(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorImageInfo sampled{sampler_, texture_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    std::array<VkWriteDescriptorSet, 2> writes{};
+    for (std::uint32_t i = 0; i < writes.size(); ++i) {
+        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = set_;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+    }
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    writes[0].pBufferInfo = &uniform;
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[1].pImageInfo = &sampled;
+    vkUpdateDescriptorSets(context_.device(), std::uint32_t(writes.size()), writes.data(), 0, nullptr);
+    return {};
+}
+
+RasterPass::~RasterPass() {
+    const VkDevice device = context_.device();
+    vkDeviceWaitIdle(device);
+    vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+    vkDestroyPipeline(device, pipeline_, nullptr);
+    vkDestroyPipelineLayout(device, pipeline_layout_, nullptr);
+    vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
+    vkDestroySampler(device, sampler_, nullptr);
+    vkDestroyFramebuffer(device, framebuffer_, nullptr);
+    vkDestroyRenderPass(device, render_pass_, nullptr);
+}
+
+Result<void> RasterPass::set_vertices(std::size_t slot, std::span<const std::byte> vertices) {
+    if (vertices.size() % stride_ != 0 || (vertices.size() / stride_) % 3 != 0)
+        return fail(fmt::format("slot {}: {} bytes are not whole triangles of {}-byte vertices", slot, vertices.size(),
+                                stride_));
+    if (slot >= slots_.size()) slots_.resize(slot + 1);
+    Slot& s = slots_[slot];
+    if (s.buffer.size() < vertices.size()) {
+        auto buffer = DeviceBuffer::create(context_, vertices.size(), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                           DeviceBuffer::Memory::host, "a raster pass's vertices");
+        if (!buffer) return std::unexpected(buffer.error());
+        s.buffer = std::move(*buffer);
+    }
+    if (!vertices.empty()) std::memcpy(s.buffer.mapped(), vertices.data(), vertices.size());
+    s.vertices = std::uint32_t(vertices.size() / stride_);
+    return {};
+}
+
+Result<RasterImages> RasterPass::draw(std::span<const std::byte> uniforms) {
+    if (uniforms.size() != uniform_bytes_)
+        return fail(fmt::format("{} bytes of uniforms for a block of {}", uniforms.size(), uniform_bytes_));
+    if (!uniforms.empty()) std::memcpy(uniforms_.mapped(), uniforms.data(), uniforms.size());
+    const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
+    const VkDeviceSize motion_at = pixels * kColorBytes, depth_at = motion_at + pixels * kMotionBytes;
+    auto ran = commands_->run([&](VkCommandBuffer cb) {
+        std::array<VkClearValue, 3> clear{};
+        std::memcpy(clear[0].color.float32, &clear_color_, sizeof(clear_color_));
+        clear[2].depthStencil = {1.0f, 0};
+        VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+        begin.renderPass = render_pass_;
+        begin.framebuffer = framebuffer_;
+        begin.renderArea = {{0, 0}, {width_, height_}};
+        begin.clearValueCount = std::uint32_t(clear.size());
+        begin.pClearValues = clear.data();
+        vkCmdBeginRenderPass(cb, &begin, VK_SUBPASS_CONTENTS_INLINE);
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set_, 0, nullptr);
+        for (const Slot& s : slots_) {
+            if (s.vertices == 0) continue;
+            const VkBuffer buffer = s.buffer.buffer();
+            const VkDeviceSize offset = 0;
+            vkCmdBindVertexBuffers(cb, 0, 1, &buffer, &offset);
+            vkCmdDraw(cb, s.vertices, 1, 0, 0);
+        }
+        vkCmdEndRenderPass(cb);
+        VkBufferImageCopy copy{};
+        copy.imageExtent = {width_, height_, 1};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        vkCmdCopyImageToBuffer(cb, color_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
+        copy.bufferOffset = motion_at;
+        vkCmdCopyImageToBuffer(cb, motion_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
+        copy.bufferOffset = depth_at;
+        copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+        vkCmdCopyImageToBuffer(cb, depth_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
+        VkBufferMemoryBarrier to_host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        to_host.buffer = readback_.buffer();
+        to_host.size = VK_WHOLE_SIZE;
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &to_host,
+                             0, nullptr);
+    });
+    if (!ran) return std::unexpected(ran.error());
+    RasterImages out;
+    out.color = Image(width_, height_);
+    out.motion.resize(pixels);
+    out.depth.resize(pixels);
+    const auto* bytes = static_cast<const std::byte*>(readback_.mapped());
+    std::memcpy(out.color.pixels.data(), bytes, pixels * kColorBytes);
+    std::memcpy(out.motion.data(), bytes + motion_at, pixels * kMotionBytes);
+    std::memcpy(out.depth.data(), bytes + depth_at, pixels * kDepthBytes);
+    return out;
+}
+
+} // namespace kdop

@@ -1,0 +1,88 @@
+// Rasterization beside the compute passes: one graphics pipeline (a vertex and a fragment stage,
+// depth test) drawing triangle lists into three attachments, read back after each draw: color
+// (rgba32f, fragment output 0), motion (rg32f, output 1) and depth (d32, 0 at the near plane).
+// What a renderer hands its TAA resolve, made on lavapipe: the 3-D testbed (testbed/) draws its
+// scenes with it.
+//
+// The shaders see one uniform block (set 0, binding 0, for both stages) and one texture
+// (binding 1: a sampler2DArray of one layer, rgba32f, repeated, bilinear, without mipmaps, so that
+// a minified texture aliases as a renderer's distant detail does without them). Vertices are
+// `stride`-byte records whose attributes (locations 0, 1, ...) are packed in order, each 1 to 4
+// floats. Back faces are drawn too. Every Vulkan call is checked.
+#pragma once
+
+#include "context.h"
+#include "device_buffer.h"
+#include "device_image.h"
+#include "image.h"
+#include "one_shot_commands.h"
+#include "result.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace kdop {
+
+struct RasterPipeline {
+    std::vector<std::uint32_t> vertex_spirv, fragment_spirv; // entry points "main"
+    std::vector<std::uint32_t> attribute_floats;             // per location: 1 to 4 floats
+    std::uint32_t uniform_bytes = 0;                         // the uniform block's size
+    glm::vec4 clear_color{0, 0, 0, 1};                       // where nothing is drawn
+};
+
+// One draw's attachments, read back.
+struct RasterImages {
+    Image color;                   // rgba
+    std::vector<glm::vec2> motion; // row-major
+    std::vector<float> depth;      // row-major; 1 where nothing is drawn
+};
+
+class RasterPass {
+public:
+    // A pass drawing width x height images with `pipeline`, sampling `texture`.
+    static Result<std::unique_ptr<RasterPass>> create(const Context& context, std::uint32_t width, std::uint32_t height,
+                                                      const RasterPipeline& pipeline, const Image& texture);
+    ~RasterPass();
+    RasterPass(const RasterPass&) = delete;
+    RasterPass& operator=(const RasterPass&) = delete;
+
+    // The triangle list of slot `slot` (0, 1, ...): whole vertices of the pipeline's stride, kept
+    // on the device until the slot is set again. Every slot set is drawn, in slot order.
+    Result<void> set_vertices(std::size_t slot, std::span<const std::byte> vertices);
+    // Clears, draws every slot with `uniforms` (the uniform block's bytes) and reads the
+    // attachments back.
+    Result<RasterImages> draw(std::span<const std::byte> uniforms);
+
+private:
+    explicit RasterPass(const Context& context) : context_(context) {}
+    Result<void> create_pipeline(const RasterPipeline& pipeline);
+    Result<void> upload_texture(const Image& texture);
+
+    const Context& context_;
+    std::uint32_t width_ = 0, height_ = 0, stride_ = 0, uniform_bytes_ = 0;
+    DeviceImage color_, motion_, depth_, texture_;
+    VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    glm::vec4 clear_color_{0};
+    DeviceBuffer uniforms_, readback_; // host-visible
+    struct Slot {
+        DeviceBuffer buffer; // host-visible; grown, never shrunk
+        std::uint32_t vertices = 0;
+    };
+    std::vector<Slot> slots_;
+    std::unique_ptr<OneShotCommands> commands_;
+};
+
+} // namespace kdop

@@ -1,0 +1,52 @@
+// A testbed scene as a frame source (sequence/frame_source.h): each frame drawn on the device
+// when the resolve or the sequence writer asks for it, so `kdop taa` measures and `kdop scene`
+// writes exactly the same frames.
+#pragma once
+
+#include "frame_source.h"
+#include "testbed_renderer.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace kdop {
+
+struct Scene3dTimeline {
+    std::size_t frames = 0;
+    bool animate = true;                 // the figure or car moves; else it stays as at time 0
+    bool jitter = false;                 // samples at the R2 jitter; else at the pixel centers
+    bool pan = false;                    // the camera slides sideways (camera_at)
+    std::uint32_t reference_samples = 0; // > 0: each frame has a reference, the mean of this many
+                                         // samples per pixel at the first R2 points
+};
+
+class Scene3dFrames final : public FrameSource {
+public:
+    // `renderer` is shared: the sources of one scene draw on one pass, one frame at a time.
+    Scene3dFrames(std::string name, std::shared_ptr<TestbedRenderer> renderer, const Scene3dTimeline& timeline)
+        : name_(std::move(name)), renderer_(std::move(renderer)), timeline_(timeline) {}
+
+    // The animation time of frame `index`: the index, or 0 without animation.
+    double time(std::size_t index) const { return timeline_.animate ? double(index) : 0.0; }
+    Camera3d camera(std::size_t index) const;
+
+    const std::string& name() const override { return name_; }
+    std::uint32_t width() const override { return renderer_->width(); }
+    std::uint32_t height() const override { return renderer_->height(); }
+    std::size_t frame_count() const override { return timeline_.frames; }
+    ColorRange color_range() const override { return ColorRange::ldr; }
+    bool starts_history(std::size_t index) const override { return index == 0; }
+    std::optional<glm::vec2> jitter(std::size_t index) const override;
+    bool has_depth() const override { return true; }
+    bool has_reference() const override { return timeline_.reference_samples > 0; }
+    Result<LoadedFrame> frame(std::size_t index) const override;
+    std::string frame_label(std::size_t index) const override;
+
+private:
+    std::string name_;
+    std::shared_ptr<TestbedRenderer> renderer_;
+    Scene3dTimeline timeline_;
+};
+
+} // namespace kdop

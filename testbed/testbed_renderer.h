@@ -1,0 +1,45 @@
+// Draws a testbed scene (scene3d.h) on the device through the runtime's raster pass: the color a
+// renderer without TAA shows (one sample per pixel, at the pixel's center plus the jitter, the
+// jitter applied through the projection), the motion of the surface seen at each pixel back to
+// where it was at an earlier instant (from both instants' object and camera transforms, without
+// jitter, as renderers compute it), and the depth.
+#pragma once
+
+#include "context.h"
+#include "raster_pass.h"
+#include "result.h"
+#include "scene3d.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <memory>
+
+namespace kdop {
+
+class TestbedRenderer {
+public:
+    // Builds the shaders (glslang, then SPIRV-Tools' validator) and uploads the still mesh and the
+    // texture. `context` must outlive the renderer.
+    static Result<std::unique_ptr<TestbedRenderer>> create(const Context& context, std::shared_ptr<const Scene3d> scene,
+                                                           std::uint32_t width, std::uint32_t height);
+
+    const Scene3d& scene() const { return *scene_; }
+    std::uint32_t width() const { return width_; }
+    std::uint32_t height() const { return height_; }
+
+    // The scene at `time` seen by `camera`, sampled at each pixel's center + `jitter` (pixels, x
+    // right, y down); motion in pixels toward where each surface was at `previous_time`, seen by
+    // `previous_camera` (y down); depth from 0 (near) to 1 (far, or nothing drawn).
+    Result<RasterImages> draw(double time, const Camera3d& camera, double previous_time,
+                              const Camera3d& previous_camera, glm::vec2 jitter);
+
+private:
+    TestbedRenderer() = default;
+
+    std::shared_ptr<const Scene3d> scene_;
+    std::uint32_t width_ = 0, height_ = 0;
+    std::unique_ptr<RasterPass> pass_;
+};
+
+} // namespace kdop
