@@ -3,6 +3,7 @@
 #include "command_line.h"
 #include "input_files.h"
 #include "input_space_option.h"
+#include "scene_options.h"
 #include "output_set.h"
 #include "progress.h"
 #include "sequence_writer.h"
@@ -32,7 +33,7 @@ CLI::Validator on_or_off() {
 Action add_scene_command(CLI::App& app) {
     struct Options {
         std::string out, size = "320x180", jitter, animate;
-        std::vector<std::string> scenes, backgrounds;
+        SceneChoice choice;
         std::uint32_t frames = 200;
         std::uint64_t seed = 1;
         InputSpace input_space = InputSpace::from_file;
@@ -40,20 +41,15 @@ Action add_scene_command(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* scene = app.add_subcommand(
         "scene", "Write kdop's own TAA scenes as frame sequences (README \"Frame sequences\"): color, motion and "
-                 "depth per frame, exactly the frames kdop taa measures, to look at, edit or replay with "
-                 "kdop taa --sequence");
+                 "depth per frame (and a supersampled reference with --reference-samples), exactly the frames "
+                 "kdop taa measures, to look at, edit or replay with kdop taa --sequence");
     scene->add_option("--out", o->out, "Output directory (created if missing); one folder per sequence")->required();
-    scene->add_option("--scenes", o->scenes,
-                      "Built-in scenes: grass, asphalt and the first installed real texture (colobot-grass) "
-                      "[default: all of them, unless --background is given]");
-    scene->add_option("--background", o->backgrounds,
-                      "Your own background images (decoded to linear values in [0, 1], see --input-space), one "
-                      "scene each");
+    o->choice.add_to(*scene);
     add_input_space_option(*scene, o->input_space);
     scene->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
     scene->add_option("--frames", o->frames, "Frames per sequence [default: 200, kdop taa's warmup and frames]")
         ->check(CLI::Range(1u, 100000u));
-    scene->add_option("--seed", o->seed, "Seed of the synthetic backgrounds [default: 1]");
+    scene->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]");
     scene
         ->add_option("--jitter", o->jitter,
                      "Jitter the samples (R2) [with neither --jitter nor --animate: two sequences per scene, "
@@ -65,25 +61,27 @@ Action add_scene_command(CLI::App& app) {
     return [o] {
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
-        for (std::size_t i = 0; i < o->scenes.size(); ++i)
-            if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)
-                return usage_error(fmt::format("--scenes: '{}' is given twice", o->scenes[i]));
-        if (auto ok = check_distinct_files(o->backgrounds, "--background"); !ok) return usage_error(ok.error().message);
+        if (auto misuse = o->choice.misuse()) return usage_error(*misuse);
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
-        auto scenes = select_taa_scenes(o->scenes, o->backgrounds, size->first, size->second, o->seed, o->input_space);
+        std::unique_ptr<Context> context;
+        if (o->choice.needs_device()) {
+            auto created = Context::create({});
+            if (!created) return report_error(created.error().message);
+            context = std::move(*created);
+        }
+        auto scenes = o->choice.select(size->first, size->second, o->seed, o->input_space, context.get());
         if (!scenes) return report_error(scenes.error().message);
 
         std::vector<std::shared_ptr<const FrameSource>> sources;
-        for (const TaaScene& s : *scenes) {
+        for (const auto& s : *scenes) {
             if (o->jitter.empty() && o->animate.empty()) {
                 // kdop taa's own two: the schedule's frames split as warmup + the rest.
                 const TaaSchedule schedule{0, o->frames};
-                sources.push_back(std::make_shared<SceneFrames>(shimmer_frames(s.name, s.background, schedule)));
-                sources.push_back(std::make_shared<SceneFrames>(ghosting_frames(s.name, s.background, schedule)));
+                sources.push_back(shimmer_frames(*s, schedule));
+                sources.push_back(ghosting_frames(*s, schedule));
             } else {
-                sources.push_back(std::make_shared<SceneFrames>(s.name, s.background, o->frames, o->animate != "off",
-                                                                o->jitter != "off"));
+                sources.push_back(s->frames(s->name(), o->frames, o->animate != "off", o->jitter != "off"));
             }
         }
         std::size_t files = 0;

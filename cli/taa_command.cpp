@@ -23,7 +23,7 @@
 #include "taa_measure.h"
 #include "taa_report.h"
 #include "taa_resolve.h"
-#include "taa_scene.h"
+#include "scene_options.h"
 #include "taa_shader.h"
 #include "timing.h"
 #include "trail_picture.h"
@@ -42,23 +42,23 @@ namespace {
 // ghosting-<scene>.png
 std::string trail_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
 
-// What a scene shows of its ghosting, added to `outputs`: the aliased frame and each variant's frame
-// at the trail frame under frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled
-// picture of them all, each variant's crop over its FLIP map against the aliased frame, under it the
-// variant's ghosting (the mean over the measured frames) and this frame's mean FLIP, and the maps'
-// color scale under the grid.
-Result<void> add_trail_outputs(OutputSet& outputs, const std::string& scene, std::shared_ptr<const Image> aliased,
-                               const std::vector<VariantKey>& keys,
+// What a scene shows of its ghosting, added to `outputs`: the truth (the aliased frame, or the
+// reference where the scene has one) and each variant's frame at the trail frame under
+// frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled picture of them all, each
+// variant's crop over its FLIP map against the truth, under it the variant's ghosting (the mean
+// over the measured frames) and this frame's mean FLIP, and the maps' color scale under the grid.
+Result<void> add_trail_outputs(OutputSet& outputs, const TaaScene& scene, const std::string& truth_name,
+                               std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                const std::vector<std::shared_ptr<const Image>>& trails,
                                const std::vector<double>& ghosting, const LdrFlip& flip, const TaaSchedule& schedule) {
-    const std::uint32_t width = aliased->width, height = aliased->height;
-    std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{"aliased", aliased}};
+    const std::uint32_t width = truth->width, height = truth->height;
+    std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{truth_name, truth}};
     std::vector<Image> maps;
     maps.reserve(trails.size()); // the picture points into it
     std::vector<LabeledFrame> labeled{
-        {fmt::format("aliased, frame {}", trail_frame(schedule, width, height)), aliased.get()}};
+        {fmt::format("{}, frame {}", truth_name, scene.trail_frame(schedule)), truth.get()}};
     for (std::size_t v = 0; v < keys.size(); ++v) {
-        auto error = flip.error_map(*aliased, *trails[v]);
+        auto error = flip.error_map(*truth, *trails[v]);
         if (!error) return std::unexpected(error.error());
         maps.push_back(flip::magma_image(*error, width, height));
         frames.emplace_back(keys[v].name(), trails[v]);
@@ -68,13 +68,14 @@ Result<void> add_trail_outputs(OutputSet& outputs, const std::string& scene, std
     std::vector<float> ramp(256);
     for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = float(i) / float(ramp.size() - 1);
     const Image bar = flip::magma_image(ramp, std::uint32_t(ramp.size()), 1);
-    const ColorScale scale{&bar, "LDR-FLIP against the aliased frame"};
+    const std::string caption = "LDR-FLIP against the " + (truth_name == "aliased" ? "aliased frame" : truth_name);
+    const ColorScale scale{&bar, caption};
     for (const auto& [stem, image] : frames)
         for (const char* extension : {".exr", ".png"})
-            outputs.add_image(fmt::format("frames/{}/{}{}", scene, stem, extension), image);
-    auto picture = trail_picture(labeled, trail_crop(schedule, width, height), 4, &scale);
+            outputs.add_image(fmt::format("frames/{}/{}{}", scene.name(), stem, extension), image);
+    auto picture = trail_picture(labeled, scene.trail_crop(schedule), 4, &scale);
     if (!picture) return std::unexpected(picture.error());
-    outputs.add_image(trail_picture_name(scene), std::make_shared<const Image>(std::move(*picture)));
+    outputs.add_image(trail_picture_name(scene.name()), std::make_shared<const Image>(std::move(*picture)));
     return {};
 }
 
@@ -89,7 +90,8 @@ std::vector<std::string> sequence_names(const std::vector<SequenceFrames>& seque
 Action add_taa_command(CLI::App& app) {
     struct Options {
         std::string out, size = "320x180", device;
-        std::vector<std::string> scenes, backgrounds, sequences;
+        std::vector<std::string> sequences;
+        SceneChoice choice;
         SelectionOptions selection;
         std::uint32_t warmup = 100, frames = 100;
         unsigned timing_rounds = 15;
@@ -109,13 +111,7 @@ Action add_taa_command(CLI::App& app) {
                "picture per built-in scene");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true);
-    taa->add_option("--scenes", o->scenes,
-                    "Built-in scenes: grass, asphalt and the first installed real texture (colobot-grass) "
-                    "[default: all of them, unless --background is given]");
-    taa->add_option(
-        "--background", o->backgrounds,
-        "Your own background images (decoded to linear values in [0, 1], see --input-space; tiled or cropped to "
-        "--size), one scene each");
+    o->choice.add_to(*taa);
     taa->add_option("--sequence", o->sequences,
                     "Frame sequences to measure (folders with sequence.json; README \"Frame sequences\"); with "
                     "--sequence, kdop's own scenes run only if --scenes or --background is given too");
@@ -134,7 +130,7 @@ Action add_taa_command(CLI::App& app) {
                     "FLIP's pixels per degree [default: 0.7 m from a 0.7 m wide 3840-pixel display, about 67]");
     taa->add_option("--timing-rounds", o->timing_rounds, "Interleaved dispatches per variant for ms [default: 15]")
         ->check(CLI::Range(1u, 10000u));
-    taa->add_option("--seed", o->seed, "Seed of the synthetic backgrounds [default: 1]");
+    taa->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]");
     taa->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
@@ -160,15 +156,13 @@ Action add_taa_command(CLI::App& app) {
         if (!specs) return report_error(specs.error().message);
         warn_fitted_space(*specs, o->resolve.color_map, "this run (--color-map)");
         // A scene given twice would only give the same rows twice.
-        for (std::size_t i = 0; i < o->scenes.size(); ++i)
-            if (std::find(o->scenes.begin(), o->scenes.begin() + i, o->scenes[i]) != o->scenes.begin() + i)
-                return usage_error(fmt::format("--scenes: '{}' is given twice", o->scenes[i]));
-        if (auto ok = check_distinct_files(o->backgrounds, "--background"); !ok) return usage_error(ok.error().message);
-        const bool builtin = o->sequences.empty() || !o->scenes.empty() || !o->backgrounds.empty();
-        std::vector<TaaScene> scenes;
+        if (auto misuse = o->choice.misuse()) return usage_error(*misuse);
+        const bool builtin = o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty();
+        auto context = Context::create({o->device, o->validation});
+        if (!context) return report_error(context.error().message);
+        std::vector<std::shared_ptr<const TaaScene>> scenes;
         if (builtin) {
-            auto selected =
-                select_taa_scenes(o->scenes, o->backgrounds, size->first, size->second, o->seed, o->input_space);
+            auto selected = o->choice.select(size->first, size->second, o->seed, o->input_space, context->get());
             if (!selected) return report_error(selected.error().message);
             scenes = std::move(*selected);
         }
@@ -178,7 +172,7 @@ Action add_taa_command(CLI::App& app) {
             auto sequence = read_sequence(dir);
             if (!sequence) return report_error(sequence.error().message);
             auto taken = [&](const std::string& name) {
-                return std::any_of(scenes.begin(), scenes.end(), [&](const TaaScene& s) { return s.name == name; }) ||
+                return std::any_of(scenes.begin(), scenes.end(), [&](const auto& s) { return s->name() == name; }) ||
                        std::any_of(sequences.begin(), sequences.end(),
                                    [&](const SequenceFrames& s) { return s.name() == name; });
             };
@@ -224,8 +218,6 @@ Action add_taa_command(CLI::App& app) {
         auto rectifiers = catalog->find_all(keys, o->selection.manifest.empty() ? "--sets" : "--manifest");
         if (!rectifiers) return report_error(rectifiers.error().message);
 
-        auto context = Context::create({o->device, o->validation});
-        if (!context) return report_error(context.error().message);
         // The rectification is timed at the frame size of what is measured: --size, or, with
         // sequences only, the first sequence's.
         const std::uint32_t width = builtin ? size->first : sequences.front().width();
@@ -257,6 +249,8 @@ Action add_taa_command(CLI::App& app) {
 
         std::vector<TaaRow> rows;
         std::vector<std::string> pictures;
+        std::vector<std::pair<std::string, std::string>> scene_contents;
+        for (const auto& scene : scenes) scene_contents.emplace_back(scene->name(), scene->content());
         {
             Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs->size(),
                                           scenes.size() + sequences.size(), (*context)->device_name()),
@@ -268,11 +262,12 @@ Action add_taa_command(CLI::App& app) {
                 rows.push_back({keys[v], scene, median(timing->ms[v]), quantile(timing->ms[v], 0.25),
                                 quantile(timing->ms[v], 0.75), shimmer, ghosting, against, range});
             };
-            for (const TaaScene& scene : scenes) {
+            for (const auto& scene_pointer : scenes) {
+                const TaaScene& scene = *scene_pointer;
                 std::vector<std::shared_ptr<const Image>> trails;
-                const std::uint32_t w = scene.background.width, h = scene.background.height;
+                const std::uint32_t w = scene.width(), h = scene.height();
                 auto mean = flip_mean(w, h);
-                if (!mean) return report_error(fmt::format("{}: {}", scene.name, mean.error().message));
+                if (!mean) return report_error(fmt::format("{}: {}", scene.name(), mean.error().message));
                 for (std::size_t v = 0; v < specs->size(); ++v) {
                     auto resolve = TaaResolve::create(**context, **shader_for(v, false), w, h, o->resolve);
                     if (!resolve) return report_error(resolve.error().message);
@@ -280,25 +275,27 @@ Action add_taa_command(CLI::App& app) {
                                                       const Image& output) {
                         return write_frame(sequence, v)(index, output);
                     };
-                    auto m = measure_scene(**resolve, scene.name, scene.background, schedule, *mean, written);
+                    auto m = measure_scene(**resolve, scene, schedule, *mean, written);
                     if (!m)
-                        return report_error(fmt::format("{} on {}: {}", keys[v].name(), scene.name, m.error().message));
-                    row(v, scene.name, m->shimmer, m->ghosting, "aliased", ColorRange::ldr);
+                        return report_error(
+                            fmt::format("{} on {}: {}", keys[v].name(), scene.name(), m.error().message));
+                    row(v, scene.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased",
+                        ColorRange::ldr);
                     trails.push_back(std::make_shared<const Image>(std::move(m->trail)));
-                    progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name));
+                    progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name()));
                 }
-                const SceneFrames moving = ghosting_frames(scene.name, scene.background, schedule);
-                auto aliased = moving.frame(trail_frame(schedule, w, h));
-                if (!aliased) return report_error(aliased.error().message);
+                auto shown = ghosting_frames(scene, schedule)->frame(scene.trail_frame(schedule));
+                if (!shown) return report_error(shown.error().message);
+                const bool has_reference = shown->reference.has_value();
+                auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
                 std::vector<double> ghosting;
                 for (std::size_t v = rows.size() - keys.size(); v < rows.size(); ++v)
                     ghosting.push_back(rows[v].ghosting);
-                if (auto ok = add_trail_outputs(*outputs, scene.name,
-                                                std::make_shared<const Image>(std::move(aliased->color)), keys, trails,
-                                                ghosting, flip, schedule);
+                if (auto ok = add_trail_outputs(*outputs, scene, has_reference ? "reference" : "aliased", truth, keys,
+                                                trails, ghosting, flip, schedule);
                     !ok)
                     return report_error(ok.error().message);
-                pictures.push_back(trail_picture_name(scene.name));
+                pictures.push_back(trail_picture_name(scene.name()));
             }
             for (const SequenceFrames& sequence : sequences) {
                 auto mean = flip_mean(sequence.width(), sequence.height());
@@ -342,7 +339,7 @@ Action add_taa_command(CLI::App& app) {
         outputs->add("report.md",
                      taa_report_markdown(rows, run_info,
                                          {width, height, o->warmup, o->frames, ppd, pictures, charts, o->resolve,
-                                          sequence_names(sequences), !o->cpu_flip, o->exposure}));
+                                          scene_contents, sequence_names(sequences), !o->cpu_flip, o->exposure}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
                                  scenes.size() + sequences.size(), run_info.device, run_info.driver,

@@ -47,28 +47,6 @@ FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
     };
 }
 
-std::uint32_t trail_frame(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height) {
-    std::uint32_t best = schedule.warmup;
-    float fastest = -1;
-    for (std::uint32_t f = schedule.warmup; f < schedule.warmup + schedule.frames; ++f) {
-        const float speed = std::abs(frame_state(f, width, height, true, false).car_motion.x);
-        if (speed > fastest) fastest = speed, best = f;
-    }
-    return best;
-}
-
-TrailCrop trail_crop(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height) {
-    const FrameState s = frame_state(trail_frame(schedule, width, height), width, height, true, false);
-    TrailCrop crop{0, 0, std::max(width / 2, 1u), std::max(height / 2, 1u), 2};
-    const float behind = s.car_motion.x > 0 ? -0.15f * float(width) : 0.15f * float(width);
-    auto corner = [](float center, std::uint32_t side, std::uint32_t frame) {
-        return std::uint32_t(std::clamp(center - float(side) / 2, 0.0f, float(frame - side)));
-    };
-    crop.x = corner(s.car_center.x + behind, crop.width, width);
-    crop.y = corner(s.car_center.y, crop.height, height);
-    return crop;
-}
-
 namespace {
 
 // Refuses a color outside the range the source keeps to, naming where it is.
@@ -152,38 +130,31 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
     return m;
 }
 
-SceneFrames shimmer_frames(const std::string& name, const Image& background, const TaaSchedule& schedule) {
-    return SceneFrames(name + "-shimmer", background, schedule.warmup + schedule.frames, false, true);
-}
-
-SceneFrames ghosting_frames(const std::string& name, const Image& background, const TaaSchedule& schedule) {
-    return SceneFrames(name + "-ghosting", background, schedule.warmup + schedule.frames, true, false);
-}
-
-Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const std::string& name, const Image& background,
-                                     const TaaSchedule& schedule, const FlipMean& flip,
-                                     const SceneOutputObserver& on_output, const std::function<void()>& on_frame) {
+Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
+                                     const FlipMean& flip, const SceneOutputObserver& on_output,
+                                     const std::function<void()>& on_frame) {
     TaaMeasurement m;
-    const SceneFrames still = shimmer_frames(name, background, schedule);
+    const auto still = shimmer_frames(scene, schedule);
     auto pass_on = [&](const FrameSource& source) -> OutputObserver {
         if (!on_output) return {};
         return [&](std::size_t index, const Image& output) { return on_output(source.name(), index, output); };
     };
-    auto shimmer = measure_sequence(resolve, still, schedule.warmup, flip, {.shimmer = true, .ghosting = false},
-                                    pass_on(still), on_frame);
+    auto shimmer = measure_sequence(resolve, *still, schedule.warmup, flip, {.shimmer = true, .ghosting = false},
+                                    pass_on(*still), on_frame);
     if (!shimmer) return std::unexpected(shimmer.error());
-    const SceneFrames moving = ghosting_frames(name, background, schedule);
-    const std::uint32_t shown = trail_frame(schedule, background.width, background.height);
-    const OutputObserver also_written = pass_on(moving);
+    const auto moving = ghosting_frames(scene, schedule);
+    const std::uint32_t shown = scene.trail_frame(schedule);
+    const OutputObserver also_written = pass_on(*moving);
     auto keep_trail = [&](std::size_t index, const Image& output) -> Result<void> {
         if (index == shown) m.trail = output;
         return also_written ? also_written(index, output) : Result<void>{};
     };
-    auto ghosting = measure_sequence(resolve, moving, schedule.warmup, flip, {.shimmer = false, .ghosting = true},
+    auto ghosting = measure_sequence(resolve, *moving, schedule.warmup, flip, {.shimmer = false, .ghosting = true},
                                      keep_trail, on_frame);
     if (!ghosting) return std::unexpected(ghosting.error());
     m.shimmer = shimmer->shimmer;
     m.ghosting = ghosting->ghosting;
+    m.against_reference = ghosting->against_reference;
     return m;
 }
 

@@ -18,7 +18,7 @@
 #include "image.h"
 #include "result.h"
 #include "taa_resolve.h"
-#include "taa_scene.h"
+#include "kdop_scene.h"
 #include "trail_picture.h"
 
 #include <cstdint>
@@ -58,40 +58,22 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
                                              const OutputObserver& on_output = {},
                                              const std::function<void()>& on_frame = {});
 
-struct TaaSchedule {
-    std::uint32_t warmup = 100; // frames before measuring, so the history is full
-    std::uint32_t frames = 100; // frames measured
-};
-
-// kdop's own scene `name` on `background`, as `kdop scene` writes it: the still, jittered sequence
-// of shimmer and the moving, unjittered one of ghosting, each warmup + frames long.
-SceneFrames shimmer_frames(const std::string& name, const Image& background, const TaaSchedule& schedule);
-SceneFrames ghosting_frames(const std::string& name, const Image& background, const TaaSchedule& schedule);
-
 struct TaaMeasurement {
     double shimmer = 0, ghosting = 0;
-    // The ghosting sequence's frame trail_frame(schedule): where a trail is longest.
+    bool against_reference = false; // ghosting against the frames' references (3-D scenes with --reference-samples)
+    // The ghosting sequence's frame scene.trail_frame(schedule): where a trail is longest.
     Image trail;
 };
 
-// Called with the sequence's name (shimmer_frames' or ghosting_frames'), a measured frame's index
-// and its output.
+// Called with the sequence's name (shimmer_frames' or ghosting_frames', kdop_scene.h), a measured
+// frame's index and its output.
 using SceneOutputObserver =
     std::function<Result<void>(const std::string& sequence, std::size_t index, const Image& output)>;
 
 // Both of a scene's sequences on `resolve`.
-Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const std::string& name, const Image& background,
-                                     const TaaSchedule& schedule, const FlipMean& flip,
-                                     const SceneOutputObserver& on_output = {},
+Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
+                                     const FlipMean& flip, const SceneOutputObserver& on_output = {},
                                      const std::function<void()>& on_frame = {});
-
-// Which frame of the ghosting sequence the pictures show: of the measured frames, the one where
-// the red box moves fastest, so its trail is longest.
-std::uint32_t trail_frame(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height);
-
-// The part of that frame the pictures show: half the frame's width and height around the red box,
-// shifted toward where it came from, so its trail is in view.
-TrailCrop trail_crop(const TaaSchedule& schedule, std::uint32_t width, std::uint32_t height);
 
 // A resolve's output ready for FLIP (and, for ldr, PNG): the resolve's blends and clips land on
 // segments between colors in the range, so anything beyond it is float rounding. Values outside

@@ -1,5 +1,6 @@
 #include "taa_report.h"
 
+#include "rank_correlation.h"
 #include "variant_columns.h"
 
 #include <fmt/format.h>
@@ -22,8 +23,16 @@ struct PaperRow {
 
 VariantKey clip_of(const char* set, Mode mode) { return {set, mode, Neighborhood::n9}; }
 
+// Which of the paper's tables a scene stands beside: grass and grass3d Table 1, asphalt and
+// asphalt3d Table 2; 0 for none.
+int paper_table_number(const std::string& scene) {
+    if (scene == "grass" || scene == "grass3d") return 1;
+    if (scene == "asphalt" || scene == "asphalt3d") return 2;
+    return 0;
+}
+
 std::vector<PaperRow> paper_table(const std::string& scene) {
-    if (scene == "grass")
+    if (paper_table_number(scene) == 1)
         return {{"RGB", clip_of("aabb", Mode::clip), 0.449, 0.0346, 0.0499},
                 {"YCoCg", clip_of("ycocg", Mode::clip), 0.452, 0.0344, 0.0538},
                 {"32-DOP", clip_of("dop32", Mode::clip), 0.662, 0.0433, 0.0399},
@@ -31,7 +40,7 @@ std::vector<PaperRow> paper_table(const std::string& scene) {
                 {"RGB+Var", clip_of("aabb", Mode::varclip), 0.465, 0.0406, 0.0417},
                 {"YCoCg+Var", clip_of("ycocg", Mode::varclip), 0.451, 0.0411, 0.0448},
                 {"32-DOP+Var", clip_of("dop32", Mode::varclip), 0.665, 0.0568, 0.0336}};
-    if (scene == "asphalt")
+    if (paper_table_number(scene) == 2)
         return {{"RGB", clip_of("aabb", Mode::clip), 0.428, 0.0111, 0.0520},
                 {"YCoCg", clip_of("ycocg", Mode::clip), 0.465, 0.0117, 0.0319},
                 {"32-DOP", clip_of("dop32", Mode::clip), 0.635, 0.0120, 0.0321},
@@ -69,12 +78,20 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
     }
     const auto rps = ranks(ps), rpg = ranks(pg), ros = ranks(os), rog = ranks(og);
     std::string md =
-        fmt::format("Beside Table {} of the paper (rank 1 = least among these seven):\n\n", scene == "grass" ? 1 : 2);
-    md += "| method | variant | paper shimmer | kdop shimmer | paper ghosting | kdop ghosting |\n";
-    md += "|---|---|--:|--:|--:|--:|\n";
-    for (std::size_t i = 0; i < paper.size(); ++i)
-        md += fmt::format("| {} | {} | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) |\n", paper[i].method,
-                          paper[i].key.name(), ps[i], rps[i], os[i], ros[i], pg[i], rpg[i], og[i], rog[i]);
+        fmt::format("Beside Table {} of the paper (rank 1 = least among these seven):\n\n", paper_table_number(scene));
+    md += "| method | variant | paper shimmer | kdop shimmer | paper ghosting | kdop ghosting | kdop / paper ghosting |\n";
+    md += "|---|---|--:|--:|--:|--:|--:|\n";
+    int within = 0; // methods whose ghosting is within 1.5x of the paper's, either way
+    for (std::size_t i = 0; i < paper.size(); ++i) {
+        const double ratio = og[i] / pg[i];
+        within += ratio >= 1 / 1.5 && ratio <= 1.5;
+        md += fmt::format("| {} | {} | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.4f} (#{}) | {:.2f} |\n",
+                          paper[i].method, paper[i].key.name(), ps[i], rps[i], os[i], ros[i], pg[i], rpg[i], og[i],
+                          rog[i], ratio);
+    }
+    md += fmt::format("\nSpearman's rank correlation with the paper's column: shimmer {:.2f}, ghosting {:.2f} (1: the "
+                      "same order). Ghosting within 1.5x of the paper's: {} of {} methods.\n",
+                      spearman(ps, os), spearman(pg, og), within, paper.size());
 
     // The orderings the paper's text draws from its tables, side by side.
     auto first = [&](const std::vector<int>& rank, int wanted) {
@@ -84,7 +101,8 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
         return names;
     };
     const int last = int(paper.size());
-    md += fmt::format("\n- Least ghosting: paper {}, kdop {}.\n", first(rpg, 1), first(rog, 1));
+    md += fmt::format("\nThe orderings the paper's text draws:\n\n- Least ghosting: paper {}, kdop {}.\n", first(rpg, 1),
+                      first(rog, 1));
     md += fmt::format("- Most ghosting: paper {}, kdop {}.\n", first(rpg, last), first(rog, last));
     md += fmt::format("- Least shimmer: paper {}, kdop {}.\n", first(rps, 1), first(ros, 1));
     md += fmt::format("- Most shimmer: paper {}, kdop {}.\n", first(rps, last), first(ros, last));
@@ -148,7 +166,8 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                           "- **shimmer**: jitter on (R2, 10 entries), no animation; after {} frames, the mean FLIP "
                           "between successive frames over {} frames;\n"
                           "- **ghosting**: jitter off, animation on; after {} frames, the mean FLIP against the "
-                          "aliased frame of the same instant over {} frames;\n",
+                          "aliased frame of the same instant (or its supersampled reference, where ghosting_against "
+                          "says so) over {} frames;\n",
                           s.warmup, s.frames, s.warmup, s.frames);
     md += own_scenes ? "" : "\n\n";
     md += "- **ms**: the median lavapipe time of the variant's rectification pass at the frame size (not the "
@@ -177,17 +196,20 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                      [&](const TaaRow& r) { return r.scene == scenes[i]; });
         std::stable_sort(in_scene.begin(), in_scene.end(),
                          [](const TaaRow& a, const TaaRow& b) { return a.ghosting < b.ghosting; });
-        md += fmt::format("## {}\n\nLeast ghosting first.\n\n{}\n", scenes[i], taa_table(in_scene).markdown(shown));
+        md += fmt::format("## {}\n\n", scenes[i]);
+        for (const auto& [name, content] : s.scene_contents)
+            if (name == scenes[i]) md += fmt::format("The scene: {}.\n\n", content);
+        md += fmt::format("Least ghosting first.\n\n{}\n", taa_table(in_scene).markdown(shown));
         if (i < s.charts.size())
             md += fmt::format("What each variant costs against the ghosting and shimmer it leaves (lower left is "
                               "better): ![cost against ghosting and shimmer, {0}]({1})\n\n",
                               scenes[i], s.charts[i]);
         md += paper_comparison(scenes[i], rows);
         if (i < s.pictures.size())
-            md += fmt::format("The ghosting sequence's frame where the red box moves fastest, every variant over its "
-                              "LDR-FLIP map against the aliased frame (the scale under the picture); under each, the "
-                              "variant's ghosting (the mean over the measured frames) and this frame's mean FLIP: "
-                              "![{0}]({1})\n\n",
+            md += fmt::format("The ghosting sequence's frame where the objects move fastest, every variant over its "
+                              "LDR-FLIP map against the aliased frame or the reference (the scale under the picture); "
+                              "under each, the variant's ghosting (the mean over the measured frames) and this "
+                              "frame's mean FLIP: ![{0}]({1})\n\n",
                               scenes[i], s.pictures[i]);
     }
     return md + metadata_markdown(run);

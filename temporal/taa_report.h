@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace kdop {
@@ -41,6 +42,8 @@ struct TaaReportSettings {
     std::vector<std::string> pictures; // per scene, relative to the report
     std::vector<std::string> charts;   // per scene, cost against ghosting and shimmer; empty: none drawn
     ResolveOptions resolve;
+    // kdop's own scenes measured: name and what the scene is made of (TaaScene::content).
+    std::vector<std::pair<std::string, std::string>> scene_contents;
     // The sequences measured (`kdop taa --sequence`), by name, beside kdop's own scenes.
     std::vector<std::string> sequences;
     bool flip_on_device = false; // ghosting and shimmer measured by the device's FLIP, not the CPU's

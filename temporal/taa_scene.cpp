@@ -70,19 +70,20 @@ Image tiled(const Image& source, std::uint32_t width, std::uint32_t height) {
 
 } // namespace
 
-std::vector<TaaScene> default_taa_scenes(std::uint32_t width, std::uint32_t height, std::uint64_t seed) {
-    std::vector<TaaScene> scenes{{"grass", make_texture(TextureFamily::grass, width, height, seed)},
-                                 {"asphalt", make_texture(TextureFamily::asphalt, width, height, seed)}};
+std::vector<SpriteScene> default_sprite_scenes(std::uint32_t width, std::uint32_t height, std::uint64_t seed) {
+    std::vector<SpriteScene> scenes{{"grass", make_texture(TextureFamily::grass, width, height, seed)},
+                                    {"asphalt", make_texture(TextureFamily::asphalt, width, height, seed)}};
     for (const RealTexture& real : installed_real_textures()) {
         Image image = load_real_texture(real, width, height);
         if (image.pixels.empty()) continue;
-        scenes.push_back({real.name, std::move(image)});
+        scenes.emplace_back(real.name, std::move(image));
         break;
     }
     return scenes;
 }
 
-Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height, InputSpace space) {
+Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
+                                      InputSpace space) {
     auto image = read_image(path, 0, space);
     if (!image) return fail(fmt::format("--background: {}", image.error().message));
     for (std::uint32_t y = 0; y < image->height; ++y)
@@ -95,30 +96,7 @@ Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, st
                                             "from 0 to 1",
                                             path, x, y, "RGB"[c], v));
             }
-    return TaaScene{std::filesystem::path(path).stem().string(), tiled(*image, width, height)};
-}
-
-Result<std::vector<TaaScene>> select_taa_scenes(const std::vector<std::string>& names,
-                                                const std::vector<std::string>& backgrounds, std::uint32_t width,
-                                                std::uint32_t height, std::uint64_t seed, InputSpace space) {
-    std::vector<TaaScene> all = default_taa_scenes(width, height, seed), out;
-    std::string known;
-    for (const TaaScene& s : all) known += (known.empty() ? "" : ", ") + s.name;
-    if (names.empty() && backgrounds.empty()) return all;
-    for (const std::string& name : names) {
-        auto it = std::find_if(all.begin(), all.end(), [&](const TaaScene& s) { return s.name == name; });
-        if (it == all.end())
-            return fail(fmt::format("--scenes: no scene '{}'; the built-in scenes here: {}", name, known));
-        out.push_back(*it);
-    }
-    for (const std::string& path : backgrounds) {
-        auto scene = read_taa_scene(path, width, height, space);
-        if (!scene) return std::unexpected(scene.error());
-        if (std::any_of(out.begin(), out.end(), [&](const TaaScene& s) { return s.name == scene->name; }))
-            return fail(fmt::format("--background: {}: a scene is already called '{}'", path, scene->name));
-        out.push_back(std::move(*scene));
-    }
-    return out;
+    return SpriteScene(std::filesystem::path(path).stem().string(), tiled(*image, width, height));
 }
 
 LoadedFrame render_scene(const Image& background, const FrameState& s) {
@@ -154,6 +132,40 @@ FrameState SceneFrames::state(std::size_t index) const {
 std::optional<glm::vec2> SceneFrames::jitter(std::size_t index) const {
     if (!jitter_) return std::nullopt;
     return state(index).jitter;
+}
+
+std::string SpriteScene::content() const {
+    return fmt::format("2-D: the {}x{} background, repeated and minified by {} texels per pixel, under a red box and "
+                       "a dark ellipse",
+                       background_.width, background_.height, kTexelsPerPixel);
+}
+
+std::shared_ptr<const FrameSource> SpriteScene::frames(const std::string& name, std::size_t count, bool animate,
+                                                       bool jitter) const {
+    return std::make_shared<SceneFrames>(name, background_, count, animate, jitter);
+}
+
+std::uint32_t SpriteScene::trail_frame(const TaaSchedule& schedule) const {
+    std::uint32_t best = schedule.warmup;
+    float fastest = -1;
+    for (std::uint32_t f = schedule.warmup; f < schedule.warmup + schedule.frames; ++f) {
+        const float speed = std::abs(frame_state(f, width(), height(), true, false).car_motion.x);
+        if (speed > fastest) fastest = speed, best = f;
+    }
+    return best;
+}
+
+TrailCrop SpriteScene::trail_crop(const TaaSchedule& schedule) const {
+    const std::uint32_t width = this->width(), height = this->height();
+    const FrameState s = frame_state(trail_frame(schedule), width, height, true, false);
+    TrailCrop crop{0, 0, std::max(width / 2, 1u), std::max(height / 2, 1u), 2};
+    const float behind = s.car_motion.x > 0 ? -0.15f * float(width) : 0.15f * float(width);
+    auto corner = [](float center, std::uint32_t side, std::uint32_t frame) {
+        return std::uint32_t(std::clamp(center - float(side) / 2, 0.0f, float(frame - side)));
+    };
+    crop.x = corner(s.car_center.x + behind, crop.width, width);
+    crop.y = corner(s.car_center.y, crop.height, height);
+    return crop;
 }
 
 std::string SceneFrames::frame_label(std::size_t index) const { return fmt::format("{}, frame {}", name_, index); }

@@ -1,7 +1,8 @@
-// kdop's own content: a scene is a background image under two moving objects (a red box and a dark
-// ellipse); this file says where they are on each frame, where the camera's sample falls in each
-// pixel, and draws the frames a renderer would give the resolve (color, motion, depth), in memory,
-// as a frame source (sequence/frame_source.h) that `kdop taa` measures and `kdop scene` writes.
+// kdop's 2-D scenes (kdop_scene.h): a background image under two moving objects (a red box and a
+// dark ellipse); this file says where they are on each frame, where the camera's sample falls in
+// each pixel, and draws the frames a renderer would give the resolve (color, motion, depth), in
+// memory, as a frame source (sequence/frame_source.h) that `kdop taa` measures and `kdop scene`
+// writes.
 //
 // The picture: the background repeated and minified by 1.25 texels per pixel, bilinear, without
 // mipmaps (so its detail aliases and shimmers under jitter, as distant grass does), under two
@@ -16,6 +17,7 @@
 #pragma once
 
 #include "frame_source.h"
+#include "kdop_scene.h"
 #include "image.h"
 #include "image_io.h"
 #include "jitter.h"
@@ -29,25 +31,37 @@
 
 namespace kdop {
 
-struct TaaScene {
-    std::string name; // "grass", "asphalt", a real texture's name or a background file's stem
-    Image background; // linear RGB, frame-sized; repeated and minified by the shader
+// A background under the two objects.
+class SpriteScene final : public TaaScene {
+public:
+    // `background`: linear RGB in [0, 1], of the frame's size; repeated and minified by the shader.
+    SpriteScene(std::string name, Image background) : name_(std::move(name)), background_(std::move(background)) {}
+    const Image& background() const { return background_; }
+
+    const std::string& name() const override { return name_; }
+    std::uint32_t width() const override { return background_.width; }
+    std::uint32_t height() const override { return background_.height; }
+    std::string content() const override;
+    std::shared_ptr<const FrameSource> frames(const std::string& name, std::size_t count, bool animate,
+                                              bool jitter) const override;
+    // Where the red box moves fastest, and half the frame around it, shifted toward where it came
+    // from, so its trail is in view.
+    std::uint32_t trail_frame(const TaaSchedule& schedule) const override;
+    TrailCrop trail_crop(const TaaSchedule& schedule) const override;
+
+private:
+    std::string name_;
+    Image background_;
 };
 
 // The paper's two backgrounds as kdop's synthetic families ("grass": high-frequency chroma and
 // luma; "asphalt": high-frequency luma), then the first installed real texture, if any.
-std::vector<TaaScene> default_taa_scenes(std::uint32_t width, std::uint32_t height, std::uint64_t seed);
+std::vector<SpriteScene> default_sprite_scenes(std::uint32_t width, std::uint32_t height, std::uint64_t seed);
 
 // A user's background: read, then tiled or cropped to the frame. The error names the file; values
 // must lie in [0, 1] (the metric is LDR-FLIP), and one that does not is named with its pixel.
-Result<TaaScene> read_taa_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
-                                InputSpace space = InputSpace::from_file);
-
-// The scenes `names` asks for (built-in, by name), then one per image in `backgrounds`, in that
-// order; both empty: every built-in scene. Errors name the option (--scenes, --background).
-Result<std::vector<TaaScene>> select_taa_scenes(const std::vector<std::string>& names,
-                                                const std::vector<std::string>& backgrounds, std::uint32_t width,
-                                                std::uint32_t height, std::uint64_t seed, InputSpace space);
+Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
+                                      InputSpace space = InputSpace::from_file);
 
 struct FrameState {
     glm::vec2 jitter{0};                    // sample offset from the pixel center, pixels

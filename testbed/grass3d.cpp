@@ -15,7 +15,7 @@ namespace kdop {
 namespace {
 
 constexpr int kBlades = 30000;
-constexpr double kKickPeriod = 48; // frames per kick, out and back
+constexpr double kKickPeriod = 28; // frames per kick, out and back: about half a second at 60 Hz
 // The figure stands at the origin facing +x, side-on to the camera, which looks along +z: its
 // kick sweeps across the view.
 const glm::vec2 kShadowCenter(0.05f, 0.0f), kShadowRadii(0.55f, 0.3f);
@@ -28,8 +28,8 @@ void add_blades(Mesh& mesh, std::uint64_t seed) {
     Random random(seed * 0x2545f4914f6cdd1dull + 17);
     const glm::vec3 green(0.09f, 0.30f, 0.04f), yellow(0.32f, 0.36f, 0.07f), blue_green(0.05f, 0.24f, 0.10f);
     for (int i = 0; i < kBlades; ++i) {
-        const float z = float(random.uniform(-3.5, 16.0));
-        const float half_width = 0.75f * (z + 6.0f) + 1.0f;
+        const float z = float(random.uniform(-1.5, 14.0));
+        const float half_width = 0.75f * (z + 3.4f) + 0.8f;
         const float x = float(random.uniform(-half_width, half_width));
         const float height = float(random.uniform(0.12, 0.36)), width = float(random.uniform(0.018, 0.04));
         const double facing = random.uniform(0, std::numbers::pi);
@@ -85,11 +85,11 @@ Scene3d grass3d_scene(std::uint64_t seed) {
     s.name = "grass3d";
     s.texture = make_texture(TextureFamily::grass, 256, 256, seed);
     s.texture_period = 4.0f;
-    add_ground_quad(s.still, 0, {-40, -10}, {40, 60}, glm::vec3(0.55f), true);
+    add_ground_quad(s.still, 0, {-150, -10}, {150, 190}, glm::vec3(0.55f), true);
     add_ground_ellipse(s.still, 0.004f, kShadowCenter, kShadowRadii, kShadow);
     add_blades(s.still, seed);
     s.moving = figure;
-    s.camera = {{0.3f, 3.4f, -5.6f}, {0.3f, 0.5f, 0.6f}, 0.7f};
+    s.camera = {{0.3f, 1.7f, -2.2f}, {0.3f, 0.85f, 0.4f}, 0.7f};
     s.sun = glm::normalize(glm::vec3(-0.4f, 0.85f, -0.35f));
     s.content = fmt::format("ground of kdop's grass texture family (256x256, seed {0}, one repeat per {1} units, "
                             "no mipmaps) under {2} grass blades (seed {0}); a figure of {3} boxes kicking",

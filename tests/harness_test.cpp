@@ -5,6 +5,7 @@
 #include "memory_budget.h"
 #include "output_set.h"
 #include "progress.h"
+#include "rank_correlation.h"
 #include "run_metadata.h"
 #include "table.h"
 #include "test_support.h"
@@ -92,6 +93,17 @@ TEST(CsvReader, ReadsWhatTablesWriteAndNamesTheLineOfWhatItCannot) {
     EXPECT_EQ(parse_csv("a,b\n1\n", "f.csv").error().message, "f.csv:2: 1 fields, the header has 2");
     EXPECT_EQ(parse_csv("a,b\n\"open,2\n", "q.csv").error().message, "q.csv:2: a quoted field is not closed");
     EXPECT_EQ(parse_csv("", "e.csv").error().message, "e.csv:1: empty; expected a header line");
+}
+
+// Spearman's rho: 1 for the same order whatever the scale, -1 reversed, ties sharing their mean
+// rank (worked by hand: ranks 1, 2.5, 2.5, 4 against 1, 2, 3, 4 give 4.5 / sqrt(4.5 * 5)).
+TEST(RankCorrelation, SpearmanComparesOrderingsNotValues) {
+    EXPECT_DOUBLE_EQ(spearman({0.03, 0.05, 0.04}, {3, 500, 40}), 1.0);
+    EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {9, 7, 5, 1}), -1.0);
+    EXPECT_EQ(fractional_ranks({5, 1, 3, 3}), (std::vector<double>{4, 1, 2.5, 2.5}));
+    EXPECT_NEAR(spearman({1, 2, 2, 3}, {1, 2, 3, 4}), 4.5 / std::sqrt(22.5), 1e-15);
+    EXPECT_TRUE(std::isnan(spearman({1, 1, 1}, {1, 2, 3}))) << "no order to compare";
+    EXPECT_TRUE(std::isnan(spearman({1}, {2})));
 }
 
 TEST(RunMetadata, CommandLineReproducesTheRun) {

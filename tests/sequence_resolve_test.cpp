@@ -435,32 +435,61 @@ std::string figures(const std::string& csv, const std::string& variant, const st
     return "no row for " + variant + " on " + scene;
 }
 
+// Runs kdop taa on `scene` in memory and on what `scenes` holds of it (kdop scene's two sequences),
+// and expects the same figures: shimmer from <scene>-shimmer, ghosting from <scene>-ghosting.
+void expect_replay_gives_the_in_memory_figures(const SequenceRun& t, const fs::path& scenes, const std::string& scene,
+                                               const std::string& scene_args) {
+    const std::string common = " --sets aabb dop22 --modes clip varclip --warmup 3 --timing-rounds 2 --no-charts";
+    const fs::path memory_out = t.dir / (scene + "-memory"), replay_out = t.dir / (scene + "-replay");
+    auto memory = t.kdop("taa --scenes " + scene + " --frames 5 " + scene_args + " --out " + memory_out.string() + common);
+    ASSERT_EQ(memory.exit_code, 0) << memory.err;
+    auto replay = t.kdop("taa --sequence " + (scenes / (scene + "-shimmer")).string() + " " +
+                         (scenes / (scene + "-ghosting")).string() + " --out " + replay_out.string() + common);
+    ASSERT_EQ(replay.exit_code, 0) << replay.err;
+    const std::string in_memory = test::read_file(memory_out / "taa.csv");
+    const std::string replayed = test::read_file(replay_out / "taa.csv");
+    for (const char* variant : {"aabb-clip-n9", "dop22-clip-n9", "aabb-varclip-n9", "dop22-varclip-n9"}) {
+        const std::string memory_figures = figures(in_memory, variant, scene);
+        const std::string shimmer = memory_figures.substr(0, memory_figures.find(','));
+        const std::string ghosting = memory_figures.substr(memory_figures.find(',') + 1);
+        const std::string still = figures(replayed, variant, scene + "-shimmer");
+        const std::string moving = figures(replayed, variant, scene + "-ghosting");
+        EXPECT_EQ(still.substr(0, still.find(',')), shimmer) << variant << "\n" << replayed;
+        EXPECT_EQ(moving.substr(moving.find(',') + 1), ghosting) << variant << "\n" << replayed;
+    }
+    const std::string report = test::read_file(replay_out / "report.md");
+    EXPECT_NE(report.find(fmt::format("Sequences given with --sequence ({0}-shimmer, {0}-ghosting)", scene)),
+              std::string::npos)
+        << report;
+}
+
 TEST(CliSequence, ReplayingWhatKdopSceneWroteGivesTheInMemoryFigures) {
     SequenceRun t;
     const fs::path scenes = t.scenes();
     EXPECT_TRUE(fs::exists(scenes / "grass-shimmer" / "color" / "0007.exr"));
     EXPECT_TRUE(fs::exists(scenes / "grass-ghosting" / "motion" / "0007.exr"));
     EXPECT_FALSE(fs::exists(scenes / "grass-ghosting" / "motion" / "0000.exr")) << "the first frame has no history";
-    const std::string common = " --sets aabb dop22 --modes clip varclip --warmup 3 --timing-rounds 2 --no-charts";
-    auto memory = t.kdop("taa --scenes grass --size 48x32 --frames 5 --out " + (t.dir / "memory").string() + common);
-    ASSERT_EQ(memory.exit_code, 0) << memory.err;
-    auto replay = t.kdop("taa --sequence " + (scenes / "grass-shimmer").string() + " " +
-                         (scenes / "grass-ghosting").string() + " --out " + (t.dir / "replay").string() + common);
-    ASSERT_EQ(replay.exit_code, 0) << replay.err;
-    const std::string in_memory = test::read_file(t.dir / "memory" / "taa.csv");
-    const std::string replayed = test::read_file(t.dir / "replay" / "taa.csv");
-    for (const char* variant : {"aabb-clip-n9", "dop22-clip-n9", "aabb-varclip-n9", "dop22-varclip-n9"}) {
-        const std::string memory_figures = figures(in_memory, variant, "grass");
-        const std::string shimmer = memory_figures.substr(0, memory_figures.find(','));
-        const std::string ghosting = memory_figures.substr(memory_figures.find(',') + 1);
-        const std::string still = figures(replayed, variant, "grass-shimmer");
-        const std::string moving = figures(replayed, variant, "grass-ghosting");
-        EXPECT_EQ(still.substr(0, still.find(',')), shimmer) << variant << "\n" << replayed;
-        EXPECT_EQ(moving.substr(moving.find(',') + 1), ghosting) << variant << "\n" << replayed;
-    }
-    const std::string report = test::read_file(t.dir / "replay" / "report.md");
-    EXPECT_NE(report.find("Sequences given with --sequence (grass-shimmer, grass-ghosting)"), std::string::npos)
-        << report;
+    expect_replay_gives_the_in_memory_figures(t, scenes, "grass", "--size 48x32");
+}
+
+// The same for a 3-D scene, its camera panning and its frames with references: kdop scene writes
+// depth and references, and ghosting is measured against the references either way.
+TEST(CliSequence, ReplayingA3dSceneGivesTheInMemoryFigures) {
+    SequenceRun t;
+    const fs::path scenes = t.dir / "scenes";
+    const std::string scene_args = "--size 64x36 --camera pan --reference-samples 3";
+    auto r = t.kdop("scene --scenes asphalt3d --frames 8 " + scene_args + " --out " + scenes.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* kind : {"color", "motion", "depth", "reference"})
+        EXPECT_TRUE(fs::exists(scenes / "asphalt3d-ghosting" / kind / "0007.exr")) << kind;
+    auto sequence = read_sequence(scenes / "asphalt3d-shimmer");
+    ASSERT_TRUE(sequence) << sequence.error().message;
+    ASSERT_TRUE(sequence->frames[3].jitter);
+    EXPECT_EQ(*sequence->frames[3].jitter, r2_jitter(3));
+    expect_replay_gives_the_in_memory_figures(t, scenes, "asphalt3d", scene_args);
+    const std::string csv = test::read_file(t.dir / "asphalt3d-memory" / "taa.csv");
+    EXPECT_NE(csv.find(",asphalt3d,"), std::string::npos) << csv;
+    EXPECT_EQ(csv.find(",aliased,"), std::string::npos) << "against the references:\n" << csv;
 }
 
 TEST(CliSequence, WritesEveryMeasuredFrameAndMeasuresAgainstReferences) {

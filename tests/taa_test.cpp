@@ -72,18 +72,18 @@ TEST(TaaScene, ABackgroundOutsideTheUnitRangeIsRefused) {
     bright.at(3, 5) = {0.5f, 1.5f, 0.5f, 1};
     const std::string path = (dir / "bright.exr").string();
     ASSERT_TRUE(write_image(path, bright));
-    auto scene = read_taa_scene(path, 16, 16);
+    auto scene = read_sprite_scene(path, 16, 16);
     ASSERT_FALSE(scene);
     EXPECT_NE(scene.error().message.find(path + ": pixel (3, 5) has G 1.5, outside [0, 1]"), std::string::npos)
         << scene.error().message;
-    EXPECT_FALSE(read_taa_scene((dir / "missing.png").string(), 16, 16));
+    EXPECT_FALSE(read_sprite_scene((dir / "missing.png").string(), 16, 16));
 
     bright.at(3, 5) = {0.5f, 0.5f, 0.5f, 1};
     ASSERT_TRUE(write_image(path, bright));
-    auto ok = read_taa_scene(path, 20, 12);
+    auto ok = read_sprite_scene(path, 20, 12);
     ASSERT_TRUE(ok) << ok.error().message;
-    EXPECT_EQ(ok->name, "bright");
-    EXPECT_EQ(ok->background.width, 20u) << "tiled to the frame";
+    EXPECT_EQ(ok->name(), "bright");
+    EXPECT_EQ(ok->background().width, 20u) << "tiled to the frame";
 }
 
 // A time is within noise of the fastest where the difference is no more than the larger of the two
@@ -250,8 +250,8 @@ TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     auto none_resolve = make_resolve(**current_only, w, h);
     auto dop32_resolve = make_resolve(*dop32, w, h);
     ASSERT_TRUE(none_resolve && dop32_resolve);
-    auto none = measure_scene(*none_resolve, "grass", background, schedule, cpu_flip_mean(flip));
-    auto clipped = measure_scene(*dop32_resolve, "grass", background, schedule, cpu_flip_mean(flip));
+    auto none = measure_scene(*none_resolve, SpriteScene("grass", background), schedule, cpu_flip_mean(flip));
+    auto clipped = measure_scene(*dop32_resolve, SpriteScene("grass", background), schedule, cpu_flip_mean(flip));
     ASSERT_TRUE(none && clipped);
     EXPECT_EQ(none->ghosting, 0.0);
     EXPECT_GT(none->shimmer, 0.0);
@@ -273,7 +273,7 @@ TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
         ASSERT_TRUE(shader);
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
-        auto m = measure_scene(*resolve, "grass", background, schedule, cpu_flip_mean(flip));
+        auto m = measure_scene(*resolve, SpriteScene("grass", background), schedule, cpu_flip_mean(flip));
         ASSERT_TRUE(m) << m.error().message;
         ghosting[i++] = m->ghosting;
     }
@@ -297,7 +297,7 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     for (int i = 0; i < 2; ++i) {
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
-        auto measured = measure_scene(*resolve, "grass", background, schedule, i ? on_device : cpu_flip_mean(flip));
+        auto measured = measure_scene(*resolve, SpriteScene("grass", background), schedule, i ? on_device : cpu_flip_mean(flip));
         ASSERT_TRUE(measured) << measured.error().message;
         m[i] = std::move(*measured);
     }
@@ -349,6 +349,35 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
         << report;
 }
 
+// With no scene named, the 3-D testbed's two, each beside its table of the paper: ranks, rank
+// correlations and how far each method's ghosting is from the paper's.
+TEST(CliTaa, TheDefaultScenesAreThe3dTestbedBesideThePaper) {
+    TaaRun t;
+    const fs::path out = t.dir / "taa";
+    auto r = t.kdop("--sets aabb ycocg dop32 dop16-grass dop16-asphalt --modes clip varclip --no-charts --out " +
+                    out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string csv = test::read_file(out / "taa.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21) << "10 variants x 2 scenes:\n" << csv;
+    const std::string report = test::read_file(out / "report.md");
+    for (const char* scene : {"grass3d", "asphalt3d"}) {
+        EXPECT_NE(csv.find(fmt::format("\ndop32-varclip-n9,dop32,varclip,n9,{},", scene)), std::string::npos) << csv;
+        EXPECT_TRUE(fs::exists(out / fmt::format("ghosting-{}.png", scene)));
+        EXPECT_NE(report.find(fmt::format("## {}\n\nThe scene: 3-D, rasterized on the device", scene)),
+                  std::string::npos)
+            << report;
+    }
+    for (const char* table : {"Beside Table 1 of the paper", "Beside Table 2 of the paper"})
+        EXPECT_NE(report.find(table), std::string::npos) << report;
+    std::size_t correlations = 0;
+    for (std::size_t at = 0; (at = report.find("Spearman's rank correlation with the paper's column: shimmer ", at)) !=
+                             std::string::npos;
+         ++at)
+        ++correlations;
+    EXPECT_EQ(correlations, 2u) << report;
+    EXPECT_NE(report.find("| kdop / paper ghosting |"), std::string::npos) << report;
+}
+
 // A scene's own variants: a manifest naming a user's set, on a user's background.
 TEST(CliTaa, TakesAManifestAndTheUsersBackground) {
     TaaRun t;
@@ -377,7 +406,11 @@ TEST(CliTaa, RefusesBadInputAndWritesNothing) {
         int exit_code;
         std::string size = "64x36";
     } cases[] = {
-        {"--scenes meadow", "--scenes: no scene 'meadow'; the built-in scenes here: grass, asphalt", 1},
+        {"--scenes meadow", "--scenes: no scene 'meadow'; the built-in scenes here: grass3d, asphalt3d, grass, asphalt",
+         1},
+        {"--scenes grass --camera pan", "--camera: only the 3-D scenes (grass3d, asphalt3d) take it", 2},
+        {"--background " + hdr + " --reference-samples 4", "--reference-samples: only the 3-D scenes", 2},
+        {"--camera tilt", "--camera", 2},
         {"--background " + (t.dir / "missing.png").string(), "--background: ", 1},
         {"--background " + hdr, "hdr.exr: pixel (0, 0) has R 2, outside [0, 1]", 1},
         {"", "--size: '4x4' is not WIDTHxHEIGHT", 2, "4x4"},

@@ -1,0 +1,66 @@
+// The options that pick kdop's own scenes, shared by `kdop scene` (which writes them) and
+// `kdop taa` (which measures them): --scenes, --background, --camera, --reference-samples.
+#pragma once
+
+#include "context.h"
+#include "input_files.h"
+#include "kdop_scene.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop::cli {
+
+struct SceneChoice {
+    std::vector<std::string> scenes, backgrounds;
+    std::string camera = "still";
+    std::uint32_t reference_samples = 0;
+
+    void add_to(CLI::App& app) {
+        app.add_option("--scenes", scenes,
+                       fmt::format("Built-in scenes: {} (grass3d and asphalt3d are 3-D, rasterized on the device; "
+                                   "the others 2-D) [default: grass3d asphalt3d, unless --background is given]",
+                                   fmt::join(builtin_scene_names(), ", ")));
+        app.add_option("--background", backgrounds,
+                       "Your own background images for 2-D scenes (decoded to linear values in [0, 1], see "
+                       "--input-space; tiled or cropped to --size), one scene each");
+        app.add_option("--camera", camera,
+                       "3-D scenes: still, or pan (the camera slides sideways, so what was behind the objects and "
+                       "beyond the frame's border comes into view) [default: still]")
+            ->check(CLI::IsMember({"still", "pan"}));
+        app.add_option("--reference-samples", reference_samples,
+                       "3-D scenes: add a reference to every frame, the mean of N samples per pixel (ghosting is "
+                       "then measured against it) [default: 0, none]")
+            ->check(CLI::Range(0u, 1024u));
+    }
+
+    // A usage error's message, if any: a scene or background given twice, 3-D options without a
+    // 3-D scene.
+    std::optional<std::string> misuse() const {
+        for (std::size_t i = 0; i < scenes.size(); ++i)
+            if (std::find(scenes.begin(), scenes.begin() + i, scenes[i]) != scenes.begin() + i)
+                return fmt::format("--scenes: '{}' is given twice", scenes[i]);
+        if (auto ok = check_distinct_files(backgrounds, "--background"); !ok) return ok.error().message;
+        if (!selects_testbed_scene(scenes, backgrounds) && (camera != "still" || reference_samples > 0))
+            return std::string(camera != "still" ? "--camera" : "--reference-samples") +
+                   ": only the 3-D scenes (grass3d, asphalt3d) take it, and none is selected";
+        return std::nullopt;
+    }
+
+    bool needs_device() const { return selects_testbed_scene(scenes, backgrounds); }
+
+    Result<std::vector<std::shared_ptr<const TaaScene>>> select(std::uint32_t width, std::uint32_t height,
+                                                                std::uint64_t seed, InputSpace space,
+                                                                const Context* context) const {
+        return select_taa_scenes(scenes, backgrounds,
+                                 {width, height, seed, space, context, camera == "pan", reference_samples});
+    }
+};
+
+} // namespace kdop::cli

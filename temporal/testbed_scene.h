@@ -1,0 +1,44 @@
+// A 3-D testbed scene (testbed/scene3d.h: grass3d, asphalt3d) as a scene `kdop taa` measures and
+// `kdop scene` writes: its frames drawn on the device, one renderer shared by its sequences.
+#pragma once
+
+#include "kdop_scene.h"
+#include "scene3d.h"
+#include "testbed_renderer.h"
+
+#include <memory>
+
+namespace kdop {
+
+class TestbedScene final : public TaaScene {
+public:
+    // With `camera_pan`, every sequence's camera slides sideways; with `reference_samples` > 0,
+    // every frame has a reference of that many samples per pixel.
+    static Result<std::shared_ptr<TestbedScene>> create(const Context& context, Scene3d scene, std::uint32_t width,
+                                                        std::uint32_t height, bool camera_pan,
+                                                        std::uint32_t reference_samples);
+
+    const std::string& name() const override { return renderer_->scene().name; }
+    std::uint32_t width() const override { return renderer_->width(); }
+    std::uint32_t height() const override { return renderer_->height(); }
+    std::string content() const override;
+    std::shared_ptr<const FrameSource> frames(const std::string& name, std::size_t count, bool animate,
+                                              bool jitter) const override;
+    // Where the moving mesh's vertices move most on the screen, and half the frame around it,
+    // shifted toward where it came from.
+    std::uint32_t trail_frame(const TaaSchedule& schedule) const override;
+    TrailCrop trail_crop(const TaaSchedule& schedule) const override;
+
+private:
+    TestbedScene(std::shared_ptr<TestbedRenderer> renderer, bool camera_pan, std::uint32_t reference_samples)
+        : renderer_(std::move(renderer)), camera_pan_(camera_pan), reference_samples_(reference_samples) {}
+    // The moving mesh's mean position on the screen at `time`, in pixels, and its mean motion since
+    // the frame before.
+    std::pair<glm::vec2, glm::vec2> screen_motion(double time) const;
+
+    std::shared_ptr<TestbedRenderer> renderer_;
+    bool camera_pan_;
+    std::uint32_t reference_samples_;
+};
+
+} // namespace kdop
