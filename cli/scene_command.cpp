@@ -3,9 +3,9 @@
 #include "command_line.h"
 #include "input_files.h"
 #include "input_space_option.h"
-#include "scene_options.h"
 #include "output_set.h"
 #include "progress.h"
+#include "scene_options.h"
 #include "sequence_writer.h"
 #include "size_option.h"
 #include "taa_measure.h"
@@ -62,9 +62,10 @@ Action add_scene_command(CLI::App& app) {
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
         if (auto misuse = o->choice.misuse()) return usage_error(*misuse);
+        // Declared first, so it outlives the outputs' writers, which draw 3-D frames on it.
+        std::unique_ptr<Context> context;
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
-        std::unique_ptr<Context> context;
         if (o->choice.needs_device()) {
             auto created = Context::create({});
             if (!created) return report_error(created.error().message);

@@ -37,7 +37,7 @@ std::shared_ptr<const FrameSource> ghosting_frames(const TaaScene& scene, const 
 
 std::vector<std::string> builtin_scene_names() {
     std::vector<std::string> names(std::begin(kTestbedScenes), std::end(kTestbedScenes));
-    for (const SpriteScene& s : default_sprite_scenes(1, 1, 1)) names.push_back(s.name());
+    for (const std::string& name : sprite_scene_names()) names.push_back(name);
     return names;
 }
 
@@ -47,17 +47,18 @@ bool selects_testbed_scene(const std::vector<std::string>& names, const std::vec
 }
 
 Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std::vector<std::string>& names,
-                                                                        const std::vector<std::string>& backgrounds,
-                                                                        const SceneOptions& o) {
+                                                                       const std::vector<std::string>& backgrounds,
+                                                                       const SceneOptions& o) {
     std::vector<std::string> wanted = names;
     if (names.empty() && backgrounds.empty()) wanted.assign(std::begin(kTestbedScenes), std::end(kTestbedScenes));
     std::vector<std::shared_ptr<const TaaScene>> out;
     std::vector<SpriteScene> sprites;
     for (const std::string& name : wanted) {
         if (auto scene = testbed_scene(name, o.seed)) {
-            if (!o.context) return fail(fmt::format("--scenes: {} is drawn on a Vulkan device, and none is open", name));
-            auto created =
-                TestbedScene::create(*o.context, std::move(*scene), o.width, o.height, o.camera_pan, o.reference_samples);
+            if (!o.context)
+                return fail(fmt::format("--scenes: {} is drawn on a Vulkan device, and none is open", name));
+            auto created = TestbedScene::create(*o.context, std::move(*scene), o.width, o.height, o.camera_pan,
+                                                o.reference_samples);
             if (!created) return fail(fmt::format("--scenes: {}: {}", name, created.error().message));
             out.push_back(std::move(*created));
             continue;

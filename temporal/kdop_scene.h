@@ -48,11 +48,11 @@ std::shared_ptr<const FrameSource> ghosting_frames(const TaaScene& scene, const 
 
 struct SceneOptions {
     std::uint32_t width = 320, height = 180;
-    std::uint64_t seed = 1;                  // of the synthetic textures and the testbed's scenes
+    std::uint64_t seed = 1;                         // of the synthetic textures and the testbed's scenes
     InputSpace input_space = InputSpace::from_file; // of --background images
-    const Context* context = nullptr;        // where the 3-D scenes are drawn; must outlive them
-    bool camera_pan = false;                 // 3-D scenes: the camera slides sideways (--camera pan)
-    std::uint32_t reference_samples = 0;     // 3-D scenes: > 0 adds a supersampled reference per frame
+    const Context* context = nullptr;               // where the 3-D scenes are drawn; must outlive them
+    bool camera_pan = false;                        // 3-D scenes: the camera slides sideways (--camera pan)
+    std::uint32_t reference_samples = 0;            // 3-D scenes: > 0 adds a supersampled reference per frame
 };
 
 // The built-in scenes: the 3-D testbed's two, then the 2-D ones.
@@ -64,7 +64,7 @@ bool selects_testbed_scene(const std::vector<std::string>& names, const std::vec
 // The scenes `names` asks for (built-in, by name), then one per image in `backgrounds` (2-D), in
 // that order; both empty: grass3d and asphalt3d. Errors name the option (--scenes, --background).
 Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std::vector<std::string>& names,
-                                                                        const std::vector<std::string>& backgrounds,
-                                                                        const SceneOptions& options);
+                                                                       const std::vector<std::string>& backgrounds,
+                                                                       const SceneOptions& options);
 
 } // namespace kdop

@@ -16,9 +16,9 @@
 #include "frame_source.h"
 #include "hdr_flip.h"
 #include "image.h"
+#include "kdop_scene.h"
 #include "result.h"
 #include "taa_resolve.h"
-#include "kdop_scene.h"
 #include "trail_picture.h"
 
 #include <cstdint>

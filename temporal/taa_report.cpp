@@ -79,7 +79,8 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
     const auto rps = ranks(ps), rpg = ranks(pg), ros = ranks(os), rog = ranks(og);
     std::string md =
         fmt::format("Beside Table {} of the paper (rank 1 = least among these seven):\n\n", paper_table_number(scene));
-    md += "| method | variant | paper shimmer | kdop shimmer | paper ghosting | kdop ghosting | kdop / paper ghosting |\n";
+    md += "| method | variant | paper shimmer | kdop shimmer | paper ghosting | kdop ghosting | kdop / paper ghosting "
+          "|\n";
     md += "|---|---|--:|--:|--:|--:|--:|\n";
     int within = 0; // methods whose ghosting is within 1.5x of the paper's, either way
     for (std::size_t i = 0; i < paper.size(); ++i) {
@@ -101,8 +102,8 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
         return names;
     };
     const int last = int(paper.size());
-    md += fmt::format("\nThe orderings the paper's text draws:\n\n- Least ghosting: paper {}, kdop {}.\n", first(rpg, 1),
-                      first(rog, 1));
+    md += fmt::format("\nThe orderings the paper's text draws:\n\n- Least ghosting: paper {}, kdop {}.\n",
+                      first(rpg, 1), first(rog, 1));
     md += fmt::format("- Most ghosting: paper {}, kdop {}.\n", first(rpg, last), first(rog, last));
     md += fmt::format("- Least shimmer: paper {}, kdop {}.\n", first(rps, 1), first(ros, 1));
     md += fmt::format("- Most shimmer: paper {}, kdop {}.\n", first(rps, last), first(ros, last));

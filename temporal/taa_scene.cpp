@@ -82,6 +82,13 @@ std::vector<SpriteScene> default_sprite_scenes(std::uint32_t width, std::uint32_
     return scenes;
 }
 
+std::vector<std::string> sprite_scene_names() {
+    std::vector<std::string> names{"grass", "asphalt"};
+    const std::vector<RealTexture> real = installed_real_textures();
+    if (!real.empty()) names.push_back(real.front().name);
+    return names;
+}
+
 Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
                                       InputSpace space) {
     auto image = read_image(path, 0, space);

@@ -17,10 +17,10 @@
 #pragma once
 
 #include "frame_source.h"
-#include "kdop_scene.h"
 #include "image.h"
 #include "image_io.h"
 #include "jitter.h"
+#include "kdop_scene.h"
 #include "result.h"
 
 #include <glm/vec2.hpp>
@@ -57,6 +57,8 @@ private:
 // The paper's two backgrounds as kdop's synthetic families ("grass": high-frequency chroma and
 // luma; "asphalt": high-frequency luma), then the first installed real texture, if any.
 std::vector<SpriteScene> default_sprite_scenes(std::uint32_t width, std::uint32_t height, std::uint64_t seed);
+// Their names, without drawing or reading anything.
+std::vector<std::string> sprite_scene_names();
 
 // A user's background: read, then tiled or cropped to the frame. The error names the file; values
 // must lie in [0, 1] (the metric is LDR-FLIP), and one that does not is named with its pixel.

@@ -5,15 +5,17 @@
 
 #include <fmt/format.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <vector>
 
 namespace kdop {
 
-Result<std::shared_ptr<TestbedScene>> TestbedScene::create(const Context& context, Scene3d scene,
-                                                           std::uint32_t width, std::uint32_t height,
-                                                           bool camera_pan, std::uint32_t reference_samples) {
+Result<std::shared_ptr<TestbedScene>> TestbedScene::create(const Context& context, Scene3d scene, std::uint32_t width,
+                                                           std::uint32_t height, bool camera_pan,
+                                                           std::uint32_t reference_samples) {
     auto renderer = TestbedRenderer::create(context, std::make_shared<const Scene3d>(std::move(scene)), width, height);
     if (!renderer) return std::unexpected(renderer.error());
     return std::shared_ptr<TestbedScene>(
@@ -33,42 +35,55 @@ std::shared_ptr<const FrameSource> TestbedScene::frames(const std::string& name,
                                            Scene3dTimeline{count, animate, jitter, camera_pan_, reference_samples_});
 }
 
-std::pair<glm::vec2, glm::vec2> TestbedScene::screen_motion(double time) const {
+TestbedScene::OnScreen TestbedScene::on_screen(double time) const {
     const Scene3d& scene = renderer_->scene();
-    if (!scene.moving) return {glm::vec2(width(), height()) * 0.5f, glm::vec2(0)};
-    auto mean_on_screen = [&](double t) {
+    const glm::vec2 size(width(), height());
+    if (!scene.moving) return {size * 0.5f, size * 0.5f, glm::vec2(0)};
+    auto project = [&](double t) {
         const glm::mat4 to_clip = view_projection(camera_at(scene, t, camera_pan_), width(), height());
-        glm::vec2 sum(0);
-        const Mesh mesh = scene.moving(t);
-        for (const MeshVertex& v : mesh) {
+        std::vector<glm::vec2> points;
+        for (const MeshVertex& v : scene.moving(t)) {
             const glm::vec4 clip = to_clip * glm::vec4(v.position, 1);
-            sum += (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(width(), height());
+            points.push_back((glm::vec2(clip) / clip.w * 0.5f + 0.5f) * size);
         }
-        return sum / float(std::max<std::size_t>(mesh.size(), 1));
+        return points;
     };
-    const glm::vec2 now = mean_on_screen(time);
-    return {now, now - mean_on_screen(time - 1)};
+    const std::vector<glm::vec2> now = project(time), before = project(time - 1);
+    OnScreen s{now.empty() ? size * 0.5f : now[0], now.empty() ? size * 0.5f : now[0], glm::vec2(0)};
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        s.low = glm::min(s.low, now[i]);
+        s.high = glm::max(s.high, now[i]);
+        s.motion += (now[i] - before[i]) / float(now.size());
+    }
+    return s;
 }
 
 std::uint32_t TestbedScene::trail_frame(const TaaSchedule& schedule) const {
     std::uint32_t best = schedule.warmup;
     float fastest = -1;
     for (std::uint32_t f = schedule.warmup; f < schedule.warmup + schedule.frames; ++f) {
-        const float speed = glm::length(screen_motion(f).second);
+        const float speed = glm::length(on_screen(f).motion);
         if (speed > fastest) fastest = speed, best = f;
     }
     return best;
 }
 
 TrailCrop TestbedScene::trail_crop(const TaaSchedule& schedule) const {
-    const auto [center, motion] = screen_motion(trail_frame(schedule));
+    const OnScreen s = on_screen(trail_frame(schedule));
     TrailCrop crop{0, 0, std::max(width() / 2, 1u), std::max(height() / 2, 1u), 2};
-    const glm::vec2 behind = glm::length(motion) > 0 ? -0.15f * float(width()) * glm::normalize(motion) : glm::vec2(0);
+    // Centered on the box's trailing edge: a large object's back half and its trail, a small one
+    // whole with its trail.
+    glm::vec2 center = (s.low + s.high) * 0.5f;
+    if (glm::length(s.motion) > 0) {
+        const glm::vec2 direction = glm::normalize(s.motion);
+        const float half_extent = 0.5f * glm::dot(glm::abs(direction), s.high - s.low);
+        center -= direction * half_extent;
+    }
     auto corner = [](float c, std::uint32_t side, std::uint32_t frame) {
         return std::uint32_t(std::clamp(c - float(side) / 2, 0.0f, float(frame - side)));
     };
-    crop.x = corner(center.x + behind.x, crop.width, width());
-    crop.y = corner(center.y + behind.y, crop.height, height());
+    crop.x = corner(center.x, crop.width, width());
+    crop.y = corner(center.y, crop.height, height());
     return crop;
 }
 

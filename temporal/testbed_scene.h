@@ -24,17 +24,20 @@ public:
     std::string content() const override;
     std::shared_ptr<const FrameSource> frames(const std::string& name, std::size_t count, bool animate,
                                               bool jitter) const override;
-    // Where the moving mesh's vertices move most on the screen, and half the frame around it,
-    // shifted toward where it came from.
+    // Where the moving mesh's vertices move most on the screen, and half the frame around the
+    // mesh, shifted toward where it came from, so its trail is in view.
     std::uint32_t trail_frame(const TaaSchedule& schedule) const override;
     TrailCrop trail_crop(const TaaSchedule& schedule) const override;
 
 private:
     TestbedScene(std::shared_ptr<TestbedRenderer> renderer, bool camera_pan, std::uint32_t reference_samples)
         : renderer_(std::move(renderer)), camera_pan_(camera_pan), reference_samples_(reference_samples) {}
-    // The moving mesh's mean position on the screen at `time`, in pixels, and its mean motion since
-    // the frame before.
-    std::pair<glm::vec2, glm::vec2> screen_motion(double time) const;
+    // The moving mesh on the screen at `time`, in pixels: its bounding box and its vertices' mean
+    // motion since the frame before.
+    struct OnScreen {
+        glm::vec2 low{0}, high{0}, motion{0};
+    };
+    OnScreen on_screen(double time) const;
 
     std::shared_ptr<TestbedRenderer> renderer_;
     bool camera_pan_;

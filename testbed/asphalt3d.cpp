@@ -20,8 +20,8 @@ const glm::vec3 kRed(0.62f, 0.018f, 0.012f), kWindow(0.03f, 0.035f, 0.045f), kTi
 double car_x(double time) { return kDriveAmplitude * std::sin(2 * std::numbers::pi * time / kDrivePeriod); }
 
 // The car at `time`: its x on a sine path (it never jumps, and it is seen at every speed from rest
-// to about 0.26 units a frame, 56 km/h at 60 Hz if a unit is a meter), the wheels turned by the distance rolled, and its shadow, which
-// moves with it.
+// to about 0.26 units a frame, 56 km/h at 60 Hz if a unit is a meter), the wheels turned by the distance rolled, and
+// its shadow, which moves with it.
 Mesh car(double time) {
     using glm::mat4, glm::vec3;
     const float x = float(car_x(time));

@@ -441,7 +441,8 @@ void expect_replay_gives_the_in_memory_figures(const SequenceRun& t, const fs::p
                                                const std::string& scene_args) {
     const std::string common = " --sets aabb dop22 --modes clip varclip --warmup 3 --timing-rounds 2 --no-charts";
     const fs::path memory_out = t.dir / (scene + "-memory"), replay_out = t.dir / (scene + "-replay");
-    auto memory = t.kdop("taa --scenes " + scene + " --frames 5 " + scene_args + " --out " + memory_out.string() + common);
+    auto memory =
+        t.kdop("taa --scenes " + scene + " --frames 5 " + scene_args + " --out " + memory_out.string() + common);
     ASSERT_EQ(memory.exit_code, 0) << memory.err;
     auto replay = t.kdop("taa --sequence " + (scenes / (scene + "-shimmer")).string() + " " +
                          (scenes / (scene + "-ghosting")).string() + " --out " + replay_out.string() + common);

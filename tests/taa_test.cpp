@@ -297,7 +297,8 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     for (int i = 0; i < 2; ++i) {
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
-        auto measured = measure_scene(*resolve, SpriteScene("grass", background), schedule, i ? on_device : cpu_flip_mean(flip));
+        auto measured =
+            measure_scene(*resolve, SpriteScene("grass", background), schedule, i ? on_device : cpu_flip_mean(flip));
         ASSERT_TRUE(measured) << measured.error().message;
         m[i] = std::move(*measured);
     }
@@ -370,8 +371,8 @@ TEST(CliTaa, TheDefaultScenesAreThe3dTestbedBesideThePaper) {
     for (const char* table : {"Beside Table 1 of the paper", "Beside Table 2 of the paper"})
         EXPECT_NE(report.find(table), std::string::npos) << report;
     std::size_t correlations = 0;
-    for (std::size_t at = 0; (at = report.find("Spearman's rank correlation with the paper's column: shimmer ", at)) !=
-                             std::string::npos;
+    for (std::size_t at = 0;
+         (at = report.find("Spearman's rank correlation with the paper's column: shimmer ", at)) != std::string::npos;
          ++at)
         ++correlations;
     EXPECT_EQ(correlations, 2u) << report;
