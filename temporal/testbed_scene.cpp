@@ -49,12 +49,19 @@ TestbedScene::OnScreen TestbedScene::on_screen(double time) const {
         return points;
     };
     const std::vector<glm::vec2> now = project(time), before = project(time - 1);
-    OnScreen s{now.empty() ? size * 0.5f : now[0], now.empty() ? size * 0.5f : now[0], glm::vec2(0)};
+    const glm::vec2 first = now.empty() ? size * 0.5f : now[0];
+    OnScreen s{first, first, glm::vec2(0), first};
+    glm::vec2 weighted(0);
+    float weights = 0;
     for (std::size_t i = 0; i < now.size(); ++i) {
         s.low = glm::min(s.low, now[i]);
         s.high = glm::max(s.high, now[i]);
         s.motion += (now[i] - before[i]) / float(now.size());
+        const float moved = glm::length(now[i] - before[i]);
+        weighted += moved * now[i];
+        weights += moved;
     }
+    if (weights > 0) s.moving_center = weighted / weights;
     return s;
 }
 
@@ -71,9 +78,9 @@ std::uint32_t TestbedScene::trail_frame(const TaaSchedule& schedule) const {
 TrailCrop TestbedScene::trail_crop(const TaaSchedule& schedule) const {
     const OnScreen s = on_screen(trail_frame(schedule));
     TrailCrop crop{0, 0, std::max(width() / 2, 1u), std::max(height() / 2, 1u), 2};
-    // Centered on the box's trailing edge: a large object's back half and its trail, a small one
-    // whole with its trail.
-    glm::vec2 center = (s.low + s.high) * 0.5f;
+    // Centered where the motion is, moved back by half the mesh's extent along the motion: a large
+    // object's trailing edge and its trail, a small one whole with its trail.
+    glm::vec2 center = s.moving_center;
     if (glm::length(s.motion) > 0) {
         const glm::vec2 direction = glm::normalize(s.motion);
         const float half_extent = 0.5f * glm::dot(glm::abs(direction), s.high - s.low);

@@ -32,10 +32,11 @@ public:
 private:
     TestbedScene(std::shared_ptr<TestbedRenderer> renderer, bool camera_pan, std::uint32_t reference_samples)
         : renderer_(std::move(renderer)), camera_pan_(camera_pan), reference_samples_(reference_samples) {}
-    // The moving mesh on the screen at `time`, in pixels: its bounding box and its vertices' mean
-    // motion since the frame before.
+    // The moving mesh on the screen at `time`, in pixels: its bounding box, its vertices' mean
+    // motion since the frame before, and the mean of their positions weighted by how far each
+    // moved (where the motion is: a kicking leg rather than the figure's middle).
     struct OnScreen {
-        glm::vec2 low{0}, high{0}, motion{0};
+        glm::vec2 low{0}, high{0}, motion{0}, moving_center{0};
     };
     OnScreen on_screen(double time) const;
 
