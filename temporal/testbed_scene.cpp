@@ -38,7 +38,7 @@ std::shared_ptr<const FrameSource> TestbedScene::frames(const std::string& name,
 TestbedScene::OnScreen TestbedScene::on_screen(double time) const {
     const Scene3d& scene = renderer_->scene();
     const glm::vec2 size(width(), height());
-    if (!scene.moving) return {size * 0.5f, size * 0.5f, glm::vec2(0)};
+    if (!scene.moving) return {size * 0.5f, size * 0.5f, glm::vec2(0), size * 0.5f};
     auto project = [&](double t) {
         const glm::mat4 to_clip = view_projection(camera_at(scene, t, camera_pan_), width(), height());
         std::vector<glm::vec2> points;
