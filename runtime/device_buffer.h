@@ -44,4 +44,8 @@ private:
     void* mapped_ = nullptr;
 };
 
+// Makes what transfers wrote to `buffer` visible to the host once the submission's fence is
+// waited on: the last command of every pass that reads results back.
+void host_read_barrier(VkCommandBuffer cb, VkBuffer buffer);
+
 } // namespace kdop

@@ -349,14 +349,7 @@ Result<RasterImages> RasterPass::draw(std::span<const std::byte> uniforms) {
         copy.bufferOffset = depth_at;
         copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
         vkCmdCopyImageToBuffer(cb, depth_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
-        VkBufferMemoryBarrier to_host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        to_host.buffer = readback_.buffer();
-        to_host.size = VK_WHOLE_SIZE;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &to_host,
-                             0, nullptr);
+        host_read_barrier(cb, readback_.buffer());
     });
     if (!ran) return std::unexpected(ran.error());
     RasterImages out;

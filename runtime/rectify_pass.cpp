@@ -303,14 +303,7 @@ Result<Image> RectifyPass::download() {
                       VK_PIPELINE_STAGE_TRANSFER_BIT);
         VkBufferImageCopy copy = whole_image(width_, height_, 0);
         vkCmdCopyImageToBuffer(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
-        VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-        host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        host.buffer = readback_.buffer();
-        host.size = VK_WHOLE_SIZE;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
-                             nullptr);
+        host_read_barrier(cb, readback_.buffer());
     });
     if (!copied) return std::unexpected(copied.error());
     dispatched_ = false; // the output left the GENERAL layout; the next dispatch starts it afresh

@@ -12,18 +12,20 @@
 namespace kdop {
 namespace {
 
-const char* const kTestbedScenes[] = {"grass3d", "asphalt3d"};
+// The testbed's scenes: the one place their names are listed.
+struct TestbedEntry {
+    const char* name;
+    Scene3d (*make)(std::uint64_t seed);
+};
+constexpr TestbedEntry kTestbedScenes[] = {{"grass3d", grass3d_scene}, {"asphalt3d", asphalt3d_scene}};
 
-// The testbed's scenes, by name.
-std::optional<Scene3d> testbed_scene(const std::string& name, std::uint64_t seed) {
-    if (name == "grass3d") return grass3d_scene(seed);
-    if (name == "asphalt3d") return asphalt3d_scene(seed);
-    return std::nullopt;
+const TestbedEntry* testbed_entry(const std::string& name) {
+    for (const TestbedEntry& e : kTestbedScenes)
+        if (name == e.name) return &e;
+    return nullptr;
 }
 
-bool is_testbed_scene(const std::string& name) {
-    return std::find(std::begin(kTestbedScenes), std::end(kTestbedScenes), name) != std::end(kTestbedScenes);
-}
+bool is_testbed_scene(const std::string& name) { return testbed_entry(name) != nullptr; }
 
 } // namespace
 
@@ -36,7 +38,8 @@ std::shared_ptr<const FrameSource> ghosting_frames(const TaaScene& scene, const 
 }
 
 std::vector<std::string> builtin_scene_names() {
-    std::vector<std::string> names(std::begin(kTestbedScenes), std::end(kTestbedScenes));
+    std::vector<std::string> names;
+    for (const TestbedEntry& e : kTestbedScenes) names.push_back(e.name);
     for (const std::string& name : sprite_scene_names()) names.push_back(name);
     return names;
 }
@@ -50,14 +53,15 @@ Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std
                                                                        const std::vector<std::string>& backgrounds,
                                                                        const SceneOptions& o) {
     std::vector<std::string> wanted = names;
-    if (names.empty() && backgrounds.empty()) wanted.assign(std::begin(kTestbedScenes), std::end(kTestbedScenes));
+    if (names.empty() && backgrounds.empty())
+        for (const TestbedEntry& e : kTestbedScenes) wanted.push_back(e.name);
     std::vector<std::shared_ptr<const TaaScene>> out;
     std::vector<SpriteScene> sprites;
     for (const std::string& name : wanted) {
-        if (auto scene = testbed_scene(name, o.seed)) {
+        if (const TestbedEntry* testbed = testbed_entry(name)) {
             if (!o.context)
                 return fail(fmt::format("--scenes: {} is drawn on a Vulkan device, and none is open", name));
-            auto created = TestbedScene::create(*o.context, std::move(*scene), o.width, o.height, o.camera_pan,
+            auto created = TestbedScene::create(*o.context, testbed->make(o.seed), o.width, o.height, o.camera_pan,
                                                 o.reference_samples);
             if (!created) return fail(fmt::format("--scenes: {}: {}", name, created.error().message));
             out.push_back(std::move(*created));
