@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "accuracy_report.h"
 #include "accuracy_run.h"
 #include "context.h"
@@ -54,14 +56,18 @@ Action add_accuracy_command(CLI::App& app) {
         ->excludes(history);
     accuracy
         ->add_option("--size", o->size, "Without --current or --images: the built-in content's size NxN [default: 128]")
-        ->check(CLI::Range(8u, 4096u));
+        ->check(whole_number(8, 4096));
     accuracy->add_option("--cost", o->cost,
                          "A `kdop bench` cost.csv: adds lavapipe's marginal cost to the trade table and charts");
     o->selection.add_to(*accuracy);
-    accuracy->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]");
-    accuracy->add_option("--seed", o->seed, "Seed of the built-in content and the volume sample [default: 1]");
-    accuracy->add_option("--volume-samples", o->volume_samples,
-                         "Pixels per pair and neighborhood for the k-DOP/hull volume ratio; 0 skips it [default: 256]");
+    accuracy->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]")
+        ->check(gamma_number());
+    accuracy->add_option("--seed", o->seed, "Seed of the built-in content and the volume sample [default: 1]")
+        ->check(seed_number());
+    accuracy
+        ->add_option("--volume-samples", o->volume_samples,
+                     "Pixels per pair and neighborhood for the k-DOP/hull volume ratio; 0 skips it [default: 256]")
+        ->check(whole_number(0, 1 << 20));
     accuracy->add_option("--device", o->device,
                          "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     accuracy->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");

@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "cost_bench.h"
 #include "cost_report.h"
 #include "gnuplot.h"
@@ -49,18 +51,18 @@ Action add_bench_command(CLI::App& app) {
     bench
         ->add_option("--repeat", o->repeat,
                      "Dispatches per kernel at the timing size (interleaved rounds) [default: 15]")
-        ->check(CLI::Range(1u, 10000u));
+        ->check(whole_number(1, 10000));
     auto* sweep_sizes =
         bench->add_option("--sweep-sizes", o->sweep_sizes, "Sizes of the size sweep [default: 256x256 ... 3840x2160]");
     auto* sweep_repeat = bench->add_option("--sweep-repeat", o->sweep_repeat, "Rounds per sweep size [default: 5]")
-                             ->check(CLI::Range(1u, 10000u));
+                             ->check(whole_number(1, 10000));
     bench->add_flag("--no-sweep", o->no_sweep, "Skip the size sweep")->excludes(sweep_sizes)->excludes(sweep_repeat);
     auto* callgrind_size =
         bench
             ->add_option("--callgrind-size", o->callgrind_size, "Callgrind dispatch size N (NxN pixels) [default: 256]")
-            ->check(CLI::Range(8u, 4096u));
+            ->check(whole_number(8, 4096));
     auto* jobs = bench->add_option("--jobs", o->jobs, "Callgrind runs at a time [default: one per core]")
-                     ->check(CLI::Range(1u, 256u));
+                     ->check(whole_number(1, 256));
     bench->add_flag("--no-callgrind", o->no_callgrind, "Skip the callgrind instruction counts")
         ->excludes(callgrind_size)
         ->excludes(jobs);

@@ -102,7 +102,7 @@ Action add_flip_command(CLI::App& app) {
     flip->add_option("--timing", o->timing,
                      "Evaluate N more times after the first and print the median wall and CPU seconds (all threads) "
                      "per evaluation, and the set-up's")
-        ->check(CLI::Range(1, 1000));
+        ->check(whole_number(1, 1000));
     flip->add_option("--exposure-map", o->exposure_map,
                      "HDR-FLIP: write, per pixel, which exposure gave its error (0 the first, 1 the last) to this "
                      ".exr (the values) or .png (in magma colors; the reference tool draws it in viridis)")
@@ -130,11 +130,8 @@ Action add_flip_command(CLI::App& app) {
                 return usage_error(fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma "
                                                "colors)",
                                                option, path));
-            if (std::error_code ec; std::filesystem::is_directory(path, ec))
-                return usage_error(fmt::format("{} {}: is a directory; name the map's file", option, path));
+            if (auto ok = check_output_file(path, option); !ok) return usage_error(ok.error().message);
             if (auto ok = check_not_an_input(path, option, inputs); !ok) return report_error(ok.error().message);
-            if (auto ok = check_output_directory(std::filesystem::path(path).parent_path(), option); !ok)
-                return report_error(ok.error().message);
             return std::nullopt;
         };
         if (auto failed = check_map_file(o->out, "--out")) return *failed;

@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "progress.h"
 #include "selection_options.h"
 #include "spirv_cost.h"
@@ -38,7 +40,8 @@ Action add_gen_command(CLI::App& app) {
                "(compute shader) and <name>.spv (optimized SPIR-V) per variant, then print a table of them");
     gen->add_option("--out", options->out, "Output directory (created if missing)")->required();
     options->selection.add_to(*gen, /*with_manifest=*/true);
-    gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]");
+    gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]")
+        ->check(thread_count());
 
     return [options] {
         auto start = std::chrono::steady_clock::now();

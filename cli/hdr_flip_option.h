@@ -41,7 +41,7 @@ inline std::vector<CLI::Option*> add_hdr_flip_options(CLI::App& app, ExposureOpt
         app.add_option_function<int>(
                "--exposures", [&options](int n) { options.count = n; },
                "HDR-FLIP's number of exposures, from 1 to 1000 [default: max(2, ceil(stop - start))]")
-            ->check(CLI::Range(1, 1000)),
+            ->check(whole_number(1, 1000)),
     };
 }
 

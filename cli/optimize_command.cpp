@@ -136,8 +136,7 @@ int run(const Options& o, const Ranks& ranks) {
                                        name_option, name));
     if (std::error_code ec; std::filesystem::is_directory(o.out, ec))
         return usage_error(fmt::format("--out {}: is a directory; name the axis-set file to write", o.out));
-    if (auto ok = check_output_directory(std::filesystem::path(o.out).parent_path()); !ok)
-        return report_error(ok.error().message);
+    if (auto ok = check_output_file(o.out, "--out"); !ok) return usage_error(ok.error().message);
 
     // Every neighborhood of every frame, as decoded (--input-space), in the clip's space (--color-map),
     // and with --sample the sample, both from one read of each frame.
@@ -543,7 +542,7 @@ Action add_optimize_command(CLI::App& app) {
                           ->check(CLI::ExistingDirectory);
     cmd->add_option("--frame-step", o->input.frame_step,
                     "Of each sequence, every Nth frame from the first [default: 1, every frame]")
-        ->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))
+        ->check(whole_number(1, (1ll << 30)))
         ->needs(sequences);
     auto* sphere = cmd->add_flag("--sphere", o->sphere, "Fit around the unit sphere instead: a scene-independent set");
     images->excludes(sphere);
@@ -561,17 +560,18 @@ Action add_optimize_command(CLI::App& app) {
         ->excludes(sphere);
     cmd->add_option("--axes", o->axes, "Axes to fit (k = 2 x axes); with --target, the most to try")
         ->required()
-        ->check(CLI::Range(3, 32));
+        ->check(whole_number(3, 32));
     cmd->add_flag("--force-rgb", o->force_rgb, "Keep R, G and B as the first three axes");
     cmd->add_option("--neighborhood", o->neighborhood, "n9 (3x3) or n5 (plus) [default: n9]")
         ->check(CLI::IsMember({"n9", "n5"}))
         ->excludes(sphere);
-    cmd->add_option("--seed", o->seed, "Seed of the random starts [default: 1]");
+    cmd->add_option("--seed", o->seed, "Seed of the random starts [default: 1]")->check(seed_number());
     cmd->add_option("--starts", o->starts, "Starts of the search [default: 64 around the sphere, 4 on images]")
-        ->check(CLI::Range(1, 100000));
+        ->check(whole_number(1, 100000));
     cmd->add_option("--iterations", o->iterations, "Steps per start [default: 400 around the sphere, 60 on images]")
-        ->check(CLI::Range(1, 100000));
-    cmd->add_option("--threads", o->threads, "Threads [default: one per core]; the result does not depend on it");
+        ->check(whole_number(1, 100000));
+    cmd->add_option("--threads", o->threads, "Threads [default: one per core]; the result does not depend on it")
+        ->check(thread_count());
     // Up to a year: a steady_clock deadline much further out would overflow.
     cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds with the best set so far")
         ->check(positive_number(365.0 * 24 * 3600, " seconds (a year)"));
@@ -592,11 +592,12 @@ Action add_optimize_command(CLI::App& app) {
     add_resolve_options(*resolve_options, o->resolve, false);
     for (CLI::Option* option : resolve_options->get_options()) option->needs(target_ghosting);
     cmd->add_option("--warmup", o->warmup, "With --target-ghosting: frames before measuring [default: 100]")
+        ->check(whole_number(1, 100000))
         ->needs(target_ghosting);
     cmd->add_option("--max-nonzero", o->max_nonzero,
                     "Then pin the smallest components at 0, refitting after each, until at most this many are "
                     "nonzero over all axes (a zero costs the clip nothing); prints the curve of score and cost")
-        ->check(CLI::Range(1, 96))
+        ->check(whole_number(1, 96))
         ->excludes("--target")
         ->excludes(target_ghosting);
     cmd->add_flag("--lavapipe-cost", o->lavapipe_cost,
@@ -607,11 +608,12 @@ Action add_optimize_command(CLI::App& app) {
            "With --images or --sequence: also report each set's mean distance to the ideal clip (as `kdop accuracy` "
            "measures it, in the CPU reference) on this many seeded pixels of each image under each of its "
            "3 ghosting histories (of each sequence as many, spread over its frames); 0 skips it [default: 8192]")
+        ->check(whole_number(0, 1 << 24))
         ->excludes(sphere);
     cmd->add_option("--sample", o->sample,
                     "Fit to this many neighborhoods, seeded (--seed) and stratified by luminance within each frame, "
                     "then score the set on all of them too (with --target, the sample's score is compared)")
-        ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
+        ->check(whole_number(1, (1ll << 40)))
         ->excludes(sphere);
     cmd->add_option("--objective", o->objective,
                     "volume: the mean k-DOP volume over every neighborhood, or distance: the mean distance to the "

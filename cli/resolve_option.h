@@ -40,7 +40,7 @@ inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool wit
     app.add_option("--current-weight", options.current_weight, "The current frame's share of the blend [default: 0.1]")
         ->check(finite_number(0, 1, true));
     app.add_option("--gamma", options.gamma, "The variance clip's width in standard deviations [default: 1]")
-        ->check(positive_number(100));
+        ->check(gamma_number());
 }
 
 } // namespace kdop::cli

@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "context.h"
 #include "image_io.h"
 #include "input_files.h"
@@ -53,13 +55,14 @@ Action add_run_command(CLI::App& app) {
            "values; lossy formats are refused)")
         ->required();
     run->add_option("--gamma", o->gamma,
-                    "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]");
+                    "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]")
+        ->check(gamma_number());
     run->add_option("--format", o->format, "Texture format the inputs are uploaded in: rgba32f or rgba16f");
     run->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     run->add_option("--repeat", o->repeat,
                     "Dispatch this many times and report pipeline creation and median dispatch time")
-        ->check(CLI::Range(1u, 100000u));
+        ->check(whole_number(1, 100000));
 
     return [o] {
         auto key = variant_option(o->variant, o->numerics, "--variant");
@@ -74,14 +77,11 @@ Action add_run_command(CLI::App& app) {
         if (o->gamma && variant->mode != Mode::varclip)
             return usage_error(fmt::format("--gamma: {} is not a variance clip and takes no gamma", variant->name));
         const double gamma = o->gamma.value_or(1.0);
-        if (!std::isfinite(gamma) || gamma < 0)
-            return usage_error(fmt::format("--gamma: must be a finite number >= 0, got {}", gamma));
         if (!OIIO::ImageOutput::create(o->out))
             return usage_error(fmt::format("--out: {}: no image format for this extension", o->out));
         const std::filesystem::path inputs[] = {o->current, o->history};
+        if (auto ok = check_output_file(o->out, "--out"); !ok) return usage_error(ok.error().message);
         if (auto ok = check_not_an_input(o->out, "--out", inputs); !ok) return report_error(ok.error().message);
-        if (auto ok = check_output_directory(std::filesystem::path(o->out).parent_path(), "--out"); !ok)
-            return report_error(ok.error().message);
 
         // The device first: its size limit is checked on each image's header, before its pixels.
         auto context = Context::create({o->device, false});

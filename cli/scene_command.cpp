@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "command_line.h"
 #include "input_files.h"
 #include "input_space_option.h"
@@ -48,8 +50,9 @@ Action add_scene_command(CLI::App& app) {
     add_input_space_option(*scene, o->input_space);
     scene->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
     scene->add_option("--frames", o->frames, "Frames per sequence [default: 200, kdop taa's warmup and frames]")
-        ->check(CLI::Range(1u, 100000u));
-    scene->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]");
+        ->check(whole_number(1, 100000));
+    scene->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]")
+        ->check(seed_number());
     scene
         ->add_option("--jitter", o->jitter,
                      "Jitter the samples (R2) [with neither --jitter nor --animate: two sequences per scene, "

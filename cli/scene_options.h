@@ -37,7 +37,7 @@ struct SceneChoice {
         app.add_option("--reference-samples", reference_samples,
                        "3-D scenes: add a reference to every frame, the mean of N samples per pixel (ghosting is "
                        "then measured against it) [default: 0, none]")
-            ->check(CLI::Range(0u, 1024u));
+            ->check(whole_number(0, 1024));
     }
 
     // A usage error's message, if any: a scene or background given twice, 3-D options without a

@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "context.h"
 #include "device_runner.h"
 #include "output_set.h"
@@ -37,8 +39,9 @@ Action add_stress_command(CLI::App& app) {
     stress->add_option("--device", o->device,
                        "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     o->selection.add_to(*stress);
-    stress->add_option("--seed", o->seed, "Seed of the random colors [default: 1]");
-    stress->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]");
+    stress->add_option("--seed", o->seed, "Seed of the random colors [default: 1]")->check(seed_number());
+    stress->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]")
+        ->check(gamma_number());
     stress->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
 
     return [o] {

@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "command_line.h"
 #include "device_flip.h"
 #include "flip.h"
@@ -122,15 +124,16 @@ Action add_taa_command(CLI::App& app) {
                   "<scene>-shimmer and <scene>-ghosting)");
     taa->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
     taa->add_option("--warmup", o->warmup, "Frames before measuring, in every sequence [default: 100]")
-        ->check(CLI::Range(1u, 100000u));
+        ->check(whole_number(1, 100000));
     taa->add_option("--frames", o->frames,
                     "Frames measured in kdop's scenes (a sequence: all after the warmup) [default: 100]")
-        ->check(CLI::Range(1u, 100000u));
+        ->check(whole_number(1, 100000));
     taa->add_option("--ppd", o->ppd,
                     "FLIP's pixels per degree [default: 0.7 m from a 0.7 m wide 3840-pixel display, about 67]");
     taa->add_option("--timing-rounds", o->timing_rounds, "Interleaved dispatches per variant for ms [default: 15]")
-        ->check(CLI::Range(1u, 10000u));
-    taa->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]");
+        ->check(whole_number(1, 10000));
+    taa->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]")
+        ->check(seed_number());
     taa->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
     taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");

@@ -1,5 +1,7 @@
 #include "commands.h"
 
+#include "number_option.h"
+
 #include "image_io.h"
 #include "memory_budget.h"
 #include "test_textures.h"
@@ -25,9 +27,9 @@ Action add_textures_command(CLI::App& app) {
         "textures", "Write the neighborhood test textures and their ghosting histories as EXR: <texture>.exr and "
                     "<texture>-history-<model>.exr");
     textures->add_option("--out", o->out, "Output directory (created if missing)")->required();
-    textures->add_option("--width", o->width, "Width in pixels")->check(CLI::Range(8u, 16384u));
-    textures->add_option("--height", o->height, "Height in pixels")->check(CLI::Range(8u, 16384u));
-    textures->add_option("--seed", o->seed, "Seed of the synthetic textures [default: 1]");
+    textures->add_option("--width", o->width, "Width in pixels")->check(whole_number(8, 16384));
+    textures->add_option("--height", o->height, "Height in pixels")->check(whole_number(8, 16384));
+    textures->add_option("--seed", o->seed, "Seed of the synthetic textures [default: 1]")->check(seed_number());
     textures->add_flag("--no-real", o->no_real, "Leave out the real textures (colobot-common-textures)");
 
     return [o] {

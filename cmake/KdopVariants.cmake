@@ -65,6 +65,35 @@ function(kdop_add_variants target)
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/kdop_variants/${target}")
   set(header "${out_dir}/${ARG_HEADER}")
   set(source "${out_dir}/${header_stem}.cpp")
+  # What kdop-gen would refuse at every build, refused once, here. C++23's keywords and alternative
+  # tokens cannot name the namespace: the list generator/registry_writer.cpp refuses, kept here, in
+  # the function, so it holds wherever the function is called from; a test keeps the two equal.
+  set(cpp_keywords
+      alignas alignof and and_eq asm auto bitand bitor bool break case catch char char8_t char16_t char32_t class
+      compl concept const consteval constexpr constinit const_cast continue co_await co_return co_yield decltype
+      default delete do double dynamic_cast else enum explicit export extern false float for friend goto if inline
+      int long mutable namespace new noexcept not not_eq nullptr operator or or_eq private protected public register
+      reinterpret_cast requires return short signed sizeof static static_assert static_cast struct switch template
+      this thread_local throw true try typedef typeid typename union unsigned using virtual void volatile wchar_t
+      while xor xor_eq)
+  if(header STREQUAL source)
+    message(FATAL_ERROR "kdop_add_variants(${target}): HEADER ${ARG_HEADER} is also the registry's source (${header_stem}.cpp); name the header .h or .hpp")
+  endif()
+  if(ARG_HEADER MATCHES "[\"\\\\/]" OR NOT ARG_HEADER MATCHES "^[ -~]+$")
+    message(FATAL_ERROR "kdop_add_variants(${target}): HEADER '${ARG_HEADER}' must be a file name that #include \"...\" can hold: printable ASCII without a quote, backslash or slash")
+  endif()
+  if(NOT ARG_NAMESPACE MATCHES "^[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*$")
+    message(FATAL_ERROR "kdop_add_variants(${target}): NAMESPACE '${ARG_NAMESPACE}' is not a C++ namespace (identifiers separated by ::)")
+  endif()
+  string(REPLACE "::" ";" namespace_parts "${ARG_NAMESPACE}")
+  foreach(part IN LISTS namespace_parts)
+    if(part IN_LIST cpp_keywords)
+      message(FATAL_ERROR "kdop_add_variants(${target}): NAMESPACE ${ARG_NAMESPACE} holds the C++ keyword '${part}', which cannot name a namespace")
+    endif()
+    if(part MATCHES "__" OR part MATCHES "^_[A-Z]")
+      message(FATAL_ERROR "kdop_add_variants(${target}): NAMESPACE ${ARG_NAMESPACE} holds '${part}', a name reserved for the C++ implementation")
+    endif()
+  endforeach()
 
   get_property(axis_set_dir GLOBAL PROPERTY KDOP_AXIS_SET_DIR)
   file(GLOB builtin_files "${axis_set_dir}/*.axes")

@@ -39,9 +39,40 @@ sigset_t interrupt_signals() {
     return set;
 }
 
+// Runs every registered undo step, newest first; a step that throws leaves its part.
+void run_undo_steps(Registry& r) {
+    for (auto it = r.undo.rbegin(); it != r.undo.rend(); ++it) {
+        try {
+            it->second();
+        } catch (...) {
+        }
+    }
+}
+
+// A crash (a driver's segmentation fault, an abort inside a library) ends the process without its
+// destructors: the undo steps run here first, so no temporary or scratch folder outlives it, as
+// LLVM's tools remove their output files on a crash signal. Not async-signal-safe, since the steps
+// remove folders, so it is guarded: the steps run only if their lock can be taken, and an alarm
+// ends a step that deadlocks inside the allocator the crash may have broken. Then the signal is
+// raised again with its default action, for the exit status and the core dump.
+void undo_on_crash(int signal) {
+    alarm(5);
+    Registry& r = registry();
+    if (r.lock.try_lock()) run_undo_steps(r);
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+}
+
 } // namespace
 
 void handle_interrupts(const char* program) {
+    for (int crash : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT}) {
+        struct sigaction action {};
+        action.sa_handler = undo_on_crash;
+        sigemptyset(&action.sa_mask);
+        action.sa_flags = SA_RESETHAND | SA_NODEFER;
+        sigaction(crash, &action, nullptr);
+    }
     const sigset_t set = interrupt_signals();
     if (pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return; // cannot happen with valid signals
     std::thread([set, program] {
@@ -52,13 +83,7 @@ void handle_interrupts(const char* program) {
         std::fprintf(stderr, "\n%s: interrupted (%s); removing unfinished output\n", program, strsignal(signal));
         Registry& r = registry();
         r.lock.lock(); // kept: nothing may change the undone state after this
-        for (auto it = r.undo.rbegin(); it != r.undo.rend(); ++it) {
-            try {
-                it->second();
-            } catch (...) {
-                // An undo step that fails leaves its part; the others still run.
-            }
-        }
+        run_undo_steps(r);
         std::_Exit(128 + signal);
     }).detach();
 }

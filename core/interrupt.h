@@ -8,6 +8,9 @@
 // changed under, runs the undo steps still registered (newest first) and _exit()s with 128 +
 // the signal's number, as a shell reports it.
 //
+// A crash (SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT: a driver's fault, an abort in a library) runs
+// the same undo steps, where it can take their lock, and then ends the process as the signal would.
+//
 // What registers an undo step: an output set being written (its temporaries, the files it moved
 // aside, the folders it made; core/write_files.h), a scratch folder (harness/scratch_directory.h)
 // and a child process (harness/subprocess.h). A program that never calls handle_interrupts()

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <system_error>
 #include <unistd.h>
 
@@ -95,12 +96,17 @@ struct Transaction {
     }
 };
 
-// Refuses, before anything is written, a destination that is a folder or one of this run's inputs.
+// Refuses, before anything is written, a destination that is a folder, a special file or one of
+// this run's inputs.
 Result<void> check_destinations(const std::vector<OutputWriter>& files) {
     for (const OutputWriter& f : files) {
         std::error_code ec;
         if (fs::is_directory(f.path, ec))
             return fail(fmt::format("{}: is a directory; cannot write a file there", f.path.string()));
+        if (auto kind = special_file_kind(f.path))
+            return fail(fmt::format("{}: is {}, not a regular file; kdop writes its outputs as new files and "
+                                    "would replace it",
+                                    f.path.string(), *kind));
         if (auto input = noted_input_at(f.path)) {
             const std::string same =
                 input->string() == f.path.string() ? "" : fmt::format(" (the same file as {})", input->string());
@@ -125,9 +131,12 @@ Result<void> commit(Transaction& t, const std::vector<OutputWriter>& files) {
         }
         Transaction::Placed placed{path, {}};
         const fs::file_status status = fs::symlink_status(path, ec);
-        // A folder made there since the check (by another process) is not this set's to move.
+        // A folder or a special file made there since the check (by another process) is not this
+        // set's to replace.
         if (fs::is_directory(status))
             return fail(fmt::format("{}: cannot move into place: it has become a directory", path.string()));
+        if (auto kind = special_file_kind(path))
+            return fail(fmt::format("{}: cannot move into place: it has become {}", path.string(), *kind));
         if (fs::exists(status)) {
             // A second name for the previous file keeps it at its path until the new one replaces
             // it; where hard links are not allowed, it is moved aside instead.
@@ -168,7 +177,16 @@ Result<void> write_atomically(const std::vector<OutputWriter>& files) {
         if (ec)
             return abandon(
                 {fmt::format("{}: cannot create directory: {}", f.path.parent_path().string(), ec.message())});
-        if (auto ok = f.write(t->temporaries.back()); !ok) return abandon(ok.error());
+        Result<void> written;
+        try {
+            written = f.write(t->temporaries.back());
+        } catch (...) {
+            // Out of memory inside an image library: the set is undone, the exception goes on.
+            auto held = hold_interrupts();
+            t->abandon();
+            throw;
+        }
+        if (!written) return abandon(written.error());
     }
     test_hold_point("write_atomically");
     // The moves happen with the interrupt lock held: an interruption waits for them, then finds the
@@ -201,6 +219,29 @@ Result<void> write_files_atomically(const std::vector<OutputFile>& files) {
     std::vector<OutputWriter> writers;
     for (const OutputFile& f : files) writers.push_back(content_writer(f));
     return write_atomically(writers);
+}
+
+std::optional<std::string> special_file_kind(const fs::path& path) {
+    std::error_code ec;
+    switch (fs::status(path, ec).type()) {
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::unknown: return "a special file";
+    default: return std::nullopt; // missing, a dangling link (replaced as a link), a file, a folder
+    }
+}
+
+Result<void> check_output_file(const fs::path& path, const std::string& option) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        return fail(fmt::format("{} {}: is a directory; name the file to write", option, path.string()));
+    if (auto kind = special_file_kind(path))
+        return fail(fmt::format("{} {}: is {}, not a regular file; kdop writes its outputs as new files and would "
+                                "replace it: name a file",
+                                option, path.string(), *kind));
+    return check_output_directory(path.parent_path(), option);
 }
 
 Result<void> check_output_directory(const fs::path& dir, const std::string& option) {

@@ -4,8 +4,10 @@
 // set is in place. A failure at any step, or SIGINT/SIGTERM (core/interrupt.h), puts the previous
 // files back, removes the temporaries and the folders made for the set: the destination is left
 // as it was, and two processes writing the same outputs never share a temporary. Before anything
-// is written, a destination that is a folder or an input of this run (core/input_files.h) is
-// refused.
+// is written, a destination that is a folder, a special file (a device, a FIFO, a socket: renaming
+// over /dev/null would replace the device with a regular file) or an input of this run
+// (core/input_files.h) is refused. A writer that throws (out of memory inside an image library)
+// is undone the same way, and its exception goes on.
 //
 // A file whose new content equals what is already there is left untouched, time stamp included, so
 // regenerating an unchanged output (kdop_add_variants() after an axis file was touched) makes a
@@ -16,6 +18,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,5 +52,15 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path);
 // before a long run starts, so a bad --out fails at once instead of after the work. Creates
 // nothing. Errors name `option` and the path.
 Result<void> check_output_directory(const std::filesystem::path& dir, const std::string& option = "--out");
+
+// Whether `path` can be written as an output file: it is not a folder, and where it exists it is a
+// regular file (or a link to one), never a device, FIFO or socket; its folder passes
+// check_output_directory. What a command checks for each output file its command line names,
+// before the work. Errors name `option` and the path.
+Result<void> check_output_file(const std::filesystem::path& path, const std::string& option);
+
+// What `path` is when it exists and is neither a regular file nor a folder ("a character device",
+// "a FIFO", ...), following links; nullopt otherwise.
+std::optional<std::string> special_file_kind(const std::filesystem::path& path);
 
 } // namespace kdop

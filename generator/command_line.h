@@ -26,10 +26,10 @@ int run_command_line(CLI::App& app, const char* program, int argc, char** argv, 
     handle_interrupts(program); // before any thread starts, so that every one inherits the mask
     protect_inputs();           // no output of this run may replace a file it read
     app.set_version_flag("--version", std::string(program) + " " + KDOP_VERSION);
-    // Every message says whose it is, as compilers' do ("glslc: error: ...").
-    app.failure_message([program](const CLI::App* failed, const CLI::Error& e) {
-        return std::string(program) + ": " + CLI::FailureMessage::simple(failed, e);
-    });
+    // Every message says whose it is, as compilers' do ("glslc: error: ..."), and is one line, as
+    // kdop's own usage errors are (CLI11 would add "Run with --help for more information.").
+    app.failure_message(
+        [program](const CLI::App*, const CLI::Error& e) { return std::string(program) + ": " + e.what() + "\n"; });
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

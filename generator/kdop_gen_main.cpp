@@ -6,6 +6,7 @@
 #include "read_file.h"
 #include "registry_writer.h"
 #include "selection_options.h"
+#include "shown_text.h"
 #include "variant_builder.h"
 #include "variant_files.h"
 
@@ -104,9 +105,16 @@ int main(int argc, char** argv) {
     glsl->add_flag("--check", check, "Write nothing; fail if any file in the directory is stale");
 
     return run_command_line(app, "kdop-gen", argc, argv, [&] {
-        if (*registry && !is_valid_cpp_namespace(cpp_namespace))
-            return report(
-                {fmt::format("--namespace: '{}' is not a C++ namespace (identifiers separated by ::)", cpp_namespace)});
+        if (*registry) {
+            std::optional<std::string> problem = registry_files_problem(header, source, depfile);
+            if (!problem)
+                if (auto why = cpp_namespace_problem(cpp_namespace))
+                    problem = fmt::format("--namespace: '{}' {}", shown_text(cpp_namespace), *why);
+            if (problem) {
+                report({*problem});
+                return kUsageError;
+            }
+        }
 
         auto specs = *registry ? selection.select() : select_variants({}, {}, {});
         if (!specs) return report(specs.error());

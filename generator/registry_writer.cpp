@@ -1,10 +1,17 @@
 #include "registry_writer.h"
 
+#include "escaped_text.h"
+#include "input_files.h"
+#include "shown_text.h"
+#include "write_files.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 
@@ -46,9 +53,70 @@ private:
 
 } // namespace
 
-bool is_valid_cpp_namespace(std::string_view ns) {
+const std::set<std::string_view>& cpp_keywords() {
+    // C++23's keywords and alternative tokens ([lex.key], [lex.digraph]); cmake/KdopVariants.cmake
+    // refuses the same list at configure time, and a test keeps the two equal.
+    static const std::set<std::string_view> keywords = {
+        "alignas",     "alignof",   "and",        "and_eq",    "asm",      "auto",         "bitand",
+        "bitor",       "bool",      "break",      "case",      "catch",    "char",         "char8_t",
+        "char16_t",    "char32_t",  "class",      "compl",     "concept",  "const",        "consteval",
+        "constexpr",   "constinit", "const_cast", "continue",  "co_await", "co_return",    "co_yield",
+        "decltype",    "default",   "delete",     "do",        "double",   "dynamic_cast", "else",
+        "enum",        "explicit",  "export",     "extern",    "false",    "float",        "for",
+        "friend",      "goto",      "if",         "inline",    "int",      "long",         "mutable",
+        "namespace",   "new",       "noexcept",   "not",       "not_eq",   "nullptr",      "operator",
+        "or",          "or_eq",     "private",    "protected", "public",   "register",     "reinterpret_cast",
+        "requires",    "return",    "short",      "signed",    "sizeof",   "static",       "static_assert",
+        "static_cast", "struct",    "switch",     "template",  "this",     "thread_local", "throw",
+        "true",        "try",       "typedef",    "typeid",    "typename", "union",        "unsigned",
+        "using",       "virtual",   "void",       "volatile",  "wchar_t",  "while",        "xor",
+        "xor_eq"};
+    return keywords;
+}
+
+std::optional<std::string> cpp_namespace_problem(std::string_view ns) {
     static const std::regex pattern(R"([A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*)");
-    return std::regex_match(ns.begin(), ns.end(), pattern);
+    if (!std::regex_match(ns.begin(), ns.end(), pattern)) return "is not a C++ namespace (identifiers separated by ::)";
+    for (std::size_t start = 0; start <= ns.size();) {
+        const std::size_t end = std::min(ns.find("::", start), ns.size());
+        const std::string_view part = ns.substr(start, end - start);
+        if (cpp_keywords().count(part))
+            return fmt::format("holds the C++ keyword '{}', which cannot name a namespace", part);
+        // [lex.name]: names with a double underscore or an underscore and a capital are the
+        // implementation's.
+        if (part.find("__") != std::string_view::npos || (part.size() > 1 && part[0] == '_' && std::isupper(part[1])))
+            return fmt::format("holds '{}', a name reserved for the C++ implementation", part);
+        start = end + 2;
+    }
+    return std::nullopt;
+}
+
+std::optional<std::string> registry_files_problem(const std::filesystem::path& header,
+                                                  const std::filesystem::path& source,
+                                                  const std::filesystem::path& depfile) {
+    const std::pair<const char*, const std::filesystem::path*> files[] = {
+        {"--header", &header}, {"--source", &source}, {"--depfile", &depfile}};
+    for (auto [option, path] : files) {
+        if (path->empty()) continue;
+        if (auto ok = check_output_file(*path, option); !ok) return ok.error().message;
+    }
+    for (std::size_t i = 0; i < std::size(files); ++i)
+        for (std::size_t j = i + 1; j < std::size(files); ++j) {
+            const std::filesystem::path &a = *files[i].second, &b = *files[j].second;
+            if (a.empty() || b.empty()) continue;
+            if (a.lexically_normal() == b.lexically_normal() || same_file(a, b))
+                return fmt::format("{} and {} both name {}; the registry's header, source and depfile are three files",
+                                   files[i].first, files[j].first, shown_text(a.string()));
+        }
+    const std::string name = header.filename().string();
+    for (char ch : name) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (ch == '"' || ch == '\\' || c < 0x20 || c == 0x7f)
+            return fmt::format("--header {}: the source includes the header as #include \"{}\", which cannot hold "
+                               "a quote, a backslash or a control byte; rename it",
+                               shown_text(header.string()), shown_text(name));
+    }
+    return std::nullopt;
 }
 
 RegistrySources write_registry(std::span<const BuiltVariant> variants, std::string_view cpp_namespace,
@@ -80,8 +148,8 @@ RegistrySources write_registry(std::span<const BuiltVariant> variants, std::stri
 
     RegistrySources out;
     out.header = banner;
-    out.header +=
-        fmt::format("// {}\n#pragma once\n\n#include <kdop/variant.h>\n\nnamespace {} {{\n\n", summary, cpp_namespace);
+    out.header += fmt::format("// {}\n#pragma once\n\n#include <kdop/variant.h>\n\nnamespace {} {{\n\n",
+                              line_comment_text(summary), cpp_namespace);
     out.header += "// The variants embedded in this target, in generation order (sets x modes x neighborhoods).\n";
     out.header += "// Look one up with variants().find(\"dop32-clip-n9\").\n";
     out.header += fmt::format("kdop::VariantList variants();\n\n}} // namespace {}\n", cpp_namespace);
@@ -98,34 +166,34 @@ RegistrySources write_registry(std::span<const BuiltVariant> variants, std::stri
 
         std::string binding_body;
         for (const BindingInfo& b : v.interface.bindings)
-            binding_body +=
-                fmt::format("    {{{}, {}, {}, \"{}\", {}, 0x{:x}, {}, {}}},\n", b.set, b.binding, cpp_enum(b.type),
-                            b.name, b.count, vulkan_stage_bit(v.interface.stage), b.block_size, b.format);
+            binding_body += fmt::format("    {{{}, {}, {}, {}, {}, 0x{:x}, {}, {}}},\n", b.set, b.binding,
+                                        cpp_enum(b.type), cpp_string_literal(b.name), b.count,
+                                        vulkan_stage_bit(v.interface.stage), b.block_size, b.format);
         std::string binding_array =
             binding_body.empty() ? "nullptr" : bindings.name_for("kdop::DescriptorBinding", binding_body, arrays);
 
         std::string push_body;
         for (const PushConstantInfo& p : v.interface.push_constants)
-            push_body += fmt::format("    {{\"{}\", {}, {}}},\n", p.name, p.offset, p.size);
+            push_body += fmt::format("    {{{}, {}, {}}},\n", cpp_string_literal(p.name), p.offset, p.size);
         std::string push_array =
             push_body.empty() ? "nullptr" : push_constants.name_for("kdop::PushConstantMember", push_body, arrays);
 
         const auto& ls = v.interface.local_size;
         table += fmt::format(
-            "    {{\"{}\", \"{}\", kdop::Mode::{}, kdop::Neighborhood::{}, kdop::Form::{}, kdop::Numerics::{}, {},\n"
+            "    {{{}, {}, kdop::Mode::{}, kdop::Neighborhood::{}, kdop::Form::{}, kdop::Numerics::{}, {},\n"
             "     {}, {}, 0x{:016x}ull,\n"
-            "     \"{}\", {{{}, {}, {}}}, {}, {}, {}, {}, {}, kdop::ShaderStage::{}, {}}},\n",
-            v.name, v.spec.set.name, to_string(v.spec.mode), to_string(v.spec.neighborhood), to_string(v.spec.form),
-            to_string(v.spec.numerics), v.spec.set.axes.size(), module, v.spirv.size(), hash, v.interface.entry_point,
-            ls[0], ls[1], ls[2], binding_array, v.interface.bindings.size(), push_array,
-            v.interface.push_constants.size(), v.interface.push_constant_size, to_string(v.interface.stage),
-            v.interface.color_output_count);
+            "     {}, {{{}, {}, {}}}, {}, {}, {}, {}, {}, kdop::ShaderStage::{}, {}}},\n",
+            cpp_string_literal(v.name), cpp_string_literal(v.spec.set.name), to_string(v.spec.mode),
+            to_string(v.spec.neighborhood), to_string(v.spec.form), to_string(v.spec.numerics), v.spec.set.axes.size(),
+            module, v.spirv.size(), hash, cpp_string_literal(v.interface.entry_point), ls[0], ls[1], ls[2],
+            binding_array, v.interface.bindings.size(), push_array, v.interface.push_constants.size(),
+            v.interface.push_constant_size, to_string(v.interface.stage), v.interface.color_output_count);
     }
 
     out.source = banner;
     out.source +=
         fmt::format("// {}\n// {} distinct SPIR-V module{}; variants with identical modules share one array.\n\n",
-                    summary, distinct_modules, distinct_modules == 1 ? "" : "s");
+                    line_comment_text(summary), distinct_modules, distinct_modules == 1 ? "" : "s");
     out.source +=
         fmt::format("#include \"{}\"\n\n#include <cstdint>\n#include <iterator>\n\nnamespace {} {{\nnamespace {{\n\n",
                     header_include, cpp_namespace);

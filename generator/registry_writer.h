@@ -5,6 +5,9 @@
 
 #include "variant_builder.h"
 
+#include <filesystem>
+#include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
@@ -16,12 +19,24 @@ struct RegistrySources {
     std::string source;
 };
 
-// `cpp_namespace` must satisfy is_valid_cpp_namespace; `header_include` is what the source
+// `cpp_namespace` must pass cpp_namespace_problem; `header_include` is what the source
 // #includes to reach the header (its file name, when both sit in one directory).
 RegistrySources write_registry(std::span<const BuiltVariant> variants, std::string_view cpp_namespace,
                                std::string_view header_include);
 
-// Identifiers separated by "::", e.g. "my_app::taa".
-bool is_valid_cpp_namespace(std::string_view ns);
+// Why `ns` cannot name the registry's namespace, or nullopt where it can: identifiers separated by
+// "::", e.g. "my_app::taa", none of them a keyword ("int", "class") or a name reserved for the
+// implementation ("__x", "_X").
+std::optional<std::string> cpp_namespace_problem(std::string_view ns);
+// C++23's keywords and alternative tokens.
+const std::set<std::string_view>& cpp_keywords();
+
+// Why the registry's --header, --source and --depfile cannot be written as asked: a folder or a
+// special file (core/write_files.h check_output_file), two of them one file (a HEADER named
+// app.cpp), or a header whose name an #include "..." cannot hold (a quote, a backslash, a control
+// byte); nullopt when they can. Checked before any variant is built.
+std::optional<std::string> registry_files_problem(const std::filesystem::path& header,
+                                                  const std::filesystem::path& source,
+                                                  const std::filesystem::path& depfile);
 
 } // namespace kdop

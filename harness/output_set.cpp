@@ -23,7 +23,7 @@ void OutputSet::add_table(const std::string& stem, const Table& table, const Run
     add(stem + ".csv", table.csv());
     nlohmann::json json = table.json();
     json["run"] = metadata_json(run);
-    add(stem + ".json", json.dump(2) + "\n");
+    add(stem + ".json", json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 void OutputSet::add(std::vector<OutputWriter> writers) {

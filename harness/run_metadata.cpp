@@ -1,6 +1,7 @@
 #include "run_metadata.h"
 
 #include "context.h"
+#include "escaped_text.h"
 #include "kdop_commit.h"
 
 #include <fmt/chrono.h>
@@ -78,8 +79,8 @@ RunMetadata describe_run(const Context& context) {
 }
 
 std::string metadata_markdown(const RunMetadata& run) {
-    std::string out = fmt::format("- command: `{}`\n- kdop: {} (commit {})\n- date: {}\n- machine: {}\n", run.command,
-                                  run.version, run.commit, run.date, run.machine);
+    std::string out = fmt::format("- command: {}\n- kdop: {} (commit {})\n- date: {}\n- machine: {}\n",
+                                  markdown_code(run.command), run.version, run.commit, run.date, run.machine);
     if (!run.device.empty()) out += fmt::format("- device: {} ({})\n", run.device, run.driver);
     if (run.seed) out += fmt::format("- seed: {}\n", *run.seed);
     return out;

@@ -22,10 +22,10 @@ std::vector<OutputWriter> StagedImages::writers(const std::filesystem::path& dir
     for (const std::string& name : names_) {
         const std::filesystem::path staged = scratch_->path / name;
         // A copy, not a rename: the scratch folder may be on another file system.
-        out.push_back({dir / name, [staged](const std::filesystem::path& to) -> Result<void> {
+        out.push_back({dir / name, [staged, path = dir / name](const std::filesystem::path& to) -> Result<void> {
                            std::error_code ec;
                            std::filesystem::copy_file(staged, to, ec);
-                           if (ec) return fail(fmt::format("{}: {}", to.string(), ec.message()));
+                           if (ec) return fail(fmt::format("{}: {}", path.string(), ec.message()));
                            return {};
                        }});
     }

@@ -1,5 +1,6 @@
 #include "table.h"
 
+#include "escaped_text.h"
 #include "gnuplot.h"
 
 #include <fmt/format.h>
@@ -38,19 +39,6 @@ std::string significant(double d, int digits) {
     const double magnitude = std::abs(d);
     const int integer_digits = magnitude >= 1 ? int(std::floor(std::log10(magnitude))) + 1 : 0;
     return fmt::format("{:.{}g}", d, std::max(digits, integer_digits));
-}
-
-std::string markdown_escape(std::string text) {
-    std::string out;
-    for (char c : text) {
-        if (c == '|')
-            out += "\\|";
-        else if (c == '\n' || c == '\r')
-            out += ' ';
-        else
-            out += c;
-    }
-    return out;
 }
 
 } // namespace
@@ -142,14 +130,14 @@ std::string Table::markdown(std::span<const std::string> only) const {
     for (std::size_t c : shown_columns) {
         const Column& column = columns_[c];
         const std::string title = column.title.empty() ? column.name : column.title;
-        header += fmt::format(" {}{} |", markdown_escape(title), column.unit.empty() ? "" : " (" + column.unit + ")");
+        header += fmt::format(" {}{} |", markdown_text(title), column.unit.empty() ? "" : " (" + column.unit + ")");
         const bool text = column.shown == Shown::text || column.shown == Shown::flag;
         rule += text ? "---|" : "--:|";
     }
     std::string out = header + "\n" + rule + "\n";
     for (std::size_t r = 0; r < rows_.size(); ++r) {
         out += "|";
-        for (std::size_t c : shown_columns) out += fmt::format(" {} |", markdown_escape(shown(r, c)));
+        for (std::size_t c : shown_columns) out += fmt::format(" {} |", markdown_text(shown(r, c)));
         out += "\n";
     }
     return out;

@@ -318,6 +318,10 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
 
 } // namespace
 
+Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image) {
+    return write_checked(temporary, path, image);
+}
+
 Result<void> write_image(const std::string& path, const Image& image) {
     return write_atomically(
         {{path, [&](const std::filesystem::path& file) { return write_checked(file, path, image); }}});

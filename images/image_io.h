@@ -72,4 +72,9 @@ Result<void> write_images(const std::vector<ImageFile>& files);
 // that holds images beside other files. It keeps the image alive until it has written it.
 OutputWriter image_writer(std::filesystem::path path, std::shared_ptr<const Image> image);
 
+// What an OutputWriter whose image is made only when the set is written (a sequence's frames)
+// does with its temporary: writes `image` to `temporary` and checks it as write_image does, errors
+// naming `path`, the file's final name.
+Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image);
+
 } // namespace kdop

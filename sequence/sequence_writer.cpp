@@ -54,7 +54,7 @@ std::string sequence_json(const FrameSource& source) {
         frames.push_back(std::move(f));
     }
     root["frames"] = std::move(frames);
-    return root.dump(1) + "\n";
+    return root.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::vector<OutputWriter> sequence_frame_writers(const std::filesystem::path& folder,
@@ -74,7 +74,7 @@ std::vector<OutputWriter> sequence_frame_writers(const std::filesystem::path& fo
                                    if (!image)
                                        return fail(fmt::format("{}: frame {} of {} has none", path.string(), i,
                                                                cache->source->name()));
-                                   return write_image(to.string(), *image);
+                                   return write_image_to(to, path.string(), *image);
                                }});
         };
         add("color", [](const LoadedFrame& f) { return std::optional<Image>(f.color); });

@@ -360,7 +360,7 @@ TEST(CliRun, RefusesBadInputAndWritesNothing) {
         {in.args("dop32-clip-n9-paper", "--numerics hardened"),
          "--numerics: hardened conflicts with the variant's own -paper"},
         {in.args("dop32-clip-n9", "--gamma 1"), "--gamma: dop32-clip-n9 is not a variance clip and takes no gamma"},
-        {in.args("dop32-varclip-n9", "--gamma -1"), "--gamma: must be a finite number >= 0, got -1"},
+        {in.args("dop32-varclip-n9", "--gamma -1"), "--gamma: '-1' is not a number above 0 and at most 100"},
         {in.args("dop32-varclip-n9", "--gamma nan"), "--gamma"},
         {in.args("dop32-clip-n9", "--format rgb8"), "--format: 'rgb8' is not rgba32f or rgba16f"},
         {"run --variant aabb-clip-n9 --current " + in.current + " --history " + in.small + " --out " + in.out,
@@ -459,7 +459,7 @@ TEST(CliStress, RefusesBadInputAndWritesNothing) {
         std::string args, message;
     };
     const Case cases[] = {
-        {"--gamma -1", "--gamma: must be a finite number >= 0, got -1"},
+        {"--gamma -1", "--gamma: '-1' is not a number above 0 and at most 100"},
         {"--baselines", "--baselines: the gather and copy baselines are not clips"},
         {"--sets dop99", "--sets: 'dop99' is not a built-in axis set"},
         {"--numerics exact", "--numerics"},
@@ -558,7 +558,7 @@ TEST(CliAccuracy, RefusesBadInputAndWritesNothing) {
         {"--current " + in.nan + " --history " + in.history, in.nan + ": pixel (2, 1) is not finite"},
         {"--images " + (in.dir / "missing.exr").string(), "missing.exr: cannot read image"},
         {"--size 16" + pair, "--size: only for the built-in content"},
-        {"--gamma -1" + pair, "--gamma: must be a finite number >= 0, got -1"},
+        {"--gamma -1" + pair, "--gamma: '-1' is not a number above 0 and at most 100"},
         {"--baselines" + pair, "--baselines: the gather and copy baselines are not clips"},
         {"--cost " + (in.dir / "cost.csv").string() + pair, "cost.csv:1: not a kdop bench cost.csv"},
         {"--cost " + (in.dir / "none.csv").string() + pair, "none.csv: cannot read"},

@@ -625,7 +625,7 @@ TEST(CliFlip, RefusesBadInputAndWritesNothing) {
         << r.err;
     EXPECT_FALSE(fs::exists(files.dir / "map.jpg"));
     r = test::run(kdop_flip(files.inputs() + " --out /proc/kdop-flip/map.exr"));
-    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.exit_code, 2) << "a --out that cannot be written is a wrong command line";
     EXPECT_NE(r.err.find("--out: /proc/kdop-flip"), std::string::npos) << r.err;
 }
 

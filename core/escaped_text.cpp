@@ -1,0 +1,80 @@
+#include "escaped_text.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace kdop {
+namespace {
+
+bool is_control(unsigned char c) { return c < 0x20 || c == 0x7f; }
+
+std::string hex(unsigned char c) { return fmt::format("\\x{:02x}", c); }
+
+} // namespace
+
+std::string cpp_string_literal(std::string_view text) {
+    std::string out = "\"";
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        switch (ch) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\t': out += "\\t"; break;
+        case '?': out += "\\?"; break;
+        default:
+            if (is_control(c) || c >= 0x80)
+                out += fmt::format("\\{:03o}", c);
+            else
+                out += ch;
+        }
+    }
+    return out + "\"";
+}
+
+std::string line_comment_text(std::string_view text) {
+    std::string out;
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        out += is_control(c) || c >= 0x80 ? hex(c) : std::string(1, ch);
+    }
+    if (out.ends_with('\\')) out.replace(out.size() - 1, 1, hex('\\'));
+    return out;
+}
+
+std::string markdown_text(std::string_view text) {
+    // The punctuation that starts or ends markup inside a line: an escape, code, emphasis, a link
+    // or image, an HTML tag or entity, strikethrough, a table cell. The rest ('-', '.', '#', '+')
+    // means something only at a line's start, where kdop never puts a name.
+    constexpr const char* kMarkup = "\\`*_[]<>|&~";
+    std::string out;
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (is_control(c))
+            out += hex(c);
+        else if (ch != '\0' && std::strchr(kMarkup, ch))
+            out += std::string("\\") + ch;
+        else
+            out += ch;
+    }
+    return out;
+}
+
+std::string markdown_code(std::string_view text) {
+    std::string shown;
+    std::size_t run = 0, longest = 0;
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        run = ch == '`' ? run + 1 : 0;
+        longest = std::max(longest, run);
+        shown += is_control(c) ? hex(c) : std::string(1, ch);
+    }
+    const std::string fence(longest + 1, '`');
+    // A space inside the fence where the code starts or ends with a backtick (CommonMark strips one).
+    const bool pad = shown.starts_with('`') || shown.ends_with('`');
+    return fence + (pad ? " " : "") + shown + (pad ? " " : "") + fence;
+}
+
+} // namespace kdop
