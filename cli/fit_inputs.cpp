@@ -25,7 +25,7 @@ Result<Image> load_image(const std::string& path, InputSpace space, const ColorM
         return fail(fmt::format("{}: every pixel is ({}, {}, {}), so every neighborhood is flat and there is "
                                 "nothing to fit to; give images with the scene's detail",
                                 path, image->pixels[0].r, image->pixels[0].g, image->pixels[0].b));
-    map_colors(map, image->pixels);
+    if (auto ok = map_colors(map, image->pixels, image->width, path); !ok) return std::unexpected(ok.error());
     return image;
 }
 
@@ -74,12 +74,16 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
         const std::vector<std::size_t> frames = stepped_frames(sequence, o.frame_step);
         for (std::size_t index : frames) {
             const std::string label = sequence.frames[index].color.string();
-            in.frames.push_back({label, std::uint64_t(sequence.width) * sequence.height,
-                                 [shared, index, space = o.input_space, map = o.color_map]() -> Result<Image> {
-                                     auto color = load_frame_color(*shared, index, space);
-                                     if (color) map_colors(map, color->pixels);
-                                     return color;
-                                 }});
+            in.frames.push_back(
+                {label, std::uint64_t(sequence.width) * sequence.height,
+                 [shared, index, space = o.input_space, map = o.color_map]() -> Result<Image> {
+                     auto color = load_frame_color(*shared, index, space);
+                     if (!color) return color;
+                     if (auto ok = map_colors(map, color->pixels, color->width, shared->frames[index].color.string());
+                         !ok)
+                         return std::unexpected(ok.error());
+                     return color;
+                 }});
             in.paths.push_back(sequence.frames[index].color);
         }
         in.paths.push_back(sequence.dir / "sequence.json");
@@ -102,7 +106,9 @@ Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& o, c
         auto pairs = image_pairs(o.images, o.input_space);
         if (!pairs) return std::unexpected(pairs.error());
         for (AccuracyPair& pair : *pairs)
-            for (Image* image : {&pair.current, &pair.history}) map_colors(o.color_map, image->pixels);
+            for (Image* image : {&pair.current, &pair.history})
+                if (auto ok = map_colors(o.color_map, image->pixels, image->width, pair.name); !ok)
+                    return std::unexpected(ok.error());
         auto drawn = ideal_clip_samples(*pairs, shape, per_input, seed);
         if (!drawn) return std::unexpected(drawn.error());
         samples = std::move(*drawn);
@@ -116,7 +122,9 @@ Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& o, c
         for (std::size_t index : stepped) {
             auto color = load_frame_color(sequence, index, o.input_space);
             if (!color) return std::unexpected(color.error());
-            map_colors(o.color_map, color->pixels);
+            if (auto ok = map_colors(o.color_map, color->pixels, color->width, sequence.frames[index].color.string());
+                !ok)
+                return std::unexpected(ok.error());
             const std::string family = fmt::format("{} frame {}", sequence.name, index);
             auto drawn = ideal_clip_samples(ghosting_pairs(family, *color), shape, per_frame,
                                             seed + (index + 1) * 0x9e3779b97f4a7c15ull);

@@ -37,6 +37,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 
 namespace kdop::cli {
 namespace {
@@ -300,6 +301,7 @@ Action add_taa_command(CLI::App& app) {
                     return report_error(ok.error().message);
                 pictures.push_back(trail_picture_name(scene.name()));
             }
+            std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
             for (const SequenceFrames& sequence : sequences) {
                 auto mean = flip_mean(sequence.width(), sequence.height());
                 if (!mean) return report_error(fmt::format("{}: {}", sequence.name(), mean.error().message));
@@ -316,6 +318,8 @@ Action add_taa_command(CLI::App& app) {
                             fmt::format("{} on {}: {}", keys[v].name(), sequence.name(), m.error().message));
                     row(v, sequence.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased",
                         m->range);
+                    for (const std::string& note : m->notes)
+                        if (warned.insert(note).second) std::cerr << "warning: " << note << "\n";
                     progress.advance(fmt::format("{} on {}", keys[v].name(), sequence.name()));
                 }
             }

@@ -46,9 +46,26 @@ glm::vec3 map_color(const ColorMap& map, glm::vec3 c) {
     return c;
 }
 
-void map_colors(const ColorMap& map, std::span<glm::vec4> pixels) {
-    if (map.kind == ColorMap::Kind::linear) return;
+Result<void> check_mappable(const ColorMap& map, std::span<const glm::vec4> pixels, std::uint32_t width,
+                            std::string_view what) {
+    // The log of a finite value is finite; only the power can overflow.
+    if (map.kind != ColorMap::Kind::power) return {};
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        const glm::vec3 mapped = map_color(map, glm::vec3(pixels[i]));
+        for (int c = 0; c < 3; ++c)
+            if (std::isfinite(pixels[i][c]) && !std::isfinite(mapped[c]))
+                return fail(fmt::format("{} pixel ({}, {}) has {} {}, which --color-map {} takes to {}, beyond float's "
+                                        "range; use a smaller exponent or --color-map log",
+                                        what, i % width, i / width, "RGB"[c], pixels[i][c], to_string(map), mapped[c]));
+    }
+    return {};
+}
+
+Result<void> map_colors(const ColorMap& map, std::span<glm::vec4> pixels, std::uint32_t width, std::string_view what) {
+    if (map.kind == ColorMap::Kind::linear) return {};
+    if (auto ok = check_mappable(map, pixels, width, what); !ok) return ok;
     for (glm::vec4& p : pixels) p = glm::vec4(map_color(map, glm::vec3(p)), p.a);
+    return {};
 }
 
 } // namespace kdop

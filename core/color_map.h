@@ -33,7 +33,13 @@ std::string to_string(const ColorMap& map);
 
 // One color in the map's space, in float as the resolve's shader computes it.
 glm::vec3 map_color(const ColorMap& map, glm::vec3 color);
-// Every pixel's RGB mapped in place (an Image's pixels); alpha kept.
-void map_colors(const ColorMap& map, std::span<glm::vec4> pixels);
+
+// Refuses the first pixel whose color `map` takes beyond what float holds (c^G above 3.4e38: 60000
+// under gamma:10, 1e20 under gamma:2), naming `what`, the pixel (of an image `width` wide), the
+// value and the map: the resolve would turn it black and a fit would hand infinities to its solver.
+Result<void> check_mappable(const ColorMap& map, std::span<const glm::vec4> pixels, std::uint32_t width,
+                            std::string_view what);
+// Every pixel's RGB mapped in place (an Image's pixels), alpha kept, after check_mappable.
+Result<void> map_colors(const ColorMap& map, std::span<glm::vec4> pixels, std::uint32_t width, std::string_view what);
 
 } // namespace kdop

@@ -365,7 +365,7 @@ Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
 Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, const ExposureOptions& options,
                                     bool read_maps) {
     if (auto ok = check_pair(reference, test, check_hdr_image); !ok) return std::unexpected(ok.error());
-    auto range = exposure_range(reference, options);
+    auto range = exposure_range(reference, options, &test);
     if (!range) return std::unexpected(range.error());
     std::vector<Exposure> exposures(std::size_t(range->count));
     for (int i = 0; i < range->count; ++i)

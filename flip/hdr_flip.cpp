@@ -53,41 +53,117 @@ const char* to_string(ToneMapper t) {
 
 const ToneCurve& tone_curve(ToneMapper t) { return curve(t); }
 
-glm::vec3 tone_map(ToneMapper t, glm::vec3 color) {
-    if (t == ToneMapper::reinhard) return color * (1.0f / (1.0f + luminance(color)));
+glm::vec3 tone_map(ToneMapper t, glm::vec3 color, float scale) {
+    // Beyond kLimit the curves are at their limits to float's precision, and x * x (1e36) is still
+    // finite below it: the limit forms below keep 1e19, and an exposed value that overflowed to
+    // infinity, from becoming inf / inf. shader_templates/flip.comp.in computes the same.
+    constexpr float kLimit = 1e18f;
+    const glm::vec3 x = color * scale;
+    if (t == ToneMapper::reinhard) {
+        const float l = luminance(x);
+        // x / (1 + L(x)) tends to color / L(color), whatever the scale.
+        if (l > kLimit) return color * (1.0f / luminance(color));
+        return x * (1.0f / (1.0f + l));
+    }
     const Curve& k = curve(t);
-    return ((color * color) * k.a + color * k.b + k.c) / (color * color * k.d + color * k.e + k.f);
+    glm::vec3 out;
+    for (int c = 0; c < 3; ++c) {
+        const float v = x[c];
+        if (v > kLimit) {
+            // (a x^2 + b x + c) / (d x^2 + e x + f) with x^2 divided out: a / d at infinity.
+            const float y = 1.0f / v;
+            out[c] = (k.a + (k.b + k.c * y) * y) / (k.d + (k.e + k.f * y) * y);
+        } else {
+            out[c] = ((v * v) * k.a + v * k.b + k.c) / (v * v * k.d + v * k.e + k.f);
+        }
+    }
+    return out;
 }
 
 float ExposureRange::exposure(int i) const {
     return count == 1 ? start : start + float(i) * ((stop - start) / float(count - 1));
 }
 
-Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options) {
+namespace {
+
+struct Luminances {
+    float largest = 0, median = 0;
+    bool median_of_lit = false; // the median of the pixels that are not black (at least half are)
+};
+
+// The largest and the median luminance of `image` (the element at n / 2 in sorted order); where that
+// is 0, the median of the pixels that are not black.
+Luminances luminances_of(const Image& image) {
+    std::vector<float> values(image.pixels.size());
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = luminance(glm::vec3(image.pixels[i]));
+    Luminances out;
+    if (values.empty()) return out;
+    out.largest = *std::max_element(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(middle), values.end());
+    out.median = values[middle];
+    if (!(out.median > 0.0f) && out.largest > 0.0f) {
+        std::erase_if(values, [](float v) { return !(v > 0.0f); });
+        const std::size_t lit_middle = values.size() / 2;
+        std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(lit_middle), values.end());
+        out.median = values[lit_middle];
+        out.median_of_lit = true;
+    }
+    return out;
+}
+
+// Exposures whose 2^exposure is a normal float.
+constexpr float kMostStops = 126.0f;
+
+} // namespace
+
+Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options, const Image* test) {
     ExposureRange range;
     if (!options.start || !options.stop) {
-        std::vector<float> luminances(reference.pixels.size());
-        for (std::size_t i = 0; i < luminances.size(); ++i) luminances[i] = luminance(glm::vec3(reference.pixels[i]));
-        if (luminances.empty()) return fail("the reference image is empty");
-        const float largest = *std::max_element(luminances.begin(), luminances.end());
-        const std::size_t middle = luminances.size() / 2;
-        std::nth_element(luminances.begin(), luminances.begin() + std::ptrdiff_t(middle), luminances.end());
-        const float median = luminances[middle];
+        if (reference.pixels.empty()) return fail("the reference image is empty");
+        Luminances l = luminances_of(reference);
+        const char* from = "the reference's";
+        if (!(l.largest > 0.0f) && test) {
+            l = luminances_of(*test);
+            from = "the test image's";
+            if (!(l.largest > 0.0f)) {
+                // Both black: every exposure gives them the same tone-mapped black, so no error.
+                range.count = 1;
+                range.note = "both images are black, so HDR-FLIP is 0 at any exposure: measured at exposure 0";
+                return range;
+            }
+            range.note = "the reference is black: the exposure range is the test image's";
+        }
         const float x = x_max(options.tone_mapper);
-        if (!options.start && !(largest > 0.0f))
+        if (!options.start && !(l.largest > 0.0f))
             return fail("the reference's largest luminance is 0, which puts the start exposure at infinity; give "
                         "--start-exposure");
-        if (!options.stop && !(median > 0.0f))
-            return fail("the reference's median luminance is 0 (at least half its pixels are black), which puts the "
-                        "stop exposure at infinity; give --stop-exposure");
-        range.start = options.start ? *options.start : std::log2(x / largest);
-        range.stop = options.stop ? *options.stop : std::log2(x / median);
+        if (l.median_of_lit && !options.stop)
+            range.note += fmt::format("{}at least half of {} pixels are black: the stop exposure is from the median "
+                                      "of the others",
+                                      range.note.empty() ? "" : "; ", from);
+        // In double: x / 1e-40 is beyond float before its log2 is taken.
+        range.start = options.start ? *options.start : float(std::log2(double(x) / l.largest));
+        range.stop = options.stop ? *options.stop : float(std::log2(double(x) / l.median));
+        const struct {
+            float exposure;
+            bool given;
+            const char* which;
+            float luminance;
+        } ends[] = {{range.start, bool(options.start), "largest", l.largest},
+                    {range.stop, bool(options.stop), "median", l.median}};
+        for (const auto& end : ends)
+            if (!end.given && !(std::abs(end.exposure) <= kMostStops))
+                return fail(fmt::format("{} {} luminance {:.3g} puts an exposure at {:.1f} stops, beyond the {:g} that "
+                                        "float can scale by; give --start-exposure and --stop-exposure",
+                                        from, end.which, end.luminance, end.exposure, kMostStops));
     } else {
         range.start = *options.start;
         range.stop = *options.stop;
     }
-    if (!std::isfinite(range.start) || !std::isfinite(range.stop))
-        return fail(fmt::format("the exposure range {} to {} is not finite", range.start, range.stop));
+    if (!(std::abs(range.start) <= kMostStops) || !(std::abs(range.stop) <= kMostStops))
+        return fail(fmt::format("the exposure range {} to {} reaches beyond the {:g} stops float can scale by",
+                                range.start, range.stop, kMostStops));
     if (range.start > range.stop)
         return fail(fmt::format("the start exposure {} is above the stop exposure {}{}", range.start, range.stop,
                                 options.start && options.stop ? "" : " (one of them derived from the reference)"));
@@ -115,7 +191,7 @@ Image HdrFlip::tone_mapped(const Image& image, ToneMapper tone_mapper, float exp
     const float scale = std::pow(2.0f, exposure);
     Image out(image.width, image.height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        const glm::vec3 mapped = tone_map(tone_mapper, glm::vec3(image.pixels[i]) * scale);
+        const glm::vec3 mapped = tone_map(tone_mapper, glm::vec3(image.pixels[i]), scale);
         out.pixels[i] = glm::vec4(glm::clamp(mapped, 0.0f, 1.0f), 1.0f);
     }
     return out;
@@ -127,7 +203,7 @@ Result<HdrFlipMaps> HdrFlip::maps(const Image& reference, const Image& test, con
         return fail(fmt::format("test image: {}x{}, but the reference image is {}x{}", test.width, test.height,
                                 reference.width, reference.height));
     if (auto ok = check_hdr_image(test, "test image"); !ok) return std::unexpected(ok.error());
-    auto range = exposure_range(reference, options);
+    auto range = exposure_range(reference, options, &test);
     if (!range) return std::unexpected(range.error());
 
     HdrFlipMaps out;

@@ -15,9 +15,18 @@
 // - The exposure map (setMaxExposure): i / (count - 1) of the first exposure whose error is the
 //   pixel's largest (0 where every error is 0).
 //
-// Where the reference divides by zero, this refuses or defines instead, and says so: one exposure
-// (count 1) is the start exposure alone; a reference whose median or largest luminance is 0 (the
-// range would be infinite) is refused unless start and stop are given.
+// Where the reference divides by zero or overflows, this defines instead, and says so:
+// - one exposure (count 1) is the start exposure alone;
+// - a reference whose median luminance is 0 (at least half its pixels black) takes the median of its
+//   pixels that are not black for the stop exposure;
+// - a black reference (largest luminance 0) takes the range of the test image instead, and a black
+//   pair is measured at exposure 0 (any exposure gives no error); without a test image it is
+//   refused unless start and stop are given. ExposureRange::note says when either happened;
+// - exposures beyond +-126 stops (a reference of 1e-40 or 1e38) are refused: 2^exposure would not
+//   be a normal float;
+// - the tone curves are evaluated so that no value overflows: above 1e18 a channel (for Reinhard,
+//   the luminance) is at the curve's limit, computed from 1/x (for Reinhard, color / luminance), so
+//   1e19 tone-maps to white as 1e6 does, and an exposed value beyond float is at the limit too.
 #pragma once
 
 #include "flip.h"
@@ -44,8 +53,9 @@ struct ToneCurve {
 };
 const ToneCurve& tone_curve(ToneMapper tone_mapper);
 
-// The tone mapper applied to one linear RGB color (not clamped: HDR-FLIP clamps after it).
-glm::vec3 tone_map(ToneMapper tone_mapper, glm::vec3 color);
+// The tone mapper applied to one linear RGB color times `scale` (2^exposure), not clamped (HDR-FLIP
+// clamps after it); finite for every finite color and scale (see above).
+glm::vec3 tone_map(ToneMapper tone_mapper, glm::vec3 color, float scale = 1.0f);
 
 // What the user sets; what is not set is derived from the reference as the reference code derives it.
 struct ExposureOptions {
@@ -57,12 +67,15 @@ struct ExposureOptions {
 struct ExposureRange {
     float start = 0, stop = 0;
     int count = 0;
+    std::string note;            // how the range departs from the reference code's derivation; empty where it does not
     float exposure(int i) const; // start + i (stop - start) / (count - 1); start when count is 1
 };
 
-// The exposures HDR-FLIP evaluates `reference` at. Errors name the option or the reference's
-// luminance that makes the range unusable (start above stop, a count below 1, an infinite range).
-Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options);
+// The exposures HDR-FLIP evaluates `reference` (and `test`, for a black reference) at. Errors name
+// the option or the luminance that makes the range unusable (start above stop, a count below 1,
+// exposures float cannot scale by).
+Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options,
+                                     const Image* test = nullptr);
 
 // Fails unless every pixel's R, G and B are finite and not negative, naming `what`, the pixel and
 // the value. Alpha is not looked at.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace kdop {
 
@@ -30,20 +31,28 @@ Result<Image> within_range(const Image& frame, ColorRange range, std::string_vie
 }
 
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<double> {
-        if (range == ColorRange::ldr) return flip.ldr().mean(reference, test);
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<FlipFigure> {
+        if (range == ColorRange::ldr) {
+            auto mean = flip.ldr().mean(reference, test);
+            if (!mean) return std::unexpected(mean.error());
+            return FlipFigure{*mean, {}};
+        }
         auto maps = flip.maps(reference, test, exposures);
         if (!maps) return std::unexpected(maps.error());
-        return maps->mean;
+        return FlipFigure{maps->mean, maps->range.note};
     };
 }
 
 FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<double> {
-        if (range == ColorRange::ldr) return flip.mean(reference, test);
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<FlipFigure> {
+        if (range == ColorRange::ldr) {
+            auto mean = flip.mean(reference, test);
+            if (!mean) return std::unexpected(mean.error());
+            return FlipFigure{*mean, {}};
+        }
         auto maps = flip.hdr(reference, test, exposures, false);
         if (!maps) return std::unexpected(maps.error());
-        return maps->mean;
+        return FlipFigure{maps->mean, maps->range.note};
     };
 }
 
@@ -85,6 +94,22 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
     Image previous;
     double shimmer_sum = 0, ghosting_sum = 0;
     std::size_t shimmer_pairs = 0;
+    struct Met {
+        std::string first_label;
+        std::size_t more = 0;
+    };
+    std::map<std::string, Met> notes; // by note
+    // One figure of frame `label`, its error naming the frame and what was measured.
+    auto measured = [&](const Image& reference, const Image& test, const std::string& label,
+                        const char* what) -> Result<double> {
+        auto figure = flip(reference, test, m.range);
+        if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
+        if (!figure->note.empty()) {
+            auto [it, first] = notes.try_emplace(figure->note, Met{label, 0});
+            if (!first) ++it->second.more;
+        }
+        return figure->mean;
+    };
     for (std::size_t i = 0; i < count; ++i) {
         auto frame = source.frame(i);
         if (!frame) return std::unexpected(frame.error());
@@ -107,12 +132,14 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
                     truth = &*frame->reference;
                 }
                 if (metrics.ghosting) {
-                    auto ghosting = flip(*truth, *current, m.range);
+                    auto ghosting = measured(*truth, *current, label,
+                                             m.against_reference ? "ghosting against the reference"
+                                                                 : "ghosting against the frame's color");
                     if (!ghosting) return std::unexpected(ghosting.error());
                     ghosting_sum += *ghosting;
                 }
                 if (metrics.shimmer && !source.starts_history(i)) {
-                    auto shimmer = flip(previous, *current, m.range);
+                    auto shimmer = measured(previous, *current, label, "shimmer against the previous output");
                     if (!shimmer) return std::unexpected(shimmer.error());
                     shimmer_sum += *shimmer;
                     ++shimmer_pairs;
@@ -125,6 +152,10 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
         }
         if (on_frame) on_frame();
     }
+    for (const auto& [note, met] : notes)
+        m.notes.push_back(met.more ? fmt::format("{} and {} more frame{}: {}", met.first_label, met.more,
+                                                 met.more == 1 ? "" : "s", note)
+                                   : fmt::format("{}: {}", met.first_label, note));
     m.ghosting = ghosting_sum / double(m.frames);
     m.shimmer = shimmer_pairs ? shimmer_sum / double(shimmer_pairs) : 0.0;
     return m;

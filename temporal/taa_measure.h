@@ -23,12 +23,20 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace kdop {
 
+// The mean FLIP of a pair, and, for HDR-FLIP, how its exposure range departed from the reference
+// code's derivation (ExposureRange::note: a black reference, a mostly black one), or nothing.
+struct FlipFigure {
+    double mean = 0;
+    std::string note;
+};
 // The mean FLIP of a pair, LDR-FLIP for an `ldr` range and HDR-FLIP for `hdr`, where it is
 // computed: the CPU code (cpu_flip_mean) or the device (flip/device_flip.h, what kdop taa uses).
-using FlipMean = std::function<Result<double>(const Image& reference, const Image& test, ColorRange range)>;
+using FlipMean = std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range)>;
 // HDR-FLIP at `exposures` (by default each pair's range, derived from its reference, as
 // NVlabs/flip derives it). `flip` must outlive what this returns.
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});
@@ -39,6 +47,9 @@ struct SequenceMeasurement {
     ColorRange range = ColorRange::ldr; // the source's: measured in LDR-FLIP or in HDR-FLIP
     bool against_reference = false;     // ghosting against the frames' references, not their own color
     std::size_t frames = 0;             // frames measured
+    // Each FlipFigure::note met, once, with the first frame it was met at and how many more: what a
+    // user is warned of ("color/0042.exr and 3 more frames: the reference is black: ...").
+    std::vector<std::string> notes;
 };
 
 // Called with each measured frame's index and output; an error stops the measurement.

@@ -26,6 +26,8 @@ Result<const Image*> TaaResolve::advance(const LoadedFrame& frame, bool starts_h
     if (frame.color.width != width_ || frame.color.height != height_)
         return fail(
             fmt::format("a {}x{} frame for a {}x{} resolve", frame.color.width, frame.color.height, width_, height_));
+    if (auto ok = check_mappable(options_.color_map, frame.color.pixels, width_, "color"); !ok)
+        return std::unexpected(ok.error());
     const bool has_motion = !starts_history;
     if (has_motion) {
         if (frame.motion.size() != motion_.pixels.size()) return fail("a frame with a history but no motion");

@@ -123,7 +123,7 @@ TEST(AxisFit, AFitInTheClipsColorSpaceIsTighterThere) {
     const Image linear = grass(32);
     Image logarithmic = linear;
     const ColorMap log_map{ColorMap::Kind::log, 1};
-    map_colors(log_map, logarithmic.pixels);
+    ASSERT_TRUE(map_colors(log_map, logarithmic.pixels, logarithmic.width, "grass"));
     EXPECT_EQ(glm::vec3(logarithmic.at(5, 7)), glm::log(glm::vec3(linear.at(5, 7)) + kColorMapLogOffset));
     const Neighborhoods in_linear = gather_neighborhoods({&linear, 1}, Neighborhood::n9);
     const Neighborhoods in_log = gather_neighborhoods({&logarithmic, 1}, Neighborhood::n9);

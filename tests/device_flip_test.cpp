@@ -176,6 +176,33 @@ TEST(DeviceFlip, HdrMapsAreTheCpus) {
     expect_quiet_validation();
 }
 
+// A test image of 1e19 (and one whose exposed values overflow float) tone-maps to white as 1e6
+// does, on the device as on the CPU, instead of to NaN, which the device scored as black.
+TEST(DeviceFlip, HugeValuesScoreAsOnTheCpu) {
+    const auto [reference, unused] = real_pair(32, 24);
+    const HdrFlip cpu(kPpd);
+    auto device = device_flip(kPpd, 32, 24);
+    ASSERT_TRUE(device);
+    std::vector<double> means;
+    for (float value : {1e6f, 1e19f, 3e38f}) {
+        const Image test(32, 24, glm::vec4(value, value, value, 1));
+        for (ToneMapper mapper : {ToneMapper::aces, ToneMapper::hable, ToneMapper::reinhard}) {
+            SCOPED_TRACE(fmt::format("{} at {}", to_string(mapper), value));
+            ExposureOptions options;
+            options.tone_mapper = mapper;
+            auto expected = cpu.maps(reference, test, options);
+            ASSERT_TRUE(expected) << expected.error().message;
+            auto got = device->hdr(reference, test, options, false);
+            ASSERT_TRUE(got) << got.error().message;
+            EXPECT_LE(relative(got->mean, expected->mean), kMeanTolerance);
+            if (mapper == ToneMapper::aces) means.push_back(got->mean);
+        }
+    }
+    EXPECT_NEAR(means[1], means[0], 1e-6) << "1e19 is as white as 1e6";
+    EXPECT_NEAR(means[2], means[0], 1e-6);
+    expect_quiet_validation();
+}
+
 TEST(DeviceFlip, IdenticalImagesGiveZero) {
     const auto [reference, test] = real_pair(64, 48);
     auto device = device_flip(kPpd, 64, 48);

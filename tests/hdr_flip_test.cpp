@@ -110,8 +110,11 @@ TEST(HdrFlip, RefusesRangesThatCannotBeEvaluated) {
         {gray(2, 1, {1, 2}), {ToneMapper::aces, 2.0f, 1.0f, {}}, "the start exposure 2 is above the stop exposure 1"},
         {gray(2, 1, {1, 2}), {ToneMapper::aces, 5.0f, {}, {}}, "derived from the reference"},
         {gray(2, 1, {1, 2}), {ToneMapper::aces, {}, {}, 0}, "0 exposures: HDR-FLIP needs at least 1"},
-        {gray(3, 1, {0, 0, 1}), {}, "median luminance is 0 (at least half its pixels are black)"},
         {gray(2, 1, {0, 0}), {}, "largest luminance is 0"},
+        // 2^133 is not a float: a reference of 1e-40 (and one of 1e38, at -126.6 stops) is refused.
+        {gray(2, 1, {1e-40f, 1e-40f}), {}, "the reference's largest luminance 1e-40 puts an exposure at 134.0 stops"},
+        {gray(2, 1, {3e38f, 3e38f}), {}, "the reference's largest luminance 3e+38 puts an exposure at -126.7 stops"},
+        {gray(2, 1, {1, 2}), {ToneMapper::aces, -200.0f, 1.0f, {}}, "reaches beyond the 126 stops"},
     };
     for (const Case& c : cases) {
         auto range = exposure_range(c.reference, c.options);
@@ -120,6 +123,62 @@ TEST(HdrFlip, RefusesRangesThatCannotBeEvaluated) {
     }
     // A black reference is measured once both ends are given.
     EXPECT_TRUE(exposure_range(gray(2, 1, {0, 0}), {ToneMapper::aces, -1.0f, 1.0f, {}}));
+}
+
+// Where NVlabs/flip's derivation divides by zero, kdop defines the range and says so in its note.
+TEST(HdrFlip, DefinesTheRangeOfBlackAndMostlyBlackReferences) {
+    // At least half black: the stop exposure is from the median of the others (2 of 1, 2, 4).
+    auto dark = exposure_range(gray(7, 1, {0, 0, 0, 0, 1, 4, 2}), {ToneMapper::aces, {}, {}, {}});
+    ASSERT_TRUE(dark) << dark.error().message;
+    EXPECT_NEAR(dark->start, std::log2(kAcesX / 4), 2e-6);
+    EXPECT_NEAR(dark->stop, std::log2(kAcesX / 2), 2e-6);
+    EXPECT_NE(dark->note.find("at least half of the reference's pixels are black"), std::string::npos) << dark->note;
+    // A black reference takes the test image's range; a black pair is measured at exposure 0.
+    const Image black = gray(2, 2, {0, 0, 0, 0}), lit = gray(2, 2, {8, 1, 4, 2});
+    auto from_test = exposure_range(black, {}, &lit);
+    ASSERT_TRUE(from_test) << from_test.error().message;
+    EXPECT_NEAR(from_test->start, std::log2(kAcesX / 8), 2e-6);
+    EXPECT_NEAR(from_test->stop, std::log2(kAcesX / 4), 2e-6);
+    EXPECT_NE(from_test->note.find("the reference is black"), std::string::npos) << from_test->note;
+    auto both = exposure_range(black, {}, &black);
+    ASSERT_TRUE(both) << both.error().message;
+    EXPECT_EQ(both->count, 1);
+    EXPECT_EQ(both->exposure(0), 0.0f);
+    EXPECT_NE(both->note.find("both images are black"), std::string::npos) << both->note;
+    auto maps = HdrFlip(kPpd).maps(black, black, {});
+    ASSERT_TRUE(maps) << maps.error().message;
+    EXPECT_EQ(maps->mean, 0.0);
+    // A note only where the derivation departs from the reference code's.
+    auto plain = exposure_range(lit, {}, &black);
+    ASSERT_TRUE(plain);
+    EXPECT_TRUE(plain->note.empty()) << plain->note;
+}
+
+// 1e19 squared is beyond float: the tone curves' limit forms take it, and an exposed value that
+// overflowed, to white as they take 1e6, on the CPU as on the device (device_flip_test.cpp).
+TEST(HdrFlip, HugeValuesToneMapToWhiteAsLargeOnesDo) {
+    for (ToneMapper t : {ToneMapper::aces, ToneMapper::hable, ToneMapper::reinhard})
+        for (float scale : {1.0f, 1e30f}) {
+            const glm::vec3 huge = tone_map(t, glm::vec3(1e19f, 1e19f, 1e19f), scale);
+            const glm::vec3 large = tone_map(t, glm::vec3(1e6f), 1.0f);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(huge[c])) << to_string(t) << " at scale " << scale;
+                EXPECT_NEAR(std::clamp(huge[c], 0.0f, 1.0f), std::clamp(large[c], 0.0f, 1.0f), 1e-5) << to_string(t);
+            }
+        }
+    // Reinhard keeps the hue of an overflowing color: the limit is color / luminance.
+    const glm::vec3 red = tone_map(ToneMapper::reinhard, glm::vec3(3e38f, 1e38f, 0.0f), 1e10f);
+    EXPECT_NEAR(red.g, 1.0f / (0.2126f * 3 + 0.7152f), 1e-5);
+    EXPECT_EQ(red.b, 0.0f);
+    // The test image of 1e19 scores as the one of 1e6 against any reference, not as black.
+    const Image reference = hdr_image(5, 24, 16);
+    const HdrFlip flip(kPpd);
+    auto huge = flip.maps(reference, gray(24, 16, std::vector<float>(24 * 16, 1e19f)), {});
+    auto large = flip.maps(reference, gray(24, 16, std::vector<float>(24 * 16, 1e6f)), {});
+    auto black = flip.maps(reference, gray(24, 16, std::vector<float>(24 * 16, 0.0f)), {});
+    ASSERT_TRUE(huge && large && black);
+    EXPECT_NEAR(huge->mean, large->mean, 1e-6);
+    EXPECT_GT(std::abs(huge->mean - black->mean), 0.02);
 }
 
 TEST(HdrFlip, IsTheLargestLdrFlipOverTheToneMappedExposures) {
