@@ -15,17 +15,16 @@ Result<std::unique_ptr<SequenceGhosting>> SequenceGhosting::create(const std::ve
     auto out = std::unique_ptr<SequenceGhosting>(new SequenceGhosting);
     out->options_ = options;
     out->warmup_ = warmup;
-    for (const std::string& dir : dirs) {
-        auto sequence = read_sequence(dir);
-        if (!sequence) return std::unexpected(sequence.error());
-        if (warmup >= sequence->frames.size())
-            return fail(fmt::format("--sequence: {}: {} frames, and --warmup {} leaves none to measure", dir,
-                                    sequence->frames.size(), warmup));
-        out->sequences_.emplace_back(std::move(*sequence), space);
-    }
     auto context = Context::create({});
     if (!context) return std::unexpected(context.error());
     out->context_ = std::move(*context);
+    for (const std::string& dir : dirs) {
+        auto sequence = read_resolvable_sequence(dir, warmup, options);
+        if (!sequence) return std::unexpected(sequence.error());
+        if (auto ok = check_measurable(*out->context_, sequence->width, sequence->height, true); !ok)
+            return fail(fmt::format("--sequence {}: {}", dir, ok.error().message));
+        out->sequences_.emplace_back(std::move(*sequence), space);
+    }
     return out;
 }
 

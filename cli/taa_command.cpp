@@ -164,30 +164,31 @@ Action add_taa_command(CLI::App& app) {
         const bool builtin = o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty();
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
+        // Every size is checked against the device and memory before any frame is made or read.
+        if (builtin)
+            if (auto ok = check_measurable(**context, size->first, size->second, !o->cpu_flip); !ok)
+                return usage_error(fmt::format("--size {}: {}", o->size, ok.error().message));
+        if (auto ok = check_distinct_files(o->sequences, "--sequence"); !ok) return usage_error(ok.error().message);
+        std::vector<SequenceFrames> sequences;
+        for (const std::string& dir : o->sequences) {
+            auto sequence = read_resolvable_sequence(dir, o->warmup, o->resolve);
+            if (!sequence) return report_error(sequence.error().message);
+            if (auto ok = check_measurable(**context, sequence->width, sequence->height, !o->cpu_flip); !ok)
+                return report_error(fmt::format("--sequence {}: {}", dir, ok.error().message));
+            sequences.emplace_back(std::move(*sequence), o->input_space);
+        }
         std::vector<std::shared_ptr<const TaaScene>> scenes;
         if (builtin) {
             auto selected = o->choice.select(size->first, size->second, o->seed, o->input_space, context->get());
             if (!selected) return report_error(selected.error().message);
             scenes = std::move(*selected);
         }
-        if (auto ok = check_distinct_files(o->sequences, "--sequence"); !ok) return usage_error(ok.error().message);
-        std::vector<SequenceFrames> sequences;
-        for (const std::string& dir : o->sequences) {
-            auto sequence = read_sequence(dir);
-            if (!sequence) return report_error(sequence.error().message);
-            auto taken = [&](const std::string& name) {
-                return std::any_of(scenes.begin(), scenes.end(), [&](const auto& s) { return s->name() == name; }) ||
-                       std::any_of(sequences.begin(), sequences.end(),
-                                   [&](const SequenceFrames& s) { return s.name() == name; });
-            };
-            if (taken(sequence->name))
-                return report_error(
-                    fmt::format("--sequence: {}: a scene or sequence is already called '{}'", dir, sequence->name));
-            if (o->warmup >= sequence->frames.size())
-                return report_error(fmt::format("--sequence: {}: {} frames, and --warmup {} leaves none to measure",
-                                                dir, sequence->frames.size(), o->warmup));
-            sequences.emplace_back(std::move(*sequence), o->input_space);
-        }
+        std::set<std::string> names;
+        for (const auto& scene : scenes) names.insert(scene->name());
+        for (const SequenceFrames& sequence : sequences)
+            if (!names.insert(sequence.name()).second)
+                return report_error(fmt::format("--sequence: {}: a scene or sequence is already called '{}'",
+                                                sequence.sequence().dir.string(), sequence.name()));
         const bool any_hdr = std::any_of(sequences.begin(), sequences.end(),
                                          [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
         for (const CLI::Option* option : hdr_options)

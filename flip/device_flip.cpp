@@ -154,9 +154,7 @@ std::uint64_t DeviceFlip::bytes(std::uint32_t width, std::uint32_t height) {
     return n * (kInputBytes + kHorizontalBytes + kMapBytes) + 4ull * height;
 }
 
-Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, double pixels_per_degree,
-                                                       std::uint32_t width, std::uint32_t height) {
-    if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) return std::unexpected(ok.error());
+Result<void> DeviceFlip::check_limits(const Context& context, std::uint32_t width, std::uint32_t height) {
     if (width == 0 || height == 0) return fail(fmt::format("FLIP of an empty {}x{} image", width, height));
     const auto& limits = context.properties().limits;
     // The largest grid is the vertical pass's on a GPU (runs of 1): a row of workgroups per image row.
@@ -168,6 +166,20 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
         return fail(fmt::format("FLIP of {}x{}: the pair is {} texels, and {} takes at most {} in a texel buffer",
                                 width, height, 2ull * width * height, context.device_name(),
                                 limits.maxTexelBufferElements));
+    const std::uint64_t maps = std::uint64_t(width) * height * kMapBytes;
+    if (maps > limits.maxStorageBufferRange)
+        return fail(fmt::format("FLIP of {}x{}: its maps need a storage buffer of {} bytes, and {} allows at most {}",
+                                width, height, maps, context.device_name(), limits.maxStorageBufferRange));
+    if (width > limits.maxImageDimension2D || height > limits.maxImageDimension2D)
+        return fail(fmt::format("FLIP of {}x{}: {} allows at most {} pixels on an image's side", width, height,
+                                context.device_name(), limits.maxImageDimension2D));
+    return {};
+}
+
+Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, double pixels_per_degree,
+                                                       std::uint32_t width, std::uint32_t height) {
+    if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_limits(context, width, height); !ok) return std::unexpected(ok.error());
     std::unique_ptr<DeviceFlip> f(new DeviceFlip(context, pixels_per_degree, width, height));
     f->runs_ = {run_length(context, kHorizontal), run_length(context, kVertical)};
     const LdrFlip cpu(pixels_per_degree); // the kernels and constants, as the CPU code computes them

@@ -51,6 +51,10 @@ public:
 
     // Device memory a width x height pair takes.
     static std::uint64_t bytes(std::uint32_t width, std::uint32_t height);
+    // Whether `context` can hold a width x height pair: its dispatch, texel buffer, storage buffer
+    // and image limits, each named in the error. What create() checks first, without compiling or
+    // allocating anything, so a command can refuse a size before its work.
+    static Result<void> check_limits(const Context& context, std::uint32_t width, std::uint32_t height);
 
     // LDR-FLIP as LdrFlip computes it: linear RGB in [0, 1], both of the object's size; anything
     // else is an error naming the image, the pixel and the value, as LdrFlip's.

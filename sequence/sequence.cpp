@@ -238,6 +238,14 @@ Result<Sequence> read_sequence(const fs::path& dir) {
         }
         s.frames.push_back(std::move(frame));
     }
+    // The declared size against the first frame's header (no pixel read): a sequence.json that says
+    // 8192x8192 over 32x16 frames would otherwise size every buffer of a run for frames it never has.
+    const fs::path& first = s.frames.front().color;
+    auto size = read_image_size(first.string());
+    if (!size) return std::unexpected(size.error());
+    if (size->x != s.width || size->y != s.height)
+        return fail(fmt::format("{}: {}x{}, but {} says {}x{}", first.string(), size->x, size->y,
+                                (s.dir / "sequence.json").string(), s.width, s.height));
     return s;
 }
 
@@ -294,6 +302,7 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
         auto depth = read_data_image(f.depth.string(), 1);
         if (!depth) return std::unexpected(depth.error());
         if (auto ok = check_size(*depth, f.depth, s); !ok) return std::unexpected(ok.error());
+        if (auto ok = check_finite(*depth, f.depth, 1, "depth"); !ok) return std::unexpected(ok.error());
         out.depth = std::move(*depth);
     }
     if (!f.reference.empty()) {

@@ -8,8 +8,9 @@
 //      "frames": [{"color": "color/0000.exr", "motion": "motion/0000.exr", "jitter": [0.12, -0.31],
 //                  "depth": "depth/0000.exr", "reference": "reference/0000.exr", "camera_cut": false}]}
 //
-// read_sequence() reads and checks sequence.json and that every file it names is a regular file
-// inside the folder, and reads no pixel: a 400-frame 1920x1080 sequence costs its list of names.
+// read_sequence() reads and checks sequence.json, that every file it names is a regular file inside
+// the folder, and that the first frame's header gives the declared size, and reads no pixel: a
+// 400-frame 1920x1080 sequence costs its list of names.
 // load_frame() reads one frame's files when the resolve needs them, checks them against the
 // sequence (size, channels, finite values) and turns the motion into one convention; peak memory
 // is a frame's, whatever the frame count. Every error names the file (sequence.json with its line

@@ -1,5 +1,7 @@
 #include "taa_measure.h"
 
+#include "memory_budget.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -54,6 +56,37 @@ FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
         if (!maps) return std::unexpected(maps.error());
         return FlipFigure{maps->mean, maps->range.note};
     };
+}
+
+Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip) {
+    const std::uint32_t limit = context.properties().limits.maxImageDimension2D;
+    if (width > limit || height > limit)
+        return fail(fmt::format("{}x{} frames are larger than {} allows: at most {} pixels on a side", width, height,
+                                context.device_name(), limit));
+    if (device_flip)
+        if (auto ok = DeviceFlip::check_limits(context, width, height); !ok)
+            return fail(ok.error().message + "; --cpu-flip measures with the CPU's FLIP, which has no such limit");
+    // The resolve's pass and its four inputs, a frame's images, the last output and its checked copy;
+    // on lavapipe device memory is this process's memory.
+    const std::uint64_t resolve = rectify_pass_bytes(width, height) + 6 * image_bytes(width, height);
+    const std::uint64_t flip = device_flip ? DeviceFlip::bytes(width, height) : ldr_flip_bytes(width, height);
+    return check_memory(fmt::format("measuring {}x{} frames", width, height), resolve + flip);
+}
+
+Result<Sequence> read_resolvable_sequence(const std::filesystem::path& dir, std::uint32_t warmup,
+                                          const ResolveOptions& options) {
+    auto sequence = read_sequence(dir);
+    if (!sequence) return sequence;
+    if (warmup >= sequence->frames.size())
+        return fail(fmt::format("--sequence: {}: {} frames, and --warmup {} leaves none to measure", dir.string(),
+                                sequence->frames.size(), warmup));
+    if (options.dilate_motion)
+        for (std::size_t i = 0; i < sequence->frames.size(); ++i)
+            if (!sequence->starts_history(i) && sequence->frames[i].depth.empty())
+                return fail(fmt::format("--dilate-motion takes the motion of the nearest neighbor by depth, and "
+                                        "frames[{}] of {} has no \"depth\" file",
+                                        i, (sequence->dir / "sequence.json").string()));
+    return sequence;
 }
 
 namespace {

@@ -52,6 +52,18 @@ struct SequenceMeasurement {
     std::vector<std::string> notes;
 };
 
+// Whether `context` can resolve and measure frames of width x height: the resolve's images within
+// its limits and, with `device_flip`, FLIP's (DeviceFlip::check_limits), and both in memory. What a
+// command checks for every size it will measure before any work, so a size that cannot be measured
+// is refused in a second, not after minutes; the error says what to do instead.
+Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip);
+
+// read_sequence, and what the resolve needs of it checked before any frame is read: more frames
+// than `warmup`, and with --dilate-motion depth on every frame that has a history. Errors name the
+// folder (and frame) and the option.
+Result<Sequence> read_resolvable_sequence(const std::filesystem::path& dir, std::uint32_t warmup,
+                                          const ResolveOptions& options);
+
 // Called with each measured frame's index and output; an error stops the measurement.
 using OutputObserver = std::function<Result<void>(std::size_t index, const Image& output)>;
 
