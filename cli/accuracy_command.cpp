@@ -1,7 +1,5 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "accuracy_report.h"
 #include "accuracy_run.h"
 #include "context.h"
@@ -9,11 +7,13 @@
 #include "gnuplot.h"
 #include "input_space_option.h"
 #include "memory_budget.h"
+#include "number_option.h"
 #include "output_set.h"
 #include "progress.h"
 #include "run_metadata.h"
 #include "scratch_directory.h"
 #include "selection_options.h"
+#include "shown_text.h"
 #include "variant_catalog.h"
 
 #include <fmt/format.h>
@@ -146,7 +146,8 @@ Action add_accuracy_command(CLI::App& app) {
                                               {o->cost, static_cast<float>(o->gamma), o->volume_samples, drew}));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop accuracy: {} variants x {} pairs on {} ({}): {}\n", specs->size(), pairs.size(),
-                                 run_info.device, run_info.driver, (outputs->dir() / "report.md").string());
+                                 run_info.device, run_info.driver,
+                                 terminal_text((outputs->dir() / "report.md").string()));
         return 0;
     };
 }

@@ -1,14 +1,14 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "cost_bench.h"
 #include "cost_report.h"
 #include "gnuplot.h"
 #include "memory_budget.h"
+#include "number_option.h"
 #include "output_set.h"
 #include "run_metadata.h"
 #include "scratch_directory.h"
+#include "shown_text.h"
 #include "size_option.h"
 #include "variant_catalog.h"
 
@@ -138,7 +138,7 @@ Action add_bench_command(CLI::App& app) {
         outputs->add_table("cost", bench::cost_table(result->rows), run_info);
         outputs->add("report.md", bench::cost_report_markdown(*result, run_info, settings));
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
-        std::cout << fmt::format("wrote {} files to {} ({} variants on {})\n", outputs->size(), o->out,
+        std::cout << fmt::format("wrote {} files to {} ({} variants on {})\n", outputs->size(), terminal_text(o->out),
                                  options.variants.size(), run_info.device);
         return 0;
     };

@@ -13,6 +13,7 @@
 #include "magma.h"
 #include "memory_budget.h"
 #include "number_option.h"
+#include "shown_text.h"
 #include "statistics.h"
 #include "write_files.h"
 
@@ -262,7 +263,7 @@ Action add_flip_command(CLI::App& app) {
         if (files.empty()) return 0;
         if (auto ok = write_atomically(files); !ok) return report_error(ok.error().message);
         for (const std::string& path : {o->out, o->exposure_map})
-            if (!path.empty()) std::cout << fmt::format("wrote {}\n", path);
+            if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
         return 0;
     };
 }

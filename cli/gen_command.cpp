@@ -1,9 +1,9 @@
 #include "commands.h"
 
 #include "number_option.h"
-
 #include "progress.h"
 #include "selection_options.h"
+#include "shown_text.h"
 #include "spirv_cost.h"
 #include "variant_builder.h"
 #include "variant_files.h"
@@ -65,7 +65,7 @@ Action add_gen_command(CLI::App& app) {
         print_table(*built);
         double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::cout << fmt::format("\nwrote {} files for {} variants to {} in {:.2f} s\n", files.size(), built->size(),
-                                 options->out, seconds);
+                                 terminal_text(options->out), seconds);
         return 0;
     };
 }

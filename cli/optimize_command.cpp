@@ -23,6 +23,7 @@
 #include "scratch_directory.h"
 #include "sequence_ghosting.h"
 #include "set_cost.h"
+#include "shown_text.h"
 #include "variant_spec.h"
 #include "write_files.h"
 
@@ -497,7 +498,8 @@ int run(const Options& o, const Ranks& ranks) {
     if (!ranks.is_root()) return 0; // the same file on every rank: rank 0 writes it
     if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return report_error(ok.error().message);
 
-    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", o.out, result.axes.size(), fitted_objective, fitted_score);
+    std::cout << fmt::format("{}: {} axes, {} = {:.6g}\n", terminal_text(o.out), result.axes.size(), fitted_objective,
+                             fitted_score);
     if (o.sample) std::cout << sample_line << "\n";
     if (by_distance) std::cout << refined_line << "\n";
     if (!distance_measure.empty()) std::cout << fmt::format("{}: {:.6g}\n", distance_measure, sets[0].distance);

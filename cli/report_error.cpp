@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include "command_line.h"
+#include "shown_text.h"
 
 #include <iostream>
 #include <set>
@@ -8,7 +9,7 @@
 namespace kdop::cli {
 
 int report_error(const std::string& message) {
-    std::cerr << "kdop: " << message << (message.ends_with('\n') ? "" : "\n");
+    std::cerr << "kdop: " << terminal_text(message) << (message.ends_with('\n') ? "" : "\n");
     return 1;
 }
 
@@ -18,7 +19,8 @@ int usage_error(const std::string& message) {
 }
 
 void report_validation_messages(const Context& context) {
-    for (const std::string& message : context.validation_messages()) std::cerr << "validation: " << message << "\n";
+    for (const std::string& message : context.validation_messages())
+        std::cerr << "validation: " << terminal_text(message) << "\n";
 }
 
 void warn_fitted_space(std::span<const VariantSpec> specs, const ColorMap& used, std::string_view clipping) {
@@ -26,7 +28,7 @@ void warn_fitted_space(std::span<const VariantSpec> specs, const ColorMap& used,
     for (const VariantSpec& spec : specs)
         if (auto warning = fitted_space_mismatch(spec.set, used, clipping);
             warning && warned.insert(spec.set.name).second)
-            std::cerr << "warning: " << *warning << "\n";
+            std::cerr << "warning: " << terminal_text(*warning) << "\n";
 }
 
 } // namespace kdop::cli

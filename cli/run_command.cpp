@@ -1,14 +1,14 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "context.h"
 #include "image_io.h"
 #include "input_files.h"
 #include "input_space_option.h"
 #include "kernel.h"
 #include "memory_budget.h"
+#include "number_option.h"
 #include "rectify_pass.h"
+#include "shown_text.h"
 #include "statistics.h"
 #include "variant_catalog.h"
 #include "variant_option.h"
@@ -116,7 +116,7 @@ Action add_run_command(CLI::App& app) {
         if (!result) return report_error(result.error().message);
         if (auto ok = write_image(o->out, *result); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("{} on {}: {}x{} {} -> {}\n", variant->name, (*context)->device_name(), current->width,
-                                 current->height, to_string(*format), o->out);
+                                 current->height, to_string(*format), terminal_text(o->out));
         if (o->repeat > 1) {
             const double pixels = double(current->width) * current->height;
             const double wall = median(wall_ms), device = median(device_ms);

@@ -1,14 +1,14 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "command_line.h"
 #include "input_files.h"
 #include "input_space_option.h"
+#include "number_option.h"
 #include "output_set.h"
 #include "progress.h"
 #include "scene_options.h"
 #include "sequence_writer.h"
+#include "shown_text.h"
 #include "size_option.h"
 #include "taa_measure.h"
 #include "taa_scene.h"
@@ -102,7 +102,7 @@ Action add_scene_command(CLI::App& app) {
             progress.advance(fmt::format("{} files", files));
         }
         std::cout << fmt::format("kdop scene: {} sequences of {} frames at {}x{}: {}\n", sources.size(), o->frames,
-                                 size->first, size->second, outputs->dir().string());
+                                 size->first, size->second, terminal_text(outputs->dir().string()));
         return 0;
     };
 }

@@ -1,9 +1,8 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "context.h"
 #include "device_runner.h"
+#include "number_option.h"
 #include "output_set.h"
 #include "progress.h"
 #include "run_metadata.h"

@@ -1,7 +1,5 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "command_line.h"
 #include "device_flip.h"
 #include "flip.h"
@@ -11,6 +9,7 @@
 #include "input_files.h"
 #include "input_space_option.h"
 #include "magma.h"
+#include "number_option.h"
 #include "output_set.h"
 #include "progress.h"
 #include "resolve_option.h"
@@ -19,6 +18,7 @@
 #include "scratch_directory.h"
 #include "selection_options.h"
 #include "sequence.h"
+#include "shown_text.h"
 #include "size_option.h"
 #include "staged_images.h"
 #include "statistics.h"
@@ -320,7 +320,7 @@ Action add_taa_command(CLI::App& app) {
                     row(v, sequence.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased",
                         m->range);
                     for (const std::string& note : m->notes)
-                        if (warned.insert(note).second) std::cerr << "warning: " << note << "\n";
+                        if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
                     progress.advance(fmt::format("{} on {}", keys[v].name(), sequence.name()));
                 }
             }
@@ -351,7 +351,7 @@ Action add_taa_command(CLI::App& app) {
         if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
                                  scenes.size() + sequences.size(), run_info.device, run_info.driver,
-                                 (outputs->dir() / "report.md").string());
+                                 terminal_text((outputs->dir() / "report.md").string()));
         return 0;
     };
 }

@@ -1,9 +1,9 @@
 #include "commands.h"
 
-#include "number_option.h"
-
 #include "image_io.h"
 #include "memory_budget.h"
+#include "number_option.h"
+#include "shown_text.h"
 #include "test_textures.h"
 #include "write_files.h"
 
@@ -52,7 +52,7 @@ Action add_textures_command(CLI::App& app) {
         }
         if (auto ok = write_images(images); !ok) return report_error(ok.error().message);
         const std::size_t files = images.size();
-        std::cout << fmt::format("wrote {} images to {}\n", files, o->out);
+        std::cout << fmt::format("wrote {} images to {}\n", files, terminal_text(o->out));
         return 0;
     };
 }

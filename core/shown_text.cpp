@@ -17,4 +17,17 @@ std::string shown_text(std::string_view text, std::size_t limit) {
     return out;
 }
 
+std::string terminal_text(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && ch != '\n' && ch != '\t') || c == 0x7f)
+            out += fmt::format("\\x{:02x}", c);
+        else
+            out += ch;
+    }
+    return out;
+}
+
 } // namespace kdop

@@ -7,6 +7,7 @@
 
 #include "input_files.h"
 #include "interrupt.h"
+#include "shown_text.h"
 
 #include <CLI/CLI.hpp>
 
@@ -28,8 +29,9 @@ int run_command_line(CLI::App& app, const char* program, int argc, char** argv, 
     app.set_version_flag("--version", std::string(program) + " " + KDOP_VERSION);
     // Every message says whose it is, as compilers' do ("glslc: error: ..."), and is one line, as
     // kdop's own usage errors are (CLI11 would add "Run with --help for more information.").
-    app.failure_message(
-        [program](const CLI::App*, const CLI::Error& e) { return std::string(program) + ": " + e.what() + "\n"; });
+    app.failure_message([program](const CLI::App*, const CLI::Error& e) {
+        return std::string(program) + ": " + terminal_text(e.what()) + "\n";
+    });
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -42,7 +44,7 @@ int run_command_line(CLI::App& app, const char* program, int argc, char** argv, 
                 known = known || (argc > 1 && command->get_name() == argv[1]);
             }
         if (argc > 1 && argv[1][0] != '-' && !known && !commands.empty()) {
-            std::cerr << program << ": '" << argv[1] << "' is not a command; the commands: " << commands
+            std::cerr << program << ": '" << terminal_text(argv[1]) << "' is not a command; the commands: " << commands
                       << " (see --help)\n";
             return kUsageError;
         }
@@ -53,7 +55,7 @@ int run_command_line(CLI::App& app, const char* program, int argc, char** argv, 
     } catch (const std::bad_alloc&) {
         std::cerr << program << ": out of memory\n";
     } catch (const std::exception& e) {
-        std::cerr << program << ": " << e.what() << "\n";
+        std::cerr << program << ": " << terminal_text(e.what()) << "\n";
     }
     return 1;
 }

@@ -23,7 +23,7 @@ using namespace kdop;
 namespace {
 
 int report(const Error& error) {
-    std::cerr << "kdop-gen: " << error.message << (error.message.ends_with('\n') ? "" : "\n");
+    std::cerr << "kdop-gen: " << terminal_text(error.message) << (error.message.ends_with('\n') ? "" : "\n");
     return 1;
 }
 
@@ -50,11 +50,11 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
         int stale = 0;
         for (const OutputFile& f : files)
             if (read_file(f.path) != f.content) { // missing, unreadable or different
-                std::cerr << f.path.string() << ": stale or missing\n";
+                std::cerr << terminal_text(f.path.string()) << ": stale or missing\n";
                 ++stale;
             }
         for (const fs::path& p : extra) {
-            std::cerr << p.string() << ": no default variant generates this file\n";
+            std::cerr << terminal_text(p.string()) << ": no default variant generates this file\n";
             ++stale;
         }
         if (stale)

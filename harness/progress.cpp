@@ -1,5 +1,7 @@
 #include "progress.h"
 
+#include "shown_text.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -33,7 +35,7 @@ void Progress::advance(const std::string& item) {
                        : "";
     const int width = static_cast<int>(fmt::format("{}", total_).size());
     fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_, step_,
-               item, clock_text(elapsed), eta, terminal_ ? "" : "\n");
+               terminal_text(item), clock_text(elapsed), eta, terminal_ ? "" : "\n");
     std::fflush(stderr);
 }
 

@@ -56,17 +56,58 @@ std::optional<float> stored_gamma(const OIIO::ImageSpec& spec, InputSpace space)
     return std::nullopt;
 }
 
-// `what`: the channels the caller needs, for the error when there are fewer: "RGB" (3) or a count
+// Why the first three channels of `spec` are not color, or nullopt: they must be named R, G and B
+// (in any case, or <layer>.R, <layer>.G, <layer>.B of one layer), as OpenImageIO names them for
+// every format without names of its own and as EXR's reader puts them first. An EXR of Y, RY, BY
+// (luminance and chroma) or of other layers alone would otherwise be read as if it were RGB.
+std::optional<std::string> not_rgb(const OIIO::ImageSpec& spec) {
+    auto lower = [](std::string s) {
+        std::ranges::transform(s, s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        return s;
+    };
+    std::string layer;
+    bool rgb = true;
+    for (int c = 0; c < 3 && rgb; ++c) {
+        const std::string name = lower(std::string(spec.channel_name(c)));
+        const std::string wanted(1, "rgb"[c]);
+        const std::size_t dot = name.rfind('.');
+        const std::string prefix = dot == std::string::npos ? "" : name.substr(0, dot + 1);
+        rgb = name.substr(prefix.size()) == wanted && (c == 0 || prefix == layer);
+        layer = prefix;
+    }
+    if (rgb) return std::nullopt;
+    std::string names;
+    for (int c = 0; c < spec.nchannels && c < 8; ++c) names += (c ? ", " : "") + library_message(spec.channel_name(c));
+    if (spec.nchannels > 8) names += ", ...";
+    return fmt::format("its channels are {}; kdop reads color from channels named R, G and B (alpha and other "
+                       "layers may follow), and does not guess what others hold",
+                       names);
+}
+
+// `needed`: the channels the caller needs, for the error when there are fewer: RGB (3) or a count
 // of data channels.
-Result<Image> read_checked(const std::string& path, std::uint32_t max_side, InputSpace space, int needed = 3) {
+// Opens `file` (the /proc/self/fd path of an open descriptor where `name` is given) with the
+// reader that `name`'s extension (else `file`'s) picks.
+std::unique_ptr<OIIO::ImageInput> open_input(const std::string& file, const std::string& name,
+                                             const OIIO::ImageSpec* config) {
+    if (name.empty()) return OIIO::ImageInput::open(file, config);
+    auto in = OIIO::ImageInput::create(name);
+    OIIO::ImageSpec spec;
+    if (!in || !in->open(file, spec, config ? *config : OIIO::ImageSpec())) return nullptr;
+    return in;
+}
+
+Result<Image> read_checked(const std::string& file, std::uint32_t max_side, InputSpace space, int needed,
+                           const std::string& name) {
+    const std::string& path = name.empty() ? file : name; // what messages name
     // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
-    if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
-    note_input(path);
+    if (auto why = not_a_readable_file(file)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
+    note_input(file);
     // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
     // multiply it by alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
+    auto in = open_input(file, name, &config);
     if (!in) {
         const std::string reason = library_message(OIIO::geterror());
         return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
@@ -76,6 +117,8 @@ Result<Image> read_checked(const std::string& path, std::uint32_t max_side, Inpu
         return fail(needed == 3
                         ? fmt::format("{}: has {} channel(s); kdop needs RGB in the first three", path, spec.nchannels)
                         : fmt::format("{}: has {} channel(s); kdop needs {} here", path, spec.nchannels, needed));
+    if (needed == 3)
+        if (auto why = not_rgb(spec)) return fail(fmt::format("{}: {}", path, *why));
     if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
         return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
 
@@ -113,14 +156,14 @@ std::optional<InputSpace> parse_input_space(std::string_view text) {
     return std::nullopt;
 }
 
-Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputSpace space) {
+Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputSpace space, const std::string& name) {
     // Some of OpenImageIO's readers throw on a damaged file instead of reporting it (its BMP reader
     // lets std::length_error out of open() for an RLE image claiming billions of rows; found by
     // tests/fuzz/image_fuzzer.cpp), so that is a read error of this file too.
     try {
-        return read_checked(path, max_side, space);
+        return read_checked(path, max_side, space, 3, name);
     } catch (const std::exception& e) {
-        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
+        return fail(fmt::format("{}: cannot read image: {}", name.empty() ? path : name, library_message(e.what())));
     }
 }
 
@@ -141,11 +184,11 @@ Result<glm::uvec2> read_image_size(const std::string& path) {
     }
 }
 
-Result<Image> read_data_image(const std::string& path, int channels) {
+Result<Image> read_data_image(const std::string& path, int channels, const std::string& name) {
     try {
-        return read_checked(path, 0, InputSpace::linear, channels);
+        return read_checked(path, 0, InputSpace::linear, channels, name);
     } catch (const std::exception& e) {
-        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
+        return fail(fmt::format("{}: cannot read image: {}", name.empty() ? path : name, library_message(e.what())));
     }
 }
 

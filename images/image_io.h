@@ -35,15 +35,21 @@ std::optional<InputSpace> parse_input_space(std::string_view text);
 // The header is checked before any pixel is read or allocated: sides beyond `max_side` (a device's
 // maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory are refused,
 // so a small file claiming an enormous image is an error, not an allocation failure.
-Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0, InputSpace space = InputSpace::from_file);
+//
+// `name`, where given, is the file's own name and `path` the /proc/self/fd path of a descriptor
+// already open on it (sequence frames, opened so that no link is followed after the check, see
+// sequence/sequence.h): errors name `name`, and its extension picks the format.
+Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0, InputSpace space = InputSpace::from_file,
+                         const std::string& name = {});
 
 // The width and height in `path`'s header, no pixel read: what a caller planning the reads of many
 // frames (kdop optimize's sample shares) needs before it reads any of them.
 Result<glm::uvec2> read_image_size(const std::string& path);
 
 // An image of data, not color (motion vectors, depth): its values as stored, never decoded, from a
-// file with at least `channels` channels (1 to 4); the channels it lacks are 0 (alpha 1).
-Result<Image> read_data_image(const std::string& path, int channels);
+// file with at least `channels` channels (1 to 4); the channels it lacks are 0 (alpha 1). `name`
+// as for read_image.
+Result<Image> read_data_image(const std::string& path, int channels, const std::string& name = {});
 
 // read_image, refusing an image with a NaN or infinite R, G or B: the error names the file, the
 // first such pixel and its value, then `why` (what needs finite colors, and where to look instead).

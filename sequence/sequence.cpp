@@ -7,9 +7,15 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fcntl.h>
 #include <initializer_list>
 #include <string_view>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <utility>
 
 namespace kdop {
 namespace fs = std::filesystem;
@@ -269,8 +275,44 @@ Result<void> check_finite(const Image& image, const fs::path& file, int channels
     return {};
 }
 
+// A frame's file, open: read_sequence checked that it lies inside the folder, but the file may since
+// have been replaced by a link to ../secret.exr. So it is opened first (never blocking on a FIFO),
+// and what was opened, found through /proc/self/fd, must be a regular file inside the folder; the
+// image is then read through the descriptor, so no path is resolved again. A link that stays inside
+// is followed, as read_sequence follows it.
+class FrameFile {
+public:
+    static Result<FrameFile> open(const fs::path& file, const Sequence& s) {
+        FrameFile f;
+        f.fd_ = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+        if (f.fd_ < 0) return fail(fmt::format("{}: cannot open: {}", file.string(), std::strerror(errno)));
+        struct stat st {};
+        if (fstat(f.fd_, &st) != 0 || !S_ISREG(st.st_mode))
+            return fail(fmt::format("{}: is no longer a regular file", file.string()));
+        std::error_code ec;
+        const fs::path opened = fs::read_symlink(f.proc_path(), ec), folder = fs::canonical(s.dir, ec);
+        if (ec || std::mismatch(folder.begin(), folder.end(), opened.begin(), opened.end()).first != folder.end())
+            return fail(fmt::format("{}: now leads outside the sequence's folder {} (to {}); kdop reads only the "
+                                    "files inside it",
+                                    file.string(), folder.string(), opened.string()));
+        return f;
+    }
+    FrameFile(FrameFile&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+    FrameFile& operator=(FrameFile&&) = delete;
+    ~FrameFile() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    std::string proc_path() const { return fmt::format("/proc/self/fd/{}", fd_); }
+
+private:
+    FrameFile() = default;
+    int fd_ = -1;
+};
+
 Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace space, std::string_view what) {
-    auto image = read_image(file.string(), 0, space);
+    auto opened = FrameFile::open(file, s);
+    if (!opened) return std::unexpected(opened.error());
+    auto image = read_image(opened->proc_path(), 0, space, file.string());
     if (!image) return image;
     if (auto ok = check_size(*image, file, s); !ok) return std::unexpected(ok.error());
     if (auto ok = check_finite(*image, file, 3, what); !ok) return std::unexpected(ok.error());
@@ -290,7 +332,9 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
     if (!color) return std::unexpected(color.error());
     out.color = std::move(*color);
     if (!s.starts_history(index)) {
-        auto motion = read_data_image(f.motion.string(), 2);
+        auto opened = FrameFile::open(f.motion, s);
+        if (!opened) return std::unexpected(opened.error());
+        auto motion = read_data_image(opened->proc_path(), 2, f.motion.string());
         if (!motion) return std::unexpected(motion.error());
         if (auto ok = check_size(*motion, f.motion, s); !ok) return std::unexpected(ok.error());
         if (auto ok = check_finite(*motion, f.motion, 2, "motion"); !ok) return std::unexpected(ok.error());
@@ -299,7 +343,9 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
             out.motion.push_back(canonical_motion(glm::vec2(m), s.motion, s.width, s.height));
     }
     if (!f.depth.empty()) {
-        auto depth = read_data_image(f.depth.string(), 1);
+        auto opened = FrameFile::open(f.depth, s);
+        if (!opened) return std::unexpected(opened.error());
+        auto depth = read_data_image(opened->proc_path(), 1, f.depth.string());
         if (!depth) return std::unexpected(depth.error());
         if (auto ok = check_size(*depth, f.depth, s); !ok) return std::unexpected(ok.error());
         if (auto ok = check_finite(*depth, f.depth, 1, "depth"); !ok) return std::unexpected(ok.error());
