@@ -2,6 +2,8 @@
 
 #include <spirv/unified1/spirv.hpp>
 
+#include <map>
+
 namespace kdop {
 namespace {
 
@@ -44,6 +46,30 @@ std::uint64_t spirv_hash(std::span<const std::uint32_t> words) {
             hash *= 0x100000001b3ull;
         }
     return hash;
+}
+
+std::vector<std::uint32_t> with_literal_local_size(std::vector<std::uint32_t> words) {
+    std::map<std::uint32_t, std::uint32_t> constants; // OpConstant's result id -> its 32-bit value
+    std::vector<std::size_t> modes;                   // word offsets of OpExecutionModeId LocalSizeId
+    for (std::size_t i = kHeaderWords; i < words.size() && words[0] == spv::MagicNumber;) {
+        const std::uint32_t length = words[i] >> spv::WordCountShift, opcode = words[i] & spv::OpCodeMask;
+        if (length == 0 || i + length > words.size()) return words; // not a module; validation says so
+        if (opcode == spv::OpConstant && length == 4) constants[words[i + 2]] = words[i + 3];
+        if (opcode == spv::OpExecutionModeId && length == 6 && words[i + 2] == spv::ExecutionModeLocalSizeId)
+            modes.push_back(i);
+        i += length;
+    }
+    for (std::size_t i : modes) {
+        const auto x = constants.find(words[i + 3]), y = constants.find(words[i + 4]), z = constants.find(words[i + 5]);
+        if (x == constants.end() || y == constants.end() || z == constants.end()) continue;
+        // The same length: OpExecutionMode <entry> LocalSize x y z.
+        words[i] = (6u << spv::WordCountShift) | spv::OpExecutionMode;
+        words[i + 2] = spv::ExecutionModeLocalSize;
+        words[i + 3] = x->second;
+        words[i + 4] = y->second;
+        words[i + 5] = z->second;
+    }
+    return words;
 }
 
 std::vector<std::uint32_t> without_line_info(std::span<const std::uint32_t> words) {

@@ -37,6 +37,12 @@ std::uint64_t spirv_hash(std::span<const std::uint32_t> words);
 // take names with the lines, hence this walk.
 std::vector<std::uint32_t> without_line_info(std::span<const std::uint32_t> words);
 
+// The module with a workgroup size of constants written as literals: glslang writes it for SPIR-V
+// 1.6 (TARGET_ENV vulkan1.3) as OpExecutionModeId LocalSizeId, which needs the maintenance4 feature
+// (VUID-RuntimeSpirv-LocalSizeId-06434) that a Vulkan 1.3 device need not have enabled; glslc
+// writes OpExecutionMode LocalSize, as this does. A size of specialization constants stays an id.
+std::vector<std::uint32_t> with_literal_local_size(std::vector<std::uint32_t> words);
+
 // The GLSL line of the OpLine in effect at the instruction with this ordinal, or 0.
 int glsl_line_of_instruction(std::span<const std::uint32_t> words, std::size_t ordinal);
 

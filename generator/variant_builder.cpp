@@ -34,6 +34,7 @@ Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_
                           Result<std::vector<std::uint32_t>> compiled, SpirvOptimization optimization) {
     if (!compiled) return std::unexpected(compiled.error());
     if (auto ok = validate_spirv(*compiled, source, file, "glslang output", env); !ok) return ok;
+    *compiled = with_literal_local_size(std::move(*compiled));
 
     Result<std::vector<std::uint32_t>> optimized = std::move(*compiled);
     if (optimization == SpirvOptimization::performance) {

@@ -63,7 +63,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "kdop";
-    app.apiVersion = VK_API_VERSION_1_1;
+    app.apiVersion = options.api_version;
     VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     instance_info.pApplicationInfo = &app;
 
@@ -86,7 +86,18 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
         instance_info.ppEnabledExtensionNames = &extension;
         instance_info.pNext = &messenger_info; // also reports problems in vkCreateInstance itself
     }
-    KDOP_VK_TRY(vkCreateInstance(&instance_info, nullptr, &c->instance_));
+    // What a user without a driver reads, instead of a bare VK_ERROR_INCOMPATIBLE_DRIVER: what is
+    // missing, what to do, and what works without it.
+    if (const VkResult created = vkCreateInstance(&instance_info, nullptr, &c->instance_); created != VK_SUCCESS) {
+        const char* files =
+            std::getenv("VK_DRIVER_FILES") ? std::getenv("VK_DRIVER_FILES") : std::getenv("VK_ICD_FILENAMES");
+        return fail(fmt::format(
+            "no Vulkan driver could be loaded (vkCreateInstance: {}). kdop runs on Mesa's lavapipe by default: install "
+            "it (Debian: apt-get install mesa-vulkan-drivers), or name another installed driver's manifest in "
+            "VK_DRIVER_FILES{}. Without a device, kdop list, gen, show, textures, flip --cpu, optimize (without "
+            "--target-ghosting and --lavapipe-cost) and scene (of the 2-D scenes) still work, and so does kdop-gen",
+            vk_result_text(created), files ? fmt::format(" (now: {})", files) : std::string()));
+    }
     if (options.validation) {
         auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(c->instance_, "vkCreateDebugUtilsMessengerEXT"));
@@ -115,6 +126,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
             c->device_name_ = p.deviceName;
         }
     }
+    if (c->physical_ && c->properties_.apiVersion < options.api_version)
+        return fail(fmt::format("{} supports Vulkan {}.{}, and Vulkan {}.{} was asked for", c->device_name_,
+                                VK_API_VERSION_MAJOR(c->properties_.apiVersion),
+                                VK_API_VERSION_MINOR(c->properties_.apiVersion),
+                                VK_API_VERSION_MAJOR(options.api_version), VK_API_VERSION_MINOR(options.api_version)));
     if (!c->physical_) {
         std::string available = names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
         return fail(

@@ -22,6 +22,9 @@ namespace kdop {
 struct ContextOptions {
     std::string device;      // substring of the device name; empty: KDOP_DEVICE, then the first CPU device
     bool validation = false; // enable VK_LAYER_KHRONOS_validation
+    // The Vulkan version the instance is created for, which the device must support: 1.1 runs every
+    // variant kdop builds by default; 1.3 runs the SPIR-V 1.6 of TARGET_ENV vulkan1.3.
+    std::uint32_t api_version = VK_API_VERSION_1_1;
 };
 
 class Context {

@@ -1,6 +1,10 @@
 // --target-env: a variant built for each Vulkan version declares that version's SPIR-V in its header
 // and validates for that environment (checked with SPIRV-Tools directly, not the generator's
 // checks), from GLSL and from HLSL; the default is Vulkan 1.0, byte for byte what is embedded.
+#include "context.h"
+#include "kernel.h"
+#include "rectify_pass.h"
+#include "runnable_variant.h"
 #include "target_env.h"
 #include "variant_builder.h"
 
@@ -68,6 +72,47 @@ TEST(TargetEnv, EachEnvironmentsModuleDeclaresItsVersionAndValidatesForIt) {
                     EXPECT_FALSE(validates(built->spirv, SPV_ENV_VULKAN_1_0, messages));
                 }
             }
+}
+
+std::string disassembled(const std::vector<std::uint32_t>& words) {
+    spvtools::SpirvTools tools(SPV_ENV_UNIVERSAL_1_6);
+    std::string text;
+    EXPECT_TRUE(tools.Disassemble(words, &text));
+    return text;
+}
+
+// glslang writes SPIR-V 1.6's workgroup size as OpExecutionModeId LocalSizeId, which needs the
+// maintenance4 feature; kdop writes the literals, as glslc does.
+TEST(TargetEnv, AVulkan13ModuleWritesItsWorkgroupSizeAsLiterals) {
+    for (SourceLanguage language : {SourceLanguage::glsl, SourceLanguage::hlsl}) {
+        auto built = build_variant(spec_for("dop32-clip-n9", TargetEnv::vulkan1_3), language);
+        ASSERT_TRUE(built) << built.error().message;
+        const std::string text = disassembled(built->spirv);
+        EXPECT_EQ(text.find("LocalSizeId"), std::string::npos) << text.substr(0, 600);
+        EXPECT_NE(text.find("LocalSize 8 8 1"), std::string::npos) << text.substr(0, 600);
+    }
+}
+
+// ... and such a module runs on a Vulkan 1.3 device with its default features, under the validation
+// layer, without VUID-RuntimeSpirv-LocalSizeId-06434.
+TEST(TargetEnvGpu, AVulkan13ModuleRunsWithDefaultFeatures) {
+    auto context = Context::create({"", true, VK_API_VERSION_1_3});
+    ASSERT_TRUE(context) << context.error().message;
+    auto built = build_variant(spec_for("dop32-clip-n9", TargetEnv::vulkan1_3));
+    ASSERT_TRUE(built) << built.error().message;
+    const RunnableVariant variant(std::move(*built));
+    auto kernel = Kernel::create(**context, variant.variant());
+    ASSERT_TRUE(kernel) << kernel.error().message;
+    auto pass = RectifyPass::create(**context, 16, 8, TextureFormat::rgba32f);
+    ASSERT_TRUE(pass) << pass.error().message;
+    const Image current(16, 8, {0.5f, 0.25f, 0.125f, 1}), history(16, 8, {1, 1, 1, 1});
+    ASSERT_TRUE((*pass)->upload(current, history));
+    ASSERT_TRUE((*pass)->dispatch(**kernel, 1.0f));
+    auto out = (*pass)->download();
+    ASSERT_TRUE(out) << out.error().message;
+    for (int c = 0; c < 3; ++c) // a flat neighborhood clips to its color, within the hardened padding
+        EXPECT_NEAR(out->at(3, 4)[c], current.at(3, 4)[c], 1e-5);
+    EXPECT_TRUE((*context)->validation_messages().empty()) << (*context)->validation_messages().front();
 }
 
 TEST(TargetEnv, TheDefaultIsVulkan10AndWhatIsEmbedded) {
