@@ -349,7 +349,19 @@ std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
         out += fmt::format("- {} and {}: dop16-grass is the tighter on {}; dop16-asphalt on {}.\n", grass.name(),
                            asphalt.name(), list(grass_wins), list(asphalt_wins));
     }
-    return out.empty() ? "Both scene-optimized 16-DOPs were not measured.\n" : out;
+    // Said of what was measured: one of the two alone, or neither.
+    if (!out.empty()) return out;
+    bool grass = false, asphalt = false;
+    for (const TradeRow& row : trade) {
+        grass = grass || row.key.set == "dop16-grass";
+        asphalt = asphalt || row.key.set == "dop16-asphalt";
+    }
+    if (grass != asphalt)
+        return fmt::format("Only {} was measured; the comparison needs dop16-grass and dop16-asphalt in the same "
+                           "modes and neighborhoods.\n",
+                           grass ? "dop16-grass" : "dop16-asphalt");
+    return grass ? "dop16-grass and dop16-asphalt were measured in no common mode and neighborhood.\n"
+                 : "Neither scene-optimized 16-DOP was measured.\n";
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "output_set.h"
 #include "run_metadata.h"
 #include "scratch_directory.h"
+#include "selection_options.h"
 #include "shown_text.h"
 #include "size_option.h"
 #include "variant_catalog.h"
@@ -39,9 +40,11 @@ Action add_bench_command(CLI::App& app) {
                  "interleaved timings, a size sweep and callgrind instruction counts; writes cost.csv, cost.json, "
                  "report.md and charts");
     bench->add_option("--out", o->out, "Output directory (created if missing)")->required();
-    bench->add_option("--sets", o->sets,
-                      "Axis sets to measure: built-in names or .axes files [default: every built-in set]; with "
-                      "--variants, the files whose sets they name");
+    bench
+        ->add_option("--sets", o->sets,
+                     "Axis sets to measure: built-in names or .axes files [default: every built-in set]; with "
+                     "--variants, the files whose sets they name")
+        ->check(SelectionOptions::axis_set_name());
     bench->add_option("--variants", o->variants,
                       "Clip variants to measure by name (e.g. dop32-clip-n9, my-set-varclip-n5); their loop forms and "
                       "paper twins come along [default: every clip of --sets]");
@@ -95,13 +98,13 @@ Action add_bench_command(CLI::App& app) {
             options.variants.push_back(*key);
         }
         auto size = size_option("--size", o->size);
-        if (!size) return report_error(size.error().message);
+        if (!size) return usage_error(size.error().message);
         options.timing_size = *size;
         options.rounds = o->repeat;
         if (!o->no_sweep)
             for (const std::string& text : o->sweep_sizes) {
                 auto s = size_option("--sweep-sizes", text);
-                if (!s) return report_error(s.error().message);
+                if (!s) return usage_error(s.error().message);
                 options.sweep_sizes.push_back(*s);
             }
         options.sweep_rounds = o->sweep_repeat;

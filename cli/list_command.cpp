@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include "manifest.h"
+#include "selection_options.h"
 #include "variant_spec.h"
 
 #include <iostream>
@@ -25,6 +26,7 @@ Action add_list_command(CLI::App& app) {
     list->add_option("--sets", o->sets,
                      "Only the variants of these axis sets: built-in names or your files (with --all, their loop "
                      "forms too)")
+        ->check(SelectionOptions::axis_set_name())
         ->excludes(manifest);
     return [o] {
         if (!o->manifest.empty()) {

@@ -88,18 +88,24 @@ Action add_scene_command(CLI::App& app) {
                 sources.push_back(s->frames(s->name(), o->frames, o->animate != "off", o->jitter != "off"));
             }
         }
-        std::size_t files = 0;
+        std::vector<OutputWriter> writers;
         for (const auto& source : sources) {
             outputs->add(source->name() + "/sequence.json", sequence_json(*source));
-            auto writers = sequence_frame_writers(outputs->dir() / source->name(), source);
-            files += writers.size();
-            outputs->add(std::move(writers));
+            for (OutputWriter& w : sequence_frame_writers(outputs->dir() / source->name(), source))
+                writers.push_back(std::move(w));
         }
         {
-            // The frames are drawn as they are written; the progress line follows the writes.
-            Progress progress(fmt::format("Writing {} sequences,", sources.size()), 1);
+            // The frames are drawn as they are written; the progress line follows the writes, a file each.
+            Progress progress(fmt::format("Drawing and writing {} sequences:", sources.size()), writers.size());
+            for (OutputWriter& w : writers)
+                w.write = [&progress, inner = std::move(w.write),
+                           name = w.path.lexically_relative(outputs->dir()).string()](const std::filesystem::path& temporary) {
+                    auto written = inner(temporary);
+                    if (written) progress.advance(name);
+                    return written;
+                };
+            outputs->add(std::move(writers));
             if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
-            progress.advance(fmt::format("{} files", files));
         }
         std::cout << fmt::format("kdop scene: {} sequences of {} frames at {}x{}: {}\n", sources.size(), o->frames,
                                  size->first, size->second, terminal_text(outputs->dir().string()));

@@ -222,6 +222,13 @@ function(kdop_add_variants target)
   set(depfile_arguments)
   if(ARG_SHADERS)
     set(shader_paths)
+    foreach(shader IN LISTS ARG_SHADERS ARG_SHADER_INCLUDE_DIRS)
+      # CMake writes the depfile it hands Ninja (cmake -E cmake_transform_depfile) without escaping
+      # these, so Ninja would read another path and regenerate at every build.
+      if(shader MATCHES "[$#\"]" OR shader MATCHES "\n")
+        message(FATAL_ERROR "kdop_add_variants(${target}): '${shader}' holds '$', '#', a quote or a line break, which CMake's depfile for Ninja cannot carry (generation would rerun at every build); rename it")
+      endif()
+    endforeach()
     foreach(shader IN LISTS ARG_SHADERS)
       get_filename_component(path "${shader}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
       list(APPEND shader_paths "${path}")

@@ -144,7 +144,11 @@ int main(int argc, char** argv) {
             shader_reads.insert(shader_reads.end(), shader->read_files.begin(), shader->read_files.end());
             built->push_back(std::move(shader->built));
         }
-        if (!depfile.empty()) files.push_back({depfile, depfile_rule(header, shader_reads)});
+        if (!depfile.empty()) {
+            auto rule = depfile_rule(header, shader_reads);
+            if (!rule) return report(rule.error());
+            files.push_back({depfile, *rule});
+        }
 
         auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
         files.push_back({header, sources.header});

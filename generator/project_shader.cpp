@@ -2,6 +2,7 @@
 
 #include "glsl_compiler.h"
 #include "read_file.h"
+#include "shown_text.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -107,7 +108,13 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     return out;
 }
 
-std::string depfile_rule(const fs::path& target, std::span<const fs::path> dependencies) {
+Result<std::string> depfile_rule(const fs::path& target, std::span<const fs::path> dependencies) {
+    std::vector<fs::path> paths(dependencies.begin(), dependencies.end());
+    paths.push_back(target);
+    for (const fs::path& p : paths)
+        if (p.string().find_first_of("\n\r") != std::string::npos)
+            return fail(fmt::format("{}: a line break in a file's path cannot be written in a depfile; rename it",
+                                    shown_text(p.string())));
     auto escaped = [](const fs::path& p) {
         std::string out;
         for (char c : p.string()) {

@@ -28,7 +28,9 @@ Result<ProjectShader> build_project_shader(const std::filesystem::path& file, st
                                            std::span<const std::filesystem::path> include_dirs,
                                            TargetEnv env = TargetEnv::vulkan1_0, bool strip_names = false);
 
-// A Makefile rule "<target>: <dependencies>" (spaces escaped), the depfile format CMake and Ninja read.
-std::string depfile_rule(const std::filesystem::path& target, std::span<const std::filesystem::path> dependencies);
+// A Makefile rule "<target>: <dependencies>" (spaces, '#', '\\' and '$' escaped), the depfile format
+// CMake and Ninja read. A path with a line break, which the format cannot hold, is refused.
+Result<std::string> depfile_rule(const std::filesystem::path& target,
+                                 std::span<const std::filesystem::path> dependencies);
 
 } // namespace kdop

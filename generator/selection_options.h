@@ -5,10 +5,12 @@
 
 #include "builtin_sets.h"
 #include "manifest.h"
+#include "shown_text.h"
 #include "variant_spec.h"
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -22,16 +24,22 @@ struct SelectionOptions {
     bool strip_names = false;
 
     // `with_manifest`: also --manifest FILE, which excludes the options that select by cross product.
-    void add_to(CLI::App& app, bool with_manifest = false) {
+    // `neighborhoods_default`: what the command selects without --neighborhoods, for its help.
+    void add_to(CLI::App& app, bool with_manifest = false, const std::string& neighborhoods_default = "both") {
         std::vector<CLI::Option*> cross_product{
             app.add_option("--sets", sets,
                            "Axis sets: built-in names (" + builtin_set_list() +
-                               ") or paths to .axes files [default: every built-in set]"),
-            app.add_option("--modes", modes, "clip and/or varclip [default: both]"),
-            app.add_option("--neighborhoods", neighborhoods, "n9 (3x3) and/or n5 (plus) [default: both]"),
+                               ") or paths to .axes files [default: every built-in set]")
+                ->check(axis_set_name()),
+            app.add_option("--modes", modes, "clip and/or varclip [default: both]")
+                ->check(choice("mode", "clip or varclip", parse_mode)),
+            app.add_option("--neighborhoods", neighborhoods,
+                           "n9 (3x3) and/or n5 (plus) [default: " + neighborhoods_default + "]")
+                ->check(choice("neighborhood", "n9 or n5", parse_neighborhood)),
             app.add_option(
-                "--forms", forms,
-                "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]"),
+                   "--forms", forms,
+                   "unrolled and/or loop (the supplement's loop form, named <variant>-loop) [default: unrolled]")
+                ->check(choice("form", "unrolled or loop", parse_form)),
             app.add_flag("--baselines", baselines, "Also the cost baselines gather-n9, gather-n5 and copy")};
         app.add_option("--projection", projection,
                        "How unrolled projections are written: fold-dot, multiply-add or full-dot")
@@ -57,6 +65,31 @@ struct SelectionOptions {
                                "lines add axis files; see the README)");
             for (CLI::Option* other : cross_product) option->excludes(other);
         }
+    }
+
+    // A --sets entry: a built-in set's name or a file that exists (what it holds is the file's to
+    // say, when it is read), so a mistyped name is a wrong command line, exit 2.
+    static CLI::Validator axis_set_name() {
+        return CLI::Validator(
+            [](std::string& text) -> std::string {
+                std::error_code ec;
+                if (is_builtin_set(text) || std::filesystem::exists(text, ec)) return {};
+                return "'" + shown_text(text, 80) + "' is not a built-in axis set (" + builtin_set_list() +
+                       ") nor a file";
+            },
+            "SET");
+    }
+
+    // A value `parse` takes, refused in select_variants' words: "unknown mode 'clamp' (expected clip
+    // or varclip)".
+    template <class T>
+    static CLI::Validator choice(const char* what, const char* expected, std::optional<T> (*parse)(std::string_view)) {
+        return CLI::Validator(
+            [=](std::string& text) -> std::string {
+                if (parse(text)) return {};
+                return std::string("unknown ") + what + " '" + shown_text(text, 80) + "' (expected " + expected + ")";
+            },
+            expected);
     }
 
     // --projection and --extent.

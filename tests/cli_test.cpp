@@ -50,7 +50,7 @@ TEST(Cli, ListTakesTheUsersSets) {
     EXPECT_EQ(lines(all.out).size(), 8u);
     EXPECT_NE(all.out.find("tiny-clip-n9-loop\n"), std::string::npos) << all.out;
     auto missing = run(kdop("list --sets nowhere.axes"));
-    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_EQ(missing.exit_code, 2) << "a name that is neither a set nor a file is a wrong command line";
     EXPECT_NE(missing.err.find("nowhere.axes"), std::string::npos) << missing.err;
 }
 
