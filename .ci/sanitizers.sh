@@ -35,7 +35,8 @@ ctest --test-dir build-tsan -R '^(SpirvBuild|Reference|IdealClip|IdealExits|Volu
 echo "== fuzzing"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-16 -DKDOP_FUZZ=ON \
       -DKDOP_BUILD_TESTS=OFF
-cmake --build build-fuzz --target kdop_axis_set_fuzzer kdop_manifest_fuzzer kdop_sequence_fuzzer kdop_image_fuzzer
+cmake --build build-fuzz --target kdop_axis_set_fuzzer kdop_manifest_fuzzer kdop_sequence_fuzzer kdop_image_fuzzer \
+      kdop_hdr_fuzzer
 # Reports name functions and lines.
 export ASAN_SYMBOLIZER_PATH=/usr/bin/llvm-symbolizer-16
 scratch=$(mktemp -d)
@@ -62,6 +63,8 @@ fuzz() {
 fuzz axis_set 200000
 fuzz manifest 200000
 fuzz sequence 100000
+# Two 4x3 HDR images of any float bits, a color map and an exposure: about 1 ms an input.
+fuzz hdr 20000
 # Image loading leaks inside Debian's libraries (see the suppressions), which have no frame
 # pointers: LeakSanitizer walks every frame at each allocation to see whose it is (half the speed).
 export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"

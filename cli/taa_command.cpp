@@ -130,7 +130,8 @@ Action add_taa_command(CLI::App& app) {
                     "Frames measured in kdop's scenes (a sequence: all after the warmup) [default: 100]")
         ->check(whole_number(1, 100000));
     taa->add_option("--ppd", o->ppd,
-                    "FLIP's pixels per degree [default: 0.7 m from a 0.7 m wide 3840-pixel display, about 67]");
+                    "FLIP's pixels per degree [default: 0.7 m from a 0.7 m wide 3840-pixel display, about 67]")
+        ->check(finite_number(kMinPixelsPerDegree, kMaxPixelsPerDegree));
     taa->add_option("--timing-rounds", o->timing_rounds, "Interleaved dispatches per variant for ms [default: 15]")
         ->check(whole_number(1, 10000));
     taa->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]")

@@ -36,6 +36,7 @@
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/types.h>
+#include <thread>
 
 namespace kdop {
 namespace {
@@ -347,6 +348,250 @@ TEST(SequenceChecks, ColorComesOnlyFromChannelsNamedRgb) {
     EXPECT_TRUE(read_image(write("layer.exr", {"diffuse.R", "diffuse.G", "diffuse.B"})));
     EXPECT_FALSE(read_image(write("mixed.exr", {"a.R", "b.G", "c.B"})));
     EXPECT_TRUE(read_data_image(write("motion.exr", {"X", "Y"}), 2)) << "data is not color";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Commands
+
+// A color that --color-map gamma:10 takes beyond float (60000^10) is refused naming the frame, the
+// pixel and the value, by kdop taa (which turned the block black) and kdop optimize (which aborted
+// inside GLPK), and so is 1e20 under gamma:2.
+TEST(CliReliability, AColorMappedBeyondFloatIsRefusedNamingIt) {
+    test::TempDir dir;
+    for (auto [value, map] : {std::pair{60000.0f, "gamma:10"}, std::pair{1e20f, "gamma:2"}}) {
+        TestSequence s{dir / fmt::format("hdr-{}", map[6])};
+        s.hdr = true;
+        s.color = [&, value](int n) {
+            Image image(s.w, s.h, {0.5f, 0.25f, 0.125f, 1});
+            if (n == 2) image.at(5, 3) = {value, 1, 1, 1};
+            return image;
+        };
+        s.write(4);
+        const std::string frame = (s.dir / "color" / "0002.exr").string();
+        const std::string expected =
+            fmt::format("pixel (5, 3) has R {}, which --color-map {} takes to inf", value, map);
+        auto taa = test::run(kdop("taa --sequence " + s.dir.string() +
+                                  " --warmup 1 --sets aabb --modes clip "
+                                  "--timing-rounds 1 --no-charts --color-map " +
+                                  map + " --out " + (dir / "taa").string()));
+        EXPECT_EQ(taa.exit_code, 1) << taa.err;
+        EXPECT_NE(taa.err.find(frame), std::string::npos) << taa.err;
+        EXPECT_NE(taa.err.find(expected), std::string::npos) << taa.err;
+        auto fit = test::run(kdop("optimize --sequence " + s.dir.string() +
+                                  " --axes 3 --starts 1 --iterations 1 "
+                                  "--accuracy-samples 0 --color-map " +
+                                  map + " --out " + (dir / "fit.axes").string()));
+        EXPECT_EQ(fit.exit_code, 1) << fit.err;
+        EXPECT_NE(fit.err.find(frame + " pixel"), std::string::npos) << fit.err;
+        EXPECT_NE(fit.err.find(expected), std::string::npos) << fit.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "taa"));
+    EXPECT_FALSE(fs::exists(dir / "fit.axes"));
+}
+
+// An all-black frame no longer stops an HDR run: its HDR-FLIP range is defined (the test image's,
+// or exposure 0 for a black pair) and the user is told once, naming the frame; a frame of 1e-40,
+// which no exposure float can make visible, is refused naming the frame.
+TEST(CliReliability, HdrFramesWithoutAnExposureRangeAreMeasuredOrNamed) {
+    test::TempDir dir;
+    TestSequence s{dir / "dark"};
+    s.hdr = true;
+    s.color = [&](int n) { return Image(s.w, s.h, n == 3 ? glm::vec4(0, 0, 0, 1) : glm::vec4(4, 2, 1, 1)); };
+    s.write(5);
+    auto run = test::run(kdop("taa --sequence " + s.dir.string() +
+                              " --warmup 1 --sets aabb --modes clip "
+                              "--timing-rounds 1 --no-charts --out " +
+                              (dir / "taa").string()));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(
+        run.err.find("warning: " + (s.dir / "color" / "0003.exr").string() + " (frame 3): the reference is black"),
+        std::string::npos)
+        << run.err;
+    TestSequence faint{dir / "faint"};
+    faint.hdr = true;
+    faint.color = [&](int n) {
+        return Image(s.w, s.h, n == 2 ? glm::vec4(1e-40f, 1e-40f, 1e-40f, 1) : glm::vec4(4, 2, 1, 1));
+    };
+    faint.write(4);
+    auto refused = test::run(kdop("taa --sequence " + faint.dir.string() +
+                                  " --warmup 1 --sets aabb --modes clip "
+                                  "--timing-rounds 1 --no-charts --out " +
+                                  (dir / "faint-taa").string()));
+    EXPECT_EQ(refused.exit_code, 1) << refused.err;
+    EXPECT_NE(refused.err.find((faint.dir / "color" / "0002.exr").string() + " (frame 2): ghosting"), std::string::npos)
+        << refused.err;
+    EXPECT_NE(refused.err.find("beyond the 126 that float can scale by"), std::string::npos) << refused.err;
+}
+
+// What a run needs is checked before any frame is made or read: the size a sequence declares, the
+// device's limits, depth under --dilate-motion.
+TEST(CliReliability, LimitsAreCheckedBeforeTheWork) {
+    test::TempDir dir;
+    TestSequence s{dir / "big"};
+    s.declared = std::pair{8192, 8192};
+    s.write(3);
+    const std::string taa =
+        " --warmup 1 --sets aabb --modes clip --timing-rounds 1 --no-charts --out " + (dir / "taa").string();
+    auto declared = test::run(kdop("taa --sequence " + s.dir.string() + taa));
+    EXPECT_EQ(declared.exit_code, 1);
+    EXPECT_NE(declared.err.find("16x8, but " + (s.dir / "sequence.json").string() + " says 8192x8192"),
+              std::string::npos)
+        << declared.err;
+    // FLIP's maps at 8192x8192 exceed lavapipe's storage buffers (128 MiB); the CPU's FLIP is named.
+    auto size = test::run(kdop("taa --scenes grass --size 8192x8192" + taa));
+    EXPECT_EQ(size.exit_code, 2);
+    EXPECT_NE(size.err.find("--size 8192x8192: "), std::string::npos) << size.err;
+    EXPECT_NE(size.err.find("--cpu-flip"), std::string::npos) << size.err;
+    s.declared.reset();
+    s.write(3);
+    auto depth = test::run(kdop("taa --sequence " + s.dir.string() + " --dilate-motion" + taa));
+    EXPECT_EQ(depth.exit_code, 1);
+    EXPECT_NE(depth.err.find("frames[1] of " + (s.dir / "sequence.json").string() + " has no \"depth\" file"),
+              std::string::npos)
+        << depth.err;
+    for (const auto* r : {&declared, &size, &depth})
+        EXPECT_EQ(r->err.find("TAA of"), std::string::npos) << "no work began: " << r->err;
+    EXPECT_FALSE(fs::exists(dir / "taa"));
+}
+
+// A file name with terminal escapes or a NUL-like byte is shown escaped in every message.
+TEST(CliReliability, ControlBytesInNamesAreShownEscaped) {
+    test::TempDir dir;
+    TestSequence s{dir / "s"};
+    s.write(2);
+    const std::string red = "\x1b[31mRED\x1b[0m.exr";
+    fs::rename(s.dir / "color" / "0001.exr", s.dir / "color" / red);
+    std::string json = test::read_file(s.dir / "sequence.json");
+    json.replace(json.find("color/0001.exr"), 14, "color/\\u001b[31mRED\\u001b[0m.exr");
+    test::write_file(s.dir / "sequence.json", json);
+    fs::remove(s.dir / "color" / red);
+    fs::create_directory(s.dir / "color" / red); // a folder where the frame should be
+    auto r =
+        test::run(kdop("taa --sequence " + s.dir.string() + " --warmup 1 --sets aabb --out " + (dir / "taa").string()));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << "raw escape in: " << shown_text(r.err, 400);
+    EXPECT_NE(r.err.find("\\x1b[31mRED"), std::string::npos) << shown_text(r.err, 400);
+}
+
+// What README and the reports said that was not so: the accuracy report on one scene-optimized
+// 16-DOP; kdop scene's progress, a line per file rather than silence until the end.
+TEST(CliReliability, ReportsAndProgressSayWhatHappened) {
+    test::TempDir dir;
+    auto accuracy = test::run(kdop("accuracy --sets dop16-grass --modes clip --neighborhoods n5 --size 16 "
+                                   "--volume-samples 0 --no-charts --out " +
+                                   (dir / "a").string()));
+    ASSERT_EQ(accuracy.exit_code, 0) << accuracy.err;
+    const std::string report = test::read_file(dir / "a" / "report.md");
+    EXPECT_NE(report.find("Only dop16-grass was measured"), std::string::npos) << report;
+    EXPECT_EQ(report.find("were not measured"), std::string::npos) << report;
+    auto scene = test::run(kdop("scene --scenes grass --frames 3 --size 32x32 --out " + (dir / "s").string()));
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    EXPECT_NE(scene.err.find("grass-ghosting/color/0002.exr"), std::string::npos) << scene.err;
+    EXPECT_GE(std::count(scene.err.begin(), scene.err.end(), '\n'), 10) << scene.err;
+}
+
+// Every numeric option of every command refuses NaN, the infinities, text and values out of its
+// range with exit 2, in one wording, before any work. Each option is tried with a value out of its
+// range; every kind of bad value is tried on one real-valued and one whole-numbered option, since
+// all of them share those two checks (cli/number_option.h). A kdop process takes about 0.4 s to
+// start (its 273 shared libraries), so the cases run two at a time.
+TEST(CliCommandLine, EveryBadNumericValueIsExit2) {
+    test::TempDir dir;
+    const std::string out = " --out " + (dir / "out").string();
+    const std::string image = (dir / "i.exr").string();
+    ASSERT_TRUE(write_image(image, Image(8, 8, {0.5f, 0.5f, 0.5f, 1})));
+    const std::string run = "run --variant aabb-varclip-n9 --current " + image + " --history " + image + out;
+    const std::string flip = "flip --reference " + image + " --test " + image;
+    const std::string fit = "optimize --images " + image + " --axes 4" + out;
+    const std::string sphere = "optimize --sphere --axes 4" + out;
+    std::vector<std::string> cases = {run + " --gamma 0",
+                                      run + " --repeat 0",
+                                      "accuracy" + out + " --gamma -1",
+                                      "accuracy" + out + " --size 4097",
+                                      "accuracy" + out + " --seed -1",
+                                      "accuracy" + out + " --volume-samples 2000000",
+                                      "stress" + out + " --gamma -1",
+                                      "stress" + out + " --seed 1.5",
+                                      "bench" + out + " --repeat 0",
+                                      "bench" + out + " --sweep-repeat 0",
+                                      "bench" + out + " --callgrind-size 7",
+                                      "bench" + out + " --jobs 257",
+                                      "bench" + out + " --size 100000x100000",
+                                      "gen" + out + " --threads 0",
+                                      sphere + " --threads 4294967295",
+                                      sphere + " --seed -1",
+                                      sphere + " --starts 0",
+                                      sphere + " --iterations 0",
+                                      sphere + " --time-limit 0",
+                                      sphere + " --target 0",
+                                      sphere + " --max-nonzero 97",
+                                      "optimize --sphere" + out + " --axes 33",
+                                      fit + " --memory 0",
+                                      fit + " --sample 0",
+                                      fit + " --accuracy-samples -1",
+                                      flip + " --ppd 1001",
+                                      flip + " --distance 0",
+                                      flip + " --display-width -1",
+                                      flip + " --display-pixels 0",
+                                      flip + " --timing 0",
+                                      flip + " --hdr --start-exposure 1001",
+                                      flip + " --hdr --exposures 0",
+                                      "taa" + out + " --warmup 0",
+                                      "taa" + out + " --frames 0",
+                                      "taa" + out + " --timing-rounds 0",
+                                      "taa" + out + " --seed -1",
+                                      "taa" + out + " --gamma 0",
+                                      "taa" + out + " --current-weight 0",
+                                      "taa" + out + " --ppd x",
+                                      "taa" + out + " --size 1x1",
+                                      "taa" + out + " --reference-samples 1025",
+                                      "scene" + out + " --frames 0",
+                                      "scene" + out + " --seed -1",
+                                      "scene" + out + " --size 1x1",
+                                      "textures" + out + " --width 7",
+                                      "textures" + out + " --height 16385",
+                                      "textures" + out + " --seed -1"};
+    for (const char* value : {"nan", "inf", "-inf", "x", "1e999", "-1", "101", ""})
+        cases.push_back(run + " --gamma '" + value + "'");
+    for (const char* value : {"nan", "inf", "x", "1e3", "-1", "1025", "", "0x10", "1.5"})
+        cases.push_back("gen" + out + " --threads '" + value + "'");
+    std::vector<test::CommandResult> results(cases.size());
+    auto worker = [&](std::size_t first) {
+        for (std::size_t i = first; i < cases.size(); i += 2) results[i] = test::run("timeout 60 " + kdop(cases[i]));
+    };
+    std::thread other(worker, 1);
+    worker(0);
+    other.join();
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const test::CommandResult& r = results[i];
+        // The option is the last but one word of the case.
+        const std::string option = std::regex_replace(cases[i], std::regex(R"(^.* (--[a-z-]+) [^ ]*$)"), "$1");
+        EXPECT_EQ(r.exit_code, 2) << cases[i] << "\n" << r.err;
+        EXPECT_TRUE(r.err.starts_with("kdop: " + option + ":")) << cases[i] << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    auto list = test::run(kdop("list --sets nosuch"));
+    EXPECT_EQ(list.exit_code, 2) << list.err;
+}
+
+// Without a Vulkan driver the message says what is missing and what to do; what needs no device runs.
+TEST(CliCommandLine, NoDriverSaysWhatToDo) {
+    test::TempDir dir;
+    const std::string image = (dir / "i.exr").string();
+    ASSERT_TRUE(write_image(image, Image(8, 8, {0.5f, 0.5f, 0.5f, 1})));
+    const std::string none = "VK_DRIVER_FILES=" + (dir / "none.json").string() + " VK_ICD_FILENAMES= ";
+    auto r = test::run(none + kdop("run --variant aabb-clip-n9 --current " + image + " --history " + image + " --out " +
+                                   (dir / "o.exr").string()));
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("no Vulkan driver could be loaded"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("mesa-vulkan-drivers"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("VK_DRIVER_FILES"), std::string::npos) << r.err;
+    auto flip = test::run(none + kdop("flip --cpu --reference " + image + " --test " + image));
+    EXPECT_EQ(flip.exit_code, 0) << flip.err;
+    auto fit = test::run(
+        none + kdop("optimize --sphere --axes 3 --starts 1 --iterations 1 --out " + (dir / "s.axes").string()));
+    EXPECT_EQ(fit.exit_code, 0) << fit.err;
 }
 
 } // namespace

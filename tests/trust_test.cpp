@@ -174,6 +174,22 @@ TEST(CliInterrupt, SigintWhileTaaWritesLeavesNothingBehind) {
     EXPECT_FALSE(fs::exists(dir / "taa")) << "the folders made for the outputs go too";
 }
 
+// A crash (a driver's segmentation fault, an abort in a library) runs the same undo steps: the
+// staged frames' scratch folder and the temporaries go, then the signal ends the process.
+TEST(CliInterrupt, ACrashLeavesNoScratchFolderNorTemporary) {
+    test::TempDir dir;
+    fs::create_directory(dir / "tmp");
+    for (int crash : {SIGSEGV, SIGABRT}) {
+        auto ended = interrupt_at_write(kdop("taa --size 64x36 --warmup 2 --frames 1 --timing-rounds 1 --sets aabb "
+                                             "--modes clip --scenes grass --write-frames --no-charts --out " +
+                                             (dir / "taa").string()),
+                                        crash, "TMPDIR=" + (dir / "tmp").string());
+        EXPECT_EQ(ended.exit_code, -1) << "ended by the signal: " << ended.err;
+        EXPECT_TRUE(fs::is_empty(dir / "tmp")) << "kdop-frames-* is removed";
+        EXPECT_FALSE(fs::exists(dir / "taa"));
+    }
+}
+
 TEST(CliInterrupt, AnInterruptedBenchRemovesItsScratchFolder) {
     test::TempDir dir;
     fs::create_directory(dir / "tmp");
