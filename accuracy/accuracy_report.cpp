@@ -3,6 +3,7 @@
 #include "builtin_sets.h"
 #include "chart_style.h"
 #include "csv_reader.h"
+#include "escaped_text.h"
 #include "gnuplot.h"
 #include "variant_columns.h"
 
@@ -319,7 +320,7 @@ std::string rgb_axes_check(const AccuracyRun& run) {
     }
     std::string out = table.markdown();
     std::string images;
-    for (const std::string& i : device_looser) images += (images.empty() ? "" : ", ") + i;
+    for (const std::string& i : device_looser) images += (images.empty() ? "" : ", ") + markdown_text(i);
     out += fmt::format("\nClips looser than aabb on the device: {}.\n", images.empty() ? "none" : images);
     return out;
 }
@@ -337,7 +338,8 @@ std::string sixteen_dop_check(const std::vector<TradeRow>& trade) {
             const TradeRow* a = find(trade, family, asphalt);
             if (!g || !a) continue;
             (g->mean_dist <= a->mean_dist ? grass_wins : asphalt_wins)
-                .push_back(fmt::format("{} ({} vs {})", family, cell(std::min(g->mean_dist, a->mean_dist)),
+                .push_back(fmt::format("{} ({} vs {})", markdown_text(family),
+                                       cell(std::min(g->mean_dist, a->mean_dist)),
                                        cell(std::max(g->mean_dist, a->mean_dist))));
         }
         if (grass_wins.empty() && asphalt_wins.empty()) continue;
@@ -427,9 +429,10 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
     out += "\n## By family\n\n";
     if (lavapipe) out += fmt::format("The lavapipe column: {}.\n\n", lavapipe_label(trade));
     for (const std::string& family : families_of(trade)) {
-        out += fmt::format("### {}\n\n", family);
+        out += fmt::format("### {}\n\n", markdown_text(family));
         if (c.charts)
-            out += fmt::format("![Accuracy against cost on {}]({})\n\n", family, chart_name(safe_name(family)));
+            out += fmt::format("![Accuracy against cost on {}]({})\n\n", markdown_text(family),
+                               markdown_destination(chart_name(safe_name(family))));
         out += family_table(trade, family, lavapipe) + "\n";
     }
     return out;

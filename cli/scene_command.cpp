@@ -99,7 +99,8 @@ Action add_scene_command(CLI::App& app) {
             Progress progress(fmt::format("Drawing and writing {} sequences:", sources.size()), writers.size());
             for (OutputWriter& w : writers)
                 w.write = [&progress, inner = std::move(w.write),
-                           name = w.path.lexically_relative(outputs->dir()).string()](const std::filesystem::path& temporary) {
+                           name = w.path.lexically_relative(outputs->dir()).string()](
+                              const std::filesystem::path& temporary) {
                     auto written = inner(temporary);
                     if (written) progress.advance(name);
                     return written;

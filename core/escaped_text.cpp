@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 
 namespace kdop {
@@ -60,6 +61,25 @@ std::string markdown_text(std::string_view text) {
             out += ch;
     }
     return out;
+}
+
+std::string markdown_destination(std::string_view path) {
+    // A plain path (kdop's own file names) stays as it is; anything else goes in angle brackets.
+    const bool plain = !path.empty() && std::all_of(path.begin(), path.end(), [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '-' || ch == '/';
+    });
+    if (plain) return std::string(path);
+    std::string out = "<";
+    for (char ch : path) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (is_control(c))
+            out += fmt::format("%{:02X}", c);
+        else if (ch == '<' || ch == '>' || ch == '\\')
+            out += std::string("\\") + ch;
+        else
+            out += ch;
+    }
+    return out + ">";
 }
 
 std::string markdown_code(std::string_view text) {

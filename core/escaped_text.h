@@ -26,6 +26,11 @@ std::string line_comment_text(std::string_view text);
 // so a name can neither open a link or an HTML tag nor end a table row.
 std::string markdown_text(std::string_view text);
 
+// A link or image destination in Markdown, `![alt](here)`: as it is where it holds only letters,
+// digits and . _ - /; else in angle brackets, so spaces and parentheses stay part of it, with '<', '>' and '\\'
+// backslash-escaped and line breaks and control bytes percent-encoded.
+std::string markdown_destination(std::string_view path);
+
 // Inline code in Markdown: `text` between backtick runs one longer than its longest, so a backtick
 // inside cannot close it; line breaks and control bytes as \xNN.
 std::string markdown_code(std::string_view text);

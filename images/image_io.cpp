@@ -362,25 +362,32 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
 } // namespace
 
 Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image) {
-    return write_checked(temporary, path, image);
+    auto written = write_checked(temporary, path, image);
+    if (written) return written;
+    // The codecs' own words name the file they were given, the temporary; the user knows the output.
+    std::string message = written.error().message;
+    const std::string shown = temporary.string();
+    for (std::size_t at = message.find(shown); at != std::string::npos; at = message.find(shown, at + path.size()))
+        message.replace(at, shown.size(), path);
+    return fail(message);
 }
 
 Result<void> write_image(const std::string& path, const Image& image) {
     return write_atomically(
-        {{path, [&](const std::filesystem::path& file) { return write_checked(file, path, image); }}});
+        {{path, [&](const std::filesystem::path& file) { return write_image_to(file, path, image); }}});
 }
 
 OutputWriter image_writer(std::filesystem::path path, std::shared_ptr<const Image> image) {
     const std::string name = path.string();
     return {std::move(path),
-            [image, name](const std::filesystem::path& file) { return write_checked(file, name, *image); }};
+            [image, name](const std::filesystem::path& file) { return write_image_to(file, name, *image); }};
 }
 
 Result<void> write_images(const std::vector<ImageFile>& files) {
     std::vector<OutputWriter> writers;
     for (const ImageFile& f : files)
         writers.push_back({f.path, [&f](const std::filesystem::path& file) {
-                               return write_checked(file, f.path.string(), *f.image);
+                               return write_image_to(file, f.path.string(), *f.image);
                            }});
     return write_atomically(writers);
 }

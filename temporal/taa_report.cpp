@@ -1,5 +1,6 @@
 #include "taa_report.h"
 
+#include "escaped_text.h"
 #include "rank_correlation.h"
 #include "variant_columns.h"
 
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <ranges>
 
 namespace kdop {
 namespace {
@@ -185,7 +187,7 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                           "the frames that follow: ghosting against each frame's reference where the sequence has "
                           "them (ghosting_against = reference), else against its own color; shimmer between "
                           "successive outputs, none across a camera cut.\n\n",
-                          fmt::join(s.sequences, ", "), s.warmup);
+                          fmt::join(s.sequences | std::views::transform(markdown_text), ", "), s.warmup);
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
@@ -197,21 +199,21 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                      [&](const TaaRow& r) { return r.scene == scenes[i]; });
         std::stable_sort(in_scene.begin(), in_scene.end(),
                          [](const TaaRow& a, const TaaRow& b) { return a.ghosting < b.ghosting; });
-        md += fmt::format("## {}\n\n", scenes[i]);
+        md += fmt::format("## {}\n\n", markdown_text(scenes[i]));
         for (const auto& [name, content] : s.scene_contents)
-            if (name == scenes[i]) md += fmt::format("The scene: {}.\n\n", content);
+            if (name == scenes[i]) md += fmt::format("The scene: {}.\n\n", markdown_text(content));
         md += fmt::format("Least ghosting first.\n\n{}\n", taa_table(in_scene).markdown(shown));
         if (i < s.charts.size())
             md += fmt::format("What each variant costs against the ghosting and shimmer it leaves (lower left is "
                               "better): ![cost against ghosting and shimmer, {0}]({1})\n\n",
-                              scenes[i], s.charts[i]);
+                              markdown_text(scenes[i]), markdown_destination(s.charts[i]));
         md += paper_comparison(scenes[i], rows);
         if (i < s.pictures.size())
             md += fmt::format("The ghosting sequence's frame where the objects move fastest, every variant over its "
                               "LDR-FLIP map against the aliased frame or the reference (the scale under the picture); "
                               "under each, the variant's ghosting (the mean over the measured frames) and this "
                               "frame's mean FLIP: ![{0}]({1})\n\n",
-                              scenes[i], s.pictures[i]);
+                              markdown_text(scenes[i]), markdown_destination(s.pictures[i]));
     }
     return md + metadata_markdown(run);
 }

@@ -117,6 +117,17 @@ TEST(SpecialFiles, AWriterThatThrowsLeavesNoTemporary) {
     EXPECT_EQ(test::read_file(dir / "out" / "kept.csv"), "before");
 }
 
+// An image written under a set's temporary names its final path in its errors, not the temporary
+// (a full disk's error named "0001.kdop-partial-...-5.kdop-partial-...-6.exr").
+TEST(SpecialFiles, AWriteErrorNamesTheOutputNotItsTemporary) {
+    test::TempDir dir;
+    const fs::path temporary = dir / "missing" / "0001.kdop-partial-1-2.exr";
+    auto r = write_image_to(temporary, (dir / "out" / "0001.exr").string(), Image(4, 4));
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().message.find((dir / "out" / "0001.exr").string()), std::string::npos) << r.error().message;
+    EXPECT_EQ(r.error().message.find("kdop-partial"), std::string::npos) << r.error().message;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Names from outside in the languages kdop writes
 
@@ -137,6 +148,8 @@ TEST(HostileNames, EscapedTextHoldsEveryByteAndNoMarkup) {
     EXPECT_EQ(markdown_text("one\ntwo"), "one\\x0atwo");
     EXPECT_EQ(markdown_code("kdop `rm` x"), "``kdop `rm` x``");
     EXPECT_EQ(markdown_code("`a"), "`` `a ``");
+    EXPECT_EQ(markdown_destination("trade-grass.png"), "trade-grass.png");
+    EXPECT_EQ(markdown_destination("trade-my (1)>.png"), "<trade-my (1)\\>.png>");
     using namespace std::string_view_literals;
     EXPECT_EQ(terminal_text("\x1b[31mRED\x1b[0m\0x\n\t\xc3\xa9"sv), "\\x1b[31mRED\\x1b[0m\\x00x\n\t\xc3\xa9");
 }

@@ -327,7 +327,7 @@ TEST(CliTrust, EveryBadCommandLineIsRefusedBeforeTheWorkWithExit2) {
         {"flip --reference " + t.grass + " --test " + t.asphalt + " --out " + (t.dir / "folder.exr").string(),
          "is a directory"},
         {"taa --size 1x1 --out " + (t.dir / "taa").string(), "--size: '1x1'"},
-        {"taa --ppd 0 --out " + (t.dir / "taa").string(), "--ppd: pixels per degree must be"},
+        {"taa --ppd 0 --out " + (t.dir / "taa").string(), "--ppd: '0' is not a number from 1 to 1000"},
         {"run --variant aabb-clip-n9 --current " + t.grass + " --history " + t.asphalt + " --format rgba8 --out " +
              (t.dir / "o.exr").string(),
          "--format: 'rgba8' is not rgba32f or rgba16f"},
