@@ -63,8 +63,8 @@ fuzz() {
 fuzz axis_set 200000
 fuzz manifest 200000
 fuzz sequence 100000
-# Two 4x3 HDR images of any float bits, a color map and an exposure: about 1 ms an input.
-fuzz hdr 20000
+# Two 4x3 HDR images of any float bits, a color map and an exposure: about 2 ms an input (HDR-FLIP).
+fuzz hdr 10000
 # Image loading leaks inside Debian's libraries (see the suppressions), which have no frame
 # pointers: LeakSanitizer walks every frame at each allocation to see whose it is (half the speed).
 export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"

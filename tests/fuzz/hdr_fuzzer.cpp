@@ -10,6 +10,7 @@
 #include "hdr_flip.h"
 
 #include <fmt/format.h>
+#include <glm/common.hpp>
 
 #include <cmath>
 #include <cstdint>
