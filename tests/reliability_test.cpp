@@ -136,7 +136,8 @@ const std::string kHostile[] = {"x\" ? (__builtin_puts(\"INJECTED\"), \"y\") : \
                                 "back\\slash\\",
                                 "two\nlines",
                                 "$dollar#hash;semi",
-                                "??=trigraph",
+                                "?"
+                                "?=trigraph",
                                 "caf\xc3\xa9",
                                 "tab\there"};
 
