@@ -1,9 +1,9 @@
-#include "accuracy_inputs.h"
+#include "accuracy/accuracy_inputs.h"
 
-#include "input_files.h"
+#include "core/input_files.h"
 
-#include "image_io.h"
-#include "test_textures.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
 
 #include <fmt/format.h>
 

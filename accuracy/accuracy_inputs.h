@@ -2,9 +2,9 @@
 // families (one chart and one trade table per family).
 #pragma once
 
-#include "image.h"
-#include "image_io.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "images/image_io.h"
 
 #include <cstdint>
 #include <string>

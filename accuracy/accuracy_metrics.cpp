@@ -1,4 +1,4 @@
-#include "accuracy_metrics.h"
+#include "accuracy/accuracy_metrics.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>

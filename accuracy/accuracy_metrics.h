@@ -11,7 +11,7 @@
 // - returned unchanged: |clipped - h| <= 1e-5 S.
 #pragma once
 
-#include "image.h"
+#include "images/image.h"
 
 #include <cmath>
 #include <cstddef>

@@ -1,11 +1,11 @@
-#include "accuracy_report.h"
+#include "accuracy/accuracy_report.h"
 
-#include "builtin_sets.h"
-#include "chart_style.h"
-#include "csv_reader.h"
-#include "escaped_text.h"
-#include "gnuplot.h"
-#include "variant_columns.h"
+#include "core/builtin_sets.h"
+#include "core/escaped_text.h"
+#include "harness/chart_style.h"
+#include "harness/csv_reader.h"
+#include "harness/declared_table.h"
+#include "harness/gnuplot.h"
 
 #include <fmt/format.h>
 
@@ -59,56 +59,39 @@ const TradeRow* find(const std::vector<TradeRow>& trade, const std::string& fami
 } // namespace
 
 Table accuracy_table(const AccuracyRun& run) {
-    Table table(joined(variant_columns(), {{"k", "", Shown::integer},
-                                           {"rgb_axes", "", Shown::flag},
-                                           {"float_ops", "", Shown::integer},
-                                           {"family", "", Shown::text},
-                                           {"image", "", Shown::text},
-                                           {"pixels", "", Shown::integer},
-                                           {"outside_hull_rate", "", Shown::percent},
-                                           {"mean_dist", "S"},
-                                           {"p95_dist", "S"},
-                                           {"max_dist", "S"},
-                                           {"false_accept_rate", "", Shown::percent},
-                                           {"ref_mean_dist", "S"},
-                                           {"ref_p95_dist", "S"},
-                                           {"ref_max_dist", "S"},
-                                           {"ref_false_accept_rate", "", Shown::percent},
-                                           {"gpu_ref_max_diff", "S"},
-                                           {"looser_than_aabb", "", Shown::percent},
-                                           {"ref_looser_than_aabb", "", Shown::percent},
-                                           {"max_excess_over_aabb", "S"},
-                                           {"ref_max_excess_over_aabb", "S"},
-                                           {"volume_ratio_median"},
-                                           {"volume_ratio_mean"},
-                                           {"volume_pixels", "", Shown::integer}}));
-    for (const AccuracyRow& r : run.rows) {
-        const ClipAccuracy &g = r.gpu, &c = r.reference;
-        table.add(joined(variant_values(r.key), {std::int64_t(r.k),
-                                                 r.rgb_axes,
-                                                 std::int64_t(r.float_ops),
-                                                 r.family,
-                                                 r.image,
-                                                 std::int64_t(g.pixels),
-                                                 maybe(g.outside_rate()),
-                                                 maybe(g.mean_dist),
-                                                 maybe(g.p95_dist),
-                                                 maybe(g.max_dist),
-                                                 maybe(g.false_accept_rate()),
-                                                 maybe(c.mean_dist),
-                                                 maybe(c.p95_dist),
-                                                 maybe(c.max_dist),
-                                                 maybe(c.false_accept_rate()),
-                                                 maybe(r.gpu_reference_max),
-                                                 maybe(r.vs_aabb.share),
-                                                 maybe(r.reference_vs_aabb.share),
-                                                 maybe(r.vs_aabb.largest),
-                                                 maybe(r.reference_vs_aabb.largest),
-                                                 maybe(r.volume.median),
-                                                 maybe(r.volume.mean),
-                                                 std::int64_t(r.volume.pixels)}));
-    }
-    return table;
+    using Row = AccuracyRow;
+    const DeclaredColumns<Row> columns =
+        variant_key_columns<Row>([](const Row& r) -> const VariantKey& { return r.key; }) +
+        DeclaredColumns<Row>{
+            {{"k", "", Shown::integer}, [](const Row& r) { return Value(std::int64_t(r.k)); }},
+            {{"rgb_axes", "", Shown::flag}, [](const Row& r) { return Value(r.rgb_axes); }},
+            {{"float_ops", "", Shown::integer}, [](const Row& r) { return Value(std::int64_t(r.float_ops)); }},
+            {{"family", "", Shown::text}, [](const Row& r) { return Value(r.family); }},
+            {{"image", "", Shown::text}, [](const Row& r) { return Value(r.image); }},
+            // The device's clip (r.gpu) against the ideal one.
+            {{"pixels", "", Shown::integer}, [](const Row& r) { return Value(std::int64_t(r.gpu.pixels)); }},
+            {{"outside_hull_rate", "", Shown::percent}, [](const Row& r) { return maybe(r.gpu.outside_rate()); }},
+            {{"mean_dist", "S"}, [](const Row& r) { return maybe(r.gpu.mean_dist); }},
+            {{"p95_dist", "S"}, [](const Row& r) { return maybe(r.gpu.p95_dist); }},
+            {{"max_dist", "S"}, [](const Row& r) { return maybe(r.gpu.max_dist); }},
+            {{"false_accept_rate", "", Shown::percent}, [](const Row& r) { return maybe(r.gpu.false_accept_rate()); }},
+            // The CPU reference's clip (r.reference) against the ideal one.
+            {{"ref_mean_dist", "S"}, [](const Row& r) { return maybe(r.reference.mean_dist); }},
+            {{"ref_p95_dist", "S"}, [](const Row& r) { return maybe(r.reference.p95_dist); }},
+            {{"ref_max_dist", "S"}, [](const Row& r) { return maybe(r.reference.max_dist); }},
+            {{"ref_false_accept_rate", "", Shown::percent},
+             [](const Row& r) { return maybe(r.reference.false_accept_rate()); }},
+            {{"gpu_ref_max_diff", "S"}, [](const Row& r) { return maybe(r.gpu_reference_max); }},
+            {{"looser_than_aabb", "", Shown::percent}, [](const Row& r) { return maybe(r.vs_aabb.share); }},
+            {{"ref_looser_than_aabb", "", Shown::percent},
+             [](const Row& r) { return maybe(r.reference_vs_aabb.share); }},
+            {{"max_excess_over_aabb", "S"}, [](const Row& r) { return maybe(r.vs_aabb.largest); }},
+            {{"ref_max_excess_over_aabb", "S"}, [](const Row& r) { return maybe(r.reference_vs_aabb.largest); }},
+            {{"volume_ratio_median"}, [](const Row& r) { return maybe(r.volume.median); }},
+            {{"volume_ratio_mean"}, [](const Row& r) { return maybe(r.volume.mean); }},
+            {{"volume_pixels", "", Shown::integer}, [](const Row& r) { return Value(std::int64_t(r.volume.pixels)); }},
+        };
+    return declared_table<Row>(columns, run.rows);
 }
 
 Result<std::map<VariantKey, LavapipeCost>> read_bench_costs(const std::filesystem::path& path) {
@@ -199,27 +182,30 @@ std::vector<TradeRow> trade_rows(const AccuracyRun& run, const std::map<VariantK
 }
 
 Table trade_table(const std::vector<TradeRow>& rows) {
-    Table table(joined(
-        {{"family", "", Shown::text}},
-        joined(variant_columns(), {{"k", "", Shown::integer},
-                                   {"float_ops", "", Shown::integer, 0, "float ops"},
-                                   {"marginal_instr_per_px", "instr/px", Shown::significant, 4, "lavapipe marginal"},
-                                   {"marginal_ms", "ms", Shown::fixed, 2, "lavapipe marginal"},
-                                   {"mean_dist", "S", Shown::significant, 3, "mean dist"},
-                                   {"p95_dist", "S", Shown::significant, 3, "p95 dist"},
-                                   {"max_dist", "S", Shown::significant, 3, "max dist"},
-                                   {"false_accept_rate", "", Shown::percent, 1, "false accept"},
-                                   {"volume_ratio", "", Shown::significant, 3, "k-DOP / hull volume"},
-                                   {"front_float_ops", "", Shown::flag, 0, "front (float ops)"},
-                                   {"front_lavapipe", "", Shown::flag, 0, "front (lavapipe)"}})));
-    for (const TradeRow& r : rows)
-        table.add(joined(
-            {r.family}, joined(variant_values(r.key),
-                               {std::int64_t(r.k), maybe(r.float_ops), maybe(r.lavapipe.marginal_instr_per_px),
-                                maybe(r.lavapipe.marginal_ms), maybe(r.mean_dist), maybe(r.p95_dist), maybe(r.max_dist),
-                                maybe(r.false_accept_rate), maybe(r.volume_ratio), r.front_float_ops,
-                                std::isfinite(lavapipe_cost(r)) ? Value(r.front_lavapipe) : Value()})));
-    return table;
+    using Row = TradeRow;
+    const DeclaredColumns<Row> columns =
+        DeclaredColumns<Row>{{{"family", "", Shown::text}, [](const Row& r) { return Value(r.family); }}} +
+        variant_key_columns<Row>([](const Row& r) -> const VariantKey& { return r.key; }) +
+        DeclaredColumns<Row>{
+            {{"k", "", Shown::integer}, [](const Row& r) { return Value(std::int64_t(r.k)); }},
+            {{"float_ops", "", Shown::integer, 0, "float ops"}, [](const Row& r) { return maybe(r.float_ops); }},
+            {{"marginal_instr_per_px", "instr/px", Shown::significant, 4, "lavapipe marginal"},
+             [](const Row& r) { return maybe(r.lavapipe.marginal_instr_per_px); }},
+            {{"marginal_ms", "ms", Shown::fixed, 2, "lavapipe marginal"},
+             [](const Row& r) { return maybe(r.lavapipe.marginal_ms); }},
+            {{"mean_dist", "S", Shown::significant, 3, "mean dist"}, [](const Row& r) { return maybe(r.mean_dist); }},
+            {{"p95_dist", "S", Shown::significant, 3, "p95 dist"}, [](const Row& r) { return maybe(r.p95_dist); }},
+            {{"max_dist", "S", Shown::significant, 3, "max dist"}, [](const Row& r) { return maybe(r.max_dist); }},
+            {{"false_accept_rate", "", Shown::percent, 1, "false accept"},
+             [](const Row& r) { return maybe(r.false_accept_rate); }},
+            {{"volume_ratio", "", Shown::significant, 3, "k-DOP / hull volume"},
+             [](const Row& r) { return maybe(r.volume_ratio); }},
+            {{"front_float_ops", "", Shown::flag, 0, "front (float ops)"},
+             [](const Row& r) { return Value(r.front_float_ops); }},
+            {{"front_lavapipe", "", Shown::flag, 0, "front (lavapipe)"},
+             [](const Row& r) { return std::isfinite(lavapipe_cost(r)) ? Value(r.front_lavapipe) : Value(); }},
+        };
+    return declared_table<Row>(columns, rows);
 }
 
 namespace {

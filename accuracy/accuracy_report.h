@@ -4,10 +4,10 @@
 // written as CSV and JSON by the output set.
 #pragma once
 
-#include "accuracy_run.h"
-#include "run_metadata.h"
-#include "table.h"
-#include "write_files.h"
+#include "accuracy/accuracy_run.h"
+#include "core/write_files.h"
+#include "harness/run_metadata.h"
+#include "harness/table.h"
 
 #include <filesystem>
 #include <map>

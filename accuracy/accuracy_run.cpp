@@ -1,9 +1,9 @@
-#include "accuracy_run.h"
+#include "accuracy/accuracy_run.h"
 
-#include "builtin_sets.h"
-#include "cpu_clip.h"
-#include "ideal_clip.h"
-#include "spirv_cost.h"
+#include "accuracy/ideal_clip.h"
+#include "core/builtin_sets.h"
+#include "generator/spirv_cost.h"
+#include "reference/cpu_clip.h"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>

@@ -3,12 +3,12 @@
 // by pixel with the ideal clip at the convex hull; plus k-DOP over hull volume on a sample of pixels.
 #pragma once
 
-#include "accuracy_inputs.h"
-#include "accuracy_metrics.h"
-#include "device_runner.h"
-#include "progress.h"
-#include "variant_catalog.h"
-#include "volume_ratio.h"
+#include "accuracy/accuracy_inputs.h"
+#include "accuracy/accuracy_metrics.h"
+#include "accuracy/volume_ratio.h"
+#include "harness/device_runner.h"
+#include "harness/progress.h"
+#include "harness/variant_catalog.h"
 
 #include <cstdint>
 #include <string>

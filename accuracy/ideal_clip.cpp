@@ -1,6 +1,7 @@
-#include "ideal_clip.h"
+#include "accuracy/ideal_clip.h"
 
-#include "cpu_clip.h"
+#include "core/parallel_for.h"
+#include "reference/cpu_clip.h"
 
 #include <fmt/format.h>
 #include <glpk.h>
@@ -10,7 +11,6 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <thread>
 
 namespace kdop {
 namespace {
@@ -116,34 +116,27 @@ Result<std::vector<double>> ideal_exits(const Image& current, const Image& histo
     const std::vector<glm::ivec2> offsets = reference_offsets(shape);
     std::vector<double> exits(current.pixels.size());
     std::mutex mutex;
-    std::string failure; // the first pixel the LP failed on
+    std::size_t first_failure = exits.size(); // the first pixel the LP failed on, in row order
 
-    auto rows = [&](std::uint32_t first, std::uint32_t step) {
-        {
-            IdealClipper clipper;
-            std::vector<glm::dvec3> neighborhood(offsets.size());
-            for (std::uint32_t y = first; y < current.height; y += step) {
-                for (std::uint32_t x = 0; x < current.width; ++x) {
-                    gather_neighborhood(current, x, y, offsets, neighborhood);
-                    const std::optional<double> t =
-                        clipper.exit(neighborhood, glm::dvec3(current.at(x, y)), glm::dvec3(history.at(x, y)));
-                    exits[std::size_t(y) * current.width + x] = t.value_or(std::numeric_limits<double>::quiet_NaN());
-                    if (!t || std::isnan(*t)) {
-                        std::lock_guard lock(mutex);
-                        if (failure.empty())
-                            failure = fmt::format("ideal clip: GLPK found no optimum at pixel ({}, {})", x, y);
-                    }
-                }
+    auto row = [&](std::size_t y) {
+        IdealClipper clipper;
+        std::vector<glm::dvec3> neighborhood(offsets.size());
+        for (std::uint32_t x = 0; x < current.width; ++x) {
+            gather_neighborhood(current, x, std::uint32_t(y), offsets, neighborhood);
+            const std::optional<double> t =
+                clipper.exit(neighborhood, glm::dvec3(current.at(x, y)), glm::dvec3(history.at(x, y)));
+            exits[y * current.width + x] = t.value_or(std::numeric_limits<double>::quiet_NaN());
+            if (!t || std::isnan(*t)) {
+                std::lock_guard lock(mutex);
+                first_failure = std::min(first_failure, y * current.width + x);
             }
         }
-        glp_free_env(); // GLPK's per-thread memory, once this thread's problem is gone
     };
-    {
-        const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-        std::vector<std::jthread> workers; // joined at the end of this scope
-        for (unsigned t = 0; t < threads; ++t) workers.emplace_back(rows, t, threads);
-    }
-    if (!failure.empty()) return fail(failure);
+    // GLPK keeps per-thread memory until glp_free_env, once the thread's problems are gone.
+    parallel_for(current.height, 0, row, [] { glp_free_env(); });
+    if (first_failure < exits.size())
+        return fail(fmt::format("ideal clip: GLPK found no optimum at pixel ({}, {})", first_failure % current.width,
+                                first_failure / current.width));
     return exits;
 }
 

@@ -12,9 +12,9 @@
 // would need each of those projected to its own dimension first).
 #pragma once
 
-#include "image.h"
-#include "result.h"
-#include "variant_spec.h"
+#include "core/result.h"
+#include "generator/variant_spec.h"
+#include "images/image.h"
 
 #include <glm/vec3.hpp>
 

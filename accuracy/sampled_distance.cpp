@@ -1,9 +1,9 @@
-#include "sampled_distance.h"
+#include "accuracy/sampled_distance.h"
 
-#include "accuracy_metrics.h"
-#include "cpu_clip.h"
-#include "ideal_clip.h"
-#include "random.h"
+#include "accuracy/accuracy_metrics.h"
+#include "accuracy/ideal_clip.h"
+#include "images/random.h"
+#include "reference/cpu_clip.h"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>

@@ -4,11 +4,11 @@
 // volume it minimizes (each sampled pixel costs one exact LP: up to about 150 microseconds).
 #pragma once
 
-#include "accuracy_inputs.h"
-#include "axis_fit.h"
-#include "progress.h"
-#include "result.h"
-#include "variant_spec.h"
+#include "accuracy/accuracy_inputs.h"
+#include "core/result.h"
+#include "fit/axis_fit.h"
+#include "generator/variant_spec.h"
+#include "harness/progress.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,4 +1,4 @@
-#include "volume.h"
+#include "accuracy/volume.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>

@@ -2,8 +2,8 @@
 // neighborhood's colors, and the k-DOP a variant builds around it as the intersection of its slabs.
 #pragma once
 
-#include "cpu_clip.h"
-#include "result.h"
+#include "core/result.h"
+#include "reference/cpu_clip.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,8 +1,8 @@
-#include "volume_ratio.h"
+#include "accuracy/volume_ratio.h"
 
-#include "cpu_clip.h"
-#include "random.h"
-#include "volume.h"
+#include "accuracy/volume.h"
+#include "images/random.h"
+#include "reference/cpu_clip.h"
 
 #include <glm/common.hpp>
 

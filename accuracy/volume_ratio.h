@@ -3,10 +3,10 @@
 // slab intersection costs about 0.3 ms).
 #pragma once
 
-#include "axis_set.h"
-#include "image.h"
-#include "result.h"
-#include "variant_spec.h"
+#include "core/result.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
+#include "images/image.h"
 
 #include <cmath>
 #include <cstdint>

@@ -3,8 +3,8 @@
 // is clipped (the costlier path where a variant branches). Seeded; the seeds go into the report.
 #pragma once
 
-#include "image.h"
-#include "test_textures.h"
+#include "images/image.h"
+#include "images/test_textures.h"
 
 #include <cstdint>
 #include <utility>

@@ -1,14 +1,13 @@
-#include "callgrind.h"
+#include "bench/callgrind.h"
 
-#include "subprocess.h"
+#include "core/parallel_for.h"
+#include "harness/subprocess.h"
 
 #include <fmt/format.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <mutex>
-#include <thread>
 
 namespace kdop::bench {
 namespace {
@@ -53,18 +52,12 @@ Result<std::vector<double>> callgrind_instructions_per_pixel(const CallgrindSetu
     const std::filesystem::path valgrind = find_program("valgrind");
     if (valgrind.empty()) return fail("valgrind not found in PATH (Debian: valgrind), or pass --no-callgrind");
     std::vector<Result<double>> results(kernels.size(), fail("not run"));
-    std::atomic<std::size_t> next{0};
     std::mutex progress_mutex;
-    auto worker = [&] {
-        for (std::size_t i; (i = next++) < kernels.size();) {
-            results[i] = measure_one(setup, valgrind, kernels[i]);
-            std::lock_guard lock(progress_mutex);
-            progress.advance(kernels[i].name);
-        }
-    };
-    std::vector<std::jthread> workers;
-    for (unsigned j = 0; j < std::max(1u, jobs); ++j) workers.emplace_back(worker);
-    workers.clear(); // joins
+    parallel_for(kernels.size(), jobs, [&](std::size_t i) {
+        results[i] = measure_one(setup, valgrind, kernels[i]);
+        std::lock_guard lock(progress_mutex);
+        progress.advance(kernels[i].name);
+    });
     std::vector<double> per_pixel;
     for (auto& r : results) {
         if (!r) return std::unexpected(r.error());

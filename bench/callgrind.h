@@ -5,8 +5,8 @@
 // valgrind is run as a program: it has no library interface.
 #pragma once
 
-#include "progress.h"
-#include "result.h"
+#include "core/result.h"
+#include "harness/progress.h"
 
 #include <cstdint>
 #include <filesystem>

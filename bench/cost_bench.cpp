@@ -1,14 +1,14 @@
-#include "cost_bench.h"
+#include "bench/cost_bench.h"
 
-#include "analytic_cost.h"
-#include "builtin_sets.h"
-#include "callgrind.h"
-#include "progress.h"
-#include "spirv_module.h"
-#include "statistics.h"
-#include "timing.h"
-#include "variant_files.h"
-#include "write_files.h"
+#include "bench/callgrind.h"
+#include "bench/timing.h"
+#include "core/builtin_sets.h"
+#include "core/write_files.h"
+#include "generator/analytic_cost.h"
+#include "generator/spirv_module.h"
+#include "generator/variant_files.h"
+#include "harness/progress.h"
+#include "harness/statistics.h"
 
 #include <fmt/format.h>
 

@@ -4,10 +4,10 @@
 // built-in ones as embedded, a user's set or a paper twin as built in-process. See bench/README.md.
 #pragma once
 
-#include "context.h"
-#include "cost_table.h"
-#include "result.h"
-#include "variant_catalog.h"
+#include "bench/cost_table.h"
+#include "core/result.h"
+#include "harness/variant_catalog.h"
+#include "runtime/context.h"
 
 #include <cstdint>
 #include <filesystem>

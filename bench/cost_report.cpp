@@ -1,7 +1,7 @@
-#include "cost_report.h"
+#include "bench/cost_report.h"
 
-#include "bench_inputs.h"
-#include "gnuplot.h"
+#include "bench/bench_inputs.h"
+#include "harness/gnuplot.h"
 
 #include <fmt/format.h>
 

@@ -3,9 +3,9 @@
 // shown with their interquartile range, and a difference within the spread is labeled as noise.
 #pragma once
 
-#include "cost_bench.h"
-#include "run_metadata.h"
-#include "write_files.h"
+#include "bench/cost_bench.h"
+#include "core/write_files.h"
+#include "harness/run_metadata.h"
 
 #include <filesystem>
 #include <string>

@@ -4,9 +4,9 @@
 // made-up zero.
 #pragma once
 
-#include "spirv_cost.h"
-#include "table.h"
-#include "variant_key.h"
+#include "core/variant_key.h"
+#include "generator/spirv_cost.h"
+#include "harness/table.h"
 
 #include <cmath>
 #include <cstddef>

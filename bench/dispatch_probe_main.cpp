@@ -3,10 +3,10 @@
 // lavapipe executes for it and nothing else (context, upload, pipeline compile and one warm-up
 // dispatch stay outside). Run with LP_NUM_THREADS=0 so the dispatch runs on this thread.
 // The bench (kdop bench) starts it; it is not meant to be run by hand.
-#include "bench_inputs.h"
-#include "context.h"
-#include "kernel.h"
-#include "rectify_pass.h"
+#include "bench/bench_inputs.h"
+#include "runtime/context.h"
+#include "runtime/kernel.h"
+#include "runtime/rectify_pass.h"
 
 #include <kdop_builtin_variants.h>
 

@@ -1,9 +1,9 @@
-#include "set_cost.h"
+#include "bench/set_cost.h"
 
-#include "variant_builder.h"
-#include "variant_files.h"
-#include "variant_key.h"
-#include "write_files.h"
+#include "core/variant_key.h"
+#include "core/write_files.h"
+#include "generator/variant_builder.h"
+#include "generator/variant_files.h"
 
 namespace kdop::bench {
 

@@ -5,10 +5,10 @@
 // the probe with the interface of the RGB box's clip, which every clip of a neighborhood shares.
 #pragma once
 
-#include "axis_set.h"
-#include "callgrind.h"
-#include "progress.h"
-#include "result.h"
+#include "bench/callgrind.h"
+#include "core/result.h"
+#include "generator/axis_set.h"
+#include "harness/progress.h"
 
 #include <kdop/variant.h>
 

@@ -1,8 +1,8 @@
-#include "timing.h"
+#include "bench/timing.h"
 
-#include "bench_inputs.h"
-#include "kernel.h"
-#include "rectify_pass.h"
+#include "bench/bench_inputs.h"
+#include "runtime/kernel.h"
+#include "runtime/rectify_pass.h"
 
 #include <fmt/format.h>
 

@@ -4,9 +4,9 @@
 // (drivers may finish compiling there).
 #pragma once
 
-#include "context.h"
-#include "progress.h"
-#include "result.h"
+#include "core/result.h"
+#include "harness/progress.h"
+#include "runtime/context.h"
 
 #include <kdop/variant.h>
 

@@ -1,17 +1,18 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "cost_bench.h"
-#include "cost_report.h"
-#include "gnuplot.h"
-#include "memory_budget.h"
-#include "number_option.h"
-#include "output_set.h"
-#include "run_metadata.h"
-#include "scratch_directory.h"
-#include "selection_options.h"
-#include "shown_text.h"
-#include "size_option.h"
-#include "variant_catalog.h"
+#include "bench/cost_bench.h"
+#include "bench/cost_report.h"
+#include "cli/number_option.h"
+#include "cli/size_option.h"
+#include "core/memory_budget.h"
+#include "core/parallel_for.h"
+#include "core/shown_text.h"
+#include "generator/selection_options.h"
+#include "harness/gnuplot.h"
+#include "harness/output_set.h"
+#include "harness/run_metadata.h"
+#include "harness/scratch_directory.h"
+#include "harness/variant_catalog.h"
 
 #include <fmt/format.h>
 
@@ -29,8 +30,7 @@ Action add_bench_command(CLI::App& app) {
         std::string out, size = "1920x1080", device, numerics = "hardened";
         std::vector<std::string> variants, sets,
             sweep_sizes{"256x256", "512x512", "1024x1024", "1920x1080", "2560x1440", "3840x2160"};
-        unsigned repeat = 15, sweep_repeat = 5, callgrind_size = 256,
-                 jobs = std::max(1u, std::thread::hardware_concurrency());
+        unsigned repeat = 15, sweep_repeat = 5, callgrind_size = 256, jobs = core_count();
         bool no_sweep = false, no_callgrind = false, no_charts = false;
     };
     auto o = std::make_shared<Options>();

@@ -2,7 +2,7 @@
 // fit's (kdop optimize). One spelling and one parser (core/color_map.h).
 #pragma once
 
-#include "color_map.h"
+#include "core/color_map.h"
 
 #include <CLI/CLI.hpp>
 

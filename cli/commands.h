@@ -2,9 +2,9 @@
 // action to run when that subcommand was chosen; the action returns the process exit code.
 #pragma once
 
-#include "color_map.h"
-#include "context.h"
-#include "variant_spec.h"
+#include "core/color_map.h"
+#include "generator/variant_spec.h"
+#include "runtime/context.h"
 
 #include <CLI/CLI.hpp>
 
@@ -35,6 +35,10 @@ int report_error(const std::string& message);
 // The same for a wrong command line (an option's value, options that do not go together); returns
 // 2, as CLI11's own usage errors do.
 int usage_error(const std::string& message);
+
+// A library call's error: usage_error where the command line is at fault (Error::usage), else
+// report_error.
+int report(const Error& error);
 
 // Prints what the validation layer reported on `context` (nothing when it was off) to stderr.
 void report_validation_messages(const Context& context);

@@ -1,12 +1,12 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "number_option.h"
-#include "progress.h"
-#include "selection_options.h"
-#include "shown_text.h"
-#include "spirv_cost.h"
-#include "variant_builder.h"
-#include "variant_files.h"
+#include "cli/number_option.h"
+#include "core/shown_text.h"
+#include "generator/selection_options.h"
+#include "generator/spirv_cost.h"
+#include "generator/variant_builder.h"
+#include "generator/variant_files.h"
+#include "harness/progress.h"
 
 #include <fmt/format.h>
 

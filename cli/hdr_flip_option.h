@@ -4,8 +4,8 @@
 // each pair's reference, as NVlabs/flip derives it.
 #pragma once
 
-#include "hdr_flip.h"
-#include "number_option.h"
+#include "cli/number_option.h"
+#include "flip/hdr_flip.h"
 
 #include <CLI/CLI.hpp>
 

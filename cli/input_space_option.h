@@ -3,7 +3,7 @@
 // unless tagged otherwise); `linear` or `srgb` overrides every file.
 #pragma once
 
-#include "image_io.h"
+#include "images/image_io.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,8 +1,8 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "manifest.h"
-#include "selection_options.h"
-#include "variant_spec.h"
+#include "generator/manifest.h"
+#include "generator/selection_options.h"
+#include "generator/variant_spec.h"
 
 #include <iostream>
 #include <memory>

@@ -1,9 +1,9 @@
 // kdop: generate, run and measure k-DOP neighborhood-clipping variants. See README.md.
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "command_line.h"
-#include "ranks.h"
-#include "run_metadata.h"
+#include "generator/command_line.h"
+#include "harness/ranks.h"
+#include "harness/run_metadata.h"
 
 #include <fmt/format.h>
 
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
     return kdop::run_command_line(app, "kdop", argc, argv, [&] {
         for (CLI::App* chosen : app.get_subcommands()) {
             // Every rank would do the whole of any other command and write the same outputs.
-            if (chosen->get_name() != "optimize" && kdop::cli::launched_ranks() > 1)
+            if (chosen->get_name() != "optimize" && kdop::launched_ranks() > 1)
                 return kdop::cli::usage_error(
                     fmt::format("{}: only kdop optimize shares its work over MPI ranks; run kdop {} without mpirun",
                                 chosen->get_name(), chosen->get_name()));

@@ -1,7 +1,7 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "command_line.h"
-#include "shown_text.h"
+#include "core/shown_text.h"
+#include "generator/command_line.h"
 
 #include <iostream>
 #include <set>
@@ -17,6 +17,8 @@ int usage_error(const std::string& message) {
     report_error(message);
     return kUsageError;
 }
+
+int report(const Error& error) { return error.usage ? usage_error(error.message) : report_error(error.message); }
 
 void report_validation_messages(const Context& context) {
     for (const std::string& message : context.validation_messages())

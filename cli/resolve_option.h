@@ -2,9 +2,9 @@
 // frames: --history-filter, --color-map, --dilate-motion, --current-weight, --gamma.
 #pragma once
 
-#include "color_map_option.h"
-#include "number_option.h"
-#include "resolve_options.h"
+#include "cli/color_map_option.h"
+#include "cli/number_option.h"
+#include "temporal/resolve_options.h"
 
 #include <CLI/CLI.hpp>
 

@@ -2,9 +2,9 @@
 // `kdop taa` (which measures them): --scenes, --background, --camera, --reference-samples.
 #pragma once
 
-#include "context.h"
-#include "input_files.h"
-#include "kdop_scene.h"
+#include "core/input_files.h"
+#include "runtime/context.h"
+#include "scenes/scene_catalog.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

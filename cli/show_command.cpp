@@ -1,9 +1,9 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "glsl_emitter.h"
-#include "variant_builder.h"
-#include "variant_catalog.h"
-#include "variant_option.h"
+#include "cli/variant_option.h"
+#include "generator/clip_emitter.h"
+#include "generator/variant_builder.h"
+#include "harness/variant_catalog.h"
 
 #include <fmt/format.h>
 

@@ -2,8 +2,8 @@
 // pass at that size must fit the memory budget (core/memory_budget.h).
 #pragma once
 
-#include "memory_budget.h"
-#include "result.h"
+#include "core/memory_budget.h"
+#include "core/result.h"
 
 #include <fmt/format.h>
 

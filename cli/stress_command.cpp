@@ -1,15 +1,15 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "context.h"
-#include "device_runner.h"
-#include "number_option.h"
-#include "output_set.h"
-#include "progress.h"
-#include "run_metadata.h"
-#include "selection_options.h"
-#include "stress_report.h"
-#include "stress_suite.h"
-#include "variant_catalog.h"
+#include "cli/number_option.h"
+#include "generator/selection_options.h"
+#include "harness/device_runner.h"
+#include "harness/output_set.h"
+#include "harness/progress.h"
+#include "harness/run_metadata.h"
+#include "harness/variant_catalog.h"
+#include "runtime/context.h"
+#include "stress/stress_report.h"
+#include "stress/stress_suite.h"
 
 #include <fmt/format.h>
 

@@ -1,86 +1,42 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "command_line.h"
-#include "device_flip.h"
-#include "flip.h"
-#include "gnuplot.h"
-#include "hdr_flip_option.h"
-#include "image_io.h"
-#include "input_files.h"
-#include "input_space_option.h"
-#include "magma.h"
-#include "number_option.h"
-#include "output_set.h"
-#include "progress.h"
-#include "resolve_option.h"
-#include "run_metadata.h"
-#include "scene_options.h"
-#include "scratch_directory.h"
-#include "selection_options.h"
-#include "sequence.h"
-#include "shown_text.h"
-#include "size_option.h"
-#include "staged_images.h"
-#include "statistics.h"
-#include "taa_chart.h"
-#include "taa_measure.h"
-#include "taa_report.h"
-#include "taa_resolve.h"
-#include "taa_shader.h"
-#include "timing.h"
-#include "trail_picture.h"
-#include "variant_catalog.h"
+#include "bench/timing.h"
+#include "cli/hdr_flip_option.h"
+#include "cli/input_space_option.h"
+#include "cli/number_option.h"
+#include "cli/resolve_option.h"
+#include "cli/scene_options.h"
+#include "cli/size_option.h"
+#include "core/input_files.h"
+#include "core/shown_text.h"
+#include "flip/flip.h"
+#include "generator/command_line.h"
+#include "generator/selection_options.h"
+#include "harness/gnuplot.h"
+#include "harness/output_set.h"
+#include "harness/progress.h"
+#include "harness/run_metadata.h"
+#include "harness/scratch_directory.h"
+#include "harness/staged_images.h"
+#include "harness/statistics.h"
+#include "harness/variant_catalog.h"
+#include "images/image_io.h"
+#include "sequence/sequence.h"
+#include "temporal/ghosting_picture.h"
+#include "temporal/taa_chart.h"
+#include "temporal/taa_evaluation.h"
+#include "temporal/taa_measure.h"
+#include "temporal/taa_report.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <set>
 
 namespace kdop::cli {
 namespace {
-
-// ghosting-<scene>.png
-std::string trail_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
-
-// What a scene shows of its ghosting, added to `outputs`: the truth (the aliased frame, or the
-// reference where the scene has one) and each variant's frame at the trail frame under
-// frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled picture of them all, each
-// variant's crop over its FLIP map against the truth, under it the variant's ghosting (the mean
-// over the measured frames) and this frame's mean FLIP, and the maps' color scale under the grid.
-Result<void> add_trail_outputs(OutputSet& outputs, const TaaScene& scene, const std::string& truth_name,
-                               std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
-                               const std::vector<std::shared_ptr<const Image>>& trails,
-                               const std::vector<double>& ghosting, const LdrFlip& flip, const TaaSchedule& schedule) {
-    const std::uint32_t width = truth->width, height = truth->height;
-    std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{truth_name, truth}};
-    std::vector<Image> maps;
-    maps.reserve(trails.size()); // the picture points into it
-    std::vector<LabeledFrame> labeled{
-        {fmt::format("{}, frame {}", truth_name, scene.trail_frame(schedule)), truth.get()}};
-    for (std::size_t v = 0; v < keys.size(); ++v) {
-        auto error = flip.error_map(*truth, *trails[v]);
-        if (!error) return std::unexpected(error.error());
-        maps.push_back(flip::magma_image(*error, width, height));
-        frames.emplace_back(keys[v].name(), trails[v]);
-        labeled.push_back({keys[v].name(), trails[v].get(), &maps.back(),
-                           fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(*error))});
-    }
-    std::vector<float> ramp(256);
-    for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = float(i) / float(ramp.size() - 1);
-    const Image bar = flip::magma_image(ramp, std::uint32_t(ramp.size()), 1);
-    const std::string caption = "LDR-FLIP against the " + (truth_name == "aliased" ? "aliased frame" : truth_name);
-    const ColorScale scale{&bar, caption};
-    for (const auto& [stem, image] : frames)
-        for (const char* extension : {".exr", ".png"})
-            outputs.add_image(fmt::format("frames/{}/{}{}", scene.name(), stem, extension), image);
-    auto picture = trail_picture(labeled, scene.trail_crop(schedule), 4, &scale);
-    if (!picture) return std::unexpected(picture.error());
-    outputs.add_image(trail_picture_name(scene.name()), std::make_shared<const Image>(std::move(*picture)));
-    return {};
-}
 
 std::vector<std::string> sequence_names(const std::vector<SequenceFrames>& sequences) {
     std::vector<std::string> names;
@@ -203,24 +159,12 @@ Action add_taa_command(CLI::App& app) {
         auto catalog = VariantCatalog::create(*sources, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
 
-        // One resolve per variant and depth convention (only --dilate-motion reads depth).
-        std::vector<std::unique_ptr<RunnableVariant>> shaders[2];
-        auto shader_for = [&](std::size_t v, bool nearer_larger) -> Result<const Variant*> {
-            auto& built = shaders[o->resolve.dilate_motion && nearer_larger ? 1 : 0];
-            if (built.empty()) {
-                ResolveOptions options = o->resolve;
-                options.depth_nearer_larger = o->resolve.dilate_motion && nearer_larger;
-                for (const VariantSpec& spec : *specs) {
-                    auto shader = build_taa_shader(spec, options);
-                    if (!shader) return std::unexpected(shader.error());
-                    built.push_back(std::move(*shader));
-                }
-            }
-            return &built[v]->variant();
-        };
-        if (auto first = shader_for(0, false); !first) return report_error(first.error().message);
         std::vector<VariantKey> keys;
         for (const VariantSpec& spec : *specs) keys.push_back(spec.key());
+        const TaaSchedule schedule{o->warmup, o->frames};
+        auto evaluation =
+            TaaEvaluation::create(**context, *specs, {o->resolve, schedule, ppd, o->cpu_flip, o->exposure});
+        if (!evaluation) return report_error(evaluation.error().message);
         auto rectifiers = catalog->find_all(keys, o->selection.manifest.empty() ? "--sets" : "--manifest");
         if (!rectifiers) return report_error(rectifiers.error().message);
 
@@ -228,30 +172,14 @@ Action add_taa_command(CLI::App& app) {
         // sequences only, the first sequence's.
         const std::uint32_t width = builtin ? size->first : sequences.front().width();
         const std::uint32_t height = builtin ? size->second : sequences.front().height();
-        const TaaSchedule schedule{o->warmup, o->frames};
-        const HdrFlip cpu_flip(ppd);
-        const LdrFlip& flip = cpu_flip.ldr();
-        // Ghosting and shimmer on the device by default: one evaluator per frame size, made when a
-        // scene or sequence of that size first needs it.
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> device_flips;
-        auto flip_mean = [&](std::uint32_t w, std::uint32_t h) -> Result<FlipMean> {
-            if (o->cpu_flip) return cpu_flip_mean(cpu_flip, o->exposure);
-            std::unique_ptr<DeviceFlip>& device = device_flips[{w, h}];
-            if (!device) {
-                auto created = DeviceFlip::create(**context, ppd, w, h);
-                if (!created) return std::unexpected(created.error());
-                device = std::move(*created);
-            }
-            return device_flip_mean(*device, o->exposure);
-        };
+        const HdrFlip picture_flip(ppd); // the pictures' FLIP maps
         StagedImages written_frames;
-        auto write_frame = [&](const std::string& sequence, std::size_t v) {
-            return [&, sequence, v](std::size_t index, const Image& output) -> Result<void> {
-                if (!o->write_frames) return {};
+        EvaluationObserver observer;
+        if (o->write_frames)
+            observer.output = [&](const std::string& sequence, std::size_t v, std::size_t index, const Image& output) {
                 return written_frames.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index),
                                           output);
             };
-        };
 
         std::vector<TaaRow> rows;
         std::vector<std::string> pictures;
@@ -271,67 +199,38 @@ Action add_taa_command(CLI::App& app) {
             Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs->size(),
                                           scenes.size() + sequences.size(), (*context)->device_name()),
                               specs->size() * (scenes.size() + sequences.size()));
-            auto row = [&](std::size_t v, const std::string& scene, double shimmer, double ghosting,
-                           const char* against, ColorRange range) {
-                rows.push_back({keys[v], scene, median(timing->ms[v]), quantile(timing->ms[v], 0.25),
-                                quantile(timing->ms[v], 0.75), shimmer, ghosting, against, range});
-            };
-            for (const auto& scene_pointer : scenes) {
-                const TaaScene& scene = *scene_pointer;
-                std::vector<std::shared_ptr<const Image>> trails;
-                const std::uint32_t w = scene.width(), h = scene.height();
-                auto mean = flip_mean(w, h);
-                if (!mean) return report_error(fmt::format("{}: {}", scene.name(), mean.error().message));
-                for (std::size_t v = 0; v < specs->size(); ++v) {
-                    auto resolve = TaaResolve::create(**context, **shader_for(v, false), w, h, o->resolve);
-                    if (!resolve) return report_error(resolve.error().message);
-                    SceneOutputObserver written = [&](const std::string& sequence, std::size_t index,
-                                                      const Image& output) {
-                        return write_frame(sequence, v)(index, output);
-                    };
-                    auto m = measure_scene(**resolve, scene, schedule, *mean, written);
-                    if (!m)
-                        return report_error(
-                            fmt::format("{} on {}: {}", keys[v].name(), scene.name(), m.error().message));
-                    row(v, scene.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased",
-                        ColorRange::ldr);
-                    trails.push_back(std::make_shared<const Image>(std::move(m->trail)));
-                    progress.advance(fmt::format("{} on {}", keys[v].name(), scene.name()));
+            observer.measured = [&](const std::string& done) { progress.advance(done); };
+            std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
+            auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
+                for (const EvaluationRow& m : measured) {
+                    const std::vector<double>& ms = timing->ms[m.variant];
+                    rows.push_back({keys[m.variant], m.source, median(ms), quantile(ms, 0.25), quantile(ms, 0.75),
+                                    m.shimmer, m.ghosting, m.against_reference ? "reference" : "aliased", m.range});
+                    for (const std::string& note : m.notes)
+                        if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
                 }
-                auto shown = ghosting_frames(scene, schedule)->frame(scene.trail_frame(schedule));
+            };
+            for (const auto& scene : scenes) {
+                auto measured = evaluation->measure(*scene, observer);
+                if (!measured) return report_error(measured.error().message);
+                add_rows(*measured);
+                auto shown = ghosting_frames(*scene, schedule)->frame(scene->trail_frame(schedule));
                 if (!shown) return report_error(shown.error().message);
                 const bool has_reference = shown->reference.has_value();
                 auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
+                std::vector<std::shared_ptr<const Image>> trails;
                 std::vector<double> ghosting;
-                for (std::size_t v = rows.size() - keys.size(); v < rows.size(); ++v)
-                    ghosting.push_back(rows[v].ghosting);
-                if (auto ok = add_trail_outputs(*outputs, scene, has_reference ? "reference" : "aliased", truth, keys,
-                                                trails, ghosting, flip, schedule);
+                for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
+                if (auto ok = add_ghosting_picture(*outputs, *scene, has_reference ? "reference" : "aliased", truth,
+                                                   keys, trails, ghosting, picture_flip.ldr(), schedule);
                     !ok)
                     return report_error(ok.error().message);
-                pictures.push_back(trail_picture_name(scene.name()));
+                pictures.push_back(ghosting_picture_name(scene->name()));
             }
-            std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
             for (const SequenceFrames& sequence : sequences) {
-                auto mean = flip_mean(sequence.width(), sequence.height());
-                if (!mean) return report_error(fmt::format("{}: {}", sequence.name(), mean.error().message));
-                for (std::size_t v = 0; v < specs->size(); ++v) {
-                    auto shader = shader_for(v, sequence.sequence().depth_nearer_larger);
-                    if (!shader) return report_error(shader.error().message);
-                    auto resolve =
-                        TaaResolve::create(**context, **shader, sequence.width(), sequence.height(), o->resolve);
-                    if (!resolve) return report_error(resolve.error().message);
-                    auto m =
-                        measure_sequence(**resolve, sequence, o->warmup, *mean, {}, write_frame(sequence.name(), v));
-                    if (!m)
-                        return report_error(
-                            fmt::format("{} on {}: {}", keys[v].name(), sequence.name(), m.error().message));
-                    row(v, sequence.name(), m->shimmer, m->ghosting, m->against_reference ? "reference" : "aliased",
-                        m->range);
-                    for (const std::string& note : m->notes)
-                        if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
-                    progress.advance(fmt::format("{} on {}", keys[v].name(), sequence.name()));
-                }
+                auto measured = evaluation->measure(sequence, observer);
+                if (!measured) return report_error(measured.error().message);
+                add_rows(*measured);
             }
         }
         outputs->add(written_frames.writers(outputs->dir()));

@@ -1,11 +1,11 @@
-#include "commands.h"
+#include "cli/commands.h"
 
-#include "image_io.h"
-#include "memory_budget.h"
-#include "number_option.h"
-#include "shown_text.h"
-#include "test_textures.h"
-#include "write_files.h"
+#include "cli/number_option.h"
+#include "core/memory_budget.h"
+#include "core/shown_text.h"
+#include "core/write_files.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
 
 #include <fmt/format.h>
 

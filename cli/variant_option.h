@@ -2,7 +2,7 @@
 // `--numerics paper` names the same variant's paper twin, as its -paper name does.
 #pragma once
 
-#include "variant_key.h"
+#include "core/variant_key.h"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
-#include "builtin_sets.h"
+#include "core/builtin_sets.h"
 
-#include "embedded_files.h"
+#include "core/embedded_files.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,6 +1,6 @@
-#include "color_map.h"
+#include "core/color_map.h"
 
-#include "shown_text.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 

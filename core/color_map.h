@@ -4,7 +4,7 @@
 // as `color_map:`). Negative values map as 0.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

@@ -1,4 +1,4 @@
-#include "escaped_text.h"
+#include "core/escaped_text.h"
 
 #include <fmt/format.h>
 

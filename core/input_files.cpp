@@ -1,4 +1,4 @@
-#include "input_files.h"
+#include "core/input_files.h"
 
 #include <fmt/format.h>
 

@@ -8,7 +8,7 @@
 // too (check_not_an_input), so the refusal comes before the work.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <filesystem>
 #include <optional>

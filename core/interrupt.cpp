@@ -1,4 +1,4 @@
-#include "interrupt.h"
+#include "core/interrupt.h"
 
 #include <fmt/format.h>
 

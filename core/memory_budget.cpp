@@ -1,4 +1,4 @@
-#include "memory_budget.h"
+#include "core/memory_budget.h"
 
 #include <fmt/format.h>
 

@@ -3,7 +3,7 @@
 // textures, staging), which dominate at the sizes where this matters.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <cstdint>
 #include <string>

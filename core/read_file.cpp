@@ -1,6 +1,6 @@
-#include "read_file.h"
+#include "core/read_file.h"
 
-#include "input_files.h"
+#include "core/input_files.h"
 
 #include <fmt/format.h>
 

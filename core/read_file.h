@@ -4,7 +4,7 @@
 // noted as an input of the run (core/input_files.h), so no output can replace it.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <filesystem>
 #include <optional>

@@ -1,4 +1,4 @@
-#include "shown_text.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 

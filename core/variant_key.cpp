@@ -1,6 +1,6 @@
-#include "variant_key.h"
+#include "core/variant_key.h"
 
-#include "shown_text.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 

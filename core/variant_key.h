@@ -6,7 +6,7 @@
 // cost baselines "gather-n9", "gather-n5" and "copy", which have no set.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <kdop/variant.h>
 

@@ -1,7 +1,7 @@
-#include "write_files.h"
+#include "core/write_files.h"
 
-#include "input_files.h"
-#include "interrupt.h"
+#include "core/input_files.h"
+#include "core/interrupt.h"
 
 #include <fmt/format.h>
 

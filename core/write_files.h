@@ -14,7 +14,7 @@
 // build system recompile nothing that includes it.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <filesystem>
 #include <functional>

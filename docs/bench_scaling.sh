@@ -1,5 +1,5 @@
 #!/bin/sh
-# The strong-scaling figures of README "Fitting axis sets to a scene": kdop optimize on a sequence
+# The strong-scaling figures of docs/results.md, "Frames, ranks and threads": kdop optimize on a sequence
 # as 1 rank x 1 thread, 2 ranks x 1 thread (mpirun), 1 rank x 2 threads, and 1 rank x 2 threads
 # streamed (--memory 1), interleaved over three rounds. Prints each run's search seconds and
 # volumes, its peak memory and wall time, then the files' md5 (all the same).

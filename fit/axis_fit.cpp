@@ -1,18 +1,17 @@
-#include "axis_fit.h"
+#include "fit/axis_fit.h"
 
-#include "axis_set.h"
-#include "cpu_clip.h"
-#include "random.h"
-#include "variant_spec.h"
+#include "core/parallel_for.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
+#include "images/random.h"
+#include "reference/cpu_clip.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <thread>
 
 namespace kdop {
 namespace {
@@ -22,21 +21,6 @@ using Clock = std::chrono::steady_clock;
 // Neighborhoods are summed in chunks of this many, each on one thread, and the chunks' sums added
 // in chunk order: the same floating-point sum on any number of threads.
 constexpr std::size_t kChunk = 2048;
-
-unsigned thread_count(unsigned threads) {
-    return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-}
-
-// Runs body(i) for i in [0, count) on `threads` threads.
-template <class Body>
-void parallel_for(std::size_t count, unsigned threads, Body body) {
-    std::atomic<std::size_t> next{0};
-    std::vector<std::jthread> workers;
-    for (unsigned t = 0; t < std::min<std::size_t>(threads, count); ++t)
-        workers.emplace_back([&] {
-            for (std::size_t i; (i = next++) < count;) body(i);
-        });
-}
 
 // The objective and its gradient at `axes`.
 struct Evaluation {
@@ -311,7 +295,7 @@ FitResult best_of(std::size_t starts, unsigned threads, Descend descend_from) {
 
 double mean_volume(std::span<const glm::dvec3> axes, const Neighborhoods& neighborhoods, unsigned threads,
                    std::size_t* failed) {
-    const Evaluation e = evaluate_neighborhoods(axes, neighborhoods, thread_count(threads));
+    const Evaluation e = evaluate_neighborhoods(axes, neighborhoods, worker_count(threads));
     if (failed) *failed = e.failed;
     return e.value;
 }
@@ -323,7 +307,7 @@ FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress) 
     std::mutex mutex;
     std::size_t done = 0;
     double best = std::numeric_limits<double>::infinity();
-    FitResult result = best_of(starts, thread_count(options.threads), [&](std::size_t s) {
+    FitResult result = best_of(starts, worker_count(options.threads), [&](std::size_t s) {
         FitResult r = descend(random_start(options, s), options.force_rgb ? 3 : 0, iterations, options.deadline,
                               evaluate_sphere, [](double) {});
         std::lock_guard lock(mutex); // a start takes milliseconds: report each, not each step
@@ -338,7 +322,7 @@ FitResult fit_to_sphere(const FitOptions& options, const FitProgress& progress) 
 std::vector<double> mean_volumes(std::span<const std::vector<glm::dvec3>> sets, const FrameNeighborhoods& frames,
                                  unsigned threads) {
     std::vector<double> means;
-    for (const Evaluation& e : evaluate_frames(sets, frames, thread_count(threads))) means.push_back(e.value);
+    for (const Evaluation& e : evaluate_frames(sets, frames, worker_count(threads))) means.push_back(e.value);
     return means;
 }
 
@@ -352,7 +336,7 @@ FitResult fit_to_neighborhoods(const FrameNeighborhoods& neighborhoods, const Fi
     const auto start_time = Clock::now();
     const std::size_t starts = options.starts ? options.starts : 4;
     const std::size_t iterations = options.iterations ? options.iterations : 60;
-    const unsigned threads = thread_count(options.threads);
+    const unsigned threads = worker_count(options.threads);
     // The starts run one after another, each on every thread: the objective is what costs.
     FitResult result;
     std::size_t done = 0;
@@ -391,7 +375,7 @@ FitResult fit_to_neighborhoods(const FrameNeighborhoods& neighborhoods, const Fi
 
 double mean_clip_distance(std::span<const glm::dvec3> axes, std::span<const ClipSample> samples, unsigned threads,
                           std::vector<glm::dvec3>* gradient) {
-    Evaluation e = evaluate_clip_samples(axes, samples, thread_count(threads));
+    Evaluation e = evaluate_clip_samples(axes, samples, worker_count(threads));
     if (gradient) *gradient = std::move(e.gradient);
     return e.value;
 }
@@ -400,7 +384,7 @@ FitResult refine_for_distance(std::vector<glm::dvec3> from, std::span<const Clip
                               const FitOptions& options, const FitProgress& progress) {
     const auto start_time = Clock::now();
     const std::size_t iterations = options.iterations ? options.iterations : 60;
-    const unsigned threads = thread_count(options.threads);
+    const unsigned threads = worker_count(options.threads);
     std::size_t done = 0;
     FitResult result = descend(
         std::move(from), options.force_rgb ? 3 : 0, iterations, options.deadline,
@@ -420,7 +404,7 @@ std::size_t nonzero_components(std::span<const glm::dvec3> axes) {
 
 std::vector<SparserStep> fit_sparser(const FrameNeighborhoods* neighborhoods, const FitResult& start,
                                      std::size_t max_nonzero, const FitOptions& options, const FitProgress& progress) {
-    const unsigned threads = thread_count(options.threads);
+    const unsigned threads = worker_count(options.threads);
     const std::size_t fixed = options.force_rgb ? 3 : 0;
     const std::size_t iterations = options.iterations ? options.iterations : (neighborhoods ? 30 : 200);
     auto evaluate = [&](std::span<const glm::dvec3> axes) {

@@ -13,9 +13,9 @@
 // makes it depend on speed.
 #pragma once
 
-#include "frame_neighborhoods.h"
-#include "kdop_polytope.h"
-#include "neighborhoods.h"
+#include "fit/frame_neighborhoods.h"
+#include "fit/kdop_polytope.h"
+#include "fit/neighborhoods.h"
 
 #include <kdop/variant.h>
 

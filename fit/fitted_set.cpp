@@ -1,4 +1,4 @@
-#include "fitted_set.h"
+#include "fit/fitted_set.h"
 
 #include <fmt/format.h>
 

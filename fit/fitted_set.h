@@ -3,9 +3,9 @@
 // from what is deterministic (no timings), so the same fit gives the same bytes.
 #pragma once
 
-#include "axis_set.h"
-#include "color_map.h"
-#include "result.h"
+#include "core/color_map.h"
+#include "core/result.h"
+#include "generator/axis_set.h"
 
 #include <glm/vec3.hpp>
 

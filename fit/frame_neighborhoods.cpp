@@ -1,6 +1,6 @@
-#include "frame_neighborhoods.h"
+#include "fit/frame_neighborhoods.h"
 
-#include "variant_spec.h"
+#include "generator/variant_spec.h"
 
 #include <fmt/format.h>
 

@@ -11,8 +11,8 @@
 // are added up in frame order.
 #pragma once
 
-#include "neighborhoods.h"
-#include "result.h"
+#include "core/result.h"
+#include "fit/neighborhoods.h"
 
 #include <cstddef>
 #include <cstdint>

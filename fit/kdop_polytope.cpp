@@ -1,4 +1,4 @@
-#include "kdop_polytope.h"
+#include "fit/kdop_polytope.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

@@ -1,7 +1,7 @@
-#include "neighborhoods.h"
+#include "fit/neighborhoods.h"
 
-#include "random.h"
-#include "variant_spec.h"
+#include "generator/variant_spec.h"
+#include "images/random.h"
 
 #include <algorithm>
 #include <string_view>

@@ -2,7 +2,7 @@
 // points, with repeats counted instead of stored.
 #pragma once
 
-#include "image.h"
+#include "images/image.h"
 
 #include <kdop/variant.h>
 

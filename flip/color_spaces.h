@@ -9,7 +9,7 @@
 // absolute (white is kD65White), L*a*b* and YCxCz are relative to kD65White.
 #pragma once
 
-#include "srgb.h"
+#include "images/srgb.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,11 +1,11 @@
-#include "device_flip.h"
+#include "flip/device_flip.h"
 
-#include "color_spaces.h"
-#include "embedded_files.h"
-#include "glsl_compiler.h"
-#include "runnable_variant.h"
-#include "variant_builder.h"
-#include "vulkan_error.h"
+#include "core/embedded_files.h"
+#include "flip/color_spaces.h"
+#include "generator/glsl_compiler.h"
+#include "generator/runnable_variant.h"
+#include "generator/variant_builder.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 

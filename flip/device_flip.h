@@ -12,15 +12,15 @@
 // Not thread-safe: one object is one set of device buffers. Not copyable.
 #pragma once
 
-#include "context.h"
-#include "device_buffer.h"
-#include "device_image.h"
-#include "flip.h"
-#include "hdr_flip.h"
-#include "image.h"
-#include "kernel.h"
-#include "one_shot_commands.h"
-#include "result.h"
+#include "core/result.h"
+#include "flip/flip.h"
+#include "flip/hdr_flip.h"
+#include "images/image.h"
+#include "runtime/context.h"
+#include "runtime/device_buffer.h"
+#include "runtime/device_image.h"
+#include "runtime/kernel.h"
+#include "runtime/one_shot_commands.h"
 
 #include <array>
 #include <cstdint>

@@ -1,6 +1,6 @@
-#include "flip.h"
+#include "flip/flip.h"
 
-#include "color_spaces.h"
+#include "flip/color_spaces.h"
 
 #include <fmt/format.h>
 #include <glm/common.hpp>

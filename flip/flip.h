@@ -18,9 +18,9 @@
 // reference. HDR-FLIP (exposures and tone mapping over HDR inputs) is hdr_flip.h.
 #pragma once
 
-#include "flip_filters.h"
-#include "image.h"
-#include "result.h"
+#include "core/result.h"
+#include "flip/flip_filters.h"
+#include "images/image.h"
 
 #include <cstdint>
 #include <span>

@@ -1,4 +1,4 @@
-#include "flip_filters.h"
+#include "flip/flip_filters.h"
 
 #include <algorithm>
 #include <cmath>

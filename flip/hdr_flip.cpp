@@ -1,4 +1,4 @@
-#include "hdr_flip.h"
+#include "flip/hdr_flip.h"
 
 #include <fmt/format.h>
 

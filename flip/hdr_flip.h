@@ -29,9 +29,9 @@
 //   1e19 tone-maps to white as 1e6 does, and an exposed value beyond float is at the limit too.
 #pragma once
 
-#include "flip.h"
-#include "image.h"
-#include "result.h"
+#include "core/result.h"
+#include "flip/flip.h"
+#include "images/image.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,6 +1,6 @@
-#include "magma.h"
+#include "flip/magma.h"
 
-#include "color_spaces.h"
+#include "flip/color_spaces.h"
 
 #include <array>
 

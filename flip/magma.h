@@ -2,7 +2,7 @@
 // colors (black through purple and orange to pale yellow), the nearest of value * 255.
 #pragma once
 
-#include "image.h"
+#include "images/image.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,7 +1,7 @@
-#include "analytic_cost.h"
+#include "generator/analytic_cost.h"
 
-#include "glsl_emitter.h"
-#include "variant_spec.h"
+#include "generator/scaled_axis.h"
+#include "generator/variant_spec.h"
 
 #include <algorithm>
 #include <cassert>

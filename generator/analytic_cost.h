@@ -44,14 +44,21 @@
 // which it does on purpose because it measured cheaper on lavapipe; see write_clip_slab().
 #pragma once
 
-#include "axis_set.h"
-#include "glsl_emitter.h"
+#include "generator/axis_set.h"
+#include "generator/scaled_axis.h"
 
 #include <kdop/variant.h>
 
 #include <cstddef>
 
 namespace kdop {
+
+// Where a hardened clip measures its slabs from. Absolute: the colors as they are, minus the current
+// color's projection once per slab. Relative: the colors minus the current color, three subtracts
+// per neighbor once, after which the origin is 0 and every slab is cheaper. The emitter takes the
+// cheaper for the set (hardened_frame below: relative for the k-DOPs, absolute for the AABBs in n9);
+// the variance clip is always relative, as its moments need.
+enum class Frame { absolute, relative };
 
 // Only for the clips (Mode::clip, Mode::varclip); either form computes the same function, so the
 // bound does not depend on the form.

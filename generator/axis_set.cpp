@@ -1,4 +1,4 @@
-#include "axis_set.h"
+#include "generator/axis_set.h"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>

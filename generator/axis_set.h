@@ -13,9 +13,9 @@
 // one (both give the same slab), and sets whose axes do not span 3-D (the k-DOP would be unbounded).
 #pragma once
 
-#include "color_map.h"
-#include "result.h"
-#include "variant_key.h" // is_valid_set_name
+#include "core/color_map.h"
+#include "core/result.h"
+#include "core/variant_key.h" // is_valid_set_name
 
 #include <glm/vec3.hpp>
 

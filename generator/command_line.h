@@ -5,9 +5,9 @@
 // and no output may replace a file the run read (core/input_files.h).
 #pragma once
 
-#include "input_files.h"
-#include "interrupt.h"
-#include "shown_text.h"
+#include "core/input_files.h"
+#include "core/interrupt.h"
+#include "core/shown_text.h"
 
 #include <CLI/CLI.hpp>
 

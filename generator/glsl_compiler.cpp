@@ -1,4 +1,4 @@
-#include "glsl_compiler.h"
+#include "generator/glsl_compiler.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

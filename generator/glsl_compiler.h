@@ -3,8 +3,8 @@
 // debug information so later stages can name source lines.
 #pragma once
 
-#include "result.h"
-#include "target_env.h"
+#include "core/result.h"
+#include "generator/target_env.h"
 
 #include <kdop/variant.h>
 

@@ -1,14 +1,14 @@
 // kdop-gen: the build-time half of kdop. kdop_add_variants() runs `kdop-gen registry` to embed
 // variants in a target; the refresh-generated target runs `kdop-gen glsl` to rewrite generated/,
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
-#include "command_line.h"
-#include "project_shader.h"
-#include "read_file.h"
-#include "registry_writer.h"
-#include "selection_options.h"
-#include "shown_text.h"
-#include "variant_builder.h"
-#include "variant_files.h"
+#include "core/read_file.h"
+#include "core/shown_text.h"
+#include "generator/command_line.h"
+#include "generator/project_shader.h"
+#include "generator/registry_writer.h"
+#include "generator/selection_options.h"
+#include "generator/variant_builder.h"
+#include "generator/variant_files.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

@@ -1,8 +1,8 @@
-#include "manifest.h"
+#include "generator/manifest.h"
 
-#include "builtin_sets.h"
-#include "read_file.h"
-#include "shown_text.h"
+#include "core/builtin_sets.h"
+#include "core/read_file.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 

@@ -13,8 +13,8 @@
 // naming the manifest's line.
 #pragma once
 
-#include "result.h"
-#include "variant_spec.h"
+#include "core/result.h"
+#include "generator/variant_spec.h"
 
 #include <filesystem>
 #include <vector>

@@ -1,8 +1,8 @@
-#include "project_shader.h"
+#include "generator/project_shader.h"
 
-#include "glsl_compiler.h"
-#include "read_file.h"
-#include "shown_text.h"
+#include "core/read_file.h"
+#include "core/shown_text.h"
+#include "generator/glsl_compiler.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -5,9 +5,9 @@
 // after its file.
 #pragma once
 
-#include "result.h"
-#include "target_env.h"
-#include "variant_builder.h"
+#include "core/result.h"
+#include "generator/target_env.h"
+#include "generator/variant_builder.h"
 
 #include <filesystem>
 #include <span>

@@ -1,9 +1,9 @@
-#include "registry_writer.h"
+#include "generator/registry_writer.h"
 
-#include "escaped_text.h"
-#include "input_files.h"
-#include "shown_text.h"
-#include "write_files.h"
+#include "core/escaped_text.h"
+#include "core/input_files.h"
+#include "core/shown_text.h"
+#include "core/write_files.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

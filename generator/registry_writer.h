@@ -3,7 +3,7 @@
 // Variants whose SPIR-V is identical share one array.
 #pragma once
 
-#include "variant_builder.h"
+#include "generator/variant_builder.h"
 
 #include <filesystem>
 #include <optional>

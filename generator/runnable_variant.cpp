@@ -1,4 +1,4 @@
-#include "runnable_variant.h"
+#include "generator/runnable_variant.h"
 
 namespace kdop {
 

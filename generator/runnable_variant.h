@@ -4,7 +4,7 @@
 // count the paper numerics beside the embedded defaults.
 #pragma once
 
-#include "variant_builder.h"
+#include "generator/variant_builder.h"
 
 #include <kdop/variant.h>
 

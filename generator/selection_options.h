@@ -3,10 +3,10 @@
 // selection of variants the same way.
 #pragma once
 
-#include "builtin_sets.h"
-#include "manifest.h"
-#include "shown_text.h"
-#include "variant_spec.h"
+#include "core/builtin_sets.h"
+#include "core/shown_text.h"
+#include "generator/manifest.h"
+#include "generator/variant_spec.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,4 +1,4 @@
-#include "shader_reflection.h"
+#include "generator/shader_reflection.h"
 
 #include <fmt/format.h>
 #include <spirv_cross/spirv_cross.hpp>

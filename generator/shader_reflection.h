@@ -5,7 +5,7 @@
 // the reflection RenderDoc and engines use, rather than a walk of our own.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <kdop/variant.h>
 

@@ -1,6 +1,6 @@
-#include "spirv_cost.h"
+#include "generator/spirv_cost.h"
 
-#include "spirv_module.h"
+#include "generator/spirv_module.h"
 
 #include <spirv/unified1/GLSL.std.450.h>
 #define SPV_ENABLE_UTILITY_CODE // spv::HasResultAndType

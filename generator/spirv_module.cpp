@@ -1,4 +1,4 @@
-#include "spirv_module.h"
+#include "generator/spirv_module.h"
 
 #include <spirv/unified1/spirv.hpp>
 

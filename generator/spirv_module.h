@@ -2,7 +2,7 @@
 // content hash, and the line information that does not ship (reflection: shader_reflection.h).
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <cstdint>
 #include <span>

@@ -1,7 +1,7 @@
-#include "spirv_tools.h"
+#include "generator/spirv_tools.h"
 
-#include "glsl_compiler.h"
-#include "spirv_module.h"
+#include "generator/glsl_compiler.h"
+#include "generator/spirv_module.h"
 
 #include <fmt/format.h>
 #include <spirv-tools/libspirv.hpp>

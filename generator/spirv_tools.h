@@ -3,8 +3,8 @@
 // module's OpLine information allows it.
 #pragma once
 
-#include "result.h"
-#include "target_env.h"
+#include "core/result.h"
+#include "generator/target_env.h"
 
 #include <cstdint>
 #include <string_view>

@@ -1,4 +1,4 @@
-#include "target_env.h"
+#include "generator/target_env.h"
 
 namespace kdop {
 

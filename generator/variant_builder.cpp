@@ -1,17 +1,17 @@
-#include "variant_builder.h"
+#include "generator/variant_builder.h"
 
-#include "embedded_files.h"
-#include "glsl_compiler.h"
-#include "glsl_emitter.h"
-#include "spirv_tools.h"
+#include "core/embedded_files.h"
+#include "core/parallel_for.h"
+#include "generator/clip_emitter.h"
+#include "generator/compute_shader.h"
+#include "generator/glsl_compiler.h"
+#include "generator/spirv_tools.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 namespace kdop {
 namespace {
@@ -81,25 +81,15 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage langu
 
 Result<std::vector<BuiltVariant>> build_variants(std::span<const VariantSpec> specs, unsigned threads,
                                                  const BuildProgress& progress, SourceLanguage language) {
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    threads = std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(specs.size(), 1)));
-
     std::vector<std::optional<Result<BuiltVariant>>> results(specs.size());
-    std::atomic<std::size_t> next{0};
     std::size_t done = 0;
     std::mutex progress_mutex;
-    {
-        std::vector<std::jthread> workers;
-        for (unsigned t = 0; t < threads; ++t)
-            workers.emplace_back([&] {
-                for (std::size_t i; (i = next++) < specs.size();) {
-                    results[i] = build_variant(specs[i], language);
-                    std::lock_guard lock(progress_mutex);
-                    ++done;
-                    if (progress) progress(done, specs.size(), variant_name(specs[i]));
-                }
-            });
-    }
+    parallel_for(specs.size(), threads, [&](std::size_t i) {
+        results[i] = build_variant(specs[i], language);
+        std::lock_guard lock(progress_mutex);
+        ++done;
+        if (progress) progress(done, specs.size(), variant_name(specs[i]));
+    });
 
     std::vector<BuiltVariant> built;
     std::string errors;

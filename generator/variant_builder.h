@@ -4,10 +4,10 @@
 // parallel; results come back in the order of the specs, so output does not depend on thread timing.
 #pragma once
 
-#include "result.h"
-#include "shader_reflection.h"
-#include "spirv_module.h"
-#include "variant_spec.h"
+#include "core/result.h"
+#include "generator/shader_reflection.h"
+#include "generator/spirv_module.h"
+#include "generator/variant_spec.h"
 
 #include <functional>
 #include <span>

@@ -1,4 +1,4 @@
-#include "variant_files.h"
+#include "generator/variant_files.h"
 
 #include <bit>
 #include <cstring>

@@ -2,8 +2,8 @@
 // write_files_atomically (core/write_files.h).
 #pragma once
 
-#include "variant_builder.h"
-#include "write_files.h"
+#include "core/write_files.h"
+#include "generator/variant_builder.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -1,7 +1,7 @@
-#include "variant_spec.h"
+#include "generator/variant_spec.h"
 
-#include "builtin_sets.h"
-#include "read_file.h"
+#include "core/builtin_sets.h"
+#include "core/read_file.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -2,10 +2,10 @@
 // how variants are named, and how command-line / CMake selections turn into a list of them.
 #pragma once
 
-#include "axis_set.h"
-#include "result.h"
-#include "target_env.h"
-#include "variant_key.h"
+#include "core/result.h"
+#include "core/variant_key.h"
+#include "generator/axis_set.h"
+#include "generator/target_env.h"
 
 #include <kdop/variant.h>
 

@@ -4,7 +4,7 @@
 // values span decades, so a few outliers do not flatten the rest.
 #pragma once
 
-#include "variant_key.h"
+#include "core/variant_key.h"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
-#include "csv_reader.h"
+#include "harness/csv_reader.h"
 
-#include "read_file.h"
+#include "core/read_file.h"
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 // where one command reads another's table, e.g. `kdop accuracy --cost` reading the bench's cost.csv.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <filesystem>
 #include <string>

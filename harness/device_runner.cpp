@@ -1,4 +1,4 @@
-#include "device_runner.h"
+#include "harness/device_runner.h"
 
 #include <fmt/format.h>
 

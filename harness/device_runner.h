@@ -4,11 +4,11 @@
 // later measurement only say what to run and what to do with the outputs.
 #pragma once
 
-#include "context.h"
-#include "image.h"
-#include "kernel.h"
-#include "rectify_pass.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "runtime/context.h"
+#include "runtime/kernel.h"
+#include "runtime/rectify_pass.h"
 
 #include <kdop/variant.h>
 

@@ -1,6 +1,6 @@
-#include "gnuplot.h"
+#include "harness/gnuplot.h"
 
-#include "subprocess.h"
+#include "harness/subprocess.h"
 
 #include <fmt/format.h>
 

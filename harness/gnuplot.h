@@ -4,8 +4,8 @@
 // and without gnuplot a command warns and writes its data and report without them.
 #pragma once
 
-#include "result.h"
-#include "write_files.h"
+#include "core/result.h"
+#include "core/write_files.h"
 
 #include <filesystem>
 #include <string>

@@ -1,6 +1,6 @@
-#include "output_set.h"
+#include "harness/output_set.h"
 
-#include "image_io.h"
+#include "images/image_io.h"
 
 #include <nlohmann/json.hpp>
 

@@ -5,11 +5,11 @@
 // units; images through OpenImageIO (images/image_io.h), in the format their extension names.
 #pragma once
 
-#include "image.h"
-#include "result.h"
-#include "run_metadata.h"
-#include "table.h"
-#include "write_files.h"
+#include "core/result.h"
+#include "core/write_files.h"
+#include "harness/run_metadata.h"
+#include "harness/table.h"
+#include "images/image.h"
 
 #include <filesystem>
 #include <memory>

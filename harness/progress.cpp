@@ -1,6 +1,6 @@
-#include "progress.h"
+#include "harness/progress.h"
 
-#include "shown_text.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 

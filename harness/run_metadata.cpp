@@ -1,8 +1,9 @@
-#include "run_metadata.h"
+#include "harness/run_metadata.h"
 
-#include "context.h"
-#include "escaped_text.h"
+#include "core/escaped_text.h"
+#include "core/parallel_for.h"
 #include "kdop_commit.h"
+#include "runtime/context.h"
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -38,7 +39,7 @@ std::string machine_description() {
             model = line.substr(line.find(':') + 2);
             break;
         }
-    return fmt::format("{}, {} cores", model, std::thread::hardware_concurrency());
+    return fmt::format("{}, {} cores", model, core_count());
 }
 
 } // namespace

@@ -2,7 +2,7 @@
 // files), removed with everything in it when this object dies or the program is interrupted.
 #pragma once
 
-#include "interrupt.h"
+#include "core/interrupt.h"
 
 #include <cstdlib>
 #include <filesystem>

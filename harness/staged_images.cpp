@@ -1,6 +1,6 @@
-#include "staged_images.h"
+#include "harness/staged_images.h"
 
-#include "image_io.h"
+#include "images/image_io.h"
 
 #include <fmt/format.h>
 

@@ -4,10 +4,10 @@
 // the rest, all or nothing. An interrupted or failed run leaves none of them behind.
 #pragma once
 
-#include "image.h"
-#include "result.h"
-#include "scratch_directory.h"
-#include "write_files.h"
+#include "core/result.h"
+#include "core/write_files.h"
+#include "harness/scratch_directory.h"
+#include "images/image.h"
 
 #include <filesystem>
 #include <memory>

@@ -1,6 +1,6 @@
-#include "subprocess.h"
+#include "harness/subprocess.h"
 
-#include "interrupt.h"
+#include "core/interrupt.h"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 // Running the two programs the bench needs (valgrind, gnuplot), which have no library interface.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <filesystem>
 #include <string>

@@ -1,7 +1,7 @@
-#include "table.h"
+#include "harness/table.h"
 
-#include "escaped_text.h"
-#include "gnuplot.h"
+#include "core/escaped_text.h"
+#include "harness/gnuplot.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -1,8 +1,8 @@
-#include "variant_catalog.h"
+#include "harness/variant_catalog.h"
 
-#include "builtin_sets.h"
-#include "variant_builder.h"
-#include "variant_spec.h"
+#include "core/builtin_sets.h"
+#include "generator/variant_builder.h"
+#include "generator/variant_spec.h"
 
 #include <kdop_builtin_variants.h>
 

@@ -7,11 +7,11 @@
 // Built variants live as long as the catalog; the pointers it hands out stay valid that long.
 #pragma once
 
-#include "axis_set.h"
-#include "result.h"
-#include "runnable_variant.h"
-#include "variant_key.h"
-#include "variant_spec.h"
+#include "core/result.h"
+#include "core/variant_key.h"
+#include "generator/axis_set.h"
+#include "generator/runnable_variant.h"
+#include "generator/variant_spec.h"
 
 #include <kdop/variant.h>
 

@@ -1,10 +1,10 @@
-#include "image_io.h"
+#include "images/image_io.h"
 
-#include "input_files.h"
-#include "memory_budget.h"
-#include "read_file.h"
-#include "srgb.h"
-#include "write_files.h"
+#include "core/input_files.h"
+#include "core/memory_budget.h"
+#include "core/read_file.h"
+#include "core/write_files.h"
+#include "images/srgb.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>

@@ -6,9 +6,9 @@
 // a full disk); and deterministic: the same image gives the same bytes.
 #pragma once
 
-#include "image.h"
-#include "result.h"
-#include "write_files.h"
+#include "core/result.h"
+#include "core/write_files.h"
+#include "images/image.h"
 
 #include <glm/vec2.hpp>
 

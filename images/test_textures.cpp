@@ -1,6 +1,6 @@
-#include "test_textures.h"
+#include "images/test_textures.h"
 
-#include "random.h"
+#include "images/random.h"
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>

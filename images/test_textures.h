@@ -4,7 +4,7 @@
 // kdop_image_content; what reads files (the real textures, make_test_cases) in kdop_images.
 #pragma once
 
-#include "image.h"
+#include "images/image.h"
 
 #include <cstdint>
 #include <span>

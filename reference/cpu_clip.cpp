@@ -1,12 +1,12 @@
-#include "cpu_clip.h"
+#include "reference/cpu_clip.h"
 
+#include "core/parallel_for.h"
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace kdop {
 
@@ -96,21 +96,16 @@ Image reference_rectify(const AxisSet& set, Mode mode, Neighborhood n, const Ima
     const std::vector<glm::dvec3> axes = unit_axes(set);
     const std::vector<glm::ivec2> offsets = reference_offsets(n);
     Image out(current.width, current.height);
-    auto rows = [&](std::uint32_t first, std::uint32_t step) {
+    parallel_for(current.height, 0, [&](std::size_t row) {
+        const auto y = std::uint32_t(row);
         std::vector<glm::dvec3> neighborhood(offsets.size());
-        for (std::uint32_t y = first; y < current.height; y += step)
-            for (std::uint32_t x = 0; x < current.width; ++x) {
-                gather_neighborhood(current, x, y, offsets, neighborhood);
-                glm::dvec3 r = reference_clip(axes, neighborhood, glm::dvec3(current.at(x, y)),
-                                              glm::dvec3(history.at(x, y)), mode, gamma, numerics);
-                out.at(x, y) = glm::vec4(glm::vec3(r), 1.0f);
-            }
-    };
-    {
-        const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-        std::vector<std::jthread> workers; // joined at the end of this scope, before `out` is returned
-        for (unsigned t = 0; t < threads; ++t) workers.emplace_back(rows, t, threads);
-    }
+        for (std::uint32_t x = 0; x < current.width; ++x) {
+            gather_neighborhood(current, x, y, offsets, neighborhood);
+            glm::dvec3 r = reference_clip(axes, neighborhood, glm::dvec3(current.at(x, y)),
+                                          glm::dvec3(history.at(x, y)), mode, gamma, numerics);
+            out.at(x, y) = glm::vec4(glm::vec3(r), 1.0f);
+        }
+    });
     return out;
 }
 

@@ -14,9 +14,9 @@
 // promise no more).
 #pragma once
 
-#include "axis_set.h"
-#include "image.h"
-#include "variant_spec.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
+#include "images/image.h"
 
 #include <kdop/variant.h>
 

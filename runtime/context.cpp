@@ -1,6 +1,6 @@
-#include "context.h"
+#include "runtime/context.h"
 
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

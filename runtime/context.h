@@ -8,7 +8,7 @@
 // reports are collected for the caller (tests fail on any).
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <vulkan/vulkan.h>
 

@@ -1,6 +1,6 @@
-#include "device_buffer.h"
+#include "runtime/device_buffer.h"
 
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 

@@ -4,8 +4,8 @@
 // both are the same system memory; on a discrete GPU the difference is the PCIe bus.
 #pragma once
 
-#include "context.h"
-#include "result.h"
+#include "core/result.h"
+#include "runtime/context.h"
 
 #include <vulkan/vulkan.h>
 

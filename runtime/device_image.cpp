@@ -1,6 +1,6 @@
-#include "device_image.h"
+#include "runtime/device_image.h"
 
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 

@@ -4,8 +4,8 @@
 // storage buffer lane by lane wherever the lanes' addresses differ (README, "FLIP on the device").
 #pragma once
 
-#include "context.h"
-#include "result.h"
+#include "core/result.h"
+#include "runtime/context.h"
 
 #include <vulkan/vulkan.h>
 

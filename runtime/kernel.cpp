@@ -1,6 +1,6 @@
-#include "kernel.h"
+#include "runtime/kernel.h"
 
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 // entry (a variant built in-process and dropped before its kernel).
 #pragma once
 
-#include "context.h"
+#include "runtime/context.h"
 
 #include <kdop/variant.h>
 #include <kdop/vulkan_pipeline.h>

@@ -1,6 +1,6 @@
-#include "one_shot_commands.h"
+#include "runtime/one_shot_commands.h"
 
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <chrono>
 #include <cstdint>

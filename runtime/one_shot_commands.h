@@ -3,8 +3,8 @@
 // so each call returns with the results in memory.
 #pragma once
 
-#include "context.h"
-#include "result.h"
+#include "core/result.h"
+#include "runtime/context.h"
 
 #include <vulkan/vulkan.h>
 

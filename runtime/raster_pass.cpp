@@ -1,6 +1,6 @@
-#include "raster_pass.h"
+#include "runtime/raster_pass.h"
 
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 

@@ -11,12 +11,12 @@
 // floats. Back faces are drawn too. Every Vulkan call is checked.
 #pragma once
 
-#include "context.h"
-#include "device_buffer.h"
-#include "device_image.h"
-#include "image.h"
-#include "one_shot_commands.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "runtime/context.h"
+#include "runtime/device_buffer.h"
+#include "runtime/device_image.h"
+#include "runtime/one_shot_commands.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>

@@ -1,7 +1,7 @@
-#include "rectify_pass.h"
+#include "runtime/rectify_pass.h"
 
-#include "device_image.h"
-#include "vulkan_error.h"
+#include "runtime/device_image.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>

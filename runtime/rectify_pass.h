@@ -6,11 +6,11 @@
 // rectify() below does the whole round trip for one variant.
 #pragma once
 
-#include "context.h"
-#include "device_buffer.h"
-#include "image.h"
-#include "kernel.h"
-#include "one_shot_commands.h"
+#include "images/image.h"
+#include "runtime/context.h"
+#include "runtime/device_buffer.h"
+#include "runtime/kernel.h"
+#include "runtime/one_shot_commands.h"
 
 #include <memory>
 #include <optional>

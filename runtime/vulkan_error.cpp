@@ -1,4 +1,4 @@
-#include "vulkan_error.h"
+#include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
 #include <vulkan/vulkan.hpp>

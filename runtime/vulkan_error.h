@@ -3,7 +3,7 @@
 // "vkCreateComputePipelines failed: VK_ERROR_OUT_OF_HOST_MEMORY (-1)".
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <vulkan/vulkan.h>
 

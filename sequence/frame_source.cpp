@@ -1,4 +1,4 @@
-#include "frame_source.h"
+#include "sequence/frame_source.h"
 
 #include <fmt/format.h>
 

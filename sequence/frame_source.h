@@ -1,10 +1,10 @@
 // Where the TAA resolve's frames come from: a sequence on disk (SequenceFrames below), kdop's own
-// scenes rendered in memory (temporal/taa_scene.h), a 3-D testbed. The resolve, the measurement
+// scenes rendered in memory (scenes/sprite_scene.h), a 3-D testbed. The resolve, the measurement
 // and `kdop scene`'s writer take any of them through this interface, so every source is measured
 // the same way and every source can be written as a sequence.
 #pragma once
 
-#include "sequence.h"
+#include "sequence/sequence.h"
 
 #include <glm/vec2.hpp>
 

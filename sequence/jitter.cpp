@@ -1,4 +1,4 @@
-#include "jitter.h"
+#include "sequence/jitter.h"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
-#include "sequence.h"
+#include "sequence/sequence.h"
 
-#include "read_file.h"
-#include "shown_text.h"
+#include "core/read_file.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -17,9 +17,9 @@
 // and column, or the JSON path of the value) and the reason.
 #pragma once
 
-#include "image.h"
-#include "image_io.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "images/image_io.h"
 
 #include <glm/vec2.hpp>
 

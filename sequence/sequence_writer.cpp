@@ -1,6 +1,6 @@
-#include "sequence_writer.h"
+#include "sequence/sequence_writer.h"
 
-#include "image_io.h"
+#include "images/image_io.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -2,8 +2,8 @@
 // own scenes this way, so a user can look at, edit or replay exactly the frames kdop measures.
 #pragma once
 
-#include "frame_source.h"
-#include "write_files.h"
+#include "core/write_files.h"
+#include "sequence/frame_source.h"
 
 #include <memory>
 #include <string>

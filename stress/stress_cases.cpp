@@ -1,7 +1,7 @@
-#include "stress_cases.h"
+#include "stress/stress_cases.h"
 
-#include "glsl_emitter.h"
-#include "random.h"
+#include "generator/scaled_axis.h"
+#include "images/random.h"
 
 #include <glm/common.hpp>
 #include <glm/gtc/packing.hpp>

@@ -4,9 +4,9 @@
 // two tiles, add mixed neighborhoods of the same magnitudes.
 #pragma once
 
-#include "axis_set.h"
-#include "image.h"
-#include "rectify_pass.h"
+#include "generator/axis_set.h"
+#include "images/image.h"
+#include "runtime/rectify_pass.h"
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
-#include "stress_check.h"
+#include "stress/stress_check.h"
 
-#include "cpu_clip.h"
+#include "reference/cpu_clip.h"
 
 #include <fmt/format.h>
 

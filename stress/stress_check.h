@@ -14,9 +14,9 @@
 //                lies on a slab, within the tolerance: the disagreement is rounding at the boundary
 #pragma once
 
-#include "axis_set.h"
-#include "image.h"
-#include "variant_spec.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
+#include "images/image.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,4 +1,4 @@
-#include "stress_report.h"
+#include "stress/stress_report.h"
 
 #include <fmt/format.h>
 

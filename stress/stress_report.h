@@ -3,9 +3,9 @@
 // tally, and report.md with the table, the legends and the first violation of each failing cell.
 #pragma once
 
-#include "run_metadata.h"
-#include "stress_suite.h"
-#include "table.h"
+#include "harness/run_metadata.h"
+#include "harness/table.h"
+#include "stress/stress_suite.h"
 
 #include <string>
 

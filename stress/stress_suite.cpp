@@ -1,6 +1,6 @@
-#include "stress_suite.h"
+#include "stress/stress_suite.h"
 
-#include "stress_cases.h"
+#include "stress/stress_cases.h"
 
 #include <fmt/format.h>
 

@@ -4,10 +4,10 @@
 // invariants are this folder's.
 #pragma once
 
-#include "device_runner.h"
-#include "progress.h"
-#include "stress_check.h"
-#include "variant_catalog.h"
+#include "harness/device_runner.h"
+#include "harness/progress.h"
+#include "harness/variant_catalog.h"
+#include "stress/stress_check.h"
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
-#include "resolve_options.h"
+#include "temporal/resolve_options.h"
 
-#include "shown_text.h"
+#include "core/shown_text.h"
 
 #include <fmt/format.h>
 

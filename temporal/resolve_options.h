@@ -5,8 +5,8 @@
 // the shader tests an option.
 #pragma once
 
-#include "color_map.h"
-#include "result.h"
+#include "core/color_map.h"
+#include "core/result.h"
 
 #include <string>
 #include <string_view>

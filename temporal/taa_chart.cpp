@@ -1,7 +1,7 @@
-#include "taa_chart.h"
+#include "temporal/taa_chart.h"
 
-#include "chart_style.h"
-#include "gnuplot.h"
+#include "harness/chart_style.h"
+#include "harness/gnuplot.h"
 
 #include <fmt/format.h>
 

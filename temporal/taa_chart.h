@@ -4,9 +4,9 @@
 // (harness/chart_style.h): color for mode and neighborhood, shape for the axis set.
 #pragma once
 
-#include "result.h"
-#include "taa_report.h"
-#include "write_files.h"
+#include "core/result.h"
+#include "core/write_files.h"
+#include "temporal/taa_report.h"
 
 #include <filesystem>
 #include <string>

@@ -1,6 +1,6 @@
-#include "taa_measure.h"
+#include "temporal/taa_measure.h"
 
-#include "memory_budget.h"
+#include "core/memory_budget.h"
 
 #include <fmt/format.h>
 

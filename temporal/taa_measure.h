@@ -12,14 +12,14 @@
 // ghosting on a moving one without jitter (measure_scene below); a captured sequence gives both.
 #pragma once
 
-#include "device_flip.h"
-#include "frame_source.h"
-#include "hdr_flip.h"
-#include "image.h"
-#include "kdop_scene.h"
-#include "result.h"
-#include "taa_resolve.h"
-#include "trail_picture.h"
+#include "core/result.h"
+#include "flip/device_flip.h"
+#include "flip/hdr_flip.h"
+#include "images/image.h"
+#include "scenes/taa_scene.h"
+#include "sequence/frame_source.h"
+#include "temporal/taa_resolve.h"
+#include "temporal/trail_picture.h"
 
 #include <cstdint>
 #include <functional>
@@ -88,7 +88,7 @@ struct TaaMeasurement {
     Image trail;
 };
 
-// Called with the sequence's name (shimmer_frames' or ghosting_frames', kdop_scene.h), a measured
+// Called with the sequence's name (shimmer_frames' or ghosting_frames', scenes/taa_scene.h), a measured
 // frame's index and its output.
 using SceneOutputObserver =
     std::function<Result<void>(const std::string& sequence, std::size_t index, const Image& output)>;

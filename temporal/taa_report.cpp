@@ -1,8 +1,8 @@
-#include "taa_report.h"
+#include "temporal/taa_report.h"
 
-#include "escaped_text.h"
-#include "rank_correlation.h"
-#include "variant_columns.h"
+#include "core/escaped_text.h"
+#include "harness/declared_table.h"
+#include "harness/rank_correlation.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -139,19 +139,25 @@ bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows)
 }
 
 Table taa_table(const std::vector<TaaRow>& rows) {
-    Table t(joined(variant_columns(),
-                   {Column("scene", "", Shown::text), Column("ms", "ms", Shown::fixed, 3, "median"),
-                    Column("ms_q1", "ms", Shown::fixed, 3, "Q1"), Column("ms_q3", "ms", Shown::fixed, 3, "Q3"),
-                    Column("ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"),
-                    Column("shimmer", "FLIP", Shown::fixed, 4), Column("ghosting", "FLIP", Shown::fixed, 4),
-                    Column("ghosting_against", "", Shown::text, 0, "ghosting against"),
-                    Column("flip", "", Shown::text, 0, "measured in")}));
-    for (const TaaRow& r : rows)
-        t.add(joined(variant_values(r.key), {r.scene, maybe(r.ms), maybe(r.ms_q1), maybe(r.ms_q3),
-                                             std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value(),
-                                             maybe(r.shimmer), maybe(r.ghosting), r.ghosting_against,
-                                             std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP")}));
-    return t;
+    const DeclaredColumns<TaaRow> columns =
+        variant_key_columns<TaaRow>([](const TaaRow& r) -> const VariantKey& { return r.key; }) +
+        DeclaredColumns<TaaRow>{
+            {{"scene", "", Shown::text}, [](const TaaRow& r) { return Value(r.scene); }},
+            {{"ms", "ms", Shown::fixed, 3, "median"}, [](const TaaRow& r) { return maybe(r.ms); }},
+            {{"ms_q1", "ms", Shown::fixed, 3, "Q1"}, [](const TaaRow& r) { return maybe(r.ms_q1); }},
+            {{"ms_q3", "ms", Shown::fixed, 3, "Q3"}, [](const TaaRow& r) { return maybe(r.ms_q3); }},
+            {{"ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"},
+             [&rows](const TaaRow& r) {
+                 return std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value();
+             }},
+            {{"shimmer", "FLIP", Shown::fixed, 4}, [](const TaaRow& r) { return maybe(r.shimmer); }},
+            {{"ghosting", "FLIP", Shown::fixed, 4}, [](const TaaRow& r) { return maybe(r.ghosting); }},
+            {{"ghosting_against", "", Shown::text, 0, "ghosting against"},
+             [](const TaaRow& r) { return Value(r.ghosting_against); }},
+            {{"flip", "", Shown::text, 0, "measured in"},
+             [](const TaaRow& r) { return Value(std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP")); }},
+        };
+    return declared_table<TaaRow>(columns, rows);
 }
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run, const TaaReportSettings& s) {

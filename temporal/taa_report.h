@@ -3,12 +3,12 @@
 // Ikkala et al. 2024 with each method's rank, so the orderings can be compared at a glance.
 #pragma once
 
-#include "hdr_flip.h"
-#include "resolve_options.h"
-#include "run_metadata.h"
-#include "sequence.h"
-#include "table.h"
-#include "variant_key.h"
+#include "core/variant_key.h"
+#include "flip/hdr_flip.h"
+#include "harness/run_metadata.h"
+#include "harness/table.h"
+#include "sequence/sequence.h"
+#include "temporal/resolve_options.h"
 
 #include <cmath>
 #include <string>

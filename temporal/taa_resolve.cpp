@@ -1,4 +1,4 @@
-#include "taa_resolve.h"
+#include "temporal/taa_resolve.h"
 
 #include <fmt/format.h>
 

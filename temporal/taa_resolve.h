@@ -4,13 +4,13 @@
 // the one the resolve continues from.
 #pragma once
 
-#include "context.h"
-#include "frame_source.h"
-#include "image.h"
-#include "kernel.h"
-#include "rectify_pass.h"
-#include "resolve_options.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "runtime/context.h"
+#include "runtime/kernel.h"
+#include "runtime/rectify_pass.h"
+#include "sequence/frame_source.h"
+#include "temporal/resolve_options.h"
 
 #include <kdop/variant.h>
 

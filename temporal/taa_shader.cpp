@@ -1,9 +1,9 @@
-#include "taa_shader.h"
+#include "temporal/taa_shader.h"
 
-#include "embedded_files.h"
-#include "glsl_compiler.h"
-#include "glsl_emitter.h"
-#include "variant_builder.h"
+#include "core/embedded_files.h"
+#include "generator/clip_emitter.h"
+#include "generator/glsl_compiler.h"
+#include "generator/variant_builder.h"
 
 #include <fmt/format.h>
 

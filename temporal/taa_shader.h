@@ -6,10 +6,10 @@
 // the runtime as any variant.
 #pragma once
 
-#include "resolve_options.h"
-#include "result.h"
-#include "runnable_variant.h"
-#include "variant_spec.h"
+#include "core/result.h"
+#include "generator/runnable_variant.h"
+#include "generator/variant_spec.h"
+#include "temporal/resolve_options.h"
 
 #include <memory>
 #include <string>

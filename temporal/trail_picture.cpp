@@ -1,4 +1,4 @@
-#include "trail_picture.h"
+#include "temporal/trail_picture.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>

@@ -3,8 +3,9 @@
 // glance which clip leaves a trail behind the moving objects and how long it is.
 #pragma once
 
-#include "image.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "scenes/taa_scene.h"
 
 #include <span>
 #include <string>
@@ -23,12 +24,6 @@ struct LabeledFrame {
 struct ColorScale {
     const Image* bar;
     std::string caption;
-};
-
-// The part of each frame shown, magnified `scale` times (nearest, so aliasing stays visible).
-struct TrailCrop {
-    std::uint32_t x = 0, y = 0, width = 0, height = 0;
-    std::uint32_t scale = 1;
 };
 
 // A grid `columns` crops wide (each frame over its error map, if any), each with a strip above it

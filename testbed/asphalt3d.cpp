@@ -1,6 +1,6 @@
-#include "scene3d.h"
+#include "testbed/scene3d.h"
 
-#include "test_textures.h"
+#include "images/test_textures.h"
 
 #include <fmt/format.h>
 

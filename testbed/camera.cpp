@@ -1,4 +1,4 @@
-#include "camera.h"
+#include "testbed/camera.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -3,7 +3,7 @@
 // the sequence format's default "depth": {"nearer": "smaller"} says.
 #pragma once
 
-#include "scene3d.h"
+#include "testbed/scene3d.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>

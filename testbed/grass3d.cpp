@@ -1,7 +1,7 @@
-#include "scene3d.h"
+#include "testbed/scene3d.h"
 
-#include "random.h"
-#include "test_textures.h"
+#include "images/random.h"
+#include "images/test_textures.h"
 
 #include <fmt/format.h>
 

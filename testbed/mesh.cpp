@@ -1,4 +1,4 @@
-#include "mesh.h"
+#include "testbed/mesh.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

@@ -12,8 +12,8 @@
 // four near-black wheels that turn as they roll, with a dark shadow under it.
 #pragma once
 
-#include "image.h"
-#include "mesh.h"
+#include "images/image.h"
+#include "testbed/mesh.h"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

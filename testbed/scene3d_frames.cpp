@@ -1,6 +1,6 @@
-#include "scene3d_frames.h"
+#include "testbed/scene3d_frames.h"
 
-#include "jitter.h"
+#include "sequence/jitter.h"
 
 #include <fmt/format.h>
 

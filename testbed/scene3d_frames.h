@@ -3,8 +3,8 @@
 // writes exactly the same frames.
 #pragma once
 
-#include "frame_source.h"
-#include "testbed_renderer.h"
+#include "sequence/frame_source.h"
+#include "testbed/testbed_renderer.h"
 
 #include <cstdint>
 #include <memory>

@@ -1,8 +1,8 @@
-#include "testbed_renderer.h"
+#include "testbed/testbed_renderer.h"
 
-#include "camera.h"
-#include "glsl_compiler.h"
-#include "spirv_tools.h"
+#include "generator/glsl_compiler.h"
+#include "generator/spirv_tools.h"
+#include "testbed/camera.h"
 
 #include <fmt/format.h>
 

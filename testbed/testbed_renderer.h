@@ -5,10 +5,10 @@
 // jitter, as renderers compute it), and the depth.
 #pragma once
 
-#include "context.h"
-#include "raster_pass.h"
-#include "result.h"
-#include "scene3d.h"
+#include "core/result.h"
+#include "runtime/context.h"
+#include "runtime/raster_pass.h"
+#include "testbed/scene3d.h"
 
 #include <glm/vec2.hpp>
 

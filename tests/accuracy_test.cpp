@@ -1,14 +1,14 @@
 // Accuracy against the ideal clip: the metrics on images small enough to work out by hand, the
 // trade table's averaging and Pareto fronts, reading a bench cost.csv, and a whole run on the
 // device checked against what must hold (sets with the RGB axes never looser than the RGB AABB).
-#include "accuracy_report.h"
-#include "accuracy_run.h"
-#include "cpu_clip.h"
-#include "gpu_support.h"
-#include "ideal_clip.h"
-#include "image_io.h"
-#include "sampled_distance.h"
-#include "test_support.h"
+#include "accuracy/accuracy_report.h"
+#include "accuracy/accuracy_run.h"
+#include "accuracy/ideal_clip.h"
+#include "accuracy/sampled_distance.h"
+#include "images/image_io.h"
+#include "reference/cpu_clip.h"
+#include "tests/gpu_support.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

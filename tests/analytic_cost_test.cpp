@@ -2,10 +2,10 @@
 // emitted clip must spend exactly its frame's count plus, in the absolute frame, its two deliberate
 // constant starts per slab, and no frame may beat the bound; so any operation the emitter or the
 // optimizer adds (or a missed fusion) shows up here.
-#include "analytic_cost.h"
-#include "glsl_emitter.h"
-#include "spirv_cost.h"
-#include "variant_builder.h"
+#include "generator/analytic_cost.h"
+
+#include "generator/spirv_cost.h"
+#include "generator/variant_builder.h"
 
 #include <gtest/gtest.h>
 

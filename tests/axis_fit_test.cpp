@@ -1,15 +1,15 @@
 // Fitting axis sets (fit/axis_fit.h, kdop optimize): the sphere fits reach the supplement's general
 // sets, the result depends on the seed alone, a fitted set beats the paper's scene sets on its
 // scene, and the command round-trips through gen, run and accuracy and refuses bad input.
-#include "accuracy_inputs.h"
-#include "axis_fit.h"
-#include "color_map.h"
-#include "cpu_clip.h"
-#include "image_io.h"
-#include "sampled_distance.h"
-#include "test_support.h"
-#include "test_textures.h"
-#include "variant_spec.h"
+#include "accuracy/accuracy_inputs.h"
+#include "accuracy/sampled_distance.h"
+#include "core/color_map.h"
+#include "fit/axis_fit.h"
+#include "generator/variant_spec.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
+#include "reference/cpu_clip.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Axis-set files: the accepted spellings, the built-in sets' numbers, and every refusal with its
 // file:line and reason.
-#include "axis_set.h"
-#include "builtin_sets.h"
-#include "variant_spec.h"
+#include "core/builtin_sets.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
 // The cost bench: its statistics and CSV on hand-made data, callgrind counts that repeat and rank
 // variants by their work, and `kdop bench` run as a user runs it (small sizes, no timing asserted)
 // with bad input refused before anything is measured or written.
-#include "callgrind.h"
-#include "cost_table.h"
-#include "progress.h"
-#include "set_cost.h"
-#include "statistics.h"
-#include "test_support.h"
-#include "variant_spec.h"
+#include "bench/callgrind.h"
+#include "bench/cost_table.h"
+#include "bench/set_cost.h"
+#include "generator/variant_spec.h"
+#include "harness/progress.h"
+#include "harness/statistics.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The kdop command line, run as a user runs it: list, gen and show, bad input refused with a
 // message naming the file/line or argument, a non-zero exit and nothing written.
-#include "cpu_clip.h"
-#include "image_io.h"
-#include "test_support.h"
+#include "images/image_io.h"
+#include "reference/cpu_clip.h"
+#include "tests/test_support.h"
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>

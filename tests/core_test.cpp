@@ -1,11 +1,11 @@
 // The core: variant keys and names, the built-in set list read from the embedded axis files, and
 // output files written as a set.
-#include "axis_set.h"
-#include "builtin_sets.h"
-#include "test_support.h"
-#include "variant_key.h"
-#include "variant_spec.h"
-#include "write_files.h"
+#include "core/builtin_sets.h"
+#include "core/variant_key.h"
+#include "core/write_files.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
+#include "tests/test_support.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -3,10 +3,10 @@
 // content, at odd sizes (1x1, 3x7, 1921x1081) and at several ppd; identical images give 0; bad
 // input is refused as the CPU code refuses it. On lavapipe (or $KDOP_DEVICE) with the validation
 // layer on and no message.
-#include "device_flip.h"
-#include "gpu_support.h"
-#include "hdr_flip.h"
-#include "test_textures.h"
+#include "flip/device_flip.h"
+#include "flip/hdr_flip.h"
+#include "images/test_textures.h"
+#include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
 

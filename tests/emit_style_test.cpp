@@ -1,11 +1,11 @@
 // Every emission style computes the same function: built in-process, run on lavapipe, compared
 // with the CPU reference (same tolerance and reasoning as gpu_reference_test.cpp).
-#include "cpu_clip.h"
-#include "glsl_emitter.h"
-#include "gpu_support.h"
-#include "runnable_variant.h"
-#include "test_textures.h"
-#include "variant_builder.h"
+#include "generator/clip_emitter.h"
+#include "generator/runnable_variant.h"
+#include "generator/variant_builder.h"
+#include "images/test_textures.h"
+#include "reference/cpu_clip.h"
+#include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
 

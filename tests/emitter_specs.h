@@ -2,8 +2,8 @@
 // numerics, for the tests that compare one language's function with another's.
 #pragma once
 
-#include "test_support.h"
-#include "variant_spec.h"
+#include "generator/variant_spec.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,11 @@
 // The GLSL emitter: golden text for a tiny set that exercises every folding rule, and structural
 // properties of the real sets' text (no loops, no run-time indexing, zeros and units folded).
-#include "glsl_emitter.h"
-#include "test_support.h"
-#include "variant_builder.h"
-#include "variant_spec.h"
+#include "generator/clip_emitter.h"
+#include "generator/compute_shader.h"
+#include "generator/scaled_axis.h"
+#include "generator/variant_builder.h"
+#include "generator/variant_spec.h"
+#include "tests/test_support.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -5,12 +5,12 @@
 // shaders' declarations, and both run through kdop/vulkan_pipeline.h, with a function table and
 // VK_NO_PROTOTYPES (resolve_runner.cpp), on lavapipe with the validation layer on, against the CPU
 // reference.
-#include "cpu_clip.h"
-#include "gpu_support.h"
+#include "examples/engine_resolve/resolve_runner.h"
+#include "generator/shader_reflection.h"
+#include "images/test_textures.h"
 #include "kdop_test_shaders.h"
-#include "resolve_runner.h"
-#include "shader_reflection.h"
-#include "test_textures.h"
+#include "reference/cpu_clip.h"
+#include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
 

@@ -3,12 +3,12 @@
 // color pipeline written out again below in double; a step edge, whose feature error follows
 // from the detectors' normalization alone; the viewing distance; symmetry; refused input; and
 // `kdop flip` run as a user runs it.
-#include "color_spaces.h"
-#include "flip.h"
-#include "image_io.h"
-#include "magma.h"
-#include "random.h"
-#include "test_support.h"
+#include "flip/color_spaces.h"
+#include "flip/flip.h"
+#include "flip/magma.h"
+#include "images/image_io.h"
+#include "images/random.h"
+#include "tests/test_support.h"
 
 #include <fmt/format.h>
 #include <glm/common.hpp>

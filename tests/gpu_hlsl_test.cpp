@@ -7,11 +7,11 @@
 // The second is the stronger claim and holds because the HLSL function performs the same operations
 // in the same order (hlsl_emitter_test.cpp) and compiles to the same float arithmetic
 // (hlsl_build_test.cpp); a difference would mean the two languages' functions have drifted apart.
-#include "cpu_clip.h"
-#include "gpu_support.h"
-#include "runnable_variant.h"
-#include "test_textures.h"
-#include "variant_builder.h"
+#include "generator/runnable_variant.h"
+#include "generator/variant_builder.h"
+#include "images/test_textures.h"
+#include "reference/cpu_clip.h"
+#include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "gpu_support.h"
+#include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
 #include <kdop_builtin_variants.h>

@@ -3,13 +3,13 @@
 // against the CPU reference.
 #pragma once
 
-#include "context.h"
-#include "device_runner.h"
-#include "image.h"
-#include "kernel.h"
-#include "rectify_pass.h"
-#include "variant_catalog.h"
-#include "variant_spec.h"
+#include "generator/variant_spec.h"
+#include "harness/device_runner.h"
+#include "harness/variant_catalog.h"
+#include "images/image.h"
+#include "runtime/context.h"
+#include "runtime/kernel.h"
+#include "runtime/rectify_pass.h"
 
 #include <kdop/variant.h>
 

@@ -1,14 +1,14 @@
 // The measurement layer's parts on hand-made data: result tables in every format (RFC 4180 quoting,
 // empty for unmeasured, rows that do not fit the columns refused), reading CSV back, run metadata,
 // progress text, output sets and the memory budget.
-#include "csv_reader.h"
-#include "memory_budget.h"
-#include "output_set.h"
-#include "progress.h"
-#include "rank_correlation.h"
-#include "run_metadata.h"
-#include "table.h"
-#include "test_support.h"
+#include "core/memory_budget.h"
+#include "harness/csv_reader.h"
+#include "harness/output_set.h"
+#include "harness/progress.h"
+#include "harness/rank_correlation.h"
+#include "harness/run_metadata.h"
+#include "harness/table.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,9 +1,9 @@
 // HDR-FLIP (flip/hdr_flip.h): the exposure range as NVlabs/flip derives it, on cases worked here by
 // hand; the error as the largest LDR-FLIP over the tone-mapped exposures; zero for identical images;
 // kdop flip --hdr; bad input refused with the image, pixel or argument named.
-#include "hdr_flip.h"
-#include "image_io.h"
-#include "test_support.h"
+#include "flip/hdr_flip.h"
+#include "images/image_io.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -3,10 +3,10 @@
 // validator, keeps no loop, binds what the GLSL build binds, and compiles to the same float
 // arithmetic as the GLSL build: the evidence, short of running them (gpu_hlsl_test.cpp), that the
 // two languages' functions compute alike. Compiler messages name the HLSL line.
-#include "glsl_compiler.h"
-#include "spirv_cost.h"
-#include "spirv_module.h"
-#include "variant_builder.h"
+#include "generator/glsl_compiler.h"
+#include "generator/spirv_cost.h"
+#include "generator/spirv_module.h"
+#include "generator/variant_builder.h"
 
 #include <gtest/gtest.h>
 #include <kdop_builtin_variants.h>

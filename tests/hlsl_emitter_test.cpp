@@ -1,10 +1,10 @@
 // The HLSL emitter: golden text for the tiny set, and for every built-in variant in every form and
 // numerics, the HLSL function is the GLSL one with only the names shader_dialect.h lists changed,
 // line for line, so it performs the same operations in the same order. (gpu_hlsl_test.cpp runs it.)
-#include "emitter_specs.h"
-#include "glsl_emitter.h"
-#include "test_support.h"
-#include "variant_spec.h"
+#include "generator/clip_emitter.h"
+#include "generator/variant_spec.h"
+#include "tests/emitter_specs.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The ideal clip (the LP against the convex hull) and the volumes, on cases worked out by hand.
-#include "ideal_clip.h"
-#include "volume.h"
+#include "accuracy/ideal_clip.h"
+#include "accuracy/volume.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Writing images: what is written reads back as written, or the write is an error and leaves no
 // file. A full disk (a 64 KiB tmpfs, where the system lets the test mount one) used to pass
 // silently through OpenImageIO's PNG, BMP and TGA writers.
-#include "image_io.h"
-#include "random.h"
-#include "srgb.h"
-#include "test_support.h"
+#include "images/image_io.h"
+#include "images/random.h"
+#include "images/srgb.h"
+#include "tests/test_support.h"
 
 #include <OpenImageIO/imageio.h>
 #include <glm/vec3.hpp>
@@ -172,7 +172,8 @@ TEST(ImageIo, PngHoldsSrgbAndSaysSo) {
     // The bytes are the encoded values: 0.25, 0.5, 0.75 become 137, 188, 225.
     auto stored = read_image(path.string(), 0, InputSpace::linear);
     auto back = read_image(path.string());
-    ASSERT_TRUE(stored && back);
+    ASSERT_TRUE(stored) << stored.error().message;
+    ASSERT_TRUE(back) << back.error().message;
     const int bytes_expected[3] = {137, 188, 225};
     for (int c = 0; c < 3; ++c) {
         EXPECT_EQ(std::lround(stored->at(1, 1)[c] * 255), bytes_expected[c]) << "as stored, channel " << c;

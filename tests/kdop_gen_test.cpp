@@ -1,7 +1,7 @@
 // kdop-gen registry with a project's own shaders and functions, run as kdop_add_variants() runs it:
 // includes resolved, the shader embedded with its interface, the depfile listing what it read, and
 // bad shaders refused with a message naming the file, a non-zero exit and nothing written.
-#include "test_support.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // The fitting objective's k-DOP volume (fit/kdop_polytope.h) against what it must equal: boxes
 // worked out by hand, the supplement's k-DOP volumes around the unit sphere, and Qhull's half-space
 // intersection (accuracy/volume.h) on random neighborhoods; its faces against the volume they bound.
-#include "axis_set.h"
-#include "cpu_clip.h"
-#include "kdop_polytope.h"
-#include "random.h"
-#include "variant_spec.h"
-#include "volume.h"
+#include "accuracy/volume.h"
+#include "fit/kdop_polytope.h"
+#include "generator/axis_set.h"
+#include "generator/variant_spec.h"
+#include "images/random.h"
+#include "reference/cpu_clip.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // A scene's variant manifest (generator/manifest.h): exactly the variants listed, in order, with
 // the sets its `set:` lines name; anything else an error naming the manifest's line.
-#include "manifest.h"
-#include "test_support.h"
+#include "generator/manifest.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

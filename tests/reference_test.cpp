@@ -1,5 +1,5 @@
 // The CPU reference itself, on cases small enough to work out by hand.
-#include "cpu_clip.h"
+#include "reference/cpu_clip.h"
 
 #include <gtest/gtest.h>
 

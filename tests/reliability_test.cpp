@@ -4,17 +4,17 @@
 // is not finite, the command-line contract (one table over every numeric option), no Vulkan driver.
 // The HDR-FLIP of huge values is in hdr_flip_test.cpp and device_flip_test.cpp, the Vulkan 1.3
 // workgroup size in target_env_test.cpp, the crash of a run in trust_test.cpp.
-#include "color_map.h"
-#include "escaped_text.h"
-#include "image_io.h"
-#include "output_set.h"
-#include "registry_writer.h"
-#include "run_metadata.h"
-#include "sequence.h"
-#include "shown_text.h"
-#include "table.h"
-#include "test_support.h"
-#include "write_files.h"
+#include "core/color_map.h"
+#include "core/escaped_text.h"
+#include "core/shown_text.h"
+#include "core/write_files.h"
+#include "generator/registry_writer.h"
+#include "harness/output_set.h"
+#include "harness/run_metadata.h"
+#include "harness/table.h"
+#include "images/image_io.h"
+#include "sequence/sequence.h"
+#include "tests/test_support.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>

@@ -5,18 +5,18 @@
 // `kdop scene` + `kdop taa --sequence`: a replay equals the in-memory run, an HDR sequence is
 // measured in HDR-FLIP (the CPU code's figures), bad sequences are refused, naming the file, with
 // nothing written.
-#include "cpu_clip.h"
-#include "flip.h"
-#include "gpu_support.h"
-#include "hdr_flip.h"
-#include "image_io.h"
-#include "sequence_writer.h"
-#include "taa_measure.h"
-#include "taa_resolve.h"
-#include "taa_scene.h"
-#include "taa_shader.h"
-#include "test_support.h"
-#include "test_textures.h"
+#include "flip/flip.h"
+#include "flip/hdr_flip.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
+#include "reference/cpu_clip.h"
+#include "scenes/sprite_scene.h"
+#include "sequence/sequence_writer.h"
+#include "temporal/taa_measure.h"
+#include "temporal/taa_resolve.h"
+#include "temporal/taa_shader.h"
+#include "tests/gpu_support.h"
+#include "tests/test_support.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // The frame-sequence format (sequence/sequence.h): what a valid sequence reads as, the four
 // motion conventions, and every kind of bad input refused with the file and the reason.
-#include "sequence.h"
+#include "sequence/sequence.h"
 
-#include "image_io.h"
-#include "test_support.h"
+#include "images/image_io.h"
+#include "tests/test_support.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>

@@ -2,13 +2,13 @@
 // with SPIRV-Tools' own validator and disassembler, not the generator's checks), the interface is
 // reflected, output is deterministic, identical modules are stored once, and compiler messages
 // name the GLSL line.
-#include "glsl_compiler.h"
+#include "generator/glsl_compiler.h"
+#include "generator/registry_writer.h"
+#include "generator/spirv_module.h"
+#include "generator/variant_builder.h"
 #include "kdop_stripped_test_shaders.h"
 #include "kdop_test_shaders.h"
-#include "registry_writer.h"
-#include "spirv_module.h"
-#include "test_support.h"
-#include "variant_builder.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 #include <spirv-tools/libspirv.hpp>

@@ -1,7 +1,7 @@
 // The static float-op count, on shaders small enough to count by hand. The inputs come from a
 // buffer so that nothing folds to a constant; glslang's output is used unoptimized.
-#include "glsl_compiler.h"
-#include "spirv_cost.h"
+#include "generator/glsl_compiler.h"
+#include "generator/spirv_cost.h"
 
 #include <gtest/gtest.h>
 

@@ -1,16 +1,16 @@
 // The stress suite on lavapipe with the validation layer on: every default variant keeps every
 // invariant on every case; the checks can fail; and each hardening fix has a test that the
 // paper's numerics fail, so removing the fix fails it too.
-#include "builtin_sets.h"
-#include "cpu_clip.h"
-#include "glsl_emitter.h"
-#include "gpu_support.h"
-#include "runnable_variant.h"
-#include "stress_cases.h"
-#include "stress_check.h"
-#include "stress_report.h"
-#include "stress_suite.h"
-#include "test_support.h"
+#include "core/builtin_sets.h"
+#include "generator/runnable_variant.h"
+#include "generator/scaled_axis.h"
+#include "reference/cpu_clip.h"
+#include "stress/stress_cases.h"
+#include "stress/stress_check.h"
+#include "stress/stress_report.h"
+#include "stress/stress_suite.h"
+#include "tests/gpu_support.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

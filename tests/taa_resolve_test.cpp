@@ -2,10 +2,10 @@
 // (kdop_add_variants SHADERS, tests/CMakeLists.txt), run on lavapipe with the validation layer on
 // and checked against the CPU reference: the history moved by the motion (clamp to edge), clipped
 // by the reference dop22 clip, then blended with the current frame.
-#include "cpu_clip.h"
-#include "gpu_support.h"
+#include "images/test_textures.h"
 #include "kdop_test_shaders.h"
-#include "test_textures.h"
+#include "reference/cpu_clip.h"
+#include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
 

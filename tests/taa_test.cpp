@@ -2,18 +2,18 @@
 // resolve over them on lavapipe (determinism, none ghosting for a resolve that keeps no history)
 // and the paper's central ordering, then the command's outputs and its refusals. The resolve's
 // options against a CPU restatement, and sequences on disk: tests/sequence_resolve_test.cpp.
-#include "cpu_clip.h"
-#include "device_flip.h"
-#include "flip.h"
-#include "gpu_support.h"
-#include "image_io.h"
-#include "taa_measure.h"
-#include "taa_report.h"
-#include "taa_resolve.h"
-#include "taa_scene.h"
-#include "taa_shader.h"
-#include "test_support.h"
-#include "test_textures.h"
+#include "flip/device_flip.h"
+#include "flip/flip.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
+#include "reference/cpu_clip.h"
+#include "scenes/sprite_scene.h"
+#include "temporal/taa_measure.h"
+#include "temporal/taa_report.h"
+#include "temporal/taa_resolve.h"
+#include "temporal/taa_shader.h"
+#include "tests/gpu_support.h"
+#include "tests/test_support.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,12 +1,12 @@
 // --target-env: a variant built for each Vulkan version declares that version's SPIR-V in its header
 // and validates for that environment (checked with SPIRV-Tools directly, not the generator's
 // checks), from GLSL and from HLSL; the default is Vulkan 1.0, byte for byte what is embedded.
-#include "context.h"
-#include "kernel.h"
-#include "rectify_pass.h"
-#include "runnable_variant.h"
-#include "target_env.h"
-#include "variant_builder.h"
+#include "generator/runnable_variant.h"
+#include "generator/target_env.h"
+#include "generator/variant_builder.h"
+#include "runtime/context.h"
+#include "runtime/kernel.h"
+#include "runtime/rectify_pass.h"
 
 #include <gtest/gtest.h>
 #include <kdop_builtin_variants.h>

@@ -1,17 +1,17 @@
 // The 3-D testbed (testbed/): rasterized on lavapipe with the validation layer on, its samples,
 // depth and motion checked against what the camera and the scene's transforms say, independently
 // of the shaders that drew them.
-#include "camera.h"
-#include "flip.h"
-#include "gpu_support.h"
-#include "hdr_flip.h"
-#include "jitter.h"
-#include "scene3d.h"
-#include "scene3d_frames.h"
-#include "taa_measure.h"
-#include "taa_resolve.h"
-#include "taa_shader.h"
-#include "testbed_renderer.h"
+#include "flip/flip.h"
+#include "flip/hdr_flip.h"
+#include "sequence/jitter.h"
+#include "temporal/taa_measure.h"
+#include "temporal/taa_resolve.h"
+#include "temporal/taa_shader.h"
+#include "testbed/camera.h"
+#include "testbed/scene3d.h"
+#include "testbed/scene3d_frames.h"
+#include "testbed/testbed_renderer.h"
+#include "tests/gpu_support.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

@@ -2,14 +2,14 @@
 // replaces an input, a failed or interrupted run leaves the previous outputs as they were, an input
 // given twice is refused however it is spelled, inputs that are not files cannot hang kdop, and
 // every bad command line is refused before the work, with exit 2.
-#include "input_files.h"
-#include "write_files.h"
+#include "core/input_files.h"
+#include "core/write_files.h"
 
-#include "cpu_clip.h"
-#include "image_io.h"
-#include "test_support.h"
-#include "test_textures.h"
-#include "variant_spec.h"
+#include "generator/variant_spec.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
+#include "reference/cpu_clip.h"
+#include "tests/test_support.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

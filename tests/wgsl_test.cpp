@@ -2,10 +2,10 @@
 // form and numerics, compiled inside a compute shader by Tint (Dawn's WGSL compiler, through the
 // webgpu package install-deps.sh puts in tests/wgsl; tint_check.mjs); a broken one refused with
 // Tint's message; and each function's operations, counted per kind, the GLSL function's.
-#include "emitter_specs.h"
-#include "glsl_emitter.h"
-#include "test_support.h"
-#include "variant_spec.h"
+#include "generator/clip_emitter.h"
+#include "generator/variant_spec.h"
+#include "tests/emitter_specs.h"
+#include "tests/test_support.h"
 
 #include <gtest/gtest.h>
 

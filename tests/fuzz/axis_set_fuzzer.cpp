@@ -3,10 +3,10 @@
 // file leaves a comment (the injection the adversarial run found) and no axis became zero or
 // infinite (the loop form's raw axes). Everything it refuses must be refused with a message that
 // names the file and holds no raw control bytes. Any violation aborts, which libFuzzer reports.
-#include "axis_set.h"
-#include "fuzz_checks.h"
-#include "glsl_emitter.h"
-#include "variant_spec.h"
+#include "generator/axis_set.h"
+#include "generator/clip_emitter.h"
+#include "generator/variant_spec.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 #include <algorithm>
 #include <cctype>

@@ -5,9 +5,9 @@
 // finite values, and a refusal must name a pixel; whatever HDR-FLIP accepts must give a finite mean
 // and error map in [0, 1], and a refusal must be a message; the tone curves must be finite for any
 // finite color and exposure float can scale by. Any violation aborts, which libFuzzer reports.
-#include "color_map.h"
-#include "fuzz_checks.h"
-#include "hdr_flip.h"
+#include "core/color_map.h"
+#include "flip/hdr_flip.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 #include <fmt/format.h>
 #include <glm/common.hpp>

@@ -6,8 +6,8 @@
 // report or an allocation beyond libFuzzer's limit (a header claiming more than it holds).
 // The corpus: 4x4 images in each format kdop reads (oiiotool --pattern ... -d uint8|uint16|half|float)
 // and the two oversized headers of tests/data.
-#include "fuzz_checks.h"
-#include "image_io.h"
+#include "images/image_io.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 #include <fmt/format.h>
 

@@ -3,8 +3,8 @@
 // refused with a message that names the manifest, holds no raw control bytes and stays short
 // (the bytes of a long line are cut); whatever is read must list at least one variant, each once.
 // Any violation aborts, which libFuzzer reports.
-#include "fuzz_checks.h"
-#include "manifest.h"
+#include "generator/manifest.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 #include <algorithm>
 #include <cstdint>

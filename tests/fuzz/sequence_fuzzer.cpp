@@ -4,9 +4,9 @@
 // whatever is read must have a size within the format's limits, a color file for every frame and
 // motion for every frame with a history, and its frames must load or be refused the same way.
 // Any violation aborts, which libFuzzer reports.
-#include "fuzz_checks.h"
-#include "image_io.h"
-#include "sequence.h"
+#include "images/image_io.h"
+#include "sequence/sequence.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// kdop's 2-D scenes (kdop_scene.h): a background image under two moving objects (a red box and a
+// kdop's 2-D scenes (taa_scene.h): a background image under two moving objects (a red box and a
 // dark ellipse); this file says where they are on each frame, where the camera's sample falls in
 // each pixel, and draws the frames a renderer would give the resolve (color, motion, depth), in
 // memory, as a frame source (sequence/frame_source.h) that `kdop taa` measures and `kdop scene`
@@ -16,12 +16,12 @@
 // 2018), 10 entries, as in Ikkala et al. 2024, centered on the pixel.
 #pragma once
 
-#include "frame_source.h"
-#include "image.h"
-#include "image_io.h"
-#include "jitter.h"
-#include "kdop_scene.h"
-#include "result.h"
+#include "core/result.h"
+#include "images/image.h"
+#include "images/image_io.h"
+#include "scenes/taa_scene.h"
+#include "sequence/frame_source.h"
+#include "sequence/jitter.h"
 
 #include <glm/vec2.hpp>
 

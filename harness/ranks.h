@@ -8,14 +8,14 @@
 // (none installed) runs as one rank and refuses to be started as several.
 #pragma once
 
-#include "result.h"
+#include "core/result.h"
 
 #include <cstddef>
 #include <span>
 #include <string>
 #include <vector>
 
-namespace kdop::cli {
+namespace kdop {
 
 class Ranks {
 public:
@@ -58,4 +58,4 @@ private:
 bool started_by_launcher();
 int launched_ranks();
 
-} // namespace kdop::cli
+} // namespace kdop

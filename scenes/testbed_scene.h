@@ -2,9 +2,9 @@
 // `kdop scene` writes: its frames drawn on the device, one renderer shared by its sequences.
 #pragma once
 
-#include "kdop_scene.h"
-#include "scene3d.h"
-#include "testbed_renderer.h"
+#include "scenes/taa_scene.h"
+#include "testbed/scene3d.h"
+#include "testbed/testbed_renderer.h"
 
 #include <memory>
 

@@ -1,4 +1,4 @@
-#include "ranks.h"
+#include "harness/ranks.h"
 
 #include <fmt/format.h>
 
@@ -14,7 +14,7 @@
 #include <mpi.h>
 #endif
 
-namespace kdop::cli {
+namespace kdop {
 
 bool started_by_launcher() {
     for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
@@ -123,4 +123,4 @@ void Ranks::abort(const std::string& message) const {
     std::exit(1);
 }
 
-} // namespace kdop::cli
+} // namespace kdop

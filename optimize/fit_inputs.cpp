@@ -1,8 +1,8 @@
-#include "fit_inputs.h"
+#include "optimize/fit_inputs.h"
 
-#include "accuracy_inputs.h"
-#include "input_files.h"
-#include "sampled_distance.h"
+#include "accuracy/accuracy_inputs.h"
+#include "accuracy/sampled_distance.h"
+#include "core/input_files.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <memory>
 
-namespace kdop::cli {
+namespace kdop {
 namespace {
 
 constexpr std::string_view kFiniteForFitting = "fitting needs finite colors";
@@ -137,4 +137,4 @@ Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& o, c
     return samples;
 }
 
-} // namespace kdop::cli
+} // namespace kdop

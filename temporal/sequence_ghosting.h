@@ -1,16 +1,17 @@
 // The shimmer and ghosting of fitted axis sets on frame sequences, measured as `kdop taa
-// --sequence` measures them: the set's clip generated and built into the TAA resolve with the
-// given resolve options, run over each sequence on the device after the warmup, measured with the
-// device's FLIP (HDR-FLIP for an HDR sequence). kdop optimize --target-ghosting chooses k by it.
+// --sequence` measures them (through the same evaluation, taa_evaluation.h): the set's clip generated and built into
+// the TAA resolve with the given resolve options, run over each sequence on the device after the warmup, measured with
+// the device's FLIP (HDR-FLIP for an HDR sequence). kdop optimize --target-ghosting chooses k by it.
 #pragma once
 
-#include "axis_set.h"
-#include "context.h"
-#include "device_flip.h"
-#include "frame_source.h"
-#include "resolve_options.h"
-#include "result.h"
-#include "taa_measure.h"
+#include "core/result.h"
+#include "flip/device_flip.h"
+#include "generator/axis_set.h"
+#include "runtime/context.h"
+#include "sequence/frame_source.h"
+#include "temporal/resolve_options.h"
+#include "temporal/taa_evaluation.h"
+#include "temporal/taa_measure.h"
 
 #include <kdop/variant.h>
 
@@ -19,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace kdop::cli {
+namespace kdop {
 
 class SequenceGhosting {
 public:
@@ -33,10 +34,9 @@ public:
 
 private:
     std::vector<SequenceFrames> sequences_;
-    ResolveOptions options_;
-    std::uint32_t warmup_ = 0;
+    EvaluationOptions options_;
     std::unique_ptr<Context> context_;
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> flips_; // by frame size
+    std::unique_ptr<TaaEvaluation> evaluation_; // made with the first set, then given each next one
 };
 
-} // namespace kdop::cli
+} // namespace kdop

@@ -1,8 +1,8 @@
-#include "kdop_scene.h"
+#include "scenes/scene_catalog.h"
 
-#include "scene3d.h"
-#include "taa_scene.h"
-#include "testbed_scene.h"
+#include "scenes/sprite_scene.h"
+#include "scenes/testbed_scene.h"
+#include "testbed/scene3d.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -28,14 +28,6 @@ const TestbedEntry* testbed_entry(const std::string& name) {
 bool is_testbed_scene(const std::string& name) { return testbed_entry(name) != nullptr; }
 
 } // namespace
-
-std::shared_ptr<const FrameSource> shimmer_frames(const TaaScene& scene, const TaaSchedule& schedule) {
-    return scene.frames(scene.name() + "-shimmer", schedule.warmup + schedule.frames, false, true);
-}
-
-std::shared_ptr<const FrameSource> ghosting_frames(const TaaScene& scene, const TaaSchedule& schedule) {
-    return scene.frames(scene.name() + "-ghosting", schedule.warmup + schedule.frames, true, false);
-}
 
 std::vector<std::string> builtin_scene_names() {
     std::vector<std::string> names;

@@ -1,7 +1,7 @@
-#include "testbed_scene.h"
+#include "scenes/testbed_scene.h"
 
-#include "camera.h"
-#include "scene3d_frames.h"
+#include "testbed/camera.h"
+#include "testbed/scene3d_frames.h"
 
 #include <fmt/format.h>
 

@@ -2,19 +2,19 @@
 // (fit/frame_neighborhoods.h), and the pixels its distance to the ideal clip is measured on.
 #pragma once
 
-#include "axis_fit.h"
-#include "color_map.h"
-#include "image_io.h"
-#include "progress.h"
-#include "result.h"
-#include "sequence.h"
+#include "core/color_map.h"
+#include "core/result.h"
+#include "fit/axis_fit.h"
+#include "harness/progress.h"
+#include "images/image_io.h"
+#include "sequence/sequence.h"
 
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
-namespace kdop::cli {
+namespace kdop {
 
 struct FitInputOptions {
     std::vector<std::string> images, sequences; // files; sequence folders
@@ -39,4 +39,4 @@ Result<FitInputs> fit_inputs(const FitInputOptions& options);
 Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& options, const FitInputs& inputs,
                                                      Neighborhood shape, std::size_t per_input, std::uint64_t seed);
 
-} // namespace kdop::cli
+} // namespace kdop

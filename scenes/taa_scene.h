@@ -1,15 +1,13 @@
 // A scene kdop draws itself, for `kdop taa` to measure and `kdop scene` to write: the 3-D testbed's
-// (grass3d, asphalt3d: testbed/, rasterized on the device, the default) or a 2-D one (grass,
-// asphalt, a real texture, a user's background: taa_scene.h, drawn on the CPU). Each is measured as
+// (grass3d, asphalt3d: testbed_scene.h over testbed/, rasterized on the device, the default) or a
+// 2-D one (grass, asphalt, a real texture, a user's background: sprite_scene.h, drawn on the CPU).
+// scene_catalog.h picks them by name. Each is measured as
 // the paper measures its scenes: shimmer on a still, jittered sequence and ghosting on a moving one
-// without jitter (taa_measure.h).
+// without jitter (temporal/taa_measure.h).
 #pragma once
 
-#include "context.h"
-#include "frame_source.h"
-#include "image_io.h"
-#include "result.h"
-#include "trail_picture.h"
+#include "core/result.h"
+#include "sequence/frame_source.h"
 
 #include <cstdint>
 #include <memory>
@@ -17,6 +15,12 @@
 #include <vector>
 
 namespace kdop {
+
+// The part of each frame shown, magnified `scale` times (nearest, so aliasing stays visible).
+struct TrailCrop {
+    std::uint32_t x = 0, y = 0, width = 0, height = 0;
+    std::uint32_t scale = 1;
+};
 
 struct TaaSchedule {
     std::uint32_t warmup = 100; // frames before measuring, so the history is full
@@ -45,26 +49,5 @@ public:
 // <name>-ghosting (moving, without jitter).
 std::shared_ptr<const FrameSource> shimmer_frames(const TaaScene& scene, const TaaSchedule& schedule);
 std::shared_ptr<const FrameSource> ghosting_frames(const TaaScene& scene, const TaaSchedule& schedule);
-
-struct SceneOptions {
-    std::uint32_t width = 320, height = 180;
-    std::uint64_t seed = 1;                         // of the synthetic textures and the testbed's scenes
-    InputSpace input_space = InputSpace::from_file; // of --background images
-    const Context* context = nullptr;               // where the 3-D scenes are drawn; must outlive them
-    bool camera_pan = false;                        // 3-D scenes: the camera slides sideways (--camera pan)
-    std::uint32_t reference_samples = 0;            // 3-D scenes: > 0 adds a supersampled reference per frame
-};
-
-// The built-in scenes: the 3-D testbed's two, then the 2-D ones.
-std::vector<std::string> builtin_scene_names();
-
-// Whether select_taa_scenes(names, backgrounds, ...) picks a 3-D scene, and so needs a context.
-bool selects_testbed_scene(const std::vector<std::string>& names, const std::vector<std::string>& backgrounds);
-
-// The scenes `names` asks for (built-in, by name), then one per image in `backgrounds` (2-D), in
-// that order; both empty: grass3d and asphalt3d. Errors name the option (--scenes, --background).
-Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std::vector<std::string>& names,
-                                                                       const std::vector<std::string>& backgrounds,
-                                                                       const SceneOptions& options);
 
 } // namespace kdop

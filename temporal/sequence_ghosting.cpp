@@ -1,20 +1,19 @@
-#include "sequence_ghosting.h"
+#include "temporal/sequence_ghosting.h"
 
-#include "flip.h"
-#include "taa_resolve.h"
-#include "taa_shader.h"
-#include "variant_spec.h"
+#include "flip/flip.h"
+#include "generator/variant_spec.h"
 
 #include <fmt/format.h>
 
-namespace kdop::cli {
+namespace kdop {
 
 Result<std::unique_ptr<SequenceGhosting>> SequenceGhosting::create(const std::vector<std::string>& dirs,
                                                                    InputSpace space, const ResolveOptions& options,
                                                                    std::uint32_t warmup) {
     auto out = std::unique_ptr<SequenceGhosting>(new SequenceGhosting);
-    out->options_ = options;
-    out->warmup_ = warmup;
+    out->options_.resolve = options;
+    out->options_.schedule.warmup = warmup;
+    out->options_.ppd = pixels_per_degree(ViewingConditions{});
     auto context = Context::create({});
     if (!context) return std::unexpected(context.error());
     out->context_ = std::move(*context);
@@ -33,27 +32,21 @@ Result<std::vector<SequenceMeasurement>> SequenceGhosting::measure(const AxisSet
     spec.set = set;
     spec.mode = Mode::clip;
     spec.neighborhood = shape;
+    if (!evaluation_) {
+        auto created = TaaEvaluation::create(*context_, {spec}, options_);
+        if (!created) return std::unexpected(created.error());
+        evaluation_ = std::make_unique<TaaEvaluation>(std::move(*created));
+    } else if (auto ok = evaluation_->set_variants({spec}); !ok) {
+        return std::unexpected(ok.error());
+    }
     std::vector<SequenceMeasurement> measured;
     for (const SequenceFrames& sequence : sequences_) {
-        ResolveOptions options = options_;
-        options.depth_nearer_larger = options.dilate_motion && sequence.sequence().depth_nearer_larger;
-        auto shader = build_taa_shader(spec, options);
-        if (!shader) return std::unexpected(shader.error());
-        std::unique_ptr<DeviceFlip>& flip = flips_[{sequence.width(), sequence.height()}];
-        if (!flip) {
-            auto created = DeviceFlip::create(*context_, pixels_per_degree(ViewingConditions{}), sequence.width(),
-                                              sequence.height());
-            if (!created) return std::unexpected(created.error());
-            flip = std::move(*created);
-        }
-        auto resolve =
-            TaaResolve::create(*context_, (*shader)->variant(), sequence.width(), sequence.height(), options);
-        if (!resolve) return std::unexpected(resolve.error());
-        auto m = measure_sequence(**resolve, sequence, warmup_, device_flip_mean(*flip));
-        if (!m) return fail(fmt::format("{} on {}: {}", set.name, sequence.name(), m.error().message));
-        measured.push_back(*m);
+        auto rows = evaluation_->measure(sequence);
+        if (!rows) return std::unexpected(rows.error());
+        const EvaluationRow& row = rows->front();
+        measured.push_back({row.shimmer, row.ghosting, row.range, row.against_reference, 0, row.notes});
     }
     return measured;
 }
 
-} // namespace kdop::cli
+} // namespace kdop

@@ -1,7 +1,7 @@
-#include "taa_scene.h"
+#include "scenes/sprite_scene.h"
 
-#include "image_io.h"
-#include "test_textures.h"
+#include "images/image_io.h"
+#include "images/test_textures.h"
 
 #include <fmt/format.h>
 

@@ -1,0 +1,115 @@
+#include "temporal/taa_evaluation.h"
+
+#include "temporal/taa_resolve.h"
+#include "temporal/taa_shader.h"
+
+#include <fmt/format.h>
+
+#include <set>
+
+namespace kdop {
+
+TaaEvaluation::TaaEvaluation(const Context& context, const EvaluationOptions& options)
+    : context_(&context), options_(options) {
+    if (options.cpu_flip) cpu_flip_ = std::make_unique<HdrFlip>(options.ppd);
+}
+
+Result<TaaEvaluation> TaaEvaluation::create(const Context& context, std::vector<VariantSpec> specs,
+                                            const EvaluationOptions& options) {
+    TaaEvaluation evaluation(context, options);
+    if (auto ok = evaluation.set_variants(std::move(specs)); !ok) return std::unexpected(ok.error());
+    return evaluation;
+}
+
+Result<void> TaaEvaluation::set_variants(std::vector<VariantSpec> specs) {
+    specs_ = std::move(specs);
+    for (auto& built : shaders_) built.clear();
+    // Every variant's resolve is built now, so a shader that does not compile fails before any frame.
+    if (!specs_.empty())
+        if (auto first = shader(0, false); !first) return std::unexpected(first.error());
+    return {};
+}
+
+Result<const Variant*> TaaEvaluation::shader(std::size_t v, bool nearer_larger) {
+    const bool reads_depth = options_.resolve.dilate_motion && nearer_larger;
+    auto& built = shaders_[reads_depth ? 1 : 0];
+    if (built.empty()) {
+        ResolveOptions options = options_.resolve;
+        options.depth_nearer_larger = reads_depth;
+        for (const VariantSpec& spec : specs_) {
+            auto shader = build_taa_shader(spec, options);
+            if (!shader) return std::unexpected(shader.error());
+            built.push_back(std::move(*shader));
+        }
+    }
+    return &built[v]->variant();
+}
+
+Result<FlipMean> TaaEvaluation::flip_mean(std::uint32_t width, std::uint32_t height) {
+    if (cpu_flip_) return cpu_flip_mean(*cpu_flip_, options_.exposure);
+    std::unique_ptr<DeviceFlip>& device = device_flips_[{width, height}];
+    if (!device) {
+        auto created = DeviceFlip::create(*context_, options_.ppd, width, height);
+        if (!created) return std::unexpected(created.error());
+        device = std::move(*created);
+    }
+    return device_flip_mean(*device, options_.exposure);
+}
+
+Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene, const EvaluationObserver& observer) {
+    auto mean = flip_mean(scene.width(), scene.height());
+    if (!mean) return fail(fmt::format("{}: {}", scene.name(), mean.error().message));
+    std::vector<EvaluationRow> rows;
+    for (std::size_t v = 0; v < specs_.size(); ++v) {
+        auto shader = this->shader(v, false);
+        if (!shader) return std::unexpected(shader.error());
+        auto resolve = TaaResolve::create(*context_, **shader, scene.width(), scene.height(), options_.resolve);
+        if (!resolve) return std::unexpected(resolve.error());
+        SceneOutputObserver output;
+        if (observer.output)
+            output = [&](const std::string& sequence, std::size_t index, const Image& image) {
+                return observer.output(sequence, v, index, image);
+            };
+        auto m = measure_scene(**resolve, scene, options_.schedule, *mean, output);
+        if (!m) return fail(fmt::format("{} on {}: {}", variant_name(specs_[v]), scene.name(), m.error().message));
+        rows.push_back({v,
+                        scene.name(),
+                        m->shimmer,
+                        m->ghosting,
+                        m->against_reference,
+                        ColorRange::ldr,
+                        std::make_shared<const Image>(std::move(m->trail)),
+                        {}});
+        if (observer.measured) observer.measured(fmt::format("{} on {}", variant_name(specs_[v]), scene.name()));
+    }
+    return rows;
+}
+
+Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& sequence,
+                                                          const EvaluationObserver& observer) {
+    auto mean = flip_mean(sequence.width(), sequence.height());
+    if (!mean) return fail(fmt::format("{}: {}", sequence.name(), mean.error().message));
+    std::vector<EvaluationRow> rows;
+    std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them
+    for (std::size_t v = 0; v < specs_.size(); ++v) {
+        auto shader = this->shader(v, sequence.sequence().depth_nearer_larger);
+        if (!shader) return std::unexpected(shader.error());
+        auto resolve = TaaResolve::create(*context_, **shader, sequence.width(), sequence.height(), options_.resolve);
+        if (!resolve) return std::unexpected(resolve.error());
+        OutputObserver output;
+        if (observer.output)
+            output = [&](std::size_t index, const Image& image) {
+                return observer.output(sequence.name(), v, index, image);
+            };
+        auto m = measure_sequence(**resolve, sequence, options_.schedule.warmup, *mean, {}, output);
+        if (!m) return fail(fmt::format("{} on {}: {}", variant_name(specs_[v]), sequence.name(), m.error().message));
+        EvaluationRow row{v, sequence.name(), m->shimmer, m->ghosting, m->against_reference, m->range, nullptr, {}};
+        for (const std::string& note : m->notes)
+            if (noted.insert(note).second) row.notes.push_back(note);
+        rows.push_back(std::move(row));
+        if (observer.measured) observer.measured(fmt::format("{} on {}", variant_name(specs_[v]), sequence.name()));
+    }
+    return rows;
+}
+
+} // namespace kdop

@@ -1,0 +1,86 @@
+// The evaluation every TAA figure comes from: variants x sources (kdop's scenes and frame
+// sequences), each variant's resolve run over each source and measured (taa_measure.h) in LDR- or
+// HDR-FLIP, on the device by default. `kdop taa` and `kdop optimize --target-ghosting` both measure
+// through it, so a figure means the same wherever it is printed.
+#pragma once
+
+#include "core/result.h"
+#include "flip/hdr_flip.h"
+#include "generator/runnable_variant.h"
+#include "generator/variant_spec.h"
+#include "runtime/context.h"
+#include "scenes/taa_scene.h"
+#include "sequence/frame_source.h"
+#include "temporal/resolve_options.h"
+#include "temporal/taa_measure.h"
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+struct EvaluationOptions {
+    ResolveOptions resolve;
+    TaaSchedule schedule;     // scenes: warm-up and measured frames; sequences: the warm-up, then every frame
+    double ppd = 0;           // FLIP's pixels per degree
+    bool cpu_flip = false;    // FLIP on the CPU (the reference code) instead of on the device
+    ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
+};
+
+// One variant's figures on one scene or sequence.
+struct EvaluationRow {
+    std::size_t variant = 0; // into the evaluation's specs
+    std::string source;      // the scene's or sequence's name
+    double shimmer = 0, ghosting = 0;
+    bool against_reference = false;     // ghosting against reference frames, not each frame's own color
+    ColorRange range = ColorRange::ldr; // measured in LDR-FLIP or HDR-FLIP
+    std::shared_ptr<const Image> trail; // scenes: the ghosting sequence's frame scene.trail_frame(schedule)
+    std::vector<std::string> notes;     // HDR-FLIP's exposure notes (ExposureRange::note), once each
+};
+
+struct EvaluationObserver {
+    // Each measured output: `sequence` (a scene's are <scene>-shimmer and <scene>-ghosting), the
+    // variant, the frame's index. An error stops the evaluation.
+    std::function<Result<void>(const std::string& sequence, std::size_t variant, std::size_t index,
+                               const Image& output)>
+        output;
+    // After each variant on each source, naming both ("dop32-clip-n9 on grass3d").
+    std::function<void(const std::string& done)> measured;
+};
+
+class TaaEvaluation {
+public:
+    // The resolve around every spec, built in-process. `context` must outlive the evaluation.
+    static Result<TaaEvaluation> create(const Context& context, std::vector<VariantSpec> specs,
+                                        const EvaluationOptions& options);
+
+    const std::vector<VariantSpec>& specs() const { return specs_; }
+
+    // Other variants on the same device, its FLIP evaluators kept: kdop optimize measures one
+    // fitted set after another.
+    Result<void> set_variants(std::vector<VariantSpec> specs);
+
+    // Every variant on `scene` (both of its sequences), or on `sequence`, in spec order.
+    Result<std::vector<EvaluationRow>> measure(const TaaScene& scene, const EvaluationObserver& observer = {});
+    Result<std::vector<EvaluationRow>> measure(const SequenceFrames& sequence, const EvaluationObserver& observer = {});
+
+private:
+    TaaEvaluation(const Context& context, const EvaluationOptions& options);
+    // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth).
+    Result<const Variant*> shader(std::size_t v, bool nearer_larger);
+    // The FLIP of outputs of one size: on the device, one evaluator per size, made when first needed.
+    Result<FlipMean> flip_mean(std::uint32_t width, std::uint32_t height);
+
+    const Context* context_;
+    std::vector<VariantSpec> specs_;
+    EvaluationOptions options_;
+    std::vector<std::unique_ptr<RunnableVariant>> shaders_[2]; // by depth convention, built when first needed
+    std::unique_ptr<HdrFlip> cpu_flip_;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> device_flips_;
+};
+
+} // namespace kdop
