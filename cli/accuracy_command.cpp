@@ -1,5 +1,6 @@
 #include "cli/commands.h"
 
+#include "accuracy/accuracy_charts.h"
 #include "accuracy/accuracy_report.h"
 #include "accuracy/accuracy_run.h"
 #include "cli/input_space_option.h"

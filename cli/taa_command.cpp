@@ -1,6 +1,5 @@
 #include "cli/commands.h"
 
-#include "bench/timing.h"
 #include "cli/hdr_flip_option.h"
 #include "cli/input_space_option.h"
 #include "cli/number_option.h"
@@ -9,42 +8,22 @@
 #include "cli/size_option.h"
 #include "core/input_files.h"
 #include "core/shown_text.h"
-#include "flip/flip.h"
 #include "generator/command_line.h"
 #include "generator/selection_options.h"
-#include "harness/gnuplot.h"
 #include "harness/output_set.h"
-#include "harness/progress.h"
-#include "harness/run_metadata.h"
-#include "harness/scratch_directory.h"
-#include "harness/staged_images.h"
-#include "harness/statistics.h"
 #include "harness/variant_catalog.h"
 #include "images/image_io.h"
 #include "sequence/sequence.h"
-#include "temporal/ghosting_picture.h"
-#include "temporal/taa_chart.h"
-#include "temporal/taa_evaluation.h"
 #include "temporal/taa_measure.h"
-#include "temporal/taa_report.h"
+#include "temporal/taa_run.h"
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <set>
 
 namespace kdop::cli {
-namespace {
-
-std::vector<std::string> sequence_names(const std::vector<SequenceFrames>& sequences) {
-    std::vector<std::string> names;
-    for (const SequenceFrames& s : sequences) names.push_back(s.name());
-    return names;
-}
-
-} // namespace
 
 Action add_taa_command(CLI::App& app) {
     struct Options {
@@ -161,104 +140,21 @@ Action add_taa_command(CLI::App& app) {
 
         std::vector<VariantKey> keys;
         for (const VariantSpec& spec : *specs) keys.push_back(spec.key());
-        const TaaSchedule schedule{o->warmup, o->frames};
-        auto evaluation =
-            TaaEvaluation::create(**context, *specs, {o->resolve, schedule, ppd, o->cpu_flip, o->exposure});
-        if (!evaluation) return report_error(evaluation.error().message);
         auto rectifiers = catalog->find_all(keys, o->selection.manifest.empty() ? "--sets" : "--manifest");
         if (!rectifiers) return report_error(rectifiers.error().message);
-
-        // The rectification is timed at the frame size of what is measured: --size, or, with
-        // sequences only, the first sequence's.
-        const std::uint32_t width = builtin ? size->first : sequences.front().width();
-        const std::uint32_t height = builtin ? size->second : sequences.front().height();
-        const HdrFlip picture_flip(ppd); // the pictures' FLIP maps
-        StagedImages written_frames;
-        EvaluationObserver observer;
-        if (o->write_frames)
-            observer.output = [&](const std::string& sequence, std::size_t v, std::size_t index, const Image& output) {
-                return written_frames.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index),
-                                          output);
-            };
-
-        std::vector<TaaRow> rows;
-        std::vector<std::string> pictures;
-        std::vector<std::pair<std::string, std::string>> scene_contents;
-        for (const auto& scene : scenes) scene_contents.emplace_back(scene->name(), scene->content());
-        {
-            // Two lines, each with its own estimate: a timing round takes a fraction of a variant's TAA.
-            Result<bench::TimingRun> timing;
-            {
-                Progress timing_progress(
-                    fmt::format("timing {} variants on {},", specs->size(), (*context)->device_name()),
-                    o->timing_rounds);
-                timing =
-                    bench::time_interleaved(**context, *rectifiers, width, height, o->timing_rounds, timing_progress);
-                if (!timing) return report_error(timing.error().message);
-            }
-            Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs->size(),
-                                          scenes.size() + sequences.size(), (*context)->device_name()),
-                              specs->size() * (scenes.size() + sequences.size()));
-            observer.measured = [&](const std::string& done) { progress.advance(done); };
-            std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
-            auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
-                for (const EvaluationRow& m : measured) {
-                    const std::vector<double>& ms = timing->ms[m.variant];
-                    rows.push_back({keys[m.variant], m.source, median(ms), quantile(ms, 0.25), quantile(ms, 0.75),
-                                    m.shimmer, m.ghosting, m.against_reference ? "reference" : "aliased", m.range});
-                    for (const std::string& note : m.notes)
-                        if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
-                }
-            };
-            for (const auto& scene : scenes) {
-                auto measured = evaluation->measure(*scene, observer);
-                if (!measured) return report_error(measured.error().message);
-                add_rows(*measured);
-                auto shown = ghosting_frames(*scene, schedule)->frame(scene->trail_frame(schedule));
-                if (!shown) return report_error(shown.error().message);
-                const bool has_reference = shown->reference.has_value();
-                auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
-                std::vector<std::shared_ptr<const Image>> trails;
-                std::vector<double> ghosting;
-                for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
-                if (auto ok = add_ghosting_picture(*outputs, *scene, has_reference ? "reference" : "aliased", truth,
-                                                   keys, trails, ghosting, picture_flip.ldr(), schedule);
-                    !ok)
-                    return report_error(ok.error().message);
-                pictures.push_back(ghosting_picture_name(scene->name()));
-            }
-            for (const SequenceFrames& sequence : sequences) {
-                auto measured = evaluation->measure(sequence, observer);
-                if (!measured) return report_error(measured.error().message);
-                add_rows(*measured);
-            }
-        }
-        outputs->add(written_frames.writers(outputs->dir()));
+        const std::size_t measured = scenes.size() + sequences.size();
+        const TaaRunSettings settings{{o->resolve, {o->warmup, o->frames}, ppd, o->cpu_flip, o->exposure},
+                                      size->first,
+                                      size->second,
+                                      o->timing_rounds,
+                                      o->seed,
+                                      o->write_frames,
+                                      !o->no_charts};
+        auto run_info = run_taa(**context, *specs, *rectifiers, {scenes, std::move(sequences)}, settings, *outputs);
         report_validation_messages(**context);
-
-        RunMetadata run_info = describe_run(**context);
-        run_info.seed = o->seed;
-        // A chart that fails costs the charts, not the run: the data, report and pictures are still written.
-        std::vector<std::string> charts;
-        if (charts_available(!o->no_charts)) {
-            ScratchDirectory scratch("kdop-taa");
-            auto drawn = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
-                                              : taa_charts(rows, scratch.path, outputs->dir());
-            if (drawn) {
-                outputs->add(std::move(*drawn));
-                charts = taa_chart_names(rows);
-            } else {
-                warn_no_charts(drawn.error().message);
-            }
-        }
-        outputs->add_table("taa", taa_table(rows), run_info);
-        outputs->add("report.md",
-                     taa_report_markdown(rows, run_info,
-                                         {width, height, o->warmup, o->frames, ppd, pictures, charts, o->resolve,
-                                          scene_contents, sequence_names(sequences), !o->cpu_flip, o->exposure}));
-        if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
+        if (!run_info) return report_error(run_info.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
-                                 scenes.size() + sequences.size(), run_info.device, run_info.driver,
+                                 measured, run_info->device, run_info->driver,
                                  terminal_text((outputs->dir() / "report.md").string()));
         return 0;
     };

@@ -1,6 +1,7 @@
 // Accuracy against the ideal clip: the metrics on images small enough to work out by hand, the
 // trade table's averaging and Pareto fronts, reading a bench cost.csv, and a whole run on the
 // device checked against what must hold (sets with the RGB axes never looser than the RGB AABB).
+#include "accuracy/accuracy_charts.h"
 #include "accuracy/accuracy_report.h"
 #include "accuracy/accuracy_run.h"
 #include "accuracy/ideal_clip.h"

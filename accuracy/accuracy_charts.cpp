@@ -1,0 +1,106 @@
+#include "accuracy/accuracy_charts.h"
+
+#include "harness/chart_style.h"
+#include "harness/gnuplot.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace kdop {
+namespace {
+
+// Family names become file names and gnuplot strings: keep letters, digits, '.', '_' and '-'.
+std::string safe_name(const std::string& s) {
+    std::string out = s;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+    return out;
+}
+
+} // namespace
+
+std::string accuracy_chart_name(const std::string& family) { return "pareto-" + safe_name(family) + ".png"; }
+
+std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade) {
+    std::vector<std::string> names;
+    for (const std::string& family : trade_families(trade)) names.push_back(accuracy_chart_name(family));
+    return names;
+}
+
+Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade,
+                                                const std::filesystem::path& scratch,
+                                                const std::filesystem::path& out_dir) {
+    const bool lavapipe = has_lavapipe_cost(trade);
+    const std::vector<std::string> families = trade_families(trade), names = accuracy_chart_names(trade);
+    std::vector<std::string> sets; // in the order rows name them
+    for (const TradeRow& r : trade)
+        if (std::find(sets.begin(), sets.end(), safe_name(r.key.set)) == sets.end())
+            sets.push_back(safe_name(r.key.set));
+    const VariantChartStyle style(sets);
+    std::string script = fmt::format("set terminal pngcairo size {},600 font 'sans,10'\nset grid\n"
+                                     "set key outside right top spacing 1.1\n",
+                                     lavapipe ? 1800 : 1000);
+    for (std::size_t f = 0; f < families.size(); ++f) {
+        const std::string stem = (scratch / safe_name(families[f])).string();
+        std::vector<double> distances;
+        std::vector<VariantKey> keys;
+        for (const TradeRow& r : trade)
+            if (r.family == families[f]) {
+                distances.push_back(r.mean_dist);
+                keys.push_back(r.key);
+            }
+        script += axis_scale('y', distances, "mean distance to the ideal clip");
+        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point "
+                              "per variant (color: mode and neighborhood; shape: axis set); black lines: the Pareto "
+                              "fronts'\n",
+                              (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
+        struct Axis {
+            std::string suffix, label;
+            double (*cost)(const TradeRow&);
+            bool TradeRow::*front;
+        };
+        std::vector<Axis> axes = {{"float", "float ops per pixel (SPIR-V)",
+                                   [](const TradeRow& r) { return r.float_ops; }, &TradeRow::front_float_ops}};
+        if (lavapipe) axes.push_back({"lavapipe", lavapipe_label(trade), lavapipe_cost, &TradeRow::front_lavapipe});
+        for (const Axis& axis : axes) {
+            std::string plot, fronts;
+            for (Mode mode : kAllModes)
+                for (Neighborhood n : kAllNeighborhoods) {
+                    const VariantKey group_key{"", mode, n};
+                    std::vector<std::vector<std::string>> points;
+                    for (const TradeRow& r : trade)
+                        if (r.family == families[f] && r.key.mode == mode && r.key.neighborhood == n)
+                            points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist),
+                                              std::to_string(style.shape(safe_name(r.key.set)))});
+                    if (points.empty()) continue;
+                    const std::string data =
+                        fmt::format("{}-{}-{}.dat", stem, axis.suffix, VariantChartStyle::group(group_key));
+                    if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+                    plot += fmt::format("{}'{}' using 1:2:3 with points pt variable ps 1.5 lc rgb '{}' notitle",
+                                        plot.empty() ? "" : ", ", data, VariantChartStyle::color(group_key));
+                }
+            for (Neighborhood shape : kAllNeighborhoods) {
+                std::vector<const TradeRow*> members;
+                for (const TradeRow& r : trade)
+                    if (r.family == families[f] && r.key.neighborhood == shape && r.*axis.front) members.push_back(&r);
+                if (members.empty()) continue;
+                std::sort(members.begin(), members.end(),
+                          [&](const TradeRow* a, const TradeRow* b) { return axis.cost(*a) < axis.cost(*b); });
+                std::vector<std::vector<std::string>> front;
+                for (const TradeRow* r : members)
+                    front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
+                const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, to_string(shape));
+                if (auto ok = write_text(data, gnuplot_data(front)); !ok) return std::unexpected(ok.error());
+                fronts +=
+                    fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
+                                data, shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
+            }
+            script += fmt::format("set xlabel '{}'\nplot {}{}{}\n", axis.label, plot, style.key_entries(keys), fronts);
+        }
+        script += "unset multiplot\n";
+    }
+    return draw_charts(script, names, scratch, out_dir);
+}
+
+} // namespace kdop

@@ -1,0 +1,46 @@
+// `kdop taa`'s run after its command line is read: the rectification timed on the device, every
+// variant's TAA over every scene and sequence (taa_evaluation.h), the ghosting pictures, and the
+// table, report and charts added to the output set and written.
+#pragma once
+
+#include "core/result.h"
+#include "generator/variant_spec.h"
+#include "harness/output_set.h"
+#include "harness/run_metadata.h"
+#include "runtime/context.h"
+#include "scenes/taa_scene.h"
+#include "sequence/frame_source.h"
+#include "temporal/taa_evaluation.h"
+
+#include <kdop/variant.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace kdop {
+
+// What is measured: kdop's scenes, then the frame sequences.
+struct TaaSources {
+    std::vector<std::shared_ptr<const TaaScene>> scenes;
+    std::vector<SequenceFrames> sequences;
+};
+
+struct TaaRunSettings {
+    EvaluationOptions evaluation;
+    std::uint32_t width = 0, height = 0; // of kdop's scenes (--size); the rectification is timed at it
+    unsigned timing_rounds = 15;         // interleaved dispatches per variant
+    std::uint64_t seed = 1;              // the scenes', for the report
+    bool write_frames = false;           // every measured output under frames/<sequence>/<variant>/
+    bool charts = true;                  // the trade charts (none where gnuplot is missing)
+};
+
+// Measures `specs` (with `rectifiers`, their rectification passes, in the same order) over
+// `sources` and writes taa.csv (and JSON), report.md, the pictures and charts through `outputs`.
+// Returns the run's metadata, as the report states it.
+Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
+                            std::span<const Variant* const> rectifiers, const TaaSources& sources,
+                            const TaaRunSettings& settings, OutputSet& outputs);
+
+} // namespace kdop
