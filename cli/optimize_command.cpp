@@ -78,8 +78,8 @@ Action add_optimize_command(CLI::App& app) {
                "Images to fit to, any format OpenImageIO reads (EXR included), decoded to linear RGB (--input-space)")
             ->check(CLI::ExistingFile);
     auto* sequences = cmd->add_option("--sequence", o->run.input.sequences,
-                                      "Frame sequences to fit to (folders with sequence.json, README \"Frame "
-                                      "sequences\"): their frames' colors, with --images or alone")
+                                      "Frame sequences to fit to (folders with sequence.json, docs/taa.md, "
+                                      "\"Frame sequences\"): their frames' colors, with --images or alone")
                           ->check(CLI::ExistingDirectory);
     cmd->add_option("--frame-step", o->run.input.frame_step,
                     "Of each sequence, every Nth frame from the first [default: 1, every frame]")

@@ -42,7 +42,7 @@ Action add_scene_command(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* scene = app.add_subcommand(
-        "scene", "Write kdop's own TAA scenes as frame sequences (README \"Frame sequences\"): color, motion and "
+        "scene", "Write kdop's own TAA scenes as frame sequences (docs/taa.md, \"Frame sequences\"): color, motion and "
                  "depth per frame (and a supersampled reference with --reference-samples), exactly the frames "
                  "kdop taa measures, to look at, edit or replay with kdop taa --sequence");
     scene->add_option("--out", o->out, "Output directory (created if missing); one folder per sequence")->required();

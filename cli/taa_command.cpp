@@ -51,7 +51,7 @@ Action add_taa_command(CLI::App& app) {
     o->selection.add_to(*taa, true, "n9, the paper's rows");
     o->choice.add_to(*taa);
     taa->add_option("--sequence", o->sequences,
-                    "Frame sequences to measure (folders with sequence.json; README \"Frame sequences\"); with "
+                    "Frame sequences to measure (folders with sequence.json; docs/taa.md, \"Frame sequences\"); with "
                     "--sequence, kdop's own scenes run only if --scenes or --background is given too");
     add_input_space_option(*taa, o->input_space);
     add_resolve_options(*taa, o->resolve);

@@ -1,4 +1,4 @@
-// A fitted axis set as an axis-set file every kdop command reads (README, "Axis-set files"): a
+// A fitted axis set as an axis-set file every kdop command reads (docs/embedding.md, "Axis-set files"): a
 // comment block saying how it was made, `name:`, `provenance:`, one axis per line. Written only
 // from what is deterministic (no timings), so the same fit gives the same bytes.
 #pragma once

@@ -62,7 +62,7 @@ struct SelectionOptions {
             CLI::Option* option =
                 app.add_option("--manifest", manifest,
                                "Exactly the variants a scene's manifest lists (one variant name per line; `set: FILE` "
-                               "lines add axis files; see the README)");
+                               "lines add axis files; see docs/embedding.md)");
             for (CLI::Option* other : cross_product) option->excludes(other);
         }
     }

@@ -1,7 +1,7 @@
 // A Vulkan 2-D array image in device-local memory with a view of all its layers, released with
 // it: the working planes of passes that read neighbors (flip/device_flip.h). An image rather than
 // a storage buffer because lavapipe fetches texels for all lanes of a SIMD row at once but loads a
-// storage buffer lane by lane wherever the lanes' addresses differ (README, "FLIP on the device").
+// storage buffer lane by lane wherever the lanes' addresses differ (docs/flip.md, "FLIP on the device").
 #pragma once
 
 #include "core/result.h"

@@ -1,6 +1,6 @@
 // A frame sequence: the contract between every content source (kdop's own scenes, a renderer's
 // captured frames, Blender, a 3-D testbed) and the one TAA resolve. A folder holds sequence.json
-// and per-frame EXR files; README "Frame sequences" documents the format, version 1:
+// and per-frame EXR files; docs/taa.md, "Frame sequences", documents the format, version 1:
 //
 //     {"kdop_sequence": 1, "width": 320, "height": 180, "color": {"range": "ldr"},
 //      "motion": {"units": "pixels", "points_to": "previous", "y_axis": "down"},

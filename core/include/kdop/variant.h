@@ -37,8 +37,8 @@ enum class Form : std::uint8_t {
 // What a clip computes at the numerical extremes (HDR, flat neighborhoods, NaN or Inf history).
 // Unlike Form, this changes the function: `paper` is the supplement's formulation as written;
 // `hardened` (the default) pads slabs by the pixel's magnitude, takes the variance of colors
-// relative to the pixel and replaces an unusable history by the current color (README, "Numerics
-// at the extremes"). Variants with the paper's numerics are named <variant>-paper.
+// relative to the pixel and replaces an unusable history by the current color (docs/clip.md,
+// "Numerics at the extremes"). Variants with the paper's numerics are named <variant>-paper.
 enum class Numerics : std::uint8_t {
     hardened,
     paper,
