@@ -115,6 +115,7 @@ Action add_flip_command(CLI::App& app) {
                                      "wall, {:.3f} CPU s\n",
                                      o->timing, o->timing == 1 ? "" : "s", median(r.wall_s), median(r.cpu_s),
                                      r.setup_wall_s, r.setup_cpu_s);
+        if (auto ok = write_flip_maps(run, r); !ok) return report_error(ok.error().message);
         for (const std::string& path : {o->out, o->exposure_map})
             if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
         return 0;

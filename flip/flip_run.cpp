@@ -36,20 +36,22 @@ double process_cpu_seconds() {
     return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
+// A map file's extension, in lowercase: .exr or .png.
+std::string lowercase_extension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    return extension;
+}
+
 } // namespace
 
 Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
     if (auto ok = check_pixels_per_degree(o.ppd); !ok) return usage_fail("--ppd: " + ok.error().message);
     // A map's file: .exr for its values, .png in magma colors; checked before any work.
     const std::filesystem::path inputs[] = {o.reference, o.test};
-    auto extension_of = [](const std::string& path) {
-        std::string extension = std::filesystem::path(path).extension().string();
-        std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return std::tolower(c); });
-        return extension;
-    };
     auto check_map_file = [&](const std::string& path, const char* option) -> Result<void> {
         if (path.empty()) return {};
-        const std::string extension = extension_of(path);
+        const std::string extension = lowercase_extension(path);
         if (extension != ".exr" && extension != ".png")
             return usage_fail(fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma "
                                           "colors)",
@@ -162,24 +164,25 @@ Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
     out.setup_wall_s = setup_wall;
     out.setup_cpu_s = setup_cpu;
     if (context) out.validation_messages = context->validation_messages();
-    const std::vector<float>&map = result->map, &exposure_map = result->exposure_map;
+    out.map = std::move(result->map);
+    out.exposure_map = std::move(result->exposure_map);
+    return out;
+}
 
-    // The maps as one set of files: both or neither.
+Result<void> write_flip_maps(const FlipRunOptions& o, const FlipRunResult& r) {
     auto picture = [&](const std::vector<float>& values, const std::string& path) {
-        const bool magma = extension_of(path) == ".png";
-        auto image = std::make_shared<Image>(w, h);
-        if (magma)
-            *image = flip::magma_image(values, w, h);
+        auto image = std::make_shared<Image>(r.width, r.height);
+        if (lowercase_extension(path) == ".png")
+            *image = flip::magma_image(values, r.width, r.height);
         else
             for (std::size_t i = 0; i < values.size(); ++i) image->pixels[i] = glm::vec4(glm::vec3(values[i]), 1.0f);
         return image_writer(path, std::move(image));
     };
     std::vector<OutputWriter> files;
-    if (!o.out.empty()) files.push_back(picture(map, o.out));
-    if (!o.exposure_map.empty()) files.push_back(picture(exposure_map, o.exposure_map));
-    if (!files.empty())
-        if (auto ok = write_atomically(files); !ok) return std::unexpected(ok.error());
-    return out;
+    if (!o.out.empty()) files.push_back(picture(r.map, o.out));
+    if (!o.exposure_map.empty()) files.push_back(picture(r.exposure_map, o.exposure_map));
+    if (files.empty()) return {};
+    return write_atomically(files);
 }
 
 } // namespace kdop

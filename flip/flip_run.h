@@ -36,9 +36,15 @@ struct FlipRunResult {
     std::vector<double> wall_s, cpu_s;        // per timed evaluation
     double setup_wall_s = 0, setup_cpu_s = 0; // the device and its passes' set-up
     std::vector<std::string> validation_messages;
+    std::vector<float> map, exposure_map; // per pixel, where a file wants them
 };
 
-// The whole run. Errors name the option and file; Error::usage where the command line is at fault.
+// The evaluation, with every file checked before it. Errors name the option and file;
+// Error::usage where the command line is at fault.
 Result<FlipRunResult> run_flip(const FlipRunOptions& options);
+
+// `result`'s maps to options.out and options.exposure_map (those given), as one set of files: both
+// or neither.
+Result<void> write_flip_maps(const FlipRunOptions& options, const FlipRunResult& result);
 
 } // namespace kdop
