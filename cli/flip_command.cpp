@@ -4,7 +4,6 @@
 #include "cli/input_space_option.h"
 #include "cli/number_option.h"
 #include "core/shown_text.h"
-#include "flip/color_spaces.h"
 #include "flip/flip.h"
 #include "flip/flip_run.h"
 #include "flip/hdr_flip.h"

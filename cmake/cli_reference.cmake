@@ -20,11 +20,8 @@ endfunction()
 
 # The subcommands as the programs list them (the names in the "Subcommands:" part of --help).
 function(subcommands out program)
-  execute_process(COMMAND ${program} --help OUTPUT_VARIABLE text RESULT_VARIABLE failed)
-  string(REGEX MATCH "SUBCOMMANDS?:\n(.*)" listing "${text}")
-  if(NOT listing)
-    string(REGEX MATCH "Subcommands:\n(.*)" listing "${text}")
-  endif()
+  execute_process(COMMAND ${program} --help OUTPUT_VARIABLE text)
+  string(REGEX MATCH "Subcommands:\n(.*)" listing "${text}")
   string(REGEX MATCHALL "\n  ([a-z][a-z-]*)" lines "\n${CMAKE_MATCH_1}")
   set(names)
   foreach(line IN LISTS lines)

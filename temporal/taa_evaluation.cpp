@@ -34,13 +34,16 @@ Result<const Variant*> TaaEvaluation::shader(std::size_t v, bool nearer_larger) 
     const bool reads_depth = options_.resolve.dilate_motion && nearer_larger;
     auto& built = shaders_[reads_depth ? 1 : 0];
     if (built.empty()) {
+        // All or none: a failed build leaves nothing half-built for the next call to index into.
         ResolveOptions options = options_.resolve;
         options.depth_nearer_larger = reads_depth;
+        std::vector<std::unique_ptr<RunnableVariant>> shaders;
         for (const VariantSpec& spec : specs_) {
             auto shader = build_taa_shader(spec, options);
             if (!shader) return std::unexpected(shader.error());
-            built.push_back(std::move(*shader));
+            shaders.push_back(std::move(*shader));
         }
+        built = std::move(shaders);
     }
     return &built[v]->variant();
 }
