@@ -3,7 +3,7 @@
 #include "core/input_files.h"
 
 #include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <fmt/format.h>
 

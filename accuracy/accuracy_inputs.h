@@ -18,7 +18,7 @@ struct AccuracyPair {
     Image current, history;
 };
 
-// The ghosting history models measured (test_textures.h): shifted, moved-object, other-texture.
+// The ghosting history models measured (texture_cases.h): shifted, moved-object, other-texture.
 // `same` is left out: with the history equal to the current frame there is nothing to clip.
 
 // Every synthetic texture family and installed real texture x those models, at width x height.

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "images/image.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <cstdint>
 #include <utility>

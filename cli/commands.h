@@ -4,12 +4,12 @@
 
 #include "core/color_map.h"
 #include "generator/variant_spec.h"
-#include "runtime/context.h"
 
 #include <CLI/CLI.hpp>
 
 #include <functional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace kdop::cli {
@@ -40,8 +40,8 @@ int usage_error(const std::string& message);
 // report_error.
 int report(const Error& error);
 
-// Prints what the validation layer reported on `context` (nothing when it was off) to stderr.
-void report_validation_messages(const Context& context);
+// Prints what the validation layer reported (nothing when it was off) to stderr.
+void report_validation_messages(std::span<const std::string> messages);
 
 // Warns on stderr, once per set, about every set of `specs` fitted in another space than `used`,
 // the one `clipping` clips in (generator/axis_set.h, fitted_space_mismatch).

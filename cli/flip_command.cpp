@@ -19,28 +19,20 @@ namespace kdop::cli {
 
 Action add_flip_command(CLI::App& app) {
     struct Options {
-        std::string reference, test, out;
-        double ppd = 0;
+        FlipRunOptions run;
         ViewingConditions viewing;
         bool srgb = false;
-        InputSpace input_space = InputSpace::from_file;
-        bool hdr = false;
-        ExposureOptions exposure;
-        std::string exposure_map;
-        bool cpu = false, validation = false;
-        std::string device;
-        int timing = 0;
     };
     auto o = std::make_shared<Options>();
     CLI::App* flip = app.add_subcommand(
         "flip", "LDR-FLIP (Andersson et al. 2020), or with --hdr HDR-FLIP (Andersson et al. 2021): the difference a "
                 "viewer sees flipping between a reference and a test image; prints the mean, writes the per-pixel map "
                 "with --out");
-    flip->add_option("--reference", o->reference,
+    flip->add_option("--reference", o->run.reference,
                      "Reference image (any OpenImageIO format; RGB from 0 to 1 once decoded, see --input-space)")
         ->required();
-    flip->add_option("--test", o->test, "Test image, the same size as the reference")->required();
-    auto* ppd = flip->add_option("--ppd", o->ppd,
+    flip->add_option("--test", o->run.test, "Test image, the same size as the reference")->required();
+    auto* ppd = flip->add_option("--ppd", o->run.ppd,
                                  fmt::format("Pixels per degree of visual angle, from {} to {} [default: from the "
                                              "viewing conditions, about 67]",
                                              kMinPixelsPerDegree, kMaxPixelsPerDegree))
@@ -54,42 +46,35 @@ Action add_flip_command(CLI::App& app) {
     flip->add_option("--display-pixels", o->viewing.display_width_px, "Display width in pixels [default: 3840]")
         ->check(positive_number(1e6))
         ->excludes(ppd);
-    auto* space = add_input_space_option(*flip, o->input_space);
+    auto* space = add_input_space_option(*flip, o->run.input_space);
     flip->add_flag("--srgb", o->srgb, "The same as --input-space srgb: decode every input from sRGB")->excludes(space);
-    flip->add_option("--out", o->out,
+    flip->add_option("--out", o->run.out,
                      "Error map to write: .exr holds the values (gray), .png shows them in the magma color map");
-    auto* hdr = flip->add_flag("--hdr", o->hdr,
+    auto* hdr = flip->add_flag("--hdr", o->run.hdr,
                                "HDR-FLIP: linear RGB from 0 up, compared at a range of exposures after tone mapping");
-    for (CLI::Option* option : add_hdr_flip_options(*flip, o->exposure)) option->needs(hdr);
-    auto* cpu = flip->add_flag("--cpu", o->cpu,
+    for (CLI::Option* option : add_hdr_flip_options(*flip, o->run.exposure)) option->needs(hdr);
+    auto* cpu = flip->add_flag("--cpu", o->run.cpu,
                                "Compute on the CPU with the reference code the device passes are tested against, not "
                                "on the Vulkan device");
-    flip->add_option("--device", o->device,
+    flip->add_option("--device", o->run.device.device,
                      "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]")
         ->excludes(cpu);
-    flip->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)")->excludes(cpu);
-    flip->add_option("--timing", o->timing,
+    flip->add_flag("--validation", o->run.device.validation, "Enable the Khronos validation layer (slower)")
+        ->excludes(cpu);
+    flip->add_option("--timing", o->run.timing,
                      "Evaluate N more times after the first and print the median wall and CPU seconds (all threads) "
                      "per evaluation, and the set-up's")
         ->check(whole_number(1, 1000));
-    flip->add_option("--exposure-map", o->exposure_map,
+    flip->add_option("--exposure-map", o->run.exposure_map,
                      "HDR-FLIP: write, per pixel, which exposure gave its error (0 the first, 1 the last) to this "
                      ".exr (the values) or .png (in magma colors; the reference tool draws it in viridis)")
         ->needs(hdr);
 
     return [o, ppd] {
         const bool viewing = !*ppd;
-        FlipRunOptions run{o->reference,
-                           o->test,
-                           viewing ? pixels_per_degree(o->viewing) : o->ppd,
-                           o->srgb ? InputSpace::srgb : o->input_space,
-                           o->hdr,
-                           o->exposure,
-                           o->cpu,
-                           {o->device, o->validation},
-                           o->timing,
-                           o->out,
-                           o->exposure_map};
+        FlipRunOptions& run = o->run;
+        if (viewing) run.ppd = pixels_per_degree(o->viewing);
+        if (o->srgb) run.input_space = InputSpace::srgb;
         if (auto ok = check_pixels_per_degree(run.ppd); !ok)
             return usage_error(viewing ? fmt::format("--distance {} --display-width {} --display-pixels {}: {}",
                                                      o->viewing.distance_m, o->viewing.display_width_m,
@@ -98,24 +83,24 @@ Action add_flip_command(CLI::App& app) {
         auto result = run_flip(run);
         if (!result) return report(result.error());
         const FlipRunResult& r = *result;
-        for (const std::string& message : r.validation_messages)
-            std::cerr << "validation: " << terminal_text(message) << "\n";
+        report_validation_messages(r.validation_messages);
         const std::string where = r.device.empty() ? "on the CPU" : "on " + r.device;
-        if (o->hdr)
+        if (o->run.hdr)
             std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
                                      "exposure{} from {:.4g} to {:.4g}) {}\n",
-                                     r.mean, run.ppd, r.width, r.height, r.space, to_string(o->exposure.tone_mapper),
-                                     r.range.count, r.range.count == 1 ? "" : "s", r.range.start, r.range.stop, where);
+                                     r.mean, run.ppd, r.width, r.height, r.space,
+                                     to_string(o->run.exposure.tone_mapper), r.range.count,
+                                     r.range.count == 1 ? "" : "s", r.range.start, r.range.stop, where);
         else
             std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", r.mean, run.ppd,
                                      r.width, r.height, r.space, where);
-        if (o->timing)
+        if (o->run.timing)
             std::cout << fmt::format("timing: median of {} evaluation{}: {:.4f} s wall, {:.4f} CPU s; set-up {:.3f} s "
                                      "wall, {:.3f} CPU s\n",
-                                     o->timing, o->timing == 1 ? "" : "s", median(r.wall_s), median(r.cpu_s),
+                                     o->run.timing, o->run.timing == 1 ? "" : "s", median(r.wall_s), median(r.cpu_s),
                                      r.setup_wall_s, r.setup_cpu_s);
         if (auto ok = write_flip_maps(run, r); !ok) return report_error(ok.error().message);
-        for (const std::string& path : {o->out, o->exposure_map})
+        for (const std::string& path : {o->run.out, o->run.exposure_map})
             if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
         return 0;
     };

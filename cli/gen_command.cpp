@@ -6,6 +6,7 @@
 #include "generator/spirv_cost.h"
 #include "generator/variant_builder.h"
 #include "generator/variant_files.h"
+#include "harness/printed_table.h"
 #include "harness/progress.h"
 
 #include <fmt/format.h>
@@ -17,14 +18,15 @@
 namespace kdop::cli {
 namespace {
 
-void print_table(const std::vector<BuiltVariant>& built) {
-    std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {}\n", "variant", "k", "spirv_bytes",
-                             "instructions", "code_instructions", "float_ops", "spirv_hash");
-    for (const BuiltVariant& v : built)
-        std::cout << fmt::format("{:<30} {:>4} {:>11} {:>12} {:>17} {:>9}  {:016x}\n", v.name,
-                                 2 * v.spec.set.axes.size(), 4 * v.spirv.size(), v.counts.instructions,
-                                 v.counts.function_instructions, count_float_ops(v.spirv).total(), spirv_hash(v.spirv));
-}
+// One row per variant: its size and counts, and the hash a build reproduces.
+const PrintedColumns<BuiltVariant> kVariantColumns{
+    {"variant", -30, [](const BuiltVariant& v) { return v.name; }},
+    {"k", 4, [](const BuiltVariant& v) { return fmt::format("{}", 2 * v.spec.set.axes.size()); }},
+    {"spirv_bytes", 11, [](const BuiltVariant& v) { return fmt::format("{}", 4 * v.spirv.size()); }},
+    {"instructions", 12, [](const BuiltVariant& v) { return fmt::format("{}", v.counts.instructions); }},
+    {"code_instructions", 17, [](const BuiltVariant& v) { return fmt::format("{}", v.counts.function_instructions); }},
+    {"float_ops", 9, [](const BuiltVariant& v) { return fmt::format("{}", count_float_ops(v.spirv).total()); }},
+    {"spirv_hash", 0, [](const BuiltVariant& v) { return fmt::format("{:016x}", spirv_hash(v.spirv)); }, "  "}};
 
 } // namespace
 
@@ -50,22 +52,16 @@ Action add_gen_command(CLI::App& app) {
         if (!specs) return report_error(specs.error().message);
 
         Progress progress("built", specs->size());
-        auto built = build_variants(*specs, options->threads,
-                                    [&](std::size_t, std::size_t, const std::string& name) { progress.advance(name); });
+        auto generated =
+            generate_variants(*specs, options->out, options->threads,
+                              [&](std::size_t, std::size_t, const std::string& name) { progress.advance(name); });
         progress.finish();
-        if (!built) return report_error(built.error().message);
-
-        std::vector<OutputFile> files;
-        for (const BuiltVariant& v : *built) {
-            for (OutputFile& f : glsl_files(v, options->out)) files.push_back(std::move(f));
-            files.push_back(spirv_file(v, options->out));
-        }
-        if (auto ok = write_files_atomically(files); !ok) return report_error(ok.error().message);
-
-        print_table(*built);
+        if (!generated) return report_error(generated.error().message);
+        std::cout << printed_header(kVariantColumns) << "\n";
+        for (const BuiltVariant& v : generated->built) std::cout << printed_row(kVariantColumns, v) << "\n";
         double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::cout << fmt::format("\nwrote {} files for {} variants to {} in {:.2f} s\n", files.size(), built->size(),
-                                 terminal_text(options->out), seconds);
+        std::cout << fmt::format("\nwrote {} files for {} variants to {} in {:.2f} s\n", generated->files,
+                                 generated->built.size(), terminal_text(options->out), seconds);
         return 0;
     };
 }

@@ -41,10 +41,9 @@ int print(const OptimizeOptions& o, const OptimizeResult& r, const Ranks& ranks)
     if (!r.sample_line.empty()) std::cout << r.sample_line << "\n";
     if (!r.refined_line.empty()) std::cout << r.refined_line << "\n";
     if (!r.distance_measure.empty()) std::cout << fmt::format("{}: {:.6g}\n", r.distance_measure, r.sets[0].distance);
-    std::cout << fmt::format("  {:<14} {:>23}{}\n", "set", "volume (x this set's)",
-                             r.distance_measure.empty() ? "" : fmt::format("  {:>23}", "distance (x this set's)"));
-    for (const ComparedSet& set : r.sets)
-        std::cout << "  " << compared_set_row(set, r.sets[0], !r.distance_measure.empty()) << "\n";
+    const auto compared = compared_set_columns(r.sets[0], !r.distance_measure.empty());
+    std::cout << "  " << printed_header(compared) << "\n";
+    for (const ComparedSet& set : r.sets) std::cout << "  " << printed_row(compared, set) << "\n";
     if (!r.closer_warning.empty()) std::cout << fmt::format("warning: {}\n", r.closer_warning);
     // Volumes in the objective per second; a neighborhood repeated in the images is computed once.
     std::cout << fmt::format(

@@ -20,9 +20,8 @@ int usage_error(const std::string& message) {
 
 int report(const Error& error) { return error.usage ? usage_error(error.message) : report_error(error.message); }
 
-void report_validation_messages(const Context& context) {
-    for (const std::string& message : context.validation_messages())
-        std::cerr << "validation: " << terminal_text(message) << "\n";
+void report_validation_messages(std::span<const std::string> messages) {
+    for (const std::string& message : messages) std::cerr << "validation: " << terminal_text(message) << "\n";
 }
 
 void warn_fitted_space(std::span<const VariantSpec> specs, const ColorMap& used, std::string_view clipping) {

@@ -4,19 +4,16 @@
 #include "cli/number_option.h"
 #include "cli/scene_options.h"
 #include "cli/size_option.h"
-#include "core/input_files.h"
 #include "core/shown_text.h"
-#include "generator/command_line.h"
 #include "harness/output_set.h"
-#include "harness/progress.h"
-#include "scenes/sprite_scene.h"
-#include "sequence/sequence_writer.h"
-#include "temporal/taa_measure.h"
+#include "scenes/scene_export.h"
 
 #include <fmt/format.h>
 
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
 
 namespace kdop::cli {
 namespace {
@@ -77,38 +74,12 @@ Action add_scene_command(CLI::App& app) {
         auto scenes = o->choice.select(size->first, size->second, o->seed, o->input_space, context.get());
         if (!scenes) return report_error(scenes.error().message);
 
-        std::vector<std::shared_ptr<const FrameSource>> sources;
-        for (const auto& s : *scenes) {
-            if (o->jitter.empty() && o->animate.empty()) {
-                // kdop taa's own two: the schedule's frames split as warmup + the rest.
-                const TaaSchedule schedule{0, o->frames};
-                sources.push_back(shimmer_frames(*s, schedule));
-                sources.push_back(ghosting_frames(*s, schedule));
-            } else {
-                sources.push_back(s->frames(s->name(), o->frames, o->animate != "off", o->jitter != "off"));
-            }
-        }
-        std::vector<OutputWriter> writers;
-        for (const auto& source : sources) {
-            outputs->add(source->name() + "/sequence.json", sequence_json(*source));
-            for (OutputWriter& w : sequence_frame_writers(outputs->dir() / source->name(), source))
-                writers.push_back(std::move(w));
-        }
-        {
-            // The frames are drawn as they are written; the progress line follows the writes, a file each.
-            Progress progress(fmt::format("Drawing and writing {} sequences:", sources.size()), writers.size());
-            for (OutputWriter& w : writers)
-                w.write = [&progress, inner = std::move(w.write),
-                           name = w.path.lexically_relative(outputs->dir()).string()](
-                              const std::filesystem::path& temporary) {
-                    auto written = inner(temporary);
-                    if (written) progress.advance(name);
-                    return written;
-                };
-            outputs->add(std::move(writers));
-            if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
-        }
-        std::cout << fmt::format("kdop scene: {} sequences of {} frames at {}x{}: {}\n", sources.size(), o->frames,
+        const auto on = [](const std::string& text) {
+            return text.empty() ? std::nullopt : std::optional(text == "on");
+        };
+        auto written = export_scenes(*scenes, {o->frames, on(o->animate), on(o->jitter)}, *outputs);
+        if (!written) return report_error(written.error().message);
+        std::cout << fmt::format("kdop scene: {} sequences of {} frames at {}x{}: {}\n", *written, o->frames,
                                  size->first, size->second, terminal_text(outputs->dir().string()));
         return 0;
     };

@@ -55,11 +55,16 @@ struct SceneChoice {
 
     bool needs_device() const { return selects_testbed_scene(scenes, backgrounds); }
 
+    // The scenes' options at this size; `context` draws the 3-D ones.
+    SceneOptions options(std::uint32_t width, std::uint32_t height, std::uint64_t seed, InputSpace space,
+                         const Context* context = nullptr) const {
+        return {width, height, seed, space, context, camera == "pan", reference_samples};
+    }
+
     Result<std::vector<std::shared_ptr<const TaaScene>>> select(std::uint32_t width, std::uint32_t height,
                                                                 std::uint64_t seed, InputSpace space,
                                                                 const Context* context) const {
-        return select_taa_scenes(scenes, backgrounds,
-                                 {width, height, seed, space, context, camera == "pan", reference_samples});
+        return select_taa_scenes(scenes, backgrounds, options(width, height, seed, space, context));
     }
 };
 

@@ -2,21 +2,15 @@
 
 #include "cli/number_option.h"
 #include "generator/selection_options.h"
-#include "harness/device_runner.h"
-#include "harness/output_set.h"
-#include "harness/progress.h"
-#include "harness/run_metadata.h"
 #include "harness/variant_catalog.h"
-#include "runtime/context.h"
 #include "stress/stress_report.h"
-#include "stress/stress_suite.h"
+#include "stress/stress_study.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <optional>
 
 namespace kdop::cli {
 
@@ -48,40 +42,21 @@ Action add_stress_command(CLI::App& app) {
             return report_error("--baselines: the gather and copy baselines are not clips; nothing to stress");
         if (!std::isfinite(o->gamma) || o->gamma < 0)
             return report_error(fmt::format("--gamma: must be a finite number >= 0, got {}", o->gamma));
-        std::optional<OutputSet> outputs;
-        if (!o->out.empty()) {
-            auto prepared = OutputSet::prepare(o->out);
-            if (!prepared) return report_error(prepared.error().message);
-            outputs = std::move(*prepared);
-        }
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
         auto catalog = VariantCatalog::create(o->selection.sets, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
-        auto context = Context::create({o->device, o->validation});
-        if (!context) return report_error(context.error().message);
 
-        StressOptions options{{}, o->seed, static_cast<float>(o->gamma)};
-        options.variants = keys_of(*specs);
-        DeviceRunner runner(**context);
-        Progress progress(fmt::format("stress on {},", (*context)->device_name()), stress_steps(options));
-        auto run = run_stress(runner, *catalog, options, &progress);
-        progress.finish();
-        if (!run) return report_error(run.error().message);
-        report_validation_messages(**context);
-
-        RunMetadata run_info = describe_run(**context);
-        run_info.seed = o->seed;
-        if (outputs) {
-            outputs->add_table("stress", stress_table(*run), run_info);
-            outputs->add("report.md", stress_report_markdown(*run, run_info, static_cast<float>(o->gamma)));
-            if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
-        }
-        std::cout << fmt::format("kdop stress: {} variants x {} cases on {} ({}), seed {}\n\n", run->variants.size(),
-                                 run->cases.size(), run_info.device, run_info.driver, o->seed)
-                  << stress_table_text(*run);
+        auto study =
+            stress_study(*specs, *catalog, {o->out, o->seed, static_cast<float>(o->gamma), {o->device, o->validation}});
+        if (!study) return report_error(study.error().message);
+        report_validation_messages(study->validation_messages);
+        const StressRun& run = study->run;
+        std::cout << fmt::format("kdop stress: {} variants x {} cases on {} ({}), seed {}\n\n", run.variants.size(),
+                                 run.cases.size(), study->run_info.device, study->run_info.driver, o->seed)
+                  << stress_table_text(run);
         // 3, not 1 (failed to run) or 2 (usage): the run worked and found broken invariants.
-        return run->failing_cells() ? 3 : 0;
+        return run.failing_cells() ? 3 : 0;
     };
 }
 

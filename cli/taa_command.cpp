@@ -6,22 +6,17 @@
 #include "cli/resolve_option.h"
 #include "cli/scene_options.h"
 #include "cli/size_option.h"
-#include "core/input_files.h"
 #include "core/shown_text.h"
 #include "generator/command_line.h"
 #include "generator/selection_options.h"
 #include "harness/output_set.h"
 #include "harness/variant_catalog.h"
-#include "images/image_io.h"
-#include "sequence/sequence.h"
-#include "temporal/taa_measure.h"
 #include "temporal/taa_run.h"
 
 #include <fmt/format.h>
 
 #include <iostream>
 #include <memory>
-#include <set>
 
 namespace kdop::cli {
 
@@ -97,52 +92,27 @@ Action add_taa_command(CLI::App& app) {
         warn_fitted_space(*specs, o->resolve.color_map, "this run (--color-map)");
         // A scene given twice would only give the same rows twice.
         if (auto misuse = o->choice.misuse()) return usage_error(*misuse);
-        const bool builtin = o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty();
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
-        // Every size is checked against the device and memory before any frame is made or read.
-        if (builtin)
-            if (auto ok = check_measurable(**context, size->first, size->second, !o->cpu_flip); !ok)
-                return usage_error(fmt::format("--size {}: {}", o->size, ok.error().message));
-        if (auto ok = check_distinct_files(o->sequences, "--sequence"); !ok) return usage_error(ok.error().message);
-        std::vector<SequenceFrames> sequences;
-        for (const std::string& dir : o->sequences) {
-            auto sequence = read_resolvable_sequence(dir, o->warmup, o->resolve);
-            if (!sequence) return report_error(sequence.error().message);
-            if (auto ok = check_measurable(**context, sequence->width, sequence->height, !o->cpu_flip); !ok)
-                return report_error(fmt::format("--sequence {}: {}", dir, ok.error().message));
-            sequences.emplace_back(std::move(*sequence), o->input_space);
-        }
-        std::vector<std::shared_ptr<const TaaScene>> scenes;
-        if (builtin) {
-            auto selected = o->choice.select(size->first, size->second, o->seed, o->input_space, context->get());
-            if (!selected) return report_error(selected.error().message);
-            scenes = std::move(*selected);
-        }
-        std::set<std::string> names;
-        for (const auto& scene : scenes) names.insert(scene->name());
-        for (const SequenceFrames& sequence : sequences)
-            if (!names.insert(sequence.name()).second)
-                return report_error(fmt::format("--sequence: {}: a scene or sequence is already called '{}'",
-                                                sequence.sequence().dir.string(), sequence.name()));
-        const bool any_hdr = std::any_of(sequences.begin(), sequences.end(),
-                                         [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
+        auto sources =
+            taa_sources(**context, {o->sequences, o->warmup, o->resolve, o->input_space, !o->cpu_flip,
+                                    o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty(),
+                                    o->choice.scenes, o->choice.backgrounds,
+                                    o->choice.options(size->first, size->second, o->seed, o->input_space)});
+        if (!sources) return report(sources.error());
         for (const CLI::Option* option : hdr_options)
-            if (option->count() && !any_hdr)
+            if (option->count() && !sources->any_hdr())
                 return usage_error(
                     fmt::format("{}: only HDR sequences (\"color\": {{\"range\": \"hdr\"}} in "
                                 "sequence.json) are measured in HDR-FLIP, and no --sequence given is one",
                                 option->get_name()));
-        auto sources = o->selection.set_sources();
-        if (!sources) return report_error(sources.error().message);
-        auto catalog = VariantCatalog::create(*sources, o->selection.style());
+        auto set_sources = o->selection.set_sources();
+        if (!set_sources) return report_error(set_sources.error().message);
+        auto catalog = VariantCatalog::create(*set_sources, o->selection.style());
         if (!catalog) return report_error(catalog.error().message);
 
-        std::vector<VariantKey> keys;
-        for (const VariantSpec& spec : *specs) keys.push_back(spec.key());
-        auto rectifiers = catalog->find_all(keys, o->selection.manifest.empty() ? "--sets" : "--manifest");
+        auto rectifiers = catalog->find_all(keys_of(*specs), o->selection.manifest.empty() ? "--sets" : "--manifest");
         if (!rectifiers) return report_error(rectifiers.error().message);
-        const std::size_t measured = scenes.size() + sequences.size();
         const TaaRunSettings settings{{o->resolve, {o->warmup, o->frames}, ppd, o->cpu_flip, o->exposure},
                                       size->first,
                                       size->second,
@@ -150,11 +120,11 @@ Action add_taa_command(CLI::App& app) {
                                       o->seed,
                                       o->write_frames,
                                       !o->no_charts};
-        auto run_info = run_taa(**context, *specs, *rectifiers, {scenes, std::move(sequences)}, settings, *outputs);
-        report_validation_messages(**context);
+        auto run_info = run_taa(**context, *specs, *rectifiers, *sources, settings, *outputs);
+        report_validation_messages((*context)->validation_messages());
         if (!run_info) return report_error(run_info.error().message);
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
-                                 measured, run_info->device, run_info->driver,
+                                 sources->size(), run_info->device, run_info->driver,
                                  terminal_text((outputs->dir() / "report.md").string()));
         return 0;
     };

@@ -4,12 +4,10 @@
 #include "core/memory_budget.h"
 #include "core/shown_text.h"
 #include "core/write_files.h"
-#include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -40,19 +38,9 @@ Action add_textures_command(CLI::App& app) {
             !ok)
             return report_error(ok.error().message);
         std::cout << fmt::format("seed {}, {}x{}\n", o->seed, o->width, o->height);
-        // Written as a set: a failure halfway leaves none of them.
-        const std::vector<TestCase> cases = make_test_cases(o->width, o->height, o->seed, !o->no_real);
-        const std::filesystem::path dir(o->out);
-        std::vector<ImageFile> images;
-        for (std::size_t i = 0; i < cases.size(); ++i) {
-            const TestCase& c = cases[i];
-            if (i == 0 || c.texture != cases[i - 1].texture) // a texture's first case: its image
-                images.push_back({dir / (c.texture + ".exr"), &c.current});
-            images.push_back({dir / fmt::format("{}-history-{}.exr", c.texture, to_string(c.model)), &c.history});
-        }
-        if (auto ok = write_images(images); !ok) return report_error(ok.error().message);
-        const std::size_t files = images.size();
-        std::cout << fmt::format("wrote {} images to {}\n", files, terminal_text(o->out));
+        auto written = write_test_cases(make_test_cases(o->width, o->height, o->seed, !o->no_real), o->out);
+        if (!written) return report_error(written.error().message);
+        std::cout << fmt::format("wrote {} images to {}\n", *written, terminal_text(o->out));
         return 0;
     };
 }

@@ -14,6 +14,7 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/kdopConfigVersion.cmake C
 export(TARGETS kdop-gen kdop_variant_headers NAMESPACE kdop:: FILE ${PROJECT_BINARY_DIR}/kdopTargets.cmake)
 set(KDOP_CONFIG_AXIS_SET_DIR ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets)
 set(KDOP_CONFIG_VARIANTS_MODULE ${PROJECT_SOURCE_DIR}/cmake/KdopVariants.cmake)
+set(KDOP_CONFIG_SHADER_LANGUAGES_FILE ${PROJECT_SOURCE_DIR}/generator/shader_languages.def)
 configure_file(${PROJECT_SOURCE_DIR}/cmake/kdopConfig.cmake.in ${PROJECT_BINARY_DIR}/kdopConfig.cmake @ONLY)
 
 # Installation: cmake --install <build> [--prefix P], then find_package(kdop) with P on CMAKE_PREFIX_PATH.
@@ -28,16 +29,22 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets/ DESTINATION 
         FILES_MATCHING PATTERN "*.axes")
 # The default variants' functions and compute shaders, as generated/ holds them (checked fresh by
 # the tests), so a user of the installed package can include one without running kdop gen.
+kdop_shader_language_extensions(function_extensions)
+set(function_patterns PATTERN "*.comp")
+foreach(extension IN LISTS function_extensions)
+  list(APPEND function_patterns PATTERN "*.${extension}")
+endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/generated/ DESTINATION ${CMAKE_INSTALL_DATADIR}/kdop/functions
-        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.hlsl" PATTERN "*.wgsl" PATTERN "*.comp")
+        FILES_MATCHING ${function_patterns})
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/NOTICE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(EXPORT kdopTargets NAMESPACE kdop:: DESTINATION ${KDOP_INSTALL_CMAKEDIR})
 # configure_package_config_file turns the install paths into paths relative to the config file.
 set(KDOP_CONFIG_AXIS_SET_DIR "\${PACKAGE_PREFIX_DIR}/${KDOP_INSTALL_AXIS_SET_DIR}")
 set(KDOP_CONFIG_VARIANTS_MODULE "\${CMAKE_CURRENT_LIST_DIR}/KdopVariants.cmake")
+set(KDOP_CONFIG_SHADER_LANGUAGES_FILE "\${CMAKE_CURRENT_LIST_DIR}/shader_languages.def")
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/kdopConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/install/kdopConfig.cmake
                               INSTALL_DESTINATION ${KDOP_INSTALL_CMAKEDIR})
 install(FILES ${PROJECT_BINARY_DIR}/install/kdopConfig.cmake ${PROJECT_BINARY_DIR}/kdopConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/KdopVariants.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/KdopVariants.cmake ${PROJECT_SOURCE_DIR}/generator/shader_languages.def
         DESTINATION ${KDOP_INSTALL_CMAKEDIR})

@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -40,9 +41,11 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
     std::vector<fs::path> extra;
     if (fs::is_directory(dir))
         for (const auto& entry : fs::directory_iterator(dir)) {
-            auto ext = entry.path().extension();
-            if ((ext == ".glsl" || ext == ".hlsl" || ext == ".wgsl" || ext == ".comp") && !expected.count(entry.path()))
-                extra.push_back(entry.path());
+            const auto ext = entry.path().extension().string();
+            const bool generated =
+                ext == ".comp" ||
+                std::ranges::any_of(kShaderLanguages, [&](const ShaderLanguage& l) { return l.extension == ext; });
+            if (generated && !expected.count(entry.path())) extra.push_back(entry.path());
         }
     std::sort(extra.begin(), extra.end());
 

@@ -71,7 +71,7 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     std::vector<std::string> unresolved, outside;
     IncludeResolver resolve = [&](std::string_view header, std::string_view includer) -> std::optional<IncludedSource> {
         for (const BuiltVariant& v : variants)
-            if (header == v.name + ".glsl") return IncludedSource{std::string(header), v.function_glsl};
+            if (header == v.name + ".glsl") return IncludedSource{std::string(header), v.function(kGlsl)};
         std::vector<fs::path> folders{fs::path(includer).parent_path()};
         folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
         for (const fs::path& folder : folders) {

@@ -112,4 +112,18 @@ inline constexpr Dialect kWgsl{
     .float_max = "3.4028234663852886e38",
 };
 
+// A language a variant's function is written in: the extension of its file (".glsl") and how it is
+// spelled.
+struct ShaderLanguage {
+    std::string_view extension;
+    const Dialect* dialect;
+};
+
+// Every one, from the one list (generator/shader_languages.def).
+inline constexpr ShaderLanguage kShaderLanguages[] = {
+#define KDOP_SHADER_LANGUAGE(extension, dialect) {"." #extension, &dialect},
+#include "generator/shader_languages.def"
+#undef KDOP_SHADER_LANGUAGE
+};
+
 } // namespace kdop

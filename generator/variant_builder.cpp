@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 
 namespace kdop {
 namespace {
@@ -55,6 +56,12 @@ Result<void> compile_into(BuiltVariant& v, std::string_view source, std::string_
     return {};
 }
 
+const std::string& BuiltVariant::function(const Dialect& dialect) const {
+    for (std::size_t i = 0; i < functions.size(); ++i)
+        if (kShaderLanguages[i].dialect == &dialect) return functions[i];
+    throw std::logic_error("BuiltVariant::function: a dialect that is not in kShaderLanguages");
+}
+
 Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage language) {
     BuiltVariant v;
     v.spec = spec;
@@ -63,9 +70,7 @@ Result<BuiltVariant> build_variant(const VariantSpec& spec, SourceLanguage langu
     const std::string file = v.name + (hlsl ? ".hlsl (compute)" : ".comp");
     const TargetEnv env = spec.target_env;
 
-    v.function_glsl = emit_function(spec, kGlsl);
-    v.function_hlsl = emit_function(spec, kHlsl);
-    v.function_wgsl = emit_function(spec, kWgsl);
+    for (const ShaderLanguage& l : kShaderLanguages) v.functions.push_back(emit_function(spec, *l.dialect));
     auto compute = compute_shader(spec, language);
     if (!compute) return std::unexpected(compute.error());
     (hlsl ? v.compute_hlsl : v.compute_glsl) = std::move(*compute);

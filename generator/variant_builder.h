@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/result.h"
+#include "generator/shader_dialect.h"
 #include "generator/shader_reflection.h"
 #include "generator/spirv_module.h"
 #include "generator/variant_spec.h"
@@ -20,14 +21,15 @@ namespace kdop {
 struct BuiltVariant {
     VariantSpec spec;
     std::string name;
-    std::string function_glsl;        // the includable function (.glsl)
-    std::string function_hlsl;        // the same function in HLSL (.hlsl)
-    std::string function_wgsl;        // the same function in WGSL (.wgsl)
-    std::string compute_glsl;         // the compute shader (.comp), when built from GLSL; a SHADERS source
-    std::string compute_hlsl;         // the HLSL compute shader, when built from HLSL
-    std::vector<std::uint32_t> spirv; // optimized, validated, as shipped (.spv), from the compute shader
+    std::vector<std::string> functions; // the includable function in each of kShaderLanguages, in order
+    std::string compute_glsl;           // the compute shader (.comp), when built from GLSL; a SHADERS source
+    std::string compute_hlsl;           // the HLSL compute shader, when built from HLSL
+    std::vector<std::uint32_t> spirv;   // optimized, validated, as shipped (.spv), from the compute shader
     ShaderInterface interface;
     SpirvCounts counts;
+
+    // The includable function in `dialect` (one of kShaderLanguages').
+    const std::string& function(const Dialect& dialect) const;
 };
 
 // Which compute shader a build compiles: the GLSL one, which is what ships, or the HLSL one

@@ -7,9 +7,10 @@ namespace kdop {
 namespace fs = std::filesystem;
 
 std::vector<OutputFile> function_files(const BuiltVariant& v, const fs::path& dir) {
-    return {{dir / (v.name + ".glsl"), v.function_glsl},
-            {dir / (v.name + ".hlsl"), v.function_hlsl},
-            {dir / (v.name + ".wgsl"), v.function_wgsl}};
+    std::vector<OutputFile> files;
+    for (std::size_t i = 0; i < v.functions.size(); ++i)
+        files.push_back({dir / (v.name + std::string(kShaderLanguages[i].extension)), v.functions[i]});
+    return files;
 }
 
 std::vector<OutputFile> glsl_files(const BuiltVariant& v, const fs::path& dir) {
@@ -27,6 +28,19 @@ std::string spirv_bytes(std::span<const std::uint32_t> words) {
 
 OutputFile spirv_file(const BuiltVariant& v, const fs::path& dir) {
     return {dir / (v.name + ".spv"), spirv_bytes(v.spirv)};
+}
+
+Result<GeneratedVariants> generate_variants(std::span<const VariantSpec> specs, const fs::path& dir, unsigned threads,
+                                            const BuildProgress& progress) {
+    auto built = build_variants(specs, threads, progress);
+    if (!built) return std::unexpected(built.error());
+    std::vector<OutputFile> files;
+    for (const BuiltVariant& v : *built) {
+        for (OutputFile& f : glsl_files(v, dir)) files.push_back(std::move(f));
+        files.push_back(spirv_file(v, dir));
+    }
+    if (auto ok = write_files_atomically(files); !ok) return std::unexpected(ok.error());
+    return GeneratedVariants{std::move(*built), files.size()};
 }
 
 } // namespace kdop

@@ -1,8 +1,8 @@
 // The test content that reads files: the installed real textures, and every test case with them.
-// Apart from test_textures.cpp because it needs OpenImageIO (kdop_images), which the rest of the
+// Apart from texture_cases.cpp because it needs OpenImageIO (kdop_images), which the rest of the
 // content does not (kdop_image_content: the runtime and the callgrind probe link that alone).
 #include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <glm/vec3.hpp>
 

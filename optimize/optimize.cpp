@@ -178,7 +178,7 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
 
     // What a set's hardened clip costs: float ops as the generator counts them (analytic_cost.h),
     // and with --lavapipe-cost the instructions per pixel lavapipe runs beyond the gather (callgrind),
-    // as the bench counts them. One column of a table row.
+    // as the bench counts them.
     std::optional<ScratchDirectory> scratch; // for callgrind's files: only with --lavapipe-cost
     if (o.lavapipe_cost) scratch.emplace("kdop-optimize");
     const bench::CallgrindSetup callgrind{std::filesystem::read_symlink("/proc/self/exe").parent_path() /
@@ -193,18 +193,17 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
         if (!text) return std::unexpected(text.error());
         return parse_axis_set(*text, o.out);
     };
-    auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<std::string> {
+    auto clip_cost = [&](std::span<const glm::dvec3> axes) -> Result<ClipCost> {
         auto set = as_axis_set(axes);
         if (!set) return std::unexpected(set.error());
-        std::string cost = fmt::format("{:>22}", analytic_min_float_ops(*set, Mode::clip, shape));
+        ClipCost cost{analytic_min_float_ops(*set, Mode::clip, shape), std::nullopt};
         if (!o.lavapipe_cost) return cost;
         Progress progress("counting lavapipe instructions", 2);
         auto instructions = bench::marginal_clip_instructions(*set, shape, callgrind, progress);
         if (!instructions) return std::unexpected(instructions.error());
-        return cost + fmt::format(" {:>18.1f}", *instructions);
+        cost.lavapipe_instructions = *instructions;
+        return cost;
     };
-    const std::string cost_header = fmt::format("{:>22}", "float ops (clip, hardened)") +
-                                    (o.lavapipe_cost ? fmt::format(" {:>18}", "lavapipe instr/px") : "");
 
     // With --target-ghosting, each row's set resolved over the sequences as kdop taa --sequence
     // does, on rank 0 (its figures broadcast): its ghosting and shimmer columns.
@@ -222,8 +221,9 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
         }
         if (auto ok = ranks.agree(opened); !ok) return fail(ok.error().message);
     }
+    // Each row's figures: ghosting, shimmer per sequence.
     auto measure_ghosting = [&](std::span<const glm::dvec3> axes) -> Result<std::vector<double>> {
-        std::vector<double> figures(2 * o.input.sequences.size()); // ghosting, shimmer per sequence
+        std::vector<double> figures(2 * o.input.sequences.size());
         Result<void> measured;
         if (ranks.is_root()) {
             Progress progress("measuring ghosting and shimmer on the sequences", 1);
@@ -244,31 +244,30 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
     // every count tried.
     std::vector<std::string> table;
     FitResult result;
-    if (o.target || o.target_ghosting) {
-        std::string measured_header; // a ghosting and a shimmer column per sequence, in the order given
-        for (std::size_t i = 0; i < o.input.sequences.size(); ++i)
-            measured_header += fmt::format(" {:>12} {:>12}", "ghosting", "shimmer");
-        table.push_back(fmt::format("{:>4} {:>4} {:>14}{} {}", "axes", "k", "volume",
-                                    o.target_ghosting ? measured_header : "", cost_header));
+    const auto add_row = [&](std::string row) {
+        table.push_back(std::move(row));
         if (on_row) on_row(table.back());
+    };
+    if (o.target || o.target_ghosting) {
+        const auto columns = axis_count_columns(o.target_ghosting ? o.input.sequences.size() : 0, o.lavapipe_cost);
+        add_row(printed_header(columns));
         bool reached = false;
         double worst = 0; // the largest ghosting over the sequences, with --target-ghosting
         for (std::size_t axes = o.force_rgb ? 4 : 3; axes <= o.axes && !reached; ++axes) {
             result = fit_axes(axes);
             auto cost = clip_cost(result.axes);
             if (!cost) return fail(cost.error().message);
-            std::string measured;
+            AxisCountRow row{axes, result.score, {}, {}, *cost};
             if (o.target_ghosting) {
                 auto figures = measure_ghosting(result.axes);
                 if (!figures) return fail(figures.error().message);
-                worst = 0;
                 for (std::size_t i = 0; i < figures->size(); i += 2) {
-                    measured += fmt::format(" {:>12.6f} {:>12.6f}", (*figures)[i], (*figures)[i + 1]);
-                    worst = std::max(worst, (*figures)[i]);
+                    row.ghosting.push_back((*figures)[i]);
+                    row.shimmer.push_back((*figures)[i + 1]);
                 }
+                worst = std::ranges::max(row.ghosting);
             }
-            table.push_back(fmt::format("{:>4} {:>4} {:>14.6g}{} {}", axes, 2 * axes, result.score, measured, *cost));
-            if (on_row) on_row(table.back());
+            add_row(printed_row(columns, row));
             reached = o.target ? result.score <= *o.target : worst <= *o.target_ghosting;
             if (result.stopped_early) break;
         }
@@ -293,12 +292,12 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
                 progress->advance(fmt::format("score {:.6g}", best));
             });
         if (progress) progress->finish();
-        table.push_back(fmt::format("{:>7} {:>14} {}", "nonzero", "score", cost_header));
+        const auto columns = sparser_columns(o.lavapipe_cost);
+        add_row(printed_header(columns));
         for (const SparserStep& step : steps) {
             auto cost = clip_cost(step.axes);
             if (!cost) return fail(cost.error().message);
-            table.push_back(fmt::format("{:>7} {:>14.6g} {}", step.nonzero, step.score, *cost));
-            if (on_row) on_row(table.back());
+            add_row(printed_row(columns, SparserRow{step.nonzero, step.score, *cost}));
         }
         if (steps.back().nonzero > *o.max_nonzero)
             return fail(fmt::format("--max-nonzero {}: pinning stops at {} nonzero components, where one "
@@ -436,8 +435,8 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
     if (!distance_measure.empty()) text.comments.push_back(fmt::format("Distance: {}.", distance_measure));
     text.comments.push_back(fmt::format("Volume{} of this set and the built-in sets (x this set's):",
                                         distance_measure.empty() ? "" : ", then distance,"));
-    for (const ComparedSet& set : sets)
-        text.comments.push_back("  " + compared_set_row(set, sets[0], !distance_measure.empty()));
+    const auto compared = compared_set_columns(sets[0], !distance_measure.empty());
+    for (const ComparedSet& set : sets) text.comments.push_back("  " + printed_row(compared, set));
     if (closer) text.comments.push_back(fmt::format("Warning: {}.", closer_warning));
     auto file = fitted_set_file(text, result.axes);
     if (!file) return fail(file.error().message);
@@ -462,12 +461,6 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
 }
 
 } // namespace
-
-std::string compared_set_row(const ComparedSet& set, const ComparedSet& fitted, bool with_distance) {
-    std::string row = fmt::format("{:<14} {:>12.6g} ({:>7.3f}x)", set.name, set.score, set.score / fitted.score);
-    if (with_distance) row += fmt::format("  {:>12.6g} ({:>7.3f}x)", set.distance, set.distance / fitted.distance);
-    return row;
-}
 
 Result<OptimizeResult> optimize(const OptimizeOptions& options, const Ranks& ranks, const OptimizeRows& on_row) {
     // One process's threads share its cores with the other ranks on the machine.

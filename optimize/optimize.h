@@ -10,6 +10,7 @@
 #include "fit/axis_fit.h"
 #include "harness/ranks.h"
 #include "optimize/fit_inputs.h"
+#include "optimize/optimize_tables.h"
 #include "temporal/resolve_options.h"
 
 #include <kdop/variant.h>
@@ -54,14 +55,6 @@ struct OptimizeOptions {
     Objective objective = Objective::volume;
 };
 
-// A set beside the fitted one: its objective on the same content and, on images and sequences, its
-// mean distance to the ideal clip on the sampled pixels (NaN where not measured).
-struct ComparedSet {
-    std::string name;
-    std::vector<glm::dvec3> axes;
-    double score = NAN, distance = NAN;
-};
-
 struct OptimizeResult {
     std::string file;              // the axis-set file written to options.out
     FitResult fit;                 // the fitted axes, and the search's time and counts
@@ -82,8 +75,5 @@ using OptimizeRows = std::function<void(const std::string& row)>;
 // fits, compares, and writes options.out (rank 0). Every rank returns the same result. A frame a
 // rank can no longer read mid-fit stops every rank (Ranks::abort).
 Result<OptimizeResult> optimize(const OptimizeOptions& options, const Ranks& ranks, const OptimizeRows& on_row = {});
-
-// A compared set's volume and distance, and their ratio to the fitted set's, as one table row.
-std::string compared_set_row(const ComparedSet& set, const ComparedSet& fitted, bool with_distance);
 
 } // namespace kdop

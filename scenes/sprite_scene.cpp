@@ -1,7 +1,7 @@
 #include "scenes/sprite_scene.h"
 
 #include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <fmt/format.h>
 

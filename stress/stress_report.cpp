@@ -1,8 +1,13 @@
 #include "stress/stress_report.h"
 
+#include "harness/declared_table.h"
+#include "harness/printed_table.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <span>
+#include <vector>
 
 namespace kdop {
 namespace {
@@ -37,66 +42,63 @@ std::string summary(const StressRun& run) {
 } // namespace
 
 std::string stress_table_text(const StressRun& run) {
+    // Rows are variants (by index); cases are numbered columns as wide as their widest cell.
     std::size_t name_width = 7;
     for (const std::string& v : run.variants) name_width = std::max(name_width, v.size());
-    std::vector<std::size_t> widths;
+    PrintedColumns<std::size_t> columns{
+        {"variant", -int(name_width), [&run](std::size_t v) { return run.variants[v]; }}};
     for (std::size_t c = 0; c < run.cases.size(); ++c) {
-        std::size_t w = fmt::format("{}", c + 1).size();
-        for (const auto& row : run.results) w = std::max(w, cell_text(row[c]).size());
-        widths.push_back(w);
+        std::size_t width = fmt::format("{}", c + 1).size();
+        for (const auto& row : run.results) width = std::max(width, cell_text(row[c]).size());
+        columns.push_back(
+            {fmt::format("{}", c + 1), int(width), [&run, c](std::size_t v) { return cell_text(run.results[v][c]); }});
     }
-    std::string out = fmt::format("{:<{}}", "variant", name_width);
-    for (std::size_t c = 0; c < run.cases.size(); ++c) out += fmt::format(" {:>{}}", c + 1, widths[c]);
-    out += "\n";
-    for (std::size_t v = 0; v < run.variants.size(); ++v) {
-        out += fmt::format("{:<{}}", run.variants[v], name_width);
-        for (std::size_t c = 0; c < run.cases.size(); ++c)
-            out += fmt::format(" {:>{}}", cell_text(run.results[v][c]), widths[c]);
-        out += "\n";
-    }
+    std::string out = printed_header(columns) + "\n";
+    for (std::size_t v = 0; v < run.variants.size(); ++v) out += printed_row(columns, v) + "\n";
     return out + legend(run, false) + summary(run);
 }
 
 Table stress_table(const StressRun& run) {
-    std::vector<Column> columns{
-        {"variant", "", Shown::text}, {"case", "", Shown::text}, {"pixels", "", Shown::integer}};
+    struct Cell {
+        const std::string &variant, &case_name;
+        const CheckResult& result;
+    };
+    DeclaredColumns<Cell> columns{
+        {{"variant", "", Shown::text}, [](const Cell& c) { return Value(c.variant); }},
+        {{"case", "", Shown::text}, [](const Cell& c) { return Value(c.case_name); }},
+        {{"pixels", "", Shown::integer}, [](const Cell& c) { return Value(std::int64_t(c.result.pixels)); }}};
     for (Invariant i : kInvariants) {
         const std::string name = invariant_name(i);
-        columns.push_back({name + "_checked", "", Shown::integer});
-        columns.push_back({name + "_violated", "", Shown::integer});
-        columns.push_back({name + "_worst", "S", Shown::significant});
+        columns.push_back({{name + "_checked", "", Shown::integer},
+                           [i](const Cell& c) { return Value(std::int64_t(c.result[i].checked)); }});
+        columns.push_back({{name + "_violated", "", Shown::integer},
+                           [i](const Cell& c) { return Value(std::int64_t(c.result[i].violated)); }});
+        // N and D are yes/no; a distance exists only for the others, and only where checked.
+        const bool distance = i != Invariant::finite && i != Invariant::defined;
+        columns.push_back({{name + "_worst", "S", Shown::significant}, [i, distance](const Cell& c) {
+                               return distance && c.result[i].checked > 0 ? Value(c.result[i].worst) : Value();
+                           }});
     }
-    Table table(std::move(columns));
+    std::vector<Cell> cells;
     for (std::size_t v = 0; v < run.variants.size(); ++v)
-        for (std::size_t c = 0; c < run.cases.size(); ++c) {
-            const CheckResult& r = run.results[v][c];
-            std::vector<Value> row{run.variants[v], run.cases[c], std::int64_t(r.pixels)};
-            for (Invariant i : kInvariants) {
-                row.push_back(std::int64_t(r[i].checked));
-                row.push_back(std::int64_t(r[i].violated));
-                // N and D are yes/no; a distance exists only for the others, and only where checked.
-                const bool measured = r[i].checked > 0 && i != Invariant::finite && i != Invariant::defined;
-                row.push_back(measured ? Value(r[i].worst) : Value());
-            }
-            table.add(std::move(row));
-        }
-    return table;
+        for (std::size_t c = 0; c < run.cases.size(); ++c)
+            cells.push_back({run.variants[v], run.cases[c], run.results[v][c]});
+    return declared_table(columns, std::span<const Cell>(cells));
 }
 
 std::string stress_report_markdown(const StressRun& run, const RunMetadata& run_info, float gamma) {
     std::string out = "# kdop stress report\n\n" + metadata_markdown(run_info);
     out += fmt::format("- gamma (variance clips): {}; tolerance: {:g} of the pixel's magnitude S\n\n", gamma,
                        kStressTolerance);
-    // The matrix of variants x cases, as a table of text columns.
-    std::vector<Column> columns{{"variant", "", Shown::text}};
-    for (const std::string& c : run.cases) columns.push_back({c, "", Shown::text});
-    Table matrix(std::move(columns));
-    for (std::size_t v = 0; v < run.variants.size(); ++v) {
-        std::vector<Value> row{run.variants[v]};
-        for (const CheckResult& r : run.results[v]) row.push_back(cell_text(r));
-        matrix.add(std::move(row));
-    }
-    out += summary(run) + "\n" + matrix.markdown();
+    // The matrix of variants (rows, by index) x cases (columns).
+    DeclaredColumns<std::size_t> columns{
+        {{"variant", "", Shown::text}, [&run](std::size_t v) { return Value(run.variants[v]); }}};
+    for (std::size_t c = 0; c < run.cases.size(); ++c)
+        columns.push_back({{run.cases[c], "", Shown::text},
+                           [&run, c](std::size_t v) { return Value(cell_text(run.results[v][c])); }});
+    std::vector<std::size_t> variants(run.variants.size());
+    for (std::size_t v = 0; v < variants.size(); ++v) variants[v] = v;
+    out += summary(run) + "\n" + declared_table(columns, std::span<const std::size_t>(variants)).markdown();
     out += legend(run, true);
     // The largest distance seen per invariant, over all cells: how close the passing ones came.
     out += "\nLargest distance seen (units of S), over every variant and case:\n\n";

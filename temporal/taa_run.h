@@ -11,6 +11,7 @@
 #include "scenes/taa_scene.h"
 #include "sequence/frame_source.h"
 #include "temporal/taa_evaluation.h"
+#include "temporal/taa_sources.h"
 
 #include <kdop/variant.h>
 
@@ -20,12 +21,6 @@
 #include <vector>
 
 namespace kdop {
-
-// What is measured: kdop's scenes, then the frame sequences.
-struct TaaSources {
-    std::vector<std::shared_ptr<const TaaScene>> scenes;
-    std::vector<SequenceFrames> sequences;
-};
 
 struct TaaRunSettings {
     EvaluationOptions evaluation;

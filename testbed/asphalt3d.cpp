@@ -1,6 +1,6 @@
 #include "testbed/scene3d.h"
 
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <fmt/format.h>
 

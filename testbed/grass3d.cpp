@@ -1,7 +1,7 @@
 #include "testbed/scene3d.h"
 
 #include "images/random.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include <fmt/format.h>
 

@@ -5,7 +5,7 @@
 // layer on and no message.
 #include "flip/device_flip.h"
 #include "flip/hdr_flip.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 #include "generator/clip_emitter.h"
 #include "generator/runnable_variant.h"
 #include "generator/variant_builder.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "tests/gpu_support.h"
 

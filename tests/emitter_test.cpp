@@ -1,9 +1,11 @@
 // The GLSL emitter: golden text for a tiny set that exercises every folding rule, and structural
 // properties of the real sets' text (no loops, no run-time indexing, zeros and units folded).
+#include "core/read_file.h"
 #include "generator/clip_emitter.h"
 #include "generator/compute_shader.h"
 #include "generator/scaled_axis.h"
 #include "generator/variant_builder.h"
+#include "generator/variant_files.h"
 #include "generator/variant_spec.h"
 #include "tests/test_support.h"
 
@@ -11,10 +13,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <regex>
+#include <string>
+#include <vector>
 
 namespace kdop {
 namespace {
+namespace fs = std::filesystem;
 
 VariantSpec spec(const std::string& set, Mode mode, Neighborhood n) {
     auto axis_set = resolve_axis_set(set);
@@ -23,6 +29,29 @@ VariantSpec spec(const std::string& set, Mode mode, Neighborhood n) {
 }
 
 VariantSpec tiny(Mode mode, Neighborhood n) { return spec(test::data_path("tiny.axes"), mode, n); }
+
+// The one list of languages (generator/shader_languages.def), read as CMake reads it: a built
+// variant carries a function per line, and its files are named with those extensions, in order.
+TEST(Emitter, EveryLanguageOfTheListIsWrittenAndNamedByIt) {
+    const auto list = read_file(fs::path(KDOP_SOURCE_DIR) / "generator/shader_languages.def");
+    ASSERT_TRUE(list);
+    std::vector<std::string> extensions;
+    const std::regex line(R"(^KDOP_SHADER_LANGUAGE\(([a-z0-9]+),)", std::regex::multiline);
+    for (std::sregex_iterator m(list->begin(), list->end(), line), end; m != end; ++m)
+        extensions.push_back("." + (*m)[1].str());
+    ASSERT_EQ(extensions, (std::vector<std::string>{".glsl", ".hlsl", ".wgsl"}));
+
+    auto built = build_variant(tiny(Mode::clip, Neighborhood::n9));
+    ASSERT_TRUE(built) << built.error().message;
+    const std::vector<OutputFile> files = function_files(*built, "out");
+    ASSERT_EQ(files.size(), extensions.size());
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        EXPECT_EQ(files[i].path, fs::path("out") / (built->name + extensions[i]));
+        EXPECT_EQ(files[i].content, emit_function(built->spec, *kShaderLanguages[i].dialect));
+        EXPECT_EQ(&built->function(*kShaderLanguages[i].dialect), &built->functions[i]);
+    }
+    EXPECT_NE(built->function(kGlsl), built->function(kHlsl));
+}
 
 TEST(Emitter, GoldenClipFunction) {
     test::expect_golden("tiny-clip-n5.glsl", emit_function(tiny(Mode::clip, Neighborhood::n5)));

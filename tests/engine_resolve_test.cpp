@@ -7,7 +7,7 @@
 // reference.
 #include "examples/engine_resolve/resolve_runner.h"
 #include "generator/shader_reflection.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "kdop_test_shaders.h"
 #include "reference/cpu_clip.h"
 #include "tests/gpu_support.h"

@@ -9,7 +9,7 @@
 // (hlsl_build_test.cpp); a difference would mean the two languages' functions have drifted apart.
 #include "generator/runnable_variant.h"
 #include "generator/variant_builder.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "tests/gpu_support.h"
 

@@ -7,7 +7,7 @@
 // carries about ten of those, times |color|, and the exit parameter divides it by the ray's
 // projection on the limiting slab, which on this content is no smaller than about 1/300 of |dir|:
 // 10 x 6e-8 x 300 = 2e-4. Measured worst case over all variants and textures: 2.6e-5.
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "tests/gpu_support.h"
 

@@ -4,12 +4,14 @@
 #include "core/memory_budget.h"
 #include "harness/csv_reader.h"
 #include "harness/output_set.h"
+#include "harness/printed_table.h"
 #include "harness/progress.h"
 #include "harness/rank_correlation.h"
 #include "harness/run_metadata.h"
 #include "harness/table.h"
 #include "tests/test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -73,6 +75,21 @@ TEST(Table, ARowThatDoesNotFitTheColumnsIsRefused) {
     t.add({1.0, 2.0});
     EXPECT_EQ(t.rows().size(), 1u);
     EXPECT_EQ(t.number(0, "b"), 2.0);
+}
+
+// Printed columns: each cell aligned in its column's width as its header is (left or right), the
+// separator before every column but the first, and a cell wider than its column kept whole.
+TEST(PrintedTable, HeaderAndRowsShareTheColumnsWidthsAndSeparators) {
+    struct Row {
+        std::string name;
+        double value;
+    };
+    const PrintedColumns<Row> columns{{"name", -6, [](const Row& r) { return r.name; }},
+                                      {"value", 8, [](const Row& r) { return fmt::format("{:.2f}", r.value); }},
+                                      {"x2", 5, [](const Row& r) { return fmt::format("{:g}", 2 * r.value); }, "  "}};
+    EXPECT_EQ(printed_header(columns), "name      value     x2");
+    EXPECT_EQ(printed_row(columns, Row{"ab", 1.5}), "ab         1.50      3");
+    EXPECT_EQ(printed_row(columns, Row{"longer name", 12345.678}), "longer name 12345.68  24691.4");
 }
 
 TEST(CsvReader, ReadsWhatTablesWriteAndNamesTheLineOfWhatItCannot) {

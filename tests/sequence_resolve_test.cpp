@@ -8,7 +8,7 @@
 #include "flip/flip.h"
 #include "flip/hdr_flip.h"
 #include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "scenes/sprite_scene.h"
 #include "sequence/sequence_writer.h"

@@ -2,7 +2,7 @@
 // (kdop_add_variants SHADERS, tests/CMakeLists.txt), run on lavapipe with the validation layer on
 // and checked against the CPU reference: the history moved by the motion (clamp to edge), clipped
 // by the reference dop22 clip, then blended with the current frame.
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "kdop_test_shaders.h"
 #include "reference/cpu_clip.h"
 #include "tests/gpu_support.h"

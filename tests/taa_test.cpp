@@ -5,7 +5,7 @@
 #include "flip/device_flip.h"
 #include "flip/flip.h"
 #include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "scenes/sprite_scene.h"
 #include "temporal/taa_measure.h"

@@ -7,7 +7,7 @@
 
 #include "generator/variant_spec.h"
 #include "images/image_io.h"
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "tests/test_support.h"
 

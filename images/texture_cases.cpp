@@ -1,4 +1,4 @@
-#include "images/test_textures.h"
+#include "images/texture_cases.h"
 
 #include "images/random.h"
 

@@ -4,9 +4,11 @@
 // kdop_image_content; what reads files (the real textures, make_test_cases) in kdop_images.
 #pragma once
 
+#include "core/result.h"
 #include "images/image.h"
 
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
@@ -59,5 +61,10 @@ struct TestCase {
 // Every synthetic family x history model, then (when `real`) every installed real texture x model.
 // other_texture takes the next texture in the list as history.
 std::vector<TestCase> make_test_cases(std::uint32_t width, std::uint32_t height, std::uint64_t seed, bool real = true);
+
+// `kdop textures`: every case's texture (once) and history as EXR in `dir`, <texture>.exr and
+// <texture>-history-<model>.exr, written as a set (a failure halfway leaves none). Returns how
+// many files were written. In kdop_images (texture_case_files.cpp).
+Result<std::size_t> write_test_cases(const std::vector<TestCase>& cases, const std::filesystem::path& dir);
 
 } // namespace kdop

@@ -1,0 +1,47 @@
+#include "temporal/taa_sources.h"
+
+#include "core/input_files.h"
+#include "temporal/taa_measure.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+namespace kdop {
+
+bool TaaSources::any_hdr() const {
+    return std::ranges::any_of(sequences, [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
+}
+
+Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request) {
+    // Every size is checked against the device and memory before any frame is made or read.
+    const SceneOptions& scene = request.scene_options;
+    if (request.builtin)
+        if (auto ok = check_measurable(context, scene.width, scene.height, request.device_flip); !ok)
+            return usage_fail(fmt::format("--size {}x{}: {}", scene.width, scene.height, ok.error().message));
+    if (auto ok = check_distinct_files(request.sequences, "--sequence"); !ok) return usage_fail(ok.error().message);
+    TaaSources sources;
+    for (const std::string& dir : request.sequences) {
+        auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve);
+        if (!sequence) return fail(sequence.error().message);
+        if (auto ok = check_measurable(context, sequence->width, sequence->height, request.device_flip); !ok)
+            return fail(fmt::format("--sequence {}: {}", dir, ok.error().message));
+        sources.sequences.emplace_back(std::move(*sequence), request.input_space);
+    }
+    if (request.builtin) {
+        request.scene_options.context = &context;
+        auto selected = select_taa_scenes(request.scene_names, request.backgrounds, request.scene_options);
+        if (!selected) return fail(selected.error().message);
+        sources.scenes = std::move(*selected);
+    }
+    std::set<std::string> names;
+    for (const auto& s : sources.scenes) names.insert(s->name());
+    for (const SequenceFrames& sequence : sources.sequences)
+        if (!names.insert(sequence.name()).second)
+            return fail(fmt::format("--sequence: {}: a scene or sequence is already called '{}'",
+                                    sequence.sequence().dir.string(), sequence.name()));
+    return sources;
+}
+
+} // namespace kdop

@@ -1,0 +1,46 @@
+// What `kdop taa` measures, gathered and checked before any frame is made or read: frame sequences
+// from disk and kdop's own scenes, every size checked against the device and memory, every name
+// distinct (a row is named after its source).
+#pragma once
+
+#include "core/result.h"
+#include "images/image_io.h"
+#include "runtime/context.h"
+#include "scenes/scene_catalog.h"
+#include "scenes/taa_scene.h"
+#include "sequence/frame_source.h"
+#include "temporal/resolve_options.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+// What is measured: kdop's scenes, then the frame sequences.
+struct TaaSources {
+    std::vector<std::shared_ptr<const TaaScene>> scenes;
+    std::vector<SequenceFrames> sequences;
+
+    std::size_t size() const { return scenes.size() + sequences.size(); }
+    bool any_hdr() const; // a sequence measured in HDR-FLIP
+};
+
+struct TaaSourceRequest {
+    std::vector<std::string> sequences; // folders (--sequence)
+    std::uint32_t warmup = 100;         // frames every sequence must have more of
+    ResolveOptions resolve;             // what the resolve needs of a sequence (depth for --dilate-motion)
+    InputSpace input_space = InputSpace::from_file;
+    bool device_flip = true; // FLIP on the device: its limits count too
+    // kdop's scenes, made at options' size (checked first); none when `builtin` is false.
+    bool builtin = true;
+    std::vector<std::string> scene_names, backgrounds; // scene_catalog.h's select_taa_scenes
+    SceneOptions scene_options;                        // its context is filled in
+};
+
+// Reads the sequences, then makes the scenes. Errors name the option and folder; Error::usage
+// where the command line is at fault (a size the device cannot measure, a folder given twice).
+Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request);
+
+} // namespace kdop
