@@ -95,7 +95,7 @@ Action add_taa_command(CLI::App& app) {
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
         auto sources =
-            taa_sources(**context, {o->sequences, o->warmup, o->resolve, o->input_space, !o->cpu_flip,
+            taa_sources(**context, {o->sequences, o->warmup, o->resolve, o->input_space, !o->cpu_flip, specs->size(),
                                     o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty(),
                                     o->choice.scenes, o->choice.backgrounds,
                                     o->choice.options(size->first, size->second, o->seed, o->input_space)});

@@ -29,6 +29,10 @@ void Progress::finish() {
 
 void Progress::advance(const std::string& item) {
     ++done_;
+    const std::size_t tenth = total_ ? done_ * 10 / total_ : 0;
+    if (!terminal_ && item == last_item_ && tenth == last_tenth_ && done_ < total_) return;
+    last_item_ = item;
+    last_tenth_ = tenth;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const std::string eta =
         done_ < total_ ? fmt::format(", about {} left", clock_text(elapsed / double(done_) * double(total_ - done_)))

@@ -1,6 +1,8 @@
 // Progress of a long step on stderr: "[12/51] timing dop32-clip-n9  0:42 elapsed, about 1:13 left".
 // On a terminal the line is rewritten in place and cleared when the step ends, so it never runs
-// into a table printed afterwards; otherwise (a log, CI) each step is one line, so nothing is lost.
+// into a table printed afterwards; otherwise (a log, CI) a step is one line when its item differs
+// from the last line's, and steps of one item (the frames of a sequence) a line each tenth of the
+// total, so a log says where the work is without a line per frame.
 // The estimate assumes the remaining steps take as long as the finished ones did on average.
 #pragma once
 
@@ -25,6 +27,8 @@ public:
 private:
     std::string step_;
     std::size_t total_, done_ = 0;
+    std::string last_item_;      // of the last line written to a log
+    std::size_t last_tenth_ = 0; // of the total, at that line
     bool terminal_, finished_ = false;
     std::chrono::steady_clock::time_point start_;
 };

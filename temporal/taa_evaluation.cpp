@@ -59,31 +59,49 @@ Result<FlipMean> TaaEvaluation::flip_mean(std::uint32_t width, std::uint32_t hei
     return device_flip_mean(*device, options_.exposure);
 }
 
+Result<std::unique_ptr<TaaResolve>> TaaEvaluation::resolve(std::uint32_t width, std::uint32_t height,
+                                                           bool nearer_larger) {
+    std::vector<const Variant*> shaders;
+    std::vector<std::string> names;
+    for (std::size_t v = 0; v < specs_.size(); ++v) {
+        auto shader = this->shader(v, nearer_larger);
+        if (!shader) return std::unexpected(shader.error());
+        shaders.push_back(*shader);
+        names.push_back(variant_name(specs_[v]));
+    }
+    return TaaResolve::create(*context_, shaders, width, height, options_.resolve, std::move(names));
+}
+
+std::size_t TaaEvaluation::frames(const TaaScene&) const {
+    return 2 * std::size_t(options_.schedule.warmup + options_.schedule.frames); // its two sequences
+}
+
 Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene, const EvaluationObserver& observer) {
     auto mean = flip_mean(scene.width(), scene.height());
     if (!mean) return fail(fmt::format("{}: {}", scene.name(), mean.error().message));
+    auto resolve = this->resolve(scene.width(), scene.height(), false);
+    if (!resolve) return std::unexpected(resolve.error());
+    SceneShaderOutputObserver output;
+    if (observer.output)
+        output = [&](const std::string& sequence, std::size_t v, std::size_t index, const Image& image) {
+            return observer.output(sequence, v, index, image);
+        };
+    auto on_frame = [&] {
+        if (observer.frame) observer.frame(scene.name());
+    };
+    auto measured = measure_scene_all(**resolve, scene, options_.schedule, *mean, output, on_frame);
+    if (!measured) return fail(fmt::format("{}: {}", scene.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
-        auto shader = this->shader(v, false);
-        if (!shader) return std::unexpected(shader.error());
-        auto resolve = TaaResolve::create(*context_, **shader, scene.width(), scene.height(), options_.resolve);
-        if (!resolve) return std::unexpected(resolve.error());
-        SceneOutputObserver output;
-        if (observer.output)
-            output = [&](const std::string& sequence, std::size_t index, const Image& image) {
-                return observer.output(sequence, v, index, image);
-            };
-        auto m = measure_scene(**resolve, scene, options_.schedule, *mean, output);
-        if (!m) return fail(fmt::format("{} on {}: {}", variant_name(specs_[v]), scene.name(), m.error().message));
+        TaaMeasurement& m = (*measured)[v];
         rows.push_back({v,
                         scene.name(),
-                        m->shimmer,
-                        m->ghosting,
-                        m->against_reference,
+                        m.shimmer,
+                        m.ghosting,
+                        m.against_reference,
                         ColorRange::ldr,
-                        std::make_shared<const Image>(std::move(m->trail)),
+                        std::make_shared<const Image>(std::move(m.trail)),
                         {}});
-        if (observer.measured) observer.measured(fmt::format("{} on {}", variant_name(specs_[v]), scene.name()));
     }
     return rows;
 }
@@ -92,25 +110,26 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& 
                                                           const EvaluationObserver& observer) {
     auto mean = flip_mean(sequence.width(), sequence.height());
     if (!mean) return fail(fmt::format("{}: {}", sequence.name(), mean.error().message));
+    auto resolve = this->resolve(sequence.width(), sequence.height(), sequence.sequence().depth_nearer_larger);
+    if (!resolve) return std::unexpected(resolve.error());
+    ShaderOutputObserver output;
+    if (observer.output)
+        output = [&](std::size_t v, std::size_t index, const Image& image) {
+            return observer.output(sequence.name(), v, index, image);
+        };
+    auto on_frame = [&] {
+        if (observer.frame) observer.frame(sequence.name());
+    };
+    auto measured = measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, {}, output, on_frame);
+    if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them
     for (std::size_t v = 0; v < specs_.size(); ++v) {
-        auto shader = this->shader(v, sequence.sequence().depth_nearer_larger);
-        if (!shader) return std::unexpected(shader.error());
-        auto resolve = TaaResolve::create(*context_, **shader, sequence.width(), sequence.height(), options_.resolve);
-        if (!resolve) return std::unexpected(resolve.error());
-        OutputObserver output;
-        if (observer.output)
-            output = [&](std::size_t index, const Image& image) {
-                return observer.output(sequence.name(), v, index, image);
-            };
-        auto m = measure_sequence(**resolve, sequence, options_.schedule.warmup, *mean, {}, output);
-        if (!m) return fail(fmt::format("{} on {}: {}", variant_name(specs_[v]), sequence.name(), m.error().message));
-        EvaluationRow row{v, sequence.name(), m->shimmer, m->ghosting, m->against_reference, m->range, nullptr, {}};
-        for (const std::string& note : m->notes)
+        const SequenceMeasurement& m = (*measured)[v];
+        EvaluationRow row{v, sequence.name(), m.shimmer, m.ghosting, m.against_reference, m.range, nullptr, {}};
+        for (const std::string& note : m.notes)
             if (noted.insert(note).second) row.notes.push_back(note);
         rows.push_back(std::move(row));
-        if (observer.measured) observer.measured(fmt::format("{} on {}", variant_name(specs_[v]), sequence.name()));
     }
     return rows;
 }

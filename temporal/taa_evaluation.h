@@ -13,6 +13,7 @@
 #include "sequence/frame_source.h"
 #include "temporal/resolve_options.h"
 #include "temporal/taa_measure.h"
+#include "temporal/taa_resolve.h"
 
 #include <cstdint>
 #include <functional>
@@ -48,8 +49,8 @@ struct EvaluationObserver {
     std::function<Result<void>(const std::string& sequence, std::size_t variant, std::size_t index,
                                const Image& output)>
         output;
-    // After each variant on each source, naming both ("dop32-clip-n9 on grass3d").
-    std::function<void(const std::string& done)> measured;
+    // After each frame of a source, every variant resolved and measured on it, naming the source.
+    std::function<void(const std::string& source)> frame;
 };
 
 class TaaEvaluation {
@@ -64,14 +65,21 @@ public:
     // fitted set after another.
     Result<void> set_variants(std::vector<VariantSpec> specs);
 
-    // Every variant on `scene` (both of its sequences), or on `sequence`, in spec order.
+    // Every variant on `scene` (both of its sequences), or on `sequence`, in spec order: one pass
+    // over the frames, each drawn or read once and resolved by every variant against its own history.
     Result<std::vector<EvaluationRow>> measure(const TaaScene& scene, const EvaluationObserver& observer = {});
     Result<std::vector<EvaluationRow>> measure(const SequenceFrames& sequence, const EvaluationObserver& observer = {});
+
+    // The frames measure() goes through for `scene` (observer.frame's calls); a sequence's are its
+    // frame_count().
+    std::size_t frames(const TaaScene& scene) const;
 
 private:
     TaaEvaluation(const Context& context, const EvaluationOptions& options);
     // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth).
     Result<const Variant*> shader(std::size_t v, bool nearer_larger);
+    // One resolve of every variant's shader, for frames of this size and depth convention.
+    Result<std::unique_ptr<TaaResolve>> resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger);
     // The FLIP of outputs of one size: on the device, one evaluator per size, made when first needed.
     Result<FlipMean> flip_mean(std::uint32_t width, std::uint32_t height);
 

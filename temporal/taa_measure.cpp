@@ -58,7 +58,8 @@ FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
     };
 }
 
-Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip) {
+Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip,
+                              std::size_t variants) {
     const std::uint32_t limit = context.properties().limits.maxImageDimension2D;
     if (width > limit || height > limit)
         return fail(fmt::format("{}x{} frames are larger than {} allows: at most {} pixels on a side", width, height,
@@ -66,9 +67,11 @@ Result<void> check_measurable(const Context& context, std::uint32_t width, std::
     if (device_flip)
         if (auto ok = DeviceFlip::check_limits(context, width, height); !ok)
             return fail(ok.error().message + "; --cpu-flip measures with the CPU's FLIP, which has no such limit");
-    // The resolve's pass and its four inputs, a frame's images, the last output and its checked copy;
-    // on lavapipe device memory is this process's memory.
-    const std::uint64_t resolve = rectify_pass_bytes(width, height) + 6 * image_bytes(width, height);
+    // The resolve's pass and its four inputs, a frame's images, and per variant its history (the
+    // last output), its checked copy and its previous output; on lavapipe device memory is this
+    // process's memory.
+    const std::uint64_t resolve =
+        rectify_pass_bytes(width, height) + (4 + 3 * std::uint64_t(variants)) * image_bytes(width, height);
     const std::uint64_t flip = device_flip ? DeviceFlip::bytes(width, height) : ldr_flip_bytes(width, height);
     return check_memory(fmt::format("measuring {}x{} frames", width, height), resolve + flip);
 }
@@ -114,112 +117,175 @@ Result<void> check_range(const Image& image, ColorRange range, const std::string
 
 } // namespace
 
-Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const FlipMean& flip, TaaMetrics metrics, const OutputObserver& on_output,
-                                             const std::function<void()>& on_frame) {
-    const std::size_t count = source.frame_count();
-    if (warmup >= count)
-        return fail(
-            fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
-    SequenceMeasurement m;
-    m.against_reference = source.has_reference();
-    m.range = source.color_range();
-    Image previous;
-    double shimmer_sum = 0, ghosting_sum = 0;
-    std::size_t shimmer_pairs = 0;
+namespace {
+
+// One shader's measurement as the frames go by: its previous output, its sums and the notes it met.
+class Meter {
+public:
+    Meter(const FrameSource& source, const FlipMean& flip, TaaMetrics metrics) : flip_(&flip), metrics_(metrics) {
+        m_.against_reference = source.has_reference();
+        m_.range = source.color_range();
+    }
+
+    // Frame `i`'s output `current` (already within range) against `truth` and the previous output.
+    Result<void> measure(const Image& truth, const Image& current, bool starts_history, const std::string& label) {
+        if (metrics_.ghosting) {
+            auto ghosting =
+                figure(truth, current, label,
+                       m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color");
+            if (!ghosting) return std::unexpected(ghosting.error());
+            ghosting_sum_ += *ghosting;
+        }
+        if (metrics_.shimmer && !starts_history) {
+            auto shimmer = figure(previous_, current, label, "shimmer against the previous output");
+            if (!shimmer) return std::unexpected(shimmer.error());
+            shimmer_sum_ += *shimmer;
+            ++shimmer_pairs_;
+        }
+        ++m_.frames;
+        return {};
+    }
+    void keep(Image output) { previous_ = std::move(output); }
+
+    SequenceMeasurement finish() {
+        for (const auto& [note, met] : notes_)
+            m_.notes.push_back(met.more ? fmt::format("{} and {} more frame{}: {}", met.first_label, met.more,
+                                                      met.more == 1 ? "" : "s", note)
+                                        : fmt::format("{}: {}", met.first_label, note));
+        m_.ghosting = ghosting_sum_ / double(m_.frames);
+        m_.shimmer = shimmer_pairs_ ? shimmer_sum_ / double(shimmer_pairs_) : 0.0;
+        return std::move(m_);
+    }
+
+private:
+    // One figure of frame `label`, its error naming the frame and what was measured.
+    Result<double> figure(const Image& reference, const Image& test, const std::string& label, const char* what) {
+        auto figure = (*flip_)(reference, test, m_.range);
+        if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
+        if (!figure->note.empty()) {
+            auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
+            if (!first) ++it->second.more;
+        }
+        return figure->mean;
+    }
+
     struct Met {
         std::string first_label;
         std::size_t more = 0;
     };
-    std::map<std::string, Met> notes; // by note
-    // One figure of frame `label`, its error naming the frame and what was measured.
-    auto measured = [&](const Image& reference, const Image& test, const std::string& label,
-                        const char* what) -> Result<double> {
-        auto figure = flip(reference, test, m.range);
-        if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
-        if (!figure->note.empty()) {
-            auto [it, first] = notes.try_emplace(figure->note, Met{label, 0});
-            if (!first) ++it->second.more;
-        }
-        return figure->mean;
-    };
+    const FlipMean* flip_;
+    TaaMetrics metrics_;
+    SequenceMeasurement m_;
+    Image previous_;
+    double shimmer_sum_ = 0, ghosting_sum_ = 0;
+    std::size_t shimmer_pairs_ = 0;
+    std::map<std::string, Met> notes_; // by note
+};
+
+} // namespace
+
+Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
+                                                              std::uint32_t warmup, const FlipMean& flip,
+                                                              TaaMetrics metrics, const ShaderOutputObserver& on_output,
+                                                              const std::function<void()>& on_frame) {
+    const std::size_t count = source.frame_count();
+    if (warmup >= count)
+        return fail(
+            fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
+    const ColorRange range = source.color_range();
+    const bool against_reference = source.has_reference();
+    std::vector<Meter> meters(resolve.size(), Meter(source, flip, metrics));
     for (std::size_t i = 0; i < count; ++i) {
+        // Each frame is drawn or read once, and checked once, whatever the number of shaders.
         auto frame = source.frame(i);
         if (!frame) return std::unexpected(frame.error());
         const std::string label = source.frame_label(i);
-        if (auto ok = check_range(frame->color, m.range, label, "color"); !ok) return std::unexpected(ok.error());
-        if (frame->reference.has_value() != m.against_reference)
+        if (auto ok = check_range(frame->color, range, label, "color"); !ok) return std::unexpected(ok.error());
+        if (frame->reference.has_value() != against_reference)
             return fail(fmt::format("{}: {} a reference, unlike the sequence's others; give every frame a reference "
                                     "or none",
-                                    label, m.against_reference ? "has no" : "has"));
-        auto output = resolve.advance(*frame, source.starts_history(i));
-        if (!output) return fail(fmt::format("{}: {}", label, output.error().message));
-        if (i + 1 >= warmup) {
-            auto current = within_range(**output, m.range, label);
-            if (!current) return std::unexpected(current.error());
-            if (i >= warmup) {
-                const Image* truth = &frame->color;
-                if (m.against_reference) {
-                    if (auto ok = check_range(*frame->reference, m.range, label, "reference"); !ok)
-                        return std::unexpected(ok.error());
-                    truth = &*frame->reference;
-                }
-                if (metrics.ghosting) {
-                    auto ghosting = measured(*truth, *current, label,
-                                             m.against_reference ? "ghosting against the reference"
-                                                                 : "ghosting against the frame's color");
-                    if (!ghosting) return std::unexpected(ghosting.error());
-                    ghosting_sum += *ghosting;
-                }
-                if (metrics.shimmer && !source.starts_history(i)) {
-                    auto shimmer = measured(previous, *current, label, "shimmer against the previous output");
-                    if (!shimmer) return std::unexpected(shimmer.error());
-                    shimmer_sum += *shimmer;
-                    ++shimmer_pairs;
-                }
-                ++m.frames;
-                if (on_output)
-                    if (auto ok = on_output(i, *current); !ok) return std::unexpected(ok.error());
+                                    label, against_reference ? "has no" : "has"));
+        if (i >= warmup && against_reference)
+            if (auto ok = check_range(*frame->reference, range, label, "reference"); !ok)
+                return std::unexpected(ok.error());
+        if (auto ok = resolve.advance_all(*frame, source.starts_history(i)); !ok)
+            return fail(fmt::format("{}: {}", label, ok.error().message));
+        if (i + 1 >= warmup)
+            for (std::size_t s = 0; s < resolve.size(); ++s) {
+                auto measured = [&]() -> Result<void> {
+                    auto current = within_range(resolve.output(s), range, label);
+                    if (!current) return std::unexpected(current.error());
+                    if (i >= warmup) {
+                        const Image& truth = against_reference ? *frame->reference : frame->color;
+                        if (auto ok = meters[s].measure(truth, *current, source.starts_history(i), label); !ok)
+                            return ok;
+                        if (on_output)
+                            if (auto ok = on_output(s, i, *current); !ok) return ok;
+                    }
+                    meters[s].keep(std::move(*current));
+                    return {};
+                }();
+                if (!measured) return fail(fmt::format("{}: {}", resolve.name(s), measured.error().message));
             }
-            previous = std::move(*current);
-        }
         if (on_frame) on_frame();
     }
-    for (const auto& [note, met] : notes)
-        m.notes.push_back(met.more ? fmt::format("{} and {} more frame{}: {}", met.first_label, met.more,
-                                                 met.more == 1 ? "" : "s", note)
-                                   : fmt::format("{}: {}", met.first_label, note));
-    m.ghosting = ghosting_sum / double(m.frames);
-    m.shimmer = shimmer_pairs ? shimmer_sum / double(shimmer_pairs) : 0.0;
+    std::vector<SequenceMeasurement> measured;
+    for (Meter& meter : meters) measured.push_back(meter.finish());
+    return measured;
+}
+
+Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
+                                             const FlipMean& flip, TaaMetrics metrics, const OutputObserver& on_output,
+                                             const std::function<void()>& on_frame) {
+    ShaderOutputObserver first;
+    if (on_output)
+        first = [&](std::size_t s, std::size_t index, const Image& output) -> Result<void> {
+            return s == 0 ? on_output(index, output) : Result<void>{};
+        };
+    auto measured = measure_sequence_all(resolve, source, warmup, flip, metrics, first, on_frame);
+    if (!measured) return std::unexpected(measured.error());
+    return std::move(measured->front());
+}
+
+Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
+                                                      const TaaSchedule& schedule, const FlipMean& flip,
+                                                      const SceneShaderOutputObserver& on_output,
+                                                      const std::function<void()>& on_frame) {
+    std::vector<TaaMeasurement> m(resolve.size());
+    const auto still = shimmer_frames(scene, schedule);
+    const auto moving = ghosting_frames(scene, schedule);
+    const std::uint32_t shown = scene.trail_frame(schedule);
+    auto pass_on = [&](const FrameSource& source, bool keep_trail) -> ShaderOutputObserver {
+        return [&, keep_trail](std::size_t s, std::size_t index, const Image& output) -> Result<void> {
+            if (keep_trail && index == shown) m[s].trail = output;
+            return on_output ? on_output(source.name(), s, index, output) : Result<void>{};
+        };
+    };
+    auto shimmer = measure_sequence_all(resolve, *still, schedule.warmup, flip, {.shimmer = true, .ghosting = false},
+                                        pass_on(*still, false), on_frame);
+    if (!shimmer) return std::unexpected(shimmer.error());
+    auto ghosting = measure_sequence_all(resolve, *moving, schedule.warmup, flip, {.shimmer = false, .ghosting = true},
+                                         pass_on(*moving, true), on_frame);
+    if (!ghosting) return std::unexpected(ghosting.error());
+    for (std::size_t s = 0; s < m.size(); ++s) {
+        m[s].shimmer = (*shimmer)[s].shimmer;
+        m[s].ghosting = (*ghosting)[s].ghosting;
+        m[s].against_reference = (*ghosting)[s].against_reference;
+    }
     return m;
 }
 
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
                                      const FlipMean& flip, const SceneOutputObserver& on_output,
                                      const std::function<void()>& on_frame) {
-    TaaMeasurement m;
-    const auto still = shimmer_frames(scene, schedule);
-    auto pass_on = [&](const FrameSource& source) -> OutputObserver {
-        if (!on_output) return {};
-        return [&](std::size_t index, const Image& output) { return on_output(source.name(), index, output); };
-    };
-    auto shimmer = measure_sequence(resolve, *still, schedule.warmup, flip, {.shimmer = true, .ghosting = false},
-                                    pass_on(*still), on_frame);
-    if (!shimmer) return std::unexpected(shimmer.error());
-    const auto moving = ghosting_frames(scene, schedule);
-    const std::uint32_t shown = scene.trail_frame(schedule);
-    const OutputObserver also_written = pass_on(*moving);
-    auto keep_trail = [&](std::size_t index, const Image& output) -> Result<void> {
-        if (index == shown) m.trail = output;
-        return also_written ? also_written(index, output) : Result<void>{};
-    };
-    auto ghosting = measure_sequence(resolve, *moving, schedule.warmup, flip, {.shimmer = false, .ghosting = true},
-                                     keep_trail, on_frame);
-    if (!ghosting) return std::unexpected(ghosting.error());
-    m.shimmer = shimmer->shimmer;
-    m.ghosting = ghosting->ghosting;
-    m.against_reference = ghosting->against_reference;
-    return m;
+    SceneShaderOutputObserver first;
+    if (on_output)
+        first = [&](const std::string& sequence, std::size_t s, std::size_t index, const Image& output) {
+            return s == 0 ? on_output(sequence, index, output) : Result<void>{};
+        };
+    auto measured = measure_scene_all(resolve, scene, schedule, flip, first, on_frame);
+    if (!measured) return std::unexpected(measured.error());
+    return std::move(measured->front());
 }
 
 } // namespace kdop

@@ -52,11 +52,14 @@ struct SequenceMeasurement {
     std::vector<std::string> notes;
 };
 
-// Whether `context` can resolve and measure frames of width x height: the resolve's images within
-// its limits and, with `device_flip`, FLIP's (DeviceFlip::check_limits), and both in memory. What a
+// Whether `context` can resolve and measure frames of width x height with `variants` variants in
+// one pass: the resolve's images within its limits and, with `device_flip`, FLIP's
+// (DeviceFlip::check_limits), and both in memory (each variant holds its history and its previous
+// output). What a
 // command checks for every size it will measure before any work, so a size that cannot be measured
 // is refused in a second, not after minutes; the error says what to do instead.
-Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip);
+Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip,
+                              std::size_t variants = 1);
 
 // read_sequence, and what the resolve needs of it checked before any frame is read: more frames
 // than `warmup`, and with --dilate-motion depth on every frame that has a history. Errors name the
@@ -66,13 +69,16 @@ Result<Sequence> read_resolvable_sequence(const std::filesystem::path& dir, std:
 
 // Called with each measured frame's index and output; an error stops the measurement.
 using OutputObserver = std::function<Result<void>(std::size_t index, const Image& output)>;
+// The same for a resolve of several shaders, with the shader's index.
+using ShaderOutputObserver = std::function<Result<void>(std::size_t shader, std::size_t index, const Image& output)>;
 
 // Which figures to compute: each costs one FLIP per measured frame.
 struct TaaMetrics {
     bool shimmer = true, ghosting = true;
 };
 
-// Resolves every frame of `source` on `resolve`, measuring after `warmup`. Frames and references
+// Resolves every frame of `source` on `resolve` (a resolve of one shader: with more, every shader
+// runs and the first one's figures come back), measuring after `warmup`. Frames and references
 // must keep to the source's range ([0, 1] for ldr, not negative for hdr): a value outside is
 // refused, naming the frame, the pixel and the value, never clamped. `on_frame` is called after
 // each frame, measured or not.
@@ -92,6 +98,25 @@ struct TaaMeasurement {
 // frame's index and its output.
 using SceneOutputObserver =
     std::function<Result<void>(const std::string& sequence, std::size_t index, const Image& output)>;
+
+// Called with the sequence's name, the shader's index, the frame's index and its output.
+using SceneShaderOutputObserver = std::function<Result<void>(const std::string& sequence, std::size_t shader,
+                                                             std::size_t index, const Image& output)>;
+
+// Every shader of `resolve` over `source` in one pass: each frame drawn or read and checked once,
+// then resolved and measured by every shader against its own history. Each shader's figures are
+// those measure_sequence gives it alone (the sums in the same order). `on_frame` is called after
+// each frame, all shaders done.
+Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
+                                                              std::uint32_t warmup, const FlipMean& flip,
+                                                              TaaMetrics metrics = {},
+                                                              const ShaderOutputObserver& on_output = {},
+                                                              const std::function<void()>& on_frame = {});
+// Both of a scene's sequences through every shader of `resolve`, in one pass each.
+Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
+                                                      const TaaSchedule& schedule, const FlipMean& flip,
+                                                      const SceneShaderOutputObserver& on_output = {},
+                                                      const std::function<void()>& on_frame = {});
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,

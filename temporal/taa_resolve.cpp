@@ -7,22 +7,41 @@ namespace kdop {
 Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, const Variant& shader,
                                                        std::uint32_t width, std::uint32_t height,
                                                        const ResolveOptions& options) {
+    const Variant* shaders[] = {&shader};
+    return create(context, shaders, width, height, options);
+}
+
+Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, std::span<const Variant* const> shaders,
+                                                       std::uint32_t width, std::uint32_t height,
+                                                       const ResolveOptions& options, std::vector<std::string> names) {
+    if (shaders.empty()) return fail("a resolve of no shader");
+    if (!names.empty() && names.size() != shaders.size()) return fail("a resolve's shaders and names differ in count");
     std::unique_ptr<TaaResolve> r(new TaaResolve(width, height, options));
-    auto kernel = Kernel::create(context, shader);
-    if (!kernel) return std::unexpected(kernel.error());
-    r->kernel_ = std::move(*kernel);
+    r->names_ = std::move(names);
+    if (r->names_.empty())
+        for (const Variant* shader : shaders) r->names_.push_back(shader->name);
+    for (const Variant* shader : shaders) {
+        auto kernel = Kernel::create(context, *shader);
+        if (!kernel) return std::unexpected(kernel.error());
+        r->kernels_.push_back(std::move(*kernel));
+        r->histories_.emplace_back(width, height);
+    }
     // The names of shader_templates/taa_resolve.comp.in, in the order advance() uploads them.
     auto pass = RectifyPass::create(context, width, height, TextureFormat::rgba32f,
                                     {"color_frame", "history_frame", "motion_frame", "depth_frame"});
     if (!pass) return std::unexpected(pass.error());
     r->pass_ = std::move(*pass);
-    r->history_ = Image(width, height);
     r->motion_ = Image(width, height, glm::vec4(0));
     r->nothing_ = Image(width, height, glm::vec4(0));
     return r;
 }
 
 Result<const Image*> TaaResolve::advance(const LoadedFrame& frame, bool starts_history) {
+    if (auto ok = advance_all(frame, starts_history); !ok) return std::unexpected(ok.error());
+    return &histories_.front();
+}
+
+Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_history) {
     if (frame.color.width != width_ || frame.color.height != height_)
         return fail(
             fmt::format("a {}x{} frame for a {}x{} resolve", frame.color.width, frame.color.height, width_, height_));
@@ -37,17 +56,23 @@ Result<const Image*> TaaResolve::advance(const LoadedFrame& frame, bool starts_h
         return fail("--dilate-motion takes the motion of the nearest neighbor, and this frame has no depth");
     // Depth only reaches the device where the shader reads it.
     const Image* depth = !options_.dilate_motion ? nullptr : frame.depth ? &*frame.depth : &nothing_;
-    const Image* inputs[] = {&frame.color, &history_, has_motion ? &motion_ : &nothing_, depth};
-    if (auto ok = pass_->upload(inputs); !ok) return std::unexpected(ok.error());
+    // The frame's inputs once; then each shader's own history, its dispatch and its output.
+    const Image* frame_inputs[] = {&frame.color, nullptr, has_motion ? &motion_ : &nothing_, depth};
+    if (auto ok = pass_->upload(frame_inputs); !ok) return std::unexpected(ok.error());
     const RectifyPass::PushConstantValue values[] = {
         {"current_weight", {starts_history ? 1.0f : options_.current_weight}},
         {"gamma", {options_.gamma}},
     };
-    if (auto timing = pass_->dispatch(*kernel_, values); !timing) return std::unexpected(timing.error());
-    auto out = pass_->download();
-    if (!out) return std::unexpected(out.error());
-    history_ = std::move(*out);
-    return &history_;
+    for (std::size_t s = 0; s < kernels_.size(); ++s) {
+        const Image* history_input[] = {nullptr, &histories_[s], nullptr, nullptr};
+        if (auto ok = pass_->upload(history_input); !ok) return std::unexpected(ok.error());
+        if (auto timing = pass_->dispatch(*kernels_[s], values); !timing)
+            return fail(fmt::format("{}: {}", names_[s], timing.error().message));
+        auto out = pass_->download();
+        if (!out) return fail(fmt::format("{}: {}", names_[s], out.error().message));
+        histories_[s] = std::move(*out);
+    }
+    return {};
 }
 
 } // namespace kdop

@@ -1,7 +1,9 @@
-// The TAA resolve on the device: one resolve shader (taa_shader.h) dispatched once per frame
-// through a RectifyPass with the resolve's inputs (color, history, motion, depth). The output of
-// each frame is read back and becomes the next frame's history, so every frame the metrics see is
-// the one the resolve continues from.
+// The TAA resolve on the device: resolve shaders (taa_shader.h) dispatched once per frame through
+// one RectifyPass with the resolve's inputs (color, history, motion, depth). A frame's color,
+// motion and depth are uploaded once and every shader resolves it against its own history, so an
+// evaluation of several variants draws or reads each frame once. The output of each frame is read
+// back and becomes that shader's next history, so every frame the metrics see is the one its
+// resolve continues from.
 #pragma once
 
 #include "core/result.h"
@@ -15,19 +17,35 @@
 #include <kdop/variant.h>
 
 #include <memory>
+#include <span>
+#include <string>
+#include <vector>
 
 namespace kdop {
 
 class TaaResolve {
 public:
-    // `shader` is a resolve built with `options` (build_taa_shader); frames are width x height.
+    // `shaders` are resolves built with `options` (build_taa_shader), each with its own history;
+    // frames are width x height. `names` name the shaders in errors (empty: the shaders' own names).
+    static Result<std::unique_ptr<TaaResolve>> create(const Context& context, std::span<const Variant* const> shaders,
+                                                      std::uint32_t width, std::uint32_t height,
+                                                      const ResolveOptions& options,
+                                                      std::vector<std::string> names = {});
+    // One shader.
     static Result<std::unique_ptr<TaaResolve>> create(const Context& context, const Variant& shader,
                                                       std::uint32_t width, std::uint32_t height,
                                                       const ResolveOptions& options);
 
-    // One frame: reproject the history by the frame's motion, rectify, blend. With `starts_history`
-    // (the first frame, a camera cut) the output is the frame's color. The pointer stays valid until
-    // the next call.
+    std::size_t size() const { return kernels_.size(); }
+    const std::string& name(std::size_t s) const { return names_[s]; }
+
+    // One frame through every shader: reproject its history by the frame's motion, rectify, blend.
+    // With `starts_history` (the first frame, a camera cut) each output is the frame's color.
+    Result<void> advance_all(const LoadedFrame& frame, bool starts_history);
+    // Shader `s`'s output of the last frame, valid until the next call.
+    const Image& output(std::size_t s) const { return histories_[s]; }
+
+    // The same for the first shader alone, returning its output.
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);
 
 private:
@@ -36,9 +54,11 @@ private:
 
     ResolveOptions options_;
     std::uint32_t width_, height_;
-    std::unique_ptr<Kernel> kernel_;
+    std::vector<std::unique_ptr<Kernel>> kernels_;
     std::unique_ptr<RectifyPass> pass_;
-    Image history_, motion_, nothing_; // nothing_: motion and depth where a frame has none
+    std::vector<Image> histories_; // one per shader
+    std::vector<std::string> names_;
+    Image motion_, nothing_; // nothing_: motion and depth where a frame has none
 };
 
 } // namespace kdop

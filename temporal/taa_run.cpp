@@ -52,10 +52,14 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                 bench::time_interleaved(context, rectifiers, width, height, settings.timing_rounds, timing_progress);
             if (!timing) return std::unexpected(timing.error());
         }
+        // A step is a frame, every variant resolved and measured on it.
+        std::size_t frames = 0;
+        for (const auto& scene : scenes) frames += evaluation->frames(*scene);
+        for (const SequenceFrames& sequence : sequences) frames += sequence.frame_count();
         Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs.size(),
                                       scenes.size() + sequences.size(), context.device_name()),
-                          specs.size() * (scenes.size() + sequences.size()));
-        observer.measured = [&](const std::string& done) { progress.advance(done); };
+                          frames);
+        observer.frame = [&](const std::string& source) { progress.advance(source); };
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
         auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
             for (const EvaluationRow& m : measured) {

@@ -18,14 +18,16 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     // Every size is checked against the device and memory before any frame is made or read.
     const SceneOptions& scene = request.scene_options;
     if (request.builtin)
-        if (auto ok = check_measurable(context, scene.width, scene.height, request.device_flip); !ok)
+        if (auto ok = check_measurable(context, scene.width, scene.height, request.device_flip, request.variants); !ok)
             return usage_fail(fmt::format("--size {}x{}: {}", scene.width, scene.height, ok.error().message));
     if (auto ok = check_distinct_files(request.sequences, "--sequence"); !ok) return usage_fail(ok.error().message);
     TaaSources sources;
     for (const std::string& dir : request.sequences) {
         auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve);
         if (!sequence) return fail(sequence.error().message);
-        if (auto ok = check_measurable(context, sequence->width, sequence->height, request.device_flip); !ok)
+        if (auto ok =
+                check_measurable(context, sequence->width, sequence->height, request.device_flip, request.variants);
+            !ok)
             return fail(fmt::format("--sequence {}: {}", dir, ok.error().message));
         sources.sequences.emplace_back(std::move(*sequence), request.input_space);
     }

@@ -32,7 +32,8 @@ struct TaaSourceRequest {
     std::uint32_t warmup = 100;         // frames every sequence must have more of
     ResolveOptions resolve;             // what the resolve needs of a sequence (depth for --dilate-motion)
     InputSpace input_space = InputSpace::from_file;
-    bool device_flip = true; // FLIP on the device: its limits count too
+    bool device_flip = true;  // FLIP on the device: its limits count too
+    std::size_t variants = 1; // resolved together in one pass: each holds its history in memory
     // kdop's scenes, made at options' size (checked first); none when `builtin` is false.
     bool builtin = true;
     std::vector<std::string> scene_names, backgrounds; // scene_catalog.h's select_taa_scenes

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -142,6 +143,30 @@ TEST(Progress, ClockTextAndEstimate) {
     EXPECT_EQ(clock_text(0), "0:00");
     EXPECT_EQ(clock_text(65.4), "1:05");
     EXPECT_EQ(clock_text(3723), "1:02:03");
+}
+
+// In a log (stderr is not a terminal under ctest), a line per new item and per tenth of the total:
+// a resolve's 100 frames of one sequence are 10 lines, not 100; the last step always shows.
+TEST(Progress, ALogGetsALinePerItemAndPerTenthNotPerStep) {
+    testing::internal::CaptureStderr();
+    {
+        Progress progress("TAA", 101);
+        for (int i = 0; i < 100; ++i) progress.advance("grass");
+        progress.advance("asphalt");
+    }
+    const std::string log = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 11) << log;
+    EXPECT_NE(log.find("[  1/101] TAA grass"), std::string::npos) << log;
+    EXPECT_NE(log.find("[ 11/101] TAA grass"), std::string::npos) << log;
+    EXPECT_NE(log.find("[101/101] TAA asphalt"), std::string::npos) << log;
+
+    testing::internal::CaptureStderr();
+    {
+        Progress progress("built", 3);
+        for (const char* item : {"a", "b", "c"}) progress.advance(item);
+    }
+    const std::string each = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(std::count(each.begin(), each.end(), '\n'), 3) << each;
 }
 
 TEST(OutputSet, WritesTablesAsCsvAndJsonTogetherOrNotAtAll) {

@@ -251,24 +251,32 @@ TEST_F(ResolveGpu, AStillUnjitteredSequenceNeitherGhostsNorShimmers) {
 }
 
 // A source that marks a camera cut at frame `cut` of another.
+// `inner` with a camera cut at frame `cut`; with `hdr_scale`, its colors times that, measured as HDR.
 class WithCut final : public FrameSource {
 public:
-    WithCut(const FrameSource& inner, std::size_t cut) : inner_(inner), cut_(cut) {}
+    WithCut(const FrameSource& inner, std::size_t cut, float hdr_scale = 0)
+        : inner_(inner), cut_(cut), hdr_scale_(hdr_scale) {}
     const std::string& name() const override { return inner_.name(); }
     std::uint32_t width() const override { return inner_.width(); }
     std::uint32_t height() const override { return inner_.height(); }
     std::size_t frame_count() const override { return inner_.frame_count(); }
-    ColorRange color_range() const override { return inner_.color_range(); }
+    ColorRange color_range() const override { return hdr_scale_ > 0 ? ColorRange::hdr : inner_.color_range(); }
     bool starts_history(std::size_t i) const override { return i == cut_ || inner_.starts_history(i); }
     std::optional<glm::vec2> jitter(std::size_t i) const override { return inner_.jitter(i); }
     bool has_depth() const override { return inner_.has_depth(); }
     bool has_reference() const override { return inner_.has_reference(); }
-    Result<LoadedFrame> frame(std::size_t i) const override { return inner_.frame(i); }
+    Result<LoadedFrame> frame(std::size_t i) const override {
+        auto frame = inner_.frame(i);
+        if (frame && hdr_scale_ > 0)
+            for (glm::vec4& p : frame->color.pixels) p = glm::vec4(glm::vec3(p) * hdr_scale_, p.a);
+        return frame;
+    }
     std::string frame_label(std::size_t i) const override { return inner_.frame_label(i); }
 
 private:
     const FrameSource& inner_;
     std::size_t cut_;
+    float hdr_scale_;
 };
 
 TEST_F(ResolveGpu, ACameraCutDropsTheHistory) {
@@ -290,6 +298,44 @@ TEST_F(ResolveGpu, ACameraCutDropsTheHistory) {
     const std::string json = sequence_json(cut);
     EXPECT_EQ(json.find("\"camera_cut\": true"), json.rfind("\"camera_cut\": true"));
     EXPECT_NE(json.find("\"camera_cut\": true"), std::string::npos) << json;
+}
+
+// The one pass over a sequence with a camera cut, in LDR and in HDR (HDR-FLIP, its notes):
+// every variant's figures are those of a pass of its own.
+TEST_F(ResolveGpu, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
+    constexpr std::uint32_t w = 48, h = 32;
+    const SceneFrames moving("grass", make_texture(TextureFamily::grass, w, h, 6), 14, true, true);
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    std::vector<std::unique_ptr<RunnableVariant>> shaders;
+    std::vector<const Variant*> variants;
+    for (const char* set : {"aabb", "dop22", "ycocg"}) {
+        shaders.push_back(resolve_shader(set, Mode::varclip, {}));
+        ASSERT_TRUE(shaders.back());
+        variants.push_back(&shaders.back()->variant());
+    }
+    for (float hdr_scale : {0.0f, 40.0f}) {
+        const WithCut source(moving, 9, hdr_scale);
+        auto all = TaaResolve::create(test::gpu(), variants, w, h, {});
+        ASSERT_TRUE(all) << all.error().message;
+        std::vector<std::size_t> outputs(variants.size());
+        auto together = measure_sequence_all(
+            **all, source, 3, cpu_flip_mean(flip), {},
+            [&](std::size_t s, std::size_t, const Image&) -> Result<void> { return ++outputs[s], Result<void>{}; });
+        ASSERT_TRUE(together) << together.error().message;
+        for (std::size_t s = 0; s < variants.size(); ++s) {
+            EXPECT_EQ(outputs[s], source.frame_count() - 3);
+            auto alone_resolve = make_resolve(*shaders[s], w, h, {});
+            ASSERT_TRUE(alone_resolve);
+            auto alone = measure_sequence(*alone_resolve, source, 3, cpu_flip_mean(flip));
+            ASSERT_TRUE(alone) << alone.error().message;
+            const SequenceMeasurement& t = (*together)[s];
+            EXPECT_EQ(t.range, hdr_scale > 0 ? ColorRange::hdr : ColorRange::ldr);
+            EXPECT_EQ(t.ghosting, alone->ghosting) << variants[s]->name << " x" << hdr_scale;
+            EXPECT_EQ(t.shimmer, alone->shimmer) << variants[s]->name << " x" << hdr_scale;
+            EXPECT_EQ(t.frames, alone->frames);
+            EXPECT_EQ(t.notes, alone->notes);
+        }
+    }
 }
 
 // A history holding a linear ramp, sampled between texels: Catmull-Rom reproduces it exactly (up

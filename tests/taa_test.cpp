@@ -233,6 +233,43 @@ TEST_F(TaaGpu, TheSameSequenceGivesTheSameFrames) {
     EXPECT_EQ(std::memcmp(runs[0].pixels.data(), runs[1].pixels.data(), runs[0].pixels.size() * sizeof(glm::vec4)), 0);
 }
 
+// kdop taa's one pass (every variant resolved on each frame as it is drawn, each against its own
+// history) gives each variant exactly the figures and trail frame of a pass of its own.
+TEST_F(TaaGpu, OnePassOverTheFramesGivesEachVariantTheFiguresOfItsOwnPass) {
+    constexpr std::uint32_t w = 64, h = 36;
+    const SpriteScene scene("grass", make_texture(TextureFamily::grass, w, h, 3));
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    const TaaSchedule schedule{10, 6};
+    std::vector<std::unique_ptr<RunnableVariant>> shaders;
+    shaders.push_back(taa_shader("aabb", Mode::clip));
+    shaders.push_back(taa_shader("dop32", Mode::clip));
+    shaders.push_back(taa_shader("dop16-grass", Mode::varclip));
+    std::vector<const Variant*> variants;
+    for (const auto& shader : shaders) {
+        ASSERT_TRUE(shader);
+        variants.push_back(&shader->variant());
+    }
+    auto all = TaaResolve::create(test::gpu(), variants, w, h, {});
+    ASSERT_TRUE(all) << all.error().message;
+    std::size_t frames = 0;
+    auto together = measure_scene_all(**all, scene, schedule, cpu_flip_mean(flip), {}, [&] { ++frames; });
+    ASSERT_TRUE(together) << together.error().message;
+    EXPECT_EQ(frames, 2u * (schedule.warmup + schedule.frames)) << "each frame drawn once";
+    ASSERT_EQ(together->size(), shaders.size());
+    for (std::size_t s = 0; s < shaders.size(); ++s) {
+        auto alone_resolve = make_resolve(*shaders[s], w, h);
+        ASSERT_TRUE(alone_resolve);
+        auto alone = measure_scene(*alone_resolve, scene, schedule, cpu_flip_mean(flip));
+        ASSERT_TRUE(alone) << alone.error().message;
+        const TaaMeasurement& t = (*together)[s];
+        EXPECT_EQ(t.shimmer, alone->shimmer) << variants[s]->name;
+        EXPECT_EQ(t.ghosting, alone->ghosting) << variants[s]->name;
+        ASSERT_EQ(t.trail.pixels.size(), alone->trail.pixels.size());
+        EXPECT_EQ(std::memcmp(t.trail.pixels.data(), alone->trail.pixels.data(), t.trail.pixels.size() * 16), 0);
+    }
+    EXPECT_NE((*together)[0].ghosting, (*together)[1].ghosting) << "each variant has its own history";
+}
+
 // A resolve whose rectification throws the history away shows the aliased frame every frame: no
 // ghosting at all, and the most shimmer, which a k-DOP clip's history must reduce.
 TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {

@@ -293,5 +293,40 @@ TEST_F(Testbed, AStillSceneWithoutJitterLeavesNoGhost) {
     for (const glm::vec2& motion : frame->motion) ASSERT_EQ(motion, glm::vec2(0));
 }
 
+// The one pass on a 3-D scene with a panning camera and references: each frame drawn once, every
+// variant's figures those of a pass of its own (which draws the frames again).
+TEST_F(Testbed, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
+    constexpr std::uint32_t w = 64, h = 36;
+    auto r = TestbedRenderer::create(test::gpu(), std::make_shared<const Scene3d>(grass3d_scene(3)), w, h);
+    ASSERT_TRUE(r) << r.error().message;
+    const Scene3dFrames panning("grass3d-pan", std::move(*r),
+                                {.frames = 10, .animate = true, .jitter = false, .pan = true, .reference_samples = 2});
+    const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
+    std::vector<std::unique_ptr<RunnableVariant>> shaders;
+    std::vector<const Variant*> variants;
+    for (const char* set : {"aabb", "dop32"}) {
+        auto axes = resolve_axis_set(set);
+        ASSERT_TRUE(axes);
+        auto shader = build_taa_shader(VariantSpec{*axes, Mode::clip, Neighborhood::n9});
+        ASSERT_TRUE(shader) << shader.error().message;
+        variants.push_back(&(*shader)->variant());
+        shaders.push_back(std::move(*shader));
+    }
+    auto all = TaaResolve::create(test::gpu(), variants, w, h, {});
+    ASSERT_TRUE(all) << all.error().message;
+    auto together = measure_sequence_all(**all, panning, 4, cpu_flip_mean(flip));
+    ASSERT_TRUE(together) << together.error().message;
+    for (std::size_t s = 0; s < variants.size(); ++s) {
+        auto alone_resolve = TaaResolve::create(test::gpu(), *variants[s], w, h, {});
+        ASSERT_TRUE(alone_resolve);
+        auto alone = measure_sequence(**alone_resolve, panning, 4, cpu_flip_mean(flip));
+        ASSERT_TRUE(alone) << alone.error().message;
+        EXPECT_TRUE((*together)[s].against_reference);
+        EXPECT_GT((*together)[s].ghosting, 0.0);
+        EXPECT_EQ((*together)[s].ghosting, alone->ghosting) << variants[s]->name;
+        EXPECT_EQ((*together)[s].shimmer, alone->shimmer) << variants[s]->name;
+    }
+}
+
 } // namespace
 } // namespace kdop
