@@ -38,7 +38,7 @@ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
       -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread"
 cmake --build build-tsan --target kdop_thread_tests kdop-gen
 build-tsan/bin/kdop-gen glsl --check --out generated
-build-tsan/bin/kdop_thread_tests --gtest_filter='Reference.*:IdealClip.*:IdealExits.*:Volume.*:AxisFit.*:Flip.*'
+build-tsan/bin/kdop_thread_tests --gtest_filter='ParallelFor.*:Prefetch.*:Reference.*:IdealClip.*:IdealExits.*:Volume.*:AxisFit.*:Flip.*'
 
 echo "== fuzzing"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \

@@ -39,4 +39,6 @@ void parallel_for(std::size_t count, unsigned threads, const std::function<void(
     if (failure) std::rethrow_exception(failure);
 }
 
+std::jthread start_worker(std::function<void()> body) { return std::jthread(std::move(body)); }
+
 } // namespace kdop

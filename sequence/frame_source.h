@@ -34,6 +34,10 @@ public:
     virtual Result<LoadedFrame> frame(std::size_t index) const = 0;
     // What an error about frame `index`'s color names: its file, or the scene and frame.
     virtual std::string frame_label(std::size_t index) const = 0;
+    // Whether frame() may run on another thread while the resolve works on the last frame (it
+    // reads files and shares nothing), so the measurement reads frames ahead. Not a source that
+    // draws on the device, whose queue the resolve uses.
+    virtual bool reads_ahead() const { return false; }
 };
 
 // A sequence read from disk, one frame at a time.
@@ -53,6 +57,7 @@ public:
     bool has_reference() const override;
     Result<LoadedFrame> frame(std::size_t index) const override { return load_frame(s_, index, space_); }
     std::string frame_label(std::size_t index) const override;
+    bool reads_ahead() const override { return true; }
 
 private:
     Sequence s_;

@@ -1,12 +1,14 @@
 #include "temporal/taa_measure.h"
 
 #include "core/memory_budget.h"
+#include "core/parallel_for.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace kdop {
 
@@ -67,11 +69,11 @@ Result<void> check_measurable(const Context& context, std::uint32_t width, std::
     if (device_flip)
         if (auto ok = DeviceFlip::check_limits(context, width, height); !ok)
             return fail(ok.error().message + "; --cpu-flip measures with the CPU's FLIP, which has no such limit");
-    // The resolve's pass and its four inputs, a frame's images, and per variant its history (the
-    // last output), its checked copy and its previous output; on lavapipe device memory is this
-    // process's memory.
+    // The resolve's pass and its four inputs, three frames' images (color, motion, depth, reference:
+    // the one resolved and two read ahead), and per variant its history (the last output), its
+    // checked copy and its previous output; on lavapipe device memory is this process's memory.
     const std::uint64_t resolve =
-        rectify_pass_bytes(width, height) + (4 + 3 * std::uint64_t(variants)) * image_bytes(width, height);
+        rectify_pass_bytes(width, height) + (12 + 3 * std::uint64_t(variants)) * image_bytes(width, height);
     const std::uint64_t flip = device_flip ? DeviceFlip::bytes(width, height) : ldr_flip_bytes(width, height);
     return check_memory(fmt::format("measuring {}x{} frames", width, height), resolve + flip);
 }
@@ -195,9 +197,12 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
     const ColorRange range = source.color_range();
     const bool against_reference = source.has_reference();
     std::vector<Meter> meters(resolve.size(), Meter(source, flip, metrics));
+    // Files are read (and decoded) on a worker a frame ahead, in order, while the device works.
+    std::optional<Prefetch<Result<LoadedFrame>>> ahead;
+    if (source.reads_ahead()) ahead.emplace(count, 1, [&source](std::size_t i) { return source.frame(i); });
     for (std::size_t i = 0; i < count; ++i) {
         // Each frame is drawn or read once, and checked once, whatever the number of shaders.
-        auto frame = source.frame(i);
+        auto frame = ahead ? ahead->take() : source.frame(i);
         if (!frame) return std::unexpected(frame.error());
         const std::string label = source.frame_label(i);
         if (auto ok = check_range(frame->color, range, label, "color"); !ok) return std::unexpected(ok.error());
