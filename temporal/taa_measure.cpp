@@ -1,5 +1,6 @@
 #include "temporal/taa_measure.h"
 
+#include "core/interrupt.h"
 #include "core/memory_budget.h"
 #include "core/parallel_for.h"
 
@@ -232,6 +233,8 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                 }();
                 if (!measured) return fail(fmt::format("{}: {}", resolve.name(s), measured.error().message));
             }
+        // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
+        if (i == warmup) test_hold_point("taa_pass");
         if (on_frame) on_frame();
     }
     std::vector<SequenceMeasurement> measured;

@@ -121,9 +121,10 @@ struct Ending {
     std::string err;
 };
 
-// Runs `command` (through sh, with `environment` added) until it holds before moving its outputs
-// into place (KDOP_TEST_HOLD=write_atomically), sends it `signal` there, and returns how it ended.
-Ending interrupt_at_write(const std::string& command, int signal, const std::string& environment = "") {
+// Runs `command` (through sh, with `environment` added) until it holds at `point` (KDOP_TEST_HOLD;
+// by default before moving its outputs into place), sends it `signal` there, and returns how it ended.
+Ending interrupt_at_write(const std::string& command, int signal, const std::string& environment = "",
+                          const std::string& point = "write_atomically") {
     test::TempDir dir;
     const fs::path err = dir / "err";
     const pid_t pid = fork();
@@ -132,7 +133,7 @@ Ending interrupt_at_write(const std::string& command, int signal, const std::str
         dup2(fd, 2);
         const int null = open("/dev/null", O_WRONLY);
         dup2(null, 1);
-        const std::string line = "KDOP_TEST_HOLD=write_atomically " + environment + " exec " + command;
+        const std::string line = "KDOP_TEST_HOLD=" + point + " " + environment + " exec " + command;
         execl("/bin/sh", "sh", "-c", line.c_str(), static_cast<char*>(nullptr));
         _exit(127);
     }
@@ -172,6 +173,25 @@ TEST(CliInterrupt, SigintWhileTaaWritesLeavesNothingBehind) {
                                     SIGINT);
     EXPECT_EQ(ended.exit_code, 130) << ended.err;
     EXPECT_FALSE(fs::exists(dir / "taa")) << "the folders made for the outputs go too";
+}
+
+// Interrupted in the middle of the pass over a sequence's frames (the next one being read ahead on
+// a worker, every measured output staged for --write-frames): nothing is left, the staged frames'
+// scratch folder included.
+TEST(CliInterrupt, SigintDuringTheFramesLeavesNothingBehind) {
+    test::TempDir dir;
+    fs::create_directory(dir / "tmp");
+    ASSERT_EQ(test::run(kdop("scene --scenes grass --size 48x32 --frames 8 --out " + (dir / "seq").string())).exit_code,
+              0);
+    auto ended = interrupt_at_write(kdop("taa --sequence " + (dir / "seq" / "grass-ghosting").string() +
+                                         " --warmup 2 --timing-rounds 1 --sets aabb dop32 --modes clip "
+                                         "--write-frames --no-charts --out " +
+                                         (dir / "taa").string()),
+                                    SIGINT, "TMPDIR=" + (dir / "tmp").string(), "taa_pass");
+    EXPECT_EQ(ended.exit_code, 130) << ended.err;
+    EXPECT_NE(ended.err.find("taa_pass: holding"), std::string::npos) << ended.err;
+    EXPECT_FALSE(fs::exists(dir / "taa"));
+    EXPECT_TRUE(fs::is_empty(dir / "tmp")) << "kdop-frames-* is removed";
 }
 
 // A crash (a driver's segmentation fault, an abort in a library) runs the same undo steps: the
