@@ -81,15 +81,10 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
     if (!mean) return fail(fmt::format("{}: {}", scene.name(), mean.error().message));
     auto resolve = this->resolve(scene.width(), scene.height(), false);
     if (!resolve) return std::unexpected(resolve.error());
-    SceneShaderOutputObserver output;
-    if (observer.output)
-        output = [&](const std::string& sequence, std::size_t v, std::size_t index, const Image& image) {
-            return observer.output(sequence, v, index, image);
-        };
     auto on_frame = [&] {
         if (observer.frame) observer.frame(scene.name());
     };
-    auto measured = measure_scene_all(**resolve, scene, options_.schedule, *mean, output, on_frame);
+    auto measured = measure_scene_all(**resolve, scene, options_.schedule, *mean, observer.output, on_frame);
     if (!measured) return fail(fmt::format("{}: {}", scene.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
