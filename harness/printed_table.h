@@ -38,6 +38,13 @@ std::string line(const PrintedColumns<Row>& columns, Text&& text) {
 
 } // namespace printed_detail
 
+// `a`, then `b`.
+template <class Row>
+PrintedColumns<Row> operator+(PrintedColumns<Row> a, const PrintedColumns<Row>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
 template <class Row>
 std::string printed_header(const PrintedColumns<Row>& columns) {
     return printed_detail::line(columns, [](const PrintedColumn<Row>& c) { return c.header; });

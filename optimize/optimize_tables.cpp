@@ -16,12 +16,6 @@ PrintedColumns<Row> cost_columns(bool lavapipe, const ClipCost Row::*cost) {
     return columns;
 }
 
-template <class Row>
-PrintedColumns<Row> operator+(PrintedColumns<Row> a, const PrintedColumns<Row>& b) {
-    a.insert(a.end(), b.begin(), b.end());
-    return a;
-}
-
 } // namespace
 
 PrintedColumns<AxisCountRow> axis_count_columns(std::size_t sequences, bool lavapipe) {
