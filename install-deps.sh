@@ -16,6 +16,8 @@ set -eu
 # libopenmpi-dev and openmpi-bin: `mpirun -np R kdop optimize` shares a fit's frames over ranks
 # (the build leaves MPI out where it is not installed).
 # nodejs and npm: the WGSL tests compile with Tint, from the npm package `webgpu` (installed below).
+# meson: a test builds a Meson project against kdop's pkg-config file (examples/meson_consumer).
+# python3-jsonschema: a test validates the reflection JSON against docs/reflection.schema.json.
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers libspirv-cross-c-shared-dev
@@ -25,6 +27,7 @@ packages="
   libglpk-dev libqhull-dev
   libopenmpi-dev openmpi-bin
   libgtest-dev valgrind gnuplot-nox clang-format
+  meson python3 python3-jsonschema
   colobot-common-textures fonts-dejavu-core
 "
 

@@ -39,7 +39,8 @@ Action add_gen_command(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* gen = app.add_subcommand(
         "gen", "Generate variants: write <name>.glsl, .hlsl and .wgsl (includable function), <name>.comp "
-               "(compute shader) and <name>.spv (optimized SPIR-V) per variant, then print a table of them");
+               "(compute shader) and <name>.spv (optimized SPIR-V) per variant and their reflection as "
+               "variants.json, then print a table of them");
     gen->add_option("--out", options->out, "Output directory (created if missing)")->required();
     options->selection.add_to(*gen, /*with_manifest=*/true);
     gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]")

@@ -17,15 +17,20 @@
 #     [TARGET_ENV <vulkan1.0..1.3>]     the SPIR-V's target environment; default vulkan1.0
 #     [STRIP_NAMES]                     drop OpName and OpMemberName from the SPIR-V, for shipping; by default
 #                                       they are kept (as glslc keeps them) for debuggers and spirv-cross
-#     [SHADERS <file>...]               the project's own GLSL shaders, compute (.comp), vertex (.vert) or
-#                                       fragment (.frag), compiled into the registry too (named after their
-#                                       file stems, with their reflected bindings and stage), where
-#                                       `#include "dop22-clip-n9.glsl"` gives them a selected variant's function
+#     [SHADERS <file>...]               the project's own shaders, compiled into the registry too (named after
+#                                       their files without the extensions, with their reflected bindings and
+#                                       stage): GLSL compute (.comp), vertex (.vert) or fragment (.frag), where
+#                                       `#include "dop22-clip-n9.glsl"` gives them a selected variant's function,
+#                                       and HLSL compute (.cs.hlsl), vertex (.vs.hlsl) or pixel (.ps.hlsl), where
+#                                       `#include "dop22-clip-n9.hlsl"` does
+#     [HLSL_ENTRY <name>]               the HLSL SHADERS' entry point (DXC's -E); default main
 #     [SHADER_INCLUDE_DIRS <dir>...])   where the SHADERS' other includes are looked up (after their own folder)
 #
 # Generates, at build time, a header and source holding the variants' optimized SPIR-V and their
 # registry (see core/include/kdop/variant.h), adds them to <target>, and lets <target>
-# include the header by its file name. Generation reruns when a user axis file, a shader or a file
+# include the header by its file name. Beside the header, <header stem>.json holds the same
+# reflection as JSON (docs/reflection.schema.json), for tools that do not read C++: the target's
+# KDOP_REFLECTION_JSON property and ${<target>_KDOP_REFLECTION_JSON} in the caller's scope. Generation reruns when a user axis file, a shader or a file
 # it includes, or kdop-gen (which embeds the built-in sets and templates) changes, and at no other
 # time; files whose content did not change keep their time stamps, so nothing recompiles for them.
 #
@@ -65,7 +70,7 @@ function(kdop_shader_language_extensions out_var)
 endfunction()
 
 function(kdop_add_variants target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS;STRIP_NAMES" "NAMESPACE;HEADER;TARGET_ENV;MANIFEST"
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "PUBLIC;BASELINES;FUNCTIONS;STRIP_NAMES" "NAMESPACE;HEADER;TARGET_ENV;MANIFEST;HLSL_ENTRY"
                         "SETS;MODES;NEIGHBORHOODS;FORMS;SHADERS;SHADER_INCLUDE_DIRS")
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "kdop_add_variants(${target}): unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
@@ -87,6 +92,7 @@ function(kdop_add_variants target)
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/kdop_variants/${target}")
   set(header "${out_dir}/${ARG_HEADER}")
   set(source "${out_dir}/${header_stem}.cpp")
+  set(json "${out_dir}/${header_stem}.json")
   # What kdop-gen would refuse at every build, refused once, here. C++23's keywords and alternative
   # tokens cannot name the namespace: the list generator/registry_writer.cpp refuses, kept here, in
   # the function, so it holds wherever the function is called from; a test keeps the two equal.
@@ -116,6 +122,10 @@ function(kdop_add_variants target)
       message(FATAL_ERROR "kdop_add_variants(${target}): NAMESPACE ${ARG_NAMESPACE} holds '${part}', a name reserved for the C++ implementation")
     endif()
   endforeach()
+
+  if(DEFINED ARG_HLSL_ENTRY AND NOT ARG_HLSL_ENTRY MATCHES "^[A-Za-z_][A-Za-z0-9_]*$")
+    message(FATAL_ERROR "kdop_add_variants(${target}): HLSL_ENTRY '${ARG_HLSL_ENTRY}' is not an HLSL function name")
+  endif()
 
   get_property(axis_set_dir GLOBAL PROPERTY KDOP_AXIS_SET_DIR)
   file(GLOB builtin_files "${axis_set_dir}/*.axes")
@@ -231,7 +241,7 @@ function(kdop_add_variants target)
     list(APPEND arguments --strip-names)
   endif()
 
-  set(outputs "${header}" "${source}")
+  set(outputs "${header}" "${source}" "${json}")
   if(ARG_FUNCTIONS)
     set(function_dir "${out_dir}/functions")
     list(APPEND arguments --functions "${function_dir}")
@@ -260,6 +270,9 @@ function(kdop_add_variants target)
       list(APPEND depends "${path}")
     endforeach()
     list(APPEND arguments --shaders ${shader_paths})
+    if(ARG_HLSL_ENTRY)
+      list(APPEND arguments --hlsl-entry ${ARG_HLSL_ENTRY})
+    endif()
     foreach(dir IN LISTS ARG_SHADER_INCLUDE_DIRS)
       get_filename_component(path "${dir}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
       list(APPEND arguments --include-dirs "${path}")
@@ -272,7 +285,8 @@ function(kdop_add_variants target)
 
   add_custom_command(
     OUTPUT ${outputs}
-    COMMAND kdop::kdop-gen registry --header "${header}" --source "${source}" --namespace ${ARG_NAMESPACE} ${arguments}
+    COMMAND kdop::kdop-gen registry --header "${header}" --source "${source}" --namespace ${ARG_NAMESPACE}
+            --json "${json}" ${arguments}
     DEPENDS ${depends} "$<TARGET_FILE:kdop::kdop-gen>"
     ${depfile_arguments}
     COMMENT "kdop: generating k-DOP variants for ${target}"
@@ -283,5 +297,7 @@ function(kdop_add_variants target)
   endif()
   target_sources(${target} PRIVATE "${header}" "${source}")
   target_include_directories(${target} ${scope} "${out_dir}")
+  set_property(TARGET ${target} PROPERTY KDOP_REFLECTION_JSON "${json}")
+  set(${target}_KDOP_REFLECTION_JSON "${json}" PARENT_SCOPE)
   target_link_libraries(${target} ${scope} kdop::variant_headers)
 endfunction()

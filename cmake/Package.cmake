@@ -2,7 +2,9 @@
 #
 # Both provide kdop::kdop-gen, kdop::variant_headers and kdop_add_variants() (cmake/KdopVariants.cmake),
 # and a version file: find_package(kdop 0.1) accepts 0.1.x only, as a 0.x release may change the API.
-# The installed package is relocatable: every path in it is relative to the config file.
+# The installed package is relocatable: every path in it is relative to the config file. The
+# installation also carries lib/pkgconfig/kdop.pc (cmake/kdop.pc.in) for Meson and Makefiles,
+# relocatable the same way through ${pcfiledir}.
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
@@ -45,6 +47,11 @@ set(KDOP_CONFIG_SHADER_LANGUAGES_FILE "\${CMAKE_CURRENT_LIST_DIR}/shader_languag
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/kdopConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/install/kdopConfig.cmake
                               INSTALL_DESTINATION ${KDOP_INSTALL_CMAKEDIR})
+# pkg-config: the prefix as the .pc file's folder reaches it (lib/pkgconfig, or lib/<triplet>/pkgconfig).
+set(KDOP_INSTALL_PKGCONFIGDIR ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+file(RELATIVE_PATH KDOP_PC_PREFIX_FROM_PCFILEDIR /prefix/${KDOP_INSTALL_PKGCONFIGDIR} /prefix)
+configure_file(${PROJECT_SOURCE_DIR}/cmake/kdop.pc.in ${PROJECT_BINARY_DIR}/install/kdop.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/install/kdop.pc DESTINATION ${KDOP_INSTALL_PKGCONFIGDIR})
 install(FILES ${PROJECT_BINARY_DIR}/install/kdopConfig.cmake ${PROJECT_BINARY_DIR}/kdopConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/KdopVariants.cmake ${PROJECT_SOURCE_DIR}/generator/shader_languages.def
         DESTINATION ${KDOP_INSTALL_CMAKEDIR})

@@ -126,11 +126,22 @@ EShLanguage glslang_stage(ShaderStage stage) {
     return EShLangCompute;
 }
 
-Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, std::string_view source,
+// How an HLSL source's textures reach SPIR-V: as combined image samplers (kdop's own HLSL compute
+// shader, bound as the GLSL one is) or as written (a project's Texture2D and SamplerState).
+enum class HlslTextures { combined, separate };
+
+struct CompileRequest {
+    glslang::EShSource language = glslang::EShSourceGlsl;
+    ShaderStage stage = ShaderStage::compute;
+    std::string entry_point = "main"; // HLSL; GLSL's is always main
+    HlslTextures textures = HlslTextures::combined;
+};
+
+Result<std::vector<std::uint32_t>> compile_shader(const CompileRequest& request, std::string_view source,
                                                   std::string_view name, TargetEnv env,
-                                                  const IncludeResolver& resolve = {},
-                                                  ShaderStage shader_stage = ShaderStage::compute) {
-    const EShLanguage stage = glslang_stage(shader_stage);
+                                                  const IncludeResolver& resolve = {}) {
+    const glslang::EShSource language = request.language;
+    const EShLanguage stage = glslang_stage(request.stage);
     initialize_glslang_once();
     const bool hlsl = language == glslang::EShSourceHlsl;
     int flags = EShMsgSpvRules | EShMsgVulkanRules;
@@ -148,16 +159,20 @@ Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, s
     shader.setEnvClient(glslang::EShClientVulkan, client);
     shader.setEnvTarget(glslang::EShTargetSpv, target);
     if (hlsl) {
-        shader.setEntryPoint("main");
-        // HLSL textures are separate images; this turns each into a combined image sampler (and
-        // drops sampler objects), the descriptor type the GLSL shader's sampler2D has and the runtime binds.
-        shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
+        // Registers become bindings as glslang maps them: register(t1, space2) is set 2, binding 1,
+        // whatever its class, and [[vk::binding(b, s)]] overrides it.
+        shader.setEntryPoint(request.entry_point.c_str());
+        // HLSL textures are separate images; for kdop's own compute shader this turns each into a
+        // combined image sampler (and drops sampler objects), the descriptor type the GLSL shader's
+        // sampler2D has and the runtime binds.
+        if (request.textures == HlslTextures::combined)
+            shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
     }
 
     std::optional<Includer> includer;
     glslang::TShader::ForbidIncluder no_includes;
     if (resolve) {
-        shader.setPreamble("#extension GL_GOOGLE_include_directive : enable\n");
+        if (!hlsl) shader.setPreamble("#extension GL_GOOGLE_include_directive : enable\n"); // HLSL has #include
         includer.emplace(resolve);
     }
     glslang::TShader::Includer& chosen = includer ? static_cast<glslang::TShader::Includer&>(*includer) : no_includes;
@@ -167,6 +182,11 @@ Result<std::vector<std::uint32_t>> compile_shader(glslang::EShSource language, s
     glslang::TProgram program;
     program.addShader(&shader);
     if (!program.link(messages)) return fail(rewrite_log(program.getInfoLog(), source, name));
+    // glslang only warns when an HLSL entry point is missing, and makes an empty one.
+    if (hlsl && std::string_view(program.getInfoLog()).find("Entry point not found") != std::string_view::npos)
+        return fail(fmt::format("{}: no function '{}', the entry point; name another with HLSL_ENTRY "
+                                "(kdop-gen --hlsl-entry)\n",
+                                name, request.entry_point));
 
     std::vector<std::uint32_t> words;
     spv::SpvBuildLogger logger;
@@ -189,16 +209,23 @@ std::string glsl_diagnostic(std::string_view source, std::string_view name, int 
 
 Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source, std::string_view name, TargetEnv env,
                                                         const IncludeResolver& resolve) {
-    return compile_shader(glslang::EShSourceGlsl, source, name, env, resolve);
+    return compile_shader({}, source, name, env, resolve);
 }
 
 Result<std::vector<std::uint32_t>> compile_glsl(std::string_view source, std::string_view name, ShaderStage stage,
                                                 TargetEnv env, const IncludeResolver& resolve) {
-    return compile_shader(glslang::EShSourceGlsl, source, name, env, resolve, stage);
+    return compile_shader({.stage = stage}, source, name, env, resolve);
 }
 
 Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name, TargetEnv env) {
-    return compile_shader(glslang::EShSourceHlsl, source, name, env);
+    return compile_shader({.language = glslang::EShSourceHlsl}, source, name, env);
+}
+
+Result<std::vector<std::uint32_t>> compile_hlsl(std::string_view source, std::string_view name, ShaderStage stage,
+                                                std::string_view entry_point, TargetEnv env,
+                                                const IncludeResolver& resolve) {
+    const CompileRequest request{glslang::EShSourceHlsl, stage, std::string(entry_point), HlslTextures::separate};
+    return compile_shader(request, source, name, env, resolve);
 }
 
 } // namespace kdop

@@ -44,6 +44,16 @@ Result<std::vector<std::uint32_t>> compile_glsl(std::string_view source, std::st
 Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name,
                                                         TargetEnv env = TargetEnv::vulkan1_0);
 
+// A project's HLSL shader of any stage kdop builds, entry point `entry_point`, through glslang's HLSL
+// front end, as DXC-based engines write them: Texture2D stays a sampled image and SamplerState a
+// sampler; register(t1, space2) becomes set 2, binding 1 (glslang's mapping: the register's number,
+// whatever its class, so t0 and s0 collide), and [[vk::binding(1, 2)]] says so explicitly. With
+// `resolve`, #include looks up through it; messages as for GLSL. Thread-safe.
+Result<std::vector<std::uint32_t>> compile_hlsl(std::string_view source, std::string_view name, ShaderStage stage,
+                                                std::string_view entry_point = "main",
+                                                TargetEnv env = TargetEnv::vulkan1_0,
+                                                const IncludeResolver& resolve = {});
+
 // "name:LINE: <message>" and the source line under it, the form every GLSL diagnostic takes.
 std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message);
 

@@ -5,6 +5,7 @@
 #include "core/shown_text.h"
 #include "generator/command_line.h"
 #include "generator/project_shader.h"
+#include "generator/reflection_json.h"
 #include "generator/registry_writer.h"
 #include "generator/selection_options.h"
 #include "generator/variant_builder.h"
@@ -14,6 +15,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -79,13 +81,20 @@ int main(int argc, char** argv) {
 
     SelectionOptions selection;
     std::string header, source, cpp_namespace;
-    CLI::App* registry =
-        app.add_subcommand("registry", "Write a C++ registry (header + source) of the selected variants");
+    CLI::App* registry = app.add_subcommand(
+        "registry", "Write a C++ registry (header + source) of the selected variants, or their reflection as JSON, "
+                    "or both");
     selection.add_to(*registry, /*with_manifest=*/true);
-    registry->add_option("--header", header, "Header file to write")->required();
-    registry->add_option("--source", source, "Source file to write")->required();
-    registry->add_option("--namespace", cpp_namespace, "C++ namespace of the registry")->required();
-    std::string functions_dir, depfile;
+    registry->add_option("--header", header, "Header file to write (with --source and --namespace)");
+    registry->add_option("--source", source, "Source file to write");
+    registry->add_option("--namespace", cpp_namespace, "C++ namespace of the registry");
+    std::string json, spirv_dir;
+    registry->add_option("--json", json,
+                         "Write every entry's reflection as JSON to this file (docs/reflection.schema.json), for "
+                         "engines and builds that do not read C++");
+    registry->add_option("--spirv-dir", spirv_dir,
+                         "Also write each entry's SPIR-V as <name>.spv into this directory, named in the JSON");
+    std::string functions_dir, depfile, hlsl_entry = "main";
     std::vector<std::string> shaders, include_dirs;
     registry->add_option(
         "--functions", functions_dir,
@@ -93,9 +102,21 @@ int main(int argc, char** argv) {
         "directory");
     registry
         ->add_option("--shaders", shaders,
-                     "The project's own GLSL shaders to embed too (.comp, .vert, .frag), named after their files; "
-                     "`#include \"<variant>.glsl\"` gives them a selected variant's function")
+                     "The project's own shaders to embed too, GLSL (.comp, .vert, .frag) or HLSL (.cs.hlsl, "
+                     ".vs.hlsl, .ps.hlsl), named after their files; `#include \"<variant>.glsl\"` (or .hlsl) gives "
+                     "them a selected variant's function")
         ->check(CLI::ExistingFile);
+    registry->add_option("--hlsl-entry", hlsl_entry, "The entry point of the HLSL shaders (DXC's -E)")
+        ->capture_default_str()
+        ->check(
+            [](const std::string& name) {
+                const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+                                        std::ranges::all_of(name, [](char c) {
+                                            return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                                        });
+                return identifier ? std::string() : "'" + terminal_text(name) + "' is not an HLSL function name";
+            },
+            "IDENTIFIER");
     registry->add_option("--include-dirs", include_dirs, "Where the shaders' other includes are looked up")
         ->check(CLI::ExistingDirectory);
     registry->add_option("--depfile", depfile, "Write the files the shaders read as a depfile for the header");
@@ -109,8 +130,17 @@ int main(int argc, char** argv) {
 
     return run_command_line(app, "kdop-gen", argc, argv, [&] {
         if (*registry) {
-            std::optional<std::string> problem = registry_files_problem(header, source, depfile);
-            if (!problem)
+            std::optional<std::string> problem;
+            const bool cpp = !header.empty() || !source.empty() || !cpp_namespace.empty();
+            if (cpp && (header.empty() || source.empty() || cpp_namespace.empty()))
+                problem = "the C++ registry takes --header, --source and --namespace together";
+            else if (!cpp && json.empty())
+                problem = "nothing to write: give --header, --source and --namespace (the C++ registry), --json FILE "
+                          "(its reflection), or both";
+            else if (!spirv_dir.empty() && json.empty())
+                problem = "--spirv-dir writes the files the JSON names; give --json too";
+            if (!problem) problem = registry_files_problem(header, source, depfile, json);
+            if (!problem && cpp)
                 if (auto why = cpp_namespace_problem(cpp_namespace))
                     problem = fmt::format("--namespace: '{}' {}", shown_text(cpp_namespace), *why);
             if (problem) {
@@ -132,12 +162,15 @@ int main(int argc, char** argv) {
                 for (OutputFile& f : function_files(v, functions_dir)) files.push_back(std::move(f));
 
         std::vector<fs::path> shader_reads;
-        std::vector<fs::path> dirs(include_dirs.begin(), include_dirs.end());
+        const ProjectShaderOptions shader_options{
+            .include_dirs = {include_dirs.begin(), include_dirs.end()},
+            .env = *parse_target_env(selection.target_env), // checked by CLI11
+            .strip_names = selection.strip_names,
+            .hlsl_entry_point = hlsl_entry,
+        };
         const std::size_t variant_count = built->size();
         for (const std::string& file : shaders) {
-            auto shader = build_project_shader(file, std::span(built->data(), variant_count), dirs,
-                                               *parse_target_env(selection.target_env), // checked by CLI11
-                                               selection.strip_names);
+            auto shader = build_project_shader(file, std::span(built->data(), variant_count), shader_options);
             if (!shader) return report(shader.error());
             for (const BuiltVariant& v : *built)
                 if (v.name == shader->built.name)
@@ -148,14 +181,30 @@ int main(int argc, char** argv) {
             built->push_back(std::move(shader->built));
         }
         if (!depfile.empty()) {
-            auto rule = depfile_rule(header, shader_reads);
+            auto rule = depfile_rule(header.empty() ? json : header, shader_reads);
             if (!rule) return report(rule.error());
             files.push_back({depfile, *rule});
         }
 
-        auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
-        files.push_back({header, sources.header});
-        files.push_back({source, sources.source});
+        if (!header.empty()) {
+            auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
+            files.push_back({header, sources.header});
+            files.push_back({source, sources.source});
+        }
+        if (!json.empty()) {
+            // Each .spv as the JSON's folder reaches it.
+            const fs::path json_dir = fs::absolute(json).parent_path();
+            std::function<std::optional<std::string>(const BuiltVariant&)> spirv_name;
+            if (!spirv_dir.empty()) {
+                for (const BuiltVariant& v : *built) files.push_back(spirv_file(v, spirv_dir));
+                spirv_name = [&](const BuiltVariant& v) {
+                    const fs::path file = fs::absolute(fs::path(spirv_dir) / (v.name + ".spv")).lexically_normal();
+                    const fs::path relative = file.lexically_relative(json_dir);
+                    return std::optional((relative.empty() ? file : relative).generic_string());
+                };
+            }
+            files.push_back({json, reflection_json(*built, spirv_name)});
+        }
         if (auto ok = write_files_atomically(files); !ok) return report(ok.error());
         return 0;
     });

@@ -8,6 +8,8 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <optional>
+#include <string_view>
 
 namespace kdop {
 namespace fs = std::filesystem;
@@ -24,45 +26,91 @@ bool is_inside(const fs::path& file, const fs::path& folder) {
     return end == d.end();
 }
 
-// The stage glslc reads from the extension; what kdop does not build pipelines for, refused by name.
-Result<ShaderStage> stage_of_file(const fs::path& file) {
-    const std::string extension = file.extension().string();
-    if (extension == ".comp") return ShaderStage::compute;
-    if (extension == ".vert") return ShaderStage::vertex;
-    if (extension == ".frag") return ShaderStage::fragment;
-    static const std::pair<const char*, const char*> others[] = {{".geom", "a geometry"},
-                                                                 {".tesc", "a tessellation control"},
-                                                                 {".tese", "a tessellation evaluation"},
-                                                                 {".mesh", "a mesh"},
-                                                                 {".task", "a task"},
-                                                                 {".rgen", "a ray generation"},
-                                                                 {".rchit", "a closest-hit"},
-                                                                 {".rahit", "an any-hit"},
-                                                                 {".rmiss", "a miss"},
-                                                                 {".rint", "an intersection"},
-                                                                 {".rcall", "a callable"}};
-    for (const auto& [other, stage] : others)
-        if (extension == other)
-            return fail(fmt::format("{}: '{}' is {} shader; kdop builds compute (.comp), vertex (.vert) and fragment "
-                                    "(.frag) shaders",
-                                    file.string(), extension, stage));
-    return fail(fmt::format("{}: the stage is read from the extension, as glslc reads it: .comp, .vert or .frag",
-                            file.string()));
+// The two failures every HLSL port meets first, and why, where `message` is one; else nothing.
+std::string hlsl_port_note(const std::string& message, const std::string& name, TargetEnv env) {
+    if (message.find(" share set ") != std::string::npos)
+        return fmt::format("{}: glslang makes a register's number its binding whatever its class, so t0 and s0 "
+                           "collide, and a resource without a register is binding 0; number them apart "
+                           "(register(s1)) or give [[vk::binding(binding, set)]]\n",
+                           name);
+    if (env == TargetEnv::vulkan1_0 && message.find("buffer layout rules") != std::string::npos)
+        return fmt::format("{}: HLSL packs a constant buffer tighter than Vulkan 1.0 allows (a float2 after a float "
+                           "shares its 16 bytes); TARGET_ENV vulkan1.1 or later (--target-env) takes HLSL's packing, "
+                           "or order or pad the members as std140 does\n",
+                           name);
+    return {};
 }
+
+// The suffixes a shader's stage is read from: glslc's extensions, and the stage before .hlsl that
+// DXC-based engines write (taa_resolve.cs.hlsl). A stage kdop makes no pipelines of is named.
+struct StageSuffix {
+    const char* suffix;
+    std::optional<ShaderStage> stage; // none: refused
+    const char* what;
+};
+constexpr StageSuffix kStageSuffixes[] = {
+    {".comp", ShaderStage::compute, "a compute"},
+    {".vert", ShaderStage::vertex, "a vertex"},
+    {".frag", ShaderStage::fragment, "a fragment"},
+    {".geom", std::nullopt, "a geometry"},
+    {".tesc", std::nullopt, "a tessellation control"},
+    {".tese", std::nullopt, "a tessellation evaluation"},
+    {".mesh", std::nullopt, "a mesh"},
+    {".task", std::nullopt, "a task"},
+    {".rgen", std::nullopt, "a ray generation"},
+    {".rchit", std::nullopt, "a closest-hit"},
+    {".rahit", std::nullopt, "an any-hit"},
+    {".rmiss", std::nullopt, "a miss"},
+    {".rint", std::nullopt, "an intersection"},
+    {".rcall", std::nullopt, "a callable"},
+    {".cs.hlsl", ShaderStage::compute, "a compute"},
+    {".vs.hlsl", ShaderStage::vertex, "a vertex"},
+    {".ps.hlsl", ShaderStage::fragment, "a pixel"},
+    {".gs.hlsl", std::nullopt, "a geometry"},
+    {".hs.hlsl", std::nullopt, "a hull"},
+    {".ds.hlsl", std::nullopt, "a domain"},
+    {".ms.hlsl", std::nullopt, "a mesh"},
+    {".as.hlsl", std::nullopt, "an amplification"},
+    {".lib.hlsl", std::nullopt, "a library"},
+};
 
 } // namespace
 
+Result<ShaderFile> shader_file_kind(const fs::path& file) {
+    const std::string file_name = file.filename().string();
+    for (const StageSuffix& s : kStageSuffixes) {
+        const std::string_view suffix = s.suffix;
+        if (file_name.size() <= suffix.size() || !file_name.ends_with(suffix)) continue;
+        if (!s.stage)
+            return fail(fmt::format("{}: '{}' is {} shader; kdop builds compute (.comp, .cs.hlsl), vertex (.vert, "
+                                    ".vs.hlsl) and fragment (.frag, .ps.hlsl) shaders",
+                                    file.string(), suffix, s.what));
+        return ShaderFile{*s.stage, suffix.ends_with(".hlsl"), file_name.substr(0, file_name.size() - suffix.size())};
+    }
+    if (file.extension() == ".hlsl")
+        return fail(fmt::format("{}: an HLSL shader's stage is read from the suffix before .hlsl, as DXC-based engines "
+                                "name them: .cs.hlsl, .vs.hlsl or .ps.hlsl",
+                                file.string()));
+    return fail(fmt::format("{}: the stage is read from the extension, as glslc reads it (.comp, .vert or .frag), or "
+                            "for HLSL from the suffix before .hlsl (.cs.hlsl, .vs.hlsl or .ps.hlsl)",
+                            file.string()));
+}
+
 Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const BuiltVariant> variants,
-                                           std::span<const fs::path> include_dirs, TargetEnv env, bool strip_names) {
+                                           const ProjectShaderOptions& options) {
     ProjectShader out;
     out.built.spec.mode = Mode::shader;
-    out.built.name = file.stem().string();
     const std::string name = file.string();
-    auto stage = stage_of_file(file);
-    if (!stage) return std::unexpected(stage.error());
+    auto kind = shader_file_kind(file);
+    if (!kind) return std::unexpected(kind.error());
+    out.built.name = kind->name;
+    // The language whose functions the shader includes: "<variant>.glsl" or "<variant>.hlsl".
+    const ShaderLanguage& language = shader_language(kind->hlsl ? kHlsl : kGlsl);
     auto source = read_file(file);
     if (!source) return fail(fmt::format("{}: cannot read shader", name));
-    out.built.compute_glsl = std::move(*source);
+    // The source as written: GLSL in compute_glsl, HLSL in compute_hlsl, whatever its stage.
+    std::string& text = kind->hlsl ? out.built.compute_hlsl : out.built.compute_glsl;
+    text = std::move(*source);
     out.read_files.push_back(fs::absolute(file));
 
     // Included sources are named by their path (or "<variant>.glsl"), so messages point at them.
@@ -71,9 +119,10 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     std::vector<std::string> unresolved, outside;
     IncludeResolver resolve = [&](std::string_view header, std::string_view includer) -> std::optional<IncludedSource> {
         for (const BuiltVariant& v : variants)
-            if (header == v.name + ".glsl") return IncludedSource{std::string(header), v.function(kGlsl)};
+            if (header == std::string(v.name).append(language.extension))
+                return IncludedSource{std::string(header), v.function(*language.dialect)};
         std::vector<fs::path> folders{fs::path(includer).parent_path()};
-        folders.insert(folders.end(), include_dirs.begin(), include_dirs.end());
+        folders.insert(folders.end(), options.include_dirs.begin(), options.include_dirs.end());
         for (const fs::path& folder : folders) {
             const fs::path candidate = folder / header;
             if (!fs::exists(candidate)) continue;
@@ -92,19 +141,25 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
         unresolved.emplace_back(header);
         return std::nullopt;
     };
+    const TargetEnv env = options.env;
     out.built.spec.target_env = env;
-    out.built.spec.strip_names = strip_names;
-    auto compiled = compile_glsl(out.built.compute_glsl, name, *stage, env, resolve);
+    out.built.spec.strip_names = options.strip_names;
+    auto compiled = kind->hlsl ? compile_hlsl(text, name, kind->stage, options.hlsl_entry_point, env, resolve)
+                               : compile_glsl(text, name, kind->stage, env, resolve);
     if (!compiled && !outside.empty()) return fail(compiled.error().message + outside.front());
     if (!compiled && !unresolved.empty()) {
         std::vector<std::string> functions;
-        for (const BuiltVariant& v : variants) functions.push_back(v.name + ".glsl");
+        for (const BuiltVariant& v : variants) functions.push_back(std::string(v.name).append(language.extension));
         return fail(fmt::format("{}{}: \"{}\" is neither a selected variant's function ({}) nor a file next to the "
                                 "including one or in an include directory\n",
                                 compiled.error().message, name, unresolved.front(), fmt::join(functions, ", ")));
     }
-    if (auto ok = compile_into(out.built, out.built.compute_glsl, name, env, std::move(compiled)); !ok)
-        return std::unexpected(ok.error());
+    if (auto ok = compile_into(out.built, text, name, env, std::move(compiled)); !ok) {
+        if (!kind->hlsl) return std::unexpected(ok.error());
+        std::string message = ok.error().message;
+        if (!message.ends_with('\n')) message += '\n';
+        return fail(message + hlsl_port_note(message, name, env));
+    }
     return out;
 }
 

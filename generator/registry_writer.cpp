@@ -93,9 +93,10 @@ std::optional<std::string> cpp_namespace_problem(std::string_view ns) {
 
 std::optional<std::string> registry_files_problem(const std::filesystem::path& header,
                                                   const std::filesystem::path& source,
-                                                  const std::filesystem::path& depfile) {
+                                                  const std::filesystem::path& depfile,
+                                                  const std::filesystem::path& json) {
     const std::pair<const char*, const std::filesystem::path*> files[] = {
-        {"--header", &header}, {"--source", &source}, {"--depfile", &depfile}};
+        {"--header", &header}, {"--source", &source}, {"--depfile", &depfile}, {"--json", &json}};
     for (auto [option, path] : files) {
         if (path->empty()) continue;
         if (auto ok = check_output_file(*path, option); !ok) return ok.error().message;
@@ -105,7 +106,8 @@ std::optional<std::string> registry_files_problem(const std::filesystem::path& h
             const std::filesystem::path &a = *files[i].second, &b = *files[j].second;
             if (a.empty() || b.empty()) continue;
             if (a.lexically_normal() == b.lexically_normal() || same_file(a, b))
-                return fmt::format("{} and {} both name {}; the registry's header, source and depfile are three files",
+                return fmt::format("{} and {} both name {}; the registry's header, source, depfile and JSON are "
+                                   "separate files",
                                    files[i].first, files[j].first, shown_text(a.string()));
         }
     const std::string name = header.filename().string();

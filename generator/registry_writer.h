@@ -31,12 +31,13 @@ std::optional<std::string> cpp_namespace_problem(std::string_view ns);
 // C++23's keywords and alternative tokens.
 const std::set<std::string_view>& cpp_keywords();
 
-// Why the registry's --header, --source and --depfile cannot be written as asked: a folder or a
-// special file (core/write_files.h check_output_file), two of them one file (a HEADER named
-// app.cpp), or a header whose name an #include "..." cannot hold (a quote, a backslash, a control
-// byte); nullopt when they can. Checked before any variant is built.
+// Why the registry's --header, --source, --depfile and --json cannot be written as asked (an empty
+// path is not written): a folder or a special file (core/write_files.h check_output_file), two of
+// them one file (a HEADER named app.cpp), or a header whose name an #include "..." cannot hold (a
+// quote, a backslash, a control byte); nullopt when they can. Checked before any variant is built.
 std::optional<std::string> registry_files_problem(const std::filesystem::path& header,
                                                   const std::filesystem::path& source,
-                                                  const std::filesystem::path& depfile);
+                                                  const std::filesystem::path& depfile,
+                                                  const std::filesystem::path& json = {});
 
 } // namespace kdop

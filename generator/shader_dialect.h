@@ -126,4 +126,11 @@ inline constexpr ShaderLanguage kShaderLanguages[] = {
 #undef KDOP_SHADER_LANGUAGE
 };
 
+// The language `dialect` is written in (one of kShaderLanguages'), its extension with it.
+constexpr const ShaderLanguage& shader_language(const Dialect& dialect) {
+    for (const ShaderLanguage& language : kShaderLanguages)
+        if (language.dialect == &dialect) return language;
+    return kShaderLanguages[0]; // unreachable: every dialect is listed
+}
+
 } // namespace kdop

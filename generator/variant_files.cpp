@@ -1,5 +1,7 @@
 #include "generator/variant_files.h"
 
+#include "generator/reflection_json.h"
+
 #include <bit>
 #include <cstring>
 
@@ -39,6 +41,9 @@ Result<GeneratedVariants> generate_variants(std::span<const VariantSpec> specs, 
         for (OutputFile& f : glsl_files(v, dir)) files.push_back(std::move(f));
         files.push_back(spirv_file(v, dir));
     }
+    // Their reflection, each entry naming its .spv beside it.
+    files.push_back({dir / "variants.json",
+                     reflection_json(*built, [](const BuiltVariant& v) { return std::optional(v.name + ".spv"); })});
     if (auto ok = write_files_atomically(files); !ok) return std::unexpected(ok.error());
     return GeneratedVariants{std::move(*built), files.size()};
 }

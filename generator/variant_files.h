@@ -30,7 +30,8 @@ struct GeneratedVariants {
 };
 
 // `kdop gen`: builds `specs` (build_variants, on `threads`) and writes each one's glsl_files and
-// spirv_file into `dir`, all or nothing.
+// spirv_file into `dir`, and their reflection as variants.json (generator/reflection_json.h), all
+// or nothing.
 Result<GeneratedVariants> generate_variants(std::span<const VariantSpec> specs, const std::filesystem::path& dir,
                                             unsigned threads, const BuildProgress& progress = {});
 

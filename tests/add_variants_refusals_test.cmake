@@ -2,7 +2,8 @@ cmake_minimum_required(VERSION 3.25)
 # kdop_add_variants() refuses at configure time what kdop-gen would refuse at every build, or what
 # would make every build regenerate: a NAMESPACE that is a C++ keyword, a HEADER that is also the
 # registry's source, a shader path holding '$', '#' or a quote (CMake's depfile for Ninja cannot
-# carry them). Each case configures a one-target project against kdop's build tree.
+# carry them), an HLSL_ENTRY that is no function name. Each case configures a one-target project
+# against kdop's build tree.
 # Inputs: BUILD (a scratch folder), kdop_DIR (kdop's build tree), GENERATOR.
 
 function(expect_refused name arguments message)
@@ -31,3 +32,5 @@ expect_refused(dollar "SHADERS [=[shaders/a$b.comp]=]" "holds '$', '#', a quote 
 expect_refused(hash "SHADERS [=[shaders/a#b.comp]=]" "holds '$', '#', a quote or a line break")
 expect_refused(quote "SHADERS [=[shaders/x\" ? (__builtin_puts(\"INJECTED\"), \"y\") : \".comp]=]"
                "holds '$', '#', a quote or a line break")
+expect_refused(hlsl_entry "SHADERS shaders/a.cs.hlsl HLSL_ENTRY [=[main()]=]" "is not an HLSL function name")
+expect_refused(hlsl_entry_spaces "SHADERS shaders/a.cs.hlsl HLSL_ENTRY [=[CS Main]=]" "is not an HLSL function name")

@@ -54,7 +54,7 @@ TEST(Cli, ListTakesTheUsersSets) {
     EXPECT_NE(missing.err.find("nowhere.axes"), std::string::npos) << missing.err;
 }
 
-TEST(Cli, GenWritesGlslHlslWgslCompAndSpvPerVariantAndPrintsATable) {
+TEST(Cli, GenWritesGlslHlslWgslCompAndSpvPerVariantAndPrintsATable) { // and variants.json
     test::TempDir dir;
     auto r = run(kdop("gen --out " + (dir / "out").string() + " --sets dop22 " + test::data_path("tiny.axes") +
                       " --modes clip --neighborhoods n9 n5"));
@@ -62,7 +62,8 @@ TEST(Cli, GenWritesGlslHlslWgslCompAndSpvPerVariantAndPrintsATable) {
     for (std::string name : {"dop22-clip-n9", "dop22-clip-n5", "tiny-clip-n9", "tiny-clip-n5"})
         for (std::string ext : {".glsl", ".hlsl", ".wgsl", ".comp", ".spv"})
             EXPECT_TRUE(fs::exists(dir / "out" / (name + ext))) << name + ext;
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 20);
+    EXPECT_TRUE(fs::exists(dir / "out" / "variants.json")) << "their reflection";
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "out"), fs::directory_iterator()), 21);
     EXPECT_NE(test::read_file(dir / "out" / "dop22-clip-n9.hlsl")
                   .find("float3 kdop_dop22_clip_n9(float3 current, float3 history, float3 neighborhood[9])"),
               std::string::npos);
@@ -85,7 +86,7 @@ TEST(Cli, TwoGenerationRunsGiveIdenticalBytes) {
         EXPECT_EQ(test::read_file(entry.path()), test::read_file(dir / "b" / entry.path().filename()))
             << entry.path().filename();
     }
-    EXPECT_EQ(files, 120u) << "24 default variants x .glsl, .hlsl, .wgsl, .comp, .spv";
+    EXPECT_EQ(files, 121u) << "24 default variants x .glsl, .hlsl, .wgsl, .comp, .spv, and variants.json";
 }
 
 // The .spv's version word (the header's second word, little-endian) is the one --target-env asks for.

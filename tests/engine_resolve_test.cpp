@@ -1,6 +1,7 @@
 // The resolves an engine writes (examples/engine_resolve): a compute resolve with a uniform buffer,
 // a storage buffer, a separate texture and sampler, and a vertex + fragment resolve with an array
-// of combined image samplers and a fragment push constant. Built into this binary with
+// of combined image samplers and a fragment push constant; and both again as HLSL ports (compiled
+// by glslang's HLSL front end, their registers the bindings). Built into this binary with
 // kdop_add_variants SHADERS (tests/CMakeLists.txt), their reflection is checked against the
 // shaders' declarations, and both run through kdop/vulkan_pipeline.h, with a function table and
 // VK_NO_PROTOTYPES (resolve_runner.cpp), on lavapipe with the validation layer on, against the CPU
@@ -21,6 +22,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <string>
+#include <tuple>
 
 namespace kdop {
 namespace {
@@ -92,6 +96,64 @@ TEST(EngineShaders, ReflectsEveryBindingAsDeclared) {
     EXPECT_EQ(fragment.push_constant_size, 4u);
 }
 
+// The HLSL ports: each register's number its binding and its space its set, Texture2D a sampled
+// image, SamplerState a sampler, ConstantBuffer a uniform block with its size, RWTexture2D<float4>
+// a storage image of rgba32f, RWStructuredBuffer a storage buffer, [[vk::push_constant]] the push
+// constants.
+TEST(EngineShaders, ReflectsTheHlslPortsRegistersAsBindings) {
+    const Variant& compute = shader("hlsl_resolve_compute");
+    EXPECT_EQ(compute.stage, ShaderStage::compute);
+    EXPECT_STREQ(compute.entry_point, "main");
+    EXPECT_EQ(compute.local_size[0], 8u);
+    EXPECT_EQ(compute.local_size[1], 8u);
+    EXPECT_EQ(compute.local_size[2], 1u);
+    struct Expected {
+        const char* name;
+        std::uint32_t set, binding;
+        DescriptorType type;
+        std::uint32_t count, block_size, format;
+    };
+    const Expected compute_bindings[] = {
+        {"current_texture", 0, 0, DescriptorType::sampled_image, 1, 0, 0},  // register(t0)
+        {"nearest_sampler", 0, 1, DescriptorType::sampler, 1, 0, 0},        // register(s1)
+        {"history_frame", 0, 2, DescriptorType::sampled_image, 1, 0, 0},    // register(t2)
+        {"resolved_frame", 0, 3, DescriptorType::storage_image, 1, 0, 109}, // register(u3), float4: rgba32f
+        {"history_sampler", 0, 4, DescriptorType::sampler, 1, 0, 0},        // [[vk::binding(4, 0)]]
+        {"parameters", 1, 0, DescriptorType::uniform_buffer, 1, 12, 0},     // register(b0, space1)
+        {"clip_distances", 1, 1, DescriptorType::storage_buffer, 1, 0, 0},  // register(u1, space1)
+    };
+    const Expected fragment_bindings[] = {
+        {"frames", 0, 0, DescriptorType::sampled_image, 2, 0, 0}, // register(t0), two of them
+        {"parameters", 0, 1, DescriptorType::uniform_buffer, 1, 8, 0},
+        {"frame_samplers", 0, 2, DescriptorType::sampler, 2, 0, 0},
+    };
+    const Variant& fragment = shader("hlsl_resolve_fragment");
+    for (const auto& [entry, expected, stage_bit] :
+         {std::tuple{&compute, std::span<const Expected>(compute_bindings), 0x20u},
+          std::tuple{&fragment, std::span<const Expected>(fragment_bindings), 0x10u}}) {
+        ASSERT_EQ(entry->binding_count, expected.size()) << entry->name;
+        for (const Expected& e : expected) {
+            const DescriptorBinding* b = find_binding(*entry, e.name);
+            ASSERT_NE(b, nullptr) << entry->name << ": " << e.name;
+            EXPECT_EQ(b->set, e.set) << e.name;
+            EXPECT_EQ(b->binding, e.binding) << e.name;
+            EXPECT_EQ(b->type, e.type) << e.name << ": " << to_string(b->type);
+            EXPECT_EQ(b->count, e.count) << e.name;
+            EXPECT_EQ(b->stages, stage_bit) << e.name;
+            EXPECT_EQ(b->block_size, e.block_size) << e.name;
+            EXPECT_EQ(b->format, e.format) << e.name;
+        }
+    }
+    EXPECT_EQ(fragment.stage, ShaderStage::fragment);
+    EXPECT_EQ(fragment.color_output_count, 1u);
+    ASSERT_EQ(fragment.push_constant_count, 1u);
+    EXPECT_STREQ(fragment.push_constants[0].name, "current_weight");
+    EXPECT_EQ(fragment.push_constant_size, 4u);
+    const Variant& vertex = shader("hlsl_fullscreen");
+    EXPECT_EQ(vertex.stage, ShaderStage::vertex);
+    EXPECT_EQ(vertex.binding_count, 0u);
+}
+
 // The registry's storage formats are Vulkan's numbers, written in shader_reflection.cpp without
 // Vulkan's headers; here each is checked against vulkan_core.h's enum, for every SPIR-V format.
 TEST(EngineShaders, StorageFormatsAreVulkansNumbers) {
@@ -159,13 +221,17 @@ Image image_of(const std::vector<float>& floats) {
     return out;
 }
 
-class EngineResolveGpu : public test::ValidationChecked {};
+// The resolves in GLSL ("") and their HLSL ports ("hlsl_"), by the prefix of their registry names.
+class EngineResolveGpu : public test::ValidationChecked, public ::testing::WithParamInterface<const char*> {};
 
-TEST_F(EngineResolveGpu, ComputeAndFragmentResolvesMatchTheReference) {
+TEST_P(EngineResolveGpu, ComputeAndFragmentResolvesMatchTheReference) {
     ASSERT_TRUE(test::gpu().queue_flags() & VK_QUEUE_GRAPHICS_BIT) << "the test device's queue cannot draw";
     const engine::Device device{test::gpu().instance(), test::gpu().physical_device(), test::gpu().device(),
                                 test::gpu().queue(),    test::gpu().queue_family(),    vkGetInstanceProcAddr};
-    const engine::Shaders shaders{&shader("resolve_compute"), &shader("fullscreen"), &shader("resolve_fragment")};
+    const std::string prefix = GetParam();
+    const engine::Shaders shaders{&shader((prefix + "resolve_compute").c_str()),
+                                  &shader((prefix + "fullscreen").c_str()),
+                                  &shader((prefix + "resolve_fragment").c_str())};
     std::string error;
     auto resolver = engine::Resolver::create(device, shaders, kWidth, kHeight, error);
     ASSERT_TRUE(resolver) << error;
@@ -212,6 +278,11 @@ TEST_F(EngineResolveGpu, ComputeAndFragmentResolvesMatchTheReference) {
     engine::Resolved unused;
     EXPECT_NE(resolver->resolve(wrong_size, unused).find("40x24"), std::string::npos);
 }
+
+INSTANTIATE_TEST_SUITE_P(Languages, EngineResolveGpu, ::testing::Values("", "hlsl_"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                             return std::string(info.param).empty() ? std::string("Glsl") : std::string("Hlsl");
+                         });
 
 } // namespace
 } // namespace kdop

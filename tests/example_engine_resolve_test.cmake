@@ -1,8 +1,9 @@
 cmake_minimum_required(VERSION 3.25)
 # Builds examples/engine_resolve against an installation of this kdop build, as an engine project
 # would, and runs it on lavapipe: a uniform-buffer compute resolve and a vertex + fragment resolve,
-# both created and run through kdop/vulkan_pipeline.h with VK_NO_PROTOTYPES and a function table;
-# the example itself fails on a validation message or when the two resolves disagree.
+# both created and run through kdop/vulkan_pipeline.h with VK_NO_PROTOTYPES and a function table,
+# written in GLSL and again in HLSL; the example itself fails on a validation message or when any of
+# the four resolves disagrees with the GLSL compute one.
 # Inputs: SOURCE, BUILD, GENERATOR, INSTALL_FROM (the kdop build directory).
 
 include(${CMAKE_CURRENT_LIST_DIR}/project_test_support.cmake)
@@ -27,13 +28,22 @@ foreach(expected IN ITEMS "resolve_compute: compute shader, 6 binding" "resolve_
                           "set 1 binding 0: parameters \\(uniform buffer, 12 bytes\\)"
                           "set 1 binding 1: clip_distances \\(storage buffer\\)"
                           "set 0 binding 0: frames \\(combined image sampler x2\\)" "push constants: 4 bytes"
-                          "dynamic rendering pipeline created" "both resolves ran on llvmpipe" "compute and fragment resolves agree"
+                          "hlsl_resolve_compute: compute shader, 7 binding" "hlsl_resolve_fragment: fragment shader, 3 binding"
+                          "hlsl_fullscreen: vertex shader, 0 binding"
+                          "set 0 binding 4: history_sampler \\(sampler\\)" "set 0 binding 2: frame_samplers \\(sampler x2\\)"
+                          "set 0 binding 0: frames \\(sampled image x2\\)"
+                          "dynamic rendering pipeline created" "both GLSL resolves ran on llvmpipe"
+                          "both HLSL resolves ran on llvmpipe"
+                          "GLSL compute and fragment resolves agree" "HLSL compute and fragment resolves agree"
                           "validation layer on, 0 message\\(s\\)")
   if(NOT out MATCHES "${expected}")
     message(FATAL_ERROR "engine_resolve did not print '${expected}':\n${out}")
   endif()
 endforeach()
 # The ghost in the history is clipped away: the clip moves some pixels' history far.
+if(NOT out MATCHES "HLSL: history moved by the clip: mean [0-9.]+, largest 0\\.[3-9]|HLSL: history moved by the clip: mean [0-9.]+, largest 1\\.")
+  message(FATAL_ERROR "engine_resolve's HLSL clip did not take the ghost out:\n${out}")
+endif()
 if(NOT out MATCHES "history moved by the clip: mean [0-9.]+, largest 0\\.[3-9]|largest 1\\.")
   message(FATAL_ERROR "engine_resolve's clip did not take the ghost out:\n${out}")
 endif()

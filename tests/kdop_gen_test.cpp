@@ -94,6 +94,44 @@ void main()
     EXPECT_NE(source.find("kdop::ShaderStage::fragment"), std::string::npos);
 }
 
+// An HLSL shader, the stage from its suffix, the entry point given, the HLSL function included;
+// registers become bindings as glslang maps them, the spaces sets.
+TEST(KdopGen, EmbedsAnHlslShaderWithItsRegistersAsBindings) {
+    Generation g;
+    test::write_file(g.dir / "taa.cs.hlsl", R"(#include "dop22-clip-n9.hlsl"
+Texture2D<float4> current_frame : register(t1);
+SamplerState point_sampler : register(s2);
+RWTexture2D<float4> resolved : register(u0, space1);
+cbuffer Parameters : register(b3) { float2 motion; float weight; };
+[numthreads(8, 4, 1)]
+void CSMain(uint3 id : SV_DispatchThreadID)
+{
+    float3 n[9];
+    for (int i = 0; i < 9; ++i)
+        n[i] = current_frame.SampleLevel(point_sampler, (float2(id.xy) + motion) / 64.0, 0).rgb;
+    resolved[id.xy] = float4(lerp(kdop_dop22_clip_n9(n[4], float3(0, 0, 0), n), n[4], weight), 1);
+}
+)");
+    auto r = g.run((g.dir / "taa.cs.hlsl").string(), "--hlsl-entry CSMain");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string source = test::read_file(g.source());
+    EXPECT_NE(source.find(R"({"taa", "", kdop::Mode::shader)"), std::string::npos) << source;
+    EXPECT_NE(source.find(R"("CSMain", {8, 4, 1})"), std::string::npos) << source;
+    for (const char* binding : {R"({0, 1, kdop::DescriptorType::sampled_image, "current_frame", 1, 0x20, 0, 0})",
+                                R"({0, 2, kdop::DescriptorType::sampler, "point_sampler", 1, 0x20, 0, 0})",
+                                R"({0, 3, kdop::DescriptorType::uniform_buffer, "Parameters", 1, 0x20, 12, 0})",
+                                R"({1, 0, kdop::DescriptorType::storage_image, "resolved", 1, 0x20, 0, 109})"})
+        EXPECT_NE(source.find(binding), std::string::npos) << binding << "\n" << source;
+
+    // The same shader with the default entry point, main, which it does not have.
+    Generation without_entry;
+    test::write_file(without_entry.dir / "taa.cs.hlsl", test::read_file(g.dir / "taa.cs.hlsl"));
+    auto missing = without_entry.run((without_entry.dir / "taa.cs.hlsl").string());
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.err.find("main"), std::string::npos) << missing.err;
+    EXPECT_EQ(g.run((g.dir / "taa.cs.hlsl").string(), "--hlsl-entry 'CS Main'").exit_code, 2);
+}
+
 TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
     struct Case {
         const char* file;
@@ -127,6 +165,22 @@ TEST(KdopGen, RefusesABadShaderNamingItAndWritesNothing) {
          "sampler2D b;\nlayout(location = 0) out vec4 color;\nvoid main() { color = texture(a, vec2(0)) + "
          "texture(b, vec2(0)); }\n",
          "share set 0 binding 0"},
+        // HLSL: a mistake named by file and line, a stage from its suffix, the register collision
+        // every port meets first.
+        {"typo.ps.hlsl", "float4 main() : SV_Target0\n{\n    return float4(y, 0, 0, 1);\n}\n", "typo.ps.hlsl:3: error"},
+        {"unknown.cs.hlsl", "#include \"dop99-clip-n9.hlsl\"\n[numthreads(1, 1, 1)] void main() {}\n",
+         "dop99-clip-n9.hlsl"},
+        {"hull.hs.hlsl", "float4 main() : SV_Position { return 0; }\n", "is a hull shader"},
+        {"nostage.hlsl", "float4 main() : SV_Position { return 0; }\n", ".cs.hlsl, .vs.hlsl or .ps.hlsl"},
+        {"collide.ps.hlsl",
+         "Texture2D t : register(t0);\nSamplerState s : register(s0);\n"
+         "float4 main(float4 p : SV_Position) : SV_Target0 { return t.Sample(s, p.xy); }\n",
+         "t0 and s0 collide"},
+        {"packed.cs.hlsl",
+         "cbuffer Parameters : register(b0) { float weight; float2 motion; };\n"
+         "RWTexture2D<float4> o : register(u1);\n"
+         "[numthreads(1, 1, 1)] void main() { o[uint2(0, 0)] = float4(motion, weight, 1); }\n",
+         "TARGET_ENV vulkan1.1"},
     };
     for (const Case& c : cases) {
         Generation g;

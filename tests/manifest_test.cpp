@@ -83,10 +83,11 @@ TEST(Cli, ManifestSelectsWhatListAndGenProduce) {
     std::vector<std::string> files;
     for (const auto& entry : fs::directory_iterator(dir / "out")) files.push_back(entry.path().filename().string());
     std::sort(files.begin(), files.end());
-    EXPECT_EQ(files, (std::vector<std::string>{
-                         "dop16-grass-varclip-n9.comp", "dop16-grass-varclip-n9.glsl", "dop16-grass-varclip-n9.hlsl",
-                         "dop16-grass-varclip-n9.spv", "dop16-grass-varclip-n9.wgsl", "forest-clip-n5.comp",
-                         "forest-clip-n5.glsl", "forest-clip-n5.hlsl", "forest-clip-n5.spv", "forest-clip-n5.wgsl"}));
+    EXPECT_EQ(files, (std::vector<std::string>{"dop16-grass-varclip-n9.comp", "dop16-grass-varclip-n9.glsl",
+                                               "dop16-grass-varclip-n9.hlsl", "dop16-grass-varclip-n9.spv",
+                                               "dop16-grass-varclip-n9.wgsl", "forest-clip-n5.comp",
+                                               "forest-clip-n5.glsl", "forest-clip-n5.hlsl", "forest-clip-n5.spv",
+                                               "forest-clip-n5.wgsl", "variants.json"}));
 
     for (const char* conflicting : {" --sets dop22", " --modes clip", " --numerics paper", " --baselines"}) {
         auto r = test::run(test::kdop_binary() + " gen --manifest " + manifest + conflicting + " --out " +

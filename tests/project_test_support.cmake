@@ -14,3 +14,17 @@ function(touch_later file)
   execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1.1)
   file(TOUCH ${file})
 endfunction()
+
+# Fails unless none of FILES names any of the folders TREES: an installed package is relocatable
+# only if it refers to nothing outside itself.
+function(expect_relocatable files trees)
+  foreach(file IN LISTS files)
+    file(READ ${file} text)
+    foreach(tree IN LISTS trees)
+      string(FIND "${text}" "${tree}" found)
+      if(NOT found EQUAL -1)
+        message(FATAL_ERROR "${file} refers to ${tree}: the installed package is not relocatable")
+      endif()
+    endforeach()
+  endforeach()
+endfunction()

@@ -156,7 +156,7 @@ TEST(CliInterrupt, SigtermWhileGenWritesLeavesTheFolderAsItWas) {
     const fs::path out = dir / "variants";
     ASSERT_EQ(test::run(kdop("gen --sets dop22 --modes clip --out " + out.string())).exit_code, 0);
     const auto before = snapshot(out);
-    ASSERT_EQ(before.size(), 10u); // dop22-clip-n9 and -n5: .glsl .hlsl .wgsl .comp .spv
+    ASSERT_EQ(before.size(), 11u); // dop22-clip-n9 and -n5: .glsl .hlsl .wgsl .comp .spv; variants.json
     auto ended = interrupt_at_write(kdop("gen --sets dop22 --out " + out.string() + " --forms unrolled loop"), SIGTERM);
     EXPECT_EQ(ended.exit_code, 143) << ended.err;
     EXPECT_NE(ended.err.find("kdop: interrupted"), std::string::npos) << ended.err;

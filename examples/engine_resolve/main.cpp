@@ -1,9 +1,9 @@
-// Runs this example's two TAA resolves on a Vulkan device (the one whose name contains argv[1],
-// default "llvmpipe", Mesa's lavapipe) as an engine would, with VK_NO_PROTOTYPES: the loader is
+// Runs this example's two TAA resolves, in GLSL and in their HLSL ports, on a Vulkan device (the one whose name
+// contains argv[1], default "llvmpipe", Mesa's lavapipe) as an engine would, with VK_NO_PROTOTYPES: the loader is
 // opened here and every call goes through function pointers, as with volk. With the Khronos
 // validation layer on when it is installed, it prints what the registry reflected, how far the
-// clip moved the history, and whether the compute and fragment resolves agree; it exits non-zero
-// when they do not, or when the validation layer reported anything.
+// clip moved the history, and whether the four resolves (compute and fragment, GLSL and HLSL) agree;
+// it exits non-zero when they do not, or when the validation layer reported anything.
 #include "engine_resolve_kdop_variants.h"
 #include "resolve_runner.h"
 
@@ -58,10 +58,14 @@ std::vector<float> test_frame(std::uint32_t width, std::uint32_t height, std::ui
 
 int main(int argc, char** argv) {
     const char* wanted_device = argc > 1 ? argv[1] : "llvmpipe";
-    const engine::Shaders shaders{engine_resolve_kdop::variants().find("resolve_compute"),
-                                  engine_resolve_kdop::variants().find("fullscreen"),
-                                  engine_resolve_kdop::variants().find("resolve_fragment")};
-    for (const kdop::Variant* entry : {shaders.compute, shaders.vertex, shaders.fragment}) {
+    const kdop::VariantList registry = engine_resolve_kdop::variants();
+    const engine::Shaders glsl{registry.find("resolve_compute"), registry.find("fullscreen"),
+                               registry.find("resolve_fragment")};
+    const engine::Shaders hlsl{registry.find("hlsl_resolve_compute"), registry.find("hlsl_fullscreen"),
+                               registry.find("hlsl_resolve_fragment")};
+    const engine::Shaders& shaders = glsl;
+    for (const kdop::Variant* entry :
+         {glsl.compute, glsl.vertex, glsl.fragment, hlsl.compute, hlsl.vertex, hlsl.fragment}) {
         if (!entry) {
             std::fprintf(stderr, "a shader of the example is not embedded\n");
             return 1;
@@ -224,33 +228,36 @@ int main(int argc, char** argv) {
     } else {
         std::printf("dynamic rendering: %s has no Vulkan 1.3\n", properties.deviceName);
     }
-    {
+    // Each language's two resolves, all four compared with the GLSL compute resolve.
+    const engine::Device engine_device{instance, chosen, device, queue, family, get_instance_proc_addr};
+    std::vector<float> first;
+    for (const auto& [language, language_shaders] : {std::pair{"GLSL", &glsl}, std::pair{"HLSL", &hlsl}}) {
         std::string error;
-        const engine::Device engine_device{instance, chosen, device, queue, family, get_instance_proc_addr};
-        auto resolver = engine::Resolver::create(engine_device, shaders, width, height, error);
+        auto resolver = engine::Resolver::create(engine_device, *language_shaders, width, height, error);
         engine::Resolved resolved;
         if (resolver) error = resolver->resolve(frames, resolved);
         if (!error.empty()) {
-            std::fprintf(stderr, "%s\n", error.c_str());
+            std::fprintf(stderr, "%s: %s\n", language, error.c_str());
             status = 1;
-        } else {
-            std::printf("both resolves ran on %s (%ux%u)\n", properties.deviceName, width, height);
-            double largest_difference = 0, moved = 0, most_moved = 0;
-            for (std::size_t i = 0; i < resolved.compute.size(); ++i)
-                largest_difference =
-                    std::max(largest_difference, double(std::abs(resolved.compute[i] - resolved.fragment[i])));
-            for (float d : resolved.clip_distance) {
-                moved += d;
-                most_moved = std::max(most_moved, double(d));
-            }
-            std::printf("history moved by the clip: mean %.4f, largest %.4f\n", moved / resolved.clip_distance.size(),
-                        most_moved);
-            // Both are within 2e-4 of kdop's CPU reference on content like this (tests/engine_resolve_test.cpp).
-            const bool agree = largest_difference <= 4e-4;
-            std::printf("compute and fragment resolves %s: largest difference %.2e\n", agree ? "agree" : "DISAGREE",
-                        largest_difference);
-            if (!agree) status = 1;
+            continue;
         }
+        std::printf("both %s resolves ran on %s (%ux%u)\n", language, properties.deviceName, width, height);
+        if (first.empty()) first = resolved.compute;
+        double largest_difference = 0, moved = 0, most_moved = 0;
+        for (std::size_t i = 0; i < resolved.compute.size(); ++i)
+            largest_difference = std::max({largest_difference, double(std::abs(resolved.compute[i] - first[i])),
+                                           double(std::abs(resolved.fragment[i] - first[i]))});
+        for (float d : resolved.clip_distance) {
+            moved += d;
+            most_moved = std::max(most_moved, double(d));
+        }
+        std::printf("%s: history moved by the clip: mean %.4f, largest %.4f\n", language,
+                    moved / resolved.clip_distance.size(), most_moved);
+        // Each is within 2e-4 of kdop's CPU reference on content like this (tests/engine_resolve_test.cpp).
+        const bool agree = largest_difference <= 4e-4;
+        std::printf("%s compute and fragment resolves %s with the GLSL compute resolve: largest difference %.2e\n",
+                    language, agree ? "agree" : "DISAGREE", largest_difference);
+        if (!agree) status = 1;
     }
     vkDestroyDevice(device, nullptr);
     if (messenger) vkDestroyDebugUtilsMessengerEXT(instance, messenger, nullptr);

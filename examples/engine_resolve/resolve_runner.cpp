@@ -252,6 +252,9 @@ struct Resolver::State {
         return out ? std::string() : std::string(entry.name) + " declares no " + name;
     }
 
+    // The same descriptors for a GLSL resolve and its HLSL port: where GLSL combines an image with
+    // its sampler (sampler2D), HLSL declares a Texture2D and a SamplerState, found by name
+    // (history_sampler beside history_frame, frame_samplers beside frames).
     std::string write_descriptors() {
         const kdop::Variant& compute = *shaders.compute;
         const kdop::Variant& fragment = *shaders.fragment;
@@ -266,21 +269,32 @@ struct Resolver::State {
               std::tuple{&fragment, "parameters", &fragment_parameters_binding}})
             if (auto e = binding(*entry, name, *out); !e.empty()) return e;
         if (frames->count != 2) return "resolve_fragment's frames is not an array of 2";
+        const kdop::DescriptorBinding* history_sampler = nullptr;
+        if (history_frame->type == kdop::DescriptorType::sampled_image)
+            if (auto e = binding(compute, "history_sampler", history_sampler); !e.empty()) return e;
+        const kdop::DescriptorBinding* frame_samplers = nullptr;
+        if (frames->type == kdop::DescriptorType::sampled_image) {
+            if (auto e = binding(fragment, "frame_samplers", frame_samplers); !e.empty()) return e;
+            if (frame_samplers->count != 2) return "resolve_fragment's frame_samplers is not an array of 2";
+        }
 
+        // A sampled image's write ignores the sampler and a combined one's takes it: one info serves both.
         const VkDescriptorImageInfo current_image{VK_NULL_HANDLE, current.view,
                                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         const VkDescriptorImageInfo nearest_info{nearest, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
+        const VkDescriptorImageInfo linear_info{linear, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED};
         const VkDescriptorImageInfo history_image{linear, history.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         const VkDescriptorImageInfo output_image{VK_NULL_HANDLE, compute_output.view, VK_IMAGE_LAYOUT_GENERAL};
         const VkDescriptorImageInfo both_frames[2] = {{nearest, current.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                                                       history_image};
+        const VkDescriptorImageInfo both_samplers[2] = {nearest_info, linear_info};
         const VkDescriptorBufferInfo compute_block{compute_parameters.buffer, 0, parameters->block_size};
         const VkDescriptorBufferInfo clip_block{clip_distances.buffer, 0, VK_WHOLE_SIZE};
         const VkDescriptorBufferInfo fragment_block{fragment_parameters.buffer, 0,
                                                     fragment_parameters_binding->block_size};
 
         // Each write's set, binding, type and count come from the reflection; only what it points at is ours.
-        VkWriteDescriptorSet writes[8];
+        VkWriteDescriptorSet writes[10];
         std::uint32_t n = 0;
         auto image = [&](const kdop::DescriptorBinding* b, VkDescriptorSet* sets, const VkDescriptorImageInfo* info) {
             writes[n] = kdop::variant_descriptor_write(*b, sets[b->set]);
@@ -293,10 +307,12 @@ struct Resolver::State {
         image(current_texture, compute_sets, &current_image);
         image(nearest_sampler, compute_sets, &nearest_info);
         image(history_frame, compute_sets, &history_image);
+        if (history_sampler) image(history_sampler, compute_sets, &linear_info);
         image(resolved_frame, compute_sets, &output_image);
         buffer(parameters, compute_sets, &compute_block);
         buffer(clip_distance, compute_sets, &clip_block);
         image(frames, graphics_sets, both_frames);
+        if (frame_samplers) image(frame_samplers, graphics_sets, both_samplers);
         buffer(fragment_parameters_binding, graphics_sets, &fragment_block);
         fn.vkUpdateDescriptorSets(device.device, n, writes, 0, nullptr);
         return {};

@@ -1,8 +1,9 @@
-// The two resolves of this example (resolve_compute.comp; fullscreen.vert + resolve_fragment.frag)
-// run on a caller's Vulkan device as an engine's frame runs them: pipelines, descriptor pool and
-// set writes through kdop/vulkan_pipeline.h from the registry entries alone, images and buffers
-// sized and typed from their reflection (the storage image's format, the uniform blocks' sizes),
-// then one submission that resolves the same frames both ways.
+// The two resolves of this example (resolve_compute.comp; fullscreen.vert + resolve_fragment.frag),
+// or their HLSL ports (hlsl_resolve_compute.cs.hlsl; hlsl_fullscreen.vs.hlsl +
+// hlsl_resolve_fragment.ps.hlsl: a separate sampler where GLSL combines one), run on a caller's
+// Vulkan device as an engine's frame runs them: pipelines, descriptor pool and set writes through
+// kdop/vulkan_pipeline.h from the registry entries alone, images and buffers sized and typed from their reflection (the
+// storage image's format, the uniform blocks' sizes), then one submission that resolves the same frames both ways.
 //
 // Compiled with VK_NO_PROTOTYPES: every Vulkan call goes through vkGetInstanceProcAddr and
 // vkGetDeviceProcAddr, as with volk, so nothing here links the loader.
@@ -30,11 +31,11 @@ struct Device {
     PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
 };
 
-// The registry entries of the three shaders.
+// The registry entries of the three shaders, GLSL or HLSL.
 struct Shaders {
-    const kdop::Variant* compute = nullptr;  // resolve_compute
-    const kdop::Variant* vertex = nullptr;   // fullscreen
-    const kdop::Variant* fragment = nullptr; // resolve_fragment
+    const kdop::Variant* compute = nullptr;  // resolve_compute, hlsl_resolve_compute
+    const kdop::Variant* vertex = nullptr;   // fullscreen, hlsl_fullscreen
+    const kdop::Variant* fragment = nullptr; // resolve_fragment, hlsl_resolve_fragment
 };
 
 // One frame's inputs; colors are RGBA floats, row-major from the top-left pixel.

@@ -1,0 +1,98 @@
+#include "generator/reflection_json.h"
+
+#include "generator/provenance.h"
+#include "generator/spirv_module.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#ifndef KDOP_VERSION
+#error "KDOP_VERSION must be defined by the build"
+#endif
+
+namespace kdop {
+namespace {
+
+using Json = nlohmann::ordered_json; // keys in the order written: the same entries, the same bytes
+
+// "combined image sampler" -> "combined_image_sampler", the C++ registry's enumerator.
+std::string type_name(DescriptorType type) {
+    std::string name = to_string(type);
+    for (char& c : name)
+        if (c == ' ') c = '_';
+    return name;
+}
+
+Json axis_set_json(const VariantSpec& spec) {
+    const AxisSet& set = spec.set;
+    Json axes = Json::array();
+    for (const Axis& axis : set.axes) axes.push_back({axis.direction.x, axis.direction.y, axis.direction.z});
+    return {{"name", set.name},
+            {"file", axis_file_name(set)},
+            {"provenance", set.provenance},
+            {"color_map", set.color_map ? Json(to_string(*set.color_map)) : Json(nullptr)},
+            {"axes", std::move(axes)}};
+}
+
+Json entry_json(const BuiltVariant& v, const std::optional<std::string>& spirv_file) {
+    const ShaderInterface& in = v.interface;
+    const std::uint32_t stage_bit = vulkan_stage_bit(in.stage);
+    Json bindings = Json::array();
+    for (const BindingInfo& b : in.bindings)
+        bindings.push_back({{"set", b.set},
+                            {"binding", b.binding},
+                            {"name", b.name},
+                            {"type", type_name(b.type)},
+                            {"count", b.count},
+                            {"stages", stage_bit},
+                            {"block_size", b.block_size},
+                            {"format", b.format}});
+    Json members = Json::array();
+    for (const PushConstantInfo& p : in.push_constants)
+        members.push_back({{"name", p.name}, {"offset", p.offset}, {"size", p.size}});
+
+    Json entry = {
+        {"name", v.name},
+        {"kind", v.spec.mode == Mode::shader ? "shader" : "variant"},
+        {"stage", to_string(in.stage)},
+        {"entry_point", in.entry_point},
+        {"local_size", {in.local_size[0], in.local_size[1], in.local_size[2]}},
+        {"bindings", std::move(bindings)},
+        {"push_constants",
+         {{"size", in.push_constant_size},
+          {"stages", in.push_constant_size ? stage_bit : 0u},
+          {"members", std::move(members)}}},
+        {"color_outputs", in.color_output_count},
+        {"spirv",
+         {{"file", spirv_file ? Json(*spirv_file) : Json(nullptr)},
+          {"words", v.spirv.size()},
+          {"bytes", v.spirv.size() * 4},
+          {"fnv1a64", fmt::format("{:016x}", spirv_hash(v.spirv))},
+          {"target_env", to_string(v.spec.target_env)}}},
+    };
+    if (v.spec.mode == Mode::shader) {
+        entry["clip"] = nullptr;
+    } else {
+        const bool baseline = v.spec.set.name.empty(); // gather-n9, copy: cost baselines, no axis set
+        entry["clip"] = {
+            {"mode", to_string(v.spec.mode)},       {"neighborhood", to_string(v.spec.neighborhood)},
+            {"form", to_string(v.spec.form)},       {"numerics", to_string(v.spec.numerics)},
+            {"axis_count", v.spec.set.axes.size()}, {"axis_set", baseline ? Json(nullptr) : axis_set_json(v.spec)}};
+    }
+    return entry;
+}
+
+} // namespace
+
+std::string reflection_json(std::span<const BuiltVariant> entries,
+                            const std::function<std::optional<std::string>(const BuiltVariant&)>& spirv_file) {
+    Json list = Json::array();
+    for (const BuiltVariant& v : entries) list.push_back(entry_json(v, spirv_file ? spirv_file(v) : std::nullopt));
+    const Json document = {{"format", "kdop-reflection"},
+                           {"version", kReflectionFormatVersion},
+                           {"generator", fmt::format("kdop-gen {}", KDOP_VERSION)},
+                           {"entries", std::move(list)}};
+    return document.dump(2) + "\n";
+}
+
+} // namespace kdop

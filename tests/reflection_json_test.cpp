@@ -1,0 +1,148 @@
+// The registry as JSON (generator/reflection_json.h): kdop_add_variants' <header stem>.json holds
+// exactly what the C++ registry it was generated with holds, entry by entry (this binary's test
+// registry: a variant and GLSL and HLSL project shaders); kdop-gen writes it alone, with the .spv
+// files it names, and refuses what it cannot write; kdop gen writes variants.json beside its .spv
+// files. The schema check is the test reflection_json_schema (tests/validate_reflection.py).
+#include "kdop_test_shaders.h"
+#include "tests/test_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <string>
+
+namespace kdop {
+namespace {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+Json read_json(const fs::path& file) { return Json::parse(test::read_file(file)); }
+
+std::string type_name(DescriptorType type) {
+    std::string name = to_string(type);
+    for (char& c : name)
+        if (c == ' ') c = '_';
+    return name;
+}
+
+// Everything `entry` says, compared with the registry entry `v`.
+void expect_equal(const Json& entry, const Variant& v) {
+    SCOPED_TRACE(v.name);
+    EXPECT_EQ(entry["name"], v.name);
+    EXPECT_EQ(entry["kind"], v.mode == Mode::shader ? "shader" : "variant");
+    EXPECT_EQ(entry["stage"], to_string(v.stage));
+    EXPECT_EQ(entry["entry_point"], v.entry_point);
+    EXPECT_EQ(entry["local_size"], Json::array({v.local_size[0], v.local_size[1], v.local_size[2]}));
+    ASSERT_EQ(entry["bindings"].size(), v.binding_count);
+    for (std::uint32_t i = 0; i < v.binding_count; ++i) {
+        const Json& b = entry["bindings"][i];
+        const DescriptorBinding& expected = v.bindings[i];
+        EXPECT_EQ(b["set"], expected.set);
+        EXPECT_EQ(b["binding"], expected.binding);
+        EXPECT_EQ(b["name"], expected.name);
+        EXPECT_EQ(b["type"], type_name(expected.type));
+        EXPECT_EQ(b["count"], expected.count);
+        EXPECT_EQ(b["stages"], expected.stages);
+        EXPECT_EQ(b["block_size"], expected.block_size);
+        EXPECT_EQ(b["format"], expected.format);
+    }
+    const Json& push = entry["push_constants"];
+    EXPECT_EQ(push["size"], v.push_constant_size);
+    EXPECT_EQ(push["stages"], v.push_constant_size ? vulkan_stage_bit(v.stage) : 0u);
+    ASSERT_EQ(push["members"].size(), v.push_constant_count);
+    for (std::uint32_t i = 0; i < v.push_constant_count; ++i) {
+        EXPECT_EQ(push["members"][i]["name"], v.push_constants[i].name);
+        EXPECT_EQ(push["members"][i]["offset"], v.push_constants[i].offset);
+        EXPECT_EQ(push["members"][i]["size"], v.push_constants[i].size);
+    }
+    EXPECT_EQ(entry["color_outputs"], v.color_output_count);
+    EXPECT_EQ(entry["spirv"]["words"], v.spirv_word_count);
+    EXPECT_EQ(entry["spirv"]["bytes"], v.spirv_word_count * 4);
+    EXPECT_EQ(entry["spirv"]["fnv1a64"], fmt::format("{:016x}", v.spirv_hash));
+    if (v.mode == Mode::shader) {
+        EXPECT_TRUE(entry["clip"].is_null());
+    } else {
+        const Json& clip = entry["clip"];
+        EXPECT_EQ(clip["mode"], to_string(v.mode));
+        EXPECT_EQ(clip["neighborhood"], to_string(v.neighborhood));
+        EXPECT_EQ(clip["form"], to_string(v.form));
+        EXPECT_EQ(clip["numerics"], to_string(v.numerics));
+        EXPECT_EQ(clip["axis_count"], v.axis_count);
+        EXPECT_EQ(clip["axis_set"]["name"], v.axis_set);
+        EXPECT_EQ(clip["axis_set"]["axes"].size(), v.axis_count);
+    }
+}
+
+TEST(ReflectionJson, EqualsTheCppRegistryItWasGeneratedWith) {
+    const Json document = read_json(KDOP_TEST_SHADERS_JSON);
+    EXPECT_EQ(document["format"], "kdop-reflection");
+    EXPECT_EQ(document["version"], 1);
+    const VariantList registry = test_shaders::variants();
+    ASSERT_EQ(document["entries"].size(), registry.count);
+    for (std::size_t i = 0; i < registry.count; ++i) expect_equal(document["entries"][i], registry.first[i]);
+    // What only the JSON says: where the set's numbers come from, and no .spv beside a C++ registry.
+    const Json& dop22 = document["entries"][0];
+    EXPECT_EQ(dop22["clip"]["axis_set"]["file"], "dop22.axes");
+    EXPECT_NE(dop22["clip"]["axis_set"]["provenance"].get<std::string>().find("Ikkala"), std::string::npos);
+    EXPECT_TRUE(dop22["spirv"]["file"].is_null());
+}
+
+TEST(ReflectionJson, KdopGenWritesItAloneWithTheSpirvItNames) {
+    test::TempDir dir;
+    const fs::path json = dir / "out" / "resolve.json", spirv = dir / "out" / "spirv";
+    const std::string select = " registry --sets dop22 --modes clip --neighborhoods n9 --baselines";
+    auto r =
+        test::run(test::kdop_gen_binary() + select + " --json " + json.string() + " --spirv-dir " + spirv.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json document = read_json(json);
+    ASSERT_GE(document["entries"].size(), 2u);
+    bool baseline = false;
+    for (const Json& entry : document["entries"]) {
+        const std::string file = entry["spirv"]["file"];
+        EXPECT_EQ(file, "spirv/" + entry["name"].get<std::string>() + ".spv") << "relative to the JSON's folder";
+        EXPECT_EQ(fs::file_size(json.parent_path() / file), entry["spirv"]["bytes"].get<std::uint64_t>());
+        baseline = baseline || entry["clip"]["axis_set"].is_null();
+    }
+    EXPECT_TRUE(baseline) << "the gather and copy baselines have no axis set";
+    EXPECT_FALSE(fs::exists(dir / "out" / "resolve.h"));
+
+    // The same run twice gives the same bytes.
+    const std::string first = test::read_file(json);
+    ASSERT_EQ(
+        test::run(test::kdop_gen_binary() + select + " --json " + json.string() + " --spirv-dir " + spirv.string())
+            .exit_code,
+        0);
+    EXPECT_EQ(test::read_file(json), first);
+
+    // What it cannot write is a usage error, before anything is built.
+    const fs::path nothing = dir / "nothing";
+    for (const std::string& wrong : {std::string(""), " --spirv-dir " + nothing.string(),
+                                     " --json " + nothing.string() + ".json --header " + nothing.string() + ".h",
+                                     " --json " + dir.path().string()}) {
+        auto refused = test::run(test::kdop_gen_binary() + select + wrong);
+        EXPECT_EQ(refused.exit_code, 2) << wrong << ": " << refused.err;
+        EXPECT_FALSE(fs::exists(nothing)) << wrong;
+        EXPECT_FALSE(fs::exists(nothing.string() + ".json")) << wrong;
+    }
+}
+
+TEST(ReflectionJson, KdopGenWritesVariantsJsonBesideTheSpirv) {
+    test::TempDir dir;
+    auto r = test::run(test::kdop_binary() + " gen --sets dop22 --modes varclip --neighborhoods n5 --out " +
+                       (dir / "variants").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json document = read_json(dir / "variants" / "variants.json");
+    ASSERT_EQ(document["entries"].size(), 1u);
+    const Json& entry = document["entries"][0];
+    EXPECT_EQ(entry["name"], "dop22-varclip-n5");
+    EXPECT_EQ(entry["spirv"]["file"], "dop22-varclip-n5.spv");
+    EXPECT_EQ(fs::file_size(dir / "variants" / "dop22-varclip-n5.spv"), entry["spirv"]["bytes"].get<std::uint64_t>());
+    ASSERT_EQ(entry["push_constants"]["members"].size(), 1u) << "varclip's gamma";
+    EXPECT_EQ(entry["push_constants"]["members"][0]["name"], "gamma");
+}
+
+} // namespace
+} // namespace kdop
