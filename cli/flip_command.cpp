@@ -26,12 +26,15 @@ Action add_flip_command(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* flip = app.add_subcommand(
         "flip", "LDR-FLIP (Andersson et al. 2020), or with --hdr HDR-FLIP (Andersson et al. 2021): the difference a "
-                "viewer sees flipping between a reference and a test image; prints the mean, writes the per-pixel map "
-                "with --out");
+                "viewer sees flipping between a reference and each test image; prints the mean and the statistics "
+                "NVlabs/flip's tool prints, writes the per-pixel map with --out, a table with --csv and the weighted "
+                "histogram with --histogram");
     flip->add_option("--reference", o->run.reference,
                      "Reference image (any OpenImageIO format; RGB from 0 to 1 once decoded, see --input-space)")
         ->required();
-    flip->add_option("--test", o->run.test, "Test image, the same size as the reference")->required();
+    flip->add_option("--test", o->run.tests,
+                     "Test images, each the same size as the reference and compared with it on one device")
+        ->required();
     auto* ppd = flip->add_option("--ppd", o->run.ppd,
                                  fmt::format("Pixels per degree of visual angle, from {} to {} [default: from the "
                                              "viewing conditions, about 67]",
@@ -48,8 +51,16 @@ Action add_flip_command(CLI::App& app) {
         ->excludes(ppd);
     auto* space = add_input_space_option(*flip, o->run.input_space);
     flip->add_flag("--srgb", o->srgb, "The same as --input-space srgb: decode every input from sRGB")->excludes(space);
-    flip->add_option("--out", o->run.out,
-                     "Error map to write: .exr holds the values (gray), .png shows them in the magma color map");
+    flip->add_option(
+        "--out", o->run.out,
+        "Error map to write (one --test): .exr holds the values (gray), .png shows them in the magma color "
+        "map");
+    flip->add_option("--csv", o->run.csv,
+                     "Write every test's mean, weighted median and quartiles, median and "
+                     "quartiles, minimum and maximum to this CSV file");
+    flip->add_option("--histogram", o->run.histogram,
+                     "Draw every test's weighted FLIP histogram (NVlabs/flip's: each bucket's pixels times its error, "
+                     "per megapixel) into this .png (gnuplot)");
     auto* hdr = flip->add_flag("--hdr", o->run.hdr,
                                "HDR-FLIP: linear RGB from 0 up, compared at a range of exposures after tone mapping");
     for (CLI::Option* option : add_hdr_flip_options(*flip, o->run.exposure)) option->needs(hdr);
@@ -61,9 +72,11 @@ Action add_flip_command(CLI::App& app) {
         ->excludes(cpu);
     flip->add_flag("--validation", o->run.device.validation, "Enable the Khronos validation layer (slower)")
         ->excludes(cpu);
-    flip->add_option("--timing", o->run.timing,
-                     "Evaluate N more times after the first and print the median wall and CPU seconds (all threads) "
-                     "per evaluation, and the set-up's")
+    flip->add_option(
+            "--timing", o->run.timing,
+            "Evaluate (the first test) N more times after the first, the mean alone, and print the median wall "
+            "and CPU seconds (all threads) "
+            "per evaluation, and the set-up's")
         ->check(whole_number(1, 1000));
     flip->add_option("--exposure-map", o->run.exposure_map,
                      "HDR-FLIP: write, per pixel, which exposure gave its error (0 the first, 1 the last) to this "
@@ -85,22 +98,32 @@ Action add_flip_command(CLI::App& app) {
         const FlipRunResult& r = *result;
         report_validation_messages(r.validation_messages);
         const std::string where = r.device.empty() ? "on the CPU" : "on " + r.device;
-        if (o->run.hdr)
-            std::cout << fmt::format("HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
-                                     "exposure{} from {:.4g} to {:.4g}) {}\n",
-                                     r.mean, run.ppd, r.width, r.height, r.space,
-                                     to_string(o->run.exposure.tone_mapper), r.range.count,
-                                     r.range.count == 1 ? "" : "s", r.range.start, r.range.stop, where);
-        else
-            std::cout << fmt::format("LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", r.mean, run.ppd,
-                                     r.width, r.height, r.space, where);
+        for (const FlipTestResult& t : r.tests) {
+            // With several tests, each block says which.
+            const std::string which = r.tests.size() > 1 ? terminal_text(t.test) + ": " : "";
+            const FlipStatistics& f = t.statistics;
+            if (o->run.hdr)
+                std::cout << fmt::format("{}HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
+                                         "exposure{} from {:.4g} to {:.4g}) {}\n",
+                                         which, f.mean, run.ppd, r.width, r.height, r.space,
+                                         to_string(o->run.exposure.tone_mapper), t.range.count,
+                                         t.range.count == 1 ? "" : "s", t.range.start, t.range.stop, where);
+            else
+                std::cout << fmt::format("{}LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", which, f.mean,
+                                         run.ppd, r.width, r.height, r.space, where);
+            std::cout << fmt::format("  weighted median {:.6f}, 1st weighted quartile {:.6f}, 3rd weighted quartile "
+                                     "{:.6f} (NVlabs/flip's)\n  median {:.6f}, 1st quartile {:.6f}, 3rd quartile "
+                                     "{:.6f}; min {:.6f}, max {:.6f}\n",
+                                     f.weighted_median, f.weighted_q1, f.weighted_q3, f.median, f.q1, f.q3, f.min,
+                                     f.max);
+        }
         if (o->run.timing)
             std::cout << fmt::format("timing: median of {} evaluation{}: {:.4f} s wall, {:.4f} CPU s; set-up {:.3f} s "
                                      "wall, {:.3f} CPU s\n",
                                      o->run.timing, o->run.timing == 1 ? "" : "s", median(r.wall_s), median(r.cpu_s),
                                      r.setup_wall_s, r.setup_cpu_s);
-        if (auto ok = write_flip_maps(run, r); !ok) return report_error(ok.error().message);
-        for (const std::string& path : {o->run.out, o->run.exposure_map})
+        if (auto ok = write_flip_outputs(run, r); !ok) return report_error(ok.error().message);
+        for (const std::string& path : {o->run.out, o->run.exposure_map, o->run.csv, o->run.histogram})
             if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
         return 0;
     };

@@ -6,6 +6,10 @@
 #include "flip/device_flip.h"
 #include "flip/flip.h"
 #include "flip/magma.h"
+#include "harness/declared_table.h"
+#include "harness/gnuplot.h"
+#include "harness/scratch_directory.h"
+#include "harness/subprocess.h"
 #include "images/image_io.h"
 
 #include <fmt/format.h>
@@ -21,7 +25,7 @@
 namespace kdop {
 namespace {
 
-// One evaluation: the mean, and the maps when a file wants them.
+// One evaluation: the mean and the maps.
 struct Evaluated {
     double mean = 0;
     std::vector<float> map, exposure_map;
@@ -43,39 +47,101 @@ std::string lowercase_extension(const std::string& path) {
     return extension;
 }
 
+// The statistics of every test as a table: the CSV --csv writes.
+Table statistics_table(const std::vector<FlipTestResult>& tests) {
+    using Row = FlipTestResult;
+    auto figure = [](double FlipStatistics::*f) { return [f](const Row& r) { return Value(r.statistics.*f); }; };
+    const DeclaredColumns<Row> columns{
+        {{"test", "", Shown::text}, [](const Row& r) { return Value(r.test); }},
+        {{"mean", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::mean)},
+        {{"weighted_median", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::weighted_median)},
+        {{"weighted_q1", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::weighted_q1)},
+        {{"weighted_q3", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::weighted_q3)},
+        {{"median", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::median)},
+        {{"q1", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::q1)},
+        {{"q3", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::q3)},
+        {{"min", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::min)},
+        {{"max", "FLIP", Shown::fixed, 6}, figure(&FlipStatistics::max)},
+    };
+    return declared_table<Row>(columns, tests);
+}
+
+// Every test's weighted histogram (NVlabs/flip's: each bucket's count times its center, per
+// megapixel), one line each, with its mean and weighted median in the key.
+Result<OutputFile> histogram_chart(const std::vector<FlipTestResult>& tests, std::uint32_t width, std::uint32_t height,
+                                   const std::filesystem::path& to) {
+    ScratchDirectory scratch("kdop-flip");
+    if (scratch.path.empty()) return fail("no scratch directory for the histogram");
+    const double megapixels = double(width) * double(height) / (1024.0 * 1024.0);
+    std::string plot;
+    for (std::size_t t = 0; t < tests.size(); ++t) {
+        std::vector<std::vector<std::string>> rows;
+        const std::size_t buckets = tests[t].histogram.size();
+        for (std::size_t b = 0; b < buckets; ++b) {
+            const double center = (double(b) + 0.5) / double(buckets);
+            rows.push_back(
+                {gnuplot_number(center), gnuplot_number(double(tests[t].histogram[b]) * center / megapixels)});
+        }
+        const std::filesystem::path data = scratch.path / fmt::format("test-{}.dat", t);
+        if (auto ok = write_text(data, gnuplot_data(rows)); !ok) return std::unexpected(ok.error());
+        std::string title = std::filesystem::path(tests[t].test).filename().string();
+        std::erase(title, '\'');
+        plot += fmt::format("{}'{}' using 1:2 with histeps lw 2 title '{}: mean {:.4f}, weighted median {:.4f}'",
+                            plot.empty() ? "" : ", ", data.string(), title, tests[t].statistics.mean,
+                            tests[t].statistics.weighted_median);
+    }
+    const std::string script = fmt::format(
+        "set terminal pngcairo size 1000,600 font 'sans,10'\nset output '{}'\nset grid\nset key top right\n"
+        "set title 'Weighted FLIP histogram ({} buckets): the pixels of each bucket times its error, per megapixel'\n"
+        "set xlabel 'FLIP error'\nset ylabel 'weighted FLIP sum per megapixel'\nset xrange [0:1]\nset yrange [0:*]\n"
+        "plot {}\n",
+        (scratch.path / "histogram.png").string(), kFlipHistogramBuckets, plot);
+    auto drawn = draw_charts(script, {"histogram.png"}, scratch.path, to.parent_path());
+    if (!drawn) return std::unexpected(drawn.error());
+    OutputFile chart = std::move(drawn->front());
+    chart.path = to;
+    return chart;
+}
+
 } // namespace
 
 Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
     if (auto ok = check_pixels_per_degree(o.ppd); !ok) return usage_fail("--ppd: " + ok.error().message);
-    // A map's file: .exr for its values, .png in magma colors; checked before any work.
-    const std::filesystem::path inputs[] = {o.reference, o.test};
-    auto check_map_file = [&](const std::string& path, const char* option) -> Result<void> {
-        if (path.empty()) return {};
-        const std::string extension = lowercase_extension(path);
-        if (extension != ".exr" && extension != ".png")
-            return usage_fail(fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma "
-                                          "colors)",
-                                          option, path));
-        if (auto ok = check_output_file(path, option); !ok) return usage_fail(ok.error().message);
-        if (auto ok = check_not_an_input(path, option, inputs); !ok) return fail(ok.error().message);
-        return {};
-    };
-    if (auto ok = check_map_file(o.out, "--out"); !ok) return std::unexpected(ok.error());
-    if (auto ok = check_map_file(o.exposure_map, "--exposure-map"); !ok) return std::unexpected(ok.error());
-    if (!o.out.empty() && o.out == o.exposure_map)
-        return usage_fail(fmt::format("--out and --exposure-map both name {}", o.out));
+    if (o.tests.empty()) return usage_fail("--test: give at least one test image");
+    if (o.tests.size() > 1 && (!o.out.empty() || !o.exposure_map.empty()))
+        return usage_fail(fmt::format("--out and --exposure-map write one test's maps, and {} --test images are "
+                                      "given; --csv and --histogram take several",
+                                      o.tests.size()));
+    // Every output checked before any work: the maps .exr (their values) or .png (in magma colors),
+    // the histogram .png; none a folder, a special file or an input, no two the same.
+    std::vector<std::filesystem::path> inputs{o.reference};
+    inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
+    const std::pair<const char*, const std::string*> outputs[] = {
+        {"--out", &o.out}, {"--exposure-map", &o.exposure_map}, {"--csv", &o.csv}, {"--histogram", &o.histogram}};
+    for (std::size_t i = 0; i < std::size(outputs); ++i) {
+        const auto& [option, path] = outputs[i];
+        if (path->empty()) continue;
+        const std::string extension = lowercase_extension(*path);
+        if (i < 2 && extension != ".exr" && extension != ".png")
+            return usage_fail(fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma colors)",
+                                          option, *path));
+        if (i == 3 && extension != ".png")
+            return usage_fail(fmt::format("{}: {}: the histogram is drawn as a .png", option, *path));
+        if (auto ok = check_output_file(*path, option); !ok) return usage_fail(ok.error().message);
+        if (auto ok = check_not_an_input(*path, option, inputs); !ok) return fail(ok.error().message);
+        for (std::size_t j = 0; j < i; ++j)
+            if (!outputs[j].second->empty() && *outputs[j].second == *path)
+                return usage_fail(fmt::format("{} and {} both name {}", outputs[j].first, option, *path));
+    }
+    if (!o.histogram.empty() && find_program("gnuplot").empty())
+        return fail(fmt::format("--histogram {}: it is drawn with gnuplot, which is not in PATH (Debian: gnuplot-nox)",
+                                o.histogram));
 
     const InputSpace input_space = o.input_space;
     auto reference = read_image(o.reference, 0, input_space);
     if (!reference) return fail(reference.error().message);
-    auto test = read_image(o.test, 0, input_space);
-    if (!test) return fail(test.error().message);
-    if (test->width != reference->width || test->height != reference->height)
-        return fail(fmt::format("--test {}: {}x{}, but --reference {} is {}x{}", o.test, test->width, test->height,
-                                o.reference, reference->width, reference->height));
     const auto check_image = o.hdr ? check_hdr_image : check_ldr_image;
     if (auto ok = check_image(*reference, "--reference " + o.reference); !ok) return fail(ok.error().message);
-    if (auto ok = check_image(*test, "--test " + o.test); !ok) return fail(ok.error().message);
     const char* space = input_space == InputSpace::srgb     ? ", every input decoded from sRGB"
                         : input_space == InputSpace::linear ? ", every input taken as linear"
                                                             : "";
@@ -83,17 +149,17 @@ Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
     const std::uint64_t pixels = std::uint64_t(w) * h;
     // The CPU's HDR-FLIP holds two tone-mapped copies and the exposure map besides LDR-FLIP's
     // planes; the device holds its planes in device memory (system memory on lavapipe), and
-    // the maps come back as two more planes.
+    // the maps come back as two more planes; the statistics sort a copy of the map in doubles.
     const std::uint64_t needed =
-        o.cpu ? ldr_flip_bytes(w, h) + image_bytes(w, h) * (o.hdr ? 3 : 1) + (o.hdr ? pixels * sizeof(float) : 0)
-              : DeviceFlip::bytes(w, h) + 2 * pixels * sizeof(float);
+        (o.cpu ? ldr_flip_bytes(w, h) + image_bytes(w, h) * (o.hdr ? 3 : 1) + (o.hdr ? pixels * sizeof(float) : 0)
+               : DeviceFlip::bytes(w, h) + 2 * pixels * sizeof(float)) +
+        image_bytes(w, h) + 2 * pixels * sizeof(double);
     if (auto ok = check_memory(
             fmt::format("--reference {}: {}-FLIP of {}x{}", o.reference, o.hdr ? "HDR" : "LDR", w, h), needed);
         !ok)
         return fail(ok.error().message);
 
     const ExposureOptions& exposure = o.exposure;
-    const bool read_maps = !o.out.empty() || !o.exposure_map.empty();
     const auto setup_start = std::chrono::steady_clock::now();
     const double setup_cpu_start = process_cpu_seconds();
     std::unique_ptr<Context> context;
@@ -110,66 +176,80 @@ Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
     }
     const double setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count(),
                  setup_cpu = process_cpu_seconds() - setup_cpu_start;
-    // One evaluation on the device or the CPU; the CPU code computes the maps in any case.
-    auto evaluate = [&]() -> Result<Evaluated> {
+    // One evaluation on the device or the CPU: with `maps`, its error map read back for the
+    // statistics; without, the mean alone, as a measurement computes it (what --timing times).
+    auto evaluate = [&](const Image& test, bool maps) -> Result<Evaluated> {
         Evaluated r;
         if (o.hdr) {
-            auto maps = device ? device->hdr(*reference, *test, exposure, read_maps)
-                               : HdrFlip(o.ppd).maps(*reference, *test, exposure);
-            if (!maps) return std::unexpected(maps.error());
-            r.mean = maps->mean;
-            r.range = maps->range;
-            r.map = std::move(maps->error);
-            r.exposure_map = std::move(maps->exposure);
-        } else if (device && !read_maps) {
-            auto mean = device->mean(*reference, *test);
+            auto hdr = device ? device->hdr(*reference, test, exposure, maps)
+                              : HdrFlip(o.ppd).maps(*reference, test, exposure);
+            if (!hdr) return std::unexpected(hdr.error());
+            r.mean = hdr->mean;
+            r.range = hdr->range;
+            r.map = std::move(hdr->error);
+            r.exposure_map = std::move(hdr->exposure);
+            return r;
+        }
+        if (device && !maps) {
+            auto mean = device->mean(*reference, test);
             if (!mean) return std::unexpected(mean.error());
             r.mean = *mean;
-        } else {
-            Result<std::vector<float>> map = std::vector<float>{};
-            if (device) {
-                auto terms = device->terms(*reference, *test);
-                if (!terms) return std::unexpected(terms.error());
-                map = std::move(terms->error);
-            } else {
-                map = LdrFlip(o.ppd).error_map(*reference, *test);
-            }
-            if (!map) return std::unexpected(map.error());
-            r.mean = mean_error(*map);
-            r.map = std::move(*map);
+            return r;
         }
+        Result<std::vector<float>> map = std::vector<float>{};
+        if (device) {
+            auto terms = device->terms(*reference, test);
+            if (!terms) return std::unexpected(terms.error());
+            map = std::move(terms->error);
+        } else {
+            map = LdrFlip(o.ppd).error_map(*reference, test);
+        }
+        if (!map) return std::unexpected(map.error());
+        r.mean = mean_error(*map);
+        r.map = std::move(*map);
         return r;
     };
-    auto result = evaluate();
-    if (!result) return fail(fmt::format("--reference {}: {}", o.reference, result.error().message));
-    std::vector<double> wall_s, cpu_s;
-    for (int i = 0; i < o.timing; ++i) {
-        const auto wall_start = std::chrono::steady_clock::now();
-        const double cpu_start = process_cpu_seconds();
-        if (auto again = evaluate(); !again)
-            return fail(fmt::format("--reference {}: {}", o.reference, again.error().message));
-        wall_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
-        cpu_s.push_back(process_cpu_seconds() - cpu_start);
-    }
 
     FlipRunResult out;
-    out.mean = result->mean;
-    out.range = result->range;
+    const bool keep_maps = !o.out.empty() || !o.exposure_map.empty(); // one test, then
+    for (const std::string& path : o.tests) {
+        auto test = read_image(path, 0, input_space);
+        if (!test) return fail(test.error().message);
+        if (test->width != w || test->height != h)
+            return fail(fmt::format("--test {}: {}x{}, but --reference {} is {}x{}", path, test->width, test->height,
+                                    o.reference, w, h));
+        if (auto ok = check_image(*test, "--test " + path); !ok) return fail(ok.error().message);
+        auto result = evaluate(*test, true);
+        if (!result) return fail(fmt::format("--test {}: {}", path, result.error().message));
+        if (out.tests.empty())
+            for (int i = 0; i < o.timing; ++i) {
+                const auto wall_start = std::chrono::steady_clock::now();
+                const double cpu_start = process_cpu_seconds();
+                if (auto again = evaluate(*test, false); !again)
+                    return fail(fmt::format("--test {}: {}", path, again.error().message));
+                out.wall_s.push_back(
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+                out.cpu_s.push_back(process_cpu_seconds() - cpu_start);
+            }
+        FlipTestResult& t = out.tests.emplace_back();
+        t.test = path;
+        t.statistics = flip_statistics(result->map);
+        t.statistics.mean = result->mean; // as the evaluation summed it (HDR-FLIP's and the device's own order)
+        t.histogram = flip_histogram(result->map);
+        t.range = result->range;
+        if (keep_maps) t.map = std::move(result->map), t.exposure_map = std::move(result->exposure_map);
+    }
     out.width = w;
     out.height = h;
     out.space = space;
     out.device = context ? context->device_name() : "";
-    out.wall_s = std::move(wall_s);
-    out.cpu_s = std::move(cpu_s);
     out.setup_wall_s = setup_wall;
     out.setup_cpu_s = setup_cpu;
     if (context) out.validation_messages = context->validation_messages();
-    out.map = std::move(result->map);
-    out.exposure_map = std::move(result->exposure_map);
     return out;
 }
 
-Result<void> write_flip_maps(const FlipRunOptions& o, const FlipRunResult& r) {
+Result<void> write_flip_outputs(const FlipRunOptions& o, const FlipRunResult& r) {
     auto picture = [&](const std::vector<float>& values, const std::string& path) {
         auto image = std::make_shared<Image>(r.width, r.height);
         if (lowercase_extension(path) == ".png")
@@ -179,8 +259,16 @@ Result<void> write_flip_maps(const FlipRunOptions& o, const FlipRunResult& r) {
         return image_writer(path, std::move(image));
     };
     std::vector<OutputWriter> files;
-    if (!o.out.empty()) files.push_back(picture(r.map, o.out));
-    if (!o.exposure_map.empty()) files.push_back(picture(r.exposure_map, o.exposure_map));
+    if (!o.out.empty()) files.push_back(picture(r.tests.front().map, o.out));
+    if (!o.exposure_map.empty()) files.push_back(picture(r.tests.front().exposure_map, o.exposure_map));
+    std::vector<OutputFile> contents; // the CSV and the chart, which their writers refer to
+    contents.reserve(2);
+    if (!o.csv.empty()) files.push_back(content_writer(contents.emplace_back(o.csv, statistics_table(r.tests).csv())));
+    if (!o.histogram.empty()) {
+        auto chart = histogram_chart(r.tests, r.width, r.height, o.histogram);
+        if (!chart) return fail(fmt::format("--histogram {}: {}", o.histogram, chart.error().message));
+        files.push_back(content_writer(contents.emplace_back(std::move(*chart))));
+    }
     if (files.empty()) return {};
     return write_atomically(files);
 }

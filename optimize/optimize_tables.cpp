@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace kdop {
 namespace {
 
@@ -26,7 +28,10 @@ PrintedColumns<AxisCountRow> axis_count_columns(std::size_t sequences, bool lava
     for (std::size_t i = 0; i < sequences; ++i) {
         columns.push_back(
             {"ghosting", 12, [i](const AxisCountRow& r) { return fmt::format("{:.6f}", r.ghosting[i]); }});
-        columns.push_back({"shimmer", 12, [i](const AxisCountRow& r) { return fmt::format("{:.6f}", r.shimmer[i]); }});
+        // A sequence meant for ghosting alone (sequence.json's "measure") has no shimmer.
+        columns.push_back({"shimmer", 12, [i](const AxisCountRow& r) {
+                               return std::isnan(r.shimmer[i]) ? std::string("–") : fmt::format("{:.6f}", r.shimmer[i]);
+                           }});
     }
     return columns + cost_columns(lavapipe, &AxisCountRow::cost);
 }

@@ -3,11 +3,15 @@
 namespace kdop {
 
 std::shared_ptr<const FrameSource> shimmer_frames(const TaaScene& scene, const TaaSchedule& schedule) {
-    return scene.frames(scene.name() + "-shimmer", schedule.warmup + schedule.frames, false, true);
+    return std::make_shared<MeasuredFor>(
+        scene.frames(scene.name() + "-shimmer", schedule.warmup + schedule.frames, false, true),
+        SequenceRoles{.ghosting = false, .shimmer = true});
 }
 
 std::shared_ptr<const FrameSource> ghosting_frames(const TaaScene& scene, const TaaSchedule& schedule) {
-    return scene.frames(scene.name() + "-ghosting", schedule.warmup + schedule.frames, true, false);
+    return std::make_shared<MeasuredFor>(
+        scene.frames(scene.name() + "-ghosting", schedule.warmup + schedule.frames, true, false),
+        SequenceRoles{.ghosting = true, .shimmer = false});
 }
 
 } // namespace kdop

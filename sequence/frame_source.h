@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -38,6 +39,33 @@ public:
     // reads files and shares nothing), so the measurement reads frames ahead. Not a source that
     // draws on the device, whose queue the resolve uses.
     virtual bool reads_ahead() const { return false; }
+    // The figures the source is meant for (sequence.json's "measure"): both unless it says.
+    virtual SequenceRoles roles() const { return {}; }
+};
+
+// `source` meant for `roles` alone: kdop's scenes' still sequence is measured for shimmer and their
+// moving one for ghosting. Everything else is the source's.
+class MeasuredFor final : public FrameSource {
+public:
+    MeasuredFor(std::shared_ptr<const FrameSource> source, SequenceRoles roles)
+        : source_(std::move(source)), roles_(roles) {}
+    const std::string& name() const override { return source_->name(); }
+    std::uint32_t width() const override { return source_->width(); }
+    std::uint32_t height() const override { return source_->height(); }
+    std::size_t frame_count() const override { return source_->frame_count(); }
+    ColorRange color_range() const override { return source_->color_range(); }
+    bool starts_history(std::size_t index) const override { return source_->starts_history(index); }
+    std::optional<glm::vec2> jitter(std::size_t index) const override { return source_->jitter(index); }
+    bool has_depth() const override { return source_->has_depth(); }
+    bool has_reference() const override { return source_->has_reference(); }
+    Result<LoadedFrame> frame(std::size_t index) const override { return source_->frame(index); }
+    std::string frame_label(std::size_t index) const override { return source_->frame_label(index); }
+    bool reads_ahead() const override { return source_->reads_ahead(); }
+    SequenceRoles roles() const override { return roles_; }
+
+private:
+    std::shared_ptr<const FrameSource> source_;
+    SequenceRoles roles_;
 };
 
 // A sequence read from disk, one frame at a time.
@@ -58,6 +86,7 @@ public:
     Result<LoadedFrame> frame(std::size_t index) const override { return load_frame(s_, index, space_); }
     std::string frame_label(std::size_t index) const override;
     bool reads_ahead() const override { return true; }
+    SequenceRoles roles() const override { return s_.measure; }
 
 private:
     Sequence s_;

@@ -89,6 +89,24 @@ public:
                   fmt::format("{} is not a convention kdop knows; expected {}", shown_text(it->dump(), 60), listed)));
     }
 
+    // "measure": ["ghosting"], ["shimmer"] or both, each once.
+    Result<SequenceRoles> roles(const json& value) const {
+        const Error wrong = error("measure", fmt::format("{} is not a list of the figures to measure; expected "
+                                                         "[\"ghosting\"], [\"shimmer\"] or [\"ghosting\", \"shimmer\"]",
+                                                         shown_text(value.dump(), 60)));
+        if (!value.is_array() || value.empty()) return std::unexpected(wrong);
+        SequenceRoles roles{false, false};
+        for (const json& figure : value) {
+            bool* role = !figure.is_string()                       ? nullptr
+                         : figure.get<std::string>() == "ghosting" ? &roles.ghosting
+                         : figure.get<std::string>() == "shimmer"  ? &roles.shimmer
+                                                                   : nullptr;
+            if (!role || *role) return std::unexpected(wrong); // unknown, or twice
+            *role = true;
+        }
+        return roles;
+    }
+
     // A file named relative to the sequence's folder: a regular file inside it.
     Result<fs::path> file(const fs::path& dir, const json& value, std::string_view where) const {
         if (!value.is_string() || value.get<std::string>().empty())
@@ -145,8 +163,9 @@ Result<Sequence> read_sequence(const fs::path& dir) {
     }
     const Reader reader(path);
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
-    if (auto ok = reader.known_keys(root, {"kdop_sequence", "width", "height", "color", "motion", "depth", "frames"},
-                                    "the top level");
+    if (auto ok = reader.known_keys(
+            root, {"kdop_sequence", "width", "height", "color", "measure", "motion", "depth", "frames"},
+            "the top level");
         !ok)
         return std::unexpected(ok.error());
     const auto version = root.find("kdop_sequence");
@@ -173,6 +192,12 @@ Result<Sequence> read_sequence(const fs::path& dir) {
         auto range = reader.choice(*color, "range", {"ldr", "hdr"}, "color");
         if (!range) return std::unexpected(range.error());
         s.color_range = ColorRange(*range);
+    }
+
+    if (const auto measure = root.find("measure"); measure != root.end()) {
+        auto roles = reader.roles(*measure);
+        if (!roles) return std::unexpected(roles.error());
+        s.measure = *roles;
     }
 
     if (const auto motion = root.find("motion"); motion != root.end()) {

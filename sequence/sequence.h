@@ -2,7 +2,7 @@
 // captured frames, Blender, a 3-D testbed) and the one TAA resolve. A folder holds sequence.json
 // and per-frame EXR files; docs/taa.md, "Frame sequences", documents the format, version 1:
 //
-//     {"kdop_sequence": 1, "width": 320, "height": 180, "color": {"range": "ldr"},
+//     {"kdop_sequence": 1, "width": 320, "height": 180, "color": {"range": "ldr"}, "measure": ["ghosting"],
 //      "motion": {"units": "pixels", "points_to": "previous", "y_axis": "down"},
 //      "depth": {"nearer": "smaller"},
 //      "frames": [{"color": "color/0000.exr", "motion": "motion/0000.exr", "jitter": [0.12, -0.31],
@@ -49,6 +49,14 @@ struct MotionConvention {
     YAxis y_axis = YAxis::down;
 };
 
+// Which figures a sequence is meant for ("measure" in sequence.json; both by default): a still,
+// jittered capture shows shimmer and no meaningful ghosting, a moving one without jitter ghosting
+// and no meaningful shimmer. A figure a sequence is not meant for is not measured or shown.
+struct SequenceRoles {
+    bool ghosting = true, shimmer = true;
+    friend bool operator==(const SequenceRoles&, const SequenceRoles&) = default;
+};
+
 struct SequenceFrame {
     std::filesystem::path color;            // linear RGB in the first three channels, any range
     std::filesystem::path motion;           // empty only where there is no history to reproject
@@ -68,6 +76,7 @@ struct Sequence {
     // "depth": {"nearer": "smaller" | "larger"}: which way depth files count (larger: reversed Z,
     // as Unreal writes it). Only --dilate-motion reads depth.
     bool depth_nearer_larger = false;
+    SequenceRoles measure;
     std::vector<SequenceFrame> frames; // paths joined to dir
 
     // Whether frame `index` starts without a history: the first frame and every camera cut.

@@ -41,8 +41,15 @@ std::string sequence_json(const FrameSource& source) {
     ordered_json root{{"kdop_sequence", kSequenceFormatVersion},
                       {"width", source.width()},
                       {"height", source.height()},
-                      {"color", {{"range", to_string(source.color_range())}}},
-                      {"motion", {{"units", "pixels"}, {"points_to", "previous"}, {"y_axis", "down"}}}};
+                      {"color", {{"range", to_string(source.color_range())}}}};
+    // What the sequence is meant for, where not both: kdop's scenes' still and moving sequences.
+    if (const SequenceRoles roles = source.roles(); roles != SequenceRoles{}) {
+        ordered_json measure = ordered_json::array();
+        if (roles.ghosting) measure.push_back("ghosting");
+        if (roles.shimmer) measure.push_back("shimmer");
+        root["measure"] = std::move(measure);
+    }
+    root["motion"] = {{"units", "pixels"}, {"points_to", "previous"}, {"y_axis", "down"}};
     ordered_json frames = ordered_json::array();
     for (std::size_t i = 0; i < source.frame_count(); ++i) {
         ordered_json f{{"color", frame_file("color", i)}};

@@ -20,6 +20,10 @@ Result<std::unique_ptr<SequenceGhosting>> SequenceGhosting::create(const std::ve
     for (const std::string& dir : dirs) {
         auto sequence = read_resolvable_sequence(dir, warmup, options);
         if (!sequence) return std::unexpected(sequence.error());
+        if (!sequence->measure.ghosting)
+            return fail(fmt::format("--sequence {}: its sequence.json measures only shimmer (\"measure\"), and the "
+                                    "fit is judged by ghosting",
+                                    dir));
         if (auto ok = check_measurable(*out->context_, sequence->width, sequence->height, true); !ok)
             return fail(fmt::format("--sequence {}: {}", dir, ok.error().message));
         out->sequences_.emplace_back(std::move(*sequence), space);
@@ -44,7 +48,13 @@ Result<std::vector<SequenceMeasurement>> SequenceGhosting::measure(const AxisSet
         auto rows = evaluation_->measure(sequence);
         if (!rows) return std::unexpected(rows.error());
         const EvaluationRow& row = rows->front();
-        measured.push_back({row.shimmer, row.ghosting, row.range, row.against_reference, 0, row.notes});
+        measured.push_back({.shimmer = row.shimmer,
+                            .ghosting = row.ghosting,
+                            .range = row.range,
+                            .against_reference = row.against_reference,
+                            .frames = row.per_frame.size(),
+                            .per_frame = row.per_frame,
+                            .notes = row.notes});
     }
     return measured;
 }

@@ -6,13 +6,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace kdop {
 namespace {
 
-std::vector<std::string> scenes_of(const std::vector<TaaRow>& rows) {
+// The scenes and sequences `rows` name, in the order they first name them.
+template <class Row>
+std::vector<std::string> scenes_of(const std::vector<Row>& rows) {
     std::vector<std::string> scenes;
-    for (const TaaRow& r : rows)
+    for (const Row& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
     return scenes;
 }
@@ -70,17 +73,74 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
                                        "using 1:{2}:6 with points pt variable ps 1.5 lc rgb '{3}' notitle",
                                        plot[y].empty() ? "" : ", ", data, 2 + y, color);
         }
-        script += fmt::format("set output '{}'\nset multiplot layout 1,2 title '{}: cost against what a viewer sees, "
+        // A panel per figure the scene or sequence is meant for (sequence.json's "measure").
+        auto measured = [](const std::vector<double>& v) {
+            return std::any_of(v.begin(), v.end(), [](double x) { return !std::isnan(x); });
+        };
+        const bool panels[2] = {measured(ghosting), measured(shimmer)};
+        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: cost against what a viewer sees, "
                               "one point per variant (color: mode and neighborhood; shape: axis set; bars: Q1..Q3 of "
                               "the time); lower left is better'\n",
-                              (scratch / names[s]).string(), scenes[s]);
+                              (scratch / names[s]).string(), int(panels[0]) + int(panels[1]), scenes[s]);
         script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
         const char* flip = any && any->range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
         const char* against = any && any->ghosting_against == "reference" ? "reference" : "aliased frame";
-        script += axis_scale('y', ghosting, fmt::format("ghosting (mean {} against the {})", flip, against), false);
-        script += fmt::format("plot {}\n", plot[0]);
-        script += axis_scale('y', shimmer, fmt::format("shimmer (mean {} between successive frames)", flip), false);
-        script += fmt::format("plot {}{}\nunset multiplot\n", plot[1], style.key_entries(keys));
+        const std::string titles[2] = {fmt::format("ghosting (mean {} against the {})", flip, against),
+                                       fmt::format("shimmer (mean {} between successive frames)", flip)};
+        const std::vector<double>* values[2] = {&ghosting, &shimmer};
+        const int last = panels[1] ? 1 : 0; // the panel the legend follows
+        for (int y = 0; y < 2; ++y) {
+            if (!panels[y]) continue;
+            script += axis_scale('y', *values[y], titles[y], false);
+            script += fmt::format("plot {}{}\n", plot[y], y == last ? style.key_entries(keys) : "");
+        }
+        script += "unset multiplot\n";
+    }
+    return draw_charts(script, names, scratch, out_dir);
+}
+
+std::vector<std::string> taa_over_time_chart_names(const std::vector<TaaFrameRow>& rows) {
+    std::vector<std::string> names;
+    for (const std::string& scene : scenes_of(rows)) names.push_back(fmt::format("over-time-{}.png", scene));
+    return names;
+}
+
+Result<std::vector<OutputFile>> taa_over_time_charts(const std::vector<TaaFrameRow>& rows,
+                                                     const std::filesystem::path& scratch,
+                                                     const std::filesystem::path& out_dir) {
+    const std::vector<std::string> scenes = scenes_of(rows), names = taa_over_time_chart_names(rows);
+    std::string script = "set terminal pngcairo size 1500,520 font 'sans,10'\nset grid\n"
+                         "set key outside right top spacing 1.1\nset xlabel 'frame'\n";
+    double TaaFrameRow::*figures[2] = {&TaaFrameRow::ghosting, &TaaFrameRow::shimmer};
+    const char* titles[2] = {"ghosting (FLIP against the truth of each frame)",
+                             "shimmer (FLIP against the previous output)"};
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        std::vector<VariantKey> keys; // the scene's variants, in order
+        for (const TaaFrameRow& r : rows)
+            if (r.scene == scenes[s] && std::find(keys.begin(), keys.end(), r.key) == keys.end()) keys.push_back(r.key);
+        std::string plots[2];
+        for (int f = 0; f < 2; ++f)
+            for (std::size_t v = 0; v < keys.size(); ++v) {
+                std::vector<std::vector<std::string>> points;
+                for (const TaaFrameRow& r : rows)
+                    if (r.scene == scenes[s] && r.key == keys[v] && !std::isnan(r.*figures[f]))
+                        points.push_back({std::to_string(r.frame), gnuplot_number(r.*figures[f])});
+                if (points.empty()) continue;
+                const std::string data = (scratch / fmt::format("over-time-{}-{}-{}.dat", s, f, v)).string();
+                if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+                plots[f] += fmt::format("{}'{}' using 1:2 with linespoints pt 7 ps 0.6 lw 1.5 title '{}'",
+                                        plots[f].empty() ? "" : ", ", data, keys[v].name());
+            }
+        const int panels = int(!plots[0].empty()) + int(!plots[1].empty());
+        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: each variant over the measured "
+                              "frames (lower is better)'\n",
+                              (scratch / names[s]).string(), std::max(panels, 1), scenes[s]);
+        for (int f = 0; f < 2; ++f) // the key beside the last panel only: the variants are the same
+            if (!plots[f].empty())
+                script += fmt::format("{}set ylabel '{}'\nplot {}\n",
+                                      f == 0 && panels == 2 ? "unset key\n" : "set key outside right top spacing 1.1\n",
+                                      titles[f], plots[f]);
+        script += "unset multiplot\n";
     }
     return draw_charts(script, names, scratch, out_dir);
 }

@@ -96,7 +96,8 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
                         m.against_reference,
                         ColorRange::ldr,
                         std::make_shared<const Image>(std::move(m.trail)),
-                        {}});
+                        {},
+                        std::move(m.per_frame)});
     }
     return rows;
 }
@@ -115,13 +116,14 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& 
     auto on_frame = [&] {
         if (observer.frame) observer.frame(sequence.name());
     };
-    auto measured = measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, {}, output, on_frame);
+    auto measured = measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame);
     if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them
     for (std::size_t v = 0; v < specs_.size(); ++v) {
-        const SequenceMeasurement& m = (*measured)[v];
-        EvaluationRow row{v, sequence.name(), m.shimmer, m.ghosting, m.against_reference, m.range, nullptr, {}};
+        SequenceMeasurement& m = (*measured)[v];
+        EvaluationRow row{v,  sequence.name(),       m.shimmer, m.ghosting, m.against_reference, m.range, nullptr,
+                          {}, std::move(m.per_frame)};
         for (const std::string& note : m.notes)
             if (noted.insert(note).second) row.notes.push_back(note);
         rows.push_back(std::move(row));

@@ -34,13 +34,14 @@ struct EvaluationOptions {
 
 // One variant's figures on one scene or sequence.
 struct EvaluationRow {
-    std::size_t variant = 0; // into the evaluation's specs
-    std::string source;      // the scene's or sequence's name
-    double shimmer = 0, ghosting = 0;
-    bool against_reference = false;     // ghosting against reference frames, not each frame's own color
-    ColorRange range = ColorRange::ldr; // measured in LDR-FLIP or HDR-FLIP
-    std::shared_ptr<const Image> trail; // scenes: the ghosting sequence's frame scene.trail_frame(schedule)
-    std::vector<std::string> notes;     // HDR-FLIP's exposure notes (ExposureRange::note), once each
+    std::size_t variant = 0;             // into the evaluation's specs
+    std::string source;                  // the scene's or sequence's name
+    double shimmer = 0, ghosting = 0;    // NaN for a figure the sequence is not meant for (its roles)
+    bool against_reference = false;      // ghosting against reference frames, not each frame's own color
+    ColorRange range = ColorRange::ldr;  // measured in LDR-FLIP or HDR-FLIP
+    std::shared_ptr<const Image> trail;  // scenes: the ghosting sequence's frame scene.trail_frame(schedule)
+    std::vector<std::string> notes;      // HDR-FLIP's exposure notes (ExposureRange::note), once each
+    std::vector<FrameFigures> per_frame; // each measured frame's figures; shimmer and ghosting are their means
 };
 
 struct EvaluationObserver {

@@ -3,6 +3,7 @@
 #include "core/interrupt.h"
 #include "core/memory_budget.h"
 #include "core/parallel_for.h"
+#include "harness/statistics.h"
 
 #include <fmt/format.h>
 
@@ -33,6 +34,24 @@ Result<Image> within_range(const Image& frame, ColorRange range, std::string_vie
             }
         }
     return out;
+}
+
+namespace {
+
+FigureSpread spread(const std::vector<FrameFigures>& figures, double FrameFigures::*figure) {
+    std::vector<double> values;
+    for (const FrameFigures& f : figures)
+        if (!std::isnan(f.*figure)) values.push_back(f.*figure);
+    return {quantile(values, 0.5), quantile(values, 0.95)};
+}
+
+} // namespace
+
+FigureSpread ghosting_spread(const std::vector<FrameFigures>& figures) {
+    return spread(figures, &FrameFigures::ghosting);
+}
+FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures) {
+    return spread(figures, &FrameFigures::shimmer);
 }
 
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
@@ -125,26 +144,32 @@ namespace {
 // One shader's measurement as the frames go by: its previous output, its sums and the notes it met.
 class Meter {
 public:
-    Meter(const FrameSource& source, const FlipMean& flip, TaaMetrics metrics) : flip_(&flip), metrics_(metrics) {
+    Meter(const FrameSource& source, const FlipMean& flip) : flip_(&flip), roles_(source.roles()) {
         m_.against_reference = source.has_reference();
         m_.range = source.color_range();
+        sequence_ = source.name();
     }
 
     // Frame `i`'s output `current` (already within range) against `truth` and the previous output.
-    Result<void> measure(const Image& truth, const Image& current, bool starts_history, const std::string& label) {
-        if (metrics_.ghosting) {
+    Result<void> measure(std::size_t i, const Image& truth, const Image& current, bool starts_history,
+                         const std::string& label) {
+        FrameFigures figures{sequence_, i};
+        if (roles_.ghosting) {
             auto ghosting =
                 figure(truth, current, label,
                        m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color");
             if (!ghosting) return std::unexpected(ghosting.error());
             ghosting_sum_ += *ghosting;
+            figures.ghosting = *ghosting;
         }
-        if (metrics_.shimmer && !starts_history) {
+        if (roles_.shimmer && !starts_history) {
             auto shimmer = figure(previous_, current, label, "shimmer against the previous output");
             if (!shimmer) return std::unexpected(shimmer.error());
             shimmer_sum_ += *shimmer;
             ++shimmer_pairs_;
+            figures.shimmer = *shimmer;
         }
+        m_.per_frame.push_back(std::move(figures));
         ++m_.frames;
         return {};
     }
@@ -155,8 +180,8 @@ public:
             m_.notes.push_back(met.more ? fmt::format("{} and {} more frame{}: {}", met.first_label, met.more,
                                                       met.more == 1 ? "" : "s", note)
                                         : fmt::format("{}: {}", met.first_label, note));
-        m_.ghosting = ghosting_sum_ / double(m_.frames);
-        m_.shimmer = shimmer_pairs_ ? shimmer_sum_ / double(shimmer_pairs_) : 0.0;
+        m_.ghosting = roles_.ghosting ? ghosting_sum_ / double(m_.frames) : NAN;
+        m_.shimmer = !roles_.shimmer ? NAN : shimmer_pairs_ ? shimmer_sum_ / double(shimmer_pairs_) : 0.0;
         return std::move(m_);
     }
 
@@ -177,7 +202,8 @@ private:
         std::size_t more = 0;
     };
     const FlipMean* flip_;
-    TaaMetrics metrics_;
+    SequenceRoles roles_;
+    std::string sequence_;
     SequenceMeasurement m_;
     Image previous_;
     double shimmer_sum_ = 0, ghosting_sum_ = 0;
@@ -189,7 +215,7 @@ private:
 
 Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
                                                               std::uint32_t warmup, const FlipMean& flip,
-                                                              TaaMetrics metrics, const ShaderOutputObserver& on_output,
+                                                              const ShaderOutputObserver& on_output,
                                                               const std::function<void()>& on_frame) {
     const std::size_t count = source.frame_count();
     if (warmup >= count)
@@ -197,7 +223,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
     const ColorRange range = source.color_range();
     const bool against_reference = source.has_reference();
-    std::vector<Meter> meters(resolve.size(), Meter(source, flip, metrics));
+    std::vector<Meter> meters(resolve.size(), Meter(source, flip));
     // Files are read (and decoded) on a worker a frame ahead, in order, while the device works.
     std::optional<Prefetch<Result<LoadedFrame>>> ahead;
     if (source.reads_ahead()) ahead.emplace(count, 1, [&source](std::size_t i) { return source.frame(i); });
@@ -223,7 +249,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                     if (!current) return std::unexpected(current.error());
                     if (i >= warmup) {
                         const Image& truth = against_reference ? *frame->reference : frame->color;
-                        if (auto ok = meters[s].measure(truth, *current, source.starts_history(i), label); !ok)
+                        if (auto ok = meters[s].measure(i, truth, *current, source.starts_history(i), label); !ok)
                             return ok;
                         if (on_output)
                             if (auto ok = on_output(s, i, *current); !ok) return ok;
@@ -243,14 +269,14 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
 }
 
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const FlipMean& flip, TaaMetrics metrics, const OutputObserver& on_output,
+                                             const FlipMean& flip, const OutputObserver& on_output,
                                              const std::function<void()>& on_frame) {
     ShaderOutputObserver first;
     if (on_output)
         first = [&](std::size_t s, std::size_t index, const Image& output) -> Result<void> {
             return s == 0 ? on_output(index, output) : Result<void>{};
         };
-    auto measured = measure_sequence_all(resolve, source, warmup, flip, metrics, first, on_frame);
+    auto measured = measure_sequence_all(resolve, source, warmup, flip, first, on_frame);
     if (!measured) return std::unexpected(measured.error());
     return std::move(measured->front());
 }
@@ -269,16 +295,16 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
             return on_output ? on_output(source.name(), s, index, output) : Result<void>{};
         };
     };
-    auto shimmer = measure_sequence_all(resolve, *still, schedule.warmup, flip, {.shimmer = true, .ghosting = false},
-                                        pass_on(*still, false), on_frame);
+    auto shimmer = measure_sequence_all(resolve, *still, schedule.warmup, flip, pass_on(*still, false), on_frame);
     if (!shimmer) return std::unexpected(shimmer.error());
-    auto ghosting = measure_sequence_all(resolve, *moving, schedule.warmup, flip, {.shimmer = false, .ghosting = true},
-                                         pass_on(*moving, true), on_frame);
+    auto ghosting = measure_sequence_all(resolve, *moving, schedule.warmup, flip, pass_on(*moving, true), on_frame);
     if (!ghosting) return std::unexpected(ghosting.error());
     for (std::size_t s = 0; s < m.size(); ++s) {
         m[s].shimmer = (*shimmer)[s].shimmer;
         m[s].ghosting = (*ghosting)[s].ghosting;
         m[s].against_reference = (*ghosting)[s].against_reference;
+        m[s].per_frame = std::move((*shimmer)[s].per_frame);
+        m[s].per_frame.insert(m[s].per_frame.end(), (*ghosting)[s].per_frame.begin(), (*ghosting)[s].per_frame.end());
     }
     return m;
 }

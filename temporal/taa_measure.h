@@ -21,6 +21,7 @@
 #include "temporal/taa_resolve.h"
 #include "temporal/trail_picture.h"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -42,11 +43,29 @@ using FlipMean = std::function<Result<FlipFigure>(const Image& reference, const 
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});
 FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures = {});
 
+// One measured frame's figures. NaN where the frame has none: shimmer on the first measured frame
+// and after a camera cut, and a figure the source is not meant for (FrameSource::roles).
+struct FrameFigures {
+    std::string sequence; // the source's name
+    std::size_t index = 0;
+    double ghosting = NAN, shimmer = NAN;
+};
+
+// The median and 95th percentile of `figures`' ghosting or shimmer over the frames that have one
+// (quantile(): linear interpolation between order statistics, numpy's default); NaN for none.
+struct FigureSpread {
+    double median = NAN, p95 = NAN;
+};
+FigureSpread ghosting_spread(const std::vector<FrameFigures>& figures);
+FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures);
+
 struct SequenceMeasurement {
+    // The means over the measured frames; NaN for a figure the source is not meant for.
     double shimmer = 0, ghosting = 0;
-    ColorRange range = ColorRange::ldr; // the source's: measured in LDR-FLIP or in HDR-FLIP
-    bool against_reference = false;     // ghosting against the frames' references, not their own color
-    std::size_t frames = 0;             // frames measured
+    ColorRange range = ColorRange::ldr;  // the source's: measured in LDR-FLIP or in HDR-FLIP
+    bool against_reference = false;      // ghosting against the frames' references, not their own color
+    std::size_t frames = 0;              // frames measured
+    std::vector<FrameFigures> per_frame; // each measured frame's, in order: the means are their means
     // Each FlipFigure::note met, once, with the first frame it was met at and how many more: what a
     // user is warned of ("color/0042.exr and 3 more frames: the reference is black: ...").
     std::vector<std::string> notes;
@@ -72,19 +91,14 @@ using OutputObserver = std::function<Result<void>(std::size_t index, const Image
 // The same for a resolve of several shaders, with the shader's index.
 using ShaderOutputObserver = std::function<Result<void>(std::size_t shader, std::size_t index, const Image& output)>;
 
-// Which figures to compute: each costs one FLIP per measured frame.
-struct TaaMetrics {
-    bool shimmer = true, ghosting = true;
-};
-
 // Resolves every frame of `source` on `resolve` (a resolve of one shader: with more, every shader
-// runs and the first one's figures come back), measuring after `warmup`. Frames and references
+// runs and the first one's figures come back), measuring after `warmup` the figures the source is
+// meant for (FrameSource::roles; each costs one FLIP per measured frame). Frames and references
 // must keep to the source's range ([0, 1] for ldr, not negative for hdr): a value outside is
 // refused, naming the frame, the pixel and the value, never clamped. `on_frame` is called after
 // each frame, measured or not.
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const FlipMean& flip, TaaMetrics metrics = {},
-                                             const OutputObserver& on_output = {},
+                                             const FlipMean& flip, const OutputObserver& on_output = {},
                                              const std::function<void()>& on_frame = {});
 
 struct TaaMeasurement {
@@ -92,6 +106,8 @@ struct TaaMeasurement {
     bool against_reference = false; // ghosting against the frames' references (3-D scenes with --reference-samples)
     // The ghosting sequence's frame scene.trail_frame(schedule): where a trail is longest.
     Image trail;
+    // The shimmer sequence's measured frames, then the ghosting sequence's.
+    std::vector<FrameFigures> per_frame;
 };
 
 // Called with the sequence's name (shimmer_frames' or ghosting_frames', scenes/taa_scene.h), a measured
@@ -109,7 +125,6 @@ using SceneShaderOutputObserver = std::function<Result<void>(const std::string& 
 // each frame, all shaders done.
 Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
                                                               std::uint32_t warmup, const FlipMean& flip,
-                                                              TaaMetrics metrics = {},
                                                               const ShaderOutputObserver& on_output = {},
                                                               const std::function<void()>& on_frame = {});
 // Both of a scene's sequences through every shader of `resolve`, in one pass each.

@@ -128,6 +128,20 @@ std::string describe_exposures(const ExposureOptions& o) {
                        given(o.stop, "the one the reference's median luminance gives"));
 }
 
+// Where each variant's figures are largest, the frames to look at first.
+std::string worst_frames(const std::vector<TaaRow>& rows) {
+    std::string md;
+    for (const TaaRow& r : rows) {
+        std::vector<std::string> worst;
+        if (!r.worst_ghosting_frame.empty())
+            worst.push_back(fmt::format("most ghosting at {}", markdown_text(r.worst_ghosting_frame)));
+        if (!r.worst_shimmer_frame.empty())
+            worst.push_back(fmt::format("most shimmer at {}", markdown_text(r.worst_shimmer_frame)));
+        if (!worst.empty()) md += fmt::format("- {}: {}\n", markdown_text(r.key.name()), fmt::join(worst, "; "));
+    }
+    return md.empty() ? md : "Each variant's worst frames:\n\n" + md + "\n";
+}
+
 } // namespace
 
 bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows) {
@@ -150,14 +164,40 @@ Table taa_table(const std::vector<TaaRow>& rows) {
              [&rows](const TaaRow& r) {
                  return std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value();
              }},
-            {{"shimmer", "FLIP", Shown::fixed, 4}, [](const TaaRow& r) { return maybe(r.shimmer); }},
-            {{"ghosting", "FLIP", Shown::fixed, 4}, [](const TaaRow& r) { return maybe(r.ghosting); }},
+            {{"shimmer", "FLIP", Shown::fixed, 4, "shimmer (mean)"}, [](const TaaRow& r) { return maybe(r.shimmer); }},
+            {{"shimmer_median", "FLIP", Shown::fixed, 4, "shimmer median"},
+             [](const TaaRow& r) { return maybe(r.shimmer_median); }},
+            {{"shimmer_p95", "FLIP", Shown::fixed, 4, "shimmer p95"},
+             [](const TaaRow& r) { return maybe(r.shimmer_p95); }},
+            {{"ghosting", "FLIP", Shown::fixed, 4, "ghosting (mean)"},
+             [](const TaaRow& r) { return maybe(r.ghosting); }},
+            {{"ghosting_median", "FLIP", Shown::fixed, 4, "ghosting median"},
+             [](const TaaRow& r) { return maybe(r.ghosting_median); }},
+            {{"ghosting_p95", "FLIP", Shown::fixed, 4, "ghosting p95"},
+             [](const TaaRow& r) { return maybe(r.ghosting_p95); }},
+            {{"worst_ghosting_frame", "", Shown::text, 0, "most ghosting at"},
+             [](const TaaRow& r) { return r.worst_ghosting_frame.empty() ? Value() : Value(r.worst_ghosting_frame); }},
+            {{"worst_shimmer_frame", "", Shown::text, 0, "most shimmer at"},
+             [](const TaaRow& r) { return r.worst_shimmer_frame.empty() ? Value() : Value(r.worst_shimmer_frame); }},
             {{"ghosting_against", "", Shown::text, 0, "ghosting against"},
-             [](const TaaRow& r) { return Value(r.ghosting_against); }},
+             [](const TaaRow& r) { return std::isnan(r.ghosting) ? Value() : Value(r.ghosting_against); }},
             {{"flip", "", Shown::text, 0, "measured in"},
              [](const TaaRow& r) { return Value(std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP")); }},
         };
     return declared_table<TaaRow>(columns, rows);
+}
+
+Table taa_frames_table(const std::vector<TaaFrameRow>& rows) {
+    const DeclaredColumns<TaaFrameRow> columns =
+        variant_key_columns<TaaFrameRow>([](const TaaFrameRow& r) -> const VariantKey& { return r.key; }) +
+        DeclaredColumns<TaaFrameRow>{
+            {{"scene", "", Shown::text}, [](const TaaFrameRow& r) { return Value(r.scene); }},
+            {{"sequence", "", Shown::text}, [](const TaaFrameRow& r) { return Value(r.sequence); }},
+            {{"frame", "", Shown::integer}, [](const TaaFrameRow& r) { return Value(std::int64_t(r.frame)); }},
+            {{"ghosting", "FLIP", Shown::fixed, 4}, [](const TaaFrameRow& r) { return maybe(r.ghosting); }},
+            {{"shimmer", "FLIP", Shown::fixed, 4}, [](const TaaFrameRow& r) { return maybe(r.shimmer); }},
+        };
+    return declared_table<TaaFrameRow>(columns, rows);
 }
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run, const TaaReportSettings& s) {
@@ -194,25 +234,46 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                           "them (ghosting_against = reference), else against its own color; shimmer between "
                           "successive outputs, none across a camera cut.\n\n",
                           fmt::join(s.sequences | std::views::transform(markdown_text), ", "), s.warmup);
+    md += "- **shimmer** and **ghosting** are means over the measured frames; **p95** is the 95th percentile over "
+          "the same frames (linear interpolation between order statistics, as numpy's default), which a trail a few "
+          "frames long moves where the mean hardly moves. taa_frames.csv has every frame's figures, and taa.csv "
+          "the medians too.\n\n";
+    if (std::any_of(rows.begin(), rows.end(),
+                    [](const TaaRow& r) { return std::isnan(r.shimmer) || std::isnan(r.ghosting); }))
+        md += "A figure shown as – is one the sequence is not meant for: its sequence.json says \"measure\": "
+              "[\"ghosting\"] (a moving capture without jitter, whose shimmer would be the motion's) or [\"shimmer\"] "
+              "(a still, jittered capture, which has nothing to ghost). It is not measured, and is empty in the CSV "
+              "and null in the JSON.\n\n";
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-    const std::vector<std::string> shown{"variant",          "ms",  "ms_q1", "ms_q3", "ms_noise", "shimmer", "ghosting",
-                                         "ghosting_against", "flip"};
+    const std::vector<std::string> shown{"variant", "ms",          "ms_q1",    "ms_q3",        "ms_noise",
+                                         "shimmer", "shimmer_p95", "ghosting", "ghosting_p95", "ghosting_against",
+                                         "flip"};
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<TaaRow> in_scene;
         std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),
                      [&](const TaaRow& r) { return r.scene == scenes[i]; });
-        std::stable_sort(in_scene.begin(), in_scene.end(),
-                         [](const TaaRow& a, const TaaRow& b) { return a.ghosting < b.ghosting; });
+        // Least ghosting first, or, for a sequence meant for shimmer alone, least shimmer.
+        const bool by_shimmer =
+            std::all_of(in_scene.begin(), in_scene.end(), [](const TaaRow& r) { return std::isnan(r.ghosting); });
+        std::stable_sort(in_scene.begin(), in_scene.end(), [by_shimmer](const TaaRow& a, const TaaRow& b) {
+            return by_shimmer ? a.shimmer < b.shimmer : a.ghosting < b.ghosting;
+        });
         md += fmt::format("## {}\n\n", markdown_text(scenes[i]));
         for (const auto& [name, content] : s.scene_contents)
             if (name == scenes[i]) md += fmt::format("The scene: {}.\n\n", markdown_text(content));
-        md += fmt::format("Least ghosting first.\n\n{}\n", taa_table(in_scene).markdown(shown));
+        md += fmt::format("Least {} first.\n\n{}\n", by_shimmer ? "shimmer" : "ghosting",
+                          taa_table(in_scene).markdown(shown));
+        md += worst_frames(in_scene);
         if (i < s.charts.size())
             md += fmt::format("What each variant costs against the ghosting and shimmer it leaves (lower left is "
                               "better): ![cost against ghosting and shimmer, {0}]({1})\n\n",
                               markdown_text(scenes[i]), markdown_destination(s.charts[i]));
+        if (i < s.over_time.size())
+            md += fmt::format("Each variant's figures over the measured frames: ![ghosting and shimmer over time, "
+                              "{0}]({1})\n\n",
+                              markdown_text(scenes[i]), markdown_destination(s.over_time[i]));
         md += paper_comparison(scenes[i], rows);
         if (i < s.pictures.size())
             md += fmt::format("The ghosting sequence's frame where the objects move fastest, every variant over its "

@@ -1,4 +1,5 @@
-// What `kdop taa` writes: taa.csv (and .json), one row per variant and scene, and report.md, which
+// What `kdop taa` writes: taa.csv (and .json), one row per variant and scene; taa_frames.csv (and
+// .json), one row per measured frame and variant; and report.md, which
 // shows each scene's rows and, for the paper's two scenes, kdop's figures beside Tables 1 and 2 of
 // Ikkala et al. 2024 with each method's rank, so the orderings can be compared at a glance.
 #pragma once
@@ -22,7 +23,12 @@ struct TaaRow {
     std::string scene;
     // The lavapipe time of the variant's rectification pass at the frame size: median and quartiles.
     double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
+    // The means over the measured frames; NaN where the scene or sequence is not meant for one
+    // (sequence.json's "measure"). Beside each, its median and 95th percentile over the frames
+    // (FigureSpread), and the frame where it is largest ("<sequence> frame <index>").
     double shimmer = NAN, ghosting = NAN;
+    double shimmer_median = NAN, shimmer_p95 = NAN, ghosting_median = NAN, ghosting_p95 = NAN;
+    std::string worst_shimmer_frame, worst_ghosting_frame;
     // What the ghosting was measured against: "aliased" (each frame's own color, the paper's
     // ground truth with jitter off) or "reference" (the sequence's reference frames).
     std::string ghosting_against = "aliased";
@@ -36,11 +42,23 @@ bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows)
 
 Table taa_table(const std::vector<TaaRow>& rows);
 
+// One measured frame of one variant: the figures the means of taa.csv are the means of.
+struct TaaFrameRow {
+    VariantKey key;
+    std::string scene;    // the row of taa.csv it belongs to
+    std::string sequence; // the frames it was measured on: the sequence, or a scene's -shimmer or -ghosting one
+    std::size_t frame = 0;
+    double ghosting = NAN, shimmer = NAN; // NaN: not measured on this frame
+};
+
+Table taa_frames_table(const std::vector<TaaFrameRow>& rows);
+
 struct TaaReportSettings {
     std::uint32_t width = 0, height = 0, warmup = 0, frames = 0;
     double pixels_per_degree = 0;
-    std::vector<std::string> pictures; // per scene, relative to the report
-    std::vector<std::string> charts;   // per scene, cost against ghosting and shimmer; empty: none drawn
+    std::vector<std::string> pictures;  // per scene, relative to the report
+    std::vector<std::string> charts;    // per scene, cost against ghosting and shimmer; empty: none drawn
+    std::vector<std::string> over_time; // per scene, each variant's figures over the frames; empty: none drawn
     ResolveOptions resolve;
     // kdop's own scenes measured: name and what the scene is made of (TaaScene::content).
     std::vector<std::pair<std::string, std::string>> scene_contents;

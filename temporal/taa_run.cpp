@@ -13,10 +13,38 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <set>
 
 namespace kdop {
+namespace {
+
+// "<sequence> frame <index>" where `figure` is largest over `frames`; empty where none has it.
+std::string worst_frame(const std::vector<FrameFigures>& frames, double FrameFigures::*figure) {
+    const FrameFigures* worst = nullptr;
+    for (const FrameFigures& f : frames)
+        if (!std::isnan(f.*figure) && (!worst || f.*figure > worst->*figure)) worst = &f;
+    return worst ? fmt::format("{} frame {}", worst->sequence, worst->index) : std::string();
+}
+
+// taa.csv's row of variant `key` on `m.source`, timed by `ms`.
+TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<double>& ms) {
+    const FigureSpread ghosting = ghosting_spread(m.per_frame), shimmer = shimmer_spread(m.per_frame);
+    TaaRow row;
+    row.key = key, row.scene = m.source;
+    row.ms = median(ms), row.ms_q1 = quantile(ms, 0.25), row.ms_q3 = quantile(ms, 0.75);
+    row.shimmer = m.shimmer, row.ghosting = m.ghosting;
+    row.shimmer_median = shimmer.median, row.shimmer_p95 = shimmer.p95;
+    row.ghosting_median = ghosting.median, row.ghosting_p95 = ghosting.p95;
+    row.worst_shimmer_frame = worst_frame(m.per_frame, &FrameFigures::shimmer);
+    row.worst_ghosting_frame = worst_frame(m.per_frame, &FrameFigures::ghosting);
+    row.ghosting_against = m.against_reference ? "reference" : "aliased";
+    row.range = m.range;
+    return row;
+}
+
+} // namespace
 
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
                             std::span<const Variant* const> rectifiers, const TaaSources& sources,
@@ -41,6 +69,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         };
 
     std::vector<TaaRow> rows;
+    std::vector<TaaFrameRow> frame_rows;
     std::vector<std::string> pictures;
     {
         // Two lines, each with its own estimate: a timing round takes a fraction of a variant's TAA.
@@ -63,9 +92,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
         auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
             for (const EvaluationRow& m : measured) {
-                const std::vector<double>& ms = timing->ms[m.variant];
-                rows.push_back({keys[m.variant], m.source, median(ms), quantile(ms, 0.25), quantile(ms, 0.75),
-                                m.shimmer, m.ghosting, m.against_reference ? "reference" : "aliased", m.range});
+                rows.push_back(taa_row(keys[m.variant], m, timing->ms[m.variant]));
+                for (const FrameFigures& f : m.per_frame)
+                    frame_rows.push_back({keys[m.variant], m.source, f.sequence, f.index, f.ghosting, f.shimmer});
                 for (const std::string& note : m.notes)
                     if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
             }
@@ -98,16 +127,19 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     RunMetadata run_info = describe_run(context);
     run_info.seed = settings.seed;
     // A chart that fails costs the charts, not the run: the data, report and pictures are still written.
-    std::vector<std::string> charts;
+    std::vector<std::string> charts, over_time_charts;
     if (charts_available(settings.charts)) {
         ScratchDirectory scratch("kdop-taa");
         auto drawn = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
                                           : taa_charts(rows, scratch.path, outputs.dir());
-        if (drawn) {
+        auto over_time = drawn ? taa_over_time_charts(frame_rows, scratch.path, outputs.dir()) : drawn;
+        if (drawn && over_time) {
             outputs.add(std::move(*drawn));
+            outputs.add(std::move(*over_time));
             charts = taa_chart_names(rows);
+            over_time_charts = taa_over_time_chart_names(frame_rows);
         } else {
-            warn_no_charts(drawn.error().message);
+            warn_no_charts((drawn ? over_time : drawn).error().message);
         }
     }
     std::vector<std::pair<std::string, std::string>> scene_contents;
@@ -116,10 +148,11 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     for (const SequenceFrames& s : sequences) sequence_names.push_back(s.name());
     const EvaluationOptions& e = settings.evaluation;
     outputs.add_table("taa", taa_table(rows), run_info);
-    outputs.add("report.md",
-                taa_report_markdown(rows, run_info,
-                                    {width, height, schedule.warmup, schedule.frames, e.ppd, pictures, charts,
-                                     e.resolve, scene_contents, sequence_names, !e.cpu_flip, e.exposure}));
+    outputs.add_table("taa_frames", taa_frames_table(frame_rows), run_info);
+    outputs.add("report.md", taa_report_markdown(rows, run_info,
+                                                 {width, height, schedule.warmup, schedule.frames, e.ppd, pictures,
+                                                  charts, over_time_charts, e.resolve, scene_contents, sequence_names,
+                                                  !e.cpu_flip, e.exposure}));
     if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
     return run_info;
 }

@@ -5,6 +5,7 @@
 // `kdop flip` run as a user runs it.
 #include "flip/color_spaces.h"
 #include "flip/flip.h"
+#include "flip/flip_statistics.h"
 #include "flip/magma.h"
 #include "images/image_io.h"
 #include "images/random.h"
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <numbers>
+#include <numeric>
 #include <stdexcept>
 #include <thread>
 
@@ -574,6 +576,104 @@ TEST(CliFlip, DecodesSrgbInputsAsTheReferenceDoes) {
     EXPECT_EQ(printed_mean(r.out), decoded);
     // Close to the EXR pair's, which holds the same linear values unquantized.
     EXPECT_NEAR(decoded, *flip.mean(files.reference_image, files.test_image), 0.01);
+}
+
+// flip_statistics on a map whose distribution is known: the plain percentiles as numpy.quantile
+// computes them (linear), the weighted ones as NVlabs/flip's tool defines them, each written out here
+// another way: the weights summed into a running array, the percentile's bucket found by search.
+TEST(FlipStatistics, PercentilesOfAKnownMap) {
+    std::vector<float> map;
+    for (int i = 0; i < 1000; ++i) map.push_back(float(i % 97) * float(i % 13) / (96.0f * 12.0f)); // in [0, 1]
+    map.push_back(1.0f);
+    const FlipStatistics f = flip_statistics(map);
+
+    std::vector<double> sorted(map.begin(), map.end());
+    std::sort(sorted.begin(), sorted.end());
+    auto numpy_quantile = [&](double q) {
+        const double h = (double(sorted.size()) - 1) * q;
+        const double lower = sorted[std::size_t(std::floor(h))], upper = sorted[std::size_t(std::ceil(h))];
+        return lower + (h - std::floor(h)) * (upper - lower);
+    };
+    EXPECT_EQ(f.mean, mean_error(map));
+    EXPECT_DOUBLE_EQ(f.median, numpy_quantile(0.5));
+    EXPECT_DOUBLE_EQ(f.q1, numpy_quantile(0.25));
+    EXPECT_DOUBLE_EQ(f.q3, numpy_quantile(0.75));
+    EXPECT_EQ(f.min, 0.0);
+    EXPECT_EQ(f.max, 1.0);
+
+    // 100 buckets of width 0.01, 1.0 in the last; each weighs count x center.
+    std::vector<double> running(101, 0.0); // running[b]: the weight of the buckets below b
+    const std::vector<std::size_t> histogram = flip_histogram(map);
+    ASSERT_EQ(histogram.size(), 100u);
+    EXPECT_EQ(std::accumulate(histogram.begin(), histogram.end(), std::size_t(0)), map.size());
+    EXPECT_EQ(histogram[99], std::size_t(std::count_if(map.begin(), map.end(), [](float v) { return v >= 0.99f; })));
+    for (std::size_t b = 0; b < 100; ++b) running[b + 1] = running[b] + double(histogram[b]) * (b + 0.5) / 100.0;
+    auto weighted = [&](double p) {
+        const double wanted = p * running[100];
+        // The first bucket whose running weight, itself included, exceeds the wanted share.
+        const std::size_t b =
+            std::size_t(std::upper_bound(running.begin() + 1, running.end(), wanted) - (running.begin() + 1));
+        return (double(b) + (wanted - running[b]) / (running[b + 1] - running[b])) / 100.0;
+    };
+    EXPECT_NEAR(f.weighted_median, weighted(0.5), 1e-12);
+    EXPECT_NEAR(f.weighted_q1, weighted(0.25), 1e-12);
+    EXPECT_NEAR(f.weighted_q3, weighted(0.75), 1e-12);
+    // Weighting by the error moves the percentiles up: a pixel's vote grows with its error.
+    EXPECT_GT(f.weighted_median, f.median);
+
+    // A flat map: every pixel in the first bucket, the weighted median half way through it.
+    const std::vector<float> zeros(64, 0.0f);
+    EXPECT_DOUBLE_EQ(flip_statistics(zeros).weighted_median, 0.005);
+    EXPECT_EQ(flip_statistics(zeros).median, 0.0);
+}
+
+// Several test images against one reference, on one device: each block what a call of its own
+// prints, a CSV with the same figures, and a histogram picture.
+TEST(CliFlip, SeveralTestsInOneCallGiveWhatSeparateCallsGive) {
+    FlipFiles files;
+    const std::string second = (files.dir / "second.exr").string();
+    Image other = files.test_image;
+    for (glm::vec4& p : other.pixels) p = glm::vec4(glm::vec3(p) * 0.8f, 1.0f);
+    ASSERT_TRUE(write_image(second, other));
+    const std::string csv = (files.dir / "figures.csv").string(), chart = (files.dir / "histogram.png").string();
+    auto together = test::run(kdop_flip("--reference " + files.reference_exr + " --test " + files.test_exr + " " +
+                                        second + " --csv " + csv + " --histogram " + chart));
+    ASSERT_EQ(together.exit_code, 0) << together.err;
+    const auto rows = test::csv_rows(test::read_file(csv));
+    ASSERT_EQ(rows.size(), 2u);
+    for (std::size_t t = 0; t < 2; ++t) {
+        const std::string test = t == 0 ? files.test_exr : second;
+        auto alone = test::run(kdop_flip("--reference " + files.reference_exr + " --test " + test));
+        ASSERT_EQ(alone.exit_code, 0) << alone.err;
+        // The block after "<test>: " is the single call's output.
+        const std::size_t at = together.out.find(test + ": LDR-FLIP mean ");
+        ASSERT_NE(at, std::string::npos) << together.out;
+        const std::size_t end = together.out.find("\n", together.out.find("max ", at));
+        EXPECT_EQ(together.out.substr(at + test.size() + 2, end + 1 - at - test.size() - 2), alone.out);
+        auto row = rows[t];
+        EXPECT_EQ(row["test"], test);
+        EXPECT_DOUBLE_EQ(std::stod(row["mean"]), printed_mean(alone.out));
+        const std::string weighted = "weighted median ";
+        EXPECT_NEAR(std::stod(row["weighted_median"]),
+                    std::stod(alone.out.substr(alone.out.find(weighted) + weighted.size())), 5e-7);
+        for (const char* column : {"weighted_q1", "weighted_q3", "median", "q1", "q3", "min", "max"})
+            EXPECT_FALSE(row[column].empty()) << column;
+        EXPECT_LE(std::stod(row["min"]), std::stod(row["q1"]));
+        EXPECT_LE(std::stod(row["q3"]), std::stod(row["max"]));
+    }
+    auto picture = read_image(chart);
+    ASSERT_TRUE(picture) << picture.error().message;
+    EXPECT_EQ(picture->width, 1000u);
+
+    // --out and --exposure-map are one test's.
+    const std::string map = (files.dir / "map.exr").string();
+    auto refused = test::run(
+        kdop_flip("--reference " + files.reference_exr + " --test " + files.test_exr + " " + second + " --out " + map));
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_NE(refused.err.find("--out and --exposure-map write one test's maps"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(map));
+    auto same = test::run(kdop_flip(files.inputs() + " --csv " + csv + " --histogram " + csv));
+    EXPECT_EQ(same.exit_code, 2) << same.err;
 }
 
 TEST(CliFlip, RefusesBadInputAndWritesNothing) {

@@ -20,6 +20,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
@@ -319,7 +320,7 @@ TEST_F(ResolveGpu, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
         ASSERT_TRUE(all) << all.error().message;
         std::vector<std::size_t> outputs(variants.size());
         auto together = measure_sequence_all(
-            **all, source, 3, cpu_flip_mean(flip), {},
+            **all, source, 3, cpu_flip_mean(flip),
             [&](std::size_t s, std::size_t, const Image&) -> Result<void> { return ++outputs[s], Result<void>{}; });
         ASSERT_TRUE(together) << together.error().message;
         for (std::size_t s = 0; s < variants.size(); ++s) {
@@ -469,15 +470,8 @@ struct SequenceRun {
 
 // "shimmer,ghosting" of `variant`'s row on `scene` in a taa.csv.
 std::string figures(const std::string& csv, const std::string& variant, const std::string& scene) {
-    for (std::size_t at = 0; (at = csv.find('\n' + variant + ',', at)) != std::string::npos; ++at) {
-        const std::string line = csv.substr(at + 1, csv.find('\n', at + 1) - at - 1);
-        std::vector<std::string> cells;
-        for (std::size_t b = 0, e; b <= line.size(); b = e + 1) {
-            e = std::min(line.find(',', b), line.size());
-            cells.push_back(line.substr(b, e - b));
-        }
-        if (cells.size() == 13 && cells[4] == scene) return cells[9] + "," + cells[10];
-    }
+    for (auto& row : test::csv_rows(csv))
+        if (row["variant"] == variant && row["scene"] == scene) return row["shimmer"] + "," + row["ghosting"];
     return "no row for " + variant + " on " + scene;
 }
 
@@ -539,6 +533,125 @@ TEST(CliSequence, ReplayingA3dSceneGivesTheInMemoryFigures) {
     EXPECT_EQ(csv.find(",aliased,"), std::string::npos) << "against the references:\n" << csv;
 }
 
+// kdop scene writes what each of its sequences is for; kdop taa measures only that, and leaves the
+// other figure out everywhere it writes one.
+TEST(CliSequence, ASequenceMeantForOneFigureHasNoOtherAnywhere) {
+    SequenceRun t;
+    const fs::path scenes = t.scenes();
+    auto moving = read_sequence(scenes / "grass-ghosting");
+    ASSERT_TRUE(moving) << moving.error().message;
+    EXPECT_EQ(moving->measure, (SequenceRoles{.ghosting = true, .shimmer = false}));
+    auto still = read_sequence(scenes / "grass-shimmer");
+    ASSERT_TRUE(still) << still.error().message;
+    EXPECT_EQ(still->measure, (SequenceRoles{.ghosting = false, .shimmer = true}));
+
+    const fs::path out = t.dir / "taa";
+    auto r =
+        t.kdop("taa --sequence " + (scenes / "grass-ghosting").string() + " " + (scenes / "grass-shimmer").string() +
+               " --sets aabb dop22 --modes clip --warmup 3 "
+               "--timing-rounds 2 --out " +
+               out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = test::csv_rows(test::read_file(out / "taa.csv"));
+    ASSERT_EQ(rows.size(), 4u);
+    for (auto row : rows) {
+        const bool ghosting = row["scene"] == "grass-ghosting";
+        for (const char* figure : {"shimmer", "shimmer_median", "shimmer_p95", "worst_shimmer_frame"})
+            EXPECT_EQ(row[figure].empty(), ghosting) << row["scene"] << " " << figure;
+        for (const char* figure :
+             {"ghosting", "ghosting_median", "ghosting_p95", "worst_ghosting_frame", "ghosting_against"})
+            EXPECT_EQ(row[figure].empty(), !ghosting) << row["scene"] << " " << figure;
+    }
+    for (auto row : test::csv_rows(test::read_file(out / "taa_frames.csv"))) {
+        EXPECT_EQ(row["ghosting"].empty(), row["sequence"] == "grass-shimmer") << row["sequence"] << row["frame"];
+        if (row["sequence"] == "grass-ghosting") {
+            EXPECT_TRUE(row["shimmer"].empty()) << row["frame"];
+        }
+    }
+    const auto json = nlohmann::json::parse(test::read_file(out / "taa.json"));
+    for (const auto& row : json["rows"]) {
+        const bool ghosting = row["scene"] == "grass-ghosting";
+        EXPECT_EQ(row["shimmer"].is_null(), ghosting) << row;
+        EXPECT_EQ(row["ghosting"].is_null(), !ghosting) << row;
+    }
+    const std::string report = test::read_file(out / "report.md");
+    EXPECT_NE(report.find("A figure shown as – is one the sequence is not meant for"), std::string::npos) << report;
+    EXPECT_NE(report.find("Least shimmer first."), std::string::npos) << report;
+    for (const char* chart :
+         {"trade-grass-ghosting.png", "over-time-grass-ghosting.png", "over-time-grass-shimmer.png"})
+        EXPECT_TRUE(fs::exists(out / chart)) << chart;
+    EXPECT_NE(report.find("(over-time-grass-shimmer.png)"), std::string::npos) << report;
+
+    // A sequence.json that says something else about its figures is refused, naming the key.
+    const std::string written = test::read_file(scenes / "grass-shimmer" / "sequence.json");
+    for (const char* wrong : {R"("ghosting")", "[]", R"(["ghosting", "ghosting"])", R"(["blur"])", "[1]"}) {
+        std::string text = written;
+        const std::size_t at = text.find(R"("measure")");
+        ASSERT_NE(at, std::string::npos);
+        const std::size_t end = text.find(']', at);
+        text.replace(at, end + 1 - at, std::string(R"("measure": )") + wrong);
+        test::write_file(scenes / "grass-shimmer" / "sequence.json", text);
+        auto refused = read_sequence(scenes / "grass-shimmer");
+        ASSERT_FALSE(refused) << wrong;
+        EXPECT_NE(refused.error().message.find("sequence.json: measure:"), std::string::npos)
+            << refused.error().message;
+    }
+}
+
+// taa_frames.csv holds every measured frame's figures: their means are taa.csv's, to the last
+// bit, and the medians, 95th percentiles and worst frames are theirs.
+TEST(CliSequence, PerFrameFiguresGiveTheTablesMeansAndPercentiles) {
+    SequenceRun t;
+    const fs::path scenes = t.scenes();
+    const fs::path out = t.dir / "taa";
+    auto r = t.kdop("taa --scenes grass --size 48x32 --frames 6 --warmup 3 --sequence " +
+                    (scenes / "grass-ghosting").string() +
+                    " --sets aabb dop22 --modes clip varclip --timing-rounds 2 --no-charts --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto frames = test::csv_rows(test::read_file(out / "taa_frames.csv"));
+    const auto rows = test::csv_rows(test::read_file(out / "taa.csv"));
+    ASSERT_EQ(rows.size(), 8u); // 4 variants x the scene and the sequence
+    // numpy.quantile's default (linear), written out here apart from harness/statistics.h.
+    auto numpy_quantile = [](std::vector<double> v, double q) {
+        std::sort(v.begin(), v.end());
+        const double h = (double(v.size()) - 1) * q;
+        const double lower = v[std::size_t(std::floor(h))], upper = v[std::size_t(std::ceil(h))];
+        return lower + (h - std::floor(h)) * (upper - lower);
+    };
+    for (auto row : rows) {
+        for (const std::string figure : {"ghosting", "shimmer"}) {
+            std::vector<double> values;
+            std::string worst;
+            double largest = -1;
+            for (auto f : frames)
+                if (f["variant"] == row["variant"] && f["scene"] == row["scene"] && !f[figure].empty()) {
+                    values.push_back(std::stod(f[figure]));
+                    if (values.back() > largest)
+                        largest = values.back(), worst = f["sequence"] + " frame " + f["frame"];
+                }
+            SCOPED_TRACE(row["variant"] + " on " + row["scene"] + ", " + figure);
+            if (row[figure].empty()) {
+                EXPECT_TRUE(values.empty());
+                continue;
+            }
+            ASSERT_FALSE(values.empty());
+            double sum = 0;
+            for (double v : values) sum += v;
+            EXPECT_EQ(sum / double(values.size()), std::stod(row[figure])) << "the mean, exactly";
+            EXPECT_DOUBLE_EQ(numpy_quantile(values, 0.5), std::stod(row[figure + "_median"]));
+            EXPECT_DOUBLE_EQ(numpy_quantile(values, 0.95), std::stod(row[figure + "_p95"]));
+            EXPECT_EQ(row["worst_" + figure + "_frame"], worst);
+        }
+    }
+    // The scene's row comes from its two sequences, 6 measured frames each: shimmer from the still
+    // one, ghosting from the moving one.
+    std::size_t scene_frames = 0;
+    for (auto f : frames) scene_frames += f["variant"] == "aabb-clip-n9" && f["scene"] == "grass";
+    EXPECT_EQ(scene_frames, 12u);
+    const std::string report = test::read_file(out / "report.md");
+    EXPECT_NE(report.find("Each variant's worst frames:"), std::string::npos) << report;
+}
+
 TEST(CliSequence, WritesEveryMeasuredFrameAndMeasuresAgainstReferences) {
     SequenceRun t;
     const fs::path scenes = t.scenes();
@@ -577,6 +690,15 @@ void replace_in_json(const fs::path& dir, const std::string& from, const std::st
     test::write_file(dir / "sequence.json", json);
 }
 
+// `dir`'s sequence.json without its "measure": a capture meant for both figures, as a renderer's is.
+void measure_both(const fs::path& dir) {
+    std::string json = test::read_file(dir / "sequence.json");
+    const std::size_t at = json.find("\"measure\"");
+    ASSERT_NE(at, std::string::npos);
+    json.erase(at, json.find("],", at) + 2 - at);
+    test::write_file(dir / "sequence.json", json);
+}
+
 // A number of a row of taa.csv, as written (every digit).
 double figure(const std::string& csv, const std::string& variant, const std::string& scene, bool ghosting) {
     const std::string both = figures(csv, variant, scene);
@@ -600,6 +722,7 @@ TEST(CliSequence, AnHdrSequenceIsMeasuredInHdrFlip) {
         ASSERT_TRUE(write_image(file, *color));
     }
     replace_in_json(hdr, R"("range": "ldr")", R"("range": "hdr")");
+    measure_both(hdr);
     const std::string common = " --sets aabb dop32 --modes clip --warmup 3 --timing-rounds 2 --no-charts";
     const fs::path device = t.dir / "device", cpu = t.dir / "cpu";
     auto r = t.kdop("taa --sequence " + hdr.string() + common + " --write-frames --out " + device.string());

@@ -363,9 +363,9 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     auto r = t.kdop("--sets aabb dop22 --modes clip --scenes grass asphalt --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = test::read_file(out / "taa.csv");
-    EXPECT_EQ(
-        csv.substr(0, csv.find('\n')),
-        "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,ghosting,ghosting_against,flip");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,shimmer_median,shimmer_p95,"
+              "ghosting,ghosting_median,ghosting_p95,worst_ghosting_frame,worst_shimmer_frame,ghosting_against,flip");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << "2 variants x 2 scenes:\n" << csv;
     EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,"), std::string::npos) << csv;
     for (const char* scene : {"grass", "asphalt"}) {

@@ -21,6 +21,28 @@ std::string read_file(const fs::path& path) {
     return text.str();
 }
 
+std::vector<std::map<std::string, std::string>> csv_rows(const std::string& csv) {
+    auto cells = [](const std::string& line) {
+        std::vector<std::string> out;
+        for (std::size_t b = 0, e; b <= line.size(); b = e + 1) {
+            e = std::min(line.find(',', b), line.size());
+            out.push_back(line.substr(b, e - b));
+        }
+        return out;
+    };
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = cells(line);
+    std::vector<std::map<std::string, std::string>> rows;
+    while (std::getline(in, line)) {
+        const std::vector<std::string> fields = cells(line);
+        std::map<std::string, std::string>& row = rows.emplace_back();
+        for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) row[header[i]] = fields[i];
+    }
+    return rows;
+}
+
 void write_file(const fs::path& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
     out << text;

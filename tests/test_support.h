@@ -3,7 +3,9 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
+#include <vector>
 
 namespace kdop::test {
 
@@ -37,6 +39,10 @@ struct CommandResult {
 
 // Runs a shell command line, capturing stdout and stderr.
 CommandResult run(const std::string& command_line);
+
+// The rows of a CSV kdop wrote (harness/table.h: a header line, then one line per row; no field of
+// the tables tests read is quoted), each as its header's names to its fields.
+std::vector<std::map<std::string, std::string>> csv_rows(const std::string& csv);
 
 // Absolute paths of the built binaries.
 std::string kdop_binary();
