@@ -5,22 +5,23 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace kdop {
 
 // ghosting-<scene>.png
 std::string ghosting_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
 
-Result<void> add_ghosting_picture(OutputSet& outputs, const TaaScene& scene, const std::string& truth_name,
+Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& trails,
-                                  const std::vector<double>& ghosting, const LdrFlip& flip,
-                                  const TaaSchedule& schedule) {
+                                  const std::vector<double>& ghosting, const LdrFlip& flip) {
     const std::uint32_t width = truth->width, height = truth->height;
     std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{truth_name, truth}};
     std::vector<Image> maps;
     maps.reserve(trails.size()); // the picture points into it
-    std::vector<LabeledFrame> labeled{
-        {fmt::format("{}, frame {}", truth_name, scene.trail_frame(schedule)), truth.get()}};
+    std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), truth.get()}};
     for (std::size_t v = 0; v < keys.size(); ++v) {
         auto error = flip.error_map(*truth, *trails[v]);
         if (!error) return std::unexpected(error.error());
@@ -36,11 +37,41 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const TaaScene& scene, con
     const ColorScale scale{&bar, caption};
     for (const auto& [stem, image] : frames)
         for (const char* extension : {".exr", ".png"})
-            outputs.add_image(fmt::format("frames/{}/{}{}", scene.name(), stem, extension), image);
-    auto picture = trail_picture(labeled, scene.trail_crop(schedule), 4, &scale);
+            outputs.add_image(fmt::format("frames/{}/{}{}", shown.source, stem, extension), image);
+    auto picture = trail_picture(labeled, shown.crop, 4, &scale);
     if (!picture) return std::unexpected(picture.error());
-    outputs.add_image(ghosting_picture_name(scene.name()), std::make_shared<const Image>(std::move(*picture)));
+    outputs.add_image(ghosting_picture_name(shown.source), std::make_shared<const Image>(std::move(*picture)));
     return {};
+}
+
+void PictureFrameChooser::offer(std::size_t index, std::span<const FrameFigures> figures,
+                                std::span<const Image* const> outputs) {
+    double low = INFINITY, high = -INFINITY;
+    for (const FrameFigures& f : figures) low = std::min(low, f.ghosting), high = std::max(high, f.ghosting);
+    const double spread = figures.size() == 1 ? high : high - low;
+    if (!(spread > spread_)) return; // NaN (no ghosting measured) never wins; the earliest of equals stays
+    spread_ = spread;
+    index_ = index;
+    outputs_.clear();
+    for (const Image* output : outputs) outputs_.push_back(std::make_shared<const Image>(*output));
+}
+
+TrailCrop disagreement_crop(const std::vector<std::vector<float>>& maps, std::uint32_t width, std::uint32_t height) {
+    std::size_t most = 0;
+    float largest = -1;
+    for (std::size_t p = 0; p < std::size_t(width) * height; ++p) {
+        float low = INFINITY, high = -INFINITY;
+        for (const std::vector<float>& map : maps) low = std::min(low, map[p]), high = std::max(high, map[p]);
+        const float difference = maps.size() == 1 ? high : high - low;
+        if (difference > largest) largest = difference, most = p;
+    }
+    const std::uint32_t w = std::min(width, 320u), h = std::min(height, 180u);
+    const std::uint32_t cx = std::uint32_t(most % width), cy = std::uint32_t(most / width);
+    const std::uint32_t x = std::min(cx > w / 2 ? cx - w / 2 : 0u, width - w);
+    const std::uint32_t y = std::min(cy > h / 2 ? cy - h / 2 : 0u, height - h);
+    // Magnified so that a small frame's crop is at least 240 pixels wide, for its labels and to be seen.
+    const std::uint32_t scale = std::clamp((240u + w - 1) / w, 1u, 4u);
+    return {x, y, w, h, scale};
 }
 
 } // namespace kdop

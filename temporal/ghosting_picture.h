@@ -1,5 +1,6 @@
-// What `kdop taa` shows of a scene's ghosting: the frames at the scene's trail frame and the labeled
-// picture of every variant's frame over its FLIP map (trail_picture.h).
+// What `kdop taa` shows of a scene's or sequence's ghosting: the frames at one frame (a scene's trail
+// frame, a sequence's frame where the variants differ most) and the labeled picture of every
+// variant's frame over its FLIP map (trail_picture.h).
 #pragma once
 
 #include "core/result.h"
@@ -8,8 +9,11 @@
 #include "harness/output_set.h"
 #include "images/image.h"
 #include "scenes/taa_scene.h"
+#include "temporal/taa_measure.h"
 
+#include <cstddef>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,15 +22,42 @@ namespace kdop {
 // ghosting-<scene>.png
 std::string ghosting_picture_name(const std::string& scene);
 
-// What a scene shows of its ghosting, added to `outputs`: the truth (the aliased frame, or the
-// reference where the scene has one) and each variant's frame at the trail frame under
-// frames/<scene>/, as data (EXR) and to look at (PNG), and the labeled picture of them all, each
-// variant's crop over its FLIP map against the truth, under it the variant's ghosting (the mean
-// over the measured frames) and this frame's mean FLIP, and the maps' color scale under the grid.
-Result<void> add_ghosting_picture(OutputSet& outputs, const TaaScene& scene, const std::string& truth_name,
+// The frame a picture shows: the scene's or sequence's name, the frame's index and the part shown.
+struct PictureFrame {
+    std::string source;
+    std::size_t index = 0;
+    TrailCrop crop;
+};
+
+// What a scene or sequence shows of its ghosting, added to `outputs`: the truth (the aliased frame,
+// or the reference where there is one) and each variant's frame at `shown` under frames/<source>/,
+// as data (EXR) and to look at (PNG), and the labeled picture of them all, each variant's crop over
+// its FLIP map against the truth, under it the variant's ghosting (the mean over the measured
+// frames) and this frame's mean FLIP, and the maps' color scale under the grid.
+Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
-                                  const std::vector<std::shared_ptr<const Image>>& trails,
-                                  const std::vector<double>& ghosting, const LdrFlip& flip,
-                                  const TaaSchedule& schedule);
+                                  const std::vector<std::shared_ptr<const Image>>& frames,
+                                  const std::vector<double>& ghosting, const LdrFlip& flip);
+
+// The frame a sequence's picture shows: where the variants' ghosting differs most (the largest
+// spread, max - min, of their FLIP on the frame; with one variant, where it is largest), the
+// earliest of equals. Fed each measured frame as it goes, it keeps copies of that frame's outputs.
+class PictureFrameChooser {
+public:
+    void offer(std::size_t index, std::span<const FrameFigures> figures, std::span<const Image* const> outputs);
+    bool chosen() const { return !outputs_.empty(); }
+    std::size_t index() const { return index_; }
+    const std::vector<std::shared_ptr<const Image>>& outputs() const { return outputs_; }
+
+private:
+    std::size_t index_ = 0;
+    double spread_ = -1;
+    std::vector<std::shared_ptr<const Image>> outputs_;
+};
+
+// A crop of at most 320x180 of width x height frames, centered where the variants' `maps` (FLIP per
+// pixel) differ most (with one variant, where its FLIP is largest), kept inside the frame, and
+// magnified up to 4 times so that it is at least 240 pixels wide.
+TrailCrop disagreement_crop(const std::vector<std::vector<float>>& maps, std::uint32_t width, std::uint32_t height);
 
 } // namespace kdop

@@ -116,7 +116,14 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& 
     auto on_frame = [&] {
         if (observer.frame) observer.frame(sequence.name());
     };
-    auto measured = measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame);
+    MeasuredFrameObserver on_measured;
+    if (observer.measured)
+        on_measured = [&](std::size_t index, std::span<const FrameFigures> figures,
+                          std::span<const Image* const> outputs) {
+            return observer.measured(sequence.name(), index, figures, outputs);
+        };
+    auto measured =
+        measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame, on_measured);
     if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them

@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,11 @@ struct EvaluationObserver {
         output;
     // After each frame of a source, every variant resolved and measured on it, naming the source.
     std::function<void(const std::string& source)> frame;
+    // Sequences: after each measured frame, every variant's figures and output on it (valid during
+    // the call), in spec order.
+    std::function<Result<void>(const std::string& sequence, std::size_t index, std::span<const FrameFigures> figures,
+                               std::span<const Image* const> outputs)>
+        measured;
 };
 
 class TaaEvaluation {

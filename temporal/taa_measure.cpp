@@ -91,9 +91,10 @@ Result<void> check_measurable(const Context& context, std::uint32_t width, std::
             return fail(ok.error().message + "; --cpu-flip measures with the CPU's FLIP, which has no such limit");
     // The resolve's pass and its four inputs, three frames' images (color, motion, depth, reference:
     // the one resolved and two read ahead), and per variant its history (the last output), its
-    // checked copy and its previous output; on lavapipe device memory is this process's memory.
+    // checked copy, its previous output and its output at a sequence's pictured frame; on lavapipe
+    // device memory is this process's memory.
     const std::uint64_t resolve =
-        rectify_pass_bytes(width, height) + (12 + 3 * std::uint64_t(variants)) * image_bytes(width, height);
+        rectify_pass_bytes(width, height) + (12 + 4 * std::uint64_t(variants)) * image_bytes(width, height);
     const std::uint64_t flip = device_flip ? DeviceFlip::bytes(width, height) : ldr_flip_bytes(width, height);
     return check_memory(fmt::format("measuring {}x{} frames", width, height), resolve + flip);
 }
@@ -174,6 +175,9 @@ public:
         return {};
     }
     void keep(Image output) { previous_ = std::move(output); }
+    // The output kept last, and the figures of the frame measured last.
+    const Image& output() const { return previous_; }
+    const FrameFigures& last_figures() const { return m_.per_frame.back(); }
 
     SequenceMeasurement finish() {
         for (const auto& [note, met] : notes_)
@@ -216,7 +220,8 @@ private:
 Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
                                                               std::uint32_t warmup, const FlipMean& flip,
                                                               const ShaderOutputObserver& on_output,
-                                                              const std::function<void()>& on_frame) {
+                                                              const std::function<void()>& on_frame,
+                                                              const MeasuredFrameObserver& on_measured) {
     const std::size_t count = source.frame_count();
     if (warmup >= count)
         return fail(
@@ -259,6 +264,14 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                 }();
                 if (!measured) return fail(fmt::format("{}: {}", resolve.name(s), measured.error().message));
             }
+        if (on_measured && i >= warmup) {
+            std::vector<FrameFigures> figures;
+            std::vector<const Image*> outputs;
+            for (const Meter& meter : meters)
+                figures.push_back(meter.last_figures()), outputs.push_back(&meter.output());
+            if (auto ok = on_measured(i, figures, outputs); !ok)
+                return fail(fmt::format("{}: {}", label, ok.error().message));
+        }
         // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
         if (i == warmup) test_hold_point("taa_pass");
         if (on_frame) on_frame();

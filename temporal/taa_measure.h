@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -119,14 +120,20 @@ using SceneOutputObserver =
 using SceneShaderOutputObserver = std::function<Result<void>(const std::string& sequence, std::size_t shader,
                                                              std::size_t index, const Image& output)>;
 
+// Called after each measured frame, every shader done: the frame's index, each shader's figures on
+// it and its output (within range), valid during the call. What keeps the frame a picture shows.
+using MeasuredFrameObserver = std::function<Result<void>(std::size_t index, std::span<const FrameFigures> figures,
+                                                         std::span<const Image* const> outputs)>;
+
 // Every shader of `resolve` over `source` in one pass: each frame drawn or read and checked once,
 // then resolved and measured by every shader against its own history. Each shader's figures are
 // those measure_sequence gives it alone (the sums in the same order). `on_frame` is called after
-// each frame, all shaders done.
+// each frame, all shaders done; `on_measured` after each measured one, before `on_frame`.
 Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
                                                               std::uint32_t warmup, const FlipMean& flip,
                                                               const ShaderOutputObserver& on_output = {},
-                                                              const std::function<void()>& on_frame = {});
+                                                              const std::function<void()>& on_frame = {},
+                                                              const MeasuredFrameObserver& on_measured = {});
 // Both of a scene's sequences through every shader of `resolve`, in one pass each.
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
                                                       const TaaSchedule& schedule, const FlipMean& flip,

@@ -3,6 +3,7 @@
 #include "core/escaped_text.h"
 #include "harness/declared_table.h"
 #include "harness/rank_correlation.h"
+#include "temporal/ghosting_picture.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -275,12 +276,16 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                               "{0}]({1})\n\n",
                               markdown_text(scenes[i]), markdown_destination(s.over_time[i]));
         md += paper_comparison(scenes[i], rows);
-        if (i < s.pictures.size())
-            md += fmt::format("The ghosting sequence's frame where the objects move fastest, every variant over its "
-                              "LDR-FLIP map against the aliased frame or the reference (the scale under the picture); "
-                              "under each, the variant's ghosting (the mean over the measured frames) and this "
-                              "frame's mean FLIP: ![{0}]({1})\n\n",
-                              markdown_text(scenes[i]), markdown_destination(s.pictures[i]));
+        const std::string picture = ghosting_picture_name(scenes[i]);
+        const bool sequence = std::find(s.sequences.begin(), s.sequences.end(), scenes[i]) != s.sequences.end();
+        if (std::find(s.pictures.begin(), s.pictures.end(), picture) != s.pictures.end())
+            md += fmt::format("{}, every variant over its LDR-FLIP map against the aliased frame or the reference (the "
+                              "scale under the picture); under each, the variant's ghosting (the mean over the "
+                              "measured frames) and this frame's mean FLIP: ![{}]({})\n\n",
+                              sequence ? "The frame where the variants' ghosting differs most (with one variant, where "
+                                         "it is largest), cropped to at most 320x180 where their FLIP maps differ most"
+                                       : "The ghosting sequence's frame where the objects move fastest",
+                              markdown_text(scenes[i]), markdown_destination(picture));
     }
     return md + metadata_markdown(run);
 }

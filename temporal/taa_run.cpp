@@ -44,6 +44,28 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
     return row;
 }
 
+// A sequence's ghosting picture at the frame `chooser` kept, cropped where the variants differ most.
+Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequence,
+                                  const PictureFrameChooser& chooser, const std::vector<VariantKey>& keys,
+                                  const std::vector<EvaluationRow>& measured, const LdrFlip& flip) {
+    auto frame = sequence.frame(chooser.index());
+    if (!frame) return std::unexpected(frame.error());
+    const bool has_reference = frame->reference.has_value();
+    auto truth = std::make_shared<const Image>(std::move(has_reference ? *frame->reference : frame->color));
+    std::vector<std::vector<float>> maps;
+    for (const auto& output : chooser.outputs()) {
+        auto map = flip.error_map(*truth, *output);
+        if (!map) return fail(fmt::format("{}: {}", sequence.frame_label(chooser.index()), map.error().message));
+        maps.push_back(std::move(*map));
+    }
+    std::vector<double> ghosting;
+    for (const EvaluationRow& m : measured) ghosting.push_back(m.ghosting);
+    const PictureFrame shown{sequence.name(), chooser.index(),
+                             disagreement_crop(maps, sequence.width(), sequence.height())};
+    return add_ghosting_picture(outputs, shown, has_reference ? "reference" : "aliased", truth, keys, chooser.outputs(),
+                                ghosting, flip);
+}
+
 } // namespace
 
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
@@ -110,16 +132,33 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             std::vector<std::shared_ptr<const Image>> trails;
             std::vector<double> ghosting;
             for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
-            if (auto ok = add_ghosting_picture(outputs, *scene, has_reference ? "reference" : "aliased", truth, keys,
-                                               trails, ghosting, picture_flip.ldr(), schedule);
+            const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
+            if (auto ok = add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys,
+                                               trails, ghosting, picture_flip.ldr());
                 !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
         }
         for (const SequenceFrames& sequence : sequences) {
+            // The frame its picture shows, kept as the pass goes (LDR sequences meant for ghosting).
+            PictureFrameChooser chooser;
+            const bool pictured = sequence.roles().ghosting && sequence.color_range() == ColorRange::ldr;
+            if (pictured)
+                observer.measured = [&](const std::string&, std::size_t index, std::span<const FrameFigures> figures,
+                                        std::span<const Image* const> frames) -> Result<void> {
+                    chooser.offer(index, figures, frames);
+                    return {};
+                };
             auto measured = evaluation->measure(sequence, observer);
+            observer.measured = nullptr;
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
+            if (pictured && chooser.chosen()) {
+                if (auto ok = add_sequence_picture(outputs, sequence, chooser, keys, *measured, picture_flip.ldr());
+                    !ok)
+                    return std::unexpected(ok.error());
+                pictures.push_back(ghosting_picture_name(sequence.name()));
+            }
         }
     }
     outputs.add(written_frames.writers(outputs.dir()));

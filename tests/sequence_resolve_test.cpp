@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <map>
 
 namespace kdop {
 namespace {
@@ -549,11 +550,38 @@ TEST(CliSequence, ASequenceMeantForOneFigureHasNoOtherAnywhere) {
     auto r =
         t.kdop("taa --sequence " + (scenes / "grass-ghosting").string() + " " + (scenes / "grass-shimmer").string() +
                " --sets aabb dop22 --modes clip --warmup 3 "
-               "--timing-rounds 2 --out " +
+               "--timing-rounds 2 --write-frames --out " +
                out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto rows = test::csv_rows(test::read_file(out / "taa.csv"));
     ASSERT_EQ(rows.size(), 4u);
+
+    // The moving sequence's picture shows the frame where the variants' ghosting differs most (the
+    // earliest of equals), its outputs those the pass wrote of that frame; the still one has none.
+    std::map<std::string, std::pair<double, double>> by_frame; // frame: lowest and highest ghosting
+    for (auto f : test::csv_rows(test::read_file(out / "taa_frames.csv")))
+        if (f["sequence"] == "grass-ghosting") {
+            auto [it, first] = by_frame.try_emplace(f["frame"], INFINITY, -INFINITY);
+            it->second = {std::min(it->second.first, std::stod(f["ghosting"])),
+                          std::max(it->second.second, std::stod(f["ghosting"]))};
+        }
+    int chosen = -1;
+    double widest = -1;
+    for (int frame = 3; frame < 8; ++frame) {
+        const auto [low, high] = by_frame.at(std::to_string(frame));
+        if (high - low > widest) widest = high - low, chosen = frame;
+    }
+    EXPECT_TRUE(fs::exists(out / "ghosting-grass-ghosting.png"));
+    EXPECT_FALSE(fs::exists(out / "ghosting-grass-shimmer.png")) << "nothing to ghost";
+    for (const char* variant : {"aabb-clip-n9", "dop22-clip-n9"}) {
+        auto shown = read_image((out / "frames" / "grass-ghosting" / (std::string(variant) + ".exr")).string());
+        auto written =
+            read_image((out / "frames" / "grass-ghosting" / variant / fmt::format("{:04}.exr", chosen)).string());
+        ASSERT_TRUE(shown && written) << variant;
+        EXPECT_TRUE(bit_identical(*shown, *written)) << variant << ", frame " << chosen;
+    }
+    EXPECT_NE(test::read_file(out / "report.md").find("The frame where the variants' ghosting differs most"),
+              std::string::npos);
     for (auto row : rows) {
         const bool ghosting = row["scene"] == "grass-ghosting";
         for (const char* figure : {"shimmer", "shimmer_median", "shimmer_p95", "worst_shimmer_frame"})
