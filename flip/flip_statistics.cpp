@@ -36,17 +36,17 @@ std::vector<std::size_t> flip_histogram(std::span<const float> map) {
 
 FlipStatistics flip_statistics(std::span<const float> map) {
     const std::vector<std::size_t> histogram = flip_histogram(map);
-    const std::vector<double> values(map.begin(), map.end());
-    const auto [min, max] = std::minmax_element(map.begin(), map.end());
+    std::vector<double> values(map.begin(), map.end());
+    std::sort(values.begin(), values.end()); // once, for the three quantiles and the extremes
     return {.mean = mean_error(map),
             .weighted_median = weighted_percentile(histogram, 0.5),
             .weighted_q1 = weighted_percentile(histogram, 0.25),
             .weighted_q3 = weighted_percentile(histogram, 0.75),
-            .median = quantile(values, 0.5),
-            .q1 = quantile(values, 0.25),
-            .q3 = quantile(values, 0.75),
-            .min = *min,
-            .max = *max};
+            .median = quantile_of_sorted(values, 0.5),
+            .q1 = quantile_of_sorted(values, 0.25),
+            .q3 = quantile_of_sorted(values, 0.75),
+            .min = values.front(),
+            .max = values.back()};
 }
 
 } // namespace kdop

@@ -8,14 +8,20 @@
 
 namespace kdop {
 
-// The q-quantile (0..1) by linear interpolation between order statistics; NaN for no samples.
-inline double quantile(std::vector<double> samples, double q) {
+// The q-quantile (0..1) of samples already in ascending order, by linear interpolation between order
+// statistics; NaN for none. For several quantiles of one large set: one sort, not one each.
+inline double quantile_of_sorted(const std::vector<double>& samples, double q) {
     if (samples.empty()) return NAN;
-    std::sort(samples.begin(), samples.end());
     const double position = q * double(samples.size() - 1);
     const std::size_t below = static_cast<std::size_t>(position);
     const std::size_t above = std::min(below + 1, samples.size() - 1);
     return samples[below] + (position - double(below)) * (samples[above] - samples[below]);
+}
+
+// The q-quantile (0..1) by linear interpolation between order statistics; NaN for no samples.
+inline double quantile(std::vector<double> samples, double q) {
+    std::sort(samples.begin(), samples.end());
+    return quantile_of_sorted(samples, q);
 }
 
 inline double median(const std::vector<double>& samples) { return quantile(samples, 0.5); }

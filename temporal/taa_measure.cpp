@@ -42,7 +42,8 @@ FigureSpread spread(const std::vector<FrameFigures>& figures, double FrameFigure
     std::vector<double> values;
     for (const FrameFigures& f : figures)
         if (!std::isnan(f.*figure)) values.push_back(f.*figure);
-    return {quantile(values, 0.5), quantile(values, 0.95)};
+    std::sort(values.begin(), values.end());
+    return {quantile_of_sorted(values, 0.5), quantile_of_sorted(values, 0.95)};
 }
 
 } // namespace
