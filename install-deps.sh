@@ -18,6 +18,7 @@ set -eu
 # nodejs and npm: the WGSL tests compile with Tint, from the npm package `webgpu` (installed below).
 # meson: a test builds a Meson project against kdop's pkg-config file (examples/meson_consumer).
 # python3-jsonschema: a test validates the reflection JSON against docs/reflection.schema.json.
+# chromium: a test opens kdop taa's report.html in it, headless and offline (tests/report_page_browser.py).
 packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers libspirv-cross-c-shared-dev
@@ -27,7 +28,7 @@ packages="
   libglpk-dev libqhull-dev
   libopenmpi-dev openmpi-bin
   libgtest-dev valgrind gnuplot-nox clang-format
-  meson python3 python3-jsonschema
+  meson python3 python3-jsonschema chromium
   colobot-common-textures fonts-dejavu-core
 "
 

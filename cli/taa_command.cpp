@@ -28,6 +28,7 @@ Action add_taa_command(CLI::App& app) {
         SelectionOptions selection;
         std::uint32_t warmup = 100, frames = 100;
         unsigned timing_rounds = 15;
+        std::size_t viewer_frames = 8, picture_frame = 0;
         std::uint64_t seed = 1;
         double ppd = 0;
         bool validation = false, no_charts = false, write_frames = false, cpu_flip = false;
@@ -39,9 +40,9 @@ Action add_taa_command(CLI::App& app) {
     CLI::App* taa = app.add_subcommand(
         "taa", "Run every variant in one TAA resolve on the device over kdop's scenes or your own frame sequences "
                "and measure the ghosting and shimmer a viewer sees, in LDR-FLIP (HDR sequences in HDR-FLIP), as Ikkala "
-               "et al. 2024 do (Tables 1 and 2); writes taa.csv (and JSON), report.md, selected frames as EXR and PNG "
-               "and one labeled ghosting "
-               "picture per built-in scene");
+               "et al. 2024 do (Tables 1 and 2); writes taa.csv (and JSON), report.md, report.html (the table, "
+               "charts and a frame viewer), selected frames as EXR and PNG and a labeled ghosting picture per scene "
+               "and sequence");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true, "n9, the paper's rows");
     o->choice.add_to(*taa);
@@ -53,6 +54,14 @@ Action add_taa_command(CLI::App& app) {
     taa->add_flag("--write-frames", o->write_frames,
                   "Also write every measured output as EXR, frames/<sequence>/<variant>/NNNN.exr (kdop's scenes: "
                   "<scene>-shimmer and <scene>-ghosting)");
+    taa->add_option("--viewer-frames", o->viewer_frames,
+                    "Frames of each sequence report.html's viewer shows, spread evenly, besides each variant's "
+                    "worst; 0: no viewer [default: 8]")
+        ->check(whole_number(0, 1000));
+    CLI::Option* picture_frame =
+        taa->add_option("--picture-frame", o->picture_frame,
+                        "The frame each sequence's ghosting picture shows [default: where the variants differ most]")
+            ->check(whole_number(0, 1000000));
     taa->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
     taa->add_option("--warmup", o->warmup, "Frames before measuring, in every sequence [default: 100]")
         ->check(whole_number(1, 100000));
@@ -76,7 +85,7 @@ Action add_taa_command(CLI::App& app) {
     const std::vector<CLI::Option*> hdr_options = add_hdr_flip_options(*taa, o->exposure);
     taa->add_flag("--no-charts", o->no_charts, "Write the tables, report and pictures without the trade charts");
 
-    return [o, taa, hdr_options] {
+    return [o, taa, hdr_options, picture_frame] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
@@ -98,7 +107,8 @@ Action add_taa_command(CLI::App& app) {
             taa_sources(**context, {o->sequences, o->warmup, o->resolve, o->input_space, !o->cpu_flip, specs->size(),
                                     o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty(),
                                     o->choice.scenes, o->choice.backgrounds,
-                                    o->choice.options(size->first, size->second, o->seed, o->input_space)});
+                                    o->choice.options(size->first, size->second, o->seed, o->input_space),
+                                    picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt});
         if (!sources) return report(sources.error());
         for (const CLI::Option* option : hdr_options)
             if (option->count() && !sources->any_hdr())
@@ -119,7 +129,9 @@ Action add_taa_command(CLI::App& app) {
                                       o->timing_rounds,
                                       o->seed,
                                       o->write_frames,
-                                      !o->no_charts};
+                                      !o->no_charts,
+                                      o->viewer_frames,
+                                      picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt};
         auto run_info = run_taa(**context, *specs, *rectifiers, *sources, settings, *outputs);
         report_validation_messages((*context)->validation_messages());
         if (!run_info) return report_error(run_info.error().message);

@@ -97,4 +97,32 @@ std::string markdown_code(std::string_view text) {
     return fence + (pad ? " " : "") + shown + (pad ? " " : "") + fence;
 }
 
+std::string html_text(std::string_view text) {
+    std::string shown;
+    for (char ch : text) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        switch (ch) {
+        case '&': shown += "&amp;"; break;
+        case '<': shown += "&lt;"; break;
+        case '>': shown += "&gt;"; break;
+        case '"': shown += "&quot;"; break;
+        case '\'': shown += "&#39;"; break;
+        default: shown += is_control(c) ? hex(c) : std::string(1, ch);
+        }
+    }
+    return shown;
+}
+
+std::string url_path(std::string_view path) {
+    std::string url;
+    for (char ch : path) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if ((c < 0x80 && std::isalnum(c)) || std::string_view("-._~/").find(ch) != std::string_view::npos)
+            url += ch;
+        else
+            url += fmt::format("%{:02X}", c);
+    }
+    return url;
+}
+
 } // namespace kdop

@@ -3,7 +3,8 @@
 // name in a C++ string literal, a folder's name in a Markdown table, a provenance line in a
 // `//` comment. Each function gives back what the reader of that language sees as the original
 // text (or, where the language cannot hold a byte, its \xNN form), never something it would run.
-// JSON is nlohmann::json's to escape; a depfile's paths, generator/project_shader.h's.
+// A name in an HTML page or its links. JSON is nlohmann::json's to escape; a depfile's paths,
+// generator/project_shader.h's.
 #pragma once
 
 #include <string>
@@ -34,5 +35,13 @@ std::string markdown_destination(std::string_view path);
 // Inline code in Markdown: `text` between backtick runs one longer than its longest, so a backtick
 // inside cannot close it; line breaks and control bytes as \xNN.
 std::string markdown_code(std::string_view text);
+
+// Text in HTML, in an element or a quoted attribute, shown as written: & < > " ' as character
+// references, control bytes as \xNN.
+std::string html_text(std::string_view text);
+
+// A relative URL of a file path: every byte but letters, digits and - . _ ~ / percent-encoded, so
+// a name with '#', '?', '%' or a space still names its file.
+std::string url_path(std::string_view path);
 
 } // namespace kdop

@@ -16,44 +16,52 @@ std::string ghosting_picture_name(const std::string& scene) { return fmt::format
 Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& trails,
-                                  const std::vector<double>& ghosting, const LdrFlip& flip) {
+                                  const std::vector<double>& ghosting, const PictureFlip& flip) {
     const std::uint32_t width = truth->width, height = truth->height;
-    std::vector<std::pair<std::string, std::shared_ptr<const Image>>> frames{{truth_name, truth}};
-    std::vector<Image> maps;
-    maps.reserve(trails.size()); // the picture points into it
-    std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), truth.get()}};
+    // As data, the frames as they are; to look at, as the picture shows them (HDR tone mapped).
+    auto add_frame = [&](const std::string& stem, const std::shared_ptr<const Image>& image) {
+        outputs.add_image(fmt::format("frames/{}/{}.exr", shown.source, stem), image);
+        outputs.add_image(fmt::format("frames/{}/{}.png", shown.source, stem),
+                          flip.range == ColorRange::ldr ? image : std::make_shared<const Image>(flip.shown(*image)));
+    };
+    std::vector<Image> maps, looks;
+    maps.reserve(trails.size()); // the picture points into both
+    looks.reserve(trails.size() + 1);
+    looks.push_back(flip.shown(*truth));
+    std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), &looks.back()}};
+    add_frame(truth_name, truth);
     for (std::size_t v = 0; v < keys.size(); ++v) {
-        auto error = flip.error_map(*truth, *trails[v]);
+        auto error = flip.map(*truth, *trails[v]);
         if (!error) return std::unexpected(error.error());
         maps.push_back(flip::magma_image(*error, width, height));
-        frames.emplace_back(keys[v].name(), trails[v]);
-        labeled.push_back({keys[v].name(), trails[v].get(), &maps.back(),
+        looks.push_back(flip.shown(*trails[v]));
+        add_frame(keys[v].name(), trails[v]);
+        labeled.push_back({keys[v].name(), &looks.back(), &maps.back(),
                            fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(*error))});
     }
     std::vector<float> ramp(256);
     for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = float(i) / float(ramp.size() - 1);
     const Image bar = flip::magma_image(ramp, std::uint32_t(ramp.size()), 1);
-    const std::string caption = "LDR-FLIP against the " + (truth_name == "aliased" ? "aliased frame" : truth_name);
+    const std::string caption =
+        fmt::format("{} against the {}{}", flip.name(), truth_name == "aliased" ? "aliased frame" : truth_name,
+                    flip.range == ColorRange::hdr ? " (frames tone mapped)" : "");
     const ColorScale scale{&bar, caption};
-    for (const auto& [stem, image] : frames)
-        for (const char* extension : {".exr", ".png"})
-            outputs.add_image(fmt::format("frames/{}/{}{}", shown.source, stem, extension), image);
     auto picture = trail_picture(labeled, shown.crop, 4, &scale);
     if (!picture) return std::unexpected(picture.error());
     outputs.add_image(ghosting_picture_name(shown.source), std::make_shared<const Image>(std::move(*picture)));
     return {};
 }
 
-void PictureFrameChooser::offer(std::size_t index, std::span<const FrameFigures> figures,
-                                std::span<const Image* const> outputs) {
+void PictureFrameChooser::offer(const MeasuredFrame& frame) {
     double low = INFINITY, high = -INFINITY;
-    for (const FrameFigures& f : figures) low = std::min(low, f.ghosting), high = std::max(high, f.ghosting);
-    const double spread = figures.size() == 1 ? high : high - low;
-    if (!(spread > spread_)) return; // NaN (no ghosting measured) never wins; the earliest of equals stays
+    for (const FrameFigures& f : frame.figures) low = std::min(low, f.ghosting), high = std::max(high, f.ghosting);
+    const double spread = frame.figures.size() == 1 ? high : high - low;
+    if (fixed_ ? frame.index != *fixed_ : !(spread > spread_))
+        return; // NaN (no ghosting measured) never wins; the earliest of equals stays
     spread_ = spread;
-    index_ = index;
+    index_ = frame.index;
     outputs_.clear();
-    for (const Image* output : outputs) outputs_.push_back(std::make_shared<const Image>(*output));
+    for (const Image* output : frame.outputs) outputs_.push_back(std::make_shared<const Image>(*output));
 }
 
 TrailCrop disagreement_crop(const std::vector<std::vector<float>>& maps, std::uint32_t width, std::uint32_t height) {

@@ -9,10 +9,12 @@
 #include "harness/output_set.h"
 #include "images/image.h"
 #include "scenes/taa_scene.h"
+#include "temporal/picture_flip.h"
 #include "temporal/taa_measure.h"
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,25 +33,29 @@ struct PictureFrame {
 
 // What a scene or sequence shows of its ghosting, added to `outputs`: the truth (the aliased frame,
 // or the reference where there is one) and each variant's frame at `shown` under frames/<source>/,
-// as data (EXR) and to look at (PNG), and the labeled picture of them all, each variant's crop over
-// its FLIP map against the truth, under it the variant's ghosting (the mean over the measured
-// frames) and this frame's mean FLIP, and the maps' color scale under the grid.
+// as data (EXR) and to look at (PNG; HDR tone mapped), and the labeled picture of them all, each
+// variant's crop over its FLIP map against the truth (LDR- or HDR-FLIP, as `flip` measures), under
+// it the variant's ghosting (the mean over the measured frames) and this frame's mean FLIP, and
+// the maps' color scale under the grid.
 Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& frames,
-                                  const std::vector<double>& ghosting, const LdrFlip& flip);
+                                  const std::vector<double>& ghosting, const PictureFlip& flip);
 
-// The frame a sequence's picture shows: where the variants' ghosting differs most (the largest
-// spread, max - min, of their FLIP on the frame; with one variant, where it is largest), the
-// earliest of equals. Fed each measured frame as it goes, it keeps copies of that frame's outputs.
+// The frame a sequence's picture shows: `fixed` where given (--picture-frame), else where the
+// variants' ghosting differs most (the largest spread, max - min, of their FLIP on the frame; with
+// one variant, where it is largest), the earliest of equals. Fed each measured frame as it goes, it
+// keeps copies of that frame's outputs.
 class PictureFrameChooser {
 public:
-    void offer(std::size_t index, std::span<const FrameFigures> figures, std::span<const Image* const> outputs);
+    explicit PictureFrameChooser(std::optional<std::size_t> fixed = std::nullopt) : fixed_(fixed) {}
+    void offer(const MeasuredFrame& frame);
     bool chosen() const { return !outputs_.empty(); }
     std::size_t index() const { return index_; }
     const std::vector<std::shared_ptr<const Image>>& outputs() const { return outputs_; }
 
 private:
+    std::optional<std::size_t> fixed_;
     std::size_t index_ = 0;
     double spread_ = -1;
     std::vector<std::shared_ptr<const Image>> outputs_;

@@ -84,7 +84,8 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
     auto on_frame = [&] {
         if (observer.frame) observer.frame(scene.name());
     };
-    auto measured = measure_scene_all(**resolve, scene, options_.schedule, *mean, observer.output, on_frame);
+    auto measured =
+        measure_scene_all(**resolve, scene, options_.schedule, *mean, observer.output, on_frame, observer.measured);
     if (!measured) return fail(fmt::format("{}: {}", scene.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
@@ -116,14 +117,8 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& 
     auto on_frame = [&] {
         if (observer.frame) observer.frame(sequence.name());
     };
-    MeasuredFrameObserver on_measured;
-    if (observer.measured)
-        on_measured = [&](std::size_t index, std::span<const FrameFigures> figures,
-                          std::span<const Image* const> outputs) {
-            return observer.measured(sequence.name(), index, figures, outputs);
-        };
     auto measured =
-        measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame, on_measured);
+        measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame, observer.measured);
     if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them

@@ -53,11 +53,9 @@ struct EvaluationObserver {
         output;
     // After each frame of a source, every variant resolved and measured on it, naming the source.
     std::function<void(const std::string& source)> frame;
-    // Sequences: after each measured frame, every variant's figures and output on it (valid during
-    // the call), in spec order.
-    std::function<Result<void>(const std::string& sequence, std::size_t index, std::span<const FrameFigures> figures,
-                               std::span<const Image* const> outputs)>
-        measured;
+    // After each measured frame, every variant's figures and output on it (a scene's sequences are
+    // <scene>-shimmer and <scene>-ghosting).
+    MeasuredFrameObserver measured;
 };
 
 class TaaEvaluation {

@@ -248,30 +248,39 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                 return std::unexpected(ok.error());
         if (auto ok = resolve.advance_all(*frame, source.starts_history(i)); !ok)
             return fail(fmt::format("{}: {}", label, ok.error().message));
-        if (i + 1 >= warmup)
+        if (i + 1 >= warmup) {
+            // Each shader's output, kept as its history's "previous" once an observer has seen both.
+            std::vector<Image> current(resolve.size());
             for (std::size_t s = 0; s < resolve.size(); ++s) {
                 auto measured = [&]() -> Result<void> {
-                    auto current = within_range(resolve.output(s), range, label);
-                    if (!current) return std::unexpected(current.error());
-                    if (i >= warmup) {
-                        const Image& truth = against_reference ? *frame->reference : frame->color;
-                        if (auto ok = meters[s].measure(i, truth, *current, source.starts_history(i), label); !ok)
-                            return ok;
-                        if (on_output)
-                            if (auto ok = on_output(s, i, *current); !ok) return ok;
-                    }
-                    meters[s].keep(std::move(*current));
-                    return {};
+                    auto output = within_range(resolve.output(s), range, label);
+                    if (!output) return std::unexpected(output.error());
+                    current[s] = std::move(*output);
+                    if (i < warmup) return {};
+                    const Image& truth = against_reference ? *frame->reference : frame->color;
+                    if (auto ok = meters[s].measure(i, truth, current[s], source.starts_history(i), label); !ok)
+                        return ok;
+                    return on_output ? on_output(s, i, current[s]) : Result<void>{};
                 }();
                 if (!measured) return fail(fmt::format("{}: {}", resolve.name(s), measured.error().message));
+                // Without an observer of both frames, each shader's previous output goes at once.
+                if (!on_measured) meters[s].keep(std::move(current[s]));
             }
-        if (on_measured && i >= warmup) {
-            std::vector<FrameFigures> figures;
-            std::vector<const Image*> outputs;
-            for (const Meter& meter : meters)
-                figures.push_back(meter.last_figures()), outputs.push_back(&meter.output());
-            if (auto ok = on_measured(i, figures, outputs); !ok)
-                return fail(fmt::format("{}: {}", label, ok.error().message));
+            if (on_measured && i >= warmup) {
+                std::vector<FrameFigures> figures;
+                std::vector<const Image*> outputs, previous;
+                for (std::size_t s = 0; s < resolve.size(); ++s) {
+                    figures.push_back(meters[s].last_figures());
+                    outputs.push_back(&current[s]);
+                    if (!source.starts_history(i)) previous.push_back(&meters[s].output());
+                }
+                const MeasuredFrame shown{source.name(), i,
+                                          figures,       outputs,
+                                          previous,      against_reference ? &*frame->reference : &frame->color};
+                if (auto ok = on_measured(shown); !ok) return fail(fmt::format("{}: {}", label, ok.error().message));
+            }
+            if (on_measured)
+                for (std::size_t s = 0; s < resolve.size(); ++s) meters[s].keep(std::move(current[s]));
         }
         // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
         if (i == warmup) test_hold_point("taa_pass");
@@ -298,7 +307,8 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
                                                       const TaaSchedule& schedule, const FlipMean& flip,
                                                       const SceneShaderOutputObserver& on_output,
-                                                      const std::function<void()>& on_frame) {
+                                                      const std::function<void()>& on_frame,
+                                                      const MeasuredFrameObserver& on_measured) {
     std::vector<TaaMeasurement> m(resolve.size());
     const auto still = shimmer_frames(scene, schedule);
     const auto moving = ghosting_frames(scene, schedule);
@@ -309,9 +319,11 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
             return on_output ? on_output(source.name(), s, index, output) : Result<void>{};
         };
     };
-    auto shimmer = measure_sequence_all(resolve, *still, schedule.warmup, flip, pass_on(*still, false), on_frame);
+    auto shimmer =
+        measure_sequence_all(resolve, *still, schedule.warmup, flip, pass_on(*still, false), on_frame, on_measured);
     if (!shimmer) return std::unexpected(shimmer.error());
-    auto ghosting = measure_sequence_all(resolve, *moving, schedule.warmup, flip, pass_on(*moving, true), on_frame);
+    auto ghosting =
+        measure_sequence_all(resolve, *moving, schedule.warmup, flip, pass_on(*moving, true), on_frame, on_measured);
     if (!ghosting) return std::unexpected(ghosting.error());
     for (std::size_t s = 0; s < m.size(); ++s) {
         m[s].shimmer = (*shimmer)[s].shimmer;

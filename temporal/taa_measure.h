@@ -120,10 +120,18 @@ using SceneOutputObserver =
 using SceneShaderOutputObserver = std::function<Result<void>(const std::string& sequence, std::size_t shader,
                                                              std::size_t index, const Image& output)>;
 
-// Called after each measured frame, every shader done: the frame's index, each shader's figures on
-// it and its output (within range), valid during the call. What keeps the frame a picture shows.
-using MeasuredFrameObserver = std::function<Result<void>(std::size_t index, std::span<const FrameFigures> figures,
-                                                         std::span<const Image* const> outputs)>;
+// One measured frame, every shader done, as an observer sees it (all valid during the call): what
+// keeps the frames a picture or the report's viewer shows.
+struct MeasuredFrame {
+    std::string_view sequence; // the source's name
+    std::size_t index = 0;
+    std::span<const FrameFigures> figures;  // each shader's, in order
+    std::span<const Image* const> outputs;  // each shader's output on the frame (within range)
+    std::span<const Image* const> previous; // each shader's output on the frame before; empty after a cut
+    const Image* truth = nullptr;           // what ghosting is measured against: the reference, else the color
+};
+// Called after each measured frame; an error stops the measurement.
+using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& frame)>;
 
 // Every shader of `resolve` over `source` in one pass: each frame drawn or read and checked once,
 // then resolved and measured by every shader against its own history. Each shader's figures are
@@ -138,7 +146,8 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
                                                       const TaaSchedule& schedule, const FlipMean& flip,
                                                       const SceneShaderOutputObserver& on_output = {},
-                                                      const std::function<void()>& on_frame = {});
+                                                      const std::function<void()>& on_frame = {},
+                                                      const MeasuredFrameObserver& on_measured = {});
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,

@@ -10,6 +10,8 @@
 #include "temporal/ghosting_picture.h"
 #include "temporal/taa_chart.h"
 #include "temporal/taa_report.h"
+#include "temporal/taa_report_page.h"
+#include "temporal/viewer_frames.h"
 
 #include <fmt/format.h>
 
@@ -47,14 +49,14 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
 // A sequence's ghosting picture at the frame `chooser` kept, cropped where the variants differ most.
 Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequence,
                                   const PictureFrameChooser& chooser, const std::vector<VariantKey>& keys,
-                                  const std::vector<EvaluationRow>& measured, const LdrFlip& flip) {
+                                  const std::vector<EvaluationRow>& measured, const PictureFlip& flip) {
     auto frame = sequence.frame(chooser.index());
     if (!frame) return std::unexpected(frame.error());
     const bool has_reference = frame->reference.has_value();
     auto truth = std::make_shared<const Image>(std::move(has_reference ? *frame->reference : frame->color));
     std::vector<std::vector<float>> maps;
     for (const auto& output : chooser.outputs()) {
-        auto map = flip.error_map(*truth, *output);
+        auto map = flip.map(*truth, *output);
         if (!map) return fail(fmt::format("{}: {}", sequence.frame_label(chooser.index()), map.error().message));
         maps.push_back(std::move(*map));
     }
@@ -90,6 +92,23 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             return written_frames.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index), output);
         };
 
+    // The viewer's frames of every sequence measured, planned before the pass.
+    std::vector<std::string> variant_names;
+    for (const VariantKey& key : keys) variant_names.push_back(key.name());
+    ViewerFrames viewer(settings.viewer_frames, variant_names);
+    if (settings.viewer_frames > 0) {
+        const std::size_t last = schedule.warmup + schedule.frames - 1;
+        for (const auto& scene : scenes) {
+            const auto still = shimmer_frames(*scene, schedule), moving = ghosting_frames(*scene, schedule);
+            for (const FrameSource* frames : {still.get(), moving.get()})
+                viewer.plan(frames->name(), scene->name(), schedule.warmup, last, frames->roles(),
+                            frames->color_range(), frames->has_reference());
+        }
+        for (const SequenceFrames& sequence : sequences)
+            viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
+                        sequence.color_range(), sequence.has_reference());
+        observer.measured = [&](const MeasuredFrame& frame) { return viewer.offer(frame); };
+    }
     std::vector<TaaRow> rows;
     std::vector<TaaFrameRow> frame_rows;
     std::vector<std::string> pictures;
@@ -122,6 +141,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             }
         };
         for (const auto& scene : scenes) {
+            viewer.measuring(scene->name());
             auto measured = evaluation->measure(*scene, observer);
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
@@ -134,34 +154,38 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
             const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
             if (auto ok = add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys,
-                                               trails, ghosting, picture_flip.ldr());
+                                               trails, ghosting, {&picture_flip});
                 !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
         }
         for (const SequenceFrames& sequence : sequences) {
-            // The frame its picture shows, kept as the pass goes (LDR sequences meant for ghosting).
-            PictureFrameChooser chooser;
-            const bool pictured = sequence.roles().ghosting && sequence.color_range() == ColorRange::ldr;
+            // The frame its picture shows, kept as the pass goes (sequences meant for ghosting).
+            PictureFrameChooser chooser(settings.picture_frame);
+            const bool pictured = sequence.roles().ghosting;
+            EvaluationObserver sequence_observer = observer;
             if (pictured)
-                observer.measured = [&](const std::string&, std::size_t index, std::span<const FrameFigures> figures,
-                                        std::span<const Image* const> frames) -> Result<void> {
-                    chooser.offer(index, figures, frames);
-                    return {};
+                sequence_observer.measured = [&](const MeasuredFrame& frame) -> Result<void> {
+                    chooser.offer(frame);
+                    return observer.measured ? observer.measured(frame) : Result<void>{};
                 };
-            auto measured = evaluation->measure(sequence, observer);
-            observer.measured = nullptr;
+            viewer.measuring(sequence.name());
+            auto measured = evaluation->measure(sequence, sequence_observer);
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
             if (pictured && chooser.chosen()) {
-                if (auto ok = add_sequence_picture(outputs, sequence, chooser, keys, *measured, picture_flip.ldr());
-                    !ok)
+                const PictureFlip flip{&picture_flip, sequence.color_range(), settings.evaluation.exposure};
+                if (auto ok = add_sequence_picture(outputs, sequence, chooser, keys, *measured, flip); !ok)
                     return std::unexpected(ok.error());
                 pictures.push_back(ghosting_picture_name(sequence.name()));
             }
         }
     }
     outputs.add(written_frames.writers(outputs.dir()));
+    StagedImages viewer_images;
+    auto viewed = viewer.write(picture_flip, settings.evaluation.exposure, viewer_images);
+    if (!viewed) return std::unexpected(viewed.error());
+    outputs.add(viewer_images.writers(outputs.dir()));
 
     RunMetadata run_info = describe_run(context);
     run_info.seed = settings.seed;
@@ -188,10 +212,11 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     const EvaluationOptions& e = settings.evaluation;
     outputs.add_table("taa", taa_table(rows), run_info);
     outputs.add_table("taa_frames", taa_frames_table(frame_rows), run_info);
-    outputs.add("report.md", taa_report_markdown(rows, run_info,
-                                                 {width, height, schedule.warmup, schedule.frames, e.ppd, pictures,
-                                                  charts, over_time_charts, e.resolve, scene_contents, sequence_names,
-                                                  !e.cpu_flip, e.exposure}));
+    const TaaReportSettings report{width,          height,      schedule.warmup,  schedule.frames, e.ppd,
+                                   pictures,       charts,      over_time_charts, e.resolve,       scene_contents,
+                                   sequence_names, !e.cpu_flip, e.exposure};
+    outputs.add("report.md", taa_report_markdown(rows, run_info, report));
+    outputs.add("report.html", taa_report_html(rows, run_info, report, variant_names, *viewed));
     if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
     return run_info;
 }

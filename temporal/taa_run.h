@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -24,15 +25,18 @@ namespace kdop {
 
 struct TaaRunSettings {
     EvaluationOptions evaluation;
-    std::uint32_t width = 0, height = 0; // of kdop's scenes (--size); the rectification is timed at it
-    unsigned timing_rounds = 15;         // interleaved dispatches per variant
-    std::uint64_t seed = 1;              // the scenes', for the report
-    bool write_frames = false;           // every measured output under frames/<sequence>/<variant>/
-    bool charts = true;                  // the trade charts (none where gnuplot is missing)
+    std::uint32_t width = 0, height = 0;      // of kdop's scenes (--size); the rectification is timed at it
+    unsigned timing_rounds = 15;              // interleaved dispatches per variant
+    std::uint64_t seed = 1;                   // the scenes', for the report
+    bool write_frames = false;                // every measured output under frames/<sequence>/<variant>/
+    bool charts = true;                       // the trade charts (none where gnuplot is missing)
+    std::size_t viewer_frames = 8;            // report.html's frames per sequence besides the worst; 0: no viewer
+    std::optional<std::size_t> picture_frame; // a sequence's ghosting picture's frame; unset: the chosen one
 };
 
 // Measures `specs` (with `rectifiers`, their rectification passes, in the same order) over
-// `sources` and writes taa.csv (and JSON), report.md, the pictures and charts through `outputs`.
+// `sources` and writes taa.csv (and JSON), report.md, report.html with its viewer's frames, the
+// pictures and charts through `outputs`.
 // Returns the run's metadata, as the report states it.
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
                             std::span<const Variant* const> rectifiers, const TaaSources& sources,

@@ -29,6 +29,11 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
                 check_measurable(context, sequence->width, sequence->height, request.device_flip, request.variants);
             !ok)
             return fail(fmt::format("--sequence {}: {}", dir, ok.error().message));
+        if (request.picture_frame && sequence->measure.ghosting &&
+            (*request.picture_frame < request.warmup || *request.picture_frame >= sequence->frames.size()))
+            return usage_fail(fmt::format("--picture-frame {}: not a measured frame of --sequence {} (frames {} to {}, "
+                                          "after the warmup)",
+                                          *request.picture_frame, dir, request.warmup, sequence->frames.size() - 1));
         sources.sequences.emplace_back(std::move(*sequence), request.input_space);
     }
     if (request.builtin) {

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct TaaSourceRequest {
     bool builtin = true;
     std::vector<std::string> scene_names, backgrounds; // scene_catalog.h's select_taa_scenes
     SceneOptions scene_options;                        // its context is filled in
+    // --picture-frame: a measured frame of every sequence that has a ghosting picture (those meant
+    // for ghosting), checked here.
+    std::optional<std::size_t> picture_frame;
 };
 
 // Reads the sequences, then makes the scenes. Errors name the option and folder; Error::usage

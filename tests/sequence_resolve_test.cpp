@@ -762,6 +762,20 @@ TEST(CliSequence, AnHdrSequenceIsMeasuredInHdrFlip) {
     EXPECT_EQ(csv.find(",LDR-FLIP"), std::string::npos) << csv;
     EXPECT_NE(csv.find(",aliased,HDR-FLIP\n"), std::string::npos) << csv;
     EXPECT_NE(test::read_file(device / "report.md").find("measured in HDR-FLIP instead"), std::string::npos);
+    // Its ghosting picture: the frames as measured (EXR, above 1) and tone mapped to look at (PNG),
+    // labeled as HDR-FLIP's; the viewer's frames and maps in HDR-FLIP too.
+    EXPECT_TRUE(fs::exists(device / "ghosting-grass-ghosting.png"));
+    auto shown = read_image((device / "frames" / "grass-ghosting" / "aabb-clip-n9.exr").string());
+    auto looked_at = read_image((device / "frames" / "grass-ghosting" / "aabb-clip-n9.png").string());
+    ASSERT_TRUE(shown && looked_at);
+    float brightest = 0, brightest_png = 0;
+    for (const glm::vec4& p : shown->pixels) brightest = std::max(brightest, p.r);
+    for (const glm::vec4& p : looked_at->pixels) brightest_png = std::max(brightest_png, p.r);
+    EXPECT_GT(brightest, 1.5f);
+    EXPECT_LE(brightest_png, 1.0f);
+    EXPECT_GT(brightest_png, 0.5f);
+    EXPECT_NE(test::read_file(device / "report.html").find("HDR-FLIP against the aliased frame"), std::string::npos);
+    EXPECT_TRUE(fs::exists(device / "viewer" / "grass-ghosting" / "grass-ghosting"));
 
     const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
     for (const char* variant : {"aabb-clip-n9", "dop32-clip-n9"}) {

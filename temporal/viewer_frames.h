@@ -1,0 +1,100 @@
+// The frames report.html's viewer shows (taa_report_page.h): of each sequence measured, a bounded
+// set of measured frames, chosen as the pass goes, with every variant's output on them, the truth
+// and each output's FLIP map, written as PNGs under viewer/<sequence>/<frame>/.
+//
+// The frames kept of a sequence are `spread` measured frames spread evenly from the first to the
+// last, and each variant's worst frame: where its figure (ghosting where the sequence measures it,
+// else shimmer) is largest, the earliest of equals. Worst frames are known only at the end, so
+// each frame that is one so far is staged (as float EXR, in a scratch folder) and deleted when it
+// no longer is: the pass holds none of the outputs in memory.
+#pragma once
+
+#include "core/result.h"
+#include "flip/hdr_flip.h"
+#include "harness/scratch_directory.h"
+#include "harness/staged_images.h"
+#include "sequence/sequence.h"
+#include "temporal/taa_measure.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+enum class ViewerFigure { ghosting, shimmer };
+
+// What the viewer shows of one sequence once the pass is over.
+struct ViewerSequence {
+    std::string name;  // the sequence's (a scene's: <scene>-shimmer, <scene>-ghosting)
+    std::string scene; // taa.csv's row it belongs to
+    ViewerFigure figure = ViewerFigure::ghosting;
+    ColorRange range = ColorRange::ldr;
+    std::string truth; // the truth image's name: "reference" or "aliased"
+    std::string map;   // what the FLIP maps compare: "LDR-FLIP against the aliased frame"
+    std::uint32_t width = 0, height = 0;
+    std::vector<std::size_t> frames; // the frames kept, ascending
+    static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> worst;           // per variant: its worst frame; kNone where it has no figure
+    std::vector<std::vector<double>> figures; // per kept frame, per variant: the figure on it (NaN: none)
+};
+
+// The `spread` measured frames of `first`..`last` spread evenly, both ends among them (one: the
+// first); all of them where there are no more than `spread`.
+std::vector<std::size_t> spread_frames(std::size_t first, std::size_t last, std::size_t spread);
+
+// The path of one of a kept frame's images, relative to the output folder: viewer/<sequence>/
+// viewer/<scene>/<sequence>/<frame, 4 digits>/<image>.png (`scene` the taa.csv row: a user's
+// sequence is its own), the image a variant's name or the truth's, or flip/<variant>.png.
+std::string viewer_image_path(const ViewerSequence& sequence, std::size_t frame, const std::string& image,
+                              bool flip_map = false);
+
+// Keeps the frames of every sequence measured in one run; its observer() goes into the
+// evaluation's (EvaluationObserver::measured).
+class ViewerFrames {
+public:
+    // `spread` frames per sequence besides the worst ones; `variants` is the variants' names.
+    ViewerFrames(std::size_t spread, std::vector<std::string> variants);
+
+    // Before a sequence's pass: its name, the taa.csv row it belongs to, its measured frames
+    // (`first`..`last`), what it measures and against what.
+    void plan(const std::string& sequence, const std::string& scene, std::size_t first, std::size_t last,
+              SequenceRoles roles, ColorRange range, bool against_reference);
+
+    // Before measuring a scene or sequence, its name: a user's sequence may share its name with
+    // one of a scene's (grass-ghosting), so frames are offered as of the source measured.
+    void measuring(const std::string& scene) { measuring_ = scene; }
+
+    // Stages each measured frame that is kept so far (of a sequence planned for the source being
+    // measured); drops those that no longer are.
+    Result<void> offer(const MeasuredFrame& frame);
+
+    // The kept frames' PNGs, written to a scratch folder now and moved into the output folder with
+    // the rest (StagedImages): every variant's output and its FLIP map (LDR-FLIP, or HDR-FLIP at
+    // `exposure` for an HDR sequence; against the truth for ghosting, the output before for
+    // shimmer) and the truth; HDR images tone mapped with exposure.tone_mapper at exposure 0.
+    // Returns what the viewer shows of each sequence, in the order planned.
+    Result<std::vector<ViewerSequence>> write(const HdrFlip& flip, const ExposureOptions& exposure,
+                                              StagedImages& images) const;
+
+private:
+    struct Kept; // one sequence's frames so far
+    // The staged EXR of image `name` of frame `index` of sequence `s`.
+    std::filesystem::path staged(std::size_t s, std::size_t index, const std::string& name) const;
+    Result<void> stage(std::size_t s, const MeasuredFrame& frame);
+    void drop_unkept(std::size_t s);
+
+    std::size_t spread_;
+    std::vector<std::string> variants_;
+    std::vector<std::shared_ptr<Kept>> sequences_;
+    std::map<std::pair<std::string, std::string>, std::size_t> by_name_; // by scene and sequence
+    std::string measuring_;
+    std::unique_ptr<ScratchDirectory> scratch_;
+};
+
+} // namespace kdop
