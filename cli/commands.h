@@ -28,6 +28,7 @@ Action add_optimize_command(CLI::App& app);
 Action add_flip_command(CLI::App& app);
 Action add_taa_command(CLI::App& app);
 Action add_scene_command(CLI::App& app);
+Action add_choose_command(CLI::App& app);
 
 // Prints an error message (which already names file/line or argument) to stderr; returns 1.
 int report_error(const std::string& message);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
         {"stress", kdop::cli::add_stress_command(app)},     {"accuracy", kdop::cli::add_accuracy_command(app)},
         {"optimize", kdop::cli::add_optimize_command(app)}, {"flip", kdop::cli::add_flip_command(app)},
         {"taa", kdop::cli::add_taa_command(app)},           {"scene", kdop::cli::add_scene_command(app)},
+        {"choose", kdop::cli::add_choose_command(app)},
     };
     return kdop::run_command_line(app, "kdop", argc, argv, [&] {
         for (CLI::App* chosen : app.get_subcommands()) {

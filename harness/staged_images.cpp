@@ -11,8 +11,11 @@ Result<void> StagedImages::add(const std::string& name, const Image& image) {
     const std::filesystem::path staged = scratch_->path / name;
     std::error_code ec;
     std::filesystem::create_directories(staged.parent_path(), ec);
-    if (ec) return fail(fmt::format("{}: {}", staged.parent_path().string(), ec.message()));
+    // Another thread may have made it meanwhile.
+    if (ec && !std::filesystem::is_directory(staged.parent_path()))
+        return fail(fmt::format("{}: {}", staged.parent_path().string(), ec.message()));
     if (auto ok = write_image(staged.string(), image); !ok) return ok;
+    std::lock_guard lock(mutex_);
     names_.push_back(name);
     return {};
 }

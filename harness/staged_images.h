@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -21,12 +22,14 @@ public:
     StagedImages() : scratch_(std::make_unique<ScratchDirectory>("kdop-frames")) {}
 
     // Writes `image` now, to be `name` (relative to the output folder) when the set is written.
+    // Several threads may add at once.
     Result<void> add(const std::string& name, const Image& image);
     // The writers that move the staged images into `dir`; valid while this object lives.
     std::vector<OutputWriter> writers(const std::filesystem::path& dir) const;
 
 private:
     std::unique_ptr<ScratchDirectory> scratch_;
+    std::mutex mutex_; // guards names_
     std::vector<std::string> names_;
 };
 

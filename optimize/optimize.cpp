@@ -442,7 +442,8 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
     if (!file) return fail(file.error().message);
     // The same file on every rank: rank 0 writes it.
     if (ranks.is_root())
-        if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return fail(ok.error().message);
+        if (o.write_out)
+            if (auto ok = write_files_atomically({{o.out, *file}}); !ok) return fail(ok.error().message);
 
     OptimizeResult out;
     out.file = std::move(*file);

@@ -37,8 +37,9 @@ struct OptimizeOptions {
     std::size_t axes = 0;  // with a target, the most to try
     bool force_rgb = false;
     Neighborhood neighborhood = Neighborhood::n9;
-    std::string out;  // the axis-set file to write
-    std::string name; // the set's name; empty: out's stem
+    std::string out;       // the axis-set file to write
+    bool write_out = true; // false: only return its text (OptimizeResult::file); kdop choose writes it with the rest
+    std::string name;      // the set's name; empty: out's stem
     std::uint64_t seed = 1;
     std::size_t starts = 0, iterations = 0; // 0: the fit's defaults
     unsigned threads = 0;                   // 0: every core, shared with the other ranks on the machine

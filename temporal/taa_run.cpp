@@ -183,8 +183,13 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     }
     outputs.add(written_frames.writers(outputs.dir()));
     StagedImages viewer_images;
-    auto viewed = viewer.write(picture_flip, settings.evaluation.exposure, viewer_images);
-    if (!viewed) return std::unexpected(viewed.error());
+    Result<std::vector<ViewerSequence>> viewed;
+    {
+        Progress progress("Writing report.html's frames and FLIP maps:", viewer.kept_frames());
+        viewed = viewer.write(picture_flip, settings.evaluation.exposure, viewer_images,
+                              [&](const std::string& sequence) { progress.advance(sequence); });
+        if (!viewed) return std::unexpected(viewed.error());
+    }
     outputs.add(viewer_images.writers(outputs.dir()));
 
     RunMetadata run_info = describe_run(context);

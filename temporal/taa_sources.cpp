@@ -20,7 +20,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     if (request.builtin)
         if (auto ok = check_measurable(context, scene.width, scene.height, request.device_flip, request.variants); !ok)
             return usage_fail(fmt::format("--size {}x{}: {}", scene.width, scene.height, ok.error().message));
-    if (auto ok = check_distinct_files(request.sequences, "--sequence"); !ok) return usage_fail(ok.error().message);
+    if (auto ok = check_distinct_files(request.sequences, request.option); !ok) return usage_fail(ok.error().message);
     TaaSources sources;
     for (const std::string& dir : request.sequences) {
         auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve);
@@ -28,7 +28,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
         if (auto ok =
                 check_measurable(context, sequence->width, sequence->height, request.device_flip, request.variants);
             !ok)
-            return fail(fmt::format("--sequence {}: {}", dir, ok.error().message));
+            return fail(fmt::format("{} {}: {}", request.option, dir, ok.error().message));
         if (request.picture_frame && sequence->measure.ghosting &&
             (*request.picture_frame < request.warmup || *request.picture_frame >= sequence->frames.size()))
             return usage_fail(fmt::format("--picture-frame {}: not a measured frame of --sequence {} (frames {} to {}, "
@@ -46,7 +46,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     for (const auto& s : sources.scenes) names.insert(s->name());
     for (const SequenceFrames& sequence : sources.sequences)
         if (!names.insert(sequence.name()).second)
-            return fail(fmt::format("--sequence: {}: a scene or sequence is already called '{}'",
+            return fail(fmt::format("{}: {}: a scene or sequence is already called '{}'", request.option,
                                     sequence.sequence().dir.string(), sequence.name()));
     return sources;
 }

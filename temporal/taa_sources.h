@@ -29,7 +29,7 @@ struct TaaSources {
 };
 
 struct TaaSourceRequest {
-    std::vector<std::string> sequences; // folders (--sequence)
+    std::vector<std::string> sequences; // folders
     std::uint32_t warmup = 100;         // frames every sequence must have more of
     ResolveOptions resolve;             // what the resolve needs of a sequence (depth for --dilate-motion)
     InputSpace input_space = InputSpace::from_file;
@@ -42,6 +42,7 @@ struct TaaSourceRequest {
     // --picture-frame: a measured frame of every sequence that has a ghosting picture (those meant
     // for ghosting), checked here.
     std::optional<std::size_t> picture_frame;
+    std::string option = "--sequence"; // the option that gave the sequences, for errors
 };
 
 // Reads the sequences, then makes the scenes. Errors name the option and folder; Error::usage

@@ -1,15 +1,43 @@
 #include "temporal/viewer_frames.h"
 
+#include "core/parallel_for.h"
 #include "flip/magma.h"
-#include "images/image_io.h"
 #include "temporal/picture_flip.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 namespace kdop {
+namespace {
+
+// A staged image: its width, height and float RGBA pixels as they are in memory. The process
+// reads back only what it wrote itself, moments before, so no format is needed, and many frames
+// are staged and dropped during a pass: an EXR's compression and OpenImageIO's checks cost more
+// there than the whole copy (written by hand for that reason).
+Result<void> write_staged(const std::filesystem::path& path, const Image& image) {
+    std::ofstream out(path, std::ios::binary);
+    const std::uint32_t size[2] = {image.width, image.height};
+    out.write(reinterpret_cast<const char*>(size), sizeof size);
+    out.write(reinterpret_cast<const char*>(image.pixels.data()),
+              std::streamsize(image.pixels.size() * sizeof(glm::vec4)));
+    if (!out.flush()) return fail(fmt::format("{}: cannot write the viewer's staged frame", path.string()));
+    return {};
+}
+
+Result<Image> read_staged(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::uint32_t size[2] = {0, 0};
+    in.read(reinterpret_cast<char*>(size), sizeof size);
+    Image image(size[0], size[1]);
+    in.read(reinterpret_cast<char*>(image.pixels.data()), std::streamsize(image.pixels.size() * sizeof(glm::vec4)));
+    if (!in) return fail(fmt::format("{}: cannot read the viewer's staged frame back", path.string()));
+    return image;
+}
+
+} // namespace
 
 std::vector<std::size_t> spread_frames(std::size_t first, std::size_t last, std::size_t spread) {
     std::vector<std::size_t> frames;
@@ -41,7 +69,13 @@ struct ViewerFrames::Kept {
 };
 
 ViewerFrames::ViewerFrames(std::size_t spread, std::vector<std::string> variants)
-    : spread_(spread), variants_(std::move(variants)), scratch_(std::make_unique<ScratchDirectory>("kdop-viewer")) {}
+    : spread_(spread), variants_(std::move(variants)) {}
+
+std::size_t ViewerFrames::kept_frames() const {
+    std::size_t kept = 0;
+    for (const auto& sequence : sequences_) kept += sequence->staged.size();
+    return kept;
+}
 
 void ViewerFrames::plan(const std::string& sequence, const std::string& scene, std::size_t first, std::size_t last,
                         SequenceRoles roles, ColorRange range, bool against_reference) {
@@ -64,7 +98,7 @@ void ViewerFrames::plan(const std::string& sequence, const std::string& scene, s
 }
 
 std::filesystem::path ViewerFrames::staged(std::size_t s, std::size_t index, const std::string& name) const {
-    return scratch_->path / std::to_string(s) / std::to_string(index) / (name + ".exr");
+    return scratch_->path / std::to_string(s) / std::to_string(index) / (name + ".raw");
 }
 
 Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
@@ -90,20 +124,19 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
 }
 
 Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame) {
+    if (!scratch_) scratch_ = std::make_unique<ScratchDirectory>("kdop-viewer");
     if (scratch_->path.empty())
         return fail("cannot create a scratch folder for the viewer's frames (is TMPDIR writable?)");
     std::error_code ec;
     std::filesystem::create_directories(staged(s, frame.index, "truth").parent_path(), ec);
     if (ec) return fail(fmt::format("{}: {}", scratch_->path.string(), ec.message()));
-    if (auto ok = write_image(staged(s, frame.index, "truth").string(), *frame.truth); !ok) return ok;
+    if (auto ok = write_staged(staged(s, frame.index, "truth"), *frame.truth); !ok) return ok;
     // The outputs before are what a shimmer map compares against.
     const bool previous = sequences_[s]->shown.figure == ViewerFigure::shimmer && !frame.previous.empty();
     for (std::size_t v = 0; v < frame.outputs.size(); ++v) {
-        if (auto ok = write_image(staged(s, frame.index, std::to_string(v)).string(), *frame.outputs[v]); !ok)
-            return ok;
+        if (auto ok = write_staged(staged(s, frame.index, std::to_string(v)), *frame.outputs[v]); !ok) return ok;
         if (previous)
-            if (auto ok = write_image(staged(s, frame.index, fmt::format("before-{}", v)).string(), *frame.previous[v]);
-                !ok)
+            if (auto ok = write_staged(staged(s, frame.index, fmt::format("before-{}", v)), *frame.previous[v]); !ok)
                 return ok;
     }
     sequences_[s]->has_previous[frame.index] = previous;
@@ -130,7 +163,8 @@ void ViewerFrames::drop_unkept(std::size_t s) {
 }
 
 Result<std::vector<ViewerSequence>> ViewerFrames::write(const HdrFlip& flip, const ExposureOptions& exposure,
-                                                        StagedImages& images) const {
+                                                        StagedImages& images,
+                                                        const std::function<void(const std::string&)>& on_frame) const {
     std::vector<ViewerSequence> shown;
     for (std::size_t s = 0; s < sequences_.size(); ++s) {
         const Kept& kept = *sequences_[s];
@@ -142,31 +176,35 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const HdrFlip& flip, con
         for (const auto& [index, figures] : kept.staged) {
             sequence.frames.push_back(index);
             sequence.figures.push_back(figures);
-            auto truth = read_image(staged(s, index, "truth").string());
+            auto truth = read_staged(staged(s, index, "truth"));
             if (!truth) return std::unexpected(truth.error());
             if (auto ok = add(index, sequence.truth, false, shown_as.shown(*truth)); !ok)
                 return std::unexpected(ok.error());
-            for (std::size_t v = 0; v < variants_.size(); ++v) {
-                auto output = read_image(staged(s, index, std::to_string(v)).string());
-                if (!output) return std::unexpected(output.error());
-                if (auto ok = add(index, variants_[v], false, shown_as.shown(*output)); !ok)
-                    return std::unexpected(ok.error());
-                // Ghosting's map is against the truth, shimmer's against the output before (none
-                // after a camera cut).
-                Result<Image> before = fail("no output before");
-                if (sequence.figure == ViewerFigure::shimmer && kept.has_previous.at(index))
-                    if (before = read_image(staged(s, index, fmt::format("before-{}", v)).string()); !before)
-                        return std::unexpected(before.error());
-                const Image* against = sequence.figure == ViewerFigure::ghosting ? &*truth
-                                       : before                                  ? &*before
-                                                                                 : nullptr;
-                if (!against) continue;
-                auto map = shown_as.map(*against, *output);
-                if (!map) return fail(fmt::format("{} frame {}: {}", sequence.name, index, map.error().message));
-                if (auto ok = add(index, variants_[v], true, flip::magma_image(*map, output->width, output->height));
-                    !ok)
-                    return std::unexpected(ok.error());
-            }
+            // Each variant's output and map, a variant per core; the first error (in variant order) is reported.
+            std::vector<Result<void>> done(variants_.size());
+            parallel_for(variants_.size(), 0, [&](std::size_t v) {
+                done[v] = [&]() -> Result<void> {
+                    auto output = read_staged(staged(s, index, std::to_string(v)));
+                    if (!output) return std::unexpected(output.error());
+                    if (auto ok = add(index, variants_[v], false, shown_as.shown(*output)); !ok) return ok;
+                    // Ghosting's map is against the truth, shimmer's against the output before (none
+                    // after a camera cut).
+                    Result<Image> before = fail("no output before");
+                    if (sequence.figure == ViewerFigure::shimmer && kept.has_previous.at(index))
+                        if (before = read_staged(staged(s, index, fmt::format("before-{}", v))); !before)
+                            return std::unexpected(before.error());
+                    const Image* against = sequence.figure == ViewerFigure::ghosting ? &*truth
+                                           : before                                  ? &*before
+                                                                                     : nullptr;
+                    if (!against) return {};
+                    auto map = shown_as.map(*against, *output);
+                    if (!map) return fail(fmt::format("{} frame {}: {}", sequence.name, index, map.error().message));
+                    return add(index, variants_[v], true, flip::magma_image(*map, output->width, output->height));
+                }();
+            });
+            for (const Result<void>& ok : done)
+                if (!ok) return std::unexpected(ok.error());
+            if (on_frame) on_frame(sequence.name);
         }
         shown.push_back(std::move(sequence));
     }

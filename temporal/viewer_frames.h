@@ -5,7 +5,7 @@
 // The frames kept of a sequence are `spread` measured frames spread evenly from the first to the
 // last, and each variant's worst frame: where its figure (ghosting where the sequence measures it,
 // else shimmer) is largest, the earliest of equals. Worst frames are known only at the end, so
-// each frame that is one so far is staged (as float EXR, in a scratch folder) and deleted when it
+// each frame that is one so far is staged (its float pixels, in a scratch folder) and deleted when it
 // no longer is: the pass holds none of the outputs in memory.
 #pragma once
 
@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -79,12 +80,17 @@ public:
     // `exposure` for an HDR sequence; against the truth for ghosting, the output before for
     // shimmer) and the truth; HDR images tone mapped with exposure.tone_mapper at exposure 0.
     // Returns what the viewer shows of each sequence, in the order planned.
+    // `on_frame` is called after each kept frame, naming its sequence; the variants' images of a
+    // frame are made on every core.
     Result<std::vector<ViewerSequence>> write(const HdrFlip& flip, const ExposureOptions& exposure,
-                                              StagedImages& images) const;
+                                              StagedImages& images,
+                                              const std::function<void(const std::string&)>& on_frame = {}) const;
+    // The frames kept so far, over every sequence: write()'s steps.
+    std::size_t kept_frames() const;
 
 private:
     struct Kept; // one sequence's frames so far
-    // The staged EXR of image `name` of frame `index` of sequence `s`.
+    // The staged file of image `name` of frame `index` of sequence `s`.
     std::filesystem::path staged(std::size_t s, std::size_t index, const std::string& name) const;
     Result<void> stage(std::size_t s, const MeasuredFrame& frame);
     void drop_unkept(std::size_t s);
@@ -94,7 +100,7 @@ private:
     std::vector<std::shared_ptr<Kept>> sequences_;
     std::map<std::pair<std::string, std::string>, std::size_t> by_name_; // by scene and sequence
     std::string measuring_;
-    std::unique_ptr<ScratchDirectory> scratch_;
+    std::unique_ptr<ScratchDirectory> scratch_; // made when the first frame is staged
 };
 
 } // namespace kdop

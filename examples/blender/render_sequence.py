@@ -45,8 +45,10 @@ What it writes under DIR, frames numbered from 0000:
                      nearer, kdop's default.
     sequence.json    format version 1, with the motion settings README's
                      Blender row gives: "units": "pixels",
-                     "points_to": "previous", "y_axis": "up"; and the color
-                     range, "ldr" or (--hdr) "hdr".
+                     "points_to": "previous", "y_axis": "up"; the color
+                     range, "ldr" or (--hdr) "hdr"; and "measure":
+                     ["ghosting"]: without jitter, only ghosting means
+                     anything (kdop taa leaves shimmer out).
 
 Blender writes motion/0000.exr too (motion toward a frame before the first);
 the script deletes it so that the folder holds only the files sequence.json
@@ -410,6 +412,9 @@ def write_sequence_json(out_dir, args):
         "width": args.width,
         "height": args.height,
         "color": {"range": "hdr" if args.hdr else "ldr"},
+        # A moving camera-still capture without jitter: it has ghosting to
+        # measure, and its shimmer would be the motion's, not the clip's.
+        "measure": ["ghosting"],
         "motion": {"units": "pixels", "points_to": "previous",
                    "y_axis": "up"},
         "frames": frames,

@@ -230,4 +230,6 @@
 
   readFragment();
   render();
+  // A link to a state shows the viewer, not the top of the page.
+  if (new URLSearchParams(location.hash.slice(1)).has("sequence")) viewer.scrollIntoView();
 })();

@@ -1,0 +1,93 @@
+// kdop choose: fit axis sets to some sequences, judge them and the built-in sets on others held
+// out, and write the recommendation with the manifest the build takes (optimize/choose.h).
+#include "cli/commands.h"
+
+#include "cli/input_space_option.h"
+#include "cli/number_option.h"
+#include "cli/resolve_option.h"
+#include "core/shown_text.h"
+#include "generator/selection_options.h"
+#include "harness/output_set.h"
+#include "optimize/choice_report.h"
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+namespace kdop::cli {
+
+Action add_choose_command(CLI::App& app) {
+    struct Options {
+        ChooseOptions run;
+        std::string device;
+        double ppd = 0;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* cmd = app.add_subcommand(
+        "choose", "Fit axis sets to some frame sequences, measure them and the built-in sets on other sequences held "
+                  "out of the fit, as `kdop taa --sequence` measures, and recommend the variant to ship: the least "
+                  "held-out ghosting within a cost budget, or the cheapest that meets a ghosting target; writes "
+                  "candidates.csv (and JSON), choice.md, the fitted .axes files and kdop.manifest");
+    cmd->add_option("--fit", o->run.fit, "Frame sequences to fit the axis sets to")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    cmd->add_option("--validate", o->run.validate,
+                    "Frame sequences held out of the fit, that every candidate is judged on (required: nothing is "
+                    "judged on the frames it was fitted to)")
+        ->check(CLI::ExistingDirectory);
+    cmd->add_option("--fit-axes", o->run.fit_axes, "Axis counts to fit, one set each [default: 4 8 16]")
+        ->check(whole_number(3, 32));
+    cmd->add_option("--sets", o->run.sets, "Built-in sets among the candidates [default: all six]")
+        ->check(SelectionOptions::axis_set_name());
+    cmd->add_option("--modes", o->run.modes, "clip and/or varclip [default: clip]")
+        ->check(SelectionOptions::choice("mode", "clip or varclip", parse_mode));
+    cmd->add_option("--neighborhoods", o->run.neighborhoods, "n9 and/or n5 [default: n9]")
+        ->check(SelectionOptions::choice("neighborhood", "n9 or n5", parse_neighborhood));
+    cmd->add_option("--budget-ops", o->run.budget_ops,
+                    "Recommend the least held-out ghosting among the candidates whose clip costs at most this many "
+                    "float ops [default: no budget]")
+        ->check(whole_number(1, 1000000));
+    cmd->add_option("--target-ghosting", o->run.target_ghosting,
+                    "Recommend instead the cheapest candidate whose held-out ghosting is at most this")
+        ->check(positive_number(1))
+        ->excludes("--budget-ops");
+    cmd->add_option("--warmup", o->run.evaluation.schedule.warmup,
+                    "Frames of each sequence before measuring [default: 100]")
+        ->check(whole_number(1, 100000));
+    add_resolve_options(*cmd, o->run.evaluation.resolve);
+    add_input_space_option(*cmd, o->run.input_space);
+    cmd->add_option("--ppd", o->ppd, "FLIP's pixels per degree [default: as kdop taa's, about 67]")
+        ->check(finite_number(kMinPixelsPerDegree, kMaxPixelsPerDegree));
+    cmd->add_option("--sample", o->run.sample, "Fit to this many sampled neighborhoods (as kdop optimize --sample)")
+        ->check(whole_number(1, (1ll << 40)));
+    cmd->add_option("--seed", o->run.seed, "Seed of the fit [default: 1]")->check(seed_number());
+    cmd->add_option("--threads", o->run.threads, "Threads of the fit [default: one per core]")->check(thread_count());
+    cmd->add_option("--device", o->device,
+                    "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    cmd->add_option("--out", o->run.out, "Output directory (created if missing)")->required();
+
+    return [o, cmd] {
+        o->run.evaluation.ppd = cmd->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
+        auto outputs = OutputSet::prepare(o->run.out);
+        if (!outputs) return report_error(outputs.error().message);
+        auto context = Context::create({o->device, false});
+        if (!context) return report_error(context.error().message);
+        auto chosen = choose(**context, o->run);
+        if (!chosen) return report(chosen.error());
+        const RunMetadata run = describe_run(**context);
+        outputs->add_table("candidates", candidates_table(chosen->candidates), run);
+        outputs->add("choice.md", choice_markdown(*chosen, o->run, run));
+        for (const auto& [name, text] : chosen->fitted_files) outputs->add(name, text);
+        if (const std::string manifest = choice_manifest(*chosen); !manifest.empty())
+            outputs->add("kdop.manifest", manifest);
+        if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
+        const Recommendation& r = chosen->recommendation;
+        std::cout << (r.chosen ? fmt::format("kdop choose: {}: {}\n", chosen->candidates[*r.chosen].key.name(), r.why)
+                               : fmt::format("kdop choose: no recommendation: {}\n", r.why))
+                  << terminal_text((outputs->dir() / "choice.md").string()) << "\n";
+        return 0;
+    };
+}
+
+} // namespace kdop::cli

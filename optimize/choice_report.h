@@ -1,0 +1,23 @@
+// What `kdop choose` writes: candidates.csv (and JSON), one row per candidate; choice.md, the
+// table, the Pareto front of held-out ghosting against cost, the recommendation and why; and
+// kdop.manifest, exactly the recommended variant, which kdop_add_variants(MANIFEST) and
+// `kdop gen --manifest` take.
+#pragma once
+
+#include "harness/run_metadata.h"
+#include "harness/table.h"
+#include "optimize/choose.h"
+
+#include <string>
+
+namespace kdop {
+
+Table candidates_table(const std::vector<Candidate>& candidates);
+
+std::string choice_markdown(const ChooseResult& result, const ChooseOptions& options, const RunMetadata& run);
+
+// The recommended variant, with its `set:` line where its set is fitted (a file beside the
+// manifest); empty where nothing is recommended.
+std::string choice_manifest(const ChooseResult& result);
+
+} // namespace kdop

@@ -1,0 +1,79 @@
+// `kdop choose`: from a game's frames to the variant it ships. Axis sets are fitted to some
+// sequences (the optimize fit, one set per axis count), then every candidate, the fitted sets and
+// the built-in ones in each mode and neighborhood asked for, is measured on other sequences, held
+// out of the fit, with kdop taa's evaluation (temporal/taa_evaluation.h, the same call): no figure
+// a choice rests on comes from the frames a set was fitted to. The recommendation is the candidate
+// with the least held-out ghosting within a cost budget, or the cheapest that meets a ghosting
+// target; a built-in set wins whenever it is better.
+#pragma once
+
+#include "core/result.h"
+#include "core/variant_key.h"
+#include "optimize/optimize.h"
+#include "runtime/context.h"
+#include "temporal/taa_evaluation.h"
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace kdop {
+
+struct ChooseOptions {
+    std::vector<std::string> fit, validate;      // sequence folders: fitted to, and held out
+    std::vector<std::size_t> fit_axes{4, 8, 16}; // one fitted set per count
+    std::vector<std::string> sets;               // built-in candidates; empty: every built-in set
+    std::vector<std::string> modes{"clip"}, neighborhoods{"n9"};
+    std::optional<std::size_t> budget_ops; // the most float ops a candidate's clip may cost
+    std::optional<double> target_ghosting; // else: the cheapest whose held-out ghosting reaches it
+    EvaluationOptions evaluation;          // kdop taa's, as --warmup, --ppd and the resolve options set it
+    InputSpace input_space = InputSpace::from_file;
+    // The fit's: its color space is the resolve's (evaluation.resolve.color_map).
+    std::uint64_t seed = 1;
+    unsigned threads = 0;
+    std::optional<std::size_t> sample; // fit on this many sampled neighborhoods
+    std::string out;                   // the folder the fitted sets are named for (fitted<N>.axes)
+};
+
+// One candidate: a variant, what its clip costs and what it leaves on the fit and held-out frames.
+struct Candidate {
+    VariantKey key;
+    bool fitted = false;
+    std::size_t float_ops = 0; // the hardened clip's, as the generator counts them (analytic_cost.h)
+    // Means over the sequences (each sequence's mean over its measured frames, as kdop taa's taa.csv).
+    double fit_ghosting = NAN, validation_ghosting = NAN, validation_shimmer = NAN;
+    // Over every measured frame of the held-out sequences together.
+    double validation_ghosting_median = NAN, validation_ghosting_p95 = NAN;
+};
+
+// Which candidate to ship, and why, in words.
+struct Recommendation {
+    std::optional<std::size_t> chosen; // into the candidates; none where none qualifies
+    std::string why;
+};
+
+// The rule: with a target, the candidate of fewest float ops whose held-out ghosting is at most the
+// target (of equal cost, the one that ghosts least); else the one of least held-out ghosting among
+// those within the budget (any cost without one; of equal ghosting, the cheaper). Candidates with
+// no held-out figure never qualify; the earliest of exact ties.
+Recommendation recommend(const std::vector<Candidate>& candidates, std::optional<std::size_t> budget_ops,
+                         std::optional<double> target_ghosting);
+
+// The candidates on the Pareto front of held-out ghosting against float ops: none both cheaper (or
+// as cheap) and ghosting less (or as little), one strictly. Indices, cheapest first.
+std::vector<std::size_t> pareto_front(const std::vector<Candidate>& candidates);
+
+struct ChooseResult {
+    std::vector<Candidate> candidates; // the fitted ones first, then the built-in ones, each in spec order
+    Recommendation recommendation;
+    std::vector<std::pair<std::string, std::string>> fitted_files; // file name (fitted<N>.axes) and text
+    std::vector<std::string> fit_sequences, validate_sequences;    // their names
+};
+
+// The run: checks (a usage Error where the command line is at fault: no held-out sequence, a
+// sequence both fitted to and held out), fits, measures, recommends. Writes nothing.
+Result<ChooseResult> choose(const Context& context, const ChooseOptions& options);
+
+} // namespace kdop

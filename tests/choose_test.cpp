@@ -1,0 +1,140 @@
+// kdop choose (optimize/choose.h): the recommendation rule on constructed candidates whose answer
+// is known, the manifest it writes, and the command's held-out figures against kdop taa's.
+#include "optimize/choice_report.h"
+#include "optimize/choose.h"
+#include "test_support.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace kdop {
+namespace {
+
+namespace fs = std::filesystem;
+
+Candidate candidate(const std::string& set, bool fitted, std::size_t ops, double held_out, double fit = NAN) {
+    Candidate c;
+    c.key = {set, Mode::clip, Neighborhood::n9};
+    c.fitted = fitted;
+    c.float_ops = ops;
+    c.validation_ghosting = held_out;
+    c.fit_ghosting = fit;
+    return c;
+}
+
+// The fitted sets win on the frames they were fitted to and lose on the held-out ones: a built-in
+// set is recommended, within a budget or against a target, and the report says the fitted lost.
+TEST(Choose, RecommendsTheLeastHeldOutGhostingWithinTheBudget) {
+    const std::vector<Candidate> candidates{
+        candidate("fitted4", true, 190, 0.030, 0.010), candidate("fitted8", true, 300, 0.026, 0.008),
+        candidate("aabb", false, 87, 0.040),           candidate("dop16-grass", false, 354, 0.024),
+        candidate("dop22", false, 381, 0.025),         candidate("dop32", false, 520, 0.0245)};
+    // No budget: the least held-out ghosting of all.
+    EXPECT_EQ(recommend(candidates, std::nullopt, std::nullopt).chosen, 3u);
+    // Within 360 float ops: dop16-grass still; within 300: fitted8; within 100: the box.
+    EXPECT_EQ(recommend(candidates, 360, std::nullopt).chosen, 3u);
+    EXPECT_EQ(recommend(candidates, 300, std::nullopt).chosen, 1u);
+    EXPECT_EQ(recommend(candidates, 100, std::nullopt).chosen, 2u);
+    const Recommendation none = recommend(candidates, 50, std::nullopt);
+    EXPECT_FALSE(none.chosen);
+    EXPECT_NE(none.why.find("at most 50 float ops"), std::string::npos) << none.why;
+    // A target: the cheapest that reaches it, not the one that ghosts least.
+    EXPECT_EQ(recommend(candidates, std::nullopt, 0.0255).chosen, 3u);
+    EXPECT_EQ(recommend(candidates, std::nullopt, 0.0265).chosen, 1u);
+    EXPECT_EQ(recommend(candidates, std::nullopt, 0.05).chosen, 2u);
+    EXPECT_FALSE(recommend(candidates, std::nullopt, 0.02).chosen);
+    // Of equal ghosting, the cheaper; a candidate with no held-out figure never qualifies.
+    const std::vector<Candidate> tied{candidate("a", false, 300, 0.02), candidate("b", false, 200, 0.02),
+                                      candidate("c", false, 10, NAN)};
+    EXPECT_EQ(recommend(tied, std::nullopt, std::nullopt).chosen, 1u);
+    EXPECT_EQ(recommend(tied, std::nullopt, 0.5).chosen, 1u);
+
+    // The front, cheapest first: the box, fitted4, fitted8 and dop16-grass; dop22 and dop32 cost
+    // more than dop16-grass and ghost more.
+    EXPECT_EQ(pareto_front(candidates), (std::vector<std::size_t>{2, 0, 1, 3}));
+
+    ChooseResult result{candidates, recommend(candidates, std::nullopt, std::nullopt), {}, {"level1"}, {"level2"}};
+    const std::string md = choice_markdown(result, {}, {});
+    EXPECT_NE(
+        md.find("**The fitted sets lost on the held-out frames**: the best built-in candidate, dop16-grass-clip-n9, "
+                "ghosts 0.0240 there, the best fitted one, fitted8-clip-n9, 0.0260 (on the frames it was "
+                "fitted to, 0.0080)"),
+        std::string::npos)
+        << md;
+    EXPECT_EQ(choice_manifest(result), "# kdop choose's recommendation (choice.md says why).\ndop16-grass-clip-n9\n");
+}
+
+// A fitted set recommended: the manifest names its variant and its file, and kdop gen builds
+// exactly that variant from them.
+TEST(CliChoose, TheManifestOfAFittedSetBuildsExactlyThatVariant) {
+    test::TempDir dir;
+    const std::string fitted =
+        "name: fitted4\nprovenance: constructed by the test\nvec3(1, 0, 0),\nvec3(0, 1, 0),\nvec3(0, 0, 1),\n"
+        "vec3(0.57735, 0.57735, 0.57735)\n";
+    test::write_file(dir / "fitted4.axes", fitted);
+    ChooseResult result{{candidate("fitted4", true, 190, 0.02), candidate("aabb", false, 87, 0.03)},
+                        {0, "constructed"},
+                        {{"fitted4.axes", fitted}},
+                        {"level1"},
+                        {"level2"}};
+    const std::string manifest = choice_manifest(result);
+    EXPECT_EQ(manifest, "# kdop choose's recommendation (choice.md says why).\nset: fitted4.axes\nfitted4-clip-n9\n");
+    test::write_file(dir / "kdop.manifest", manifest);
+    auto r = test::run(test::kdop_binary() + " gen --manifest " + (dir / "kdop.manifest").string() + " --out " +
+                       (dir / "gen").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::vector<std::string> built;
+    for (const auto& entry : fs::directory_iterator(dir / "gen"))
+        if (entry.path().extension() == ".spv") built.push_back(entry.path().stem().string());
+    EXPECT_EQ(built, (std::vector<std::string>{"fitted4-clip-n9"}));
+}
+
+// The held-out figures are kdop taa's on the held-out sequences, to the last digit (the same
+// evaluation), for the fitted set as for the built-in ones; without held-out sequences, or with a
+// sequence both fitted to and held out, the command line is refused and nothing is written.
+TEST(CliChoose, HeldOutFiguresAreKdopTaasOnTheHeldOutSequences) {
+    test::TempDir dir;
+    auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
+    const fs::path scenes = dir / "scenes", out = dir / "choose", taa = dir / "taa";
+    auto s = kdop("scene --scenes grass asphalt --size 48x32 --frames 12 --out " + scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const std::string fit = (scenes / "grass-ghosting").string(), held = (scenes / "asphalt-ghosting").string();
+    auto r = kdop("choose --fit " + fit + " --validate " + held +
+                  " --fit-axes 4 --sets aabb dop22 --warmup 3 --sample 2000 --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* file : {"candidates.csv", "candidates.json", "choice.md", "fitted4.axes", "kdop.manifest"})
+        EXPECT_TRUE(fs::exists(out / file)) << file;
+    auto t = kdop("taa --sequence " + held + " --sets aabb dop22 " + (out / "fitted4.axes").string() +
+                  " --modes clip --warmup 3 --timing-rounds 2 --no-charts --viewer-frames 0 --out " + taa.string());
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    const auto candidates = test::csv_rows(test::read_file(out / "candidates.csv"));
+    const auto rows = test::csv_rows(test::read_file(taa / "taa.csv"));
+    ASSERT_EQ(candidates.size(), 3u);
+    for (auto c : candidates) {
+        SCOPED_TRACE(c["variant"]);
+        EXPECT_EQ(c["fitted"], c["variant"] == "fitted4-clip-n9" ? "1" : "0");
+        auto row = std::find_if(rows.begin(), rows.end(), [&](auto& row) { return row.at("variant") == c["variant"]; });
+        ASSERT_NE(row, rows.end());
+        EXPECT_EQ(c["validation_ghosting"], row->at("ghosting"));
+        EXPECT_EQ(c["validation_ghosting_median"], row->at("ghosting_median"));
+        EXPECT_EQ(c["validation_ghosting_p95"], row->at("ghosting_p95"));
+        EXPECT_FALSE(c["fit_ghosting"].empty());
+    }
+    // The manifest selects exactly the recommended variant, the one choose printed.
+    const std::string manifest = test::read_file(out / "kdop.manifest");
+    const std::string chosen = manifest.substr(manifest.rfind('\n', manifest.size() - 2) + 1);
+    EXPECT_NE(r.out.find("kdop choose: " + chosen.substr(0, chosen.size() - 1) + ":"), std::string::npos) << r.out;
+
+    for (const std::string& bad : {std::string("--fit ") + fit, "--fit " + fit + " --validate " + fit}) {
+        const fs::path refused = dir / "refused";
+        auto b = kdop("choose " + bad + " --fit-axes 4 --warmup 3 --out " + refused.string());
+        EXPECT_EQ(b.exit_code, 2) << bad << "\n" << b.err;
+        EXPECT_NE(b.err.find("--validate"), std::string::npos) << b.err;
+        EXPECT_FALSE(fs::exists(refused)) << bad;
+    }
+}
+
+} // namespace
+} // namespace kdop
