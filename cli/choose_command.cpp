@@ -73,15 +73,8 @@ Action add_choose_command(CLI::App& app) {
         if (!outputs) return report_error(outputs.error().message);
         auto context = Context::create({o->device, false});
         if (!context) return report_error(context.error().message);
-        auto chosen = choose(**context, o->run);
+        auto chosen = run_choose(**context, o->run, *outputs);
         if (!chosen) return report(chosen.error());
-        const RunMetadata run = describe_run(**context);
-        outputs->add_table("candidates", candidates_table(chosen->candidates), run);
-        outputs->add("choice.md", choice_markdown(*chosen, o->run, run));
-        for (const auto& [name, text] : chosen->fitted_files) outputs->add(name, text);
-        if (const std::string manifest = choice_manifest(*chosen); !manifest.empty())
-            outputs->add("kdop.manifest", manifest);
-        if (auto ok = outputs->write(); !ok) return report_error(ok.error().message);
         const Recommendation& r = chosen->recommendation;
         std::cout << (r.chosen ? fmt::format("kdop choose: {}: {}\n", chosen->candidates[*r.chosen].key.name(), r.why)
                                : fmt::format("kdop choose: no recommendation: {}\n", r.why))

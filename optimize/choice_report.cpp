@@ -103,4 +103,17 @@ std::string choice_manifest(const ChooseResult& r) {
     return text + c.key.name() + "\n";
 }
 
+Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, OutputSet& outputs) {
+    auto chosen = choose(context, options);
+    if (!chosen) return std::unexpected(chosen.error());
+    const RunMetadata run = describe_run(context);
+    outputs.add_table("candidates", candidates_table(chosen->candidates), run);
+    outputs.add("choice.md", choice_markdown(*chosen, options, run));
+    for (const auto& [name, text] : chosen->fitted_files) outputs.add(name, text);
+    if (const std::string manifest = choice_manifest(*chosen); !manifest.empty())
+        outputs.add("kdop.manifest", manifest);
+    if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
+    return chosen;
+}
+
 } // namespace kdop

@@ -4,6 +4,7 @@
 // `kdop gen --manifest` take.
 #pragma once
 
+#include "harness/output_set.h"
 #include "harness/run_metadata.h"
 #include "harness/table.h"
 #include "optimize/choose.h"
@@ -19,5 +20,9 @@ std::string choice_markdown(const ChooseResult& result, const ChooseOptions& opt
 // The recommended variant, with its `set:` line where its set is fitted (a file beside the
 // manifest); empty where nothing is recommended.
 std::string choice_manifest(const ChooseResult& result);
+
+// `kdop choose`'s run after its command line is read: choose(), then every file above (and the
+// fitted sets' files) added to `outputs` and written, all or nothing.
+Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, OutputSet& outputs);
 
 } // namespace kdop
