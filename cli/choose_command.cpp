@@ -33,9 +33,14 @@ Action add_choose_command(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingDirectory);
     cmd->add_option("--validate", o->run.validate,
-                    "Frame sequences held out of the fit, that every candidate is judged on (required: nothing is "
-                    "judged on the frames it was fitted to)")
+                    "Frame sequences held out of the fit, that every candidate is judged on (this or --holdout: "
+                    "nothing is judged on the frames it was fitted to)")
         ->check(CLI::ExistingDirectory);
+    cmd->add_option("--holdout", o->run.holdout,
+                    "Instead of --validate: hold out of the fit every other block of this many frames of the --fit "
+                    "sequences after the warmup (the second, the fourth, ...), and judge on those")
+        ->check(whole_number(1, 100000))
+        ->excludes("--validate");
     cmd->add_option("--fit-axes", o->run.fit_axes, "Axis counts to fit, one set each [default: 4 8 16]")
         ->check(whole_number(3, 32));
     cmd->add_option("--sets", o->run.sets, "Built-in sets among the candidates [default: all six]")

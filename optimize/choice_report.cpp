@@ -38,13 +38,13 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
     };
     std::string md = "# kdop choose: the variant to ship\n\n";
     md += fmt::format("Axis sets of {} axes were fitted to {} (the mean k-DOP volume over their frames' "
-                      "neighborhoods), then every candidate was measured as `kdop taa --sequence` measures it on "
-                      "{}, held out of the fit: **held-out ghosting** is the mean over those sequences of each "
-                      "one's mean FLIP over its measured frames (after {} frames of warm-up), and its median and "
-                      "95th percentile are over all their measured frames together. **Ghosting on the fit frames** "
-                      "is the same figure on the sequences fitted to: what a fitted set's own figures would have "
-                      "claimed. **Float ops** are the hardened clip's, as the generator counts them.\n\n",
-                      fmt::join(o.fit_axes, ", "), names(r.fit_sequences), names(r.validate_sequences),
+                      "neighborhoods, the held-out frames left out), then every candidate was measured as `kdop taa "
+                      "--sequence` measures it. **Held-out ghosting** is measured on {}: the mean over the sequences "
+                      "of each one's mean FLIP over those of its measured frames (after {} frames of warm-up), and "
+                      "its median and 95th percentile are over all those frames together. **Ghosting on the fit "
+                      "frames** is the same figure on the frames fitted to: what a fitted set's own figures would "
+                      "have claimed. **Float ops** are the hardened clip's, as the generator counts them.\n\n",
+                      fmt::join(o.fit_axes, ", "), names(r.fit_sequences), markdown_text(r.held_out),
                       o.evaluation.schedule.warmup);
 
     // Least held-out ghosting first.

@@ -9,9 +9,11 @@
 #include "temporal/taa_sources.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 
 namespace kdop {
 
@@ -93,37 +95,59 @@ Result<std::vector<SequenceFrames>> read_sequences(const Context& context, const
     return std::move(sources->sequences);
 }
 
-// Each variant's ghosting on `sequences`: the mean of each sequence's mean; with `per_frame`, every
-// measured frame's ghosting (and, in `shimmer`, the mean of the sequences' shimmer).
-Result<std::vector<double>> mean_ghosting(TaaEvaluation& evaluation, const std::vector<SequenceFrames>& sequences,
-                                          Progress& progress, std::vector<std::vector<double>>* per_frame = nullptr,
-                                          std::vector<double>* shimmer = nullptr) {
+// Each variant's figures over the frames of `sequences` that `counted` accepts (all measured
+// frames without it): its ghosting and shimmer as the mean over the sequences of each one's mean
+// (what taa.csv holds, the same sums in the same order), and every counted frame's ghosting.
+struct Figures {
+    std::vector<double> ghosting, shimmer;
+    std::vector<std::vector<double>> frames;
+};
+using FrameFilter = std::function<bool(std::size_t frame)>;
+
+// Mean of `values`, NaN for none: a sequence's figure over the counted frames.
+double mean_of(const std::vector<double>& values) {
+    double sum = 0;
+    for (double v : values) sum += v;
+    return values.empty() ? NAN : sum / double(values.size());
+}
+
+// Measures every variant on `sequences` once, and gives the figures of each filter's frames.
+Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const std::vector<SequenceFrames>& sequences,
+                                             const std::vector<FrameFilter>& filters, Progress& progress) {
     const std::size_t variants = evaluation.specs().size();
-    std::vector<double> ghosting(variants, 0.0);
-    if (shimmer) shimmer->assign(variants, 0.0);
-    if (per_frame) per_frame->assign(variants, {});
+    std::vector<Figures> figures(filters.size(), {std::vector<double>(variants, 0.0),
+                                                  std::vector<double>(variants, 0.0),
+                                                  std::vector<std::vector<double>>(variants)});
     EvaluationObserver observer;
     observer.frame = [&](const std::string& source) { progress.advance(source); };
     for (const SequenceFrames& sequence : sequences) {
         auto rows = evaluation.measure(sequence, observer);
         if (!rows) return std::unexpected(rows.error());
-        for (const EvaluationRow& row : *rows) {
-            ghosting[row.variant] += row.ghosting / double(sequences.size());
-            if (shimmer) (*shimmer)[row.variant] += row.shimmer / double(sequences.size());
-            if (per_frame)
-                for (const FrameFigures& f : row.per_frame)
-                    if (!std::isnan(f.ghosting)) (*per_frame)[row.variant].push_back(f.ghosting);
-        }
+        for (const EvaluationRow& row : *rows)
+            for (std::size_t f = 0; f < filters.size(); ++f) {
+                std::vector<double> ghosting, shimmer;
+                for (const FrameFigures& frame : row.per_frame) {
+                    if (filters[f] && !filters[f](frame.index)) continue;
+                    if (!std::isnan(frame.ghosting)) ghosting.push_back(frame.ghosting);
+                    if (!std::isnan(frame.shimmer)) shimmer.push_back(frame.shimmer);
+                }
+                Figures& into = figures[f];
+                into.ghosting[row.variant] += mean_of(ghosting) / double(sequences.size());
+                into.shimmer[row.variant] += mean_of(shimmer) / double(sequences.size());
+                std::ranges::copy(ghosting, std::back_inserter(into.frames[row.variant]));
+            }
     }
-    return ghosting;
+    return figures;
 }
 
 } // namespace
 
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
-    if (o.validate.empty())
-        return usage_fail("choose: give --validate SEQUENCE... held out of the fit: every figure a choice rests on "
-                          "is measured on frames the sets were not fitted to, and without them there are none");
+    if (o.validate.empty() && o.holdout == 0)
+        return usage_fail("choose: give --validate SEQUENCE... or --holdout FRAMES: every figure a choice rests on is "
+                          "measured on frames the sets were not fitted to, and without either there are none");
+    if (!o.validate.empty() && o.holdout > 0)
+        return usage_fail("--validate and --holdout: hold out either whole sequences or blocks of frames, not both");
     if (o.fit.empty()) return usage_fail("choose: give --fit SEQUENCE... to fit the axis sets to");
     for (const std::string& held : o.validate)
         for (const std::string& fitted : o.fit) {
@@ -136,47 +160,23 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
     if (o.budget_ops && o.target_ghosting)
         return usage_fail("--budget-ops and --target-ghosting: give one rule to choose by");
 
-    // The candidates: a fitted set per axis count, then the built-in sets, each in every mode and
-    // neighborhood asked for.
+    const Holdout holdout{o.holdout, o.evaluation.schedule.warmup};
     ChooseResult result;
-    std::vector<AxisSet> fitted_sets;
-    for (std::size_t axes : o.fit_axes) {
-        OptimizeOptions fit;
-        fit.input.sequences = o.fit;
-        fit.input.input_space = o.input_space;
-        fit.input.color_map = o.evaluation.resolve.color_map; // the space the set clips in
-        fit.axes = axes;
-        fit.name = fmt::format("fitted{}", axes);
-        fit.out = (std::filesystem::path(o.out) / (fit.name + ".axes")).string();
-        fit.write_out = false;
-        fit.seed = o.seed;
-        fit.threads = o.threads;
-        fit.sample = o.sample;
-        fit.accuracy_samples = 0;
-        auto ranks = Ranks::world();
-        if (!ranks) return std::unexpected(ranks.error());
-        auto fitted = optimize(fit, **ranks);
-        if (!fitted) return std::unexpected(fitted.error());
-        auto set = parse_axis_set(fitted->file, fit.out);
-        if (!set) return std::unexpected(set.error());
-        fitted_sets.push_back(std::move(*set));
-        result.fitted_files.emplace_back(fit.name + ".axes", fitted->file);
-    }
+    // The candidates: a fitted set per axis count, then the built-in sets, each in every mode and
+    // neighborhood asked for. Their count is known before the fit, so everything is checked first.
     const std::vector<std::string> builtin =
         o.sets.empty() ? std::vector<std::string>(builtin_set_names().begin(), builtin_set_names().end()) : o.sets;
     auto builtin_specs = select_variants(builtin, o.modes, o.neighborhoods, {});
     if (!builtin_specs) return usage_fail("--sets: " + builtin_specs.error().message);
-    std::vector<VariantSpec> specs;
-    for (const AxisSet& set : fitted_sets)
-        for (const VariantSpec& like : *builtin_specs)
-            if (like.set.name == builtin_specs->front().set.name) specs.push_back({set, like.mode, like.neighborhood});
-    const std::size_t fitted_count = specs.size();
-    specs.insert(specs.end(), builtin_specs->begin(), builtin_specs->end());
+    std::vector<const VariantSpec*> per_set; // one set's modes and neighborhoods
+    for (const VariantSpec& spec : *builtin_specs)
+        if (spec.set.name == builtin_specs->front().set.name) per_set.push_back(&spec);
+    const std::size_t candidates = builtin_specs->size() + o.fit_axes.size() * per_set.size();
 
-    auto validate = read_sequences(context, o.validate, o, specs.size(), "--validate");
-    if (!validate) return std::unexpected(validate.error());
-    auto fit = read_sequences(context, o.fit, o, specs.size(), "--fit");
+    auto fit = read_sequences(context, o.fit, o, candidates, "--fit");
     if (!fit) return std::unexpected(fit.error());
+    auto validate = read_sequences(context, o.validate, o, candidates, "--validate");
+    if (!validate) return std::unexpected(validate.error());
     // Candidates are judged by their ghosting; a sequence meant only for shimmer has none.
     for (const auto& [option, sequences] : {std::pair{"--validate", &*validate}, std::pair{"--fit", &*fit}})
         for (const SequenceFrames& s : *sequences)
@@ -184,32 +184,85 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
                 return usage_fail(fmt::format("{} {}: its sequence.json measures only shimmer, and kdop choose judges "
                                               "candidates by their ghosting",
                                               option, s.sequence().dir.string()));
+    // Held-out blocks: every fit sequence must have a frame in one.
+    if (holdout.block > 0)
+        for (const SequenceFrames& s : *fit)
+            if (s.frame_count() <= holdout.warmup + holdout.block)
+                return usage_fail(fmt::format("--holdout {}: {} has {} frames, so after the warmup of {} no frame is "
+                                              "held out (the second block of {} would start at frame {})",
+                                              holdout.block, s.sequence().dir.string(), s.frame_count(),
+                                              holdout.warmup, holdout.block, holdout.warmup + holdout.block));
     for (const SequenceFrames& s : *fit) result.fit_sequences.push_back(s.name());
     for (const SequenceFrames& s : *validate) result.validate_sequences.push_back(s.name());
+    result.held_out =
+        holdout.block > 0
+            ? fmt::format("every other block of {} frames after the warm-up of the fitted sequences, the second, the "
+                          "fourth and so on (frames {} to {}, {} to {}, ...)",
+                          holdout.block, holdout.warmup + holdout.block, holdout.warmup + 2 * holdout.block - 1,
+                          holdout.warmup + 3 * holdout.block, holdout.warmup + 4 * holdout.block - 1)
+            : fmt::format("the sequences given to --validate ({})", fmt::join(result.validate_sequences, ", "));
+
+    std::vector<VariantSpec> specs;
+    for (std::size_t axes : o.fit_axes) {
+        OptimizeOptions fitting;
+        fitting.input.sequences = o.fit;
+        fitting.input.input_space = o.input_space;
+        fitting.input.color_map = o.evaluation.resolve.color_map; // the space the set clips in
+        fitting.input.holdout = holdout;
+        fitting.axes = axes;
+        fitting.name = fmt::format("fitted{}", axes);
+        fitting.out = (std::filesystem::path(o.out) / (fitting.name + ".axes")).string();
+        fitting.write_out = false;
+        fitting.seed = o.seed;
+        fitting.threads = o.threads;
+        fitting.sample = o.sample;
+        fitting.accuracy_samples = 0;
+        auto ranks = Ranks::world();
+        if (!ranks) return std::unexpected(ranks.error());
+        auto fitted = optimize(fitting, **ranks);
+        if (!fitted) return std::unexpected(fitted.error());
+        auto set = parse_axis_set(fitted->file, fitting.out);
+        if (!set) return std::unexpected(set.error());
+        for (const VariantSpec* like : per_set) specs.push_back({*set, like->mode, like->neighborhood});
+        result.fitted_files.emplace_back(fitting.name + ".axes", fitted->file);
+    }
+    const std::size_t fitted_count = specs.size();
+    specs.insert(specs.end(), builtin_specs->begin(), builtin_specs->end());
 
     auto evaluation = TaaEvaluation::create(context, specs, o.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
     std::size_t frames = 0;
     for (const auto* sequences : {&*validate, &*fit})
         for (const SequenceFrames& s : *sequences) frames += s.frame_count();
-    Progress progress(fmt::format("TAA of {} candidates on the held-out and fitted sequences,", specs.size()), frames);
-    std::vector<std::vector<double>> held_frames;
-    std::vector<double> held_shimmer;
-    auto held = mean_ghosting(*evaluation, *validate, progress, &held_frames, &held_shimmer);
-    if (!held) return std::unexpected(held.error());
-    auto in_sample = mean_ghosting(*evaluation, *fit, progress);
-    if (!in_sample) return std::unexpected(in_sample.error());
+    Progress progress(fmt::format("TAA of {} candidates on the held-out and fitted frames,", specs.size()), frames);
+    // With --validate: every measured frame of those sequences, then of the fitted ones. With
+    // --holdout: the fitted sequences once, their held-out frames and the others.
+    Figures held, in_sample;
+    if (holdout.block == 0) {
+        auto on_validate = measure_figures(*evaluation, *validate, {nullptr}, progress);
+        if (!on_validate) return std::unexpected(on_validate.error());
+        auto on_fit = measure_figures(*evaluation, *fit, {nullptr}, progress);
+        if (!on_fit) return std::unexpected(on_fit.error());
+        held = std::move(on_validate->front()), in_sample = std::move(on_fit->front());
+    } else {
+        auto split = measure_figures(
+            *evaluation, *fit,
+            {[&](std::size_t i) { return holdout.held_out(i); }, [&](std::size_t i) { return !holdout.held_out(i); }},
+            progress);
+        if (!split) return std::unexpected(split.error());
+        held = std::move((*split)[0]), in_sample = std::move((*split)[1]);
+    }
 
     for (std::size_t v = 0; v < specs.size(); ++v) {
         Candidate c;
         c.key = specs[v].key();
         c.fitted = v < fitted_count;
         c.float_ops = analytic_min_float_ops(specs[v].set, specs[v].mode, specs[v].neighborhood);
-        c.fit_ghosting = (*in_sample)[v];
-        c.validation_ghosting = (*held)[v];
-        c.validation_shimmer = held_shimmer[v];
-        c.validation_ghosting_median = quantile(held_frames[v], 0.5);
-        c.validation_ghosting_p95 = quantile(held_frames[v], 0.95);
+        c.fit_ghosting = in_sample.ghosting[v];
+        c.validation_ghosting = held.ghosting[v];
+        c.validation_shimmer = held.shimmer[v];
+        c.validation_ghosting_median = quantile(held.frames[v], 0.5);
+        c.validation_ghosting_p95 = quantile(held.frames[v], 0.95);
         result.candidates.push_back(std::move(c));
     }
     result.recommendation = recommend(result.candidates, o.budget_ops, o.target_ghosting);

@@ -1,7 +1,7 @@
 // `kdop choose`: from a game's frames to the variant it ships. Axis sets are fitted to some
 // sequences (the optimize fit, one set per axis count), then every candidate, the fitted sets and
-// the built-in ones in each mode and neighborhood asked for, is measured on other sequences, held
-// out of the fit, with kdop taa's evaluation (temporal/taa_evaluation.h, the same call): no figure
+// the built-in ones in each mode and neighborhood asked for, is measured on other sequences, or on
+// blocks of frames left out of the fit (Holdout), with kdop taa's evaluation (temporal/taa_evaluation.h, the same call): no figure
 // a choice rests on comes from the frames a set was fitted to. The recommendation is the candidate
 // with the least held-out ghosting within a cost budget, or the cheapest that meets a ghosting
 // target; a built-in set wins whenever it is better.
@@ -22,7 +22,10 @@
 namespace kdop {
 
 struct ChooseOptions {
-    std::vector<std::string> fit, validate;      // sequence folders: fitted to, and held out
+    std::vector<std::string> fit, validate; // sequence folders: fitted to, and held out
+    // Without `validate`: frames of the fit sequences held out instead, every other block of this
+    // many after the warm-up (Holdout); 0: none.
+    std::size_t holdout = 0;
     std::vector<std::size_t> fit_axes{4, 8, 16}; // one fitted set per count
     std::vector<std::string> sets;               // built-in candidates; empty: every built-in set
     std::vector<std::string> modes{"clip"}, neighborhoods{"n9"};
@@ -70,10 +73,11 @@ struct ChooseResult {
     Recommendation recommendation;
     std::vector<std::pair<std::string, std::string>> fitted_files; // file name (fitted<N>.axes) and text
     std::vector<std::string> fit_sequences, validate_sequences;    // their names
+    std::string held_out;                                           // what was held out, in words
 };
 
-// The run: checks (a usage Error where the command line is at fault: no held-out sequence, a
-// sequence both fitted to and held out), fits, measures, recommends. Writes nothing.
+// The run: checks (a usage Error where the command line is at fault: nothing held out, a sequence
+// both fitted to and held out), fits, measures, recommends. Writes nothing.
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& options);
 
 } // namespace kdop

@@ -37,10 +37,11 @@ Result<void> check_neighborhood_fits(const std::string& name, std::uint32_t widt
                             sequence ? "frames have" : "has", sequence ? "a frame" : "an image"));
 }
 
-// The frames of `sequence` a fit reads: every frame_step-th from the first.
-std::vector<std::size_t> stepped_frames(const Sequence& sequence, std::size_t step) {
+// The frames of `sequence` a fit reads: every frame_step-th from the first, those held out left out.
+std::vector<std::size_t> stepped_frames(const Sequence& sequence, std::size_t step, const Holdout& holdout) {
     std::vector<std::size_t> frames;
-    for (std::size_t i = 0; i < sequence.frames.size(); i += step) frames.push_back(i);
+    for (std::size_t i = 0; i < sequence.frames.size(); i += step)
+        if (!holdout.held_out(i)) frames.push_back(i);
     return frames;
 }
 
@@ -71,7 +72,7 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
         const auto shared = std::make_shared<const Sequence>(std::move(*read));
         in.sequences.push_back(shared);
         const Sequence& sequence = *shared;
-        const std::vector<std::size_t> frames = stepped_frames(sequence, o.frame_step);
+        const std::vector<std::size_t> frames = stepped_frames(sequence, o.frame_step, o.holdout);
         for (std::size_t index : frames) {
             const std::string label = sequence.frames[index].color.string();
             in.frames.push_back(
@@ -87,8 +88,8 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
             in.paths.push_back(sequence.frames[index].color);
         }
         in.paths.push_back(sequence.dir / "sequence.json");
-        described.push_back(frames.size() == sequence.frames.size()
-                                ? fmt::format("{} ({} frames)", sequence.dir.string(), frames.size())
+        described.push_back(frames.size() == sequence.frames.size() ? fmt::format("{} ({} frames)", sequence.dir.string(), frames.size())
+                            : o.holdout.block ? fmt::format("{} ({} of {} frames, every other block of {} after {} held out)", sequence.dir.string(), frames.size(), sequence.frames.size(), o.holdout.block, o.holdout.warmup)
                                 : fmt::format("{} ({} of {} frames, every {})", sequence.dir.string(), frames.size(),
                                               sequence.frames.size(), o.frame_step));
     }
@@ -99,7 +100,7 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
 Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& o, const FitInputs& inputs,
                                                      Neighborhood shape, std::size_t per_input, std::uint64_t seed) {
     std::size_t frames = o.images.size();
-    for (const auto& sequence : inputs.sequences) frames += stepped_frames(*sequence, o.frame_step).size();
+    for (const auto& sequence : inputs.sequences) frames += stepped_frames(*sequence, o.frame_step, o.holdout).size();
     Progress progress(fmt::format("the ideal clip on up to {} sampled pixels of", per_input), frames);
     std::vector<ClipSample> samples;
     if (!o.images.empty()) {
@@ -117,7 +118,7 @@ Result<std::vector<ClipSample>> fit_distance_samples(const FitInputOptions& o, c
     // A sequence's pixels are spread over its frames, each frame drawing with its own generator.
     for (const auto& shared : inputs.sequences) {
         const Sequence& sequence = *shared;
-        const std::vector<std::size_t> stepped = stepped_frames(sequence, o.frame_step);
+        const std::vector<std::size_t> stepped = stepped_frames(sequence, o.frame_step, o.holdout);
         const std::size_t per_frame = (per_input + stepped.size() - 1) / stepped.size();
         for (std::size_t index : stepped) {
             auto color = load_frame_color(sequence, index, o.input_space);

@@ -16,9 +16,18 @@
 
 namespace kdop {
 
+// Frames of each sequence held out of a fit, to judge it on (kdop choose --holdout): with `block`
+// above 0, of the frames after `warmup`, every other block of `block` frames, the second, the
+// fourth and so on; none with 0. The warm-up frames are fitted to (no figure is measured on them).
+struct Holdout {
+    std::size_t block = 0, warmup = 0;
+    bool held_out(std::size_t index) const { return block > 0 && index >= warmup && (index - warmup) / block % 2 == 1; }
+};
+
 struct FitInputOptions {
     std::vector<std::string> images, sequences; // files; sequence folders
     std::size_t frame_step = 1;                 // every frame_step-th frame of each sequence, from the first
+    Holdout holdout;                            // frames left out of the fit
     InputSpace input_space = InputSpace::from_file;
     ColorMap color_map; // the fit's space: every color is mapped on reading
 };

@@ -274,9 +274,12 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                     outputs.push_back(&current[s]);
                     if (!source.starts_history(i)) previous.push_back(&meters[s].output());
                 }
-                const MeasuredFrame shown{source.name(), i,
-                                          figures,       outputs,
-                                          previous,      against_reference ? &*frame->reference : &frame->color};
+                const MeasuredFrame shown{.sequence = source.name(),
+                                          .index = i,
+                                          .figures = figures,
+                                          .outputs = outputs,
+                                          .previous = previous,
+                                          .truth = against_reference ? &*frame->reference : &frame->color};
                 if (auto ok = on_measured(shown); !ok) return fail(fmt::format("{}: {}", label, ok.error().message));
             }
             if (on_measured)

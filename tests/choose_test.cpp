@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 
 namespace kdop {
 namespace {
@@ -134,6 +135,54 @@ TEST(CliChoose, HeldOutFiguresAreKdopTaasOnTheHeldOutSequences) {
         EXPECT_NE(b.err.find("--validate"), std::string::npos) << b.err;
         EXPECT_FALSE(fs::exists(refused)) << bad;
     }
+}
+
+// --holdout: blocks of frames of the fitted sequence are left out of the fit and judged on; the
+// held-out figures are the means of kdop taa's per-frame figures on exactly those frames, and a
+// sequence too short to hold any out is refused.
+TEST(CliChoose, HoldoutJudgesOnBlocksOfFramesLeftOutOfTheFit) {
+    test::TempDir dir;
+    auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
+    const fs::path scenes = dir / "scenes", out = dir / "choose", taa = dir / "taa";
+    auto s = kdop("scene --scenes grass --size 48x32 --frames 12 --out " + scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const std::string fit = (scenes / "grass-ghosting").string();
+    auto r = kdop("choose --fit " + fit + " --holdout 2 --fit-axes 4 --sets aabb --warmup 3 --sample 2000 --out " +
+                  out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Measured frames 3..11: blocks [3, 4] fitted, [5, 6] held out, [7, 8] fitted, [9, 10] held out, [11] fitted.
+    const std::set<std::string> held_out{"5", "6", "9", "10"};
+    EXPECT_NE(test::read_file(out / "fitted4.axes").find("8 of 12 frames, every other block of 2 after 3 held out"),
+              std::string::npos)
+        << test::read_file(out / "fitted4.axes");
+    EXPECT_NE(test::read_file(out / "choice.md").find("every other block of 2 frames"), std::string::npos);
+    auto t = kdop("taa --sequence " + fit + " --sets aabb " + (out / "fitted4.axes").string() +
+                  " --modes clip --warmup 3 --timing-rounds 2 --no-charts --viewer-frames 0 --out " + taa.string());
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    const auto frames = test::csv_rows(test::read_file(taa / "taa_frames.csv"));
+    const auto candidates = test::csv_rows(test::read_file(out / "candidates.csv"));
+    ASSERT_EQ(candidates.size(), 2u);
+    for (auto c : candidates) {
+        SCOPED_TRACE(c["variant"]);
+        double held = 0, fitted = 0;
+        int held_count = 0, fitted_count = 0;
+        for (auto f : frames)
+            if (f["variant"] == c["variant"]) {
+                const bool out_of_fit = held_out.count(f["frame"]) > 0;
+                (out_of_fit ? held : fitted) += std::stod(f["ghosting"]);
+                ++(out_of_fit ? held_count : fitted_count);
+            }
+        ASSERT_EQ(held_count, 4);
+        ASSERT_EQ(fitted_count, 5);
+        EXPECT_DOUBLE_EQ(std::stod(c["validation_ghosting"]), held / 4);
+        EXPECT_DOUBLE_EQ(std::stod(c["fit_ghosting"]), fitted / 5);
+    }
+    const fs::path refused = dir / "refused";
+    auto b = kdop("choose --fit " + fit + " --holdout 9 --fit-axes 4 --warmup 3 --out " + refused.string());
+    EXPECT_EQ(b.exit_code, 2) << b.err;
+    EXPECT_NE(b.err.find("--holdout 9: "), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("no frame is held out"), std::string::npos) << b.err;
+    EXPECT_FALSE(fs::exists(refused));
 }
 
 } // namespace
