@@ -91,7 +91,8 @@ Action add_optimize_command(CLI::App& app) {
     cmd->add_option("--memory", o->run.memory,
                     "Hold the frames' neighborhoods between the search's passes up to this many MB (216 bytes a "
                     "pixel at most); the frames beyond are read and gathered again on each pass [default: half the "
-                    "available memory]")
+                    "available memory; with --sample, none: the search sees the sample alone, and the frames are "
+                    "read again for the scores on all of them]")
         ->check(positive_number(1e9, " MB"))
         ->excludes(sphere);
     add_input_space_option(*cmd, o->run.input.input_space)->excludes(sphere);

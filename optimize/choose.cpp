@@ -115,9 +115,9 @@ double mean_of(const std::vector<double>& values) {
 Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const std::vector<SequenceFrames>& sequences,
                                              const std::vector<FrameFilter>& filters, Progress& progress) {
     const std::size_t variants = evaluation.specs().size();
-    std::vector<Figures> figures(filters.size(), {std::vector<double>(variants, 0.0),
-                                                  std::vector<double>(variants, 0.0),
-                                                  std::vector<std::vector<double>>(variants)});
+    std::vector<Figures> figures(filters.size(),
+                                 {std::vector<double>(variants, 0.0), std::vector<double>(variants, 0.0),
+                                  std::vector<std::vector<double>>(variants)});
     EvaluationObserver observer;
     observer.frame = [&](const std::string& source) { progress.advance(source); };
     for (const SequenceFrames& sequence : sequences) {
@@ -190,8 +190,8 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
             if (s.frame_count() <= holdout.warmup + holdout.block)
                 return usage_fail(fmt::format("--holdout {}: {} has {} frames, so after the warmup of {} no frame is "
                                               "held out (the second block of {} would start at frame {})",
-                                              holdout.block, s.sequence().dir.string(), s.frame_count(),
-                                              holdout.warmup, holdout.block, holdout.warmup + holdout.block));
+                                              holdout.block, s.sequence().dir.string(), s.frame_count(), holdout.warmup,
+                                              holdout.block, holdout.warmup + holdout.block));
     for (const SequenceFrames& s : *fit) result.fit_sequences.push_back(s.name());
     for (const SequenceFrames& s : *validate) result.validate_sequences.push_back(s.name());
     result.held_out =

@@ -1,8 +1,8 @@
 // `kdop choose`: from a game's frames to the variant it ships. Axis sets are fitted to some
 // sequences (the optimize fit, one set per axis count), then every candidate, the fitted sets and
 // the built-in ones in each mode and neighborhood asked for, is measured on other sequences, or on
-// blocks of frames left out of the fit (Holdout), with kdop taa's evaluation (temporal/taa_evaluation.h, the same call): no figure
-// a choice rests on comes from the frames a set was fitted to. The recommendation is the candidate
+// blocks of frames left out of the fit (Holdout), with kdop taa's evaluation (temporal/taa_evaluation.h, the same
+// call): no figure a choice rests on comes from the frames a set was fitted to. The recommendation is the candidate
 // with the least held-out ghosting within a cost budget, or the cheapest that meets a ghosting
 // target; a built-in set wins whenever it is better.
 #pragma once
@@ -73,7 +73,7 @@ struct ChooseResult {
     Recommendation recommendation;
     std::vector<std::pair<std::string, std::string>> fitted_files; // file name (fitted<N>.axes) and text
     std::vector<std::string> fit_sequences, validate_sequences;    // their names
-    std::string held_out;                                           // what was held out, in words
+    std::string held_out;                                          // what was held out, in words
 };
 
 // The run: checks (a usage Error where the command line is at fault: nothing held out, a sequence

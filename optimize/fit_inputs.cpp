@@ -88,8 +88,12 @@ Result<FitInputs> fit_inputs(const FitInputOptions& o) {
             in.paths.push_back(sequence.frames[index].color);
         }
         in.paths.push_back(sequence.dir / "sequence.json");
-        described.push_back(frames.size() == sequence.frames.size() ? fmt::format("{} ({} frames)", sequence.dir.string(), frames.size())
-                            : o.holdout.block ? fmt::format("{} ({} of {} frames, every other block of {} after {} held out)", sequence.dir.string(), frames.size(), sequence.frames.size(), o.holdout.block, o.holdout.warmup)
+        described.push_back(frames.size() == sequence.frames.size()
+                                ? fmt::format("{} ({} frames)", sequence.dir.string(), frames.size())
+                            : o.holdout.block
+                                ? fmt::format("{} ({} of {} frames, every other block of {} after {} held out)",
+                                              sequence.dir.string(), frames.size(), sequence.frames.size(),
+                                              o.holdout.block, o.holdout.warmup)
                                 : fmt::format("{} ({} of {} frames, every {})", sequence.dir.string(), frames.size(),
                                               sequence.frames.size(), o.frame_step));
     }

@@ -120,9 +120,14 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
         if (auto ok = check_memory("the neighborhoods of the largest frame", largest); !ok)
             return fail(ok.error().message);
         // Held between passes while they take at most --memory MB (by default half what is
-        // available); the frames beyond are read and gathered again on each pass.
+        // available); the frames beyond are read and gathered again on each pass. With --sample
+        // the search passes over the sample alone, and every frame is read again only for the few
+        // scores on all of them: by default none is held, so memory is the sample's and one
+        // frame's, whatever the frame count.
         const std::uint64_t budget = o.memory ? std::uint64_t(*o.memory * 1024 * 1024)
-                                              : (available_memory() ? available_memory() / 2 : std::uint64_t(4) << 30);
+                                     : o.sample
+                                         ? 0
+                                         : (available_memory() ? available_memory() / 2 : std::uint64_t(4) << 30);
         std::vector<std::uint64_t> pixels;
         for (const FitFrame& frame : inputs.frames) pixels.push_back(frame.pixels);
         std::optional<NeighborhoodSampler> sampler;

@@ -553,11 +553,12 @@ TEST(CliOptimize, FitsToSequencesHeldOrStreamedAlike) {
 }
 
 // Streamed, a sequence's frames cost the same memory however many there are; held, they grow.
+// With --sample and no --memory none is held by default: flat too.
 TEST(CliOptimize, StreamingKeepsPeakMemoryFlatInTheFrameCount) {
     OptimizeInputs in;
     auto peak = [&](std::size_t frames, const std::string& memory) {
         const std::string sequence = in.grass_sequence(fmt::format("scenes{}", frames), "64x64", frames);
-        auto r = in.kdop("optimize --sequence " + sequence + " --memory " + memory +
+        auto r = in.kdop("optimize --sequence " + sequence + (memory.empty() ? "" : " --memory " + memory) +
                          " --sample 200 --axes 4 --starts 1 --iterations 2 --accuracy-samples 0 --out " +
                          (in.dir / "fitted.axes").string());
         EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -569,6 +570,9 @@ TEST(CliOptimize, StreamingKeepsPeakMemoryFlatInTheFrameCount) {
     EXPECT_LT(two_hundred, twenty + 10) << "streamed: one frame at a time";
     // 200 frames of 4,096 neighborhoods, 9 points of 24 bytes each: about 180 MB held.
     EXPECT_GT(held, twenty + 100) << "the same frames held: the bound above is not loose";
+    // With --sample and no --memory, the sample alone is held: as flat, by default.
+    const double sampled_twenty = peak(20, ""), sampled_two_hundred = peak(200, "");
+    EXPECT_LT(sampled_two_hundred, sampled_twenty + 10) << "a sampled fit holds the sample and one frame";
 }
 
 // mpirun -np R: each rank reads and evaluates its own frames, and the fixed frame order of the
