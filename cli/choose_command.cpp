@@ -28,7 +28,7 @@ Action add_choose_command(CLI::App& app) {
         "choose", "Fit axis sets to some frame sequences, measure them and the built-in sets on other sequences held "
                   "out of the fit, as `kdop taa --sequence` measures, and recommend the variant to ship: the least "
                   "held-out ghosting within a cost budget, or the cheapest that meets a ghosting target; writes "
-                  "candidates.csv (and JSON), choice.md, the fitted .axes files and kdop.manifest");
+                  "candidates.csv (and JSON), choice.md and its chart, the fitted .axes files and kdop.manifest");
     cmd->add_option("--fit", o->run.fit, "Frame sequences to fit the axis sets to")
         ->required()
         ->check(CLI::ExistingDirectory);
@@ -43,7 +43,8 @@ Action add_choose_command(CLI::App& app) {
         ->excludes("--validate");
     cmd->add_option("--fit-axes", o->run.fit_axes, "Axis counts to fit, one set each [default: 4 8 16]")
         ->check(whole_number(3, 32));
-    cmd->add_option("--sets", o->run.sets, "Built-in sets among the candidates [default: all six]")
+    cmd->add_option("--sets", o->run.sets,
+                    "Other sets among the candidates: built-in names or .axes files [default: the six built-in sets]")
         ->check(SelectionOptions::axis_set_name());
     cmd->add_option("--modes", o->run.modes, "clip and/or varclip [default: clip]")
         ->check(SelectionOptions::choice("mode", "clip or varclip", parse_mode));
@@ -53,10 +54,19 @@ Action add_choose_command(CLI::App& app) {
                     "Recommend the least held-out ghosting among the candidates whose clip costs at most this many "
                     "float ops [default: no budget]")
         ->check(whole_number(1, 1000000));
+    cmd->add_option("--budget-ms", o->run.budget_ms,
+                    "Or among those whose rectification pass takes at most this many ms (median, on the device, as "
+                    "kdop taa times it)")
+        ->check(positive_number(1e6, " ms"))
+        ->excludes("--budget-ops");
     cmd->add_option("--target-ghosting", o->run.target_ghosting,
                     "Recommend instead the cheapest candidate whose held-out ghosting is at most this")
         ->check(positive_number(1))
-        ->excludes("--budget-ops");
+        ->excludes("--budget-ops")
+        ->excludes("--budget-ms");
+    cmd->add_option("--timing-rounds", o->run.timing_rounds,
+                    "Interleaved dispatches per candidate for ms [default: 15]")
+        ->check(whole_number(1, 10000));
     cmd->add_option("--warmup", o->run.evaluation.schedule.warmup,
                     "Frames of each sequence before measuring [default: 100]")
         ->check(whole_number(1, 100000));
@@ -70,6 +80,8 @@ Action add_choose_command(CLI::App& app) {
     cmd->add_option("--threads", o->run.threads, "Threads of the fit [default: one per core]")->check(thread_count());
     cmd->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
+    cmd->add_flag(
+        "--no-charts", [o](std::int64_t) { o->run.chart = false; }, "Write the tables and report without choice.png");
     cmd->add_option("--out", o->run.out, "Output directory (created if missing)")->required();
 
     return [o, cmd] {

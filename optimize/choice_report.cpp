@@ -2,6 +2,9 @@
 
 #include "core/escaped_text.h"
 #include "harness/declared_table.h"
+#include "harness/gnuplot.h"
+#include "harness/scratch_directory.h"
+#include "optimize/choice_chart.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -18,6 +21,9 @@ Table candidates_table(const std::vector<Candidate>& candidates) {
             {{"fitted", "", Shown::flag, 0}, [](const Candidate& c) { return Value(c.fitted); }},
             {{"float_ops", "", Shown::integer, 0, "float ops"},
              [](const Candidate& c) { return Value(std::int64_t(c.float_ops)); }},
+            {{"ms", "ms", Shown::fixed, 3, "median"}, [](const Candidate& c) { return maybe(c.ms); }},
+            {{"ms_q1", "ms", Shown::fixed, 3, "Q1"}, [](const Candidate& c) { return maybe(c.ms_q1); }},
+            {{"ms_q3", "ms", Shown::fixed, 3, "Q3"}, [](const Candidate& c) { return maybe(c.ms_q3); }},
             {{"fit_ghosting", "FLIP", Shown::fixed, 4, "ghosting on the fit frames"},
              [](const Candidate& c) { return maybe(c.fit_ghosting); }},
             {{"validation_ghosting", "FLIP", Shown::fixed, 4, "held-out ghosting"},
@@ -32,7 +38,7 @@ Table candidates_table(const std::vector<Candidate>& candidates) {
     return declared_table<Candidate>(columns, candidates);
 }
 
-std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const RunMetadata& run) {
+std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const RunMetadata& run, bool chart) {
     const auto names = [](const std::vector<std::string>& list) {
         return fmt::format("{}", fmt::join(list | std::views::transform(markdown_text), ", "));
     };
@@ -43,7 +49,9 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
                       "of each one's mean FLIP over those of its measured frames (after {} frames of warm-up), and "
                       "its median and 95th percentile are over all those frames together. **Ghosting on the fit "
                       "frames** is the same figure on the frames fitted to: what a fitted set's own figures would "
-                      "have claimed. **Float ops** are the hardened clip's, as the generator counts them.\n\n",
+                      "have claimed. **Float ops** are the hardened clip's, as the generator counts them; **ms** the "
+                      "median device time of its rectification pass at the held-out frames' size, with its quartiles "
+                      "over interleaved rounds, as kdop taa times it.\n\n",
                       fmt::join(o.fit_axes, ", "), names(r.fit_sequences), markdown_text(r.held_out),
                       o.evaluation.schedule.warmup);
 
@@ -62,6 +70,9 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
                           c.validation_ghosting, c.fitted ? " (fitted)" : "");
     }
 
+    if (chart)
+        md += "\nEvery candidate's held-out ghosting against its cost, the front joined and the recommendation "
+              "ringed: ![held-out ghosting against float ops](choice.png)\n";
     md += "\n## The recommendation\n\n";
     const Recommendation& rec = r.recommendation;
     if (!rec.chosen) {
@@ -107,8 +118,19 @@ Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& opt
     auto chosen = choose(context, options);
     if (!chosen) return std::unexpected(chosen.error());
     const RunMetadata run = describe_run(context);
+    // A chart that fails costs the chart, not the run.
+    bool charted = false;
+    if (charts_available(options.chart)) {
+        ScratchDirectory scratch("kdop-choose");
+        auto chart = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
+                                          : choice_chart(*chosen, scratch.path, outputs.dir());
+        if (chart)
+            outputs.add(std::move(*chart)), charted = true;
+        else
+            warn_no_charts(chart.error().message);
+    }
     outputs.add_table("candidates", candidates_table(chosen->candidates), run);
-    outputs.add("choice.md", choice_markdown(*chosen, options, run));
+    outputs.add("choice.md", choice_markdown(*chosen, options, run, charted));
     for (const auto& [name, text] : chosen->fitted_files) outputs.add(name, text);
     if (const std::string manifest = choice_manifest(*chosen); !manifest.empty())
         outputs.add("kdop.manifest", manifest);

@@ -1,5 +1,6 @@
 // What `kdop choose` writes: candidates.csv (and JSON), one row per candidate; choice.md, the
-// table, the Pareto front of held-out ghosting against cost, the recommendation and why; and
+// table, the Pareto front of held-out ghosting against cost, the recommendation and why; its chart,
+// choice.png (choice_chart.h); and
 // kdop.manifest, exactly the recommended variant, which kdop_add_variants(MANIFEST) and
 // `kdop gen --manifest` take.
 #pragma once
@@ -15,7 +16,9 @@ namespace kdop {
 
 Table candidates_table(const std::vector<Candidate>& candidates);
 
-std::string choice_markdown(const ChooseResult& result, const ChooseOptions& options, const RunMetadata& run);
+// `chart`: choice.png was drawn, and is shown.
+std::string choice_markdown(const ChooseResult& result, const ChooseOptions& options, const RunMetadata& run,
+                            bool chart = false);
 
 // The recommended variant, with its `set:` line where its set is fitted (a file beside the
 // manifest); empty where nothing is recommended.

@@ -1,11 +1,15 @@
 #include "optimize/choose.h"
 
+#include "bench/timing.h"
 #include "core/builtin_sets.h"
 #include "core/input_files.h"
 #include "generator/analytic_cost.h"
 #include "generator/axis_set.h"
+#include "harness/gnuplot.h"
 #include "harness/progress.h"
+#include "harness/scratch_directory.h"
 #include "harness/statistics.h"
+#include "harness/variant_catalog.h"
 #include "temporal/taa_sources.h"
 
 #include <fmt/format.h>
@@ -17,7 +21,7 @@
 
 namespace kdop {
 
-Recommendation recommend(const std::vector<Candidate>& candidates, std::optional<std::size_t> budget_ops,
+Recommendation recommend(const std::vector<Candidate>& candidates, const Budget& budget,
                          std::optional<double> target_ghosting) {
     std::optional<std::size_t> best;
     auto better = [&](const Candidate& c, const Candidate& b) {
@@ -31,27 +35,30 @@ Recommendation recommend(const std::vector<Candidate>& candidates, std::optional
         const Candidate& c = candidates[i];
         if (std::isnan(c.validation_ghosting)) continue;
         if (target_ghosting && !(c.validation_ghosting <= *target_ghosting)) continue;
-        if (!target_ghosting && budget_ops && c.float_ops > *budget_ops) continue;
+        if (!target_ghosting && !budget.admits(c)) continue;
         if (!best || better(c, candidates[*best])) best = i;
     }
     Recommendation r{best, {}};
+    const std::string within = budget.ops  ? fmt::format("at most {} float ops", *budget.ops)
+                               : budget.ms ? fmt::format("at most {:.3g} ms (median)", *budget.ms)
+                                           : std::string();
     if (!best) {
         r.why = target_ghosting
                     ? fmt::format("no candidate's held-out ghosting reaches the target {:.4g}", *target_ghosting)
-                    : fmt::format("no candidate's clip costs at most {} float ops", budget_ops.value_or(0));
+                    : fmt::format("no candidate's clip costs {}", within);
         return r;
     }
     const Candidate& c = candidates[*best];
-    r.why = target_ghosting
-                ? fmt::format("the cheapest candidate ({} float ops) whose held-out ghosting, {:.4f}, reaches the "
-                              "target {:.4g}",
-                              c.float_ops, c.validation_ghosting, *target_ghosting)
-            : budget_ops ? fmt::format("the least held-out ghosting, {:.4f}, of the candidates whose clip costs at "
-                                       "most {} float ops (it costs {})",
-                                       c.validation_ghosting, *budget_ops, c.float_ops)
-                         : fmt::format("the least held-out ghosting, {:.4f}, of every candidate (no budget given; "
-                                       "it costs {} float ops)",
-                                       c.validation_ghosting, c.float_ops);
+    const std::string costs = fmt::format("{} float ops, {:.3f} ms", c.float_ops, c.ms);
+    r.why =
+        target_ghosting ? fmt::format("the cheapest candidate ({}) whose held-out ghosting, {:.4f}, reaches the "
+                                      "target {:.4g}",
+                                      costs, c.validation_ghosting, *target_ghosting)
+        : !within.empty()
+            ? fmt::format("the least held-out ghosting, {:.4f}, of the candidates whose clip costs {} (it costs {})",
+                          c.validation_ghosting, within, costs)
+            : fmt::format("the least held-out ghosting, {:.4f}, of every candidate (no budget given; it costs {})",
+                          c.validation_ghosting, costs);
     return r;
 }
 
@@ -140,6 +147,30 @@ Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const st
     return figures;
 }
 
+// The candidates' rectification passes timed on the device (bench/timing.h, as kdop taa times
+// them), interleaved. `sets` are --sets' names and files; the fitted sets are known to the catalog
+// through their files, written to a scratch folder for it.
+Result<bench::TimingRun> time_candidates(const Context& context, const std::vector<VariantSpec>& specs,
+                                         const std::vector<std::pair<std::string, std::string>>& fitted_files,
+                                         const std::vector<std::string>& sets, std::uint32_t width,
+                                         std::uint32_t height, unsigned rounds) {
+    ScratchDirectory scratch("kdop-choose");
+    if (scratch.path.empty()) return fail("cannot create a scratch folder for the fitted sets (is TMPDIR writable?)");
+    std::vector<std::string> known = sets; // built-in names and the user's files, as --sets gave them
+    for (const auto& [name, text] : fitted_files) {
+        if (auto ok = write_text(scratch.path / name, text); !ok) return std::unexpected(ok.error());
+        known.push_back((scratch.path / name).string());
+    }
+    auto catalog = VariantCatalog::create(known);
+    if (!catalog) return std::unexpected(catalog.error());
+    std::vector<VariantKey> keys;
+    for (const VariantSpec& spec : specs) keys.push_back(spec.key());
+    auto rectifiers = catalog->find_all(keys, "--sets");
+    if (!rectifiers) return std::unexpected(rectifiers.error());
+    Progress progress(fmt::format("timing {} candidates on {},", specs.size(), context.device_name()), rounds);
+    return bench::time_interleaved(context, *rectifiers, width, height, rounds, progress);
+}
+
 } // namespace
 
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
@@ -157,8 +188,8 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
                                               "fitted to",
                                               held));
         }
-    if (o.budget_ops && o.target_ghosting)
-        return usage_fail("--budget-ops and --target-ghosting: give one rule to choose by");
+    if (int(o.budget_ops.has_value()) + int(o.budget_ms.has_value()) + int(o.target_ghosting.has_value()) > 1)
+        return usage_fail("--budget-ops, --budget-ms and --target-ghosting: give one rule to choose by");
 
     const Holdout holdout{o.holdout, o.evaluation.schedule.warmup};
     ChooseResult result;
@@ -229,6 +260,12 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
     const std::size_t fitted_count = specs.size();
     specs.insert(specs.end(), builtin_specs->begin(), builtin_specs->end());
 
+    // Each candidate's rectification pass timed as kdop taa times it, at the held-out frames' size.
+    const SequenceFrames& sized = validate->empty() ? fit->front() : validate->front();
+    auto timing =
+        time_candidates(context, specs, result.fitted_files, builtin, sized.width(), sized.height(), o.timing_rounds);
+    if (!timing) return std::unexpected(timing.error());
+
     auto evaluation = TaaEvaluation::create(context, specs, o.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
     std::size_t frames = 0;
@@ -258,6 +295,8 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
         c.key = specs[v].key();
         c.fitted = v < fitted_count;
         c.float_ops = analytic_min_float_ops(specs[v].set, specs[v].mode, specs[v].neighborhood);
+        const std::vector<double>& ms = timing->ms[v];
+        c.ms = median(ms), c.ms_q1 = quantile(ms, 0.25), c.ms_q3 = quantile(ms, 0.75);
         c.fit_ghosting = in_sample.ghosting[v];
         c.validation_ghosting = held.ghosting[v];
         c.validation_shimmer = held.shimmer[v];
@@ -265,7 +304,7 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
         c.validation_ghosting_p95 = quantile(held.frames[v], 0.95);
         result.candidates.push_back(std::move(c));
     }
-    result.recommendation = recommend(result.candidates, o.budget_ops, o.target_ghosting);
+    result.recommendation = recommend(result.candidates, {o.budget_ops, o.budget_ms}, o.target_ghosting);
     return result;
 }
 

@@ -30,14 +30,17 @@ struct ChooseOptions {
     std::vector<std::string> sets;               // built-in candidates; empty: every built-in set
     std::vector<std::string> modes{"clip"}, neighborhoods{"n9"};
     std::optional<std::size_t> budget_ops; // the most float ops a candidate's clip may cost
+    std::optional<double> budget_ms;       // or the longest median device time its pass may take
     std::optional<double> target_ghosting; // else: the cheapest whose held-out ghosting reaches it
     EvaluationOptions evaluation;          // kdop taa's, as --warmup, --ppd and the resolve options set it
+    unsigned timing_rounds = 15;           // interleaved dispatches per candidate, as kdop taa's
     InputSpace input_space = InputSpace::from_file;
     // The fit's: its color space is the resolve's (evaluation.resolve.color_map).
     std::uint64_t seed = 1;
     unsigned threads = 0;
     std::optional<std::size_t> sample; // fit on this many sampled neighborhoods
     std::string out;                   // the folder the fitted sets are named for (fitted<N>.axes)
+    bool chart = true;                 // choice.png (none where gnuplot is missing)
 };
 
 // One candidate: a variant, what its clip costs and what it leaves on the fit and held-out frames.
@@ -45,6 +48,9 @@ struct Candidate {
     VariantKey key;
     bool fitted = false;
     std::size_t float_ops = 0; // the hardened clip's, as the generator counts them (analytic_cost.h)
+    // The device time of its rectification pass at the sequences' frame size, as kdop taa times it:
+    // the median and quartiles over interleaved rounds.
+    double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
     // Means over the sequences (each sequence's mean over its measured frames, as kdop taa's taa.csv).
     double fit_ghosting = NAN, validation_ghosting = NAN, validation_shimmer = NAN;
     // Over every measured frame of the held-out sequences together.
@@ -57,11 +63,18 @@ struct Recommendation {
     std::string why;
 };
 
+// What a candidate may cost: float ops or median ms (one of them, or neither).
+struct Budget {
+    std::optional<std::size_t> ops;
+    std::optional<double> ms;
+    bool admits(const Candidate& c) const { return (!ops || c.float_ops <= *ops) && (!ms || c.ms <= *ms); }
+};
+
 // The rule: with a target, the candidate of fewest float ops whose held-out ghosting is at most the
 // target (of equal cost, the one that ghosts least); else the one of least held-out ghosting among
 // those within the budget (any cost without one; of equal ghosting, the cheaper). Candidates with
 // no held-out figure never qualify; the earliest of exact ties.
-Recommendation recommend(const std::vector<Candidate>& candidates, std::optional<std::size_t> budget_ops,
+Recommendation recommend(const std::vector<Candidate>& candidates, const Budget& budget,
                          std::optional<double> target_ghosting);
 
 // The candidates on the Pareto front of held-out ghosting against float ops: none both cheaper (or

@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 
 Candidate candidate(const std::string& set, bool fitted, std::size_t ops, double held_out, double fit = NAN) {
     Candidate c;
+    c.ms = double(ops) / 100; // a time that follows the float ops, for the ms budget
     c.key = {set, Mode::clip, Neighborhood::n9};
     c.fitted = fitted;
     c.float_ops = ops;
@@ -33,30 +34,33 @@ TEST(Choose, RecommendsTheLeastHeldOutGhostingWithinTheBudget) {
         candidate("aabb", false, 87, 0.040),           candidate("dop16-grass", false, 354, 0.024),
         candidate("dop22", false, 381, 0.025),         candidate("dop32", false, 520, 0.0245)};
     // No budget: the least held-out ghosting of all.
-    EXPECT_EQ(recommend(candidates, std::nullopt, std::nullopt).chosen, 3u);
+    EXPECT_EQ(recommend(candidates, {}, std::nullopt).chosen, 3u);
     // Within 360 float ops: dop16-grass still; within 300: fitted8; within 100: the box.
-    EXPECT_EQ(recommend(candidates, 360, std::nullopt).chosen, 3u);
-    EXPECT_EQ(recommend(candidates, 300, std::nullopt).chosen, 1u);
-    EXPECT_EQ(recommend(candidates, 100, std::nullopt).chosen, 2u);
-    const Recommendation none = recommend(candidates, 50, std::nullopt);
+    EXPECT_EQ(recommend(candidates, {.ops = 360}, std::nullopt).chosen, 3u);
+    EXPECT_EQ(recommend(candidates, {.ops = 300}, std::nullopt).chosen, 1u);
+    EXPECT_EQ(recommend(candidates, {.ops = 100}, std::nullopt).chosen, 2u);
+    // A budget in median ms works the same way: within 3.6 ms, dop16-grass (3.54 ms); within 3 ms, fitted8.
+    EXPECT_EQ(recommend(candidates, {.ms = 3.6}, std::nullopt).chosen, 3u);
+    EXPECT_EQ(recommend(candidates, {.ms = 3.0}, std::nullopt).chosen, 1u);
+    const Recommendation none = recommend(candidates, {.ops = 50}, std::nullopt);
     EXPECT_FALSE(none.chosen);
     EXPECT_NE(none.why.find("at most 50 float ops"), std::string::npos) << none.why;
     // A target: the cheapest that reaches it, not the one that ghosts least.
-    EXPECT_EQ(recommend(candidates, std::nullopt, 0.0255).chosen, 3u);
-    EXPECT_EQ(recommend(candidates, std::nullopt, 0.0265).chosen, 1u);
-    EXPECT_EQ(recommend(candidates, std::nullopt, 0.05).chosen, 2u);
-    EXPECT_FALSE(recommend(candidates, std::nullopt, 0.02).chosen);
+    EXPECT_EQ(recommend(candidates, {}, 0.0255).chosen, 3u);
+    EXPECT_EQ(recommend(candidates, {}, 0.0265).chosen, 1u);
+    EXPECT_EQ(recommend(candidates, {}, 0.05).chosen, 2u);
+    EXPECT_FALSE(recommend(candidates, {}, 0.02).chosen);
     // Of equal ghosting, the cheaper; a candidate with no held-out figure never qualifies.
     const std::vector<Candidate> tied{candidate("a", false, 300, 0.02), candidate("b", false, 200, 0.02),
                                       candidate("c", false, 10, NAN)};
-    EXPECT_EQ(recommend(tied, std::nullopt, std::nullopt).chosen, 1u);
-    EXPECT_EQ(recommend(tied, std::nullopt, 0.5).chosen, 1u);
+    EXPECT_EQ(recommend(tied, {}, std::nullopt).chosen, 1u);
+    EXPECT_EQ(recommend(tied, {}, 0.5).chosen, 1u);
 
     // The front, cheapest first: the box, fitted4, fitted8 and dop16-grass; dop22 and dop32 cost
     // more than dop16-grass and ghost more.
     EXPECT_EQ(pareto_front(candidates), (std::vector<std::size_t>{2, 0, 1, 3}));
 
-    ChooseResult result{candidates, recommend(candidates, std::nullopt, std::nullopt), {}, {"level1"}, {"level2"}};
+    ChooseResult result{candidates, recommend(candidates, {}, std::nullopt), {}, {"level1"}, {"level2"}, {}};
     const std::string md = choice_markdown(result, {}, {});
     EXPECT_NE(
         md.find("**The fitted sets lost on the held-out frames**: the best built-in candidate, dop16-grass-clip-n9, "
@@ -105,8 +109,10 @@ TEST(CliChoose, HeldOutFiguresAreKdopTaasOnTheHeldOutSequences) {
     auto r = kdop("choose --fit " + fit + " --validate " + held +
                   " --fit-axes 4 --sets aabb dop22 --warmup 3 --sample 2000 --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* file : {"candidates.csv", "candidates.json", "choice.md", "fitted4.axes", "kdop.manifest"})
+    for (const char* file :
+         {"candidates.csv", "candidates.json", "choice.md", "choice.png", "fitted4.axes", "kdop.manifest"})
         EXPECT_TRUE(fs::exists(out / file)) << file;
+    EXPECT_NE(test::read_file(out / "choice.md").find("](choice.png)"), std::string::npos);
     auto t = kdop("taa --sequence " + held + " --sets aabb dop22 " + (out / "fitted4.axes").string() +
                   " --modes clip --warmup 3 --timing-rounds 2 --no-charts --viewer-frames 0 --out " + taa.string());
     ASSERT_EQ(t.exit_code, 0) << t.err;
@@ -127,6 +133,19 @@ TEST(CliChoose, HeldOutFiguresAreKdopTaasOnTheHeldOutSequences) {
     const std::string manifest = test::read_file(out / "kdop.manifest");
     const std::string chosen = manifest.substr(manifest.rfind('\n', manifest.size() - 2) + 1);
     EXPECT_NE(r.out.find("kdop choose: " + chosen.substr(0, chosen.size() - 1) + ":"), std::string::npos) << r.out;
+
+    // Each candidate's pass timed; a budget no candidate meets recommends nothing and writes no manifest.
+    for (auto c : candidates) EXPECT_GT(std::stod(c["ms"]), 0.0) << c["variant"];
+    const fs::path tight = dir / "tight";
+    auto n = kdop("choose --fit " + fit + " --validate " + held +
+                  " --fit-axes 4 --sets aabb --warmup 3 --sample 2000 --timing-rounds 2 --no-charts --budget-ms 1e-9 "
+                  "--out " +
+                  tight.string());
+    ASSERT_EQ(n.exit_code, 0) << n.err;
+    EXPECT_NE(n.out.find("no recommendation: no candidate's clip costs at most 1e-09 ms"), std::string::npos) << n.out;
+    EXPECT_FALSE(fs::exists(tight / "kdop.manifest"));
+    EXPECT_FALSE(fs::exists(tight / "choice.png"));
+    EXPECT_TRUE(fs::exists(tight / "choice.md"));
 
     for (const std::string& bad : {std::string("--fit ") + fit, "--fit " + fit + " --validate " + fit}) {
         const fs::path refused = dir / "refused";
