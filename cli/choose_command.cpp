@@ -67,6 +67,9 @@ Action add_choose_command(CLI::App& app) {
     cmd->add_option("--timing-rounds", o->run.timing_rounds,
                     "Interleaved dispatches per candidate for ms [default: 15]")
         ->check(whole_number(1, 10000));
+    cmd->add_flag("--lavapipe-cost", o->run.lavapipe_cost,
+                  "Also count each clip candidate's instructions per pixel on lavapipe beyond the gather, with "
+                  "callgrind, as kdop bench does (seconds per candidate; varclip has no such count)");
     cmd->add_option("--warmup", o->run.evaluation.schedule.warmup,
                     "Frames of each sequence before measuring [default: 100]")
         ->check(whole_number(1, 100000));

@@ -49,6 +49,14 @@ DeclaredColumns<Row> variant_key_columns(std::function<const VariantKey&(const R
              }}};
 }
 
+// A time's median and quartiles over interleaved rounds (ms, ms_q1, ms_q3), read from those members.
+template <class Row>
+DeclaredColumns<Row> time_columns(double Row::*ms, double Row::*q1, double Row::*q3) {
+    return {{{"ms", "ms", Shown::fixed, 3, "median"}, [ms](const Row& r) { return maybe(r.*ms); }},
+            {{"ms_q1", "ms", Shown::fixed, 3, "Q1"}, [q1](const Row& r) { return maybe(r.*q1); }},
+            {{"ms_q3", "ms", Shown::fixed, 3, "Q3"}, [q3](const Row& r) { return maybe(r.*q3); }}};
+}
+
 // `a`, then `b`.
 template <class Row>
 DeclaredColumns<Row> operator+(DeclaredColumns<Row> a, const DeclaredColumns<Row>& b) {

@@ -21,9 +21,11 @@ Table candidates_table(const std::vector<Candidate>& candidates) {
             {{"fitted", "", Shown::flag, 0}, [](const Candidate& c) { return Value(c.fitted); }},
             {{"float_ops", "", Shown::integer, 0, "float ops"},
              [](const Candidate& c) { return Value(std::int64_t(c.float_ops)); }},
-            {{"ms", "ms", Shown::fixed, 3, "median"}, [](const Candidate& c) { return maybe(c.ms); }},
-            {{"ms_q1", "ms", Shown::fixed, 3, "Q1"}, [](const Candidate& c) { return maybe(c.ms_q1); }},
-            {{"ms_q3", "ms", Shown::fixed, 3, "Q3"}, [](const Candidate& c) { return maybe(c.ms_q3); }},
+        } +
+        time_columns<Candidate>(&Candidate::ms, &Candidate::ms_q1, &Candidate::ms_q3) +
+        DeclaredColumns<Candidate>{
+            {{"lavapipe_instr", "instr/px", Shown::fixed, 1, "lavapipe instr/px beyond the gather"},
+             [](const Candidate& c) { return maybe(c.lavapipe_instructions); }},
             {{"fit_ghosting", "FLIP", Shown::fixed, 4, "ghosting on the fit frames"},
              [](const Candidate& c) { return maybe(c.fit_ghosting); }},
             {{"validation_ghosting", "FLIP", Shown::fixed, 4, "held-out ghosting"},

@@ -1,5 +1,6 @@
 #include "optimize/choose.h"
 
+#include "bench/set_cost.h"
 #include "bench/timing.h"
 #include "core/builtin_sets.h"
 #include "core/input_files.h"
@@ -18,6 +19,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <optional>
 
 namespace kdop {
 
@@ -191,6 +193,16 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
     if (int(o.budget_ops.has_value()) + int(o.budget_ms.has_value()) + int(o.target_ghosting.has_value()) > 1)
         return usage_fail("--budget-ops, --budget-ms and --target-ghosting: give one rule to choose by");
 
+    // --lavapipe-cost runs kdop-dispatch-probe, built beside kdop, under callgrind: checked first.
+    std::optional<ScratchDirectory> callgrind_scratch;
+    if (o.lavapipe_cost) callgrind_scratch.emplace("kdop-choose-callgrind");
+    const bench::CallgrindSetup callgrind{
+        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe",
+        callgrind_scratch ? callgrind_scratch->path : std::filesystem::path(), 256, ""};
+    if (o.lavapipe_cost && (callgrind.scratch.empty() || !std::filesystem::exists(callgrind.probe)))
+        return fail(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
+                                callgrind.probe.string()));
+
     const Holdout holdout{o.holdout, o.evaluation.schedule.warmup};
     ChooseResult result;
     // The candidates: a fitted set per axis count, then the built-in sets, each in every mode and
@@ -266,6 +278,22 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
         time_candidates(context, specs, result.fitted_files, builtin, sized.width(), sized.height(), o.timing_rounds);
     if (!timing) return std::unexpected(timing.error());
 
+    // With --lavapipe-cost, each clip's instructions beyond the gather (varclip has no such count).
+    std::vector<double> instructions(specs.size(), NAN);
+    if (o.lavapipe_cost) {
+        const auto clips = std::ranges::count_if(specs, [](const VariantSpec& s) { return s.mode == Mode::clip; });
+        Progress progress("counting lavapipe instructions of", 2 * std::size_t(clips));
+        for (std::size_t v = 0; v < specs.size(); ++v)
+            if (specs[v].mode == Mode::clip) {
+                auto counted =
+                    bench::marginal_clip_instructions(specs[v].set, specs[v].neighborhood, callgrind, progress);
+                if (!counted)
+                    return fail(
+                        fmt::format("--lavapipe-cost: {}: {}", variant_name(specs[v]), counted.error().message));
+                instructions[v] = *counted;
+            }
+    }
+
     auto evaluation = TaaEvaluation::create(context, specs, o.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
     std::size_t frames = 0;
@@ -297,6 +325,7 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
         c.float_ops = analytic_min_float_ops(specs[v].set, specs[v].mode, specs[v].neighborhood);
         const std::vector<double>& ms = timing->ms[v];
         c.ms = median(ms), c.ms_q1 = quantile(ms, 0.25), c.ms_q3 = quantile(ms, 0.75);
+        c.lavapipe_instructions = instructions[v];
         c.fit_ghosting = in_sample.ghosting[v];
         c.validation_ghosting = held.ghosting[v];
         c.validation_shimmer = held.shimmer[v];

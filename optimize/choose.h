@@ -34,6 +34,7 @@ struct ChooseOptions {
     std::optional<double> target_ghosting; // else: the cheapest whose held-out ghosting reaches it
     EvaluationOptions evaluation;          // kdop taa's, as --warmup, --ppd and the resolve options set it
     unsigned timing_rounds = 15;           // interleaved dispatches per candidate, as kdop taa's
+    bool lavapipe_cost = false; // also count each clip candidate's lavapipe instructions per pixel (callgrind)
     InputSpace input_space = InputSpace::from_file;
     // The fit's: its color space is the resolve's (evaluation.resolve.color_map).
     std::uint64_t seed = 1;
@@ -51,6 +52,9 @@ struct Candidate {
     // The device time of its rectification pass at the sequences' frame size, as kdop taa times it:
     // the median and quartiles over interleaved rounds.
     double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
+    // With lavapipe_cost, the instructions per pixel lavapipe runs for its clip beyond the gather,
+    // counted by callgrind as kdop bench counts them; NaN where not counted (varclip has no count).
+    double lavapipe_instructions = NAN;
     // Means over the sequences (each sequence's mean over its measured frames, as kdop taa's taa.csv).
     double fit_ghosting = NAN, validation_ghosting = NAN, validation_shimmer = NAN;
     // Over every measured frame of the held-out sequences together.

@@ -156,11 +156,9 @@ bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows)
 Table taa_table(const std::vector<TaaRow>& rows) {
     const DeclaredColumns<TaaRow> columns =
         variant_key_columns<TaaRow>([](const TaaRow& r) -> const VariantKey& { return r.key; }) +
+        DeclaredColumns<TaaRow>{{{"scene", "", Shown::text}, [](const TaaRow& r) { return Value(r.scene); }}} +
+        time_columns<TaaRow>(&TaaRow::ms, &TaaRow::ms_q1, &TaaRow::ms_q3) +
         DeclaredColumns<TaaRow>{
-            {{"scene", "", Shown::text}, [](const TaaRow& r) { return Value(r.scene); }},
-            {{"ms", "ms", Shown::fixed, 3, "median"}, [](const TaaRow& r) { return maybe(r.ms); }},
-            {{"ms_q1", "ms", Shown::fixed, 3, "Q1"}, [](const TaaRow& r) { return maybe(r.ms_q1); }},
-            {{"ms_q3", "ms", Shown::fixed, 3, "Q3"}, [](const TaaRow& r) { return maybe(r.ms_q3); }},
             {{"ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"},
              [&rows](const TaaRow& r) {
                  return std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value();

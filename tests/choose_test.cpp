@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <set>
 
 namespace kdop {
@@ -202,6 +203,32 @@ TEST(CliChoose, HoldoutJudgesOnBlocksOfFramesLeftOutOfTheFit) {
     EXPECT_NE(b.err.find("--holdout 9: "), std::string::npos) << b.err;
     EXPECT_NE(b.err.find("no frame is held out"), std::string::npos) << b.err;
     EXPECT_FALSE(fs::exists(refused));
+}
+
+// --lavapipe-cost: each clip candidate's instructions per pixel beyond the gather, counted by
+// callgrind (more slabs, more instructions); a varclip candidate has no such count and is left empty.
+TEST(ChooseCallgrind, CountsEachClipCandidatesLavapipeInstructions) {
+    test::TempDir dir;
+    auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
+    const fs::path scenes = dir / "scenes", out = dir / "choose";
+    auto s = kdop("scene --scenes grass asphalt --size 32x24 --frames 6 --out " + scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    auto r = kdop("choose --fit " + (scenes / "grass-ghosting").string() + " --validate " +
+                  (scenes / "asphalt-ghosting").string() +
+                  " --fit-axes 4 --sets aabb dop22 --modes clip varclip --warmup 2 --sample 500 --timing-rounds 2 "
+                  "--no-charts --lavapipe-cost --out " +
+                  out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::map<std::string, std::string> counted;
+    for (auto c : test::csv_rows(test::read_file(out / "candidates.csv"))) counted[c["variant"]] = c["lavapipe_instr"];
+    ASSERT_EQ(counted.size(), 6u);
+    for (const char* clip : {"fitted4-clip-n9", "aabb-clip-n9", "dop22-clip-n9"}) {
+        ASSERT_FALSE(counted[clip].empty()) << clip;
+        EXPECT_GT(std::stod(counted[clip]), 0.0) << clip;
+    }
+    EXPECT_GT(std::stod(counted["dop22-clip-n9"]), std::stod(counted["aabb-clip-n9"])) << "11 slabs against 3";
+    for (const char* varclip : {"fitted4-varclip-n9", "aabb-varclip-n9", "dop22-varclip-n9"})
+        EXPECT_TRUE(counted[varclip].empty()) << varclip;
 }
 
 } // namespace
