@@ -4,6 +4,7 @@
 #include "core/memory_budget.h"
 #include "core/read_file.h"
 #include "core/write_files.h"
+#include "images/jpeg_guard.h"
 #include "images/srgb.h"
 
 #include <OpenImageIO/imageio.h>
@@ -102,6 +103,7 @@ Result<Image> read_checked(const std::string& file, std::uint32_t max_side, Inpu
     const std::string& path = name.empty() ? file : name; // what messages name
     // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
     if (auto why = not_a_readable_file(file)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
+    if (auto why = unsafe_jpeg_metadata(file)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
     note_input(file);
     // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
     // multiply it by alpha.
@@ -169,6 +171,7 @@ Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputS
 
 Result<glm::uvec2> read_image_size(const std::string& path) {
     if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
+    if (auto why = unsafe_jpeg_metadata(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
     try {
         auto in = OIIO::ImageInput::open(path);
         if (!in) {

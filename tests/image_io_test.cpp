@@ -237,6 +237,48 @@ TEST(ImageIo, AReaderThatThrowsIsAnErrorNamingTheFile) {
         << image.error().message;
 }
 
+// A JPEG whose APP13 segment's IPTC block claims more bytes than the segment holds is refused,
+// naming the file, before OpenImageIO 2.4 reads past the segment (kdop's image fuzzer found it
+// under ASan); the same file with a block that fits reads as before.
+TEST(ImageIo, AJpegsIptcBlockLongerThanItsSegmentIsRefused) {
+    test::TempDir dir;
+    const std::string jpeg = test::read_file(KDOP_SOURCE_DIR "/tests/fuzz/image_corpus/rgb8.jpg");
+    ASSERT_EQ(jpeg.substr(0, 2), std::string("\xFF\xD8"));
+    // An APP13 segment right after SOI: "Photoshop 3.0\0", "8BIM", resource 0x0404, 4 bytes of
+    // padding, the block's 16-bit size, then `held` bytes of IIM records.
+    auto with_app13 = [&](unsigned claimed, unsigned held) {
+        std::string block = std::string("Photoshop 3.0") + '\0' + "8BIM" + "\x04\x04" + std::string(4, '\0');
+        block += char(claimed >> 8);
+        block += char(claimed & 0xFF);
+        for (unsigned i = 0; i < held; ++i) block += i % 5 == 0 ? '\x1c' : '\x02';
+        const std::size_t length = block.size() + 2;
+        return jpeg.substr(0, 2) + "\xFF\xED" + char(length >> 8) + char(length & 0xFF) + block + jpeg.substr(2);
+    };
+    test::write_file(dir / "overrun.jpg", with_app13(0xFFFF, 10));
+    auto refused = read_image((dir / "overrun.jpg").string());
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().message, (dir / "overrun.jpg").string() +
+                                           ": cannot read image: its APP13 segment's IPTC block claims 65535 bytes, "
+                                           "and the segment holds 10");
+    auto size = read_image_size((dir / "overrun.jpg").string());
+    ASSERT_FALSE(size);
+    EXPECT_NE(size.error().message.find("claims 65535 bytes"), std::string::npos);
+    // Cut inside the signature: the library's strcmp would read on.
+    std::string cut = jpeg.substr(0, 2) + "\xFF\xED" + '\0' + '\x07' + "Photo";
+    test::write_file(dir / "cut.jpg", cut);
+    auto short_signature = read_image((dir / "cut.jpg").string());
+    ASSERT_FALSE(short_signature);
+    EXPECT_NE(short_signature.error().message.find("inside the \"Photoshop 3.0\" signature"), std::string::npos)
+        << short_signature.error().message;
+
+    test::write_file(dir / "whole.jpg", with_app13(10, 10));
+    auto read = read_image((dir / "whole.jpg").string());
+    ASSERT_TRUE(read) << read.error().message;
+    auto plain = read_image(KDOP_SOURCE_DIR "/tests/fuzz/image_corpus/rgb8.jpg");
+    ASSERT_TRUE(plain);
+    EXPECT_EQ(read->pixels, plain->pixels);
+}
+
 TEST(ImageIo, LossyFormatsAreRefusedBeforeAnythingIsWritten) {
     test::TempDir dir;
     auto written = write_image((dir / "out.jpg").string(), noise(8, 1.0f));
