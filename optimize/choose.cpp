@@ -245,6 +245,8 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
                           holdout.warmup + 3 * holdout.block, holdout.warmup + 4 * holdout.block - 1)
             : fmt::format("the sequences given to --validate ({})", fmt::join(result.validate_sequences, ", "));
 
+    auto ranks = Ranks::world(); // one process: kdop refuses choose under mpirun
+    if (!ranks) return std::unexpected(ranks.error());
     std::vector<VariantSpec> specs;
     for (std::size_t axes : o.fit_axes) {
         OptimizeOptions fitting;
@@ -260,8 +262,6 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
         fitting.threads = o.threads;
         fitting.sample = o.sample;
         fitting.accuracy_samples = 0;
-        auto ranks = Ranks::world();
-        if (!ranks) return std::unexpected(ranks.error());
         auto fitted = optimize(fitting, **ranks);
         if (!fitted) return std::unexpected(fitted.error());
         auto set = parse_axis_set(fitted->file, fitting.out);
