@@ -8,6 +8,7 @@
 #include "core/shown_text.h"
 #include "generator/selection_options.h"
 #include "harness/output_set.h"
+#include "harness/ranks.h"
 #include "optimize/choice_report.h"
 
 #include <fmt/format.h>
@@ -89,12 +90,18 @@ Action add_choose_command(CLI::App& app) {
 
     return [o, cmd] {
         o->run.evaluation.ppd = cmd->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
+        auto ranks = Ranks::world();
+        if (!ranks) return report_error(ranks.error().message);
+        (*ranks)->quiet_unless_root();
         auto outputs = OutputSet::prepare(o->run.out);
-        if (!outputs) return report_error(outputs.error().message);
-        auto context = Context::create({o->device, false});
-        if (!context) return report_error(context.error().message);
-        auto chosen = run_choose(**context, o->run, *outputs);
+        auto context = outputs ? Context::create({o->device, false}) : std::unexpected(outputs.error());
+        // Every rank checks the folder and opens a device: one that cannot must not leave the others
+        // waiting in the fit.
+        if (auto ok = (*ranks)->agree(context ? Result<void>{} : std::unexpected(context.error())); !ok)
+            return report_error(ok.error().message);
+        auto chosen = run_choose(**context, o->run, **ranks, *outputs);
         if (!chosen) return report(chosen.error());
+        if (!(*ranks)->is_root()) return 0;
         const Recommendation& r = chosen->recommendation;
         std::cout << (r.chosen ? fmt::format("kdop choose: {}: {}\n", chosen->candidates[*r.chosen].key.name(), r.why)
                                : fmt::format("kdop choose: no recommendation: {}\n", r.why))

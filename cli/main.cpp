@@ -26,10 +26,11 @@ int main(int argc, char** argv) {
     return kdop::run_command_line(app, "kdop", argc, argv, [&] {
         for (CLI::App* chosen : app.get_subcommands()) {
             // Every rank would do the whole of any other command and write the same outputs.
-            if (chosen->get_name() != "optimize" && kdop::launched_ranks() > 1)
-                return kdop::cli::usage_error(
-                    fmt::format("{}: only kdop optimize shares its work over MPI ranks; run kdop {} without mpirun",
-                                chosen->get_name(), chosen->get_name()));
+            const bool shares = chosen->get_name() == "optimize" || chosen->get_name() == "choose";
+            if (!shares && kdop::launched_ranks() > 1)
+                return kdop::cli::usage_error(fmt::format(
+                    "{}: only kdop optimize and kdop choose share their work over MPI ranks; run kdop {} without mpirun",
+                    chosen->get_name(), chosen->get_name()));
             return actions.at(chosen->get_name())();
         }
         return 1;

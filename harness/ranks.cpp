@@ -92,12 +92,14 @@ Result<void> Ranks::agree(Result<void> mine) const {
     int failed = mine ? size_ : rank_, first = size_;
     MPI_Allreduce(&failed, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
     if (first == size_) return {};
-    std::string message = mine ? std::string() : mine.error().message;
-    unsigned long length = message.size();
-    MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG, first, MPI_COMM_WORLD);
-    message.resize(length);
-    MPI_Bcast(message.data(), int(length), MPI_CHAR, first, MPI_COMM_WORLD);
-    return fail(message);
+    Error error = mine ? Error{} : mine.error();
+    // Its length and whether the command line was at fault (exit 2 on every rank), then its text.
+    unsigned long header[2] = {error.message.size(), error.usage ? 1ul : 0ul};
+    MPI_Bcast(header, 2, MPI_UNSIGNED_LONG, first, MPI_COMM_WORLD);
+    error.message.resize(header[0]);
+    MPI_Bcast(error.message.data(), int(header[0]), MPI_CHAR, first, MPI_COMM_WORLD);
+    error.usage = header[1] != 0;
+    return std::unexpected(std::move(error));
 #else
     return mine;
 #endif

@@ -1,6 +1,6 @@
 // The processes one command runs as: one, or R ranks started by `mpirun -np R` (Open MPI). kdop
-// optimize is the command that shares its work over ranks: each reads and evaluates its own range
-// of frames, and these collectives hand every rank what the others computed. Nothing here is
+// optimize shares its work over ranks, and kdop choose its fits: each rank reads and evaluates its
+// own range of frames, and these collectives hand every rank what the others computed. Nothing here is
 // kdop's own protocol: every exchange is an MPI all-gather or broadcast.
 //
 // MPI is initialized only when the process was started by a launcher (it sets OMPI_COMM_WORLD_SIZE,

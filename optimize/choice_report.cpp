@@ -116,9 +116,10 @@ std::string choice_manifest(const ChooseResult& r) {
     return text + c.key.name() + "\n";
 }
 
-Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, OutputSet& outputs) {
-    auto chosen = choose(context, options);
-    if (!chosen) return std::unexpected(chosen.error());
+Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, const Ranks& ranks,
+                                OutputSet& outputs) {
+    auto chosen = choose(context, options, ranks);
+    if (!chosen || !ranks.is_root()) return chosen;
     const RunMetadata run = describe_run(context);
     // A chart that fails costs the chart, not the run.
     bool charted = false;

@@ -25,7 +25,8 @@ std::string choice_markdown(const ChooseResult& result, const ChooseOptions& opt
 std::string choice_manifest(const ChooseResult& result);
 
 // `kdop choose`'s run after its command line is read: choose(), then every file above (and the
-// fitted sets' files) added to `outputs` and written, all or nothing.
-Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, OutputSet& outputs);
+// fitted sets' files) added to `outputs` and written, all or nothing, by rank 0.
+Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, const Ranks& ranks,
+                                OutputSet& outputs);
 
 } // namespace kdop

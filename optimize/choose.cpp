@@ -173,9 +173,17 @@ Result<bench::TimingRun> time_candidates(const Context& context, const std::vect
     return bench::time_interleaved(context, *rectifiers, width, height, rounds, progress);
 }
 
-} // namespace
+// What every rank checks and reads before the fit: the candidates that are not fitted, the
+// sequences, and what is held out.
+struct Plan {
+    Holdout holdout;
+    std::vector<std::string> builtin;      // --sets, or every built-in set
+    std::vector<VariantSpec> builtin_specs; // each in every mode and neighborhood asked for
+    std::vector<VariantSpec> per_set;       // one set's modes and neighborhoods, for the fitted sets
+    std::vector<SequenceFrames> fit, validate;
+};
 
-Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
+Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, ChooseResult& result) {
     if (o.validate.empty() && o.holdout == 0)
         return usage_fail("choose: give --validate SEQUENCE... or --holdout FRAMES: every figure a choice rests on is "
                           "measured on frames the sets were not fitted to, and without either there are none");
@@ -193,28 +201,18 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
     if (int(o.budget_ops.has_value()) + int(o.budget_ms.has_value()) + int(o.target_ghosting.has_value()) > 1)
         return usage_fail("--budget-ops, --budget-ms and --target-ghosting: give one rule to choose by");
 
-    // --lavapipe-cost runs kdop-dispatch-probe, built beside kdop, under callgrind: checked first.
-    std::optional<ScratchDirectory> callgrind_scratch;
-    if (o.lavapipe_cost) callgrind_scratch.emplace("kdop-choose-callgrind");
-    const bench::CallgrindSetup callgrind{
-        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe",
-        callgrind_scratch ? callgrind_scratch->path : std::filesystem::path(), 256, ""};
-    if (o.lavapipe_cost && (callgrind.scratch.empty() || !std::filesystem::exists(callgrind.probe)))
-        return fail(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
-                                callgrind.probe.string()));
-
-    const Holdout holdout{o.holdout, o.evaluation.schedule.warmup};
-    ChooseResult result;
+    Plan plan;
+    plan.holdout = {o.holdout, o.evaluation.schedule.warmup};
     // The candidates: a fitted set per axis count, then the built-in sets, each in every mode and
     // neighborhood asked for. Their count is known before the fit, so everything is checked first.
-    const std::vector<std::string> builtin =
+    plan.builtin =
         o.sets.empty() ? std::vector<std::string>(builtin_set_names().begin(), builtin_set_names().end()) : o.sets;
-    auto builtin_specs = select_variants(builtin, o.modes, o.neighborhoods, {});
+    auto builtin_specs = select_variants(plan.builtin, o.modes, o.neighborhoods, {});
     if (!builtin_specs) return usage_fail("--sets: " + builtin_specs.error().message);
-    std::vector<const VariantSpec*> per_set; // one set's modes and neighborhoods
-    for (const VariantSpec& spec : *builtin_specs)
-        if (spec.set.name == builtin_specs->front().set.name) per_set.push_back(&spec);
-    const std::size_t candidates = builtin_specs->size() + o.fit_axes.size() * per_set.size();
+    plan.builtin_specs = std::move(*builtin_specs);
+    for (const VariantSpec& spec : plan.builtin_specs)
+        if (spec.set.name == plan.builtin_specs.front().set.name) plan.per_set.push_back(spec);
+    const std::size_t candidates = plan.builtin_specs.size() + o.fit_axes.size() * plan.per_set.size();
 
     auto fit = read_sequences(context, o.fit, o, candidates, "--fit");
     if (!fit) return std::unexpected(fit.error());
@@ -228,6 +226,7 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
                                               "candidates by their ghosting",
                                               option, s.sequence().dir.string()));
     // Held-out blocks: every fit sequence must have a frame in one.
+    const Holdout& holdout = plan.holdout;
     if (holdout.block > 0)
         for (const SequenceFrames& s : *fit)
             if (s.frame_count() <= holdout.warmup + holdout.block)
@@ -244,16 +243,21 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
                           holdout.block, holdout.warmup + holdout.block, holdout.warmup + 2 * holdout.block - 1,
                           holdout.warmup + 3 * holdout.block, holdout.warmup + 4 * holdout.block - 1)
             : fmt::format("the sequences given to --validate ({})", fmt::join(result.validate_sequences, ", "));
+    plan.fit = std::move(*fit), plan.validate = std::move(*validate);
+    return plan;
+}
 
-    auto ranks = Ranks::world(); // one process: kdop refuses choose under mpirun
-    if (!ranks) return std::unexpected(ranks.error());
+// One set per --fit-axes count, fitted as kdop optimize fits (over the ranks), each in the modes
+// and neighborhoods of the built-in candidates; their files into `result`.
+Result<std::vector<VariantSpec>> fit_candidates(const ChooseOptions& o, const Plan& plan, const Ranks& ranks,
+                                                ChooseResult& result) {
     std::vector<VariantSpec> specs;
     for (std::size_t axes : o.fit_axes) {
         OptimizeOptions fitting;
         fitting.input.sequences = o.fit;
         fitting.input.input_space = o.input_space;
         fitting.input.color_map = o.evaluation.resolve.color_map; // the space the set clips in
-        fitting.input.holdout = holdout;
+        fitting.input.holdout = plan.holdout;
         fitting.axes = axes;
         fitting.name = fmt::format("fitted{}", axes);
         fitting.out = (std::filesystem::path(o.out) / (fitting.name + ".axes")).string();
@@ -262,67 +266,96 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o) {
         fitting.threads = o.threads;
         fitting.sample = o.sample;
         fitting.accuracy_samples = 0;
-        auto fitted = optimize(fitting, **ranks);
+        auto fitted = optimize(fitting, ranks);
         if (!fitted) return std::unexpected(fitted.error());
         auto set = parse_axis_set(fitted->file, fitting.out);
         if (!set) return std::unexpected(set.error());
-        for (const VariantSpec* like : per_set) specs.push_back({*set, like->mode, like->neighborhood});
+        for (const VariantSpec& like : plan.per_set) specs.push_back({*set, like.mode, like.neighborhood});
         result.fitted_files.emplace_back(fitting.name + ".axes", fitted->file);
     }
-    const std::size_t fitted_count = specs.size();
-    specs.insert(specs.end(), builtin_specs->begin(), builtin_specs->end());
+    return specs;
+}
+
+} // namespace
+
+Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, const Ranks& ranks) {
+    // --lavapipe-cost runs kdop-dispatch-probe, built beside kdop, under callgrind: checked first.
+    std::optional<ScratchDirectory> callgrind_scratch;
+    if (o.lavapipe_cost) callgrind_scratch.emplace("kdop-choose-callgrind");
+    const bench::CallgrindSetup callgrind{
+        std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kdop-dispatch-probe",
+        callgrind_scratch ? callgrind_scratch->path : std::filesystem::path(), 256, ""};
+
+    ChooseResult result;
+    auto plan = plan_candidates(context, o, result);
+    if (plan && o.lavapipe_cost && (callgrind.scratch.empty() || !std::filesystem::exists(callgrind.probe)))
+        plan = fail(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
+                                callgrind.probe.string()));
+    // A rank that cannot read a sequence stops them all here, before the fit's collectives.
+    if (auto ok = ranks.agree(plan ? Result<void>{} : std::unexpected(plan.error())); !ok)
+        return std::unexpected(ok.error());
+
+    auto specs = fit_candidates(o, *plan, ranks, result);
+    if (!specs) return std::unexpected(specs.error());
+    // The fit is every rank's; the measuring is rank 0's, and so are the outputs.
+    if (!ranks.is_root()) return result;
+    const std::size_t fitted_count = specs->size();
+    specs->insert(specs->end(), plan->builtin_specs.begin(), plan->builtin_specs.end());
+    const Holdout& holdout = plan->holdout;
+    const std::vector<SequenceFrames>&fit = plan->fit, &validate = plan->validate;
 
     // Each candidate's rectification pass timed as kdop taa times it, at the held-out frames' size.
-    const SequenceFrames& sized = validate->empty() ? fit->front() : validate->front();
-    auto timing =
-        time_candidates(context, specs, result.fitted_files, builtin, sized.width(), sized.height(), o.timing_rounds);
+    const SequenceFrames& sized = validate.empty() ? fit.front() : validate.front();
+    auto timing = time_candidates(context, *specs, result.fitted_files, plan->builtin, sized.width(), sized.height(),
+                                  o.timing_rounds);
     if (!timing) return std::unexpected(timing.error());
 
     // With --lavapipe-cost, each clip's instructions beyond the gather (varclip has no such count).
-    std::vector<double> instructions(specs.size(), NAN);
+    std::vector<double> instructions(specs->size(), NAN);
     if (o.lavapipe_cost) {
-        const auto clips = std::ranges::count_if(specs, [](const VariantSpec& s) { return s.mode == Mode::clip; });
+        const auto clips = std::ranges::count_if(*specs, [](const VariantSpec& s) { return s.mode == Mode::clip; });
         Progress progress("counting lavapipe instructions of", 2 * std::size_t(clips));
-        for (std::size_t v = 0; v < specs.size(); ++v)
-            if (specs[v].mode == Mode::clip) {
+        for (std::size_t v = 0; v < specs->size(); ++v)
+            if ((*specs)[v].mode == Mode::clip) {
                 auto counted =
-                    bench::marginal_clip_instructions(specs[v].set, specs[v].neighborhood, callgrind, progress);
+                    bench::marginal_clip_instructions((*specs)[v].set, (*specs)[v].neighborhood, callgrind, progress);
                 if (!counted)
                     return fail(
-                        fmt::format("--lavapipe-cost: {}: {}", variant_name(specs[v]), counted.error().message));
+                        fmt::format("--lavapipe-cost: {}: {}", variant_name((*specs)[v]), counted.error().message));
                 instructions[v] = *counted;
             }
     }
 
-    auto evaluation = TaaEvaluation::create(context, specs, o.evaluation);
+    auto evaluation = TaaEvaluation::create(context, *specs, o.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
     std::size_t frames = 0;
-    for (const auto* sequences : {&*validate, &*fit})
+    for (const auto* sequences : {&validate, &fit})
         for (const SequenceFrames& s : *sequences) frames += s.frame_count();
-    Progress progress(fmt::format("TAA of {} candidates on the held-out and fitted frames,", specs.size()), frames);
+    Progress progress(fmt::format("TAA of {} candidates on the held-out and fitted frames,", specs->size()), frames);
     // With --validate: every measured frame of those sequences, then of the fitted ones. With
     // --holdout: the fitted sequences once, their held-out frames and the others.
     Figures held, in_sample;
     if (holdout.block == 0) {
-        auto on_validate = measure_figures(*evaluation, *validate, {nullptr}, progress);
+        auto on_validate = measure_figures(*evaluation, validate, {nullptr}, progress);
         if (!on_validate) return std::unexpected(on_validate.error());
-        auto on_fit = measure_figures(*evaluation, *fit, {nullptr}, progress);
+        auto on_fit = measure_figures(*evaluation, fit, {nullptr}, progress);
         if (!on_fit) return std::unexpected(on_fit.error());
         held = std::move(on_validate->front()), in_sample = std::move(on_fit->front());
     } else {
         auto split = measure_figures(
-            *evaluation, *fit,
+            *evaluation, fit,
             {[&](std::size_t i) { return holdout.held_out(i); }, [&](std::size_t i) { return !holdout.held_out(i); }},
             progress);
         if (!split) return std::unexpected(split.error());
         held = std::move((*split)[0]), in_sample = std::move((*split)[1]);
     }
 
-    for (std::size_t v = 0; v < specs.size(); ++v) {
+    for (std::size_t v = 0; v < specs->size(); ++v) {
+        const VariantSpec& spec = (*specs)[v];
         Candidate c;
-        c.key = specs[v].key();
+        c.key = spec.key();
         c.fitted = v < fitted_count;
-        c.float_ops = analytic_min_float_ops(specs[v].set, specs[v].mode, specs[v].neighborhood);
+        c.float_ops = analytic_min_float_ops(spec.set, spec.mode, spec.neighborhood);
         const std::vector<double>& ms = timing->ms[v];
         c.ms = median(ms), c.ms_q1 = quantile(ms, 0.25), c.ms_q3 = quantile(ms, 0.75);
         c.lavapipe_instructions = instructions[v];

@@ -585,9 +585,7 @@ TEST(CliOptimize, TheSameFileOnAnyRankAndThreadCount) {
 #else
     OptimizeInputs in;
     const std::string sequence = in.grass_sequence("scenes", "40x24", 9);
-    // Open MPI refuses root unless told; CI runs as root.
-    const std::string mpirun =
-        fmt::format("{} --oversubscribe{} -np ", KDOP_MPIEXEC, geteuid() == 0 ? " --allow-run-as-root" : "");
+    const std::string mpirun = test::mpirun_np();
     auto optimize = [&](const std::string& launch, const std::string& args, const fs::path& out) {
         return test::run(launch + test::kdop_binary() + " optimize --sequence " + sequence + " --images " + in.image +
                          " --axes 4 --starts 2 --iterations 3 --accuracy-samples 30 --name fit " + args + " --out " +

@@ -80,11 +80,12 @@ TEST(CliChoose, TheManifestOfAFittedSetBuildsExactlyThatVariant) {
         "name: fitted4\nprovenance: constructed by the test\nvec3(1, 0, 0),\nvec3(0, 1, 0),\nvec3(0, 0, 1),\n"
         "vec3(0.57735, 0.57735, 0.57735)\n";
     test::write_file(dir / "fitted4.axes", fitted);
-    ChooseResult result{{candidate("fitted4", true, 190, 0.02), candidate("aabb", false, 87, 0.03)},
-                        {0, "constructed"},
-                        {{"fitted4.axes", fitted}},
-                        {"level1"},
-                        {"level2"}};
+    ChooseResult result;
+    result.candidates = {candidate("fitted4", true, 190, 0.02), candidate("aabb", false, 87, 0.03)};
+    result.recommendation.chosen = 0;
+    result.fitted_files = {{"fitted4.axes", fitted}};
+    result.fit_sequences = {"level1"};
+    result.validate_sequences = {"level2"};
     const std::string manifest = choice_manifest(result);
     EXPECT_EQ(manifest, "# kdop choose's recommendation (choice.md says why).\nset: fitted4.axes\nfitted4-clip-n9\n");
     test::write_file(dir / "kdop.manifest", manifest);
@@ -203,6 +204,55 @@ TEST(CliChoose, HoldoutJudgesOnBlocksOfFramesLeftOutOfTheFit) {
     EXPECT_NE(b.err.find("--holdout 9: "), std::string::npos) << b.err;
     EXPECT_NE(b.err.find("no frame is held out"), std::string::npos) << b.err;
     EXPECT_FALSE(fs::exists(refused));
+}
+
+// mpirun -np R: the fits are shared over the ranks as kdop optimize shares them, and rank 0 measures
+// and writes; the files are those of a run without mpirun (the fitted sets, the manifest, every
+// figure but the timed ms), printed once. A usage error is one, exit 2, before any work.
+TEST(CliChoose, TheSameFilesOnAnyRankCount) {
+#ifndef KDOP_MPIEXEC
+    GTEST_SKIP() << "kdop was built without MPI (libopenmpi-dev)";
+#else
+    test::TempDir dir;
+    const fs::path scenes = dir / "scenes";
+    auto s = test::run(test::kdop_binary() + " scene --scenes grass asphalt --size 40x24 --frames 10 --out " +
+                       scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    auto choose = [&](const std::string& launch, const fs::path& out, const std::string& validate) {
+        return test::run(launch + test::kdop_binary() + " choose --fit " + (scenes / "grass-ghosting").string() +
+                         validate + " --fit-axes 4 5 --sets aabb --warmup 3 --sample 1500 --timing-rounds 2 " +
+                         "--no-charts --out " + out.string());
+    };
+    const std::string validate = " --validate " + (scenes / "asphalt-ghosting").string();
+    auto alone = choose("", dir / "alone", validate);
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    // Every column but the timed ones.
+    auto figures = [](const fs::path& csv) {
+        auto rows = test::csv_rows(test::read_file(csv));
+        for (auto& row : rows) row.erase("ms"), row.erase("ms_q1"), row.erase("ms_q3");
+        return rows;
+    };
+    for (int ranks : {2, 3}) {
+        SCOPED_TRACE(fmt::format("{} ranks", ranks));
+        const fs::path out = dir / fmt::format("ranks{}", ranks);
+        auto r = choose(test::mpirun_np() + std::to_string(ranks) + " ", out, validate);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        for (const char* file : {"fitted4.axes", "fitted5.axes", "kdop.manifest"})
+            EXPECT_EQ(test::read_file(out / file), test::read_file(dir / "alone" / file)) << file;
+        EXPECT_EQ(figures(out / "candidates.csv"), figures(dir / "alone" / "candidates.csv"));
+        EXPECT_EQ(figures(out / "candidates.csv").size(), 3u);
+        std::size_t printed = 0;
+        for (std::size_t at = 0; (at = r.out.find("kdop choose: ", at)) != std::string::npos; ++at) ++printed;
+        EXPECT_EQ(printed, 1u) << r.out;
+        EXPECT_NE(r.err.find(fmt::format("on rank 0 of {}", ranks)), std::string::npos) << r.err;
+    }
+    const fs::path refused = dir / "refused";
+    auto b = choose(test::mpirun_np() + "2 ", refused, "");
+    EXPECT_EQ(b.exit_code, 2) << b.err;
+    EXPECT_NE(b.err.find("give --validate SEQUENCE... or --holdout FRAMES"), std::string::npos) << b.err;
+    EXPECT_EQ(b.err.find("give --validate"), b.err.rfind("give --validate")) << "one rank speaks\n" << b.err;
+    EXPECT_FALSE(fs::exists(refused));
+#endif
 }
 
 // --lavapipe-cost: each clip candidate's instructions per pixel beyond the gather, counted by

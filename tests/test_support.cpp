@@ -1,5 +1,6 @@
 #include "tests/test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -81,5 +82,12 @@ CommandResult run(const std::string& command_line) {
 
 std::string kdop_binary() { return KDOP_CLI_PATH; }
 std::string kdop_gen_binary() { return KDOP_GEN_PATH; }
+
+#ifdef KDOP_MPIEXEC
+std::string mpirun_np() {
+    // Open MPI refuses root unless told; CI runs as root.
+    return fmt::format("{} --oversubscribe{} -np ", KDOP_MPIEXEC, geteuid() == 0 ? " --allow-run-as-root" : "");
+}
+#endif
 
 } // namespace kdop::test

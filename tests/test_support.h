@@ -48,4 +48,10 @@ std::vector<std::map<std::string, std::string>> csv_rows(const std::string& csv)
 std::string kdop_binary();
 std::string kdop_gen_binary();
 
+#ifdef KDOP_MPIEXEC
+// `mpirun ... -np `, to be followed by a rank count: the mpirun kdop was built against, allowed
+// more ranks than cores and, as CI runs, root.
+std::string mpirun_np();
+#endif
+
 } // namespace kdop::test
