@@ -100,8 +100,8 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
 
     const VkImageUsageFlags input_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     for (std::string& name : inputs) {
-        p->inputs_.push_back({std::move(name), {}});
-        if (auto ok = p->create_texture(p->inputs_.back().texture, vk_format(format), input_usage); !ok)
+        p->inputs_.push_back({std::move(name), std::vector<Texture>(1)});
+        if (auto ok = p->create_texture(p->inputs_.back().slots[0], vk_format(format), input_usage); !ok)
             return std::unexpected(ok.error());
     }
     const auto input_count = static_cast<uint32_t>(p->inputs_.size());
@@ -178,7 +178,7 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
     auto copied = commands_->run([&](VkCommandBuffer cb) {
         for (std::size_t i = 0; i < images.size(); ++i) {
             if (!images[i]) continue;
-            const Texture& t = inputs_[i].texture;
+            const Texture& t = inputs_[i].texture();
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT);
@@ -225,7 +225,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
         const auto input =
             std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.name == b.name; });
         const Texture* texture = b.name == "rectified_history" ? &output_
-                                 : input != inputs_.end()      ? &input->texture
+                                 : input != inputs_.end()      ? &input->texture()
                                                                : nullptr;
         const bool storage = b.type == DescriptorType::storage_image;
         const bool image = storage || b.type == DescriptorType::combined_image_sampler;
@@ -284,6 +284,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     });
     if (!wall) return std::unexpected(wall.error());
     dispatched_ = true;
+    output_layout_ = VK_IMAGE_LAYOUT_GENERAL;
 
     DispatchTiming timing{*wall, std::numeric_limits<double>::quiet_NaN()};
     if (timestamps_) {
@@ -295,21 +296,100 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     return timing;
 }
 
-Result<Image> RectifyPass::download() {
-    if (!dispatched_) return fail("download before any dispatch");
-    auto copied = commands_->run([&](VkCommandBuffer cb) {
+// The output, written by the last dispatch (or already copied), ready to be read by a transfer.
+void RectifyPass::output_to_transfer_source(VkCommandBuffer cb) {
+    if (output_layout_ == VK_IMAGE_LAYOUT_GENERAL)
         image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT);
+    output_layout_ = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL; // reads after reads need no barrier
+}
+
+Result<Image> RectifyPass::download() {
+    if (!dispatched_) return fail("download before any dispatch");
+    auto copied = commands_->run([&](VkCommandBuffer cb) {
+        output_to_transfer_source(cb);
         VkBufferImageCopy copy = whole_image(width_, height_, 0);
         vkCmdCopyImageToBuffer(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
         host_read_barrier(cb, readback_.buffer());
     });
     if (!copied) return std::unexpected(copied.error());
-    dispatched_ = false; // the output left the GENERAL layout; the next dispatch starts it afresh
     Image out(width_, height_);
     std::memcpy(out.pixels.data(), readback_.mapped(), out.pixels.size() * 16);
     return out;
+}
+
+Result<RectifyPass::Input*> RectifyPass::input(std::string_view name) {
+    auto it = std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.name == name; });
+    if (it == inputs_.end()) return fail(fmt::format("the rectify pass has no input '{}'", name));
+    return &*it;
+}
+
+Result<void> RectifyPass::add_slots(std::string_view name, std::size_t count) {
+    auto in = input(name);
+    if (!in) return std::unexpected(in.error());
+    if (count == 0 || (*in)->slots.size() != 1) return fail(fmt::format("'{}': slots are added once, at least one", name));
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    (*in)->slots.resize(count);
+    for (std::size_t i = 1; i < count; ++i)
+        if (auto ok = create_texture((*in)->slots[i], vk_format(format_), usage); !ok) return ok;
+    // Zero, not whatever the memory held: a first frame's blend weighs its history by 0, and 0 x NaN is NaN.
+    auto cleared = commands_->run([&](VkCommandBuffer cb) {
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        for (const Texture& t : (*in)->slots) {
+            image_barrier(cb, t.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT);
+            vkCmdClearColorImage(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
+            image_barrier(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        }
+    });
+    if (!cleared) return std::unexpected(cleared.error());
+    (*in)->selected = 0;
+    (*in)->uploaded = true;
+    return {};
+}
+
+Result<void> RectifyPass::select_slot(std::string_view name, std::size_t slot) {
+    auto in = input(name);
+    if (!in) return std::unexpected(in.error());
+    if (slot >= (*in)->slots.size())
+        return fail(fmt::format("'{}': slot {} of {}", name, slot, (*in)->slots.size()));
+    (*in)->selected = slot;
+    return {};
+}
+
+Result<void> RectifyPass::copy_output_to(std::string_view name) {
+    auto in = input(name);
+    if (!in) return std::unexpected(in.error());
+    if (!dispatched_) return fail("a copy of the output before any dispatch");
+    if (format_ != TextureFormat::rgba32f)
+        return fail(fmt::format("'{}' is {}, and the output copies only into rgba32f", name, to_string(format_)));
+    const Texture& into = (*in)->texture();
+    // A texture never uploaded holds nothing to keep.
+    const VkImageLayout was = (*in)->uploaded ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
+    auto copied = commands_->run([&](VkCommandBuffer cb) {
+        output_to_transfer_source(cb);
+        // The last dispatch may have read this texture: its reads come before the copy's writes.
+        image_barrier(cb, into.image, was, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      0, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkImageCopy copy{};
+        copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.extent = {width_, height_, 1};
+        vkCmdCopyImage(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, into.image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        image_barrier(cb, into.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+    });
+    if (!copied) return std::unexpected(copied.error());
+    // Only the selected slot is filled: where there are others, they were cleared by add_slots().
+    (*in)->uploaded = true;
+    return {};
 }
 
 void RectifyPass::destroy(Texture& t) {
@@ -324,7 +404,8 @@ RectifyPass::~RectifyPass() {
     vkDestroyQueryPool(device, timestamps_, nullptr);
     vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     vkDestroySampler(device, sampler_, nullptr);
-    for (Input& in : inputs_) destroy(in.texture);
+    for (Input& in : inputs_)
+        for (Texture& t : in.slots) destroy(t);
     destroy(output_);
 }
 

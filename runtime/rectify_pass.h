@@ -63,6 +63,15 @@ public:
     // The output of the last dispatch.
     Result<Image> download();
 
+    // State a caller keeps on the device between dispatches, per kernel: input `name` gets `count`
+    // textures ("slots"), cleared to zero, and uploads and dispatches use the selected one (slot 0
+    // at first). The TAA resolve keeps each shader's history so.
+    Result<void> add_slots(std::string_view name, std::size_t count);
+    Result<void> select_slot(std::string_view name, std::size_t slot);
+    // Copies the last dispatch's output into input `name`'s selected texture, on the device; the
+    // output stays for download(). The next frame's history, with no round trip through the host.
+    Result<void> copy_output_to(std::string_view name);
+
 private:
     struct Texture {
         VkImage image = VK_NULL_HANDLE;
@@ -72,6 +81,7 @@ private:
     explicit RectifyPass(const Context& context) : context_(context) {}
     Result<void> allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory);
     Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage);
+    void output_to_transfer_source(VkCommandBuffer cb);
     void destroy(Texture& t);
 
     const Context& context_;
@@ -79,17 +89,23 @@ private:
     TextureFormat format_ = TextureFormat::rgba32f;
     struct Input {
         std::string name;
-        Texture texture;
+        std::vector<Texture> slots; // one, or add_slots()'s
+        std::size_t selected = 0;
         bool uploaded = false;
+        const Texture& texture() const { return slots[selected]; }
     };
+    Result<Input*> input(std::string_view name);
     std::vector<Input> inputs_;
     Texture output_;
+    // Where the output is after the last command: GENERAL after a dispatch, TRANSFER_SRC_OPTIMAL
+    // after a copy or a download.
+    VkImageLayout output_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
     DeviceBuffer upload_, readback_; // host-visible
     VkSampler sampler_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     std::unique_ptr<OneShotCommands> commands_;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
-    bool dispatched_ = false;
+    bool dispatched_ = false; // the output holds a dispatch's result
 };
 
 // Loads `variant`, runs it once on the pair and reads the result back.

@@ -246,7 +246,8 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
         if (i >= warmup && against_reference)
             if (auto ok = check_range(*frame->reference, range, label, "reference"); !ok)
                 return std::unexpected(ok.error());
-        if (auto ok = resolve.advance_all(*frame, source.starts_history(i)); !ok)
+        // Outputs come back from the frame before the first measured (its shimmer's previous) on.
+        if (auto ok = resolve.advance_all(*frame, source.starts_history(i), i + 1 >= warmup); !ok)
             return fail(fmt::format("{}: {}", label, ok.error().message));
         if (i + 1 >= warmup) {
             // Each shader's output, kept as its history's "previous" once an observer has seen both.

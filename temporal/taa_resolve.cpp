@@ -3,6 +3,11 @@
 #include <fmt/format.h>
 
 namespace kdop {
+namespace {
+
+constexpr const char* kHistory = "history_frame"; // one per shader, kept on the device
+
+} // namespace
 
 Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, const Variant& shader,
                                                        std::uint32_t width, std::uint32_t height,
@@ -24,13 +29,15 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
         auto kernel = Kernel::create(context, *shader);
         if (!kernel) return std::unexpected(kernel.error());
         r->kernels_.push_back(std::move(*kernel));
-        r->histories_.emplace_back(width, height);
     }
+    r->outputs_.resize(shaders.size());
     // The names of shader_templates/taa_resolve.comp.in, in the order advance() uploads them.
     auto pass = RectifyPass::create(context, width, height, TextureFormat::rgba32f,
-                                    {"color_frame", "history_frame", "motion_frame", "depth_frame"});
+                                    {"color_frame", kHistory, "motion_frame", "depth_frame"});
     if (!pass) return std::unexpected(pass.error());
     r->pass_ = std::move(*pass);
+    // Every shader's history, zero until its first frame.
+    if (auto ok = r->pass_->add_slots(kHistory, shaders.size()); !ok) return std::unexpected(ok.error());
     r->motion_ = Image(width, height, glm::vec4(0));
     r->nothing_ = Image(width, height, glm::vec4(0));
     return r;
@@ -38,10 +45,10 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
 
 Result<const Image*> TaaResolve::advance(const LoadedFrame& frame, bool starts_history) {
     if (auto ok = advance_all(frame, starts_history); !ok) return std::unexpected(ok.error());
-    return &histories_.front();
+    return &outputs_.front();
 }
 
-Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_history) {
+Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs) {
     if (frame.color.width != width_ || frame.color.height != height_)
         return fail(
             fmt::format("a {}x{} frame for a {}x{} resolve", frame.color.width, frame.color.height, width_, height_));
@@ -64,13 +71,17 @@ Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_histo
         {"gamma", {options_.gamma}},
     };
     for (std::size_t s = 0; s < kernels_.size(); ++s) {
-        const Image* history_input[] = {nullptr, &histories_[s], nullptr, nullptr};
-        if (auto ok = pass_->upload(history_input); !ok) return std::unexpected(ok.error());
-        if (auto timing = pass_->dispatch(*kernels_[s], values); !timing)
-            return fail(fmt::format("{}: {}", names_[s], timing.error().message));
-        auto out = pass_->download();
-        if (!out) return fail(fmt::format("{}: {}", names_[s], out.error().message));
-        histories_[s] = std::move(*out);
+        auto resolved = [&]() -> Result<void> {
+            if (auto ok = pass_->select_slot(kHistory, s); !ok) return ok;
+            if (auto timing = pass_->dispatch(*kernels_[s], values); !timing) return std::unexpected(timing.error());
+            if (auto ok = pass_->copy_output_to(kHistory); !ok) return ok;
+            if (!read_outputs) return {};
+            auto out = pass_->download();
+            if (!out) return std::unexpected(out.error());
+            outputs_[s] = std::move(*out);
+            return {};
+        }();
+        if (!resolved) return fail(fmt::format("{}: {}", names_[s], resolved.error().message));
     }
     return {};
 }

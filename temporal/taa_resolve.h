@@ -1,9 +1,10 @@
 // The TAA resolve on the device: resolve shaders (taa_shader.h) dispatched once per frame through
 // one RectifyPass with the resolve's inputs (color, history, motion, depth). A frame's color,
 // motion and depth are uploaded once and every shader resolves it against its own history, so an
-// evaluation of several variants draws or reads each frame once. The output of each frame is read
-// back and becomes that shader's next history, so every frame the metrics see is the one its
-// resolve continues from.
+// evaluation of several variants draws or reads each frame once. Each shader's history stays on
+// the device: its output is copied there as the next frame's history, and read back only when
+// asked for (the frames measured), so every frame the metrics see is the one its resolve
+// continues from, and a warm-up frame never leaves the device.
 #pragma once
 
 #include "core/result.h"
@@ -40,10 +41,11 @@ public:
     const std::string& name(std::size_t s) const { return names_[s]; }
 
     // One frame through every shader: reproject its history by the frame's motion, rectify, blend.
-    // With `starts_history` (the first frame, a camera cut) each output is the frame's color.
-    Result<void> advance_all(const LoadedFrame& frame, bool starts_history);
-    // Shader `s`'s output of the last frame, valid until the next call.
-    const Image& output(std::size_t s) const { return histories_[s]; }
+    // With `starts_history` (the first frame, a camera cut) each output is the frame's color. With
+    // `read_outputs` each output is also read back, for output().
+    Result<void> advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs = true);
+    // Shader `s`'s output of the last frame that read them back, valid until the next call.
+    const Image& output(std::size_t s) const { return outputs_[s]; }
 
     // The same for the first shader alone, returning its output.
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);
@@ -56,7 +58,7 @@ private:
     std::uint32_t width_, height_;
     std::vector<std::unique_ptr<Kernel>> kernels_;
     std::unique_ptr<RectifyPass> pass_;
-    std::vector<Image> histories_; // one per shader
+    std::vector<Image> outputs_; // one per shader, read back
     std::vector<std::string> names_;
     Image motion_, nothing_; // nothing_: motion and depth where a frame has none
 };

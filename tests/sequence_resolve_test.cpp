@@ -302,6 +302,37 @@ TEST_F(ResolveGpu, ACameraCutDropsTheHistory) {
     EXPECT_NE(json.find("\"camera_cut\": true"), std::string::npos) << json;
 }
 
+// Each shader's history stays on the device: two shaders resolved together, with their outputs read
+// back only from frame 9 on, give bit for bit the frames of a resolve that reads every output
+// back, across a camera cut; and a shader's history is its own, not the other's.
+TEST_F(ResolveGpu, HistoriesKeptOnTheDeviceGiveTheFramesOfOneReadBackEveryFrame) {
+    constexpr std::uint32_t w = 48, h = 32;
+    const SceneFrames moving("grass", make_texture(TextureFamily::grass, w, h, 7), 14, true, true);
+    const WithCut cut(moving, 6);
+    auto box = resolve_shader("aabb", Mode::clip, {});
+    auto dop = resolve_shader("dop32", Mode::clip, {});
+    ASSERT_TRUE(box && dop);
+    const Variant* both[] = {&box->variant(), &dop->variant()};
+    auto together = TaaResolve::create(test::gpu(), both, w, h, {});
+    ASSERT_TRUE(together) << together.error().message;
+    std::vector<std::unique_ptr<TaaResolve>> alone;
+    alone.push_back(make_resolve(*box, w, h, {}));
+    alone.push_back(make_resolve(*dop, w, h, {}));
+    ASSERT_TRUE(alone[0] && alone[1]);
+    for (std::size_t f = 0; f < cut.frame_count(); ++f) {
+        auto frame = cut.frame(f);
+        ASSERT_TRUE(frame);
+        const bool read = f >= 9;
+        ASSERT_TRUE((*together)->advance_all(*frame, cut.starts_history(f), read));
+        for (std::size_t s = 0; s < 2; ++s) {
+            auto out = alone[s]->advance(*frame, cut.starts_history(f));
+            ASSERT_TRUE(out);
+            if (read) EXPECT_TRUE(bit_identical((*together)->output(s), **out)) << "shader " << s << ", frame " << f;
+        }
+        if (read) EXPECT_FALSE(bit_identical((*together)->output(0), (*together)->output(1))) << "frame " << f;
+    }
+}
+
 // The one pass over a sequence with a camera cut, in LDR and in HDR (HDR-FLIP, its notes):
 // every variant's figures are those of a pass of its own.
 TEST_F(ResolveGpu, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
