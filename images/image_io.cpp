@@ -269,6 +269,54 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
     return {};
 }
 
+// The 8-bit values of `image`'s first `channels` channels as an 8-bit file stores them: color
+// sRGB-encoded, alpha as it is, each converted by OpenImageIO's own conversion (what it would do to
+// the floats), a block of rows at a time, so no float copy of the whole image is made.
+std::vector<std::uint8_t> encoded_bytes(const Image& image, int channels) {
+    const std::size_t per_row = std::size_t(image.width) * std::size_t(channels);
+    std::vector<std::uint8_t> bytes(per_row * image.height);
+    std::vector<float> rows;
+    constexpr std::uint32_t kRows = 16;
+    for (std::uint32_t y0 = 0; y0 < image.height; y0 += kRows) {
+        const std::uint32_t y1 = std::min(image.height, y0 + kRows);
+        rows.clear();
+        for (std::size_t i = std::size_t(y0) * image.width; i < std::size_t(y1) * image.width; ++i) {
+            const glm::vec4& p = image.pixels[i];
+            for (int c = 0; c < channels; ++c) rows.push_back(c < 3 ? linear_to_srgb(p[c]) : p[c]);
+        }
+        OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, rows.data(), OIIO::TypeDesc::UINT8,
+                                   bytes.data() + std::size_t(y0) * per_row, int(rows.size()));
+    }
+    return bytes;
+}
+
+// verify_written for an 8-bit file: it must read back as exactly the bytes written.
+Result<void> verify_written_bytes(const std::string& file, const std::vector<std::uint8_t>& bytes, std::uint32_t width,
+                                  std::uint32_t height, const std::string& path) {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1); // as written: color not multiplied by alpha
+    auto in = OIIO::ImageInput::open(file, &config);
+    if (!in)
+        return fail(fmt::format("{}: written, but cannot be read back: {}", path, library_message(OIIO::geterror())));
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != int(width) || spec.height != int(height))
+        return fail(fmt::format("{}: written as {}x{}, not {}x{}", path, spec.width, spec.height, width, height));
+    const int channels = int(bytes.size() / (std::size_t(width) * height));
+    if (spec.nchannels < channels)
+        return fail(fmt::format("{}: written with {} channels, not {}", path, spec.nchannels, channels));
+    std::vector<std::uint8_t> read(bytes.size());
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, read.data()))
+        return fail(fmt::format("{}: written, but does not read back whole (disk full?): {}", path,
+                                library_message(in->geterror())));
+    const auto differs = std::mismatch(read.begin(), read.end(), bytes.begin());
+    if (differs.first != read.end()) {
+        const std::size_t i = std::size_t(differs.first - read.begin()) / std::size_t(channels);
+        return fail(fmt::format("{}: written, but pixel ({}, {}) reads back as {} instead of {}", path, i % width,
+                                i / width, int(*differs.first), int(*differs.second)));
+    }
+    return {};
+}
+
 } // namespace
 
 namespace {
@@ -348,16 +396,23 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     }
     // Integer formats hold sRGB-encoded color, as viewers expect; float formats the linear values.
     const bool encode = !out->spec().format.is_floating_point();
-    std::vector<glm::vec4> encoded;
-    if (encode) {
-        encoded = image.pixels;
+    bool ok = false;
+    std::vector<std::uint8_t> bytes; // 8-bit formats (PNG): the bytes written, to check the file by
+    if (out->spec().format == OIIO::TypeDesc::UINT8) {
+        bytes = encoded_bytes(image, channels);
+        ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    } else if (encode) {
+        std::vector<glm::vec4> encoded = image.pixels;
         for (glm::vec4& p : encoded) p = glm::vec4(linear_to_srgb(p.r), linear_to_srgb(p.g), linear_to_srgb(p.b), p.a);
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, encoded.data(), sizeof(glm::vec4));
+    } else {
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     }
-    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, encode ? encoded.data() : image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
     if (!ok)
         return fail(fmt::format("{}: cannot write: {}{}", path, library_message(out->geterror()), disk_full(file)));
-    auto verified = verify_written(file.string(), image, path);
+    auto verified = bytes.empty() ? verify_written(file.string(), image, path)
+                                  : verify_written_bytes(file.string(), bytes, image.width, image.height, path);
     if (!verified) return fail(verified.error().message + disk_full(file));
     return verified;
 }

@@ -173,20 +173,29 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const HdrFlip& flip, con
         auto add = [&](std::size_t index, const std::string& image, bool flip_map, const Image& shown) {
             return images.add(viewer_image_path(sequence, index, image, flip_map), shown);
         };
+        // An LDR frame is shown as it is (no copy); an HDR one tone mapped.
+        auto add_shown = [&](std::size_t index, const std::string& image, const Image& frame) {
+            return sequence.range == ColorRange::hdr ? add(index, image, false, shown_as.shown(frame))
+                                                     : add(index, image, false, frame);
+        };
         for (const auto& [index, figures] : kept.staged) {
             sequence.frames.push_back(index);
             sequence.figures.push_back(figures);
             auto truth = read_staged(staged(s, index, "truth"));
             if (!truth) return std::unexpected(truth.error());
-            if (auto ok = add(index, sequence.truth, false, shown_as.shown(*truth)); !ok)
-                return std::unexpected(ok.error());
-            // Each variant's output and map, a variant per core; the first error (in variant order) is reported.
-            std::vector<Result<void>> done(variants_.size());
-            parallel_for(variants_.size(), 0, [&](std::size_t v) {
-                done[v] = [&]() -> Result<void> {
+            // The truth and each variant's output and map, one per core at a time (the truth is item
+            // 0); the first error, in that order, is reported.
+            std::vector<Result<void>> done(variants_.size() + 1);
+            parallel_for(variants_.size() + 1, 0, [&](std::size_t item) {
+                if (item == 0) {
+                    done[0] = add_shown(index, sequence.truth, *truth);
+                    return;
+                }
+                const std::size_t v = item - 1;
+                done[item] = [&]() -> Result<void> {
                     auto output = read_staged(staged(s, index, std::to_string(v)));
                     if (!output) return std::unexpected(output.error());
-                    if (auto ok = add(index, variants_[v], false, shown_as.shown(*output)); !ok) return ok;
+                    if (auto ok = add_shown(index, variants_[v], *output); !ok) return ok;
                     // Ghosting's map is against the truth, shimmer's against the output before (none
                     // after a camera cut).
                     Result<Image> before = fail("no output before");
