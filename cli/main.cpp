@@ -28,9 +28,9 @@ int main(int argc, char** argv) {
             // Every rank would do the whole of any other command and write the same outputs.
             const bool shares = chosen->get_name() == "optimize" || chosen->get_name() == "choose";
             if (!shares && kdop::launched_ranks() > 1)
-                return kdop::cli::usage_error(fmt::format(
-                    "{}: only kdop optimize and kdop choose share their work over MPI ranks; run kdop {} without mpirun",
-                    chosen->get_name(), chosen->get_name()));
+                return kdop::cli::usage_error(fmt::format("{}: only kdop optimize and kdop choose share their work "
+                                                          "over MPI ranks; run kdop {} without mpirun",
+                                                          chosen->get_name(), chosen->get_name()));
             return actions.at(chosen->get_name())();
         }
         return 1;

@@ -231,18 +231,27 @@ Expected stored(float v, OIIO::TypeDesc type) {
     return {v, 0.0f};
 }
 
-// Reads the file just written back and compares it with `image`, so a writer that reports success
-// on a full disk (OpenImageIO's PNG, BMP and TGA writers do) cannot leave a short or wrong file.
-Result<void> verify_written(const std::string& file, const Image& image, const std::string& path) {
+// The file just written, opened to be read back, if it is of the size written.
+Result<std::unique_ptr<OIIO::ImageInput>> open_written(const std::string& file, std::uint32_t width,
+                                                       std::uint32_t height, const std::string& path) {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1); // as written: color not multiplied by alpha
     auto in = OIIO::ImageInput::open(file, &config);
     if (!in)
         return fail(fmt::format("{}: written, but cannot be read back: {}", path, library_message(OIIO::geterror())));
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width != int(image.width) || spec.height != int(image.height))
-        return fail(
-            fmt::format("{}: written as {}x{}, not {}x{}", path, spec.width, spec.height, image.width, image.height));
+    if (spec.width != int(width) || spec.height != int(height))
+        return fail(fmt::format("{}: written as {}x{}, not {}x{}", path, spec.width, spec.height, width, height));
+    return in;
+}
+
+// Reads the file just written back and compares it with `image`, so a writer that reports success
+// on a full disk (OpenImageIO's PNG, BMP and TGA writers do) cannot leave a short or wrong file.
+Result<void> verify_written(const std::string& file, const Image& image, const std::string& path) {
+    auto opened = open_written(file, image.width, image.height, path);
+    if (!opened) return std::unexpected(opened.error());
+    OIIO::ImageInput* in = opened->get();
+    const OIIO::ImageSpec& spec = in->spec();
     const int channels = std::min(spec.nchannels, 4);
     std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
@@ -293,14 +302,10 @@ std::vector<std::uint8_t> encoded_bytes(const Image& image, int channels) {
 // verify_written for an 8-bit file: it must read back as exactly the bytes written.
 Result<void> verify_written_bytes(const std::string& file, const std::vector<std::uint8_t>& bytes, std::uint32_t width,
                                   std::uint32_t height, const std::string& path) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1); // as written: color not multiplied by alpha
-    auto in = OIIO::ImageInput::open(file, &config);
-    if (!in)
-        return fail(fmt::format("{}: written, but cannot be read back: {}", path, library_message(OIIO::geterror())));
+    auto opened = open_written(file, width, height, path);
+    if (!opened) return std::unexpected(opened.error());
+    OIIO::ImageInput* in = opened->get();
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width != int(width) || spec.height != int(height))
-        return fail(fmt::format("{}: written as {}x{}, not {}x{}", path, spec.width, spec.height, width, height));
     const int channels = int(bytes.size() / (std::size_t(width) * height));
     if (spec.nchannels < channels)
         return fail(fmt::format("{}: written with {} channels, not {}", path, spec.nchannels, channels));

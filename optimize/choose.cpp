@@ -177,7 +177,7 @@ Result<bench::TimingRun> time_candidates(const Context& context, const std::vect
 // sequences, and what is held out.
 struct Plan {
     Holdout holdout;
-    std::vector<std::string> builtin;      // --sets, or every built-in set
+    std::vector<std::string> builtin;       // --sets, or every built-in set
     std::vector<VariantSpec> builtin_specs; // each in every mode and neighborhood asked for
     std::vector<VariantSpec> per_set;       // one set's modes and neighborhoods, for the fitted sets
     std::vector<SequenceFrames> fit, validate;

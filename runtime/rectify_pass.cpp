@@ -328,7 +328,8 @@ Result<RectifyPass::Input*> RectifyPass::input(std::string_view name) {
 Result<void> RectifyPass::add_slots(std::string_view name, std::size_t count) {
     auto in = input(name);
     if (!in) return std::unexpected(in.error());
-    if (count == 0 || (*in)->slots.size() != 1) return fail(fmt::format("'{}': slots are added once, at least one", name));
+    if (count == 0 || (*in)->slots.size() != 1)
+        return fail(fmt::format("'{}': slots are added once, at least one", name));
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     (*in)->slots.resize(count);
     for (std::size_t i = 1; i < count; ++i)
@@ -356,8 +357,7 @@ Result<void> RectifyPass::add_slots(std::string_view name, std::size_t count) {
 Result<void> RectifyPass::select_slot(std::string_view name, std::size_t slot) {
     auto in = input(name);
     if (!in) return std::unexpected(in.error());
-    if (slot >= (*in)->slots.size())
-        return fail(fmt::format("'{}': slot {} of {}", name, slot, (*in)->slots.size()));
+    if (slot >= (*in)->slots.size()) return fail(fmt::format("'{}': slot {} of {}", name, slot, (*in)->slots.size()));
     (*in)->selected = slot;
     return {};
 }
@@ -374,9 +374,8 @@ Result<void> RectifyPass::copy_output_to(std::string_view name) {
     auto copied = commands_->run([&](VkCommandBuffer cb) {
         output_to_transfer_source(cb);
         // The last dispatch may have read this texture: its reads come before the copy's writes.
-        image_barrier(cb, into.image, was, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      0, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT);
+        image_barrier(cb, into.image, was, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
         VkImageCopy copy{};
         copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         copy.extent = {width_, height_, 1};

@@ -105,7 +105,7 @@ private:
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     std::unique_ptr<OneShotCommands> commands_;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
-    bool dispatched_ = false; // the output holds a dispatch's result
+    bool dispatched_ = false;                 // the output holds a dispatch's result
 };
 
 // Loads `variant`, runs it once on the pair and reads the result back.

@@ -153,9 +153,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             std::vector<double> ghosting;
             for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
             const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
-            if (auto ok = add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys,
-                                               trails, ghosting,
-                                               {&picture_flip, ColorRange::ldr, settings.evaluation.exposure});
+            if (auto ok =
+                    add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys, trails,
+                                         ghosting, {&picture_flip, ColorRange::ldr, settings.evaluation.exposure});
                 !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
