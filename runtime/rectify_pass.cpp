@@ -314,8 +314,11 @@ Result<Image> RectifyPass::download() {
         host_read_barrier(cb, readback_.buffer());
     });
     if (!copied) return std::unexpected(copied.error());
-    Image out(width_, height_);
-    std::memcpy(out.pixels.data(), readback_.mapped(), out.pixels.size() * 16);
+    // Filled straight from the mapped buffer: one pass over the pixels, none to clear them first.
+    Image out;
+    out.width = width_, out.height = height_;
+    const auto* mapped = static_cast<const glm::vec4*>(readback_.mapped());
+    out.pixels.assign(mapped, mapped + std::size_t(width_) * height_);
     return out;
 }
 

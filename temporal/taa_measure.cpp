@@ -14,13 +14,12 @@
 
 namespace kdop {
 
-Result<Image> within_range(const Image& frame, ColorRange range, std::string_view what) {
+Result<Image> within_range(Image frame, ColorRange range, std::string_view what) {
     constexpr float kRounding = 1e-4f;
     const bool hdr = range == ColorRange::hdr;
-    Image out = frame;
     for (std::uint32_t y = 0; y < frame.height; ++y)
         for (std::uint32_t x = 0; x < frame.width; ++x) {
-            glm::vec4& pixel = out.at(x, y);
+            glm::vec4& pixel = frame.at(x, y);
             // Rounding scales with the colors the resolve blended: for HDR, the pixel's largest.
             const float scale = hdr ? std::max({1.0f, pixel.r, pixel.g, pixel.b}) : 1.0f;
             for (int c = 0; c < 3; ++c) {
@@ -33,7 +32,7 @@ Result<Image> within_range(const Image& frame, ColorRange range, std::string_vie
                 v = hdr ? std::max(v, 0.0f) : std::clamp(v, 0.0f, 1.0f);
             }
         }
-    return out;
+    return frame;
 }
 
 namespace {
@@ -254,7 +253,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             std::vector<Image> current(resolve.size());
             for (std::size_t s = 0; s < resolve.size(); ++s) {
                 auto measured = [&]() -> Result<void> {
-                    auto output = within_range(resolve.output(s), range, label);
+                    auto output = within_range(resolve.take_output(s), range, label);
                     if (!output) return std::unexpected(output.error());
                     current[s] = std::move(*output);
                     if (i < warmup) return {};

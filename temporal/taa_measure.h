@@ -158,7 +158,7 @@ Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene,
 // segments between colors in the range, so anything beyond it is float rounding. Values outside
 // by no more than 1e-4 (for hdr, 1e-4 times the pixel's largest channel, when that is above 1)
 // are moved onto the range; anything further, or not finite (a bug, not rounding), is an error
-// naming the pixel.
-Result<Image> within_range(const Image& frame, ColorRange range, std::string_view what);
+// naming the pixel. The frame is checked and moved onto the range in place.
+Result<Image> within_range(Image frame, ColorRange range, std::string_view what);
 
 } // namespace kdop

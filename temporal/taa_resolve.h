@@ -46,6 +46,8 @@ public:
     Result<void> advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs = true);
     // Shader `s`'s output of the last frame that read them back, valid until the next call.
     const Image& output(std::size_t s) const { return outputs_[s]; }
+    // The same, moved out (output(s) is then empty until the next frame read back).
+    Image take_output(std::size_t s) { return std::move(outputs_[s]); }
 
     // The same for the first shader alone, returning its output.
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);

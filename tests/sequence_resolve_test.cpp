@@ -327,9 +327,13 @@ TEST_F(ResolveGpu, HistoriesKeptOnTheDeviceGiveTheFramesOfOneReadBackEveryFrame)
         for (std::size_t s = 0; s < 2; ++s) {
             auto out = alone[s]->advance(*frame, cut.starts_history(f));
             ASSERT_TRUE(out);
-            if (read) EXPECT_TRUE(bit_identical((*together)->output(s), **out)) << "shader " << s << ", frame " << f;
+            if (read) {
+                EXPECT_TRUE(bit_identical((*together)->output(s), **out)) << "shader " << s << ", frame " << f;
+            }
         }
-        if (read) EXPECT_FALSE(bit_identical((*together)->output(0), (*together)->output(1))) << "frame " << f;
+        if (read) {
+            EXPECT_FALSE(bit_identical((*together)->output(0), (*together)->output(1))) << "frame " << f;
+        }
     }
 }
 
