@@ -22,7 +22,6 @@ namespace {
 using kdop::fuzz::require;
 
 constexpr std::uint32_t kWidth = 4, kHeight = 3;
-constexpr std::size_t kValues = kWidth * kHeight * 3;
 
 // The next 4 bytes as a float, or 0 past the end.
 float next_float(const std::uint8_t*& data, std::size_t& size) {
