@@ -8,19 +8,15 @@
 namespace kdop {
 namespace {
 
-// NVlabs/flip's weighted percentile of a histogram (see the header), stated here from its
-// definition: the bucket where the running weight first passes p times the total, and the share
-// of that bucket's weight still needed there. Where none passes (p = 1), the last bucket.
-double weighted_percentile(const std::vector<std::size_t>& histogram, double p) {
-    const double step = 1.0 / double(histogram.size());
-    auto weight = [&](std::size_t b) { return double(histogram[b]) * (double(b) + 0.5) * step; };
-    double total = 0;
-    for (std::size_t b = 0; b < histogram.size(); ++b) total += weight(b);
-    double below = 0;
-    std::size_t b = 0;
-    for (; b + 1 < histogram.size() && below + weight(b) <= p * total; ++b) below += weight(b);
-    if (b + 1 == histogram.size() && below + weight(b) <= p * total) below += weight(b);
-    return (double(b) + (p * total - below) / weight(b)) * step;
+// NVlabs/flip's printed weighted percentile (see the header), in its float arithmetic: the first of
+// the `sorted` values at which their running sum passes p times `total`.
+float weighted_percentile(const std::vector<double>& sorted, float total, float p) {
+    float running = 0;
+    for (double value : sorted) {
+        running += float(value); // the map's floats, sorted as doubles
+        if (running > p * total) return float(value);
+    }
+    return 0;
 }
 
 } // namespace
@@ -35,13 +31,14 @@ std::vector<std::size_t> flip_histogram(std::span<const float> map) {
 }
 
 FlipStatistics flip_statistics(std::span<const float> map) {
-    const std::vector<std::size_t> histogram = flip_histogram(map);
     std::vector<double> values(map.begin(), map.end());
-    std::sort(values.begin(), values.end()); // once, for the three quantiles and the extremes
+    std::sort(values.begin(), values.end()); // once, for the six quantiles and the extremes
+    float total = 0;                         // in the map's order, as NVlabs/flip's tool sums it
+    for (float value : map) total += value;
     return {.mean = mean_error(map),
-            .weighted_median = weighted_percentile(histogram, 0.5),
-            .weighted_q1 = weighted_percentile(histogram, 0.25),
-            .weighted_q3 = weighted_percentile(histogram, 0.75),
+            .weighted_median = weighted_percentile(values, total, 0.5f),
+            .weighted_q1 = weighted_percentile(values, total, 0.25f),
+            .weighted_q3 = weighted_percentile(values, total, 0.75f),
             .median = quantile_of_sorted(values, 0.5),
             .q1 = quantile_of_sorted(values, 0.25),
             .q3 = quantile_of_sorted(values, 0.75),

@@ -2,13 +2,14 @@
 // and quartiles, the minimum and maximum, and the error histogram; with them the plain median and
 // quartiles, which weigh every pixel alike.
 //
-// The weighted percentiles are NVlabs/flip's definition (pooling.h, getWeightedPercentile): the
-// map's values in a histogram of `kFlipHistogramBuckets` equal buckets over [0, 1], each bucket
-// weighted by its count times its center; the p-th weighted percentile lies in the bucket where
-// that weight, summed from 0, passes p times the whole, at the share of the bucket's weight still
-// needed. A pixel's vote grows with its error, so a few large errors move them where they hardly
-// move the plain median. The plain percentiles interpolate linearly between order statistics
-// (numpy's default); NVlabs' tool does not print them.
+// The weighted percentiles are those NVlabs/flip's tool prints (pooling.h, getPercentile with
+// bWeighted): the map's values sorted, the p-th weighted percentile is the first value at which
+// their running sum passes p times the sum of all, both summed in float as the tool sums them (the
+// total in the map's order), so on the same map the figures are the tool's to the last digit; 0
+// for a map of zeros. A pixel's vote grows with its error, so a few large errors move them where they hardly
+// move the plain median. (The tool's histogram plot marks another weighted median, interpolated in
+// its histogram, getWeightedPercentile; the tool does not print that one.) The plain percentiles
+// interpolate linearly between order statistics (numpy's default); NVlabs' tool does not print them.
 #pragma once
 
 #include <cstddef>

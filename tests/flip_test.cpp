@@ -579,8 +579,8 @@ TEST(CliFlip, DecodesSrgbInputsAsTheReferenceDoes) {
 }
 
 // flip_statistics on a map whose distribution is known: the plain percentiles as numpy.quantile
-// computes them (linear), the weighted ones as NVlabs/flip's tool defines them, each written out here
-// another way: the weights summed into a running array, the percentile's bucket found by search.
+// computes them (linear), the weighted ones as NVlabs/flip's tool prints them, written out here
+// another way: the running sums in an array, the first that passes found by search.
 TEST(FlipStatistics, PercentilesOfAKnownMap) {
     std::vector<float> map;
     for (int i = 0; i < 1000; ++i) map.push_back(float(i % 97) * float(i % 13) / (96.0f * 12.0f)); // in [0, 1]
@@ -601,29 +601,31 @@ TEST(FlipStatistics, PercentilesOfAKnownMap) {
     EXPECT_EQ(f.min, 0.0);
     EXPECT_EQ(f.max, 1.0);
 
-    // 100 buckets of width 0.01, 1.0 in the last; each weighs count x center.
-    std::vector<double> running(101, 0.0); // running[b]: the weight of the buckets below b
+    // The histogram the weighted plot draws: 100 buckets of width 0.01, 1.0 in the last.
     const std::vector<std::size_t> histogram = flip_histogram(map);
     ASSERT_EQ(histogram.size(), 100u);
     EXPECT_EQ(std::accumulate(histogram.begin(), histogram.end(), std::size_t(0)), map.size());
     EXPECT_EQ(histogram[99], std::size_t(std::count_if(map.begin(), map.end(), [](float v) { return v >= 0.99f; })));
-    for (std::size_t b = 0; b < 100; ++b) running[b + 1] = running[b] + double(histogram[b]) * (b + 0.5) / 100.0;
-    auto weighted = [&](double p) {
-        const double wanted = p * running[100];
-        // The first bucket whose running weight, itself included, exceeds the wanted share.
-        const std::size_t b =
-            std::size_t(std::upper_bound(running.begin() + 1, running.end(), wanted) - (running.begin() + 1));
-        return (double(b) + (wanted - running[b]) / (running[b + 1] - running[b])) / 100.0;
+    // The weighted percentiles NVlabs/flip's tool prints: the running float sums of the sorted
+    // values, and the first value whose sum passes p times the float total of the map.
+    std::vector<float> ascending(map);
+    std::sort(ascending.begin(), ascending.end());
+    std::vector<float> running(ascending.size());
+    std::partial_sum(ascending.begin(), ascending.end(), running.begin());
+    const float total = std::accumulate(map.begin(), map.end(), 0.0f);
+    auto weighted = [&](float p) {
+        return double(
+            ascending[std::size_t(std::upper_bound(running.begin(), running.end(), p * total) - running.begin())]);
     };
-    EXPECT_NEAR(f.weighted_median, weighted(0.5), 1e-12);
-    EXPECT_NEAR(f.weighted_q1, weighted(0.25), 1e-12);
-    EXPECT_NEAR(f.weighted_q3, weighted(0.75), 1e-12);
+    EXPECT_EQ(f.weighted_median, weighted(0.5f));
+    EXPECT_EQ(f.weighted_q1, weighted(0.25f));
+    EXPECT_EQ(f.weighted_q3, weighted(0.75f));
     // Weighting by the error moves the percentiles up: a pixel's vote grows with its error.
     EXPECT_GT(f.weighted_median, f.median);
 
-    // A flat map: every pixel in the first bucket, the weighted median half way through it.
+    // A map of zeros: no sum to pass, and the tool's 0.
     const std::vector<float> zeros(64, 0.0f);
-    EXPECT_DOUBLE_EQ(flip_statistics(zeros).weighted_median, 0.005);
+    EXPECT_EQ(flip_statistics(zeros).weighted_median, 0.0);
     EXPECT_EQ(flip_statistics(zeros).median, 0.0);
 }
 
