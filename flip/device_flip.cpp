@@ -347,10 +347,8 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
     out.mean = sum / double(n);
     const auto* maps = static_cast<const float*>(maps_.mapped());
     auto map = [&](int k) { return std::vector<float>(maps + std::size_t(k) * n, maps + std::size_t(k + 1) * n); };
-    if (read_back != ReadBack::mean) {
-        out.error = map(0);
-        out.exposure = map(1);
-    }
+    if (read_back != ReadBack::mean) out.error = map(0);
+    if (read_back == ReadBack::error_and_exposure || read_back == ReadBack::terms) out.exposure = map(1);
     if (read_back == ReadBack::terms) {
         out.color = map(2);
         out.feature = map(3);
@@ -359,11 +357,17 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
 }
 
 Result<double> DeviceFlip::mean(const Image& reference, const Image& test) {
+    auto evaluated = ldr(reference, test, false);
+    if (!evaluated) return std::unexpected(evaluated.error());
+    return evaluated->mean;
+}
+
+Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map) {
     if (auto ok = check_pair(reference, test, check_ldr_image); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(reference, test, std::nullopt, one, ReadBack::mean);
+    auto e = evaluate(reference, test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean);
     if (!e) return std::unexpected(e.error());
-    return e->mean;
+    return FlipMap{e->mean, std::move(e->error)};
 }
 
 Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {

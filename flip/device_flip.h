@@ -59,6 +59,9 @@ public:
     // LDR-FLIP as LdrFlip computes it: linear RGB in [0, 1], both of the object's size; anything
     // else is an error naming the image, the pixel and the value, as LdrFlip's.
     Result<double> mean(const Image& reference, const Image& test);
+    // The mean and, with `read_map`, the error map (LdrFlip::error_map's): the one map the mean
+    // is taken of, read back instead of computed again.
+    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map);
     Result<FlipTerms> terms(const Image& reference, const Image& test);
 
     // HDR-FLIP as HdrFlip::maps computes it (inputs and range checked the same way). With
@@ -77,7 +80,7 @@ private:
         double mean = 0;
         std::vector<float> error, exposure, color, feature; // filled when asked for
     };
-    enum class ReadBack { mean, error_and_exposure, terms };
+    enum class ReadBack { mean, error, error_and_exposure, terms };
     Result<Evaluation> evaluate(const Image& reference, const Image& test, std::optional<ToneMapper> tone_mapper,
                                 std::span<const Exposure> exposures, ReadBack read_back);
     // Both images of the object's size, their values accepted by `check_values`.

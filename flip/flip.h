@@ -59,6 +59,12 @@ struct FlipTerms {
     std::vector<float> color, feature, error;
 };
 
+// A pair's mean FLIP and, where asked for, its error map (per pixel, row-major; empty otherwise).
+struct FlipMap {
+    double mean = 0;
+    std::vector<float> error;
+};
+
 // Bytes one evaluation of a width x height pair allocates: its working planes and the error map.
 inline std::uint64_t ldr_flip_bytes(std::uint32_t width, std::uint32_t height) {
     return std::uint64_t(width) * height * (14 + 1) * sizeof(float);

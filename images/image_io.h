@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -82,5 +83,10 @@ OutputWriter image_writer(std::filesystem::path path, std::shared_ptr<const Imag
 // does with its temporary: writes `image` to `temporary` and checks it as write_image does, errors
 // naming `path`, the file's final name.
 Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image);
+// write_image_to for an image of data (what read_data_image reads): the first channels.size()
+// channels of each pixel, named `channels` ({"R", "G"} for motion, {"Z"} for depth), stored as
+// floats in EXR or TIFF (any other format is refused): no channel the data does not use.
+Result<void> write_data_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image,
+                                 std::span<const char* const> channels);
 
 } // namespace kdop

@@ -70,28 +70,34 @@ std::vector<OutputWriter> sequence_frame_writers(const std::filesystem::path& fo
     cache->source = source;
     std::vector<OutputWriter> writers;
     const std::uint32_t w = source->width(), h = source->height();
+    // Color is RGBA (no data channels). Motion and depth are data: only the channels they use (what read_data_image
+    // reads), so a 1920x1080 frame's motion is 17 MB of floats and its depth 8 MB, not 33 MB each.
+    // Full floats, not half: a replay gives the figures of the frames in memory exactly.
+    static constexpr const char* kMotion[] = {"R", "G"};
+    static constexpr const char* kDepth[] = {"Z"};
     for (std::size_t i = 0; i < source->frame_count(); ++i) {
         // `pick` gives the frame's image of that kind, or null where the frame has none.
-        auto add = [&](const char* kind, auto pick) {
+        auto add = [&](const char* kind, std::span<const char* const> channels, auto pick) {
             const std::filesystem::path path = folder / frame_file(kind, i);
-            writers.push_back({path, [cache, i, pick, path](const std::filesystem::path& to) -> Result<void> {
+            writers.push_back({path, [cache, i, pick, path, channels](const std::filesystem::path& to) -> Result<void> {
                                    auto frame = cache->get(i);
                                    if (!frame) return std::unexpected(frame.error());
                                    const std::optional<Image> image = pick(**frame);
                                    if (!image)
                                        return fail(fmt::format("{}: frame {} of {} has none", path.string(), i,
                                                                cache->source->name()));
-                                   return write_image_to(to, path.string(), *image);
+                                   return channels.empty() ? write_image_to(to, path.string(), *image)
+                                                           : write_data_image_to(to, path.string(), *image, channels);
                                }});
         };
-        add("color", [](const LoadedFrame& f) { return std::optional<Image>(f.color); });
+        add("color", {}, [](const LoadedFrame& f) { return std::optional<Image>(f.color); });
         if (!source->starts_history(i))
-            add("motion", [w, h](const LoadedFrame& f) {
+            add("motion", kMotion, [w, h](const LoadedFrame& f) {
                 return f.motion.size() == std::size_t(w) * h ? std::optional(motion_image(f.motion, w, h))
                                                              : std::nullopt;
             });
-        if (source->has_depth()) add("depth", [](const LoadedFrame& f) { return f.depth; });
-        if (source->has_reference()) add("reference", [](const LoadedFrame& f) { return f.reference; });
+        if (source->has_depth()) add("depth", kDepth, [](const LoadedFrame& f) { return f.depth; });
+        if (source->has_reference()) add("reference", {}, [](const LoadedFrame& f) { return f.reference; });
     }
     return writers;
 }

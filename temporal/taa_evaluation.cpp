@@ -84,8 +84,8 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
     auto on_frame = [&] {
         if (observer.frame) observer.frame(scene.name());
     };
-    auto measured =
-        measure_scene_all(**resolve, scene, options_.schedule, *mean, observer.output, on_frame, observer.measured);
+    auto measured = measure_scene_all(**resolve, scene, options_.schedule, *mean, observer.output, on_frame,
+                                      observer.measured, observer.maps);
     if (!measured) return fail(fmt::format("{}: {}", scene.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
@@ -117,8 +117,8 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& 
     auto on_frame = [&] {
         if (observer.frame) observer.frame(sequence.name());
     };
-    auto measured =
-        measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame, observer.measured);
+    auto measured = measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame,
+                                         observer.measured, observer.maps);
     if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them

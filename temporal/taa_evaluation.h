@@ -54,8 +54,9 @@ struct EvaluationObserver {
     // After each frame of a source, every variant resolved and measured on it, naming the source.
     std::function<void(const std::string& source)> frame;
     // After each measured frame, every variant's figures and output on it (a scene's sequences are
-    // <scene>-shimmer and <scene>-ghosting).
+    // <scene>-shimmer and <scene>-ghosting), and with `maps` their FLIP maps (MeasuredFrame::maps).
     MeasuredFrameObserver measured;
+    bool maps = false;
 };
 
 class TaaEvaluation {

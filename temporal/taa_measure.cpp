@@ -55,28 +55,30 @@ FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures) {
 }
 
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<FlipFigure> {
-        if (range == ColorRange::ldr) {
-            auto mean = flip.ldr().mean(reference, test);
-            if (!mean) return std::unexpected(mean.error());
-            return FlipFigure{*mean, {}};
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range,
+                              bool map) -> Result<FlipFigure> {
+        if (range == ColorRange::ldr) { // LdrFlip::mean is the mean_error of this map
+            auto error = flip.ldr().error_map(reference, test);
+            if (!error) return std::unexpected(error.error());
+            return FlipFigure{mean_error(*error), {}, map ? std::move(*error) : std::vector<float>{}};
         }
         auto maps = flip.maps(reference, test, exposures);
         if (!maps) return std::unexpected(maps.error());
-        return FlipFigure{maps->mean, maps->range.note};
+        return FlipFigure{maps->mean, maps->range.note, map ? std::move(maps->error) : std::vector<float>{}};
     };
 }
 
 FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range) -> Result<FlipFigure> {
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range,
+                              bool map) -> Result<FlipFigure> {
         if (range == ColorRange::ldr) {
-            auto mean = flip.mean(reference, test);
-            if (!mean) return std::unexpected(mean.error());
-            return FlipFigure{*mean, {}};
+            auto evaluated = flip.ldr(reference, test, map);
+            if (!evaluated) return std::unexpected(evaluated.error());
+            return FlipFigure{evaluated->mean, {}, std::move(evaluated->error)};
         }
-        auto maps = flip.hdr(reference, test, exposures, false);
+        auto maps = flip.hdr(reference, test, exposures, map);
         if (!maps) return std::unexpected(maps.error());
-        return FlipFigure{maps->mean, maps->range.note};
+        return FlipFigure{maps->mean, maps->range.note, std::move(maps->error)};
     };
 }
 
@@ -151,20 +153,25 @@ public:
         sequence_ = source.name();
     }
 
-    // Frame `i`'s output `current` (already within range) against `truth` and the previous output.
+    // Frame `i`'s output `current` (already within range) against `truth` and the previous output;
+    // with `map`, the map of the figure maps_show_ghosting names is kept (map()).
     Result<void> measure(std::size_t i, const Image& truth, const Image& current, bool starts_history,
-                         const std::string& label) {
+                         const std::string& label, bool map) {
         FrameFigures figures{sequence_, i};
+        map_.clear();
+        const bool ghosting_map = map && maps_show_ghosting(roles_);
         if (roles_.ghosting) {
             auto ghosting =
                 figure(truth, current, label,
-                       m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color");
+                       m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
+                       ghosting_map);
             if (!ghosting) return std::unexpected(ghosting.error());
             ghosting_sum_ += *ghosting;
             figures.ghosting = *ghosting;
         }
         if (roles_.shimmer && !starts_history) {
-            auto shimmer = figure(previous_, current, label, "shimmer against the previous output");
+            auto shimmer =
+                figure(previous_, current, label, "shimmer against the previous output", map && !ghosting_map);
             if (!shimmer) return std::unexpected(shimmer.error());
             shimmer_sum_ += *shimmer;
             ++shimmer_pairs_;
@@ -175,9 +182,11 @@ public:
         return {};
     }
     void keep(Image output) { previous_ = std::move(output); }
-    // The output kept last, and the figures of the frame measured last.
+    // The output kept last (the frame's, once kept), and the figures of the frame measured last.
     const Image& output() const { return previous_; }
     const FrameFigures& last_figures() const { return m_.per_frame.back(); }
+    // The map kept by the last measure() (empty where none was asked for or measured).
+    std::vector<float> take_map() { return std::move(map_); }
 
     SequenceMeasurement finish() {
         for (const auto& [note, met] : notes_)
@@ -191,13 +200,15 @@ public:
 
 private:
     // One figure of frame `label`, its error naming the frame and what was measured.
-    Result<double> figure(const Image& reference, const Image& test, const std::string& label, const char* what) {
-        auto figure = (*flip_)(reference, test, m_.range);
+    Result<double> figure(const Image& reference, const Image& test, const std::string& label, const char* what,
+                          bool map) {
+        auto figure = (*flip_)(reference, test, m_.range, map);
         if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
         if (!figure->note.empty()) {
             auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
             if (!first) ++it->second.more;
         }
+        if (map) map_ = std::move(figure->map);
         return figure->mean;
     }
 
@@ -210,6 +221,7 @@ private:
     std::string sequence_;
     SequenceMeasurement m_;
     Image previous_;
+    std::vector<float> map_;
     double shimmer_sum_ = 0, ghosting_sum_ = 0;
     std::size_t shimmer_pairs_ = 0;
     std::map<std::string, Met> notes_; // by note
@@ -221,7 +233,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                                                               std::uint32_t warmup, const FlipMean& flip,
                                                               const ShaderOutputObserver& on_output,
                                                               const std::function<void()>& on_frame,
-                                                              const MeasuredFrameObserver& on_measured) {
+                                                              const MeasuredFrameObserver& on_measured, bool maps) {
     const std::size_t count = source.frame_count();
     if (warmup >= count)
         return fail(
@@ -249,41 +261,43 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
         if (auto ok = resolve.advance_all(*frame, source.starts_history(i), i + 1 >= warmup); !ok)
             return fail(fmt::format("{}: {}", label, ok.error().message));
         if (i + 1 >= warmup) {
-            // Each shader's output, kept as its history's "previous" once an observer has seen both.
-            std::vector<Image> current(resolve.size());
+            // Each shader's output is measured, then kept as the next frame's "previous" (what the
+            // observer sees of the frame: the maps carry what it is compared against).
             for (std::size_t s = 0; s < resolve.size(); ++s) {
                 auto measured = [&]() -> Result<void> {
                     auto output = within_range(resolve.take_output(s), range, label);
                     if (!output) return std::unexpected(output.error());
-                    current[s] = std::move(*output);
-                    if (i < warmup) return {};
-                    const Image& truth = against_reference ? *frame->reference : frame->color;
-                    if (auto ok = meters[s].measure(i, truth, current[s], source.starts_history(i), label); !ok)
-                        return ok;
-                    return on_output ? on_output(s, i, current[s]) : Result<void>{};
+                    if (i >= warmup) {
+                        const Image& truth = against_reference ? *frame->reference : frame->color;
+                        if (auto ok = meters[s].measure(i, truth, *output, source.starts_history(i), label,
+                                                        maps && on_measured);
+                            !ok)
+                            return ok;
+                        if (on_output)
+                            if (auto ok = on_output(s, i, *output); !ok) return ok;
+                    }
+                    meters[s].keep(std::move(*output));
+                    return {};
                 }();
                 if (!measured) return fail(fmt::format("{}: {}", resolve.name(s), measured.error().message));
-                // Without an observer of both frames, each shader's previous output goes at once.
-                if (!on_measured) meters[s].keep(std::move(current[s]));
             }
             if (on_measured && i >= warmup) {
                 std::vector<FrameFigures> figures;
-                std::vector<const Image*> outputs, previous;
+                std::vector<const Image*> outputs;
+                std::vector<std::vector<float>> frame_maps;
                 for (std::size_t s = 0; s < resolve.size(); ++s) {
                     figures.push_back(meters[s].last_figures());
-                    outputs.push_back(&current[s]);
-                    if (!source.starts_history(i)) previous.push_back(&meters[s].output());
+                    outputs.push_back(&meters[s].output());
+                    if (maps) frame_maps.push_back(meters[s].take_map());
                 }
                 const MeasuredFrame shown{.sequence = source.name(),
                                           .index = i,
                                           .figures = figures,
                                           .outputs = outputs,
-                                          .previous = previous,
+                                          .maps = frame_maps,
                                           .truth = against_reference ? &*frame->reference : &frame->color};
                 if (auto ok = on_measured(shown); !ok) return fail(fmt::format("{}: {}", label, ok.error().message));
             }
-            if (on_measured)
-                for (std::size_t s = 0; s < resolve.size(); ++s) meters[s].keep(std::move(current[s]));
         }
         // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
         if (i == warmup) test_hold_point("taa_pass");
@@ -311,7 +325,7 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
                                                       const TaaSchedule& schedule, const FlipMean& flip,
                                                       const SceneShaderOutputObserver& on_output,
                                                       const std::function<void()>& on_frame,
-                                                      const MeasuredFrameObserver& on_measured) {
+                                                      const MeasuredFrameObserver& on_measured, bool maps) {
     std::vector<TaaMeasurement> m(resolve.size());
     const auto still = shimmer_frames(scene, schedule);
     const auto moving = ghosting_frames(scene, schedule);
@@ -322,11 +336,11 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
             return on_output ? on_output(source.name(), s, index, output) : Result<void>{};
         };
     };
-    auto shimmer =
-        measure_sequence_all(resolve, *still, schedule.warmup, flip, pass_on(*still, false), on_frame, on_measured);
+    auto shimmer = measure_sequence_all(resolve, *still, schedule.warmup, flip, pass_on(*still, false), on_frame,
+                                        on_measured, maps);
     if (!shimmer) return std::unexpected(shimmer.error());
-    auto ghosting =
-        measure_sequence_all(resolve, *moving, schedule.warmup, flip, pass_on(*moving, true), on_frame, on_measured);
+    auto ghosting = measure_sequence_all(resolve, *moving, schedule.warmup, flip, pass_on(*moving, true), on_frame,
+                                         on_measured, maps);
     if (!ghosting) return std::unexpected(ghosting.error());
     for (std::size_t s = 0; s < m.size(); ++s) {
         m[s].shimmer = (*shimmer)[s].shimmer;

@@ -35,10 +35,13 @@ namespace kdop {
 struct FlipFigure {
     double mean = 0;
     std::string note;
+    std::vector<float> map; // with a map asked for: the pair's FLIP per pixel, row-major, the mean's
 };
-// The mean FLIP of a pair, LDR-FLIP for an `ldr` range and HDR-FLIP for `hdr`, where it is
-// computed: the CPU code (cpu_flip_mean) or the device (flip/device_flip.h, what kdop taa uses).
-using FlipMean = std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range)>;
+// The mean FLIP of a pair, LDR-FLIP for an `ldr` range and HDR-FLIP for `hdr`, and with `map` its
+// per-pixel map too, where it is computed: the CPU code (cpu_flip_mean) or the device
+// (flip/device_flip.h, what kdop taa uses: the map it took the mean of, read back).
+using FlipMean =
+    std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range, bool map)>;
 // HDR-FLIP at `exposures` (by default each pair's range, derived from its reference, as
 // NVlabs/flip derives it). `flip` must outlive what this returns.
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});
@@ -120,15 +123,21 @@ using SceneOutputObserver =
 using SceneShaderOutputObserver = std::function<Result<void>(const std::string& sequence, std::size_t shader,
                                                              std::size_t index, const Image& output)>;
 
+// The figure a frame's FLIP map shows (MeasuredFrame::maps, report.html's viewer): ghosting where the
+// source measures it, else shimmer.
+inline bool maps_show_ghosting(SequenceRoles roles) { return roles.ghosting; }
+
 // One measured frame, every shader done, as an observer sees it (all valid during the call): what
 // keeps the frames a picture or the report's viewer shows.
 struct MeasuredFrame {
     std::string_view sequence; // the source's name
     std::size_t index = 0;
-    std::span<const FrameFigures> figures;  // each shader's, in order
-    std::span<const Image* const> outputs;  // each shader's output on the frame (within range)
-    std::span<const Image* const> previous; // each shader's output on the frame before; empty after a cut
-    const Image* truth = nullptr;           // what ghosting is measured against: the reference, else the color
+    std::span<const FrameFigures> figures; // each shader's, in order
+    std::span<const Image* const> outputs; // each shader's output on the frame (within range)
+    // Where maps were asked for: each shader's FLIP map of the figure maps_show_ghosting names, the
+    // one its figure is the mean of (empty for shimmer after a camera cut). Else empty.
+    std::span<const std::vector<float>> maps;
+    const Image* truth = nullptr; // what ghosting is measured against: the reference, else the color
 };
 // Called after each measured frame; an error stops the measurement.
 using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& frame)>;
@@ -136,18 +145,19 @@ using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& fr
 // Every shader of `resolve` over `source` in one pass: each frame drawn or read and checked once,
 // then resolved and measured by every shader against its own history. Each shader's figures are
 // those measure_sequence gives it alone (the sums in the same order). `on_frame` is called after
-// each frame, all shaders done; `on_measured` after each measured one, before `on_frame`.
-Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
-                                                              std::uint32_t warmup, const FlipMean& flip,
-                                                              const ShaderOutputObserver& on_output = {},
-                                                              const std::function<void()>& on_frame = {},
-                                                              const MeasuredFrameObserver& on_measured = {});
+// each frame, all shaders done; `on_measured` after each measured one, before `on_frame`, with
+// the frame's FLIP maps where `maps` asks for them (each is a read-back: only for an observer that
+// shows them).
+Result<std::vector<SequenceMeasurement>>
+measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, const FlipMean& flip,
+                     const ShaderOutputObserver& on_output = {}, const std::function<void()>& on_frame = {},
+                     const MeasuredFrameObserver& on_measured = {}, bool maps = false);
 // Both of a scene's sequences through every shader of `resolve`, in one pass each.
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
                                                       const TaaSchedule& schedule, const FlipMean& flip,
                                                       const SceneShaderOutputObserver& on_output = {},
                                                       const std::function<void()>& on_frame = {},
-                                                      const MeasuredFrameObserver& on_measured = {});
+                                                      const MeasuredFrameObserver& on_measured = {}, bool maps = false);
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,

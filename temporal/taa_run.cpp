@@ -108,6 +108,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
                         sequence.color_range(), sequence.has_reference());
         observer.measured = [&](const MeasuredFrame& frame) { return viewer.offer(frame); };
+        observer.maps = true; // the viewer shows the maps the figures were measured with
     }
     std::vector<TaaRow> rows;
     std::vector<TaaFrameRow> frame_rows;
@@ -187,7 +188,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     Result<std::vector<ViewerSequence>> viewed;
     {
         Progress progress("Writing report.html's frames and FLIP maps:", viewer.kept_frames());
-        viewed = viewer.write(picture_flip, settings.evaluation.exposure, viewer_images,
+        viewed = viewer.write(settings.evaluation.exposure, viewer_images,
                               [&](const std::string& sequence) { progress.advance(sequence); });
         if (!viewed) return std::unexpected(viewed.error());
     }

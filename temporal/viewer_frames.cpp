@@ -2,38 +2,42 @@
 
 #include "core/parallel_for.h"
 #include "flip/magma.h"
-#include "temporal/picture_flip.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <span>
 
 namespace kdop {
 namespace {
 
-// A staged image: its width, height and float RGBA pixels as they are in memory. The process
-// reads back only what it wrote itself, moments before, so no format is needed, and many frames
-// are staged and dropped during a pass: an EXR's compression and OpenImageIO's checks cost more
-// there than the whole copy (written by hand for that reason).
-Result<void> write_staged(const std::filesystem::path& path, const Image& image) {
+// A staged image or FLIP map: its floats as they are in memory. The process reads back only what
+// it wrote itself, moments before, so no format is needed, and many frames are staged and dropped
+// during a pass: an EXR's compression and OpenImageIO's checks cost more there than the whole copy
+// (written by hand for that reason). An image's size is the frame's (ViewerSequence::width).
+Result<void> write_staged(const std::filesystem::path& path, std::span<const float> values) {
     std::ofstream out(path, std::ios::binary);
-    const std::uint32_t size[2] = {image.width, image.height};
-    out.write(reinterpret_cast<const char*>(size), sizeof size);
-    out.write(reinterpret_cast<const char*>(image.pixels.data()),
-              std::streamsize(image.pixels.size() * sizeof(glm::vec4)));
+    out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size_bytes()));
     if (!out.flush()) return fail(fmt::format("{}: cannot write the viewer's staged frame", path.string()));
     return {};
 }
+Result<void> write_staged(const std::filesystem::path& path, const Image& image) {
+    return write_staged(path, std::span(reinterpret_cast<const float*>(image.pixels.data()), image.pixels.size() * 4));
+}
 
-Result<Image> read_staged(const std::filesystem::path& path) {
+Result<void> read_staged(const std::filesystem::path& path, std::span<float> values) {
     std::ifstream in(path, std::ios::binary);
-    std::uint32_t size[2] = {0, 0};
-    in.read(reinterpret_cast<char*>(size), sizeof size);
-    Image image(size[0], size[1]);
-    in.read(reinterpret_cast<char*>(image.pixels.data()), std::streamsize(image.pixels.size() * sizeof(glm::vec4)));
+    in.read(reinterpret_cast<char*>(values.data()), std::streamsize(values.size_bytes()));
     if (!in) return fail(fmt::format("{}: cannot read the viewer's staged frame back", path.string()));
+    return {};
+}
+Result<Image> read_staged_image(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height) {
+    Image image(width, height);
+    if (auto ok = read_staged(path, std::span(reinterpret_cast<float*>(image.pixels.data()), image.pixels.size() * 4));
+        !ok)
+        return std::unexpected(ok.error());
     return image;
 }
 
@@ -65,7 +69,7 @@ struct ViewerFrames::Kept {
     std::vector<std::size_t> spread;                   // ascending
     std::vector<double> worst_value;                   // per variant; NaN never beats it
     std::map<std::size_t, std::vector<double>> staged; // frame: each variant's figure on it
-    std::map<std::size_t, bool> has_previous;          // frame: whether the outputs before it were staged
+    std::map<std::size_t, std::vector<bool>> has_map;  // frame: per variant, whether its map was staged
 };
 
 ViewerFrames::ViewerFrames(std::size_t spread, std::vector<std::string> variants)
@@ -83,7 +87,7 @@ void ViewerFrames::plan(const std::string& sequence, const std::string& scene, s
     ViewerSequence& shown = kept->shown;
     shown.name = sequence;
     shown.scene = scene;
-    shown.figure = roles.ghosting ? ViewerFigure::ghosting : ViewerFigure::shimmer;
+    shown.figure = maps_show_ghosting(roles) ? ViewerFigure::ghosting : ViewerFigure::shimmer;
     shown.range = range;
     shown.truth = against_reference ? "reference" : "aliased";
     const char* flip = range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
@@ -117,6 +121,9 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
         }
     }
     if (!keep) return {};
+    if (frame.maps.size() != frame.outputs.size())
+        return fail("the viewer shows each output's FLIP map, and the frame came without them (measure with "
+                    "EvaluationObserver::maps)");
     if (auto ok = stage(it->second, frame); !ok) return ok;
     kept.staged[frame.index] = std::move(figures);
     drop_unkept(it->second);
@@ -131,15 +138,16 @@ Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame) {
     std::filesystem::create_directories(staged(s, frame.index, "truth").parent_path(), ec);
     if (ec) return fail(fmt::format("{}: {}", scratch_->path.string(), ec.message()));
     if (auto ok = write_staged(staged(s, frame.index, "truth"), *frame.truth); !ok) return ok;
-    // The outputs before are what a shimmer map compares against.
-    const bool previous = sequences_[s]->shown.figure == ViewerFigure::shimmer && !frame.previous.empty();
+    std::vector<bool> has_map;
     for (std::size_t v = 0; v < frame.outputs.size(); ++v) {
         if (auto ok = write_staged(staged(s, frame.index, std::to_string(v)), *frame.outputs[v]); !ok) return ok;
-        if (previous)
-            if (auto ok = write_staged(staged(s, frame.index, fmt::format("before-{}", v)), *frame.previous[v]); !ok)
+        // The map the figure was measured with; none for shimmer after a camera cut.
+        has_map.push_back(!frame.maps[v].empty());
+        if (has_map.back())
+            if (auto ok = write_staged(staged(s, frame.index, fmt::format("flip-{}", v)), frame.maps[v]); !ok)
                 return ok;
     }
-    sequences_[s]->has_previous[frame.index] = previous;
+    sequences_[s]->has_map[frame.index] = std::move(has_map);
     sequences_[s]->shown.width = frame.truth->width, sequences_[s]->shown.height = frame.truth->height;
     return {};
 }
@@ -157,31 +165,30 @@ void ViewerFrames::drop_unkept(std::size_t s) {
         }
         std::error_code ignored;
         std::filesystem::remove_all(staged(s, index, "truth").parent_path(), ignored);
-        kept.has_previous.erase(index);
+        kept.has_map.erase(index);
         it = kept.staged.erase(it);
     }
 }
 
-Result<std::vector<ViewerSequence>> ViewerFrames::write(const HdrFlip& flip, const ExposureOptions& exposure,
-                                                        StagedImages& images,
+Result<std::vector<ViewerSequence>> ViewerFrames::write(const ExposureOptions& exposure, StagedImages& images,
                                                         const std::function<void(const std::string&)>& on_frame) const {
     std::vector<ViewerSequence> shown;
     for (std::size_t s = 0; s < sequences_.size(); ++s) {
         const Kept& kept = *sequences_[s];
         ViewerSequence sequence = kept.shown;
-        const PictureFlip shown_as{&flip, sequence.range, exposure};
         auto add = [&](std::size_t index, const std::string& image, bool flip_map, const Image& shown) {
             return images.add(viewer_image_path(sequence, index, image, flip_map), shown);
         };
-        // An LDR frame is shown as it is (no copy); an HDR one tone mapped.
+        // An LDR frame is shown as it is (no copy); an HDR one tone mapped, as PictureFlip::shown does.
         auto add_shown = [&](std::size_t index, const std::string& image, const Image& frame) {
-            return sequence.range == ColorRange::hdr ? add(index, image, false, shown_as.shown(frame))
-                                                     : add(index, image, false, frame);
+            return sequence.range == ColorRange::hdr
+                       ? add(index, image, false, HdrFlip::tone_mapped(frame, exposure.tone_mapper, 0.0f))
+                       : add(index, image, false, frame);
         };
         for (const auto& [index, figures] : kept.staged) {
             sequence.frames.push_back(index);
             sequence.figures.push_back(figures);
-            auto truth = read_staged(staged(s, index, "truth"));
+            auto truth = read_staged_image(staged(s, index, "truth"), sequence.width, sequence.height);
             if (!truth) return std::unexpected(truth.error());
             // The truth and each variant's output and map, one per core at a time (the truth is item
             // 0); the first error, in that order, is reported.
@@ -193,22 +200,14 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const HdrFlip& flip, con
                 }
                 const std::size_t v = item - 1;
                 done[item] = [&]() -> Result<void> {
-                    auto output = read_staged(staged(s, index, std::to_string(v)));
+                    auto output =
+                        read_staged_image(staged(s, index, std::to_string(v)), sequence.width, sequence.height);
                     if (!output) return std::unexpected(output.error());
                     if (auto ok = add_shown(index, variants_[v], *output); !ok) return ok;
-                    // Ghosting's map is against the truth, shimmer's against the output before (none
-                    // after a camera cut).
-                    Result<Image> before = fail("no output before");
-                    if (sequence.figure == ViewerFigure::shimmer && kept.has_previous.at(index))
-                        if (before = read_staged(staged(s, index, fmt::format("before-{}", v))); !before)
-                            return std::unexpected(before.error());
-                    const Image* against = sequence.figure == ViewerFigure::ghosting ? &*truth
-                                           : before                                  ? &*before
-                                                                                     : nullptr;
-                    if (!against) return {};
-                    auto map = shown_as.map(*against, *output);
-                    if (!map) return fail(fmt::format("{} frame {}: {}", sequence.name, index, map.error().message));
-                    return add(index, variants_[v], true, flip::magma_image(*map, output->width, output->height));
+                    if (!kept.has_map.at(index)[v]) return {};
+                    std::vector<float> map(std::size_t(sequence.width) * sequence.height);
+                    if (auto ok = read_staged(staged(s, index, fmt::format("flip-{}", v)), map); !ok) return ok;
+                    return add(index, variants_[v], true, flip::magma_image(map, sequence.width, sequence.height));
                 }();
             });
             for (const Result<void>& ok : done)

@@ -4,9 +4,10 @@
 //
 // The frames kept of a sequence are `spread` measured frames spread evenly from the first to the
 // last, and each variant's worst frame: where its figure (ghosting where the sequence measures it,
-// else shimmer) is largest, the earliest of equals. Worst frames are known only at the end, so
-// each frame that is one so far is staged (its float pixels, in a scratch folder) and deleted when it
-// no longer is: the pass holds none of the outputs in memory.
+// else shimmer: maps_show_ghosting) is largest, the earliest of equals. Worst frames are known only
+// at the end, so each frame that is one so far is staged (its float pixels and the maps measured
+// on it, in a scratch folder) and deleted when it no longer is: the pass holds none of the outputs
+// in memory, and no map is computed twice.
 #pragma once
 
 #include "core/result.h"
@@ -72,18 +73,18 @@ public:
     void measuring(const std::string& scene) { measuring_ = scene; }
 
     // Stages each measured frame that is kept so far (of a sequence planned for the source being
-    // measured); drops those that no longer are.
+    // measured), with its maps (the frame must carry them: EvaluationObserver::maps); drops those
+    // that no longer are.
     Result<void> offer(const MeasuredFrame& frame);
 
     // The kept frames' PNGs, written to a scratch folder now and moved into the output folder with
-    // the rest (StagedImages): every variant's output and its FLIP map (LDR-FLIP, or HDR-FLIP at
-    // `exposure` for an HDR sequence; against the truth for ghosting, the output before for
-    // shimmer) and the truth; HDR images tone mapped with exposure.tone_mapper at exposure 0.
-    // Returns what the viewer shows of each sequence, in the order planned.
-    // `on_frame` is called after each kept frame, naming its sequence; the variants' images of a
-    // frame are made on every core.
-    Result<std::vector<ViewerSequence>> write(const HdrFlip& flip, const ExposureOptions& exposure,
-                                              StagedImages& images,
+    // the rest (StagedImages): every variant's output and the FLIP map its figure was measured with
+    // (LDR-FLIP, or HDR-FLIP for an HDR sequence; against the truth for ghosting, the output before
+    // for shimmer, none after a camera cut), in magma, and the truth; HDR images tone mapped with
+    // exposure.tone_mapper at exposure 0. Returns what the viewer shows of each sequence, in the
+    // order planned. `on_frame` is called after each kept frame, naming its sequence; the
+    // variants' images of a frame are made on every core.
+    Result<std::vector<ViewerSequence>> write(const ExposureOptions& exposure, StagedImages& images,
                                               const std::function<void(const std::string&)>& on_frame = {}) const;
     // The frames kept so far, over every sequence: write()'s steps.
     std::size_t kept_frames() const;

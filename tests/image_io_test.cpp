@@ -1,6 +1,7 @@
 // Writing images: what is written reads back as written, or the write is an error and leaves no
 // file. A full disk (a 64 KiB tmpfs, where the system lets the test mount one) used to pass
 // silently through OpenImageIO's PNG, BMP and TGA writers.
+#include "core/write_files.h"
 #include "images/image_io.h"
 #include "images/random.h"
 #include "images/srgb.h"
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <tuple>
 
 namespace kdop {
 namespace {
@@ -128,6 +130,77 @@ TEST(ImageIo, TransparentNegativeAndNonFinitePixelsWriteAndReadBack) {
     ASSERT_FALSE(hdr);
     EXPECT_NE(hdr.error().message.find("Radiance HDR cannot hold negative or non-finite values"), std::string::npos)
         << hdr.error().message;
+}
+
+// An opaque PNG is stored as RGB (a quarter fewer bytes to compress) and reads back with alpha 1;
+// one transparent pixel keeps the alpha channel. The bytes read back are those written either way.
+TEST(ImageIo, AnOpaquePngLeavesItsAlphaOut) {
+    test::TempDir dir;
+    Image image(64, 48);
+    Random rng(7);
+    for (glm::vec4& p : image.pixels)
+        p = glm::vec4(float(rng.uniform()), float(rng.uniform()), float(rng.uniform()), 1.0f);
+    Image transparent = image;
+    transparent.at(63, 47).a = 0.5f;
+    for (const auto& [name, written, channels] :
+         {std::tuple{"opaque.png", &image, 3}, std::tuple{"transparent.png", &transparent, 4}}) {
+        const std::string path = (dir / name).string();
+        ASSERT_TRUE(write_image(path, *written));
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().nchannels, channels) << name;
+        auto read = read_image(path);
+        ASSERT_TRUE(read) << read.error().message;
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+            EXPECT_NEAR(read->pixels[i].a, written->pixels[i].a, 0.51 / 255) << name; // 1 exactly where opaque
+            if (written->pixels[i].a == 1.0f) {
+                EXPECT_EQ(read->pixels[i].a, 1.0f) << name;
+            }
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(linear_to_srgb(read->pixels[i][c]), linear_to_srgb(written->pixels[i][c]), 0.51 / 255)
+                    << name << " pixel " << i;
+        }
+    }
+}
+
+// Data (motion, depth) is written with only the channels it uses, as floats under the names given,
+// and read_data_image gives back every value bit for bit; a format that does not keep floats is
+// refused, naming the file.
+TEST(ImageIo, DataImagesKeepOnlyTheirChannelsAsFloats) {
+    test::TempDir dir;
+    Image motion(5, 3);
+    Random rng(11);
+    for (glm::vec4& p : motion.pixels)
+        p = glm::vec4(float(rng.uniform(-300, 300)), float(rng.uniform(-1e-3, 1e-3)), 7.0f, 9.0f);
+    for (const auto& [name, channels] : {std::pair{"motion.exr", std::vector<const char*>{"R", "G"}},
+                                         std::pair{"depth.exr", std::vector<const char*>{"Z"}},
+                                         std::pair{"depth.tif", std::vector<const char*>{"Z"}}}) {
+        const fs::path path = dir / name;
+        ASSERT_TRUE(write_atomically(
+            {{path, [&](const fs::path& to) { return write_data_image_to(to, path.string(), motion, channels); }}}))
+            << name;
+        auto in = OIIO::ImageInput::open(path.string());
+        ASSERT_TRUE(in) << name;
+        EXPECT_EQ(in->spec().nchannels, int(channels.size())) << name;
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT) << name;
+        auto read = read_data_image(path.string(), int(channels.size()));
+        ASSERT_TRUE(read) << read.error().message;
+        for (std::size_t i = 0; i < motion.pixels.size(); ++i)
+            for (std::size_t c = 0; c < 4; ++c)
+                EXPECT_EQ(read->pixels[i][int(c)], c < channels.size() ? motion.pixels[i][int(c)]
+                                                   : c == 3            ? 1.0f
+                                                                       : 0.0f)
+                    << name << " pixel " << i << " channel " << c;
+    }
+    const fs::path png = dir / "motion.png";
+    const char* const two[] = {"R", "G"};
+    auto refused = write_atomically(
+        {{png, [&](const fs::path& to) { return write_data_image_to(to, png.string(), motion, two); }}});
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("motion.png: png does not keep the floats data holds; write EXR"),
+              std::string::npos)
+        << refused.error().message;
+    EXPECT_FALSE(fs::exists(png));
 }
 
 // PNG, BMP and TGA store 0..1: an image with anything else is refused with the first such value, not

@@ -5,6 +5,7 @@
 // `kdop scene` + `kdop taa --sequence`: a replay equals the in-memory run, an HDR sequence is
 // measured in HDR-FLIP (the CPU code's figures), bad sequences are refused, naming the file, with
 // nothing written.
+#include "flip/device_flip.h"
 #include "flip/flip.h"
 #include "flip/hdr_flip.h"
 #include "images/image_io.h"
@@ -18,6 +19,7 @@
 #include "tests/gpu_support.h"
 #include "tests/test_support.h"
 
+#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,6 +32,7 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <memory>
 
 namespace kdop {
 namespace {
@@ -375,6 +378,83 @@ TEST_F(ResolveGpu, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
     }
 }
 
+// Where an observer asks for maps, each measured frame carries every shader's FLIP map of the figure
+// maps_show_ghosting names, the map that figure is the mean of: against the truth for a sequence
+// measured for ghosting, against the shader's output before for one measured for shimmer alone, and
+// none after a camera cut. In LDR and HDR, from the CPU's FLIP (equal to its map of the pair) and
+// the device's (within DeviceFlip's 1e-5 per pixel).
+TEST_F(ResolveGpu, MeasuredFramesCarryTheMapsTheirFiguresAreMeansOf) {
+    constexpr std::uint32_t w = 48, h = 32;
+    const SceneFrames moving("grass", make_texture(TextureFamily::grass, w, h, 8), 12, true, true);
+    const double ppd = pixels_per_degree(ViewingConditions{});
+    const HdrFlip flip(ppd);
+    auto device = DeviceFlip::create(test::gpu(), ppd, w, h);
+    ASSERT_TRUE(device) << device.error().message;
+    auto box = resolve_shader("aabb", Mode::clip, {});
+    auto dop = resolve_shader("dop32", Mode::clip, {});
+    ASSERT_TRUE(box && dop);
+    const Variant* both[] = {&box->variant(), &dop->variant()};
+    constexpr std::size_t kCut = 7;
+    for (float hdr_scale : {0.0f, 40.0f})
+        for (const SequenceRoles roles : {SequenceRoles{}, SequenceRoles{.ghosting = false, .shimmer = true}})
+            for (bool on_device : {false, true}) {
+                const std::string what = fmt::format("x{} {} {}", hdr_scale, roles.ghosting ? "ghosting" : "shimmer",
+                                                     on_device ? "device" : "cpu");
+                const MeasuredFor source(std::make_shared<WithCut>(moving, kCut, hdr_scale), roles);
+                auto resolve = TaaResolve::create(test::gpu(), both, w, h, {});
+                ASSERT_TRUE(resolve) << resolve.error().message;
+                std::vector<Image> before(2);
+                std::size_t frames = 0;
+                auto check = [&](const MeasuredFrame& frame) -> Result<void> {
+                    ++frames;
+                    EXPECT_EQ(frame.maps.size(), 2u) << what;
+                    for (std::size_t s = 0; s < 2 && frame.maps.size() == 2; ++s) {
+                        const Image& output = *frame.outputs[s];
+                        const std::vector<float>& map = frame.maps[s];
+                        const double figure = roles.ghosting ? frame.figures[s].ghosting : frame.figures[s].shimmer;
+                        if (!roles.ghosting && frame.index == kCut) {
+                            EXPECT_TRUE(map.empty()) << what << ": no output before a cut";
+                        } else if (roles.ghosting || !before[s].pixels.empty()) { // frame 2's is not observed
+                            const Image& against = roles.ghosting ? *frame.truth : before[s];
+                            Result<std::vector<float>> expected = fail("not measured");
+                            if (hdr_scale == 0)
+                                expected = flip.ldr().error_map(against, output);
+                            else if (auto maps = flip.maps(against, output, {}))
+                                expected = std::move(maps->error);
+                            if (!expected) return fail(what + ": " + expected.error().message);
+                            EXPECT_EQ(map.size(), expected->size()) << what;
+                            float worst = 0;
+                            for (std::size_t i = 0; i < map.size() && i < expected->size(); ++i)
+                                worst = std::max(worst, std::abs(map[i] - (*expected)[i]));
+                            if (on_device) {
+                                EXPECT_LE(worst, 1e-5f) << what << ", frame " << frame.index;
+                            } else {
+                                EXPECT_EQ(worst, 0.0f) << what << ", frame " << frame.index;
+                                EXPECT_EQ(mean_error(map), figure) << what << ", frame " << frame.index;
+                            }
+                            // At the cut the output is the frame's color: no ghosting to map.
+                            if (frame.index != kCut) {
+                                EXPECT_GT(mean_error(map), 0.0) << what << ": a map of something";
+                            }
+                        }
+                        before[s] = output;
+                    }
+                    return {};
+                };
+                const FlipMean mean = on_device ? device_flip_mean(**device) : cpu_flip_mean(flip);
+                auto measured = measure_sequence_all(**resolve, source, 3, mean, {}, {}, check, true);
+                ASSERT_TRUE(measured) << what << ": " << measured.error().message;
+                EXPECT_EQ(frames, source.frame_count() - 3);
+                // Without maps asked for, none come.
+                auto plain = TaaResolve::create(test::gpu(), both, w, h, {});
+                ASSERT_TRUE(plain);
+                ASSERT_TRUE(measure_sequence_all(**plain, source, 3, mean, {}, {}, [&](const MeasuredFrame& frame) {
+                    EXPECT_TRUE(frame.maps.empty());
+                    return Result<void>{};
+                }));
+            }
+}
+
 // A history holding a linear ramp, sampled between texels: Catmull-Rom reproduces it exactly (up
 // to float rounding) away from the edges, where clamping bends the ramp. The rectification keeps
 // the history as it is, so the output shows the filter alone.
@@ -559,6 +639,15 @@ TEST(CliSequence, ReplayingA3dSceneGivesTheInMemoryFigures) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* kind : {"color", "motion", "depth", "reference"})
         EXPECT_TRUE(fs::exists(scenes / "asphalt3d-ghosting" / kind / "0007.exr")) << kind;
+    // Motion and depth keep only the channels they use: motion x and y, one depth.
+    for (const auto& [kind, channels] :
+         {std::pair{"motion", std::vector<std::string>{"R", "G"}}, std::pair{"depth", std::vector<std::string>{"Z"}},
+          std::pair{"color", std::vector<std::string>{"R", "G", "B", "A"}}}) {
+        auto in = OIIO::ImageInput::open((scenes / "asphalt3d-ghosting" / kind / "0007.exr").string());
+        ASSERT_TRUE(in) << kind;
+        EXPECT_EQ(in->spec().channelnames, channels) << kind;
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT) << kind;
+    }
     auto sequence = read_sequence(scenes / "asphalt3d-shimmer");
     ASSERT_TRUE(sequence) << sequence.error().message;
     ASSERT_TRUE(sequence->frames[3].jitter);
