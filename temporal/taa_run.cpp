@@ -95,7 +95,8 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     // The viewer's frames of every sequence measured, planned before the pass.
     std::vector<std::string> variant_names;
     for (const VariantKey& key : keys) variant_names.push_back(key.name());
-    ViewerFrames viewer(settings.viewer_frames, variant_names);
+    StagedImages viewer_images;
+    ViewerFrames viewer(settings.viewer_frames, variant_names, viewer_images, settings.evaluation.exposure);
     if (settings.viewer_frames > 0) {
         const std::size_t last = schedule.warmup + schedule.frames - 1;
         for (const auto& scene : scenes) {
@@ -184,12 +185,10 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         }
     }
     outputs.add(written_frames.writers(outputs.dir()));
-    StagedImages viewer_images;
     Result<std::vector<ViewerSequence>> viewed;
     {
-        Progress progress("Writing report.html's frames and FLIP maps:", viewer.kept_frames());
-        viewed = viewer.write(settings.evaluation.exposure, viewer_images,
-                              [&](const std::string& sequence) { progress.advance(sequence); });
+        Progress progress("Writing report.html's worst frames and FLIP maps:", viewer.kept_frames());
+        viewed = viewer.write([&](const std::string& sequence) { progress.advance(sequence); });
         if (!viewed) return std::unexpected(viewed.error());
     }
     outputs.add(viewer_images.writers(outputs.dir()));

@@ -65,20 +65,21 @@ std::string viewer_image_path(const ViewerSequence& sequence, std::size_t frame,
 }
 
 struct ViewerFrames::Kept {
-    ViewerSequence shown;                              // its frames, worst and figures filled at write()
-    std::vector<std::size_t> spread;                   // ascending
-    std::vector<double> worst_value;                   // per variant; NaN never beats it
-    std::map<std::size_t, std::vector<double>> staged; // frame: each variant's figure on it
-    std::map<std::size_t, std::vector<bool>> has_map;  // frame: per variant, whether its map was staged
+    ViewerSequence shown;                               // its frames, worst and figures filled at write()
+    std::vector<std::size_t> spread;                    // ascending
+    std::vector<double> worst_value;                    // per variant; NaN never beats it
+    std::map<std::size_t, std::vector<double>> figures; // frame kept: each variant's figure on it
+    std::map<std::size_t, std::vector<bool>> has_map;   // frame staged: per variant, whether its map was
 };
 
-ViewerFrames::ViewerFrames(std::size_t spread, std::vector<std::string> variants)
-    : spread_(spread), variants_(std::move(variants)) {}
+ViewerFrames::ViewerFrames(std::size_t spread, std::vector<std::string> variants, StagedImages& images,
+                           const ExposureOptions& exposure)
+    : spread_(spread), variants_(std::move(variants)), images_(&images), exposure_(exposure) {}
 
 std::size_t ViewerFrames::kept_frames() const {
-    std::size_t kept = 0;
-    for (const auto& sequence : sequences_) kept += sequence->staged.size();
-    return kept;
+    std::size_t staged = 0;
+    for (const auto& sequence : sequences_) staged += sequence->has_map.size();
+    return staged;
 }
 
 void ViewerFrames::plan(const std::string& sequence, const std::string& scene, std::size_t first, std::size_t last,
@@ -110,7 +111,8 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
     if (it == by_name_.end()) return {};
     Kept& kept = *sequences_[it->second];
     std::vector<double> figures;
-    bool keep = std::binary_search(kept.spread.begin(), kept.spread.end(), frame.index);
+    const bool spread = std::binary_search(kept.spread.begin(), kept.spread.end(), frame.index);
+    bool keep = spread;
     for (std::size_t v = 0; v < frame.figures.size(); ++v) {
         const FrameFigures& f = frame.figures[v];
         figures.push_back(kept.shown.figure == ViewerFigure::ghosting ? f.ghosting : f.shimmer);
@@ -124,8 +126,14 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
     if (frame.maps.size() != frame.outputs.size())
         return fail("the viewer shows each output's FLIP map, and the frame came without them (measure with "
                     "EvaluationObserver::maps)");
-    if (auto ok = stage(it->second, frame); !ok) return ok;
-    kept.staged[frame.index] = std::move(figures);
+    kept.shown.width = frame.truth->width, kept.shown.height = frame.truth->height;
+    // A spread frame is kept whatever comes later: its PNGs are written now, on every core. A worst
+    // frame so far may stop being one, so it is staged until the end.
+    if (auto ok = spread ? write_frame(kept.shown, frame.index, *frame.truth, frame.outputs, frame.maps)
+                         : stage(it->second, frame);
+        !ok)
+        return ok;
+    kept.figures[frame.index] = std::move(figures);
     drop_unkept(it->second);
     return {};
 }
@@ -148,13 +156,12 @@ Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame) {
                 return ok;
     }
     sequences_[s]->has_map[frame.index] = std::move(has_map);
-    sequences_[s]->shown.width = frame.truth->width, sequences_[s]->shown.height = frame.truth->height;
     return {};
 }
 
 void ViewerFrames::drop_unkept(std::size_t s) {
     Kept& kept = *sequences_[s];
-    for (auto it = kept.staged.begin(); it != kept.staged.end();) {
+    for (auto it = kept.figures.begin(); it != kept.figures.end();) {
         const std::size_t index = it->first;
         const bool wanted =
             std::binary_search(kept.spread.begin(), kept.spread.end(), index) ||
@@ -166,36 +173,65 @@ void ViewerFrames::drop_unkept(std::size_t s) {
         std::error_code ignored;
         std::filesystem::remove_all(staged(s, index, "truth").parent_path(), ignored);
         kept.has_map.erase(index);
-        it = kept.staged.erase(it);
+        it = kept.figures.erase(it);
     }
 }
 
-Result<std::vector<ViewerSequence>> ViewerFrames::write(const ExposureOptions& exposure, StagedImages& images,
-                                                        const std::function<void(const std::string&)>& on_frame) const {
+Result<void> ViewerFrames::add_shown(const ViewerSequence& sequence, std::size_t index, const std::string& name,
+                                     const Image& frame) const {
+    const std::string path = viewer_image_path(sequence, index, name);
+    // An LDR frame is shown as it is (no copy); an HDR one tone mapped, as PictureFlip::shown does.
+    return sequence.range == ColorRange::hdr
+               ? images_->add(path, HdrFlip::tone_mapped(frame, exposure_.tone_mapper, 0.0f))
+               : images_->add(path, frame);
+}
+
+Result<void> ViewerFrames::add_map(const ViewerSequence& sequence, std::size_t index, std::size_t v,
+                                   std::span<const float> map) const {
+    if (map.empty()) return {}; // shimmer after a camera cut
+    return images_->add(viewer_image_path(sequence, index, variants_[v], true),
+                        flip::magma_image(map, sequence.width, sequence.height));
+}
+
+Result<void> ViewerFrames::write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,
+                                       std::span<const Image* const> outputs,
+                                       std::span<const std::vector<float>> maps) const {
+    // The truth (item 0) and each variant's output and map, one per core at a time; the first
+    // error, in that order, is reported.
+    std::vector<Result<void>> done(variants_.size() + 1);
+    parallel_for(variants_.size() + 1, 0, [&](std::size_t item) {
+        if (item == 0) {
+            done[0] = add_shown(sequence, index, sequence.truth, truth);
+            return;
+        }
+        const std::size_t v = item - 1;
+        if (auto ok = add_shown(sequence, index, variants_[v], *outputs[v]); !ok)
+            done[item] = ok;
+        else
+            done[item] = add_map(sequence, index, v, maps[v]);
+    });
+    for (const Result<void>& ok : done)
+        if (!ok) return ok;
+    return {};
+}
+
+Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void(const std::string&)>& on_frame) const {
     std::vector<ViewerSequence> shown;
     for (std::size_t s = 0; s < sequences_.size(); ++s) {
         const Kept& kept = *sequences_[s];
         ViewerSequence sequence = kept.shown;
-        auto add = [&](std::size_t index, const std::string& image, bool flip_map, const Image& shown) {
-            return images.add(viewer_image_path(sequence, index, image, flip_map), shown);
-        };
-        // An LDR frame is shown as it is (no copy); an HDR one tone mapped, as PictureFlip::shown does.
-        auto add_shown = [&](std::size_t index, const std::string& image, const Image& frame) {
-            return sequence.range == ColorRange::hdr
-                       ? add(index, image, false, HdrFlip::tone_mapped(frame, exposure.tone_mapper, 0.0f))
-                       : add(index, image, false, frame);
-        };
-        for (const auto& [index, figures] : kept.staged) {
+        for (const auto& [index, figures] : kept.figures) {
             sequence.frames.push_back(index);
             sequence.figures.push_back(figures);
+            const auto staged_maps = kept.has_map.find(index);
+            if (staged_maps == kept.has_map.end()) continue; // a spread frame, written as it was measured
             auto truth = read_staged_image(staged(s, index, "truth"), sequence.width, sequence.height);
             if (!truth) return std::unexpected(truth.error());
-            // The truth and each variant's output and map, one per core at a time (the truth is item
-            // 0); the first error, in that order, is reported.
+            // As write_frame, each variant's output and map read back on the core that writes them.
             std::vector<Result<void>> done(variants_.size() + 1);
             parallel_for(variants_.size() + 1, 0, [&](std::size_t item) {
                 if (item == 0) {
-                    done[0] = add_shown(index, sequence.truth, *truth);
+                    done[0] = add_shown(sequence, index, sequence.truth, *truth);
                     return;
                 }
                 const std::size_t v = item - 1;
@@ -203,11 +239,13 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const ExposureOptions& e
                     auto output =
                         read_staged_image(staged(s, index, std::to_string(v)), sequence.width, sequence.height);
                     if (!output) return std::unexpected(output.error());
-                    if (auto ok = add_shown(index, variants_[v], *output); !ok) return ok;
-                    if (!kept.has_map.at(index)[v]) return {};
-                    std::vector<float> map(std::size_t(sequence.width) * sequence.height);
-                    if (auto ok = read_staged(staged(s, index, fmt::format("flip-{}", v)), map); !ok) return ok;
-                    return add(index, variants_[v], true, flip::magma_image(map, sequence.width, sequence.height));
+                    if (auto ok = add_shown(sequence, index, variants_[v], *output); !ok) return ok;
+                    std::vector<float> map;
+                    if (staged_maps->second[v]) {
+                        map.resize(std::size_t(sequence.width) * sequence.height);
+                        if (auto ok = read_staged(staged(s, index, fmt::format("flip-{}", v)), map); !ok) return ok;
+                    }
+                    return add_map(sequence, index, v, map);
                 }();
             });
             for (const Result<void>& ok : done)

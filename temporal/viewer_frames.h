@@ -4,10 +4,11 @@
 //
 // The frames kept of a sequence are `spread` measured frames spread evenly from the first to the
 // last, and each variant's worst frame: where its figure (ghosting where the sequence measures it,
-// else shimmer: maps_show_ghosting) is largest, the earliest of equals. Worst frames are known only
-// at the end, so each frame that is one so far is staged (its float pixels and the maps measured
-// on it, in a scratch folder) and deleted when it no longer is: the pass holds none of the outputs
-// in memory, and no map is computed twice.
+// else shimmer: maps_show_ghosting) is largest, the earliest of equals. The spread frames are known
+// before the pass, so their PNGs are written as they are measured. Worst frames are known only at
+// the end, so each frame that is one so far is staged (its float pixels and the maps measured on
+// it, in a scratch folder) and deleted when it no longer is. The pass holds none of the outputs in
+// memory, and no map is computed twice.
 #pragma once
 
 #include "core/result.h"
@@ -24,6 +25,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -60,8 +62,11 @@ std::string viewer_image_path(const ViewerSequence& sequence, std::size_t frame,
 // evaluation's (EvaluationObserver::measured).
 class ViewerFrames {
 public:
-    // `spread` frames per sequence besides the worst ones; `variants` is the variants' names.
-    ViewerFrames(std::size_t spread, std::vector<std::string> variants);
+    // `spread` frames per sequence besides the worst ones; `variants` is the variants' names. The
+    // PNGs go into `images` (which must outlive this), HDR frames tone mapped with
+    // exposure.tone_mapper at exposure 0.
+    ViewerFrames(std::size_t spread, std::vector<std::string> variants, StagedImages& images,
+                 const ExposureOptions& exposure);
 
     // Before a sequence's pass: its name, the taa.csv row it belongs to, its measured frames
     // (`first`..`last`), what it measures and against what.
@@ -72,21 +77,20 @@ public:
     // one of a scene's (grass-ghosting), so frames are offered as of the source measured.
     void measuring(const std::string& scene) { measuring_ = scene; }
 
-    // Stages each measured frame that is kept so far (of a sequence planned for the source being
-    // measured), with its maps (the frame must carry them: EvaluationObserver::maps); drops those
-    // that no longer are.
+    // Takes each measured frame that is kept so far (of a sequence planned for the source being
+    // measured), with its maps (the frame must carry them: EvaluationObserver::maps): a spread
+    // frame's PNGs are written now, a worst frame so far is staged; drops those that no longer are.
+    // A kept frame's PNGs (in `images`, moved into the output folder with the rest) are every
+    // variant's output and the FLIP map its figure was measured with (LDR-FLIP, or HDR-FLIP for
+    // an HDR sequence; against the truth for ghosting, the output before for shimmer, none after a
+    // camera cut), in magma, and the truth; a frame's images are made on every core.
     Result<void> offer(const MeasuredFrame& frame);
 
-    // The kept frames' PNGs, written to a scratch folder now and moved into the output folder with
-    // the rest (StagedImages): every variant's output and the FLIP map its figure was measured with
-    // (LDR-FLIP, or HDR-FLIP for an HDR sequence; against the truth for ghosting, the output before
-    // for shimmer, none after a camera cut), in magma, and the truth; HDR images tone mapped with
-    // exposure.tone_mapper at exposure 0. Returns what the viewer shows of each sequence, in the
-    // order planned. `on_frame` is called after each kept frame, naming its sequence; the
-    // variants' images of a frame are made on every core.
-    Result<std::vector<ViewerSequence>> write(const ExposureOptions& exposure, StagedImages& images,
-                                              const std::function<void(const std::string&)>& on_frame = {}) const;
-    // The frames kept so far, over every sequence: write()'s steps.
+    // After the pass: the PNGs of the staged frames. Returns what the viewer shows of each
+    // sequence, in the order planned. `on_frame` is called after each staged frame, naming its
+    // sequence.
+    Result<std::vector<ViewerSequence>> write(const std::function<void(const std::string&)>& on_frame = {}) const;
+    // The frames staged so far, over every sequence: write()'s steps.
     std::size_t kept_frames() const;
 
 private:
@@ -95,9 +99,18 @@ private:
     std::filesystem::path staged(std::size_t s, std::size_t index, const std::string& name) const;
     Result<void> stage(std::size_t s, const MeasuredFrame& frame);
     void drop_unkept(std::size_t s);
+    // Frame `index`'s PNGs: the truth, and each variant's output and map (none where empty).
+    Result<void> write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,
+                             std::span<const Image* const> outputs, std::span<const std::vector<float>> maps) const;
+    Result<void> add_shown(const ViewerSequence& sequence, std::size_t index, const std::string& name,
+                           const Image& frame) const;
+    Result<void> add_map(const ViewerSequence& sequence, std::size_t index, std::size_t v,
+                         std::span<const float> map) const;
 
     std::size_t spread_;
     std::vector<std::string> variants_;
+    StagedImages* images_;
+    ExposureOptions exposure_;
     std::vector<std::shared_ptr<Kept>> sequences_;
     std::map<std::pair<std::string, std::string>, std::size_t> by_name_; // by scene and sequence
     std::string measuring_;

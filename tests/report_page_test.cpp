@@ -65,7 +65,8 @@ bool shows_in_magma(const Image& shown, float value) {
 // equals), stages their outputs and maps and drops the frames that stop being worst; what it
 // writes are those frames' outputs and maps, not later ones'.
 TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
-    ViewerFrames viewer(3, {"a", "b"});
+    StagedImages images;
+    ViewerFrames viewer(3, {"a", "b"}, images, {});
     viewer.plan("moving", "moving", 2, 10, {.ghosting = true, .shimmer = false}, ColorRange::ldr, false);
     viewer.measuring("moving");
     // Variant a is worst at 4 (0.5), and again at 8 (0.5, later, so 4 stays); b rises to 9.
@@ -85,8 +86,8 @@ TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
     const std::vector<const Image*> outputs{&truth, &truth};
     ASSERT_TRUE(viewer.offer({"other", 3, other, outputs, {}, &truth}));
 
-    StagedImages images;
-    auto shown = viewer.write({}, images);
+    EXPECT_EQ(viewer.kept_frames(), 2u) << "the spread frames are written as they are measured; 4 and 9 staged";
+    auto shown = viewer.write();
     ASSERT_TRUE(shown) << shown.error().message;
     ASSERT_EQ(shown->size(), 1u);
     const ViewerSequence& s = shown->front();
@@ -122,7 +123,8 @@ TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
 // ResolveGpu.MeasuredFramesCarryTheMapsTheirFiguresAreMeansOf); after a camera cut there is none,
 // and no map is written. A frame offered without its maps is refused: the viewer computes none.
 TEST(ViewerFrames, ShowsTheMapsTheFiguresWereMeasuredWith) {
-    ViewerFrames viewer(2, {"a"});
+    StagedImages images;
+    ViewerFrames viewer(2, {"a"}, images, {});
     viewer.plan("still", "scene", 1, 2, {.ghosting = false, .shimmer = true}, ColorRange::ldr, false);
     viewer.measuring("scene");
     const Image truth = gray(0.5f), now = gray(0.6f);
@@ -134,8 +136,7 @@ TEST(ViewerFrames, ShowsTheMapsTheFiguresWereMeasuredWith) {
     auto without = viewer.offer({"still", 2, second, outputs, {}, &truth});
     ASSERT_FALSE(without);
     EXPECT_NE(without.error().message.find("FLIP map"), std::string::npos) << without.error().message;
-    StagedImages images;
-    auto shown = viewer.write({}, images);
+    auto shown = viewer.write();
     ASSERT_TRUE(shown) << shown.error().message;
     const ViewerSequence& s = shown->front();
     EXPECT_EQ(s.map, "LDR-FLIP against the output before");
