@@ -1,7 +1,6 @@
 // kdop: generate, run and measure k-DOP neighborhood-clipping variants. See README.md.
 #include "cli/commands.h"
 
-#include "core/frame_allocations.h"
 #include "generator/command_line.h"
 #include "harness/ranks.h"
 #include "harness/run_metadata.h"
@@ -11,7 +10,6 @@
 #include <map>
 
 int main(int argc, char** argv) {
-    kdop::reuse_freed_frames();
     kdop::record_command_line(argc, argv);
     CLI::App app{"kdop: k-DOP neighborhood clipping for temporal antialiasing: generate shader variants, run them, "
                  "measure them"};

@@ -154,7 +154,7 @@ public:
     }
 
     // Frame `i`'s output `current` (already within range) against `truth` and the previous output;
-    // with `map`, the map of the figure maps_show_ghosting names is kept (map()).
+    // with `map`, the map of the figure maps_show_ghosting names is kept (take_map()).
     Result<void> measure(std::size_t i, const Image& truth, const Image& current, bool starts_history,
                          const std::string& label, bool map) {
         FrameFigures figures{sequence_, i};
