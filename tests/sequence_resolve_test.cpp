@@ -5,6 +5,7 @@
 // `kdop scene` + `kdop taa --sequence`: a replay equals the in-memory run, an HDR sequence is
 // measured in HDR-FLIP (the CPU code's figures), bad sequences are refused, naming the file, with
 // nothing written.
+#include "core/write_files.h"
 #include "flip/device_flip.h"
 #include "flip/flip.h"
 #include "flip/hdr_flip.h"
@@ -516,14 +517,16 @@ void write_sequence(const FrameSource& source, const fs::path& dir, const Motion
     // The motion files, in the convention: the inverse of canonical_motion().
     for (std::size_t i = 1; i < source.frame_count(); ++i) {
         const fs::path file = dir / fmt::format("motion/{:04}.exr", i);
-        auto motion = read_image(file.string());
-        ASSERT_TRUE(motion);
+        auto motion = read_data_image(file.string(), 2);
+        ASSERT_TRUE(motion) << motion.error().message;
         for (glm::vec4& m : motion->pixels) {
             if (current) m = -m;
             if (up) m.y = -m.y;
             if (uv) m.x /= float(source.width()), m.y /= float(source.height());
         }
-        ASSERT_TRUE(write_image(file.string(), *motion));
+        const char* const xy[] = {"R", "G"};
+        ASSERT_TRUE(write_atomically(
+            {{file, [&](const fs::path& to) { return write_data_image_to(to, file.string(), *motion, xy); }}}));
     }
 }
 
