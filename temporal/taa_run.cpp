@@ -187,7 +187,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     outputs.add(written_frames.writers(outputs.dir()));
     Result<std::vector<ViewerSequence>> viewed;
     {
-        Progress progress("Writing report.html's worst frames and FLIP maps:", viewer.kept_frames());
+        Progress progress("Writing report.html's worst frames and FLIP maps:", viewer.staged_frames());
         viewed = viewer.write([&](const std::string& sequence) { progress.advance(sequence); });
         if (!viewed) return std::unexpected(viewed.error());
     }

@@ -76,7 +76,7 @@ ViewerFrames::ViewerFrames(std::size_t spread, std::vector<std::string> variants
                            const ExposureOptions& exposure)
     : spread_(spread), variants_(std::move(variants)), images_(&images), exposure_(exposure) {}
 
-std::size_t ViewerFrames::kept_frames() const {
+std::size_t ViewerFrames::staged_frames() const {
     std::size_t staged = 0;
     for (const auto& sequence : sequences_) staged += sequence->has_map.size();
     return staged;

@@ -91,7 +91,7 @@ public:
     // sequence.
     Result<std::vector<ViewerSequence>> write(const std::function<void(const std::string&)>& on_frame = {}) const;
     // The frames staged so far, over every sequence: write()'s steps.
-    std::size_t kept_frames() const;
+    std::size_t staged_frames() const;
 
 private:
     struct Kept; // one sequence's frames so far

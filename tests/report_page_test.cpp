@@ -86,7 +86,7 @@ TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
     const std::vector<const Image*> outputs{&truth, &truth};
     ASSERT_TRUE(viewer.offer({"other", 3, other, outputs, {}, &truth}));
 
-    EXPECT_EQ(viewer.kept_frames(), 2u) << "the spread frames are written as they are measured; 4 and 9 staged";
+    EXPECT_EQ(viewer.staged_frames(), 2u) << "the spread frames are written as they are measured; 4 and 9 staged";
     auto shown = viewer.write();
     ASSERT_TRUE(shown) << shown.error().message;
     ASSERT_EQ(shown->size(), 1u);
