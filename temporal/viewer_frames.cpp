@@ -193,26 +193,25 @@ Result<void> ViewerFrames::add_map(const ViewerSequence& sequence, std::size_t i
                         flip::magma_image(map, sequence.width, sequence.height));
 }
 
-Result<void> ViewerFrames::write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,
-                                       std::span<const Image* const> outputs,
-                                       std::span<const std::vector<float>> maps) const {
-    // The truth (item 0) and each variant's output and map, one per core at a time; the first
-    // error, in that order, is reported.
+Result<void> ViewerFrames::on_every_core(const std::function<Result<void>()>& truth,
+                                         const std::function<Result<void>(std::size_t v)>& variant) const {
+    // The truth is item 0; the first error, in item order, is reported.
     std::vector<Result<void>> done(variants_.size() + 1);
-    parallel_for(variants_.size() + 1, 0, [&](std::size_t item) {
-        if (item == 0) {
-            done[0] = add_shown(sequence, index, sequence.truth, truth);
-            return;
-        }
-        const std::size_t v = item - 1;
-        if (auto ok = add_shown(sequence, index, variants_[v], *outputs[v]); !ok)
-            done[item] = ok;
-        else
-            done[item] = add_map(sequence, index, v, maps[v]);
-    });
+    parallel_for(variants_.size() + 1, 0,
+                 [&](std::size_t item) { done[item] = item == 0 ? truth() : variant(item - 1); });
     for (const Result<void>& ok : done)
         if (!ok) return ok;
     return {};
+}
+
+Result<void> ViewerFrames::write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,
+                                       std::span<const Image* const> outputs,
+                                       std::span<const std::vector<float>> maps) const {
+    return on_every_core([&] { return add_shown(sequence, index, sequence.truth, truth); },
+                         [&](std::size_t v) -> Result<void> {
+                             if (auto ok = add_shown(sequence, index, variants_[v], *outputs[v]); !ok) return ok;
+                             return add_map(sequence, index, v, maps[v]);
+                         });
 }
 
 Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void(const std::string&)>& on_frame) const {
@@ -225,17 +224,14 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void
             sequence.figures.push_back(figures);
             const auto staged_maps = kept.has_map.find(index);
             if (staged_maps == kept.has_map.end()) continue; // a spread frame, written as it was measured
-            auto truth = read_staged_image(staged(s, index, "truth"), sequence.width, sequence.height);
-            if (!truth) return std::unexpected(truth.error());
-            // As write_frame, each variant's output and map read back on the core that writes them.
-            std::vector<Result<void>> done(variants_.size() + 1);
-            parallel_for(variants_.size() + 1, 0, [&](std::size_t item) {
-                if (item == 0) {
-                    done[0] = add_shown(sequence, index, sequence.truth, *truth);
-                    return;
-                }
-                const std::size_t v = item - 1;
-                done[item] = [&]() -> Result<void> {
+            // As write_frame, each image read back on the core that writes it.
+            auto written = on_every_core(
+                [&]() -> Result<void> {
+                    auto truth = read_staged_image(staged(s, index, "truth"), sequence.width, sequence.height);
+                    if (!truth) return std::unexpected(truth.error());
+                    return add_shown(sequence, index, sequence.truth, *truth);
+                },
+                [&](std::size_t v) -> Result<void> {
                     auto output =
                         read_staged_image(staged(s, index, std::to_string(v)), sequence.width, sequence.height);
                     if (!output) return std::unexpected(output.error());
@@ -246,10 +242,8 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void
                         if (auto ok = read_staged(staged(s, index, fmt::format("flip-{}", v)), map); !ok) return ok;
                     }
                     return add_map(sequence, index, v, map);
-                }();
-            });
-            for (const Result<void>& ok : done)
-                if (!ok) return std::unexpected(ok.error());
+                });
+            if (!written) return std::unexpected(written.error());
             if (on_frame) on_frame(sequence.name);
         }
         shown.push_back(std::move(sequence));

@@ -99,6 +99,9 @@ private:
     std::filesystem::path staged(std::size_t s, std::size_t index, const std::string& name) const;
     Result<void> stage(std::size_t s, const MeasuredFrame& frame);
     void drop_unkept(std::size_t s);
+    // `truth` and `variant` for each variant, one per core at a time; the first error in that order.
+    Result<void> on_every_core(const std::function<Result<void>()>& truth,
+                               const std::function<Result<void>(std::size_t v)>& variant) const;
     // Frame `index`'s PNGs: the truth, and each variant's output and map (none where empty).
     Result<void> write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,
                              std::span<const Image* const> outputs, std::span<const std::vector<float>> maps) const;
