@@ -313,33 +313,42 @@ Result<void> RasterPass::set_vertices(std::size_t slot, std::span<const std::byt
     return {};
 }
 
-Result<RasterImages> RasterPass::draw(std::span<const std::byte> uniforms) {
+Result<void> RasterPass::set_uniforms(std::span<const std::byte> uniforms) {
     if (uniforms.size() != uniform_bytes_)
         return fail(fmt::format("{} bytes of uniforms for a block of {}", uniforms.size(), uniform_bytes_));
     if (!uniforms.empty()) std::memcpy(uniforms_.mapped(), uniforms.data(), uniforms.size());
+    return {};
+}
+
+void RasterPass::record_draw(VkCommandBuffer cb) {
+    std::array<VkClearValue, 3> clear{};
+    std::memcpy(clear[0].color.float32, &clear_color_, sizeof(clear_color_));
+    clear[2].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = render_pass_;
+    begin.framebuffer = framebuffer_;
+    begin.renderArea = {{0, 0}, {width_, height_}};
+    begin.clearValueCount = std::uint32_t(clear.size());
+    begin.pClearValues = clear.data();
+    vkCmdBeginRenderPass(cb, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set_, 0, nullptr);
+    for (const Slot& s : slots_) {
+        if (s.vertices == 0) continue;
+        const VkBuffer buffer = s.buffer.buffer();
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cb, 0, 1, &buffer, &offset);
+        vkCmdDraw(cb, s.vertices, 1, 0, 0);
+    }
+    vkCmdEndRenderPass(cb);
+}
+
+Result<RasterImages> RasterPass::draw(std::span<const std::byte> uniforms) {
+    if (auto ok = set_uniforms(uniforms); !ok) return std::unexpected(ok.error());
     const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
     const VkDeviceSize motion_at = pixels * kColorBytes, depth_at = motion_at + pixels * kMotionBytes;
     auto ran = commands_->run([&](VkCommandBuffer cb) {
-        std::array<VkClearValue, 3> clear{};
-        std::memcpy(clear[0].color.float32, &clear_color_, sizeof(clear_color_));
-        clear[2].depthStencil = {1.0f, 0};
-        VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-        begin.renderPass = render_pass_;
-        begin.framebuffer = framebuffer_;
-        begin.renderArea = {{0, 0}, {width_, height_}};
-        begin.clearValueCount = std::uint32_t(clear.size());
-        begin.pClearValues = clear.data();
-        vkCmdBeginRenderPass(cb, &begin, VK_SUBPASS_CONTENTS_INLINE);
-        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set_, 0, nullptr);
-        for (const Slot& s : slots_) {
-            if (s.vertices == 0) continue;
-            const VkBuffer buffer = s.buffer.buffer();
-            const VkDeviceSize offset = 0;
-            vkCmdBindVertexBuffers(cb, 0, 1, &buffer, &offset);
-            vkCmdDraw(cb, s.vertices, 1, 0, 0);
-        }
-        vkCmdEndRenderPass(cb);
+        record_draw(cb);
         VkBufferImageCopy copy{};
         copy.imageExtent = {width_, height_, 1};
         copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -361,6 +370,58 @@ Result<RasterImages> RasterPass::draw(std::span<const std::byte> uniforms) {
     std::memcpy(out.motion.data(), bytes + motion_at, pixels * kMotionBytes);
     std::memcpy(out.depth.data(), bytes + depth_at, pixels * kDepthBytes);
     return out;
+}
+
+Result<void> RasterPass::draw_into(std::span<const std::byte> uniforms, const RasterTargets& targets) {
+    if (!targets.color) return fail("a draw into the device without a color image");
+    if (auto ok = set_uniforms(uniforms); !ok) return ok;
+    if (targets.depth && !depth_texels_.buffer()) {
+        auto buffer = DeviceBuffer::create(context_, VkDeviceSize(width_) * height_ * kDepthBytes,
+                                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           DeviceBuffer::Memory::device, "the raster pass's depth copy");
+        if (!buffer) return std::unexpected(buffer.error());
+        depth_texels_ = std::move(*buffer);
+    }
+    auto ran = commands_->run([&](VkCommandBuffer cb) {
+        record_draw(cb);
+        // Every target is replaced whole: what it held, in whatever layout, is dropped.
+        const VkImage filled[] = {targets.color, targets.motion, targets.depth};
+        for (VkImage image : filled)
+            if (image)
+                image_barrier(cb, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                              VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                              VK_PIPELINE_STAGE_TRANSFER_BIT);
+        VkImageCopy copy{};
+        copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.extent = {width_, height_, 1};
+        vkCmdCopyImage(cb, color_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.color,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        if (targets.motion)
+            vkCmdCopyImage(cb, motion_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.motion,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        if (targets.depth) {
+            VkBufferImageCopy texels{};
+            texels.imageExtent = {width_, height_, 1};
+            texels.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+            vkCmdCopyImageToBuffer(cb, depth_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth_texels_.buffer(), 1,
+                                   &texels);
+            VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+            written.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+            written.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &written, 0,
+                                 nullptr, 0, nullptr);
+            texels.imageSubresource.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+            vkCmdCopyBufferToImage(cb, depth_texels_.buffer(), targets.depth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                   &texels);
+        }
+        for (VkImage image : filled)
+            if (image)
+                image_barrier(cb, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                              VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+    });
+    if (!ran) return std::unexpected(ran.error());
+    return {};
 }
 
 } // namespace kdop

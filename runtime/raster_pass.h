@@ -43,6 +43,15 @@ struct RasterImages {
     std::vector<float> depth;      // row-major; 1 where nothing is drawn
 };
 
+// Images a draw's attachments are copied into on the device (RasterPass::draw_into), each of the
+// pass's size and made for transfers into it and sampling; left in
+// VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL for a compute pass to sample (RectifyPass::images_to_fill).
+struct RasterTargets {
+    VkImage color = VK_NULL_HANDLE;  // rgba32f
+    VkImage motion = VK_NULL_HANDLE; // rg32f, or null: not copied
+    VkImage depth = VK_NULL_HANDLE;  // r32f, or null: not copied
+};
+
 class RasterPass {
 public:
     // A pass drawing width x height images with `pipeline`, sampling `texture`.
@@ -58,11 +67,17 @@ public:
     // Clears, draws every slot with `uniforms` (the uniform block's bytes) and reads the
     // attachments back.
     Result<RasterImages> draw(std::span<const std::byte> uniforms);
+    // The same draw, its attachments copied into `targets` on the device instead of read back: a
+    // frame a compute pass takes from there (the TAA resolve's inputs), the same floats.
+    Result<void> draw_into(std::span<const std::byte> uniforms, const RasterTargets& targets);
 
 private:
     explicit RasterPass(const Context& context) : context_(context) {}
     Result<void> create_pipeline(const RasterPipeline& pipeline);
     Result<void> upload_texture(const Image& texture);
+    Result<void> set_uniforms(std::span<const std::byte> uniforms);
+    // Clears the attachments and draws every slot, leaving them ready to be copied from.
+    void record_draw(VkCommandBuffer cb);
 
     const Context& context_;
     std::uint32_t width_ = 0, height_ = 0, stride_ = 0, uniform_bytes_ = 0;
@@ -77,6 +92,9 @@ private:
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     glm::vec4 clear_color_{0};
     DeviceBuffer uniforms_, readback_; // host-visible
+    // Depth on its way into a color image (draw_into): Vulkan copies no depth image into a color
+    // one, so it goes through a buffer. Made at the first draw that copies depth.
+    DeviceBuffer depth_texels_;
     struct Slot {
         DeviceBuffer buffer; // host-visible; grown, never shrunk
         std::uint32_t vertices = 0;

@@ -17,10 +17,38 @@ namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-VkFormat vk_format(TextureFormat f) {
-    return f == TextureFormat::rgba16f ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+// The format of a texture of `channels` (1, 2 or 4) of the pass's format.
+VkFormat vk_format(TextureFormat f, std::uint32_t channels) {
+    const bool half = f == TextureFormat::rgba16f;
+    switch (channels) {
+    case 1: return half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
+    case 2: return half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
+    default: return half ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+    }
 }
-VkDeviceSize texel_bytes(TextureFormat f) { return f == TextureFormat::rgba16f ? 8 : 16; }
+VkDeviceSize texel_bytes(TextureFormat f, std::uint32_t channels) {
+    return (f == TextureFormat::rgba16f ? 2 : 4) * VkDeviceSize(channels);
+}
+
+// The first `channels` of each pixel of `image`, in `format`, at `to`.
+void pack(const Image& image, TextureFormat format, std::uint32_t channels, std::byte* to) {
+    const std::size_t pixels = image.pixels.size();
+    if (format == TextureFormat::rgba32f && channels == 4) {
+        std::memcpy(to, image.pixels.data(), pixels * 16);
+    } else if (format == TextureFormat::rgba32f) {
+        auto* floats = reinterpret_cast<float*>(to);
+        for (std::size_t k = 0; k < pixels; ++k)
+            for (std::uint32_t c = 0; c < channels; ++c) floats[k * channels + c] = image.pixels[k][int(c)];
+    } else if (channels == 4) {
+        auto* halves = reinterpret_cast<std::uint64_t*>(to);
+        for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(image.pixels[k]);
+    } else {
+        auto* halves = reinterpret_cast<std::uint16_t*>(to);
+        for (std::size_t k = 0; k < pixels; ++k)
+            for (std::uint32_t c = 0; c < channels; ++c)
+                halves[k * channels + c] = glm::packHalf1x16(image.pixels[k][int(c)]);
+    }
+}
 
 VkBufferImageCopy whole_image(uint32_t w, uint32_t h, VkDeviceSize offset) {
     VkBufferImageCopy copy{};
@@ -78,11 +106,18 @@ Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsa
 
 Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
                                                          TextureFormat format) {
-    return create(context, width, height, format, {"current_frame", "history_frame"});
+    return create(context, width, height, format, std::vector<std::string>{"current_frame", "history_frame"});
 }
 
 Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
                                                          TextureFormat format, std::vector<std::string> inputs) {
+    std::vector<PassInput> four;
+    for (std::string& name : inputs) four.push_back({std::move(name), 4});
+    return create(context, width, height, format, std::move(four));
+}
+
+Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context, uint32_t width, uint32_t height,
+                                                         TextureFormat format, std::vector<PassInput> inputs) {
     if (inputs.empty()) return fail("a rectify pass needs at least one input");
     if (width == 0 || height == 0) return fail(fmt::format("cannot rectify an empty {}x{} image", width, height));
     // Checked here rather than left to vkCreateImage, which is undefined (and a validation error)
@@ -99,19 +134,23 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     const VkDeviceSize pixels = VkDeviceSize(width) * height;
 
     const VkImageUsageFlags input_usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    for (std::string& name : inputs) {
-        p->inputs_.push_back({std::move(name), std::vector<Texture>(1)});
-        if (auto ok = p->create_texture(p->inputs_.back().slots[0], vk_format(format), input_usage); !ok)
+    VkDeviceSize upload_bytes = 0;
+    for (PassInput& in : inputs) {
+        if (in.channels != 1 && in.channels != 2 && in.channels != 4)
+            return fail(
+                fmt::format("input '{}' of {} channels: a rectify pass's have 1, 2 or 4", in.name, in.channels));
+        p->inputs_.push_back({std::move(in.name), in.channels, std::vector<Texture>(1)});
+        if (auto ok = p->create_texture(p->inputs_.back().slots[0], vk_format(format, in.channels), input_usage); !ok)
             return std::unexpected(ok.error());
+        upload_bytes += pixels * texel_bytes(format, in.channels);
     }
     const auto input_count = static_cast<uint32_t>(p->inputs_.size());
     if (auto ok =
             p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         !ok)
         return std::unexpected(ok.error());
-    auto upload =
-        DeviceBuffer::create(context, input_count * pixels * texel_bytes(format), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                             DeviceBuffer::Memory::host, "the inputs' upload");
+    auto upload = DeviceBuffer::create(context, upload_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                       DeviceBuffer::Memory::host, "the inputs' upload");
     if (!upload) return std::unexpected(upload.error());
     p->upload_ = std::move(*upload);
     auto readback = DeviceBuffer::create(context, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -162,19 +201,14 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
     for (const Image* image : images)
         if (image && (image->width != width_ || image->height != height_))
             return fail(fmt::format("image is {}x{}, the pass is {}x{}", image->width, image->height, width_, height_));
-    const std::size_t pixels = std::size_t(width_) * height_;
-    const VkDeviceSize bytes_per_image = VkDeviceSize(pixels) * texel_bytes(format_);
+    const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
+    // Each input's place in the upload buffer, in create()'s order.
+    std::vector<VkDeviceSize> offsets(images.size());
+    for (std::size_t i = 1; i < images.size(); ++i)
+        offsets[i] = offsets[i - 1] + pixels * texel_bytes(format_, inputs_[i - 1].channels);
     auto* bytes = static_cast<std::byte*>(upload_.mapped());
-    for (std::size_t i = 0; i < images.size(); ++i) {
-        if (!images[i]) continue;
-        std::byte* at = bytes + i * bytes_per_image;
-        if (format_ == TextureFormat::rgba32f) {
-            std::memcpy(at, images[i]->pixels.data(), pixels * 16);
-        } else {
-            auto* halves = reinterpret_cast<std::uint64_t*>(at);
-            for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(images[i]->pixels[k]);
-        }
-    }
+    for (std::size_t i = 0; i < images.size(); ++i)
+        if (images[i]) pack(*images[i], format_, inputs_[i].channels, bytes + offsets[i]);
     auto copied = commands_->run([&](VkCommandBuffer cb) {
         for (std::size_t i = 0; i < images.size(); ++i) {
             if (!images[i]) continue;
@@ -182,7 +216,7 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT);
-            VkBufferImageCopy copy = whole_image(width_, height_, i * bytes_per_image);
+            VkBufferImageCopy copy = whole_image(width_, height_, offsets[i]);
             vkCmdCopyBufferToImage(cb, upload_.buffer(), t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -336,7 +370,7 @@ Result<void> RectifyPass::add_slots(std::string_view name, std::size_t count) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     (*in)->slots.resize(count);
     for (std::size_t i = 1; i < count; ++i)
-        if (auto ok = create_texture((*in)->slots[i], vk_format(format_), usage); !ok) return ok;
+        if (auto ok = create_texture((*in)->slots[i], vk_format(format_, (*in)->channels), usage); !ok) return ok;
     // Zero, not whatever the memory held: a first frame's blend weighs its history by 0, and 0 x NaN is NaN.
     auto cleared = commands_->run([&](VkCommandBuffer cb) {
         const VkClearColorValue zero{};
@@ -369,8 +403,9 @@ Result<void> RectifyPass::copy_output_to(std::string_view name) {
     auto in = input(name);
     if (!in) return std::unexpected(in.error());
     if (!dispatched_) return fail("a copy of the output before any dispatch");
-    if (format_ != TextureFormat::rgba32f)
-        return fail(fmt::format("'{}' is {}, and the output copies only into rgba32f", name, to_string(format_)));
+    if (format_ != TextureFormat::rgba32f || (*in)->channels != 4)
+        return fail(fmt::format("'{}' is {} with {} channels, and the output copies only into rgba32f", name,
+                                to_string(format_), (*in)->channels));
     const Texture& into = (*in)->texture();
     // A texture never uploaded holds nothing to keep.
     const VkImageLayout was = (*in)->uploaded ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
@@ -392,6 +427,19 @@ Result<void> RectifyPass::copy_output_to(std::string_view name) {
     // Only the selected slot is filled: where there are others, they were cleared by add_slots().
     (*in)->uploaded = true;
     return {};
+}
+
+Result<std::vector<VkImage>> RectifyPass::images_to_fill(std::span<const std::string_view> names) {
+    if (format_ != TextureFormat::rgba32f)
+        return fail(fmt::format("a {} pass's inputs are filled by uploads only", to_string(format_)));
+    std::vector<VkImage> images;
+    for (std::string_view name : names) {
+        auto in = input(name);
+        if (!in) return std::unexpected(in.error());
+        images.push_back((*in)->texture().image);
+        (*in)->uploaded = true;
+    }
+    return images;
 }
 
 void RectifyPass::destroy(Texture& t) {

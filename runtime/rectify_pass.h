@@ -28,6 +28,13 @@ enum class TextureFormat {
 std::optional<TextureFormat> parse_texture_format(std::string_view s);
 const char* to_string(TextureFormat format);
 
+// An input texture: its name in the kernels and its channels (1, 2 or 4) of the pass's format. A
+// motion field needs two and a depth one, so a frame drawn on the device copies into them as it is.
+struct PassInput {
+    std::string name;
+    std::uint32_t channels = 4;
+};
+
 struct DispatchTiming {
     double wall_ms;   // submit to fence, as a caller waits for it
     double device_ms; // between timestamps around the dispatch; NaN where the queue has none
@@ -41,6 +48,9 @@ public:
     // Inputs of these names, each a combined image sampler in the kernels dispatched.
     static Result<std::unique_ptr<RectifyPass>> create(const Context& context, uint32_t width, uint32_t height,
                                                        TextureFormat format, std::vector<std::string> inputs);
+    // Inputs of these names and channels.
+    static Result<std::unique_ptr<RectifyPass>> create(const Context& context, uint32_t width, uint32_t height,
+                                                       TextureFormat format, std::vector<PassInput> inputs);
     ~RectifyPass();
     RectifyPass(const RectifyPass&) = delete;
     RectifyPass& operator=(const RectifyPass&) = delete;
@@ -48,7 +58,8 @@ public:
     // Both images must have the pass's size.
     Result<void> upload(const Image& current, const Image& history);
     // One image per input, in the order create() named them, each of the pass's size; a null one
-    // is not uploaded, and a kernel that reads an input never uploaded is refused.
+    // is not uploaded, and a kernel that reads an input never uploaded is refused. An input of fewer
+    // than four channels takes each pixel's first ones.
     Result<void> upload(std::span<const Image* const> images);
     // One dispatch of `kernel` over the whole image; `gamma` goes to kernels with a push constant.
     Result<DispatchTiming> dispatch(const Kernel& kernel, float gamma);
@@ -71,6 +82,12 @@ public:
     // Copies the last dispatch's output into input `name`'s selected texture, on the device; the
     // output stays for download(). The next frame's history, with no round trip through the host.
     Result<void> copy_output_to(std::string_view name);
+    // The selected textures of the inputs named, in that order, for another pass on the same device
+    // to fill with its own commands (a frame drawn there: RasterPass::draw_into), never through
+    // the host. Whatever fills them replaces every texel and leaves them in
+    // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, where dispatches sample them; each then counts as
+    // uploaded. rgba32f passes only, whose inputs are the formats a draw's attachments copy into.
+    Result<std::vector<VkImage>> images_to_fill(std::span<const std::string_view> names);
 
 private:
     struct Texture {
@@ -89,6 +106,7 @@ private:
     TextureFormat format_ = TextureFormat::rgba32f;
     struct Input {
         std::string name;
+        std::uint32_t channels = 4;
         std::vector<Texture> slots; // one, or add_slots()'s
         std::size_t selected = 0;
         bool uploaded = false;

@@ -16,6 +16,8 @@
 
 namespace kdop {
 
+class DeviceFrames; // runtime/device_frames.h
+
 class FrameSource {
 public:
     virtual ~FrameSource() = default;
@@ -41,6 +43,9 @@ public:
     virtual bool reads_ahead() const { return false; }
     // The figures the source is meant for (sequence.json's "measure"): both unless it says.
     virtual SequenceRoles roles() const { return {}; }
+    // Where the source draws its frames on the device, what draws one there without the host (a
+    // frame nothing reads on the host need never come back); else null.
+    virtual const DeviceFrames* device_frames() const { return nullptr; }
 };
 
 // `source` meant for `roles` alone: kdop's scenes' still sequence is measured for shimmer and their
@@ -62,6 +67,7 @@ public:
     std::string frame_label(std::size_t index) const override { return source_->frame_label(index); }
     bool reads_ahead() const override { return source_->reads_ahead(); }
     SequenceRoles roles() const override { return roles_; }
+    const DeviceFrames* device_frames() const override { return source_->device_frames(); }
 
 private:
     std::shared_ptr<const FrameSource> source_;

@@ -5,7 +5,11 @@
 namespace kdop {
 namespace {
 
+// The inputs of shader_templates/taa_resolve.comp.in.
+constexpr const char* kColor = "color_frame";
 constexpr const char* kHistory = "history_frame"; // one per shader, kept on the device
+constexpr const char* kMotion = "motion_frame";
+constexpr const char* kDepth = "depth_frame";
 
 } // namespace
 
@@ -31,9 +35,9 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
         r->kernels_.push_back(std::move(*kernel));
     }
     r->outputs_.resize(shaders.size());
-    // The names of shader_templates/taa_resolve.comp.in, in the order advance() uploads them.
+    // In the order advance_all() uploads them; motion and depth with the channels they have.
     auto pass = RectifyPass::create(context, width, height, TextureFormat::rgba32f,
-                                    {"color_frame", kHistory, "motion_frame", "depth_frame"});
+                                    std::vector<PassInput>{{kColor, 4}, {kHistory, 4}, {kMotion, 2}, {kDepth, 1}});
     if (!pass) return std::unexpected(pass.error());
     r->pass_ = std::move(*pass);
     // Every shader's history, zero until its first frame.
@@ -66,6 +70,27 @@ Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_histo
     // The frame's inputs once; then each shader's own history, its dispatch and its output.
     const Image* frame_inputs[] = {&frame.color, nullptr, has_motion ? &motion_ : &nothing_, depth};
     if (auto ok = pass_->upload(frame_inputs); !ok) return std::unexpected(ok.error());
+    return resolve_all(starts_history, read_outputs);
+}
+
+Result<void> TaaResolve::advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
+                                     bool read_outputs) {
+    std::vector<std::string_view> names{kColor, kMotion};
+    if (options_.dilate_motion) names.push_back(kDepth);
+    auto images = pass_->images_to_fill(names);
+    if (!images) return std::unexpected(images.error());
+    // A frame that starts a history resolves without motion, as the other advance_all gives it.
+    const RasterTargets targets{(*images)[0], starts_history ? VK_NULL_HANDLE : (*images)[1],
+                                options_.dilate_motion ? (*images)[2] : VK_NULL_HANDLE};
+    if (starts_history) {
+        const Image* no_motion[] = {nullptr, nullptr, &nothing_, nullptr};
+        if (auto ok = pass_->upload(no_motion); !ok) return ok;
+    }
+    if (auto ok = frames.draw_into(index, targets); !ok) return ok;
+    return resolve_all(starts_history, read_outputs);
+}
+
+Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs) {
     const RectifyPass::PushConstantValue values[] = {
         {"current_weight", {starts_history ? 1.0f : options_.current_weight}},
         {"gamma", {options_.gamma}},

@@ -10,6 +10,7 @@
 #include "core/result.h"
 #include "images/image.h"
 #include "runtime/context.h"
+#include "runtime/device_frames.h"
 #include "runtime/kernel.h"
 #include "runtime/rectify_pass.h"
 #include "sequence/frame_source.h"
@@ -49,12 +50,20 @@ public:
     // The same, moved out (output(s) is then empty until the next frame read back).
     Image take_output(std::size_t s) { return std::move(outputs_[s]); }
 
+    // The same for frame `index` of a source that draws on the device (FrameSource::device_frames),
+    // drawn straight into the resolve's inputs: the frame never reaches the host, so nothing checks
+    // it there (measure_sequence_all takes this way only for the frames it does not read).
+    Result<void> advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history, bool read_outputs);
+
     // The same for the first shader alone, returning its output.
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);
 
 private:
     TaaResolve(std::uint32_t width, std::uint32_t height, const ResolveOptions& options)
         : options_(options), width_(width), height_(height) {}
+    // Every shader on the frame in the inputs: its history, its dispatch, its output kept as its
+    // next history and, with `read_outputs`, read back.
+    Result<void> resolve_all(bool starts_history, bool read_outputs);
 
     ResolveOptions options_;
     std::uint32_t width_, height_;

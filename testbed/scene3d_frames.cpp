@@ -17,13 +17,22 @@ std::optional<glm::vec2> Scene3dFrames::jitter(std::size_t index) const {
 
 std::string Scene3dFrames::frame_label(std::size_t index) const { return fmt::format("{}, frame {}", name_, index); }
 
+Camera3d Scene3dFrames::previous_camera(std::size_t index) const {
+    return camera_at(renderer_->scene(), double(index) - 1.0, timeline_.pan);
+}
+
+Result<void> Scene3dFrames::draw_into(std::size_t index, const RasterTargets& targets) const {
+    auto drawn = renderer_->draw_into(time(index), camera(index), previous_time(index), previous_camera(index),
+                                      jitter(index).value_or(glm::vec2(0)), targets);
+    if (!drawn) return fail(fmt::format("{}: {}", frame_label(index), drawn.error().message));
+    return {};
+}
+
 Result<LoadedFrame> Scene3dFrames::frame(std::size_t index) const {
-    // Motion points to the frame before (frame 0's to the instant before it, which a frame without
-    // a history ignores).
-    const double now = time(index), then = timeline_.animate ? double(index) - 1.0 : 0.0;
-    const Camera3d camera_now = camera(index),
-                   camera_then = camera_at(renderer_->scene(), double(index) - 1.0, timeline_.pan);
-    auto drawn = renderer_->draw(now, camera_now, then, camera_then, jitter(index).value_or(glm::vec2(0)));
+    const double now = time(index);
+    const Camera3d camera_now = camera(index);
+    auto drawn = renderer_->draw(now, camera_now, previous_time(index), previous_camera(index),
+                                 jitter(index).value_or(glm::vec2(0)));
     if (!drawn) return fail(fmt::format("{}: {}", frame_label(index), drawn.error().message));
     LoadedFrame out;
     out.color = std::move(drawn->color);

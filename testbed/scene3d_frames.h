@@ -3,6 +3,7 @@
 // writes exactly the same frames.
 #pragma once
 
+#include "runtime/device_frames.h"
 #include "sequence/frame_source.h"
 #include "testbed/testbed_renderer.h"
 
@@ -21,7 +22,7 @@ struct Scene3dTimeline {
                                          // samples per pixel at the first R2 points
 };
 
-class Scene3dFrames final : public FrameSource {
+class Scene3dFrames final : public FrameSource, public DeviceFrames {
 public:
     // `renderer` is shared: the sources of one scene draw on one pass, one frame at a time.
     Scene3dFrames(std::string name, std::shared_ptr<TestbedRenderer> renderer, const Scene3dTimeline& timeline)
@@ -42,8 +43,16 @@ public:
     bool has_reference() const override { return timeline_.reference_samples > 0; }
     Result<LoadedFrame> frame(std::size_t index) const override;
     std::string frame_label(std::size_t index) const override;
+    const DeviceFrames* device_frames() const override { return this; }
+    // The frame's color, motion and depth on the device; its reference is drawn only by frame().
+    Result<void> draw_into(std::size_t index, const RasterTargets& targets) const override;
 
 private:
+    // The instant and camera frame `index`'s motion points back to: the frame before (frame 0's to
+    // the instant before it, which a frame without a history ignores).
+    double previous_time(std::size_t index) const { return timeline_.animate ? double(index) - 1.0 : 0.0; }
+    Camera3d previous_camera(std::size_t index) const;
+
     std::string name_;
     std::shared_ptr<TestbedRenderer> renderer_;
     Scene3dTimeline timeline_;

@@ -120,8 +120,8 @@ Result<std::unique_ptr<TestbedRenderer>> TestbedRenderer::create(const Context& 
     return r;
 }
 
-Result<RasterImages> TestbedRenderer::draw(double time, const Camera3d& camera, double previous_time,
-                                           const Camera3d& previous_camera, glm::vec2 jitter) {
+Result<std::vector<std::byte>> TestbedRenderer::prepare(double time, const Camera3d& camera, double previous_time,
+                                                        const Camera3d& previous_camera, glm::vec2 jitter) {
     if (scene_->moving) {
         const Mesh now = scene_->moving(time), before = scene_->moving(previous_time);
         if (now.size() != before.size())
@@ -137,7 +137,23 @@ Result<RasterImages> TestbedRenderer::draw(double time, const Camera3d& camera, 
     u.eye = glm::vec4(camera.eye, 1);
     u.sun = glm::vec4(scene_->sun, scene_->ambient);
     u.image = glm::vec4(float(width_), float(height_), 1.0f / scene_->texture_period, 0);
-    return pass_->draw(std::as_bytes(std::span(&u, 1)));
+    const auto bytes = std::as_bytes(std::span(&u, 1));
+    return std::vector<std::byte>(bytes.begin(), bytes.end());
+}
+
+Result<RasterImages> TestbedRenderer::draw(double time, const Camera3d& camera, double previous_time,
+                                           const Camera3d& previous_camera, glm::vec2 jitter) {
+    auto uniforms = prepare(time, camera, previous_time, previous_camera, jitter);
+    if (!uniforms) return std::unexpected(uniforms.error());
+    return pass_->draw(*uniforms);
+}
+
+Result<void> TestbedRenderer::draw_into(double time, const Camera3d& camera, double previous_time,
+                                        const Camera3d& previous_camera, glm::vec2 jitter,
+                                        const RasterTargets& targets) {
+    auto uniforms = prepare(time, camera, previous_time, previous_camera, jitter);
+    if (!uniforms) return std::unexpected(uniforms.error());
+    return pass_->draw_into(*uniforms, targets);
 }
 
 } // namespace kdop

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace kdop {
 
@@ -33,9 +34,15 @@ public:
     // `previous_camera` (y down); depth from 0 (near) to 1 (far, or nothing drawn).
     Result<RasterImages> draw(double time, const Camera3d& camera, double previous_time,
                               const Camera3d& previous_camera, glm::vec2 jitter);
+    // The same frame left on the device, copied into `targets` (RasterPass::draw_into).
+    Result<void> draw_into(double time, const Camera3d& camera, double previous_time, const Camera3d& previous_camera,
+                           glm::vec2 jitter, const RasterTargets& targets);
 
 private:
     TestbedRenderer() = default;
+    // The moving mesh at `time` and `previous_time` on the device, and the uniform block's bytes.
+    Result<std::vector<std::byte>> prepare(double time, const Camera3d& camera, double previous_time,
+                                           const Camera3d& previous_camera, glm::vec2 jitter);
 
     std::shared_ptr<const Scene3d> scene_;
     std::uint32_t width_ = 0, height_ = 0;

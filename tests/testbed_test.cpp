@@ -328,5 +328,84 @@ TEST_F(Testbed, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
     }
 }
 
+// `source` as a source that only reads its frames back: every frame through the host, the way the
+// measurement took them before frames could stay on the device.
+class ReadBackOnly final : public FrameSource {
+public:
+    explicit ReadBackOnly(const FrameSource& source) : source_(source) {}
+    const std::string& name() const override { return source_.name(); }
+    std::uint32_t width() const override { return source_.width(); }
+    std::uint32_t height() const override { return source_.height(); }
+    std::size_t frame_count() const override { return source_.frame_count(); }
+    ColorRange color_range() const override { return source_.color_range(); }
+    bool starts_history(std::size_t index) const override { return source_.starts_history(index); }
+    std::optional<glm::vec2> jitter(std::size_t index) const override { return source_.jitter(index); }
+    bool has_depth() const override { return source_.has_depth(); }
+    bool has_reference() const override { return source_.has_reference(); }
+    Result<LoadedFrame> frame(std::size_t index) const override { return source_.frame(index); }
+    std::string frame_label(std::size_t index) const override { return source_.frame_label(index); }
+
+private:
+    const FrameSource& source_;
+};
+
+// Frames drawn straight into the resolve's inputs (color, motion, and depth for --dilate-motion)
+// give every shader the outputs, bit for bit, of the same frames read back and uploaded, the first
+// frame (no motion) included; and the measurement, which draws its warm-up frames so, gives the
+// figures of one that reads every frame back.
+TEST_F(Testbed, FramesDrawnIntoTheResolveGiveTheOutputsOfFramesReadBack) {
+    constexpr std::uint32_t w = 64, h = 36;
+    auto r = TestbedRenderer::create(test::gpu(), std::make_shared<const Scene3d>(grass3d_scene(3)), w, h);
+    ASSERT_TRUE(r) << r.error().message;
+    const Scene3dFrames panning("grass3d-pan", std::move(*r),
+                                {.frames = 8, .animate = true, .jitter = true, .pan = true, .reference_samples = 2});
+    ASSERT_NE(panning.device_frames(), nullptr);
+    const ReadBackOnly read_back(panning);
+    ASSERT_EQ(read_back.device_frames(), nullptr);
+    std::vector<std::unique_ptr<RunnableVariant>> shaders;
+    std::vector<const Variant*> variants;
+    for (bool dilate : {false, true}) {
+        ResolveOptions options;
+        options.dilate_motion = dilate;
+        shaders.clear(), variants.clear();
+        for (const char* set : {"aabb", "dop32"}) {
+            auto axes = resolve_axis_set(set);
+            ASSERT_TRUE(axes);
+            auto shader = build_taa_shader(VariantSpec{*axes, Mode::clip, Neighborhood::n9}, options);
+            ASSERT_TRUE(shader) << shader.error().message;
+            variants.push_back(&(*shader)->variant());
+            shaders.push_back(std::move(*shader));
+        }
+        auto drawn = TaaResolve::create(test::gpu(), variants, w, h, options);
+        auto uploaded = TaaResolve::create(test::gpu(), variants, w, h, options);
+        ASSERT_TRUE(drawn && uploaded);
+        for (std::size_t i = 0; i < panning.frame_count(); ++i) {
+            auto frame = panning.frame(i);
+            ASSERT_TRUE(frame) << frame.error().message;
+            ASSERT_TRUE((*uploaded)->advance_all(*frame, i == 0));
+            auto ok = (*drawn)->advance_all(*panning.device_frames(), i, i == 0, true);
+            ASSERT_TRUE(ok) << ok.error().message;
+            for (std::size_t s = 0; s < variants.size(); ++s) {
+                const Image &a = (*drawn)->output(s), &b = (*uploaded)->output(s);
+                ASSERT_EQ(a.pixels.size(), std::size_t(w) * h);
+                EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * 16), 0)
+                    << variants[s]->name << ", dilate " << dilate << ", frame " << i;
+            }
+        }
+        const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
+        auto all = TaaResolve::create(test::gpu(), variants, w, h, options);
+        auto all_read = TaaResolve::create(test::gpu(), variants, w, h, options);
+        ASSERT_TRUE(all && all_read);
+        auto figures = measure_sequence_all(**all, panning, 4, cpu_flip_mean(flip));
+        auto figures_read = measure_sequence_all(**all_read, read_back, 4, cpu_flip_mean(flip));
+        ASSERT_TRUE(figures && figures_read);
+        for (std::size_t s = 0; s < variants.size(); ++s) {
+            EXPECT_GT((*figures)[s].ghosting, 0.0);
+            EXPECT_EQ((*figures)[s].ghosting, (*figures_read)[s].ghosting) << variants[s]->name;
+            EXPECT_EQ((*figures)[s].shimmer, (*figures_read)[s].shimmer) << variants[s]->name;
+        }
+    }
+}
+
 } // namespace
 } // namespace kdop
