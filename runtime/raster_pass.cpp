@@ -372,8 +372,8 @@ Result<RasterImages> RasterPass::draw(std::span<const std::byte> uniforms) {
     return out;
 }
 
-Result<void> RasterPass::draw_into(std::span<const std::byte> uniforms, const RasterTargets& targets) {
-    if (!targets.color) return fail("a draw into the device without a color image");
+Result<void> RasterPass::draw_into(std::span<const std::byte> uniforms, const RasterTargets& targets,
+                                   Image* color_back) {
     if (auto ok = set_uniforms(uniforms); !ok) return ok;
     if (targets.depth && !depth_texels_.buffer()) {
         auto buffer = DeviceBuffer::create(context_, VkDeviceSize(width_) * height_ * kDepthBytes,
@@ -394,8 +394,17 @@ Result<void> RasterPass::draw_into(std::span<const std::byte> uniforms, const Ra
         VkImageCopy copy{};
         copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         copy.extent = {width_, height_, 1};
-        vkCmdCopyImage(cb, color_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.color,
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        if (targets.color)
+            vkCmdCopyImage(cb, color_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.color,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        if (color_back) {
+            VkBufferImageCopy texels{};
+            texels.imageExtent = {width_, height_, 1};
+            texels.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            vkCmdCopyImageToBuffer(cb, color_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1,
+                                   &texels);
+            host_read_barrier(cb, readback_.buffer());
+        }
         if (targets.motion)
             vkCmdCopyImage(cb, motion_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.motion,
                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
@@ -421,6 +430,10 @@ Result<void> RasterPass::draw_into(std::span<const std::byte> uniforms, const Ra
                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
     });
     if (!ran) return std::unexpected(ran.error());
+    if (color_back) {
+        *color_back = Image(width_, height_);
+        std::memcpy(color_back->pixels.data(), readback_.mapped(), VkDeviceSize(width_) * height_ * kColorBytes);
+    }
     return {};
 }
 

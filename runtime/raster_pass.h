@@ -47,7 +47,7 @@ struct RasterImages {
 // pass's size and made for transfers into it and sampling; left in
 // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL for a compute pass to sample (RectifyPass::images_to_fill).
 struct RasterTargets {
-    VkImage color = VK_NULL_HANDLE;  // rgba32f
+    VkImage color = VK_NULL_HANDLE;  // rgba32f, or null: not copied
     VkImage motion = VK_NULL_HANDLE; // rg32f, or null: not copied
     VkImage depth = VK_NULL_HANDLE;  // r32f, or null: not copied
 };
@@ -68,8 +68,10 @@ public:
     // attachments back.
     Result<RasterImages> draw(std::span<const std::byte> uniforms);
     // The same draw, its attachments copied into `targets` on the device instead of read back: a
-    // frame a compute pass takes from there (the TAA resolve's inputs), the same floats.
-    Result<void> draw_into(std::span<const std::byte> uniforms, const RasterTargets& targets);
+    // frame a compute pass takes from there (the TAA resolve's inputs), the same floats. With
+    // `color_back`, the color alone is also read back into it (what a measurement compares with).
+    Result<void> draw_into(std::span<const std::byte> uniforms, const RasterTargets& targets,
+                           Image* color_back = nullptr);
 
 private:
     explicit RasterPass(const Context& context) : context_(context) {}

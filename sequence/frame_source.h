@@ -16,7 +16,7 @@
 
 namespace kdop {
 
-class DeviceFrames; // runtime/device_frames.h
+class DeviceFrames; // testbed/device_frames.h
 
 class FrameSource {
 public:
@@ -43,8 +43,8 @@ public:
     virtual bool reads_ahead() const { return false; }
     // The figures the source is meant for (sequence.json's "measure"): both unless it says.
     virtual SequenceRoles roles() const { return {}; }
-    // Where the source draws its frames on the device, what draws one there without the host (a
-    // frame nothing reads on the host need never come back); else null.
+    // Where the source draws its frames on the device, what draws one straight into a resolve's
+    // inputs, bringing back only what the host reads of it; else null.
     virtual const DeviceFrames* device_frames() const { return nullptr; }
 };
 

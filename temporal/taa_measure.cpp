@@ -244,29 +244,36 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
     // Files are read (and decoded) on a worker a frame ahead, in order, while the device works.
     std::optional<Prefetch<Result<LoadedFrame>>> ahead;
     if (source.reads_ahead()) ahead.emplace(count, 1, [&source](std::size_t i) { return source.frame(i); });
-    // A source that draws on the device draws its warm-up frames straight into the resolve: nothing
-    // reads them on the host.
+    // A source that draws on the device draws every frame straight into the resolve: motion and
+    // depth never come back, color and reference only for the frames measured.
     const DeviceFrames* on_device = ahead ? nullptr : source.device_frames();
     for (std::size_t i = 0; i < count; ++i) {
         const std::string label = source.frame_label(i);
         // Outputs come back from the frame before the first measured (its shimmer's previous) on.
         const bool read_outputs = i + 1 >= warmup;
-        std::optional<LoadedFrame> frame;
-        if (on_device && i < warmup) {
-            if (auto ok = resolve.advance_all(*on_device, i, source.starts_history(i), read_outputs); !ok)
-                return fail(fmt::format("{}: {}", label, ok.error().message));
-        } else {
-            // Each frame is drawn or read once, and checked once, whatever the number of shaders.
-            auto read = ahead ? ahead->take() : source.frame(i);
-            if (!read) return std::unexpected(read.error());
-            if (auto ok = check_range(read->color, range, label, "color"); !ok) return std::unexpected(ok.error());
-            if (read->reference.has_value() != against_reference)
+        // Each frame is drawn or read once, and checked once, whatever the number of shaders.
+        auto check = [&](const LoadedFrame& frame) -> Result<void> {
+            if (auto ok = check_range(frame.color, range, label, "color"); !ok) return ok;
+            if (frame.reference.has_value() != against_reference)
                 return fail(fmt::format("{}: {} a reference, unlike the sequence's others; give every frame a "
                                         "reference or none",
                                         label, against_reference ? "has no" : "has"));
-            if (i >= warmup && against_reference)
-                if (auto ok = check_range(*read->reference, range, label, "reference"); !ok)
-                    return std::unexpected(ok.error());
+            if (i >= warmup && against_reference) return check_range(*frame.reference, range, label, "reference");
+            return {};
+        };
+        std::optional<LoadedFrame> frame;
+        if (on_device) {
+            const bool measured = i >= warmup;
+            auto drawn = resolve.advance_all(*on_device, i, source.starts_history(i), read_outputs, measured);
+            if (!drawn) return fail(fmt::format("{}: {}", label, drawn.error().message));
+            if (measured) {
+                if (auto ok = check(*drawn); !ok) return std::unexpected(ok.error());
+                frame = std::move(*drawn);
+            }
+        } else {
+            auto read = ahead ? ahead->take() : source.frame(i);
+            if (!read) return std::unexpected(read.error());
+            if (auto ok = check(*read); !ok) return std::unexpected(ok.error());
             if (auto ok = resolve.advance_all(*read, source.starts_history(i), read_outputs); !ok)
                 return fail(fmt::format("{}: {}", label, ok.error().message));
             frame = std::move(*read);

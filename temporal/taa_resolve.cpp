@@ -73,8 +73,8 @@ Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_histo
     return resolve_all(starts_history, read_outputs);
 }
 
-Result<void> TaaResolve::advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
-                                     bool read_outputs) {
+Result<LoadedFrame> TaaResolve::advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
+                                            bool read_outputs, bool read_frame) {
     std::vector<std::string_view> names{kColor, kMotion};
     if (options_.dilate_motion) names.push_back(kDepth);
     auto images = pass_->images_to_fill(names);
@@ -84,10 +84,12 @@ Result<void> TaaResolve::advance_all(const DeviceFrames& frames, std::size_t ind
                                 options_.dilate_motion ? (*images)[2] : VK_NULL_HANDLE};
     if (starts_history) {
         const Image* no_motion[] = {nullptr, nullptr, &nothing_, nullptr};
-        if (auto ok = pass_->upload(no_motion); !ok) return ok;
+        if (auto ok = pass_->upload(no_motion); !ok) return std::unexpected(ok.error());
     }
-    if (auto ok = frames.draw_into(index, targets); !ok) return ok;
-    return resolve_all(starts_history, read_outputs);
+    auto frame = frames.draw_into(index, targets, read_frame);
+    if (!frame) return frame;
+    if (auto ok = resolve_all(starts_history, read_outputs); !ok) return std::unexpected(ok.error());
+    return frame;
 }
 
 Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs) {

@@ -10,11 +10,11 @@
 #include "core/result.h"
 #include "images/image.h"
 #include "runtime/context.h"
-#include "runtime/device_frames.h"
 #include "runtime/kernel.h"
 #include "runtime/rectify_pass.h"
 #include "sequence/frame_source.h"
 #include "temporal/resolve_options.h"
+#include "testbed/device_frames.h"
 
 #include <kdop/variant.h>
 
@@ -51,9 +51,11 @@ public:
     Image take_output(std::size_t s) { return std::move(outputs_[s]); }
 
     // The same for frame `index` of a source that draws on the device (FrameSource::device_frames),
-    // drawn straight into the resolve's inputs: the frame never reaches the host, so nothing checks
-    // it there (measure_sequence_all takes this way only for the frames it does not read).
-    Result<void> advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history, bool read_outputs);
+    // drawn straight into the resolve's inputs. With `read_frame` its color and reference come back
+    // (DeviceFrames::draw_into), for the caller to check and measure with; else the frame never
+    // reaches the host, and nothing checks it there.
+    Result<LoadedFrame> advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
+                                    bool read_outputs, bool read_frame);
 
     // The same for the first shader alone, returning its output.
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);

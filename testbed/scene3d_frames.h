@@ -3,8 +3,8 @@
 // writes exactly the same frames.
 #pragma once
 
-#include "runtime/device_frames.h"
 #include "sequence/frame_source.h"
+#include "testbed/device_frames.h"
 #include "testbed/testbed_renderer.h"
 
 #include <cstdint>
@@ -44,14 +44,16 @@ public:
     Result<LoadedFrame> frame(std::size_t index) const override;
     std::string frame_label(std::size_t index) const override;
     const DeviceFrames* device_frames() const override { return this; }
-    // The frame's color, motion and depth on the device; its reference is drawn only by frame().
-    Result<void> draw_into(std::size_t index, const RasterTargets& targets) const override;
+    // The frame's color, motion and depth on the device; its reference is drawn only when read back.
+    Result<LoadedFrame> draw_into(std::size_t index, const RasterTargets& targets, bool read_back) const override;
 
 private:
     // The instant and camera frame `index`'s motion points back to: the frame before (frame 0's to
     // the instant before it, which a frame without a history ignores).
     double previous_time(std::size_t index) const { return timeline_.animate ? double(index) - 1.0 : 0.0; }
     Camera3d previous_camera(std::size_t index) const;
+    // Frame `index`'s reference: the mean of the samples at the first R2 points, box-filtered.
+    Result<Image> reference(std::size_t index) const;
 
     std::string name_;
     std::shared_ptr<TestbedRenderer> renderer_;

@@ -149,11 +149,11 @@ Result<RasterImages> TestbedRenderer::draw(double time, const Camera3d& camera, 
 }
 
 Result<void> TestbedRenderer::draw_into(double time, const Camera3d& camera, double previous_time,
-                                        const Camera3d& previous_camera, glm::vec2 jitter,
-                                        const RasterTargets& targets) {
+                                        const Camera3d& previous_camera, glm::vec2 jitter, const RasterTargets& targets,
+                                        Image* color_back) {
     auto uniforms = prepare(time, camera, previous_time, previous_camera, jitter);
     if (!uniforms) return std::unexpected(uniforms.error());
-    return pass_->draw_into(*uniforms, targets);
+    return pass_->draw_into(*uniforms, targets, color_back);
 }
 
 } // namespace kdop

@@ -34,9 +34,10 @@ public:
     // `previous_camera` (y down); depth from 0 (near) to 1 (far, or nothing drawn).
     Result<RasterImages> draw(double time, const Camera3d& camera, double previous_time,
                               const Camera3d& previous_camera, glm::vec2 jitter);
-    // The same frame left on the device, copied into `targets` (RasterPass::draw_into).
+    // The same frame left on the device, copied into `targets`, and with `color_back` its color
+    // read back (RasterPass::draw_into).
     Result<void> draw_into(double time, const Camera3d& camera, double previous_time, const Camera3d& previous_camera,
-                           glm::vec2 jitter, const RasterTargets& targets);
+                           glm::vec2 jitter, const RasterTargets& targets, Image* color_back = nullptr);
 
 private:
     TestbedRenderer() = default;

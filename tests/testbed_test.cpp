@@ -351,8 +351,9 @@ private:
 
 // Frames drawn straight into the resolve's inputs (color, motion, and depth for --dilate-motion)
 // give every shader the outputs, bit for bit, of the same frames read back and uploaded, the first
-// frame (no motion) included; and the measurement, which draws its warm-up frames so, gives the
-// figures of one that reads every frame back.
+// frame (no motion) included, and bring back, when asked, the color and reference frame() reads;
+// and the measurement, which draws every frame so, gives the figures of one that reads every frame
+// back.
 TEST_F(Testbed, FramesDrawnIntoTheResolveGiveTheOutputsOfFramesReadBack) {
     constexpr std::uint32_t w = 64, h = 36;
     auto r = TestbedRenderer::create(test::gpu(), std::make_shared<const Scene3d>(grass3d_scene(3)), w, h);
@@ -383,8 +384,19 @@ TEST_F(Testbed, FramesDrawnIntoTheResolveGiveTheOutputsOfFramesReadBack) {
             auto frame = panning.frame(i);
             ASSERT_TRUE(frame) << frame.error().message;
             ASSERT_TRUE((*uploaded)->advance_all(*frame, i == 0));
-            auto ok = (*drawn)->advance_all(*panning.device_frames(), i, i == 0, true);
-            ASSERT_TRUE(ok) << ok.error().message;
+            const bool read_frame = i % 2 == 1;
+            auto back = (*drawn)->advance_all(*panning.device_frames(), i, i == 0, true, read_frame);
+            ASSERT_TRUE(back) << back.error().message;
+            // What comes back of a frame drawn on the device is its color and reference, as read.
+            if (read_frame) {
+                ASSERT_EQ(back->color.pixels.size(), frame->color.pixels.size());
+                EXPECT_EQ(std::memcmp(back->color.pixels.data(), frame->color.pixels.data(), w * h * 16), 0);
+                ASSERT_TRUE(back->reference && frame->reference);
+                EXPECT_EQ(std::memcmp(back->reference->pixels.data(), frame->reference->pixels.data(), w * h * 16), 0);
+                EXPECT_TRUE(back->motion.empty() && !back->depth);
+            } else {
+                EXPECT_TRUE(back->color.pixels.empty() && !back->reference);
+            }
             for (std::size_t s = 0; s < variants.size(); ++s) {
                 const Image &a = (*drawn)->output(s), &b = (*uploaded)->output(s);
                 ASSERT_EQ(a.pixels.size(), std::size_t(w) * h);
