@@ -251,7 +251,8 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
         const std::string label = source.frame_label(i);
         // Outputs come back from the frame before the first measured (its shimmer's previous) on.
         const bool read_outputs = i + 1 >= warmup;
-        // Each frame is drawn or read once, and checked once, whatever the number of shaders.
+        // Each frame is drawn or read once, and checked once where it reaches the host, whatever the
+        // number of shaders.
         auto check = [&](const LoadedFrame& frame) -> Result<void> {
             if (auto ok = check_range(frame.color, range, label, "color"); !ok) return ok;
             if (frame.reference.has_value() != against_reference)
