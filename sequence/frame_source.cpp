@@ -7,7 +7,8 @@
 namespace kdop {
 
 bool SequenceFrames::has_depth() const {
-    return std::all_of(s_.frames.begin(), s_.frames.end(), [](const SequenceFrame& f) { return !f.depth.empty(); });
+    return depth_ &&
+           std::all_of(s_.frames.begin(), s_.frames.end(), [](const SequenceFrame& f) { return !f.depth.empty(); });
 }
 
 bool SequenceFrames::has_reference() const {

@@ -79,6 +79,13 @@ class SequenceFrames final : public FrameSource {
 public:
     SequenceFrames(Sequence sequence, InputSpace space) : s_(std::move(sequence)), space_(space) {}
     const Sequence& sequence() const { return s_; }
+    // The same frames read without their depth files, for a resolve that does not read depth: each
+    // frame comes without depth, and the files are neither decoded nor checked.
+    SequenceFrames without_depth() const {
+        SequenceFrames s = *this;
+        s.depth_ = false;
+        return s;
+    }
 
     const std::string& name() const override { return s_.name; }
     std::uint32_t width() const override { return s_.width; }
@@ -89,7 +96,7 @@ public:
     std::optional<glm::vec2> jitter(std::size_t index) const override { return s_.frames[index].jitter; }
     bool has_depth() const override;
     bool has_reference() const override;
-    Result<LoadedFrame> frame(std::size_t index) const override { return load_frame(s_, index, space_); }
+    Result<LoadedFrame> frame(std::size_t index) const override { return load_frame(s_, index, space_, depth_); }
     std::string frame_label(std::size_t index) const override;
     bool reads_ahead() const override { return true; }
     SequenceRoles roles() const override { return s_.measure; }
@@ -97,6 +104,7 @@ public:
 private:
     Sequence s_;
     InputSpace space_;
+    bool depth_ = true; // whether frames are read with their depth
 };
 
 } // namespace kdop

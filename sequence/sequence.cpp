@@ -350,7 +350,7 @@ Result<Image> load_frame_color(const Sequence& s, std::size_t index, InputSpace 
     return read_color(s.frames.at(index).color, s, space, "color");
 }
 
-Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace space) {
+Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace space, bool depth) {
     const SequenceFrame& f = s.frames.at(index);
     LoadedFrame out;
     auto color = read_color(f.color, s, space, "color");
@@ -367,14 +367,14 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
         for (const glm::vec4& m : motion->pixels)
             out.motion.push_back(canonical_motion(glm::vec2(m), s.motion, s.width, s.height));
     }
-    if (!f.depth.empty()) {
+    if (depth && !f.depth.empty()) {
         auto opened = FrameFile::open(f.depth, s);
         if (!opened) return std::unexpected(opened.error());
-        auto depth = read_data_image(opened->proc_path(), 1, f.depth.string());
-        if (!depth) return std::unexpected(depth.error());
-        if (auto ok = check_size(*depth, f.depth, s); !ok) return std::unexpected(ok.error());
-        if (auto ok = check_finite(*depth, f.depth, 1, "depth"); !ok) return std::unexpected(ok.error());
-        out.depth = std::move(*depth);
+        auto image = read_data_image(opened->proc_path(), 1, f.depth.string());
+        if (!image) return std::unexpected(image.error());
+        if (auto ok = check_size(*image, f.depth, s); !ok) return std::unexpected(ok.error());
+        if (auto ok = check_finite(*image, f.depth, 1, "depth"); !ok) return std::unexpected(ok.error());
+        out.depth = std::move(*image);
     }
     if (!f.reference.empty()) {
         auto reference = read_color(f.reference, s, space, "the reference");

@@ -98,8 +98,10 @@ struct LoadedFrame {
 };
 
 // Reads frame `index` of `sequence`. `space` decodes color and reference files (EXR is linear
-// whatever it says); motion and depth are data, read as stored.
-Result<LoadedFrame> load_frame(const Sequence& sequence, std::size_t index, InputSpace space = InputSpace::from_file);
+// whatever it says); motion and depth are data, read as stored. With `depth` false the depth file
+// is not read (the frame has none): for a resolve that does not read depth.
+Result<LoadedFrame> load_frame(const Sequence& sequence, std::size_t index, InputSpace space = InputSpace::from_file,
+                               bool depth = true);
 
 // Only frame `index`'s color, checked as load_frame() checks it: what a fit to the sequence reads.
 Result<Image> load_frame_color(const Sequence& sequence, std::size_t index, InputSpace space = InputSpace::from_file);

@@ -117,7 +117,10 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& 
     auto on_frame = [&] {
         if (observer.frame) observer.frame(sequence.name());
     };
-    auto measured = measure_sequence_all(**resolve, sequence, options_.schedule.warmup, *mean, output, on_frame,
+    // A resolve that does not dilate motion never reads depth: its files are not decoded.
+    const SequenceFrames without_depth = sequence.without_depth();
+    const SequenceFrames& source = options_.resolve.dilate_motion ? sequence : without_depth;
+    auto measured = measure_sequence_all(**resolve, source, options_.schedule.warmup, *mean, output, on_frame,
                                          observer.measured, observer.maps);
     if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
     std::vector<EvaluationRow> rows;

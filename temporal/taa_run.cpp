@@ -50,7 +50,7 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
 Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequence,
                                   const PictureFrameChooser& chooser, const std::vector<VariantKey>& keys,
                                   const std::vector<EvaluationRow>& measured, const PictureFlip& flip) {
-    auto frame = sequence.frame(chooser.index());
+    auto frame = sequence.without_depth().frame(chooser.index()); // its truth, as the pass read it
     if (!frame) return std::unexpected(frame.error());
     const bool has_reference = frame->reference.has_value();
     auto truth = std::make_shared<const Image>(std::move(has_reference ? *frame->reference : frame->color));

@@ -3,6 +3,7 @@
 #include "sequence/sequence.h"
 
 #include "images/image_io.h"
+#include "sequence/frame_source.h"
 #include "tests/test_support.h"
 
 #include <OpenImageIO/imageio.h>
@@ -81,6 +82,36 @@ TEST(Sequence, ReadsTheListThenEachFrameWhenAsked) {
     auto cut = load_frame(*sequence, 2);
     ASSERT_TRUE(cut && cut->reference);
     EXPECT_EQ(cut->reference->at(0, 0).r, 0.5f);
+}
+
+// Frames read for a resolve that does not read depth leave the depth files alone: neither decoded
+// nor checked (a NaN in one is then no error); everything else is read as before.
+TEST(Sequence, FramesReadWithoutDepthLeaveTheDepthFilesUnread) {
+    SequenceDir s;
+    fs::create_directories(s / "depth");
+    ASSERT_TRUE(write_image((s / "depth/0000.exr").string(), Image(kWidth, kHeight, {0.5f, 0, 0, 1})));
+    ASSERT_TRUE(write_image((s / "depth/0001.exr").string(), Image(kWidth, kHeight, {NAN, 0, 0, 1})));
+    s.json(R"({"units": "pixels", "points_to": "previous", "y_axis": "down"})",
+           {s.frame(0, {}, R"(, "depth": "depth/0000.exr")"), s.frame(1, {}, R"(, "depth": "depth/0001.exr")")});
+    auto sequence = read_sequence(s.dir.path());
+    ASSERT_TRUE(sequence) << sequence.error().message;
+    const SequenceFrames frames(*sequence, InputSpace::from_file);
+    EXPECT_TRUE(frames.has_depth());
+    auto first = frames.frame(0);
+    ASSERT_TRUE(first && first->depth) << "depth is read where it is asked for";
+    auto refused = frames.frame(1);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("depth must be finite"), std::string::npos) << refused.error().message;
+
+    const SequenceFrames without = frames.without_depth();
+    EXPECT_FALSE(without.has_depth());
+    auto start = without.frame(0), next = without.frame(1);
+    ASSERT_TRUE(start) << start.error().message;
+    ASSERT_TRUE(next) << next.error().message;
+    EXPECT_FALSE(start->depth || next->depth);
+    EXPECT_EQ(start->color.pixels, first->color.pixels);
+    ASSERT_EQ(next->motion.size(), std::size_t(kWidth * kHeight));
+    EXPECT_EQ(next->motion[2 * kWidth + 7], true_motion(7, 2));
 }
 
 // Unreal's and Unity's velocities point to the current frame; UV units divide by the frame's size;
