@@ -201,17 +201,44 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
     for (const Image* image : images)
         if (image && (image->width != width_ || image->height != height_))
             return fail(fmt::format("image is {}x{}, the pass is {}x{}", image->width, image->height, width_, height_));
-    const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
-    // Each input's place in the upload buffer, in create()'s order.
-    std::vector<VkDeviceSize> offsets(images.size());
-    for (std::size_t i = 1; i < images.size(); ++i)
-        offsets[i] = offsets[i - 1] + pixels * texel_bytes(format_, inputs_[i - 1].channels);
+    const std::vector<VkDeviceSize> offsets = upload_offsets();
     auto* bytes = static_cast<std::byte*>(upload_.mapped());
+    std::vector<bool> which(images.size());
     for (std::size_t i = 0; i < images.size(); ++i)
-        if (images[i]) pack(*images[i], format_, inputs_[i].channels, bytes + offsets[i]);
+        if (images[i]) {
+            pack(*images[i], format_, inputs_[i].channels, bytes + offsets[i]);
+            which[i] = true;
+        }
+    return copy_uploads(which);
+}
+
+Result<void> RectifyPass::upload(std::string_view name, std::span<const float> texels) {
+    auto in = input(name);
+    if (!in) return std::unexpected(in.error());
+    const std::size_t floats = std::size_t(width_) * height_ * (*in)->channels;
+    if (format_ != TextureFormat::rgba32f || texels.size() != floats)
+        return fail(fmt::format("'{}': {} floats for a {} input of {}x{} pixels of {} channels", name, texels.size(),
+                                to_string(format_), width_, height_, (*in)->channels));
+    const std::size_t i = std::size_t(*in - inputs_.data());
+    std::memcpy(static_cast<std::byte*>(upload_.mapped()) + upload_offsets()[i], texels.data(), floats * 4);
+    std::vector<bool> which(inputs_.size());
+    which[i] = true;
+    return copy_uploads(which);
+}
+
+std::vector<VkDeviceSize> RectifyPass::upload_offsets() const {
+    const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
+    std::vector<VkDeviceSize> offsets(inputs_.size());
+    for (std::size_t i = 1; i < inputs_.size(); ++i)
+        offsets[i] = offsets[i - 1] + pixels * texel_bytes(format_, inputs_[i - 1].channels);
+    return offsets;
+}
+
+Result<void> RectifyPass::copy_uploads(const std::vector<bool>& which) {
+    const std::vector<VkDeviceSize> offsets = upload_offsets();
     auto copied = commands_->run([&](VkCommandBuffer cb) {
-        for (std::size_t i = 0; i < images.size(); ++i) {
-            if (!images[i]) continue;
+        for (std::size_t i = 0; i < which.size(); ++i) {
+            if (!which[i]) continue;
             const Texture& t = inputs_[i].texture();
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
@@ -224,8 +251,8 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
         }
     });
     if (!copied) return std::unexpected(copied.error());
-    for (std::size_t i = 0; i < images.size(); ++i)
-        if (images[i]) inputs_[i].uploaded = true;
+    for (std::size_t i = 0; i < which.size(); ++i)
+        if (which[i]) inputs_[i].uploaded = true;
     return {};
 }
 

@@ -61,6 +61,9 @@ public:
     // is not uploaded, and a kernel that reads an input never uploaded is refused. An input of fewer
     // than four channels takes each pixel's first ones.
     Result<void> upload(std::span<const Image* const> images);
+    // Input `name` from `texels`: each pixel's channels as floats, row-major, as the input holds
+    // them (a motion field's two, a depth's one). rgba32f passes.
+    Result<void> upload(std::string_view name, std::span<const float> texels);
     // One dispatch of `kernel` over the whole image; `gamma` goes to kernels with a push constant.
     Result<DispatchTiming> dispatch(const Kernel& kernel, float gamma);
     // The same for any kernel with the pass's bindings (its inputs and the rectified_history
@@ -113,6 +116,10 @@ private:
         const Texture& texture() const { return slots[selected]; }
     };
     Result<Input*> input(std::string_view name);
+    // Where each input lies in the upload buffer, in create()'s order.
+    std::vector<VkDeviceSize> upload_offsets() const;
+    // Copies the inputs marked in `which` (by index) from the upload buffer into their textures.
+    Result<void> copy_uploads(const std::vector<bool>& which);
     std::vector<Input> inputs_;
     Texture output_;
     // Where the output is after the last command: GENERAL after a dispatch, TRANSFER_SRC_OPTIMAL

@@ -42,8 +42,7 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
     r->pass_ = std::move(*pass);
     // Every shader's history, zero until its first frame.
     if (auto ok = r->pass_->add_slots(kHistory, shaders.size()); !ok) return std::unexpected(ok.error());
-    r->motion_ = Image(width, height, glm::vec4(0));
-    r->nothing_ = Image(width, height, glm::vec4(0));
+    r->zeros_.assign(2 * std::size_t(width) * height, 0.0f);
     return r;
 }
 
@@ -59,17 +58,21 @@ Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_histo
     if (auto ok = check_mappable(options_.color_map, frame.color.pixels, width_, "color"); !ok)
         return std::unexpected(ok.error());
     const bool has_motion = !starts_history;
-    if (has_motion) {
-        if (frame.motion.size() != motion_.pixels.size()) return fail("a frame with a history but no motion");
-        for (std::size_t i = 0; i < frame.motion.size(); ++i) motion_.pixels[i] = glm::vec4(frame.motion[i], 0, 0);
-    }
+    const std::size_t pixels = std::size_t(width_) * height_;
+    if (has_motion && frame.motion.size() != pixels) return fail("a frame with a history but no motion");
     if (options_.dilate_motion && has_motion && !frame.depth)
         return fail("--dilate-motion takes the motion of the nearest neighbor, and this frame has no depth");
-    // Depth only reaches the device where the shader reads it.
-    const Image* depth = !options_.dilate_motion ? nullptr : frame.depth ? &*frame.depth : &nothing_;
-    // The frame's inputs once; then each shader's own history, its dispatch and its output.
-    const Image* frame_inputs[] = {&frame.color, nullptr, has_motion ? &motion_ : &nothing_, depth};
+    // The frame's inputs once; then each shader's own history, its dispatch and its output. Depth
+    // only reaches the device where the shader reads it.
+    const Image* frame_inputs[] = {&frame.color, nullptr, nullptr,
+                                   options_.dilate_motion && frame.depth ? &*frame.depth : nullptr};
     if (auto ok = pass_->upload(frame_inputs); !ok) return std::unexpected(ok.error());
+    const std::span<const float> motion =
+        has_motion ? std::span<const float>(&frame.motion[0].x, 2 * pixels) : std::span<const float>(zeros_);
+    if (auto ok = pass_->upload(kMotion, motion); !ok) return std::unexpected(ok.error());
+    if (options_.dilate_motion && !frame.depth)
+        if (auto ok = pass_->upload(kDepth, std::span<const float>(zeros_).first(pixels)); !ok)
+            return std::unexpected(ok.error());
     return resolve_all(starts_history, read_outputs);
 }
 
@@ -82,10 +85,8 @@ Result<LoadedFrame> TaaResolve::advance_all(const DeviceFrames& frames, std::siz
     // A frame that starts a history resolves without motion, as the other advance_all gives it.
     const RasterTargets targets{(*images)[0], starts_history ? VK_NULL_HANDLE : (*images)[1],
                                 options_.dilate_motion ? (*images)[2] : VK_NULL_HANDLE};
-    if (starts_history) {
-        const Image* no_motion[] = {nullptr, nullptr, &nothing_, nullptr};
-        if (auto ok = pass_->upload(no_motion); !ok) return std::unexpected(ok.error());
-    }
+    if (starts_history)
+        if (auto ok = pass_->upload(kMotion, zeros_); !ok) return std::unexpected(ok.error());
     auto frame = frames.draw_into(index, targets, read_frame);
     if (!frame) return frame;
     if (auto ok = resolve_all(starts_history, read_outputs); !ok) return std::unexpected(ok.error());

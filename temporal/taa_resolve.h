@@ -73,7 +73,7 @@ private:
     std::unique_ptr<RectifyPass> pass_;
     std::vector<Image> outputs_; // one per shader, read back
     std::vector<std::string> names_;
-    Image motion_, nothing_; // nothing_: motion and depth where a frame has none
+    std::vector<float> zeros_; // two per pixel: the motion, or the depth, where a frame has none
 };
 
 } // namespace kdop
