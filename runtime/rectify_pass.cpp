@@ -17,14 +17,12 @@ namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-// The format of a texture of `channels` (1, 2 or 4) of the pass's format.
+// The format of a texture of `channels` of the pass's format (fewer than four: rgba32f passes only).
 VkFormat vk_format(TextureFormat f, std::uint32_t channels) {
-    const bool half = f == TextureFormat::rgba16f;
-    switch (channels) {
-    case 1: return half ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT;
-    case 2: return half ? VK_FORMAT_R16G16_SFLOAT : VK_FORMAT_R32G32_SFLOAT;
-    default: return half ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
-    }
+    if (f == TextureFormat::rgba16f) return VK_FORMAT_R16G16B16A16_SFLOAT;
+    return channels == 1   ? VK_FORMAT_R32_SFLOAT
+           : channels == 2 ? VK_FORMAT_R32G32_SFLOAT
+                           : VK_FORMAT_R32G32B32A32_SFLOAT;
 }
 VkDeviceSize texel_bytes(TextureFormat f, std::uint32_t channels) {
     return (f == TextureFormat::rgba16f ? 2 : 4) * VkDeviceSize(channels);
@@ -33,20 +31,15 @@ VkDeviceSize texel_bytes(TextureFormat f, std::uint32_t channels) {
 // The first `channels` of each pixel of `image`, in `format`, at `to`.
 void pack(const Image& image, TextureFormat format, std::uint32_t channels, std::byte* to) {
     const std::size_t pixels = image.pixels.size();
-    if (format == TextureFormat::rgba32f && channels == 4) {
+    if (format == TextureFormat::rgba16f) {
+        auto* halves = reinterpret_cast<std::uint64_t*>(to);
+        for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(image.pixels[k]);
+    } else if (channels == 4) {
         std::memcpy(to, image.pixels.data(), pixels * 16);
-    } else if (format == TextureFormat::rgba32f) {
+    } else {
         auto* floats = reinterpret_cast<float*>(to);
         for (std::size_t k = 0; k < pixels; ++k)
             for (std::uint32_t c = 0; c < channels; ++c) floats[k * channels + c] = image.pixels[k][int(c)];
-    } else if (channels == 4) {
-        auto* halves = reinterpret_cast<std::uint64_t*>(to);
-        for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(image.pixels[k]);
-    } else {
-        auto* halves = reinterpret_cast<std::uint16_t*>(to);
-        for (std::size_t k = 0; k < pixels; ++k)
-            for (std::uint32_t c = 0; c < channels; ++c)
-                halves[k * channels + c] = glm::packHalf1x16(image.pixels[k][int(c)]);
     }
 }
 
@@ -139,6 +132,9 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
         if (in.channels != 1 && in.channels != 2 && in.channels != 4)
             return fail(
                 fmt::format("input '{}' of {} channels: a rectify pass's have 1, 2 or 4", in.name, in.channels));
+        if (in.channels != 4 && format == TextureFormat::rgba16f)
+            return fail(
+                fmt::format("input '{}' of {} channels: an rgba16f pass's inputs have 4", in.name, in.channels));
         p->inputs_.push_back({std::move(in.name), in.channels, std::vector<Texture>(1)});
         if (auto ok = p->create_texture(p->inputs_.back().slots[0], vk_format(format, in.channels), input_usage); !ok)
             return std::unexpected(ok.error());

@@ -28,8 +28,9 @@ enum class TextureFormat {
 std::optional<TextureFormat> parse_texture_format(std::string_view s);
 const char* to_string(TextureFormat format);
 
-// An input texture: its name in the kernels and its channels (1, 2 or 4) of the pass's format. A
-// motion field needs two and a depth one, so a frame drawn on the device copies into them as it is.
+// An input texture: its name in the kernels and its channels (1, 2 or 4; fewer than four in rgba32f
+// passes only) of the pass's format. A motion field needs two and a depth one, so a frame drawn on
+// the device copies into them as it is.
 struct PassInput {
     std::string name;
     std::uint32_t channels = 4;
