@@ -121,8 +121,11 @@ public:
         const fs::path inside = fs::weakly_canonical(dir, ec), resolved = fs::weakly_canonical(path, ec);
         if (std::mismatch(inside.begin(), inside.end(), resolved.begin(), resolved.end()).first != inside.end())
             return std::unexpected(error(where, fmt::format("\"{}\" is outside the sequence's folder", shown)));
+        // Shown as the folder and the name as written, escaped: a name is the file's text, and may
+        // hold control bytes (found by tests/fuzz/sequence_fuzzer.cpp) or be any length.
         if (auto why = not_a_readable_file(path))
-            return std::unexpected(error(where, fmt::format("{}: {}", path.string(), *why)));
+            return std::unexpected(
+                error(where, fmt::format("{}: {}", terminal_text((dir / fs::path(shown)).string()), *why)));
         return path;
     }
 

@@ -206,6 +206,8 @@ TEST(Sequence, BadInputIsRefusedNamingTheFileAndTheReason) {
              s.json("{}", {s.frame(0), s.frame(1)});
              fs::remove(s / "color/0001.exr");
          }},
+        {"a missing file named with control bytes, shown escaped", R"(color/\x1b[31m\x7f.exr: does not exist)",
+         [](SequenceDir& s) { s.json("{}", {R"({"color": "color/\u001b[31m\u007f.exr"})"}); }},
         {"a frame file outside the folder", "frames[0].color: \"../elsewhere.exr\" is outside the sequence's folder",
          [](SequenceDir& s) { s.json("{}", {R"({"color": "../elsewhere.exr"})"}); }},
         {"no motion where a history is", "frames[1]: has no \"motion\" file",
