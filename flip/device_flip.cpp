@@ -45,6 +45,7 @@ struct Parameters {
     std::uint32_t width, height;
     float exposure_scale, exposure_where;
     std::uint32_t tone_mapper, maps;
+    std::uint32_t first_image = 0;
 };
 // Parameters::maps, the template's kMap* bits.
 constexpr std::uint32_t kMapFirstExposure = 1, kMapExposure = 2, kMapTerms = 4;
@@ -286,8 +287,12 @@ DeviceFlip::~DeviceFlip() {
 }
 
 Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
-                                    Result<void> (*check_values)(const Image&, const std::string&)) const {
+                                    Result<void> (*check_values)(const Image&, const std::string&),
+                                    Reference kept) const {
+    // An unchanged reference that the last evaluation took was checked then.
+    const bool checked = kept == Reference::unchanged && reference_planes_ && reference_planes_->image == &reference;
     for (auto [image, what] : {std::pair{&reference, "reference image"}, std::pair{&test, "test image"}}) {
+        if (image == &reference && checked) continue;
         if (image->width != width_ || image->height != height_)
             return fail(fmt::format("{}: {}x{}, but this FLIP evaluator was made for {}x{}", what, image->width,
                                     image->height, width_, height_));
@@ -298,23 +303,34 @@ Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
 
 Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, const Image& test,
                                                     std::optional<ToneMapper> tone_mapper,
-                                                    std::span<const Exposure> exposures, ReadBack read_back) {
-    const std::size_t n = std::size_t(width_) * height_;
-    auto* inputs = static_cast<std::byte*>(inputs_.mapped());
-    std::memcpy(inputs, reference.pixels.data(), n * 16);
-    std::memcpy(inputs + n * 16, test.pixels.data(), n * 16);
-
+                                                    std::span<const Exposure> exposures, ReadBack read_back,
+                                                    Reference kept) {
     const std::uint32_t mapper = !tone_mapper                        ? 0u
                                  : *tone_mapper == ToneMapper::aces  ? 1u
                                  : *tone_mapper == ToneMapper::hable ? 2u
                                                                      : 3u;
+    // The reference's upload and horizontal filters are kept where the caller says it is the
+    // last one and the planes still hold it at this exposure (Reference, in the header).
+    const bool keep_reference = kept == Reference::unchanged && exposures.size() == 1 && reference_planes_ &&
+                                reference_planes_->image == &reference &&
+                                reference_planes_->exposure_scale == exposures[0].scale &&
+                                reference_planes_->tone_mapper == mapper;
+    reference_planes_.reset(); // until this evaluation has run
+    const std::size_t n = std::size_t(width_) * height_;
+    auto* inputs = static_cast<std::byte*>(inputs_.mapped());
+    if (!keep_reference) std::memcpy(inputs, reference.pixels.data(), n * 16);
+    std::memcpy(inputs + n * 16, test.pixels.data(), n * 16);
+
     const std::uint32_t groups_x = ceil_div(width_, kLocalSize);
     const VkAccessFlags shader_rw = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     auto ran = commands_->run([&](VkCommandBuffer cb) {
-        // The planes are written before they are read in every evaluation: what they held is dropped.
-        image_barrier(cb, horizontal_.image(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, shader_rw,
-                      VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, compute, horizontal_.layers());
+        // The planes are written before they are read in every evaluation, so what they held is
+        // dropped, except the reference's where they are kept.
+        image_barrier(cb, horizontal_.image(), keep_reference ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_GENERAL, keep_reference ? shader_rw : 0, shader_rw,
+                      keep_reference ? compute : VkPipelineStageFlags(VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT), compute,
+                      horizontal_.layers());
         auto dispatch = [&](int pass, const Parameters& p, std::uint32_t x, std::uint32_t y, std::uint32_t z) {
             const Kernel& k = *kernels_[std::size_t(pass)];
             vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
@@ -331,14 +347,17 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
                                    (read_back == ReadBack::terms ? kMapTerms : 0u);
         for (std::size_t i = 0; i < exposures.size(); ++i) {
             const Exposure& e = exposures[i];
-            const Parameters p{width_, height_, e.scale, e.where, mapper, maps | (i == 0 ? kMapFirstExposure : 0u)};
-            dispatch(kHorizontal, p, ceil_div(ceil_div(width_, runs_[0]), kLocalSize), height_, 2);
+            const std::uint32_t first_image = keep_reference ? 1u : 0u; // image 0 is the reference
+            const Parameters p{width_,          height_, e.scale, e.where, mapper, maps | (i == 0 ? kMapFirstExposure : 0u),
+                               first_image};
+            dispatch(kHorizontal, p, ceil_div(ceil_div(width_, runs_[0]), kLocalSize), height_, 2 - first_image);
             dispatch(kVertical, p, groups_x, ceil_div(height_, runs_[1]), 1);
         }
         dispatch(kRowSums, Parameters{width_, height_, 1, 0, 0, 0}, ceil_div(height_, kLocalSize), 1, 1);
         compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
     });
     if (!ran) return std::unexpected(ran.error());
+    if (exposures.size() == 1) reference_planes_ = ReferencePlanes{&reference, exposures[0].scale, mapper};
 
     Evaluation out;
     const auto* rows = static_cast<const float*>(row_sums_.mapped());
@@ -362,25 +381,26 @@ Result<double> DeviceFlip::mean(const Image& reference, const Image& test) {
     return evaluated->mean;
 }
 
-Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map) {
-    if (auto ok = check_pair(reference, test, check_ldr_image); !ok) return std::unexpected(ok.error());
+Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map, Reference kept) {
+    if (auto ok = check_pair(reference, test, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(reference, test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean);
+    auto e = evaluate(reference, test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
     return FlipMap{e->mean, std::move(e->error)};
 }
 
 Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
-    if (auto ok = check_pair(reference, test, check_ldr_image); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_pair(reference, test, check_ldr_image, Reference::new_one); !ok)
+        return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(reference, test, std::nullopt, one, ReadBack::terms);
+    auto e = evaluate(reference, test, std::nullopt, one, ReadBack::terms, Reference::new_one);
     if (!e) return std::unexpected(e.error());
     return FlipTerms{std::move(e->color), std::move(e->feature), std::move(e->error)};
 }
 
 Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, const ExposureOptions& options,
-                                    bool read_maps) {
-    if (auto ok = check_pair(reference, test, check_hdr_image); !ok) return std::unexpected(ok.error());
+                                    bool read_maps, Reference kept) {
+    if (auto ok = check_pair(reference, test, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
     auto range = exposure_range(reference, options, &test);
     if (!range) return std::unexpected(range.error());
     std::vector<Exposure> exposures(std::size_t(range->count));
@@ -388,7 +408,7 @@ Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, c
         exposures[std::size_t(i)] = {std::pow(2.0f, range->exposure(i)),
                                      range->count == 1 ? 0.0f : float(i) / float(range->count - 1)};
     auto e = evaluate(reference, test, options.tone_mapper, exposures,
-                      read_maps ? ReadBack::error_and_exposure : ReadBack::mean);
+                      read_maps ? ReadBack::error_and_exposure : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
     HdrFlipMaps out;
     out.range = *range;

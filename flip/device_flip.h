@@ -56,18 +56,28 @@ public:
     // allocating anything, so a command can refuse a size before its work.
     static Result<void> check_limits(const Context& context, std::uint32_t width, std::uint32_t height);
 
+    // Whether the reference of an evaluation is the one of the call before: the same Image object,
+    // unchanged since, which only the caller knows (FLIP never reads back what it uploaded, which
+    // on a GPU lies in uncached memory). Its upload and its horizontal filters, half of that pass,
+    // are then kept from the evaluation before, when that one left them: one exposure (LDR-FLIP, or
+    // HDR-FLIP over a range of one), the same exposure and tone mapper, and no evaluation of
+    // another reference in between. Every variant's ghosting on a frame is measured against the
+    // same reference (temporal/taa_measure.h). The figures are the same bits either way.
+    enum class Reference { new_one, unchanged };
+
     // LDR-FLIP as LdrFlip computes it: linear RGB in [0, 1], both of the object's size; anything
     // else is an error naming the image, the pixel and the value, as LdrFlip's.
     Result<double> mean(const Image& reference, const Image& test);
     // The mean and, with `read_map`, the error map (LdrFlip::error_map's): the one map the mean
     // is taken of, read back instead of computed again.
-    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map);
+    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map,
+                        Reference kept = Reference::new_one);
     Result<FlipTerms> terms(const Image& reference, const Image& test);
 
     // HDR-FLIP as HdrFlip::maps computes it (inputs and range checked the same way). With
     // `read_maps` false only `range` and `mean` are filled: nothing per pixel comes back.
     Result<HdrFlipMaps> hdr(const Image& reference, const Image& test, const ExposureOptions& options,
-                            bool read_maps = true);
+                            bool read_maps = true, Reference kept = Reference::new_one);
 
 private:
     DeviceFlip(const Context& context, double ppd, std::uint32_t width, std::uint32_t height);
@@ -82,10 +92,11 @@ private:
     };
     enum class ReadBack { mean, error, error_and_exposure, terms };
     Result<Evaluation> evaluate(const Image& reference, const Image& test, std::optional<ToneMapper> tone_mapper,
-                                std::span<const Exposure> exposures, ReadBack read_back);
-    // Both images of the object's size, their values accepted by `check_values`.
+                                std::span<const Exposure> exposures, ReadBack read_back, Reference kept);
+    // Both images of the object's size, their values accepted by `check_values` (the reference
+    // once: not again where it is kept).
     Result<void> check_pair(const Image& reference, const Image& test,
-                            Result<void> (*check_values)(const Image&, const std::string&)) const;
+                            Result<void> (*check_values)(const Image&, const std::string&), Reference kept) const;
 
     const Context& context_;
     double ppd_;
@@ -100,6 +111,14 @@ private:
     DeviceBuffer inputs_, maps_, row_sums_;
     VkBufferView inputs_view_ = VK_NULL_HANDLE; // the inputs as the texel buffer the passes fetch from
     DeviceImage horizontal_;
+    // What the reference's planes in horizontal_ hold after an evaluation of one exposure: which
+    // reference (by address) at which exposure and tone mapper; nullopt after any other.
+    struct ReferencePlanes {
+        const Image* image = nullptr;
+        float exposure_scale = 1;
+        std::uint32_t tone_mapper = 0;
+    };
+    std::optional<ReferencePlanes> reference_planes_;
     std::unique_ptr<OneShotCommands> commands_;
 };
 

@@ -55,8 +55,8 @@ FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures) {
 }
 
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range,
-                              bool map) -> Result<FlipFigure> {
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
+                              bool) -> Result<FlipFigure> {
         if (range == ColorRange::ldr) { // LdrFlip::mean is the mean_error of this map
             auto error = flip.ldr().error_map(reference, test);
             if (!error) return std::unexpected(error.error());
@@ -69,14 +69,15 @@ FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
 }
 
 FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range,
-                              bool map) -> Result<FlipFigure> {
+    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
+                              bool same_reference) -> Result<FlipFigure> {
+        const auto kept = same_reference ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one;
         if (range == ColorRange::ldr) {
-            auto evaluated = flip.ldr(reference, test, map);
+            auto evaluated = flip.ldr(reference, test, map, kept);
             if (!evaluated) return std::unexpected(evaluated.error());
             return FlipFigure{evaluated->mean, {}, std::move(evaluated->error)};
         }
-        auto maps = flip.hdr(reference, test, exposures, map);
+        auto maps = flip.hdr(reference, test, exposures, map, kept);
         if (!maps) return std::unexpected(maps.error());
         return FlipFigure{maps->mean, maps->range.note, std::move(maps->error)};
     };
@@ -153,32 +154,36 @@ public:
         sequence_ = source.name();
     }
 
-    // Frame `i`'s output `current` (already within range) against `truth` and the previous output;
-    // with `map`, the map of the figure maps_show_ghosting names is kept (take_map()).
-    Result<void> measure(std::size_t i, const Image& truth, const Image& current, bool starts_history,
-                         const std::string& label, bool map) {
-        FrameFigures figures{sequence_, i};
-        map_.clear();
-        const bool ghosting_map = map && maps_show_ghosting(roles_);
-        if (roles_.ghosting) {
-            auto ghosting =
-                figure(truth, current, label,
-                       m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
-                       ghosting_map);
-            if (!ghosting) return std::unexpected(ghosting.error());
-            ghosting_sum_ += *ghosting;
-            figures.ghosting = *ghosting;
-        }
-        if (roles_.shimmer && !starts_history) {
-            auto shimmer =
-                figure(previous_, current, label, "shimmer against the previous output", map && !ghosting_map);
-            if (!shimmer) return std::unexpected(shimmer.error());
-            shimmer_sum_ += *shimmer;
-            ++shimmer_pairs_;
-            figures.shimmer = *shimmer;
-        }
-        m_.per_frame.push_back(std::move(figures));
+    // Frame `i` is measured: ghosting() and shimmer() give its figures, in either order.
+    void begin(std::size_t i) {
+        m_.per_frame.push_back(FrameFigures{sequence_, i});
         ++m_.frames;
+        map_.clear();
+    }
+    // The frame's output `current` (already within range) against `truth`; with `map`, the map of
+    // the figure maps_show_ghosting names is kept (take_map()). `same_truth`: `truth` is the
+    // reference of the FLIP call before, unchanged (FlipMean).
+    Result<void> ghosting(const Image& truth, const Image& current, const std::string& label, bool map,
+                          bool same_truth) {
+        if (!roles_.ghosting) return {};
+        auto ghosting =
+            figure(truth, current, label,
+                   m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
+                   map && maps_show_ghosting(roles_), same_truth);
+        if (!ghosting) return std::unexpected(ghosting.error());
+        ghosting_sum_ += *ghosting;
+        m_.per_frame.back().ghosting = *ghosting;
+        return {};
+    }
+    // The same output against the one kept last (none where the frame starts a history).
+    Result<void> shimmer(const Image& current, bool starts_history, const std::string& label, bool map) {
+        if (!roles_.shimmer || starts_history) return {};
+        auto shimmer = figure(previous_, current, label, "shimmer against the previous output",
+                              map && !maps_show_ghosting(roles_), false);
+        if (!shimmer) return std::unexpected(shimmer.error());
+        shimmer_sum_ += *shimmer;
+        ++shimmer_pairs_;
+        m_.per_frame.back().shimmer = *shimmer;
         return {};
     }
     void keep(Image output) { previous_ = std::move(output); }
@@ -201,8 +206,8 @@ public:
 private:
     // One figure of frame `label`, its error naming the frame and what was measured.
     Result<double> figure(const Image& reference, const Image& test, const std::string& label, const char* what,
-                          bool map) {
-        auto figure = (*flip_)(reference, test, m_.range, map);
+                          bool map, bool same_reference) {
+        auto figure = (*flip_)(reference, test, m_.range, map, same_reference);
         if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
         if (!figure->note.empty()) {
             auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
@@ -280,26 +285,38 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             frame = std::move(*read);
         }
         if (read_outputs) {
-            // Each shader's output is measured, then kept as the next frame's "previous" (what the
-            // observer sees of the frame: the maps carry what it is compared against).
-            for (std::size_t s = 0; s < resolve.size(); ++s) {
-                auto measured = [&]() -> Result<void> {
-                    auto output = within_range(resolve.take_output(s), range, label);
-                    if (!output) return std::unexpected(output.error());
-                    if (i >= warmup) {
-                        const Image& truth = against_reference ? *frame->reference : frame->color;
-                        if (auto ok = meters[s].measure(i, truth, *output, source.starts_history(i), label,
-                                                        maps && on_measured);
-                            !ok)
-                            return ok;
-                        if (on_output)
-                            if (auto ok = on_output(s, i, *output); !ok) return ok;
-                    }
-                    meters[s].keep(std::move(*output));
-                    return {};
-                }();
-                if (!measured) return fail(fmt::format("{}: {}", resolve.name(s), measured.error().message));
-            }
+            // Each shader's output is moved onto the range and measured, then kept as the next
+            // frame's "previous" (what the observer sees of the frame: the maps carry what it is
+            // compared against). Every shader's ghosting first: each is measured against the same
+            // truth, whose FLIP work the device keeps from one to the next.
+            const bool measured = i >= warmup;
+            const bool map = maps && on_measured;
+            std::vector<Image> outputs(resolve.size());
+            auto each_shader = [&](auto step) -> Result<void> {
+                for (std::size_t s = 0; s < resolve.size(); ++s)
+                    if (auto ok = step(s); !ok) return fail(fmt::format("{}: {}", resolve.name(s), ok.error().message));
+                return {};
+            };
+            auto ghosting = each_shader([&](std::size_t s) -> Result<void> {
+                auto output = within_range(resolve.take_output(s), range, label);
+                if (!output) return std::unexpected(output.error());
+                outputs[s] = std::move(*output);
+                if (!measured) return {};
+                meters[s].begin(i);
+                const Image& truth = against_reference ? *frame->reference : frame->color;
+                return meters[s].ghosting(truth, outputs[s], label, map, s > 0);
+            });
+            if (!ghosting) return std::unexpected(ghosting.error());
+            auto shimmer = each_shader([&](std::size_t s) -> Result<void> {
+                if (measured) {
+                    if (auto ok = meters[s].shimmer(outputs[s], source.starts_history(i), label, map); !ok) return ok;
+                    if (on_output)
+                        if (auto ok = on_output(s, i, outputs[s]); !ok) return ok;
+                }
+                meters[s].keep(std::move(outputs[s]));
+                return {};
+            });
+            if (!shimmer) return std::unexpected(shimmer.error());
             if (on_measured && i >= warmup) {
                 std::vector<FrameFigures> figures;
                 std::vector<const Image*> outputs;

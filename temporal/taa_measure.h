@@ -40,8 +40,10 @@ struct FlipFigure {
 // The mean FLIP of a pair, LDR-FLIP for an `ldr` range and HDR-FLIP for `hdr`, and with `map` its
 // per-pixel map too, where it is computed: the CPU code (cpu_flip_mean) or the device
 // (flip/device_flip.h, what kdop taa uses: the map it took the mean of, read back).
-using FlipMean =
-    std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range, bool map)>;
+// `same_reference`: the reference is the Image of the call before, unchanged, whose work the
+// device keeps (DeviceFlip::Reference); the figure is the same either way.
+using FlipMean = std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range,
+                                                  bool map, bool same_reference)>;
 // HDR-FLIP at `exposures` (by default each pair's range, derived from its reference, as
 // NVlabs/flip derives it). `flip` must outlive what this returns.
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});

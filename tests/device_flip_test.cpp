@@ -203,6 +203,51 @@ TEST(DeviceFlip, HugeValuesScoreAsOnTheCpu) {
     expect_quiet_validation();
 }
 
+// A reference kept from the evaluation before (DeviceFlip::Reference::unchanged: its upload and
+// horizontal filters skipped) gives every map and mean bit for bit as evaluated afresh, over tests
+// that differ, with another reference, an HDR-FLIP of several exposures and a refused pair in
+// between. And it is kept: a reference changed against the promise still scores as the old one.
+TEST(DeviceFlip, AKeptReferenceGivesTheFiguresOfAFreshOne) {
+    constexpr std::uint32_t w = 67, h = 43;
+    const Image reference = shapes(21, w, h, 0.0f), other = shapes(22, w, h, 0.1f);
+    const Image tests[] = {shapes(23, w, h, 0.03f), noise(24, w, h), shapes(25, w, h, -0.05f)};
+    auto fresh = device_flip(kPpd, w, h), kept = device_flip(kPpd, w, h);
+    ASSERT_TRUE(fresh && kept);
+    using Reference = DeviceFlip::Reference;
+    auto expect_same = [&](const Image& ref, const Image& test, Reference how, const std::string& what) {
+        SCOPED_TRACE(what);
+        auto expected = fresh->ldr(ref, test, true);
+        auto got = kept->ldr(ref, test, true, how);
+        ASSERT_TRUE(expected && got);
+        EXPECT_EQ(got->mean, expected->mean);
+        EXPECT_EQ(got->error, expected->error);
+    };
+    expect_same(reference, tests[0], Reference::unchanged, "nothing to keep yet");
+    expect_same(reference, tests[1], Reference::unchanged, "kept");
+    expect_same(reference, tests[2], Reference::unchanged, "kept again");
+    expect_same(other, tests[0], Reference::new_one, "another reference");
+    expect_same(reference, tests[1], Reference::unchanged, "after another reference");
+    Image bright = reference;
+    for (glm::vec4& p : bright.pixels) p *= glm::vec4(glm::vec3(40.0f), 1.0f);
+    ASSERT_TRUE(kept->hdr(bright, tests[0], {}, false));
+    expect_same(reference, tests[2], Reference::unchanged, "after HDR-FLIP's exposures");
+    Image negative = tests[0];
+    negative.at(3, 2).g = -1.0f;
+    EXPECT_FALSE(kept->ldr(reference, negative, false, Reference::unchanged));
+    expect_same(reference, tests[0], Reference::unchanged, "after a refused pair");
+
+    Image changed = reference; // one object, kept, then changed behind the promise
+    auto first = kept->ldr(changed, tests[1], false);
+    ASSERT_TRUE(first);
+    changed = other;
+    auto stale = kept->ldr(changed, tests[1], false, Reference::unchanged);
+    auto honest = kept->ldr(changed, tests[1], false);
+    ASSERT_TRUE(stale && honest);
+    EXPECT_EQ(stale->mean, first->mean) << "the planes of the reference kept";
+    EXPECT_NE(honest->mean, first->mean);
+    expect_quiet_validation();
+}
+
 TEST(DeviceFlip, IdenticalImagesGiveZero) {
     const auto [reference, test] = real_pair(64, 48);
     auto device = device_flip(kPpd, 64, 48);
