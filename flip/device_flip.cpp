@@ -46,6 +46,8 @@ struct Parameters {
     float exposure_scale, exposure_where;
     std::uint32_t tone_mapper, maps;
     std::uint32_t first_image = 0;
+    std::uint32_t hdr = 0;
+    float rounding = 0;
 };
 // Parameters::maps, the template's kMap* bits.
 constexpr std::uint32_t kMapFirstExposure = 1, kMapExposure = 2, kMapTerms = 4;
@@ -113,7 +115,7 @@ std::string constants(const LdrFlip& cpu, int pass, std::uint32_t run) {
 }
 
 Result<std::unique_ptr<RunnableVariant>> build_pass(const LdrFlip& cpu, int pass, std::uint32_t run) {
-    static constexpr const char* kNames[] = {"flip-horizontal", "flip-vertical", "flip-row-sums"};
+    static constexpr const char* kNames[] = {"flip-horizontal", "flip-vertical", "flip-row-sums", "flip-load"};
     auto source = find_embedded_file(kTemplate);
     if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
     BuiltVariant built;
@@ -203,9 +205,12 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
         Memory memory;
         const char* what;
     } allocations[] = {
-        {&f->inputs_, n * kInputBytes, VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT, Memory::host, "FLIP's inputs"},
+        {&f->inputs_, n * kInputBytes,
+         VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+         Memory::host, "FLIP's inputs"},
         {&f->maps_, n * kMapBytes, storage, Memory::host, "FLIP's maps"},
         {&f->row_sums_, 4ull * height, storage, Memory::host, "FLIP's row sums"},
+        {&f->outside_, 8, storage, Memory::host, "FLIP's count of values outside the range"},
     };
     for (const Allocation& a : allocations) {
         auto buffer = DeviceBuffer::create(context, a.size, a.usage, a.memory, a.what);
@@ -224,55 +229,68 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     auto commands = OneShotCommands::create(context);
     if (!commands) return std::unexpected(commands.error());
     f->commands_ = std::move(*commands);
+    // texelFetch ignores filtering and addressing; a combined image sampler still needs a sampler.
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = sampler.minFilter = VK_FILTER_NEAREST;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    KDOP_VK_TRY(vkCreateSampler(context.device(), &sampler, nullptr, &f->sampler_));
 
     // One set per pass, written once: each reads binding 0 and writes binding 1, a buffer, an image
-    // or (the inputs) a texel buffer.
+    // or (the inputs) a texel buffer. The load pass's source (its binding 0) is written per load,
+    // and it counts into binding 2.
     VkDevice device = context.device();
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 1}};
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 2},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool.maxSets = kPasses;
-    pool.poolSizeCount = 3;
+    pool.poolSizeCount = 4;
     pool.pPoolSizes = sizes;
     KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &f->descriptor_pool_));
-    using Binding = std::variant<const DeviceBuffer*, const DeviceImage*, const VkBufferView*>;
-    const Binding bindings[kPasses][2] = {
-        {&f->inputs_view_, &f->horizontal_}, {&f->horizontal_, &f->maps_}, {&f->maps_, &f->row_sums_}};
+    using Binding = std::variant<std::monostate, const DeviceBuffer*, const DeviceImage*, const VkBufferView*>;
+    const Binding bindings[kPasses][3] = {{&f->inputs_view_, &f->horizontal_, {}},
+                                          {&f->horizontal_, &f->maps_, {}},
+                                          {&f->maps_, &f->row_sums_, {}},
+                                          {{}, &f->inputs_view_, &f->outside_}};
     for (int pass = 0; pass < kPasses; ++pass) {
         const Kernel& kernel = *f->kernels_[std::size_t(pass)];
-        if (kernel.bindings().size() != 2)
-            return fail(
-                fmt::format("internal error: {} has {} bindings, not 2", kernel.name(), kernel.bindings().size()));
+        const std::size_t expected = pass == kLoad ? 3 : 2;
+        if (kernel.bindings().size() != expected)
+            return fail(fmt::format("internal error: {} has {} bindings, not {}", kernel.name(),
+                                    kernel.bindings().size(), expected));
         VkDescriptorSetLayout layout = kernel.set_layout();
         VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
         alloc.descriptorPool = f->descriptor_pool_;
         alloc.descriptorSetCount = 1;
         alloc.pSetLayouts = &layout;
         KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &f->sets_[std::size_t(pass)]));
-        VkDescriptorBufferInfo buffer_infos[2];
-        VkDescriptorImageInfo image_infos[2];
-        VkWriteDescriptorSet writes[2];
-        for (std::uint32_t b = 0; b < 2; ++b) {
-            writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            writes[b].dstSet = f->sets_[std::size_t(pass)];
-            writes[b].dstBinding = b;
-            writes[b].descriptorCount = 1;
+        VkDescriptorBufferInfo buffer_infos[3];
+        VkDescriptorImageInfo image_infos[3];
+        VkWriteDescriptorSet writes[3];
+        std::uint32_t count = 0;
+        for (std::uint32_t b = 0; b < 3; ++b) {
+            if (std::holds_alternative<std::monostate>(bindings[pass][b])) continue;
+            VkWriteDescriptorSet& w = writes[count++];
+            w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = f->sets_[std::size_t(pass)];
+            w.dstBinding = b;
+            w.descriptorCount = 1;
             if (auto* buffer = std::get_if<const DeviceBuffer*>(&bindings[pass][b])) {
                 buffer_infos[b] = {(*buffer)->buffer(), 0, VK_WHOLE_SIZE};
-                writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-                writes[b].pBufferInfo = &buffer_infos[b];
+                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                w.pBufferInfo = &buffer_infos[b];
             } else if (auto* texels = std::get_if<const VkBufferView*>(&bindings[pass][b])) {
-                writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
-                writes[b].pTexelBufferView = *texels;
+                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+                w.pTexelBufferView = *texels;
             } else {
                 image_infos[b] = {VK_NULL_HANDLE, std::get<const DeviceImage*>(bindings[pass][b])->view(),
                                   VK_IMAGE_LAYOUT_GENERAL};
-                writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-                writes[b].pImageInfo = &image_infos[b];
+                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+                w.pImageInfo = &image_infos[b];
             }
         }
-        vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+        vkUpdateDescriptorSets(device, count, writes, 0, nullptr);
     }
     return f;
 }
@@ -284,6 +302,7 @@ DeviceFlip::~DeviceFlip() {
     vkDeviceWaitIdle(context_.device());
     vkDestroyDescriptorPool(context_.device(), descriptor_pool_, nullptr);
     vkDestroyBufferView(context_.device(), inputs_view_, nullptr);
+    vkDestroySampler(context_.device(), sampler_, nullptr);
 }
 
 Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
@@ -301,7 +320,7 @@ Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
     return {};
 }
 
-Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, const Image& test,
+Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image* reference, const Image* test,
                                                     std::optional<ToneMapper> tone_mapper,
                                                     std::span<const Exposure> exposures, ReadBack read_back,
                                                     Reference kept) {
@@ -311,15 +330,15 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
                                                                      : 3u;
     // The reference's upload and horizontal filters are kept where the caller says it is the
     // last one and the planes still hold it at this exposure (Reference, in the header).
-    const bool keep_reference = kept == Reference::unchanged && exposures.size() == 1 && reference_planes_ &&
-                                reference_planes_->image == &reference &&
+    const bool keep_reference = reference && kept == Reference::unchanged && exposures.size() == 1 &&
+                                reference_planes_ && reference_planes_->image == reference &&
                                 reference_planes_->exposure_scale == exposures[0].scale &&
                                 reference_planes_->tone_mapper == mapper;
     reference_planes_.reset(); // until this evaluation has run
     const std::size_t n = std::size_t(width_) * height_;
     auto* inputs = static_cast<std::byte*>(inputs_.mapped());
-    if (!keep_reference) std::memcpy(inputs, reference.pixels.data(), n * 16);
-    std::memcpy(inputs + n * 16, test.pixels.data(), n * 16);
+    if (reference && !keep_reference) std::memcpy(inputs, reference->pixels.data(), n * 16);
+    if (test) std::memcpy(inputs + n * 16, test->pixels.data(), n * 16);
 
     const std::uint32_t groups_x = ceil_div(width_, kLocalSize);
     const VkAccessFlags shader_rw = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -348,7 +367,7 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
         for (std::size_t i = 0; i < exposures.size(); ++i) {
             const Exposure& e = exposures[i];
             const std::uint32_t first_image = keep_reference ? 1u : 0u; // image 0 is the reference
-            const Parameters p{width_,          height_, e.scale, e.where, mapper, maps | (i == 0 ? kMapFirstExposure : 0u),
+            const Parameters p{width_,     height_, e.scale, e.where, mapper, maps | (i == 0 ? kMapFirstExposure : 0u),
                                first_image};
             dispatch(kHorizontal, p, ceil_div(ceil_div(width_, runs_[0]), kLocalSize), height_, 2 - first_image);
             dispatch(kVertical, p, groups_x, ceil_div(height_, runs_[1]), 1);
@@ -357,7 +376,7 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image& reference, cons
         compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
     });
     if (!ran) return std::unexpected(ran.error());
-    if (exposures.size() == 1) reference_planes_ = ReferencePlanes{&reference, exposures[0].scale, mapper};
+    if (exposures.size() == 1 && reference) reference_planes_ = ReferencePlanes{reference, exposures[0].scale, mapper};
 
     Evaluation out;
     const auto* rows = static_cast<const float*>(row_sums_.mapped());
@@ -384,7 +403,7 @@ Result<double> DeviceFlip::mean(const Image& reference, const Image& test) {
 Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map, Reference kept) {
     if (auto ok = check_pair(reference, test, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(reference, test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
+    auto e = evaluate(&reference, &test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
     return FlipMap{e->mean, std::move(e->error)};
 }
@@ -393,7 +412,7 @@ Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
     if (auto ok = check_pair(reference, test, check_ldr_image, Reference::new_one); !ok)
         return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(reference, test, std::nullopt, one, ReadBack::terms, Reference::new_one);
+    auto e = evaluate(&reference, &test, std::nullopt, one, ReadBack::terms, Reference::new_one);
     if (!e) return std::unexpected(e.error());
     return FlipTerms{std::move(e->color), std::move(e->feature), std::move(e->error)};
 }
@@ -407,7 +426,7 @@ Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, c
     for (int i = 0; i < range->count; ++i)
         exposures[std::size_t(i)] = {std::pow(2.0f, range->exposure(i)),
                                      range->count == 1 ? 0.0f : float(i) / float(range->count - 1)};
-    auto e = evaluate(reference, test, options.tone_mapper, exposures,
+    auto e = evaluate(&reference, &test, options.tone_mapper, exposures,
                       read_maps ? ReadBack::error_and_exposure : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
     HdrFlipMaps out;
@@ -416,6 +435,128 @@ Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, c
     out.error = std::move(e->error);
     out.exposure = std::move(e->exposure);
     return out;
+}
+
+Result<std::optional<DeviceFlip::Outside>> DeviceFlip::load(Input input, VkImageView source, bool hdr, float rounding) {
+    if (input == Input::reference) reference_planes_.reset();
+    auto* outside = static_cast<std::uint32_t*>(outside_.mapped());
+    outside[0] = 0;          // the count
+    outside[1] = UINT32_MAX; // the first, as atomicMin finds it
+    VkDescriptorImageInfo image{sampler_, source, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = sets_[kLoad];
+    write.dstBinding = 0;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = &image;
+    // The set is not in use: every run waits for its commands to finish.
+    vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+    const Parameters p{width_, height_, 1, 0, 0, 0, input == Input::test ? 1u : 0u, hdr ? 1u : 0u, rounding};
+    auto ran = commands_->run([&](VkCommandBuffer cb) {
+        const Kernel& k = *kernels_[kLoad];
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &sets_[kLoad], 0, nullptr);
+        vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
+        vkCmdDispatch(cb, ceil_div(width_, kLocalSize), height_, 1);
+        // For the evaluation's passes and copies, and the host's count.
+        compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                            VK_PIPELINE_STAGE_HOST_BIT);
+    });
+    if (!ran) return std::unexpected(ran.error());
+    if (outside[0] == 0) return std::nullopt;
+    Outside o;
+    o.count = outside[0];
+    o.x = outside[1] % width_;
+    o.y = outside[1] / width_;
+    // An image outside is left as it was: its first pixel's values, for the message.
+    const std::size_t n = std::size_t(width_) * height_;
+    std::memcpy(&o.value,
+                static_cast<const std::byte*>(inputs_.mapped()) +
+                    (std::size_t(input == Input::test) * n + outside[1]) * 16,
+                16);
+    return o;
+}
+
+Image DeviceFlip::loaded(Input input) const {
+    Image image(width_, height_);
+    const std::size_t n = std::size_t(width_) * height_;
+    std::memcpy(image.pixels.data(),
+                static_cast<const std::byte*>(inputs_.mapped()) + std::size_t(input == Input::test) * n * 16, n * 16);
+    return image;
+}
+
+Result<void> DeviceFlip::keep_slots(std::size_t total) {
+    if (kept_.size() >= total) return {};
+    const std::size_t count = total - kept_.size();
+    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16;
+    for (std::size_t i = 0; i < count; ++i) {
+        auto buffer =
+            DeviceBuffer::create(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                 DeviceBuffer::Memory::device, "a kept image of FLIP's");
+        if (!buffer) return std::unexpected(buffer.error());
+        kept_.push_back(std::move(*buffer));
+    }
+    auto cleared = commands_->run([&](VkCommandBuffer cb) {
+        for (std::size_t i = kept_.size() - count; i < kept_.size(); ++i)
+            vkCmdFillBuffer(cb, kept_[i].buffer(), 0, VK_WHOLE_SIZE, 0);
+        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    });
+    if (!cleared) return std::unexpected(cleared.error());
+    return {};
+}
+
+Result<void> DeviceFlip::keep(Input input, std::size_t slot) {
+    if (slot >= kept_.size()) return fail(fmt::format("internal error: kept slot {} of {}", slot, kept_.size()));
+    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16;
+    auto copied = commands_->run([&](VkCommandBuffer cb) {
+        compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                        VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        const VkBufferCopy region{bytes * VkDeviceSize(input == Input::test), 0, bytes};
+        vkCmdCopyBuffer(cb, inputs_.buffer(), kept_[slot].buffer(), 1, &region);
+        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    });
+    if (!copied) return std::unexpected(copied.error());
+    return {};
+}
+
+Result<void> DeviceFlip::load_kept(std::size_t slot, Input input) {
+    if (slot >= kept_.size()) return fail(fmt::format("internal error: kept slot {} of {}", slot, kept_.size()));
+    if (input == Input::reference) reference_planes_.reset();
+    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16;
+    auto copied = commands_->run([&](VkCommandBuffer cb) {
+        // The passes before may still read the inputs this copy replaces.
+        compute_barrier(cb, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT);
+        const VkBufferCopy region{0, bytes * VkDeviceSize(input == Input::test), bytes};
+        vkCmdCopyBuffer(cb, kept_[slot].buffer(), inputs_.buffer(), 1, &region);
+        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT);
+    });
+    if (!copied) return std::unexpected(copied.error());
+    return {};
+}
+
+Result<FlipMap> DeviceFlip::ldr_loaded(const Image* reference, bool read_map, Reference kept) {
+    if (reference) {
+        if (reference->width != width_ || reference->height != height_)
+            return fail(fmt::format("reference image: {}x{}, but this FLIP evaluator was made for {}x{}",
+                                    reference->width, reference->height, width_, height_));
+        const bool checked = kept == Reference::unchanged && reference_planes_ && reference_planes_->image == reference;
+        if (!checked)
+            if (auto ok = check_ldr_image(*reference, "reference image"); !ok) return std::unexpected(ok.error());
+    }
+    const Exposure one[1];
+    auto e = evaluate(reference, nullptr, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
+    if (!e) return std::unexpected(e.error());
+    return FlipMap{e->mean, std::move(e->error)};
 }
 
 } // namespace kdop

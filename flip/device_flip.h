@@ -46,6 +46,7 @@ public:
     DeviceFlip& operator=(const DeviceFlip&) = delete;
 
     double pixels_per_degree() const { return ppd_; }
+    const Context& context() const { return context_; }
     std::uint32_t width() const { return width_; }
     std::uint32_t height() const { return height_; }
 
@@ -70,14 +71,42 @@ public:
     Result<double> mean(const Image& reference, const Image& test);
     // The mean and, with `read_map`, the error map (LdrFlip::error_map's): the one map the mean
     // is taken of, read back instead of computed again.
-    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map,
-                        Reference kept = Reference::new_one);
+    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map, Reference kept = Reference::new_one);
     Result<FlipTerms> terms(const Image& reference, const Image& test);
 
     // HDR-FLIP as HdrFlip::maps computes it (inputs and range checked the same way). With
     // `read_maps` false only `range` and `mean` are filled: nothing per pixel comes back.
     Result<HdrFlipMaps> hdr(const Image& reference, const Image& test, const ExposureOptions& options,
                             bool read_maps = true, Reference kept = Reference::new_one);
+
+    // ---- A pair loaded on the device: a TAA resolve's outputs measured where they are ----
+
+    // One image of the pair.
+    enum class Input { reference, test };
+    // Where a loaded image lay outside its range: how many pixels, and the first in row-major
+    // order with its value as it was.
+    struct Outside {
+        std::uint64_t count = 0;
+        std::uint32_t x = 0, y = 0;
+        glm::vec4 value{};
+    };
+    // Loads `input` from `source`, an rgba32f texture of the object's size on the same context's
+    // queue, which another pass left in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL (a resolve's output,
+    // temporal/taa_resolve.h), with no trip through the host: each value within `rounding` of the
+    // range, [0, 1] or with `hdr` [0, inf), moved onto it (within_range's rule, temporal/taa_measure.h),
+    // and where any lies further, what Outside says (nullopt where none does).
+    Result<std::optional<Outside>> load(Input input, VkImageView source, bool hdr, float rounding);
+    // The loaded image, read from the inputs (for what the host shows of a frame).
+    Image loaded(Input input) const;
+    // At least `count` slots, each a copy of a loaded image kept on the device (a resolve's
+    // previous output, for shimmer); new ones are cleared to zero.
+    Result<void> keep_slots(std::size_t count);
+    // Copies the loaded `input` into slot `slot`, or slot `slot` into `input`.
+    Result<void> keep(Input input, std::size_t slot);
+    Result<void> load_kept(std::size_t slot, Input input);
+    // LDR-FLIP with the test as loaded and the reference uploaded from `reference` or, where null,
+    // as loaded; what was loaded is not checked again.
+    Result<FlipMap> ldr_loaded(const Image* reference, bool read_map, Reference kept = Reference::new_one);
 
 private:
     DeviceFlip(const Context& context, double ppd, std::uint32_t width, std::uint32_t height);
@@ -91,7 +120,8 @@ private:
         std::vector<float> error, exposure, color, feature; // filled when asked for
     };
     enum class ReadBack { mean, error, error_and_exposure, terms };
-    Result<Evaluation> evaluate(const Image& reference, const Image& test, std::optional<ToneMapper> tone_mapper,
+    // Null images are as loaded on the device.
+    Result<Evaluation> evaluate(const Image* reference, const Image* test, std::optional<ToneMapper> tone_mapper,
                                 std::span<const Exposure> exposures, ReadBack read_back, Reference kept);
     // Both images of the object's size, their values accepted by `check_values` (the reference
     // once: not again where it is kept).
@@ -101,14 +131,16 @@ private:
     const Context& context_;
     double ppd_;
     std::uint32_t width_, height_;
-    enum { kHorizontal, kVertical, kRowSums, kPasses }; // the template's FLIP_PASS values
+    enum { kHorizontal, kVertical, kRowSums, kLoad, kPasses }; // the template's FLIP_PASS values
     std::array<std::unique_ptr<RunnableVariant>, kPasses> shaders_;
     std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
     std::array<VkDescriptorSet, kPasses> sets_{};
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     // Pixels per invocation of the horizontal and the vertical pass (run_length in the .cpp).
     std::array<std::uint32_t, 2> runs_{1, 1};
-    DeviceBuffer inputs_, maps_, row_sums_;
+    DeviceBuffer inputs_, maps_, row_sums_, outside_;
+    std::vector<DeviceBuffer> kept_;            // keep_slots()'s
+    VkSampler sampler_ = VK_NULL_HANDLE;        // load()'s source, fetched texel by texel
     VkBufferView inputs_view_ = VK_NULL_HANDLE; // the inputs as the texel buffer the passes fetch from
     DeviceImage horizontal_;
     // What the reference's planes in horizontal_ hold after an evaluation of one exposure: which

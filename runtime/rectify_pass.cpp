@@ -452,6 +452,14 @@ Result<void> RectifyPass::copy_output_to(std::string_view name) {
     return {};
 }
 
+Result<VkImageView> RectifyPass::view_to_sample(std::string_view name) {
+    auto in = input(name);
+    if (!in) return std::unexpected(in.error());
+    if (!(*in)->uploaded)
+        return fail(fmt::format("'{}' holds nothing yet: nothing was uploaded or copied there", name));
+    return (*in)->texture().view;
+}
+
 Result<std::vector<VkImage>> RectifyPass::images_to_fill(std::span<const std::string_view> names) {
     if (format_ != TextureFormat::rgba32f)
         return fail(fmt::format("a {} pass's inputs are filled by uploads only", to_string(format_)));

@@ -92,6 +92,11 @@ public:
     // VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, where dispatches sample them; each then counts as
     // uploaded. rgba32f passes only, whose inputs are the formats a draw's attachments copy into.
     Result<std::vector<VkImage>> images_to_fill(std::span<const std::string_view> names);
+    // The selected texture of input `name`, for another pass on the same queue to sample between
+    // this one's commands, in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL: what was uploaded, filled or
+    // copied there (copy_output_to; the TAA resolve's outputs, measured where they are). An input
+    // never filled is refused.
+    Result<VkImageView> view_to_sample(std::string_view name);
 
 private:
     struct Texture {

@@ -14,23 +14,29 @@
 
 namespace kdop {
 
+std::optional<std::string> outside_range(glm::vec4 pixel, ColorRange range, std::string_view what, std::uint32_t x,
+                                         std::uint32_t y) {
+    const bool hdr = range == ColorRange::hdr;
+    // Rounding scales with the colors the resolve blended: for HDR, the pixel's largest.
+    const float scale = hdr ? std::max({1.0f, pixel.r, pixel.g, pixel.b}) : 1.0f;
+    for (int c = 0; c < 3; ++c) {
+        const float v = pixel[c];
+        const bool within =
+            v >= -kOutputRounding * scale && (hdr ? std::isfinite(scale) : v <= 1 + kOutputRounding); // NaN fails
+        if (!within)
+            return fmt::format("{}: pixel ({}, {}) has {} {}, outside {} by more than rounding", what, x, y, "RGB"[c],
+                               v, hdr ? "[0, inf)" : "[0, 1]");
+    }
+    return std::nullopt;
+}
+
 Result<Image> within_range(Image frame, ColorRange range, std::string_view what) {
-    constexpr float kRounding = 1e-4f;
     const bool hdr = range == ColorRange::hdr;
     for (std::uint32_t y = 0; y < frame.height; ++y)
         for (std::uint32_t x = 0; x < frame.width; ++x) {
             glm::vec4& pixel = frame.at(x, y);
-            // Rounding scales with the colors the resolve blended: for HDR, the pixel's largest.
-            const float scale = hdr ? std::max({1.0f, pixel.r, pixel.g, pixel.b}) : 1.0f;
-            for (int c = 0; c < 3; ++c) {
-                float& v = pixel[c];
-                const bool within =
-                    v >= -kRounding * scale && (hdr ? std::isfinite(scale) : v <= 1 + kRounding); // NaN fails
-                if (!within)
-                    return fail(fmt::format("{}: pixel ({}, {}) has {} {}, outside {} by more than rounding", what, x,
-                                            y, "RGB"[c], v, hdr ? "[0, inf)" : "[0, 1]"));
-                v = hdr ? std::max(v, 0.0f) : std::clamp(v, 0.0f, 1.0f);
-            }
+            if (auto outside = outside_range(pixel, range, what, x, y)) return fail(std::move(*outside));
+            for (int c = 0; c < 3; ++c) pixel[c] = hdr ? std::max(pixel[c], 0.0f) : std::clamp(pixel[c], 0.0f, 1.0f);
         }
     return frame;
 }
@@ -55,8 +61,8 @@ FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures) {
 }
 
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
-                              bool) -> Result<FlipFigure> {
+    return FlipMean{[&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
+                                       bool) -> Result<FlipFigure> {
         if (range == ColorRange::ldr) { // LdrFlip::mean is the mean_error of this map
             auto error = flip.ldr().error_map(reference, test);
             if (!error) return std::unexpected(error.error());
@@ -65,22 +71,24 @@ FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
         auto maps = flip.maps(reference, test, exposures);
         if (!maps) return std::unexpected(maps.error());
         return FlipFigure{maps->mean, maps->range.note, map ? std::move(maps->error) : std::vector<float>{}};
-    };
+    }};
 }
 
 FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
-    return [&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
-                              bool same_reference) -> Result<FlipFigure> {
-        const auto kept = same_reference ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one;
-        if (range == ColorRange::ldr) {
-            auto evaluated = flip.ldr(reference, test, map, kept);
-            if (!evaluated) return std::unexpected(evaluated.error());
-            return FlipFigure{evaluated->mean, {}, std::move(evaluated->error)};
-        }
-        auto maps = flip.hdr(reference, test, exposures, map, kept);
-        if (!maps) return std::unexpected(maps.error());
-        return FlipFigure{maps->mean, maps->range.note, std::move(maps->error)};
-    };
+    return FlipMean{[&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
+                                       bool same_reference) -> Result<FlipFigure> {
+                        const auto kept =
+                            same_reference ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one;
+                        if (range == ColorRange::ldr) {
+                            auto evaluated = flip.ldr(reference, test, map, kept);
+                            if (!evaluated) return std::unexpected(evaluated.error());
+                            return FlipFigure{evaluated->mean, {}, std::move(evaluated->error)};
+                        }
+                        auto maps = flip.hdr(reference, test, exposures, map, kept);
+                        if (!maps) return std::unexpected(maps.error());
+                        return FlipFigure{maps->mean, maps->range.note, std::move(maps->error)};
+                    },
+                    &flip};
 }
 
 Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip,
@@ -146,9 +154,12 @@ Result<void> check_range(const Image& image, ColorRange range, const std::string
 namespace {
 
 // One shader's measurement as the frames go by: its previous output, its sums and the notes it met.
+// Its outputs are Images on the host, or, measured on the device (`on_device`), what DeviceFlip
+// loaded there, with the previous one kept in the device's slot `slot`.
 class Meter {
 public:
-    Meter(const FrameSource& source, const FlipMean& flip) : flip_(&flip), roles_(source.roles()) {
+    Meter(const FrameSource& source, const FlipMean& flip, bool on_device, std::size_t slot)
+        : flip_(&flip), on_device_(on_device), slot_(slot), roles_(source.roles()) {
         m_.against_reference = source.has_reference();
         m_.range = source.color_range();
         sequence_ = source.name();
@@ -160,34 +171,53 @@ public:
         ++m_.frames;
         map_.clear();
     }
-    // The frame's output `current` (already within range) against `truth`; with `map`, the map of
-    // the figure maps_show_ghosting names is kept (take_map()). `same_truth`: `truth` is the
-    // reference of the FLIP call before, unchanged (FlipMean).
-    Result<void> ghosting(const Image& truth, const Image& current, const std::string& label, bool map,
+    // The frame's output `current` (already within range; on the device, null: the one loaded
+    // there) against `truth`; with `map`, the map of the figure maps_show_ghosting names is kept
+    // (take_map()). `same_truth`: `truth` is the reference of the FLIP call before, unchanged
+    // (FlipMean).
+    Result<void> ghosting(const Image& truth, const Image* current, const std::string& label, bool map,
                           bool same_truth) {
         if (!roles_.ghosting) return {};
-        auto ghosting =
-            figure(truth, current, label,
-                   m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
-                   map && maps_show_ghosting(roles_), same_truth);
+        const bool keep_map = map && maps_show_ghosting(roles_);
+        auto ghosting = figure(
+            label, m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
+            keep_map, [&]() -> Result<FlipFigure> {
+                if (!on_device_) return (*flip_)(truth, *current, m_.range, keep_map, same_truth);
+                auto ldr = flip_->device->ldr_loaded(
+                    &truth, keep_map, same_truth ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one);
+                if (!ldr) return std::unexpected(ldr.error());
+                return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
+            });
         if (!ghosting) return std::unexpected(ghosting.error());
         ghosting_sum_ += *ghosting;
         m_.per_frame.back().ghosting = *ghosting;
         return {};
     }
     // The same output against the one kept last (none where the frame starts a history).
-    Result<void> shimmer(const Image& current, bool starts_history, const std::string& label, bool map) {
+    Result<void> shimmer(const Image* current, bool starts_history, const std::string& label, bool map) {
         if (!roles_.shimmer || starts_history) return {};
-        auto shimmer = figure(previous_, current, label, "shimmer against the previous output",
-                              map && !maps_show_ghosting(roles_), false);
+        const bool keep_map = map && !maps_show_ghosting(roles_);
+        auto shimmer = figure(label, "shimmer against the previous output", keep_map, [&]() -> Result<FlipFigure> {
+            if (!on_device_) return (*flip_)(previous_, *current, m_.range, keep_map, false);
+            if (auto ok = flip_->device->load_kept(slot_, DeviceFlip::Input::reference); !ok)
+                return std::unexpected(ok.error());
+            auto ldr = flip_->device->ldr_loaded(nullptr, keep_map);
+            if (!ldr) return std::unexpected(ldr.error());
+            return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
+        });
         if (!shimmer) return std::unexpected(shimmer.error());
         shimmer_sum_ += *shimmer;
         ++shimmer_pairs_;
         m_.per_frame.back().shimmer = *shimmer;
         return {};
     }
-    void keep(Image output) { previous_ = std::move(output); }
-    // The output kept last (the frame's, once kept), and the figures of the frame measured last.
+    // Keeps the frame's output as the next one's previous: `output`, or on the device the one loaded.
+    Result<void> keep(Image output) {
+        if (on_device_) return flip_->device->keep(DeviceFlip::Input::test, slot_);
+        previous_ = std::move(output);
+        return {};
+    }
+    // The output kept last on the host (the frame's, once kept).
     const Image& output() const { return previous_; }
     const FrameFigures& last_figures() const { return m_.per_frame.back(); }
     // The map kept by the last measure() (empty where none was asked for or measured).
@@ -204,10 +234,11 @@ public:
     }
 
 private:
-    // One figure of frame `label`, its error naming the frame and what was measured.
-    Result<double> figure(const Image& reference, const Image& test, const std::string& label, const char* what,
-                          bool map, bool same_reference) {
-        auto figure = (*flip_)(reference, test, m_.range, map, same_reference);
+    // One figure of frame `label` as `evaluate` gives it, its error naming the frame and what was
+    // measured.
+    Result<double> figure(const std::string& label, const char* what, bool map,
+                          const std::function<Result<FlipFigure>()>& evaluate) {
+        auto figure = evaluate();
         if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
         if (!figure->note.empty()) {
             auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
@@ -222,6 +253,8 @@ private:
         std::size_t more = 0;
     };
     const FlipMean* flip_;
+    bool on_device_;
+    std::size_t slot_;
     SequenceRoles roles_;
     std::string sequence_;
     SequenceMeasurement m_;
@@ -245,7 +278,17 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
     const ColorRange range = source.color_range();
     const bool against_reference = source.has_reference();
-    std::vector<Meter> meters(resolve.size(), Meter(source, flip));
+    // Measured on the device (the device's FLIP on the resolve's queue, LDR): each output is
+    // checked, moved onto the range and measured where the resolve leaves it, and comes back only
+    // for an observer. HDR-FLIP's exposure range is derived on the host, from both images.
+    DeviceFlip* device = flip.device && range == ColorRange::ldr && &flip.device->context() == &resolve.context()
+                             ? flip.device
+                             : nullptr;
+    if (device)
+        if (auto ok = device->keep_slots(resolve.size()); !ok) return std::unexpected(ok.error());
+    const bool observed = on_output || on_measured;
+    std::vector<Meter> meters;
+    for (std::size_t s = 0; s < resolve.size(); ++s) meters.emplace_back(source, flip, device != nullptr, s);
     // Files are read (and decoded) on a worker a frame ahead, in order, while the device works.
     std::optional<Prefetch<Result<LoadedFrame>>> ahead;
     if (source.reads_ahead()) ahead.emplace(count, 1, [&source](std::size_t i) { return source.frame(i); });
@@ -254,8 +297,9 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
     const DeviceFrames* on_device = ahead ? nullptr : source.device_frames();
     for (std::size_t i = 0; i < count; ++i) {
         const std::string label = source.frame_label(i);
-        // Outputs come back from the frame before the first measured (its shimmer's previous) on.
-        const bool read_outputs = i + 1 >= warmup;
+        // Outputs are checked from the frame before the first measured (its shimmer's previous)
+        // on, and come back to the host for it unless measured on the device.
+        const bool check_outputs = i + 1 >= warmup, read_outputs = check_outputs && !device;
         // Each frame is drawn or read once, and checked once where it reaches the host, whatever the
         // number of shaders.
         auto check = [&](const LoadedFrame& frame) -> Result<void> {
@@ -284,11 +328,10 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                 return fail(fmt::format("{}: {}", label, ok.error().message));
             frame = std::move(*read);
         }
-        if (read_outputs) {
+        if (check_outputs) {
             // Each shader's output is moved onto the range and measured, then kept as the next
             // frame's "previous" (what the observer sees of the frame: the maps carry what it is
-            // compared against). Every shader's ghosting first: each is measured against the same
-            // truth, whose FLIP work the device keeps from one to the next.
+            // compared against).
             const bool measured = i >= warmup;
             const bool map = maps && on_measured;
             std::vector<Image> outputs(resolve.size());
@@ -297,39 +340,70 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                     if (auto ok = step(s); !ok) return fail(fmt::format("{}: {}", resolve.name(s), ok.error().message));
                 return {};
             };
-            auto ghosting = each_shader([&](std::size_t s) -> Result<void> {
-                auto output = within_range(resolve.take_output(s), range, label);
-                if (!output) return std::unexpected(output.error());
-                outputs[s] = std::move(*output);
-                if (!measured) return {};
-                meters[s].begin(i);
-                const Image& truth = against_reference ? *frame->reference : frame->color;
-                return meters[s].ghosting(truth, outputs[s], label, map, s > 0);
-            });
-            if (!ghosting) return std::unexpected(ghosting.error());
-            auto shimmer = each_shader([&](std::size_t s) -> Result<void> {
+            // On the device each shader's output is loaded once and measured whole.
+            auto on_the_device = [&](std::size_t s) -> Result<void> {
+                auto view = resolve.output_on_device(s);
+                if (!view) return std::unexpected(view.error());
+                auto outside = device->load(DeviceFlip::Input::test, *view, false, kOutputRounding);
+                if (!outside) return std::unexpected(outside.error());
+                if (*outside) {
+                    const DeviceFlip::Outside& o = **outside;
+                    auto why = outside_range(o.value, range, label, o.x, o.y);
+                    return fail(why ? *why
+                                    : fmt::format("internal error: {}: pixel ({}, {}) is outside the range on the "
+                                                  "device, not on the host",
+                                                  label, o.x, o.y));
+                }
                 if (measured) {
-                    if (auto ok = meters[s].shimmer(outputs[s], source.starts_history(i), label, map); !ok) return ok;
+                    meters[s].begin(i);
+                    const Image& truth = against_reference ? *frame->reference : frame->color;
+                    if (auto ok = meters[s].ghosting(truth, nullptr, label, map, s > 0); !ok) return ok;
+                    if (auto ok = meters[s].shimmer(nullptr, source.starts_history(i), label, map); !ok) return ok;
+                    if (observed) outputs[s] = device->loaded(DeviceFlip::Input::test);
                     if (on_output)
                         if (auto ok = on_output(s, i, outputs[s]); !ok) return ok;
                 }
-                meters[s].keep(std::move(outputs[s]));
-                return {};
-            });
-            if (!shimmer) return std::unexpected(shimmer.error());
+                return meters[s].keep({});
+            };
+            if (device) {
+                if (auto ok = each_shader(on_the_device); !ok) return std::unexpected(ok.error());
+            } else {
+                // On the host, every shader's ghosting first: each is measured against the same truth,
+                // whose FLIP work the device keeps from one to the next.
+                auto ghosting = each_shader([&](std::size_t s) -> Result<void> {
+                    auto output = within_range(resolve.take_output(s), range, label);
+                    if (!output) return std::unexpected(output.error());
+                    outputs[s] = std::move(*output);
+                    if (!measured) return {};
+                    meters[s].begin(i);
+                    const Image& truth = against_reference ? *frame->reference : frame->color;
+                    return meters[s].ghosting(truth, &outputs[s], label, map, s > 0);
+                });
+                if (!ghosting) return std::unexpected(ghosting.error());
+                auto shimmer = each_shader([&](std::size_t s) -> Result<void> {
+                    if (measured) {
+                        if (auto ok = meters[s].shimmer(&outputs[s], source.starts_history(i), label, map); !ok)
+                            return ok;
+                        if (on_output)
+                            if (auto ok = on_output(s, i, outputs[s]); !ok) return ok;
+                    }
+                    return meters[s].keep(std::move(outputs[s]));
+                });
+                if (!shimmer) return std::unexpected(shimmer.error());
+            }
             if (on_measured && i >= warmup) {
                 std::vector<FrameFigures> figures;
-                std::vector<const Image*> outputs;
+                std::vector<const Image*> shown_outputs;
                 std::vector<std::vector<float>> frame_maps;
                 for (std::size_t s = 0; s < resolve.size(); ++s) {
                     figures.push_back(meters[s].last_figures());
-                    outputs.push_back(&meters[s].output());
+                    shown_outputs.push_back(device ? &outputs[s] : &meters[s].output());
                     if (maps) frame_maps.push_back(meters[s].take_map());
                 }
                 const MeasuredFrame shown{.sequence = source.name(),
                                           .index = i,
                                           .figures = figures,
-                                          .outputs = outputs,
+                                          .outputs = shown_outputs,
                                           .maps = frame_maps,
                                           .truth = against_reference ? &*frame->reference : &frame->color};
                 if (auto ok = on_measured(shown); !ok) return fail(fmt::format("{}: {}", label, ok.error().message));

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -42,8 +43,20 @@ struct FlipFigure {
 // (flip/device_flip.h, what kdop taa uses: the map it took the mean of, read back).
 // `same_reference`: the reference is the Image of the call before, unchanged, whose work the
 // device keeps (DeviceFlip::Reference); the figure is the same either way.
-using FlipMean = std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range,
-                                                  bool map, bool same_reference)>;
+struct FlipMean {
+    std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range, bool map,
+                                     bool same_reference)>
+        pair;
+    // The device's FLIP where it computes: on the resolve's queue it measures LDR outputs where the
+    // resolve leaves them, checked and moved onto the range there (DeviceFlip::load), so only the
+    // figures come back, and the outputs only for an observer.
+    DeviceFlip* device = nullptr;
+
+    Result<FlipFigure> operator()(const Image& reference, const Image& test, ColorRange range, bool map,
+                                  bool same_reference) const {
+        return pair(reference, test, range, map, same_reference);
+    }
+};
 // HDR-FLIP at `exposures` (by default each pair's range, derived from its reference, as
 // NVlabs/flip derives it). `flip` must outlive what this returns.
 FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});
@@ -172,5 +185,11 @@ Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene,
 // are moved onto the range; anything further, or not finite (a bug, not rounding), is an error
 // naming the pixel. The frame is checked and moved onto the range in place.
 Result<Image> within_range(Image frame, ColorRange range, std::string_view what);
+// How far outside the range within_range lets a value lie (times the scale it says).
+constexpr float kOutputRounding = 1e-4f;
+// within_range's error for pixel (x, y) of `what`, where it holds a value outside; nullopt where it
+// holds none.
+std::optional<std::string> outside_range(glm::vec4 pixel, ColorRange range, std::string_view what, std::uint32_t x,
+                                         std::uint32_t y);
 
 } // namespace kdop

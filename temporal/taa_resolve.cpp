@@ -25,7 +25,7 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
                                                        const ResolveOptions& options, std::vector<std::string> names) {
     if (shaders.empty()) return fail("a resolve of no shader");
     if (!names.empty() && names.size() != shaders.size()) return fail("a resolve's shaders and names differ in count");
-    std::unique_ptr<TaaResolve> r(new TaaResolve(width, height, options));
+    std::unique_ptr<TaaResolve> r(new TaaResolve(context, width, height, options));
     r->names_ = std::move(names);
     if (r->names_.empty())
         for (const Variant* shader : shaders) r->names_.push_back(shader->name);
@@ -91,6 +91,11 @@ Result<LoadedFrame> TaaResolve::advance_all(const DeviceFrames& frames, std::siz
     if (!frame) return frame;
     if (auto ok = resolve_all(starts_history, read_outputs); !ok) return std::unexpected(ok.error());
     return frame;
+}
+
+Result<VkImageView> TaaResolve::output_on_device(std::size_t s) {
+    if (auto ok = pass_->select_slot(kHistory, s); !ok) return std::unexpected(ok.error());
+    return pass_->view_to_sample(kHistory);
 }
 
 Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs) {

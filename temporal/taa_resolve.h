@@ -39,6 +39,7 @@ public:
                                                       const ResolveOptions& options);
 
     std::size_t size() const { return kernels_.size(); }
+    const Context& context() const { return *context_; }
     const std::string& name(std::size_t s) const { return names_[s]; }
 
     // One frame through every shader: reproject its history by the frame's motion, rectify, blend.
@@ -57,16 +58,22 @@ public:
     Result<LoadedFrame> advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
                                     bool read_outputs, bool read_frame);
 
+    // Shader `s`'s output of the last frame where it stays on the device (its next history), read
+    // back or not, for another pass on the same queue to sample until the next frame
+    // (DeviceFlip::load: the outputs measured where they are).
+    Result<VkImageView> output_on_device(std::size_t s);
+
     // The same for the first shader alone, returning its output.
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);
 
 private:
-    TaaResolve(std::uint32_t width, std::uint32_t height, const ResolveOptions& options)
-        : options_(options), width_(width), height_(height) {}
+    TaaResolve(const Context& context, std::uint32_t width, std::uint32_t height, const ResolveOptions& options)
+        : context_(&context), options_(options), width_(width), height_(height) {}
     // Every shader on the frame in the inputs: its history, its dispatch, its output kept as its
     // next history and, with `read_outputs`, read back.
     Result<void> resolve_all(bool starts_history, bool read_outputs);
 
+    const Context* context_;
     ResolveOptions options_;
     std::uint32_t width_, height_;
     std::vector<std::unique_ptr<Kernel>> kernels_;

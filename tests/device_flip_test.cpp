@@ -6,6 +6,8 @@
 #include "flip/device_flip.h"
 #include "flip/hdr_flip.h"
 #include "images/texture_cases.h"
+#include "runtime/rectify_pass.h"
+#include "temporal/taa_measure.h"
 #include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -245,6 +248,67 @@ TEST(DeviceFlip, AKeptReferenceGivesTheFiguresOfAFreshOne) {
     ASSERT_TRUE(stale && honest);
     EXPECT_EQ(stale->mean, first->mean) << "the planes of the reference kept";
     EXPECT_NE(honest->mean, first->mean);
+    expect_quiet_validation();
+}
+
+// An image loaded from a texture on the device (a resolve's output, measured where it is) is
+// what within_range (temporal/taa_measure.h) makes of it on the host, bit for bit: values within
+// rounding of the range moved onto it, -0 kept. One with values further out, NaN or (HDR) infinite
+// is counted, its first pixel in row-major order found, and that pixel's values give the host's
+// message word for word.
+TEST(DeviceFlip, ALoadedOutputIsWhatWithinRangeMakesOfIt) {
+    constexpr std::uint32_t w = 37, h = 11;
+    auto device = device_flip(kPpd, w, h);
+    auto pass = RectifyPass::create(test::gpu(), w, h, TextureFormat::rgba32f, std::vector<std::string>{"output"});
+    ASSERT_TRUE(device && pass);
+    auto load = [&](const Image& image, ColorRange range) -> Result<std::optional<DeviceFlip::Outside>> {
+        const Image* images[] = {&image};
+        if (auto ok = (*pass)->upload(images); !ok) return std::unexpected(ok.error());
+        auto view = (*pass)->view_to_sample("output");
+        if (!view) return std::unexpected(view.error());
+        return device->load(DeviceFlip::Input::test, *view, range == ColorRange::hdr, kOutputRounding);
+    };
+    for (ColorRange range : {ColorRange::ldr, ColorRange::hdr}) {
+        const bool hdr = range == ColorRange::hdr;
+        SCOPED_TRACE(hdr ? "hdr" : "ldr");
+        Image image = noise(31, w, h);
+        for (glm::vec4& p : image.pixels) p *= glm::vec4(glm::vec3(hdr ? 50.0f : 1.0f), 1.0f);
+        image.at(0, 0) = {-5e-5f, 1.00005f, -0.0f, 0.5f}; // rounding both ways
+        image.at(1, 0) = {0.0f, 1.0f, 1e-30f, 1.0f};
+        image.at(2, 0) = {-2e-3f, 40.0f, 1.0f, 1.0f}; // HDR: within rounding of a bright pixel
+        auto expected = within_range(image, range, "out");
+        if (!hdr) {
+            EXPECT_FALSE(expected) << "LDR: (2, 0) lies outside";
+            image.at(2, 0) = {0.5f, 0.5f, 0.5f, 1.0f};
+            expected = within_range(image, range, "out");
+        }
+        ASSERT_TRUE(expected) << expected.error().message;
+        auto loaded = load(image, range);
+        ASSERT_TRUE(loaded) << loaded.error().message;
+        EXPECT_FALSE(*loaded);
+        const Image got = device->loaded(DeviceFlip::Input::test);
+        EXPECT_EQ(std::memcmp(got.pixels.data(), expected->pixels.data(), got.pixels.size() * sizeof(glm::vec4)), 0);
+        EXPECT_TRUE(std::signbit(got.at(0, 0).b)) << "-0 kept";
+
+        const float bad[] = {hdr ? -0.01f : 1.01f, NAN, hdr ? INFINITY : -0.5f};
+        for (float value : bad) {
+            Image outside = image;
+            outside.at(30, 9).g = value;
+            outside.at(4, 6).b = value;
+            outside.at(9, 6).r = value;
+            auto message = within_range(outside, range, "out");
+            ASSERT_FALSE(message) << value;
+            auto found = load(outside, range);
+            ASSERT_TRUE(found) << found.error().message;
+            ASSERT_TRUE(*found) << value << " passed";
+            EXPECT_EQ((*found)->count, 3u) << value;
+            EXPECT_EQ((*found)->x, 4u);
+            EXPECT_EQ((*found)->y, 6u);
+            EXPECT_EQ(outside_range((*found)->value, range, "out", (*found)->x, (*found)->y),
+                      std::optional(message.error().message))
+                << value;
+        }
+    }
     expect_quiet_validation();
 }
 

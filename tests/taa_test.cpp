@@ -318,7 +318,9 @@ TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
 }
 
 // kdop taa measures on the device (flip/device_flip.h): the figures are the CPU code's, within
-// DeviceFlip's tolerance of 1e-6 relative per mean.
+// DeviceFlip's tolerance of 1e-6 relative per mean, and, with the outputs measured where the
+// resolve leaves them, bit for bit those of the same FLIP fed outputs read back (the trail
+// picture's frame too).
 TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     constexpr std::uint32_t w = 64, h = 36;
     const Image background = make_texture(TextureFamily::grass, w, h, 2);
@@ -329,13 +331,16 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     const FlipMean on_device = device_flip_mean(**device);
     auto shader = taa_shader("dop16-grass", Mode::clip);
     ASSERT_TRUE(shader);
+    FlipMean read_back = on_device;
+    read_back.device = nullptr;
     const TaaSchedule schedule{8, 5};
-    TaaMeasurement m[2];
-    for (int i = 0; i < 2; ++i) {
+    TaaMeasurement m[3];
+    const FlipMean* means[] = {nullptr, &on_device, &read_back};
+    for (int i = 0; i < 3; ++i) {
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
         auto measured =
-            measure_scene(*resolve, SpriteScene("grass", background), schedule, i ? on_device : cpu_flip_mean(flip));
+            measure_scene(*resolve, SpriteScene("grass", background), schedule, i ? *means[i] : cpu_flip_mean(flip));
         ASSERT_TRUE(measured) << measured.error().message;
         m[i] = std::move(*measured);
     }
@@ -343,6 +348,11 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     ASSERT_GT(m[0].ghosting, 0.0);
     EXPECT_NEAR(m[1].shimmer, m[0].shimmer, 1e-6 * m[0].shimmer);
     EXPECT_NEAR(m[1].ghosting, m[0].ghosting, 1e-6 * m[0].ghosting);
+    EXPECT_EQ(m[1].shimmer, m[2].shimmer);
+    EXPECT_EQ(m[1].ghosting, m[2].ghosting);
+    ASSERT_EQ(m[1].trail.pixels.size(), m[2].trail.pixels.size());
+    EXPECT_GT(m[1].trail.pixels.size(), 0u);
+    EXPECT_EQ(std::memcmp(m[1].trail.pixels.data(), m[2].trail.pixels.data(), m[1].trail.pixels.size() * 16), 0);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 // The 3-D testbed (testbed/): rasterized on lavapipe with the validation layer on, its samples,
 // depth and motion checked against what the camera and the scene's transforms say, independently
 // of the shaders that drew them.
+#include "flip/device_flip.h"
 #include "flip/flip.h"
 #include "flip/hdr_flip.h"
 #include "sequence/jitter.h"
@@ -415,6 +416,23 @@ TEST_F(Testbed, FramesDrawnIntoTheResolveGiveTheOutputsOfFramesReadBack) {
             EXPECT_GT((*figures)[s].ghosting, 0.0);
             EXPECT_EQ((*figures)[s].ghosting, (*figures_read)[s].ghosting) << variants[s]->name;
             EXPECT_EQ((*figures)[s].shimmer, (*figures_read)[s].shimmer) << variants[s]->name;
+        }
+        // And with the device's FLIP: drawn, resolved and measured on the device (outputs loaded
+        // where they are), what the same FLIP gives frames and outputs read back and uploaded.
+        auto device = DeviceFlip::create(test::gpu(), pixels_per_degree(ViewingConditions{}), w, h);
+        ASSERT_TRUE(device) << device.error().message;
+        FlipMean from_host = device_flip_mean(**device);
+        from_host.device = nullptr;
+        auto on_device = TaaResolve::create(test::gpu(), variants, w, h, options);
+        auto on_host = TaaResolve::create(test::gpu(), variants, w, h, options);
+        ASSERT_TRUE(on_device && on_host);
+        auto here = measure_sequence_all(**on_device, panning, 4, device_flip_mean(**device));
+        auto there = measure_sequence_all(**on_host, read_back, 4, from_host);
+        ASSERT_TRUE(here && there);
+        for (std::size_t s = 0; s < variants.size(); ++s) {
+            EXPECT_GT((*here)[s].ghosting, 0.0);
+            EXPECT_EQ((*here)[s].ghosting, (*there)[s].ghosting) << variants[s]->name;
+            EXPECT_EQ((*here)[s].shimmer, (*there)[s].shimmer) << variants[s]->name;
         }
     }
 }
