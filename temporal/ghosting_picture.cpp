@@ -31,7 +31,7 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown,
     std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), &looks.back()}};
     add_frame(truth_name, truth);
     for (std::size_t v = 0; v < keys.size(); ++v) {
-        auto error = flip.map(*truth, *trails[v]);
+        auto error = flip.map(*truth, *trails[v], v > 0);
         if (!error) return std::unexpected(error.error());
         maps.push_back(flip::magma_image(*error, width, height));
         looks.push_back(flip.shown(*trails[v]));

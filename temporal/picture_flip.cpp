@@ -2,11 +2,10 @@
 
 namespace kdop {
 
-Result<std::vector<float>> PictureFlip::map(const Image& reference, const Image& test) const {
-    if (range == ColorRange::ldr) return flip->ldr().error_map(reference, test);
-    auto maps = flip->maps(reference, test, exposure);
-    if (!maps) return std::unexpected(maps.error());
-    return std::move(maps->error);
+Result<std::vector<float>> PictureFlip::map(const Image& reference, const Image& test, bool same_reference) const {
+    auto figure = flip(reference, test, range, true, same_reference);
+    if (!figure) return std::unexpected(figure.error());
+    return std::move(figure->map);
 }
 
 Image PictureFlip::shown(const Image& image) const {

@@ -6,6 +6,7 @@
 #include "core/result.h"
 #include "flip/hdr_flip.h"
 #include "sequence/sequence.h"
+#include "temporal/taa_measure.h"
 
 #include <string>
 #include <vector>
@@ -13,12 +14,13 @@
 namespace kdop {
 
 struct PictureFlip {
-    const HdrFlip* flip = nullptr; // must outlive this
+    FlipMean flip; // the figures' (TaaEvaluation::flip_mean), whose evaluator must outlive this
     ColorRange range = ColorRange::ldr;
-    ExposureOptions exposure; // HDR-FLIP's, for hdr
+    ExposureOptions exposure; // HDR-FLIP's, for hdr, as `flip` was made with
 
-    // Each pixel's FLIP of `test` against `reference`.
-    Result<std::vector<float>> map(const Image& reference, const Image& test) const;
+    // Each pixel's FLIP of `test` against `reference`, as the figures measure it. `same_reference`:
+    // `reference` is the Image of the call before, unchanged (FlipMean).
+    Result<std::vector<float>> map(const Image& reference, const Image& test, bool same_reference = false) const;
     // `image` as a picture shows it: LDR as it is, HDR tone mapped.
     Image shown(const Image& image) const;
     const char* name() const { return range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"; }

@@ -80,14 +80,16 @@ public:
     // frame_count().
     std::size_t frames(const TaaScene& scene) const;
 
+    // The FLIP the figures of outputs of one size are measured with (the device's, one evaluator per
+    // size made when first needed, or with --cpu-flip the CPU's): what the pictures show too.
+    Result<FlipMean> flip_mean(std::uint32_t width, std::uint32_t height);
+
 private:
     TaaEvaluation(const Context& context, const EvaluationOptions& options);
     // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth).
     Result<const Variant*> shader(std::size_t v, bool nearer_larger);
     // One resolve of every variant's shader, for frames of this size and depth convention.
     Result<std::unique_ptr<TaaResolve>> resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger);
-    // The FLIP of outputs of one size: on the device, one evaluator per size, made when first needed.
-    Result<FlipMean> flip_mean(std::uint32_t width, std::uint32_t height);
 
     const Context* context_;
     std::vector<VariantSpec> specs_;

@@ -56,7 +56,7 @@ Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequ
     auto truth = std::make_shared<const Image>(std::move(has_reference ? *frame->reference : frame->color));
     std::vector<std::vector<float>> maps;
     for (const auto& output : chooser.outputs()) {
-        auto map = flip.map(*truth, *output);
+        auto map = flip.map(*truth, *output, !maps.empty());
         if (!map) return fail(fmt::format("{}: {}", sequence.frame_label(chooser.index()), map.error().message));
         maps.push_back(std::move(*map));
     }
@@ -84,7 +84,6 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     // sequences only, the first sequence's.
     const std::uint32_t width = scenes.empty() ? sequences.front().width() : settings.width;
     const std::uint32_t height = scenes.empty() ? sequences.front().height() : settings.height;
-    const HdrFlip picture_flip(settings.evaluation.ppd); // the pictures' FLIP maps
     StagedImages written_frames;
     EvaluationObserver observer;
     if (settings.write_frames)
@@ -155,9 +154,11 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             std::vector<double> ghosting;
             for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
             const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
+            auto flip = evaluation->flip_mean(truth->width, truth->height);
+            if (!flip) return std::unexpected(flip.error());
             if (auto ok =
                     add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys, trails,
-                                         ghosting, {&picture_flip, ColorRange::ldr, settings.evaluation.exposure});
+                                         ghosting, {*flip, ColorRange::ldr, settings.evaluation.exposure});
                 !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
@@ -177,7 +178,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
             if (pictured && chooser.chosen()) {
-                const PictureFlip flip{&picture_flip, sequence.color_range(), settings.evaluation.exposure};
+                auto mean = evaluation->flip_mean(sequence.width(), sequence.height());
+                if (!mean) return std::unexpected(mean.error());
+                const PictureFlip flip{*mean, sequence.color_range(), settings.evaluation.exposure};
                 if (auto ok = add_sequence_picture(outputs, sequence, chooser, keys, *measured, flip); !ok)
                     return std::unexpected(ok.error());
                 pictures.push_back(ghosting_picture_name(sequence.name()));
