@@ -3,11 +3,12 @@
 // The CPU classes stay the reference this one is tested against (tests/device_flip_test.cpp):
 // per-pixel maps within 1e-5, means within 1e-6 relative.
 //
-// Per evaluation both images are uploaded once; everything after runs on the device in one
-// submission: per exposure (one for LDR-FLIP) the color transform with the horizontal filters, the
-// vertical filters and the error, kept as each pixel's largest over the exposures; then each row's sum,
-// compensated in float. What comes back is one float per row (the mean, summed in double), and the
-// maps only when asked for. The kernels are made once per ppd, the buffers once per size.
+// Per evaluation both images are uploaded once (or kept: a reference unchanged since the pair
+// before, an output loaded on the device); everything after runs on the device in one submission: per exposure (one for
+// LDR-FLIP) the color transform with the horizontal filters, the vertical filters and the error, kept as each pixel's
+// largest over the exposures; then each row's sum, compensated in float. What comes back is one float per row (the
+// mean, summed in double), and the maps only when asked for. The kernels are made once per ppd, the buffers once per
+// size.
 //
 // Not thread-safe: one object is one set of device buffers. Not copyable.
 #pragma once
@@ -59,8 +60,8 @@ public:
 
     // Whether the reference of an evaluation is the one of the call before: the same Image object,
     // unchanged since, which only the caller knows (FLIP never reads back what it uploaded, which
-    // on a GPU lies in uncached memory). Its upload and its horizontal filters, half of that pass,
-    // are then kept from the evaluation before, when that one left them: one exposure (LDR-FLIP, or
+    // on a GPU lies in uncached memory). Its upload, its range check and its half of the horizontal
+    // pass are then kept from the evaluation before, when that one left them: one exposure (LDR-FLIP, or
     // HDR-FLIP over a range of one), the same exposure and tone mapper, and no evaluation of
     // another reference in between. Every variant's ghosting on a frame is measured against the
     // same reference (temporal/taa_measure.h). The figures are the same bits either way.

@@ -47,9 +47,11 @@ struct FlipMean {
     std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range, bool map,
                                      bool same_reference)>
         pair;
-    // The device's FLIP where it computes: on the resolve's queue it measures LDR outputs where the
-    // resolve leaves them, checked and moved onto the range there (DeviceFlip::load), so only the
-    // figures come back, and the outputs only for an observer.
+    // The device's FLIP where it computes (device_flip_mean sets it): on the resolve's queue it
+    // measures LDR outputs where the resolve leaves them, checked and moved onto the range there
+    // (DeviceFlip::load), so only the figures come back, and the outputs only for an observer.
+    // kdop taa leaves it null on a CPU device, where reading back was as fast and held less
+    // (TaaEvaluation::flip_mean).
     DeviceFlip* device = nullptr;
 
     Result<FlipFigure> operator()(const Image& reference, const Image& test, ColorRange range, bool map,
