@@ -305,13 +305,13 @@ DeviceFlip::~DeviceFlip() {
     vkDestroySampler(context_.device(), sampler_, nullptr);
 }
 
-Result<void> DeviceFlip::check_pair(const Image& reference, const Image& test,
+Result<void> DeviceFlip::check_pair(const Image* reference, const Image* test,
                                     Result<void> (*check_values)(const Image&, const std::string&),
                                     Reference kept) const {
     // An unchanged reference that the last evaluation took was checked then.
-    const bool checked = kept == Reference::unchanged && reference_planes_ && reference_planes_->image == &reference;
-    for (auto [image, what] : {std::pair{&reference, "reference image"}, std::pair{&test, "test image"}}) {
-        if (image == &reference && checked) continue;
+    const bool checked = kept == Reference::unchanged && reference_planes_ && reference_planes_->image == reference;
+    for (auto [image, what] : {std::pair{reference, "reference image"}, std::pair{test, "test image"}}) {
+        if (!image || (image == reference && checked)) continue;
         if (image->width != width_ || image->height != height_)
             return fail(fmt::format("{}: {}x{}, but this FLIP evaluator was made for {}x{}", what, image->width,
                                     image->height, width_, height_));
@@ -401,7 +401,7 @@ Result<double> DeviceFlip::mean(const Image& reference, const Image& test) {
 }
 
 Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map, Reference kept) {
-    if (auto ok = check_pair(reference, test, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_pair(&reference, &test, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
     auto e = evaluate(&reference, &test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
@@ -409,7 +409,7 @@ Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool 
 }
 
 Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
-    if (auto ok = check_pair(reference, test, check_ldr_image, Reference::new_one); !ok)
+    if (auto ok = check_pair(&reference, &test, check_ldr_image, Reference::new_one); !ok)
         return std::unexpected(ok.error());
     const Exposure one[1];
     auto e = evaluate(&reference, &test, std::nullopt, one, ReadBack::terms, Reference::new_one);
@@ -419,7 +419,7 @@ Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
 
 Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, const ExposureOptions& options,
                                     bool read_maps, Reference kept) {
-    if (auto ok = check_pair(reference, test, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_pair(&reference, &test, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
     auto range = exposure_range(reference, options, &test);
     if (!range) return std::unexpected(range.error());
     std::vector<Exposure> exposures(std::size_t(range->count));
@@ -509,50 +509,34 @@ Result<void> DeviceFlip::keep_slots(std::size_t total) {
     return {};
 }
 
-Result<void> DeviceFlip::keep(Input input, std::size_t slot) {
-    if (slot >= kept_.size()) return fail(fmt::format("internal error: kept slot {} of {}", slot, kept_.size()));
-    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16;
-    auto copied = commands_->run([&](VkCommandBuffer cb) {
-        compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
-                        VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-        const VkBufferCopy region{bytes * VkDeviceSize(input == Input::test), 0, bytes};
-        vkCmdCopyBuffer(cb, inputs_.buffer(), kept_[slot].buffer(), 1, &region);
-        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                        VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    });
-    if (!copied) return std::unexpected(copied.error());
-    return {};
-}
+Result<void> DeviceFlip::keep(Input input, std::size_t slot) { return copy_kept(input, slot, true); }
 
 Result<void> DeviceFlip::load_kept(std::size_t slot, Input input) {
-    if (slot >= kept_.size()) return fail(fmt::format("internal error: kept slot {} of {}", slot, kept_.size()));
     if (input == Input::reference) reference_planes_.reset();
-    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16;
+    return copy_kept(input, slot, false);
+}
+
+Result<void> DeviceFlip::copy_kept(Input input, std::size_t slot, bool into_slot) {
+    if (slot >= kept_.size()) return fail(fmt::format("internal error: kept slot {} of {}", slot, kept_.size()));
+    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16, half = bytes * VkDeviceSize(input == Input::test);
     auto copied = commands_->run([&](VkCommandBuffer cb) {
-        // The passes before may still read the inputs this copy replaces.
-        compute_barrier(cb, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_TRANSFER_BIT);
-        const VkBufferCopy region{0, bytes * VkDeviceSize(input == Input::test), bytes};
-        vkCmdCopyBuffer(cb, kept_[slot].buffer(), inputs_.buffer(), 1, &region);
-        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT,
-                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT);
+        // After every pass, load and host write before it; before every pass and host read after it.
+        const VkAccessFlags all = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT |
+                                  VK_ACCESS_HOST_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        const VkPipelineStageFlags stages =
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+        compute_barrier(cb, all, stages, all, stages);
+        const VkBufferCopy region{into_slot ? half : 0, into_slot ? 0 : half, bytes};
+        vkCmdCopyBuffer(cb, into_slot ? inputs_.buffer() : kept_[slot].buffer(),
+                        into_slot ? kept_[slot].buffer() : inputs_.buffer(), 1, &region);
+        compute_barrier(cb, all, stages, all, stages);
     });
     if (!copied) return std::unexpected(copied.error());
     return {};
 }
 
 Result<FlipMap> DeviceFlip::ldr_loaded(const Image* reference, bool read_map, Reference kept) {
-    if (reference) {
-        if (reference->width != width_ || reference->height != height_)
-            return fail(fmt::format("reference image: {}x{}, but this FLIP evaluator was made for {}x{}",
-                                    reference->width, reference->height, width_, height_));
-        const bool checked = kept == Reference::unchanged && reference_planes_ && reference_planes_->image == reference;
-        if (!checked)
-            if (auto ok = check_ldr_image(*reference, "reference image"); !ok) return std::unexpected(ok.error());
-    }
+    if (auto ok = check_pair(reference, nullptr, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
     auto e = evaluate(reference, nullptr, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());

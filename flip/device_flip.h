@@ -121,12 +121,14 @@ private:
         std::vector<float> error, exposure, color, feature; // filled when asked for
     };
     enum class ReadBack { mean, error, error_and_exposure, terms };
+    // The copy keep() (`into_slot`) and load_kept() make, between `input` and slot `slot`.
+    Result<void> copy_kept(Input input, std::size_t slot, bool into_slot);
     // Null images are as loaded on the device.
     Result<Evaluation> evaluate(const Image* reference, const Image* test, std::optional<ToneMapper> tone_mapper,
                                 std::span<const Exposure> exposures, ReadBack read_back, Reference kept);
     // Both images of the object's size, their values accepted by `check_values` (the reference
-    // once: not again where it is kept).
-    Result<void> check_pair(const Image& reference, const Image& test,
+    // once: not again where it is kept; a null image is as loaded on the device, checked then).
+    Result<void> check_pair(const Image* reference, const Image* test,
                             Result<void> (*check_values)(const Image&, const std::string&), Reference kept) const;
 
     const Context& context_;

@@ -334,6 +334,8 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             // compared against).
             const bool measured = i >= warmup;
             const bool map = maps && on_measured;
+            // What ghosting is measured against, on a measured frame.
+            const Image* truth = !measured ? nullptr : against_reference ? &*frame->reference : &frame->color;
             std::vector<Image> outputs(resolve.size());
             auto each_shader = [&](auto step) -> Result<void> {
                 for (std::size_t s = 0; s < resolve.size(); ++s)
@@ -356,8 +358,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                 }
                 if (measured) {
                     meters[s].begin(i);
-                    const Image& truth = against_reference ? *frame->reference : frame->color;
-                    if (auto ok = meters[s].ghosting(truth, nullptr, label, map, s > 0); !ok) return ok;
+                    if (auto ok = meters[s].ghosting(*truth, nullptr, label, map, s > 0); !ok) return ok;
                     if (auto ok = meters[s].shimmer(nullptr, source.starts_history(i), label, map); !ok) return ok;
                     if (observed) outputs[s] = device->loaded(DeviceFlip::Input::test);
                     if (on_output)
@@ -376,8 +377,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                     outputs[s] = std::move(*output);
                     if (!measured) return {};
                     meters[s].begin(i);
-                    const Image& truth = against_reference ? *frame->reference : frame->color;
-                    return meters[s].ghosting(truth, &outputs[s], label, map, s > 0);
+                    return meters[s].ghosting(*truth, &outputs[s], label, map, s > 0);
                 });
                 if (!ghosting) return std::unexpected(ghosting.error());
                 auto shimmer = each_shader([&](std::size_t s) -> Result<void> {
@@ -405,7 +405,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
                                           .figures = figures,
                                           .outputs = shown_outputs,
                                           .maps = frame_maps,
-                                          .truth = against_reference ? &*frame->reference : &frame->color};
+                                          .truth = truth};
                 if (auto ok = on_measured(shown); !ok) return fail(fmt::format("{}: {}", label, ok.error().message));
             }
         }
