@@ -91,10 +91,12 @@ void filter_row(const float* row, int width, const std::vector<float>& k, float*
         width, k, out);
 }
 
-// Row y of a width x height plane, filtered vertically with rows clamped to the plane.
+// Row y of a width x height plane, filtered vertically with rows clamped to the plane. The plane
+// holds `ring` rows, row r in slot r % ring: the rows y - radius .. y + radius must be there.
 template <Kernel kind>
-void filter_column(const float* plane, int width, int height, int y, const std::vector<float>& k, float* out) {
-    auto row = [=](int r) { return plane + std::size_t(std::clamp(r, 0, height - 1)) * std::size_t(width); };
+void filter_column(const float* plane, int width, int height, int ring, int y, const std::vector<float>& k,
+                   float* out) {
+    auto row = [=](int r) { return plane + std::size_t(std::clamp(r, 0, height - 1) % ring) * std::size_t(width); };
     filter_by_blocks<kind>(
         row(y),
         [&](int j) {
@@ -199,29 +201,32 @@ Result<void> LdrFlip::evaluate(const Image& reference, const Image& test, float*
     if (auto ok = check_ldr_image(test, "test image"); !ok) return ok;
 
     const int w = int(reference.width), h = int(reference.height);
-    const std::size_t n = std::size_t(w) * std::size_t(h);
 
     // Pass 1, along rows: each image to YCxCz and its achromatic channel, then every horizontal
-    // pass of the separable filters into full planes. Pass 2, along columns, one output row at a
-    // time, then that row's errors. The filters separate as in the reference: the CSF of each
-    // channel is g(x) g(y) (two such terms for Cz), d/dx is edge(x) gaussian(y), d/dy is
-    // gaussian(x) edge(y), and likewise for the second derivatives with `point`.
+    // pass of the separable filters. Pass 2, along columns, one output row at a time, then that
+    // row's errors. Pass 1 runs ahead of pass 2 into a ring of the rows pass 2 still needs, not
+    // whole planes: 2 x 7 planes of a 1920x1080 pair would be 116 MB, written once and read once.
+    // The filters separate as in the reference: the CSF of each channel is g(x) g(y) (two such
+    // terms for Cz), d/dx is edge(x) gaussian(y), d/dy is gaussian(x) edge(y), and likewise for
+    // the second derivatives with `point`.
     enum { hY, hCx, hCz1, hCz2, hGaussian, hEdge, hPoint, kHorizontal };
     enum { vY, vCx, vCz1, vCz2, vDx, vDxx, vDy, vDyy, kVertical };
     const int pad = std::max(csf_.radius, features_.radius);
+    const int ring = std::min(h, 2 * pad + 1);
+    const std::size_t ring_plane = std::size_t(ring) * std::size_t(w);
     const std::size_t padded = std::size_t(w) + 2 * std::size_t(pad);
-    auto horizontal = std::make_unique_for_overwrite<float[]>(2 * kHorizontal * n);
+    auto horizontal = std::make_unique_for_overwrite<float[]>(2 * kHorizontal * ring_plane);
     auto lines = std::make_unique_for_overwrite<float[]>(4 * padded);
     auto vertical = std::make_unique_for_overwrite<float[]>(2 * kVertical * std::size_t(w));
 
     const Image* images[2] = {&reference, &test};
-    for (int i = 0; i < 2; ++i) {
-        float* planes = horizontal.get() + std::size_t(i) * kHorizontal * n;
-        float* const y_row = lines.get() + pad;
-        float* const cx_row = y_row + padded;
-        float* const cz_row = cx_row + padded;
-        float* const achromatic_row = cz_row + padded;
-        for (int y = 0; y < h; ++y) {
+    float* const y_row = lines.get() + pad;
+    float* const cx_row = y_row + padded;
+    float* const cz_row = cx_row + padded;
+    float* const achromatic_row = cz_row + padded;
+    auto filter_rows = [&](int y) { // row y of both images' horizontal planes, into its slot
+        for (int i = 0; i < 2; ++i) {
+            float* planes = horizontal.get() + std::size_t(i) * kHorizontal * ring_plane;
             for (int x = 0; x < w; ++x) {
                 const glm::vec4& p = images[i]->at(std::uint32_t(x), std::uint32_t(y));
                 const Color<float> ycxcz = flip::xyz_to_ycxcz(flip::linear_rgb_to_xyz(Color<float>(p.r, p.g, p.b)));
@@ -235,7 +240,9 @@ Result<void> LdrFlip::evaluate(const Image& reference, const Image& test, float*
                 std::fill(row - pad, row, row[0]);
                 std::fill(row + w, row + w + pad, row[w - 1]);
             }
-            auto plane = [&](int k) { return planes + std::size_t(k) * n + std::size_t(y) * std::size_t(w); };
+            auto plane = [&](int k) {
+                return planes + std::size_t(k) * ring_plane + std::size_t(y % ring) * std::size_t(w);
+            };
             filter_row<Kernel::symmetric>(y_row, w, csf_.achromatic, plane(hY));
             filter_row<Kernel::symmetric>(cx_row, w, csf_.red_green, plane(hCx));
             filter_row<Kernel::symmetric>(cz_row, w, csf_.blue_yellow_1, plane(hCz1));
@@ -244,23 +251,26 @@ Result<void> LdrFlip::evaluate(const Image& reference, const Image& test, float*
             filter_row<Kernel::antisymmetric>(achromatic_row, w, features_.edge, plane(hEdge));
             filter_row<Kernel::zero_sum>(achromatic_row, w, features_.point, plane(hPoint));
         }
-    }
+    };
 
     const float inv_sqrt2 = float(1.0 / std::numbers::sqrt2);
+    int rows_ready = 0; // rows of the horizontal planes filtered so far
     for (int y = 0; y < h; ++y) {
+        // Row y + pad overwrites row y - pad - 1, which no output row from y on reads.
+        for (; rows_ready <= std::min(y + pad, h - 1); ++rows_ready) filter_rows(rows_ready);
         for (int i = 0; i < 2; ++i) {
-            const float* planes = horizontal.get() + std::size_t(i) * kHorizontal * n;
+            const float* planes = horizontal.get() + std::size_t(i) * kHorizontal * ring_plane;
             float* rows = vertical.get() + std::size_t(i) * kVertical * std::size_t(w);
-            auto plane = [&](int k) { return planes + std::size_t(k) * n; };
+            auto plane = [&](int k) { return planes + std::size_t(k) * ring_plane; };
             auto row = [&](int k) { return rows + std::size_t(k) * std::size_t(w); };
-            filter_column<Kernel::symmetric>(plane(hY), w, h, y, csf_.achromatic, row(vY));
-            filter_column<Kernel::symmetric>(plane(hCx), w, h, y, csf_.red_green, row(vCx));
-            filter_column<Kernel::symmetric>(plane(hCz1), w, h, y, csf_.blue_yellow_1, row(vCz1));
-            filter_column<Kernel::symmetric>(plane(hCz2), w, h, y, csf_.blue_yellow_2, row(vCz2));
-            filter_column<Kernel::symmetric>(plane(hEdge), w, h, y, features_.gaussian, row(vDx));
-            filter_column<Kernel::symmetric>(plane(hPoint), w, h, y, features_.gaussian, row(vDxx));
-            filter_column<Kernel::antisymmetric>(plane(hGaussian), w, h, y, features_.edge, row(vDy));
-            filter_column<Kernel::zero_sum>(plane(hGaussian), w, h, y, features_.point, row(vDyy));
+            filter_column<Kernel::symmetric>(plane(hY), w, h, ring, y, csf_.achromatic, row(vY));
+            filter_column<Kernel::symmetric>(plane(hCx), w, h, ring, y, csf_.red_green, row(vCx));
+            filter_column<Kernel::symmetric>(plane(hCz1), w, h, ring, y, csf_.blue_yellow_1, row(vCz1));
+            filter_column<Kernel::symmetric>(plane(hCz2), w, h, ring, y, csf_.blue_yellow_2, row(vCz2));
+            filter_column<Kernel::symmetric>(plane(hEdge), w, h, ring, y, features_.gaussian, row(vDx));
+            filter_column<Kernel::symmetric>(plane(hPoint), w, h, ring, y, features_.gaussian, row(vDxx));
+            filter_column<Kernel::antisymmetric>(plane(hGaussian), w, h, ring, y, features_.edge, row(vDy));
+            filter_column<Kernel::zero_sum>(plane(hGaussian), w, h, ring, y, features_.point, row(vDyy));
         }
         const float* r = vertical.get();
         const float* t = r + kVertical * std::size_t(w);

@@ -65,7 +65,8 @@ struct FlipMap {
     std::vector<float> error;
 };
 
-// Bytes one evaluation of a width x height pair allocates: its working planes and the error map.
+// At most the bytes one evaluation of a width x height pair allocates: its working planes (a ring
+// of rows as tall as its filters, never more than the image) and the error map.
 inline std::uint64_t ldr_flip_bytes(std::uint32_t width, std::uint32_t height) {
     return std::uint64_t(width) * height * (14 + 1) * sizeof(float);
 }
@@ -75,7 +76,8 @@ double mean_error(std::span<const float> error_map);
 
 // Evaluates many image pairs at one ppd: the kernels are made once. Every method is const and
 // keeps no state between calls, so one object serves any number of threads at once; each call
-// allocates its working planes (14 floats per pixel) once, nothing per pixel.
+// allocates its working planes (14 floats per pixel of the rows its filters span) once, nothing per
+// pixel.
 class LdrFlip {
 public:
     // Throws std::invalid_argument when check_pixels_per_degree fails (check it first for a message).

@@ -4,19 +4,46 @@
 #include "harness/statistics.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 
 namespace kdop {
 namespace {
 
 // NVlabs/flip's printed weighted percentile (see the header), in its float arithmetic: the first of
 // the `sorted` values at which their running sum passes p times `total`.
-float weighted_percentile(const std::vector<double>& sorted, float total, float p) {
+float weighted_percentile(const std::vector<float>& sorted, float total, float p) {
     float running = 0;
-    for (double value : sorted) {
-        running += float(value); // the map's floats, sorted as doubles
-        if (running > p * total) return float(value);
+    for (float value : sorted) {
+        running += value;
+        if (running > p * total) return value;
     }
     return 0;
+}
+
+// `map`'s values in ascending order, by a two-pass radix sort of their bits (negative values' bits
+// flipped, as IEEE-754 orders them). std::sort took 33 ms of a 1920x1080 map, a fifth of what
+// `kdop flip --cpu` spends past its start; this takes under a third of that. (Boost's spreadsort
+// does the same, but no other part of kdop needs Boost.)
+std::vector<float> sorted_values(std::span<const float> map) {
+    auto key = [](float value) {
+        const auto bits = std::bit_cast<std::uint32_t>(value);
+        return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+    };
+    std::vector<std::uint32_t> keys(map.size()), other(map.size());
+    std::ranges::transform(map, keys.begin(), key);
+    for (int shift : {0, 16}) {
+        std::vector<std::size_t> start(65537, 0); // where each digit's run begins
+        for (std::uint32_t k : keys) ++start[((k >> shift) & 0xffffu) + 1];
+        for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+        for (std::uint32_t k : keys) other[start[(k >> shift) & 0xffffu]++] = k;
+        keys.swap(other);
+    }
+    std::vector<float> sorted(map.size());
+    std::ranges::transform(keys, sorted.begin(), [](std::uint32_t k) {
+        return std::bit_cast<float>(k & 0x80000000u ? k & 0x7fffffffu : ~k);
+    });
+    return sorted;
 }
 
 } // namespace
@@ -31,9 +58,8 @@ std::vector<std::size_t> flip_histogram(std::span<const float> map) {
 }
 
 FlipStatistics flip_statistics(std::span<const float> map) {
-    std::vector<double> values(map.begin(), map.end());
-    std::sort(values.begin(), values.end()); // once, for the six quantiles and the extremes
-    float total = 0;                         // in the map's order, as NVlabs/flip's tool sums it
+    const std::vector<float> values = sorted_values(map); // once, for the six quantiles and the extremes
+    float total = 0;                                      // in the map's order, as NVlabs/flip's tool sums it
     for (float value : map) total += value;
     return {.mean = mean_error(map),
             .weighted_median = weighted_percentile(values, total, 0.5f),

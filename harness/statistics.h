@@ -10,12 +10,14 @@ namespace kdop {
 
 // The q-quantile (0..1) of samples already in ascending order, by linear interpolation between order
 // statistics; NaN for none. For several quantiles of one large set: one sort, not one each.
-inline double quantile_of_sorted(const std::vector<double>& samples, double q) {
+template <class T> // float or double samples; the interpolation is in double
+double quantile_of_sorted(const std::vector<T>& samples, double q) {
     if (samples.empty()) return NAN;
     const double position = q * double(samples.size() - 1);
     const std::size_t below = static_cast<std::size_t>(position);
     const std::size_t above = std::min(below + 1, samples.size() - 1);
-    return samples[below] + (position - double(below)) * (samples[above] - samples[below]);
+    const double low = samples[below], high = samples[above];
+    return low + (position - double(below)) * (high - low);
 }
 
 // The q-quantile (0..1) by linear interpolation between order statistics; NaN for no samples.

@@ -623,6 +623,17 @@ TEST(FlipStatistics, PercentilesOfAKnownMap) {
     // Weighting by the error moves the percentiles up: a pixel's vote grows with its error.
     EXPECT_GT(f.weighted_median, f.median);
 
+    // Values apart only in their last bits, shuffled: ordered by them too.
+    std::vector<float> close(257);
+    for (std::size_t i = 0; i < close.size(); ++i)
+        close[i] = std::nextafter(0.5f, 1.0f) + float((i * 97) % 257) * 1e-7f;
+    const FlipStatistics c = flip_statistics(close);
+    std::sort(close.begin(), close.end());
+    EXPECT_EQ(c.median, close[128]);
+    EXPECT_EQ(c.q1, close[64]);
+    EXPECT_EQ(c.min, close.front());
+    EXPECT_EQ(c.max, close.back());
+
     // A map of zeros: no sum to pass, and the tool's 0.
     const std::vector<float> zeros(64, 0.0f);
     EXPECT_EQ(flip_statistics(zeros).weighted_median, 0.0);

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -289,6 +290,47 @@ TEST(ImageIo, EachFileIsDecodedAsItSays) {
     EXPECT_EQ(read(exr, InputSpace::linear), glm::vec3(0.25f, 0.5f, 2.0f));
     EXPECT_EQ(parse_input_space("srgb"), InputSpace::srgb);
     EXPECT_FALSE(parse_input_space("sRGB-ish"));
+}
+
+// 8- and 16-bit files are decoded through a table of every value a channel holds: the pixels must
+// be those of OpenImageIO's float read decoded value by value, bit for bit, color and alpha.
+TEST(ImageIo, IntegerFilesDecodeAsTheirFloatReadDoes) {
+    test::TempDir dir;
+    auto check = [&](const std::string& name, OIIO::TypeDesc type, const char* color_space, InputSpace space,
+                     auto decode) {
+        const std::string path = (dir / name).string();
+        const int size = type == OIIO::TypeDesc::UINT16 ? 256 : 16; // every value of the type, in each channel
+        std::vector<std::uint16_t> values(std::size_t(size) * size * 4);
+        for (std::size_t i = 0; i < values.size(); ++i)
+            values[i] = std::uint16_t((i / 4 + 37 * (i % 4)) % (size * size));
+        auto out = OIIO::ImageOutput::create(path);
+        OIIO::ImageSpec spec(size, size, 4, type);
+        if (color_space) spec.attribute("oiio:ColorSpace", color_space);
+        ASSERT_TRUE(out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT16, values.data()) && out->close());
+        OIIO::ImageSpec as_stored; // alpha not multiplied in, as kdop reads it
+        as_stored.attribute("oiio:UnassociatedAlpha", 1);
+        auto in = OIIO::ImageInput::open(path, &as_stored);
+        std::vector<float> floats(values.size());
+        ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, floats.data()));
+        auto image = read_image(path, 0, space);
+        ASSERT_TRUE(image) << image.error().message;
+        for (std::size_t i = 0; i < floats.size(); ++i) {
+            const float expected = i % 4 < 3 ? decode(floats[i]) : floats[i];
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(image->pixels[i / 4][int(i % 4)]),
+                      std::bit_cast<std::uint32_t>(expected))
+                << name << " value " << i;
+        }
+    };
+    auto srgb = [](float v) { return srgb_to_linear(v); };
+    auto linear = [](float v) { return v; };
+    for (OIIO::TypeDesc type : {OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT16}) {
+        const std::string bits = type == OIIO::TypeDesc::UINT8 ? "8" : "16";
+        check(bits + "-srgb.png", type, nullptr, InputSpace::from_file, srgb);
+        check(bits + "-linear.png", type, "linear", InputSpace::from_file, linear);
+        check(bits + "-gamma.png", type, "GammaCorrected2.2", InputSpace::from_file,
+              [](float v) { return std::pow(v, 2.2f); });
+        check(bits + "-forced.tif", type, "linear", InputSpace::srgb, srgb);
+    }
 }
 
 // The image fuzzer's first finding: libpng's error for a damaged stream spans two lines.
