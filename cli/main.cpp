@@ -1,6 +1,7 @@
 // kdop: generate, run and measure k-DOP neighborhood-clipping variants. See README.md.
 #include "cli/commands.h"
 
+#include "core/memory_budget.h"
 #include "generator/command_line.h"
 #include "harness/ranks.h"
 #include "harness/run_metadata.h"
@@ -10,6 +11,7 @@
 #include <map>
 
 int main(int argc, char** argv) {
+    kdop::return_large_blocks_when_freed();
     kdop::record_command_line(argc, argv);
     CLI::App app{"kdop: k-DOP neighborhood clipping for temporal antialiasing: generate shader variants, run them, "
                  "measure them"};

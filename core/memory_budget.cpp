@@ -1,6 +1,7 @@
 #include "core/memory_budget.h"
 
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <fstream>
@@ -46,6 +47,11 @@ Result<void> check_memory(const std::string& what, std::uint64_t bytes) {
     if (available == 0 || bytes <= available) return {};
     return fail(fmt::format("{}: needs about {:.1f} GiB of memory, {:.1f} GiB are available", what,
                             double(bytes) / (1ull << 30), double(available) / (1ull << 30)));
+}
+
+void return_large_blocks_when_freed() {
+    // Setting the threshold also stops glibc from raising it as blocks are freed.
+    mallopt(M_MMAP_THRESHOLD, 4 << 20);
 }
 
 } // namespace kdop

@@ -155,7 +155,7 @@ Result<Image> read_checked(const std::string& file, std::uint32_t max_side, Inpu
         return fail(fmt::format("{}: {}x{} is larger than the device allows: at most {} pixels on a side", path,
                                 spec.width, spec.height, max_side));
     const int channels = std::min(spec.nchannels, 4);
-    // The decoded pixels (float at most) and the image made of them.
+    // The image, and the decoded pixels of an 8- or 16-bit file.
     const std::uint64_t bytes =
         image_bytes(spec.width, spec.height) + std::uint64_t(spec.width) * spec.height * channels * 4;
     if (auto ok = check_memory(fmt::format("{}: a {}x{} image", path, spec.width, spec.height), bytes); !ok)
@@ -170,12 +170,12 @@ Result<Image> read_checked(const std::string& file, std::uint32_t max_side, Inpu
         return read_through_table<std::uint8_t>(*in, channels, decode, path, std::move(image));
     if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT16)
         return read_through_table<std::uint16_t>(*in, channels, decode, path, std::move(image));
-    std::vector<float> data(std::size_t(spec.width) * spec.height * std::size_t(channels));
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+    // Other formats straight into the image's pixels, a channel a float apart and a pixel a vec4.
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4)))
         return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in->geterror())));
-    for (std::size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < channels; ++c)
-            image.pixels[i][c] = c < 3 ? decode(data[i * channels + c]) : data[i * channels + c];
+    if (gamma != 1.0f)
+        for (glm::vec4& p : image.pixels)
+            for (int c = 0; c < std::min(channels, 3); ++c) p[c] = decode(p[c]);
     return image;
 }
 

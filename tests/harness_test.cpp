@@ -17,8 +17,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace kdop {
 namespace {
@@ -195,6 +199,30 @@ TEST(MemoryBudget, RefusesWhatCannotFitAndSaysHowMuch) {
     ASSERT_FALSE(huge);
     EXPECT_EQ(huge.error().message.rfind("--size 99999x99999: needs about ", 0), 0u) << huge.error().message;
     EXPECT_EQ(rectify_pass_bytes(16384, 16384), 32ull << 30);
+}
+
+// After return_large_blocks_when_freed(), a large block freed is gone from the process, even after
+// a larger one freed before it, which would otherwise have raised glibc's threshold above it and
+// left the second in a heap that keeps what is freed.
+TEST(MemoryBudget, LargeBlocksGoBackToTheSystemWhenFreed) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer's allocator is not glibc's";
+#endif
+    return_large_blocks_when_freed();
+    auto resident = [] { // bytes, from /proc/self/statm's second field (pages)
+        std::ifstream statm("/proc/self/statm");
+        std::uint64_t size = 0, pages = 0;
+        statm >> size >> pages;
+        return pages * std::uint64_t(sysconf(_SC_PAGESIZE));
+    };
+    for (std::size_t mib : {30, 20}) {
+        const std::uint64_t before = resident();
+        auto block = std::make_unique<char[]>(mib << 20);
+        std::memset(block.get(), 1, mib << 20); // touched, so resident
+        EXPECT_GE(resident(), before + (mib << 19)) << mib << " MiB";
+        block.reset();
+        EXPECT_LT(resident(), before + (mib << 18)) << mib << " MiB, freed";
+    }
 }
 
 } // namespace
