@@ -21,8 +21,8 @@ Result<void> check_memory(const std::string& what, std::uint64_t bytes);
 // of its own), for the whole process: a program's first call, from main, before any thread starts.
 // Otherwise glibc raises that threshold to each freed block's size (up to 32 MiB), so 1920x1080
 // float frames (31.6 MiB) come from its heaps, one per thread that allocates, and what they free is
-// kept: a 1080p sequence of 4 variants peaked at 1,440 MiB holding 1,278. Set up the process;
-// a library that embeds kdop keeps its own allocator's settings.
+// kept: a 1080p sequence of 4 variants peaked at 1,440 MiB, and at 1,279 with this. It sets up the
+// process; a program that embeds kdop's libraries keeps its own allocator's settings.
 void return_large_blocks_when_freed();
 
 // Bytes one RGBA float image of width x height takes.

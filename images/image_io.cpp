@@ -173,7 +173,7 @@ Result<Image> read_checked(const std::string& file, std::uint32_t max_side, Inpu
     // Other formats straight into the image's pixels, a channel a float apart and a pixel a vec4.
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4)))
         return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in->geterror())));
-    if (gamma != 1.0f)
+    if (gamma != 1.0f) // sRGB (no gamma) or a power
         for (glm::vec4& p : image.pixels)
             for (int c = 0; c < std::min(channels, 3); ++c) p[c] = decode(p[c]);
     return image;
