@@ -13,10 +13,22 @@ namespace kdop {
 // ghosting-<scene>.png
 std::string ghosting_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
 
+Result<std::vector<std::vector<float>>> ghosting_maps(const PictureFlip& flip, const Image& truth,
+                                                      const std::vector<std::shared_ptr<const Image>>& frames) {
+    std::vector<std::vector<float>> maps;
+    for (const auto& frame : frames) {
+        auto map = flip.map(truth, *frame, !maps.empty());
+        if (!map) return std::unexpected(map.error());
+        maps.push_back(std::move(*map));
+    }
+    return maps;
+}
+
 Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& trails,
-                                  const std::vector<double>& ghosting, const PictureFlip& flip) {
+                                  const std::vector<std::vector<float>>& errors, const std::vector<double>& ghosting,
+                                  const PictureFlip& flip) {
     const std::uint32_t width = truth->width, height = truth->height;
     // As data, the frames as they are; to look at, as the picture shows them (HDR tone mapped).
     auto add_frame = [&](const std::string& stem, const std::shared_ptr<const Image>& image) {
@@ -31,13 +43,12 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown,
     std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), &looks.back()}};
     add_frame(truth_name, truth);
     for (std::size_t v = 0; v < keys.size(); ++v) {
-        auto error = flip.map(*truth, *trails[v], v > 0);
-        if (!error) return std::unexpected(error.error());
-        maps.push_back(flip::magma_image(*error, width, height));
+        const std::vector<float>& error = errors[v];
+        maps.push_back(flip::magma_image(error, width, height));
         looks.push_back(flip.shown(*trails[v]));
         add_frame(keys[v].name(), trails[v]);
         labeled.push_back({keys[v].name(), &looks.back(), &maps.back(),
-                           fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(*error))});
+                           fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(error))});
     }
     std::vector<float> ramp(256);
     for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = float(i) / float(ramp.size() - 1);

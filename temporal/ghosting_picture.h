@@ -31,16 +31,23 @@ struct PictureFrame {
     TrailCrop crop;
 };
 
+// Each of `frames`' FLIP map against `truth` (LDR- or HDR-FLIP, as `flip` measures), the truth's
+// work kept from one frame to the next: what the picture below shows, and what a sequence's crop
+// is chosen by.
+Result<std::vector<std::vector<float>>> ghosting_maps(const PictureFlip& flip, const Image& truth,
+                                                      const std::vector<std::shared_ptr<const Image>>& frames);
+
 // What a scene or sequence shows of its ghosting, added to `outputs`: the truth (the aliased frame,
 // or the reference where there is one) and each variant's frame at `shown` under frames/<source>/,
 // as data (EXR) and to look at (PNG; HDR tone mapped), and the labeled picture of them all, each
-// variant's crop over its FLIP map against the truth (LDR- or HDR-FLIP, as `flip` measures), under
+// variant's crop over its FLIP map against the truth (`maps`, ghosting_maps' of the frames), under
 // it the variant's ghosting (the mean over the measured frames) and this frame's mean FLIP, and
 // the maps' color scale under the grid.
 Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& frames,
-                                  const std::vector<double>& ghosting, const PictureFlip& flip);
+                                  const std::vector<std::vector<float>>& maps, const std::vector<double>& ghosting,
+                                  const PictureFlip& flip);
 
 // The frame a sequence's picture shows: `fixed` where given (--picture-frame), else where the
 // variants' ghosting differs most (the largest spread, max - min, of their FLIP on the frame; with

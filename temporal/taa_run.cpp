@@ -54,18 +54,14 @@ Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequ
     if (!frame) return std::unexpected(frame.error());
     const bool has_reference = frame->reference.has_value();
     auto truth = std::make_shared<const Image>(std::move(has_reference ? *frame->reference : frame->color));
-    std::vector<std::vector<float>> maps;
-    for (const auto& output : chooser.outputs()) {
-        auto map = flip.map(*truth, *output, !maps.empty());
-        if (!map) return fail(fmt::format("{}: {}", sequence.frame_label(chooser.index()), map.error().message));
-        maps.push_back(std::move(*map));
-    }
+    auto maps = ghosting_maps(flip, *truth, chooser.outputs());
+    if (!maps) return fail(fmt::format("{}: {}", sequence.frame_label(chooser.index()), maps.error().message));
     std::vector<double> ghosting;
     for (const EvaluationRow& m : measured) ghosting.push_back(m.ghosting);
     const PictureFrame shown{sequence.name(), chooser.index(),
-                             disagreement_crop(maps, sequence.width(), sequence.height())};
+                             disagreement_crop(*maps, sequence.width(), sequence.height())};
     return add_ghosting_picture(outputs, shown, has_reference ? "reference" : "aliased", truth, keys, chooser.outputs(),
-                                ghosting, flip);
+                                *maps, ghosting, flip);
 }
 
 } // namespace
@@ -156,9 +152,11 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
             auto flip = evaluation->flip_mean(truth->width, truth->height);
             if (!flip) return std::unexpected(flip.error());
-            if (auto ok =
-                    add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys, trails,
-                                         ghosting, {*flip, ColorRange::ldr, settings.evaluation.exposure});
+            const PictureFlip picture_flip{*flip, ColorRange::ldr, settings.evaluation.exposure};
+            auto maps = ghosting_maps(picture_flip, *truth, trails);
+            if (!maps) return std::unexpected(maps.error());
+            if (auto ok = add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys,
+                                               trails, *maps, ghosting, picture_flip);
                 !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
