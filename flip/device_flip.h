@@ -4,11 +4,11 @@
 // per-pixel maps within 1e-5, means within 1e-6 relative.
 //
 // Per evaluation both images are uploaded once (or kept: a reference unchanged since the pair
-// before, an output loaded on the device); everything after runs on the device in one submission: per exposure (one for
-// LDR-FLIP) the color transform with the horizontal filters, the vertical filters and the error, kept as each pixel's
-// largest over the exposures; then each row's sum, compensated in float. What comes back is one float per row (the
-// mean, summed in double), and the maps only when asked for. The kernels are made once per ppd, the buffers once per
-// size.
+// before, an output loaded on the device); everything after runs on the device in one submission:
+// per exposure (one for LDR-FLIP) the color transform with the horizontal filters, the vertical
+// filters and the error, kept as each pixel's largest over the exposures; then each row's sum,
+// compensated in float. What comes back is one float per row (the mean, summed in double), and the
+// maps only when asked for. The kernels are made once per ppd, the buffers once per size.
 //
 // Not thread-safe: one object is one set of device buffers. Not copyable.
 #pragma once

@@ -183,10 +183,8 @@ public:
             label, m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
             keep_map, [&]() -> Result<FlipFigure> {
                 if (!on_device_) return (*flip_)(truth, *current, m_.range, keep_map, same_truth);
-                auto ldr = flip_->device->ldr_loaded(
-                    &truth, keep_map, same_truth ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one);
-                if (!ldr) return std::unexpected(ldr.error());
-                return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
+                return loaded_figure(&truth, keep_map,
+                                     same_truth ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one);
             });
         if (!ghosting) return std::unexpected(ghosting.error());
         ghosting_sum_ += *ghosting;
@@ -201,9 +199,7 @@ public:
             if (!on_device_) return (*flip_)(previous_, *current, m_.range, keep_map, false);
             if (auto ok = flip_->device->load_kept(slot_, DeviceFlip::Input::reference); !ok)
                 return std::unexpected(ok.error());
-            auto ldr = flip_->device->ldr_loaded(nullptr, keep_map);
-            if (!ldr) return std::unexpected(ldr.error());
-            return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
+            return loaded_figure(nullptr, keep_map, DeviceFlip::Reference::new_one);
         });
         if (!shimmer) return std::unexpected(shimmer.error());
         shimmer_sum_ += *shimmer;
@@ -234,6 +230,12 @@ public:
     }
 
 private:
+    // LDR-FLIP on the device of the output loaded there against `reference` (null: the one loaded).
+    Result<FlipFigure> loaded_figure(const Image* reference, bool keep_map, DeviceFlip::Reference kept) {
+        auto ldr = flip_->device->ldr_loaded(reference, keep_map, kept);
+        if (!ldr) return std::unexpected(ldr.error());
+        return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
+    }
     // One figure of frame `label` as `evaluate` gives it, its error naming the frame and what was
     // measured.
     Result<double> figure(const std::string& label, const char* what, bool map,
