@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -48,6 +49,7 @@ struct Parameters {
     std::uint32_t first_image = 0;
     std::uint32_t hdr = 0;
     float rounding = 0;
+    std::uint32_t prefix = 0;
 };
 // Parameters::maps, the template's kMap* bits.
 constexpr std::uint32_t kMapFirstExposure = 1, kMapExposure = 2, kMapTerms = 4;
@@ -115,7 +117,8 @@ std::string constants(const LdrFlip& cpu, int pass, std::uint32_t run) {
 }
 
 Result<std::unique_ptr<RunnableVariant>> build_pass(const LdrFlip& cpu, int pass, std::uint32_t run) {
-    static constexpr const char* kNames[] = {"flip-horizontal", "flip-vertical", "flip-row-sums", "flip-load"};
+    static constexpr const char* kNames[] = {"flip-horizontal", "flip-vertical", "flip-row-sums", "flip-load",
+                                             "flip-luminance"};
     auto source = find_embedded_file(kTemplate);
     if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
     BuiltVariant built;
@@ -149,12 +152,16 @@ void compute_barrier(VkCommandBuffer cb, VkAccessFlags src_access, VkPipelineSta
 
 // Per pixel: both images' inputs (a vec4 each) and filtered planes (two vec4 each), the four maps.
 constexpr std::uint64_t kInputBytes = 2 * 16, kHorizontalBytes = 2 * 32, kMapBytes = 4 * 4;
+// The luminance pass's largest luminance and its 65,536 counts (the template's Histogram).
+constexpr std::size_t kHistogramCounts = 65536, kHistogramBytes = 4 * (1 + kHistogramCounts);
+// The luminance pass's `prefix` for its first count, by the top 16 bits.
+constexpr std::uint32_t kTopBits = 0xffffffff;
 
 } // namespace
 
 std::uint64_t DeviceFlip::bytes(std::uint32_t width, std::uint32_t height) {
     const std::uint64_t n = std::uint64_t(width) * height;
-    return n * (kInputBytes + kHorizontalBytes + kMapBytes) + 4ull * height;
+    return n * (kInputBytes + kHorizontalBytes + kMapBytes) + 4ull * height + kHistogramBytes;
 }
 
 Result<void> DeviceFlip::check_limits(const Context& context, std::uint32_t width, std::uint32_t height) {
@@ -211,6 +218,7 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
         {&f->maps_, n * kMapBytes, storage, Memory::host, "FLIP's maps"},
         {&f->row_sums_, 4ull * height, storage, Memory::host, "FLIP's row sums"},
         {&f->outside_, 8, storage, Memory::host, "FLIP's count of values outside the range"},
+        {&f->histogram_, kHistogramBytes, storage, Memory::host, "FLIP's counts of luminances"},
     };
     for (const Allocation& a : allocations) {
         auto buffer = DeviceBuffer::create(context, a.size, a.usage, a.memory, a.what);
@@ -239,9 +247,9 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     // or (the inputs) a texel buffer. The load pass's source (its binding 0) is written per load,
     // and it counts into binding 2.
     VkDevice device = context.device();
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 2},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 3},
                                           {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool.maxSets = kPasses;
@@ -252,7 +260,8 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     const Binding bindings[kPasses][3] = {{&f->inputs_view_, &f->horizontal_, {}},
                                           {&f->horizontal_, &f->maps_, {}},
                                           {&f->maps_, &f->row_sums_, {}},
-                                          {{}, &f->inputs_view_, &f->outside_}};
+                                          {{}, &f->inputs_view_, &f->outside_},
+                                          {&f->inputs_view_, &f->histogram_, {}}};
     for (int pass = 0; pass < kPasses; ++pass) {
         const Kernel& kernel = *f->kernels_[std::size_t(pass)];
         const std::size_t expected = pass == kLoad ? 3 : 2;
@@ -422,15 +431,20 @@ Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, c
     if (auto ok = check_pair(&reference, &test, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
     auto range = exposure_range(reference, options, &test);
     if (!range) return std::unexpected(range.error());
-    std::vector<Exposure> exposures(std::size_t(range->count));
-    for (int i = 0; i < range->count; ++i)
-        exposures[std::size_t(i)] = {std::pow(2.0f, range->exposure(i)),
-                                     range->count == 1 ? 0.0f : float(i) / float(range->count - 1)};
-    auto e = evaluate(&reference, &test, options.tone_mapper, exposures,
+    return hdr_over(&reference, &test, *range, options.tone_mapper, read_maps, kept);
+}
+
+Result<HdrFlipMaps> DeviceFlip::hdr_over(const Image* reference, const Image* test, const ExposureRange& range,
+                                         ToneMapper tone_mapper, bool read_maps, Reference kept) {
+    std::vector<Exposure> exposures(std::size_t(range.count));
+    for (int i = 0; i < range.count; ++i)
+        exposures[std::size_t(i)] = {std::pow(2.0f, range.exposure(i)),
+                                     range.count == 1 ? 0.0f : float(i) / float(range.count - 1)};
+    auto e = evaluate(reference, test, tone_mapper, exposures,
                       read_maps ? ReadBack::error_and_exposure : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
     HdrFlipMaps out;
-    out.range = *range;
+    out.range = range;
     out.mean = e->mean;
     out.error = std::move(e->error);
     out.exposure = std::move(e->exposure);
@@ -541,6 +555,76 @@ Result<FlipMap> DeviceFlip::ldr_loaded(const Image* reference, bool read_map, Re
     auto e = evaluate(reference, nullptr, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
     if (!e) return std::unexpected(e.error());
     return FlipMap{e->mean, std::move(e->error)};
+}
+
+Result<HdrFlipMaps> DeviceFlip::hdr_loaded(const Image* reference, const ExposureOptions& options, bool read_maps,
+                                           Reference kept) {
+    if (auto ok = check_pair(reference, nullptr, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
+    const LuminancesSource of_reference = [&]() -> Result<Luminances> {
+        return reference ? luminances_of(*reference) : luminances(Input::reference);
+    };
+    auto range = exposure_range(options, of_reference, [&] { return luminances(Input::test); });
+    if (!range) return std::unexpected(range.error());
+    return hdr_over(reference, nullptr, *range, options.tone_mapper, read_maps, kept);
+}
+
+Result<Luminances> DeviceFlip::luminances(Input input) {
+    const std::uint64_t n = std::uint64_t(width_) * height_;
+    auto* histogram = static_cast<std::uint32_t*>(histogram_.mapped());
+    // One count of the luminances: by their top 16 bits (kTopBits), or by their low 16 bits those
+    // whose top 16 bits are `prefix`.
+    auto count = [&](std::uint32_t prefix) -> Result<void> {
+        std::memset(histogram, 0, kHistogramBytes);
+        const Parameters p{width_, height_, 1, 0, 0, 0, input == Input::test ? 1u : 0u, 0, 0, prefix};
+        auto ran = commands_->run([&](VkCommandBuffer cb) {
+            const Kernel& k = *kernels_[kLuminance];
+            vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
+            vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &sets_[kLuminance], 0,
+                                    nullptr);
+            vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                               std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
+            vkCmdDispatch(cb, ceil_div(width_, kLocalSize), height_, 1);
+            compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
+        });
+        if (!ran) return std::unexpected(ran.error());
+        return {};
+    };
+    // The bucket of `counts` that holds the `k`th value in sorted order (from 0), `k` left as its
+    // place within the bucket.
+    auto bucket = [](const std::vector<std::uint32_t>& counts, std::uint64_t& k) -> std::optional<std::uint32_t> {
+        for (std::uint32_t b = 0; b < counts.size(); k -= counts[b++])
+            if (k < counts[b]) return b;
+        return std::nullopt;
+    };
+    auto counted = [&] { return std::vector<std::uint32_t>(histogram + 1, histogram + 1 + kHistogramCounts); };
+    if (auto ok = count(kTopBits); !ok) return std::unexpected(ok.error());
+    const std::vector<std::uint32_t> top = counted();
+    Luminances out;
+    out.largest = std::bit_cast<float>(histogram[0]);
+    // The `k`th luminance in sorted order: its top 16 bits' bucket, then its low 16 bits in there.
+    auto select = [&](std::uint64_t k) -> Result<float> {
+        const auto high = bucket(top, k);
+        if (!high) return fail(fmt::format("internal error: the device counted fewer than {} luminances", n));
+        if (auto ok = count(*high); !ok) return std::unexpected(ok.error());
+        const auto low = bucket(counted(), k);
+        if (!low) return fail(fmt::format("internal error: the device's counts of luminances disagree"));
+        return std::bit_cast<float>(*high << 16 | *low);
+    };
+    auto median = select(n / 2);
+    if (!median) return std::unexpected(median.error());
+    out.median = *median;
+    if (!(out.median > 0.0f) && out.largest > 0.0f) {
+        // Black pixels (luminance 0, the least a checked image holds) come first in sorted order:
+        // the others' median lies half of the rest after them.
+        if (auto ok = count(0); !ok) return std::unexpected(ok.error());
+        const std::uint64_t black = histogram[1];
+        median = select(black + (n - black) / 2);
+        if (!median) return std::unexpected(median.error());
+        out.median = *median;
+        out.median_of_lit = true;
+    }
+    return out;
 }
 
 } // namespace kdop

@@ -108,6 +108,14 @@ public:
     // LDR-FLIP with the test as loaded and the reference uploaded from `reference` or, where null,
     // as loaded; what was loaded is not checked again.
     Result<FlipMap> ldr_loaded(const Image* reference, bool read_map, Reference kept = Reference::new_one);
+    // HDR-FLIP likewise. The exposure range's luminances of an image that is on the device alone
+    // are found there (luminances()); those of `reference` on the host, where it came from.
+    Result<HdrFlipMaps> hdr_loaded(const Image* reference, const ExposureOptions& options, bool read_maps,
+                                   Reference kept = Reference::new_one);
+    // luminances_of (flip/hdr_flip.h) of the image in `input` (uploaded by the last evaluation, or
+    // loaded), to the bit: its largest luminance and counts of its luminances' bits come back, two
+    // or three times 256 KiB, not the image.
+    Result<Luminances> luminances(Input input);
 
 private:
     DeviceFlip(const Context& context, double ppd, std::uint32_t width, std::uint32_t height);
@@ -123,6 +131,9 @@ private:
     enum class ReadBack { mean, error, error_and_exposure, terms };
     // The copy keep() (`into_slot`) and load_kept() make, between `input` and slot `slot`.
     Result<void> copy_kept(Input input, std::size_t slot, bool into_slot);
+    // HDR-FLIP over `range`, the images as evaluate() takes them.
+    Result<HdrFlipMaps> hdr_over(const Image* reference, const Image* test, const ExposureRange& range,
+                                 ToneMapper tone_mapper, bool read_maps, Reference kept);
     // Null images are as loaded on the device.
     Result<Evaluation> evaluate(const Image* reference, const Image* test, std::optional<ToneMapper> tone_mapper,
                                 std::span<const Exposure> exposures, ReadBack read_back, Reference kept);
@@ -134,14 +145,14 @@ private:
     const Context& context_;
     double ppd_;
     std::uint32_t width_, height_;
-    enum { kHorizontal, kVertical, kRowSums, kLoad, kPasses }; // the template's FLIP_PASS values
+    enum { kHorizontal, kVertical, kRowSums, kLoad, kLuminance, kPasses }; // the template's FLIP_PASS values
     std::array<std::unique_ptr<RunnableVariant>, kPasses> shaders_;
     std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
     std::array<VkDescriptorSet, kPasses> sets_{};
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     // Pixels per invocation of the horizontal and the vertical pass (run_length in the .cpp).
     std::array<std::uint32_t, 2> runs_{1, 1};
-    DeviceBuffer inputs_, maps_, row_sums_, outside_;
+    DeviceBuffer inputs_, maps_, row_sums_, outside_, histogram_;
     std::vector<DeviceBuffer> kept_;            // keep_slots()'s
     VkSampler sampler_ = VK_NULL_HANDLE;        // load()'s source, fetched texel by texel
     VkBufferView inputs_view_ = VK_NULL_HANDLE; // the inputs as the texel buffer the passes fetch from

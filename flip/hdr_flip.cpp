@@ -86,13 +86,11 @@ float ExposureRange::exposure(int i) const {
 
 namespace {
 
-struct Luminances {
-    float largest = 0, median = 0;
-    bool median_of_lit = false; // the median of the pixels that are not black (at least half are)
-};
+// Exposures whose 2^exposure is a normal float.
+constexpr float kMostStops = 126.0f;
 
-// The largest and the median luminance of `image` (the element at n / 2 in sorted order); where that
-// is 0, the median of the pixels that are not black.
+} // namespace
+
 Luminances luminances_of(const Image& image) {
     std::vector<float> values(image.pixels.size());
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = luminance(glm::vec3(image.pixels[i]));
@@ -112,19 +110,25 @@ Luminances luminances_of(const Image& image) {
     return out;
 }
 
-// Exposures whose 2^exposure is a normal float.
-constexpr float kMostStops = 126.0f;
-
-} // namespace
-
 Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options, const Image* test) {
+    if ((!options.start || !options.stop) && reference.pixels.empty()) return fail("the reference image is empty");
+    const LuminancesSource of_test = [test]() -> Result<Luminances> { return luminances_of(*test); };
+    return exposure_range(
+        options, [&]() -> Result<Luminances> { return luminances_of(reference); }, test ? of_test : nullptr);
+}
+
+Result<ExposureRange> exposure_range(const ExposureOptions& options, const LuminancesSource& reference,
+                                     const LuminancesSource& test) {
     ExposureRange range;
     if (!options.start || !options.stop) {
-        if (reference.pixels.empty()) return fail("the reference image is empty");
-        Luminances l = luminances_of(reference);
+        auto found = reference();
+        if (!found) return std::unexpected(found.error());
+        Luminances l = *found;
         const char* from = "the reference's";
         if (!(l.largest > 0.0f) && test) {
-            l = luminances_of(*test);
+            found = test();
+            if (!found) return std::unexpected(found.error());
+            l = *found;
             from = "the test image's";
             if (!(l.largest > 0.0f)) {
                 // Both black: every exposure gives them the same tone-mapped black, so no error.

@@ -35,6 +35,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -76,6 +77,21 @@ struct ExposureRange {
 // exposures float cannot scale by).
 Result<ExposureRange> exposure_range(const Image& reference, const ExposureOptions& options,
                                      const Image* test = nullptr);
+
+// What an exposure range is derived from: an image's largest luminance (0.2126 R + 0.7152 G +
+// 0.0722 B, in float, in that order) and its median, the element at n / 2 in sorted order; where
+// that is not above 0 and the largest is, the median of the pixels above 0 instead.
+struct Luminances {
+    float largest = 0, median = 0;
+    bool median_of_lit = false; // the median of the pixels that are not black (at least half are)
+};
+Luminances luminances_of(const Image& image);
+// The same range from the luminances however found (on the device: flip/device_flip.h); `test`'s
+// are asked for only where the reference is black, and may be null where there is no test image.
+// Each is asked for at most once, and not at all where the options give both ends.
+using LuminancesSource = std::function<Result<Luminances>()>;
+Result<ExposureRange> exposure_range(const ExposureOptions& options, const LuminancesSource& reference,
+                                     const LuminancesSource& test);
 
 // Fails unless every pixel's R, G and B are finite and not negative, naming `what`, the pixel and
 // the value. Alpha is not looked at.

@@ -88,7 +88,7 @@ FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
                         if (!maps) return std::unexpected(maps.error());
                         return FlipFigure{maps->mean, maps->range.note, std::move(maps->error)};
                     },
-                    &flip};
+                    &flip, exposures};
 }
 
 Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip,
@@ -230,8 +230,13 @@ public:
     }
 
 private:
-    // LDR-FLIP on the device of the output loaded there against `reference` (null: the one loaded).
+    // FLIP on the device of the output loaded there against `reference` (null: the one loaded).
     Result<FlipFigure> loaded_figure(const Image* reference, bool keep_map, DeviceFlip::Reference kept) {
+        if (m_.range == ColorRange::hdr) {
+            auto hdr = flip_->device->hdr_loaded(reference, flip_->exposures, keep_map, kept);
+            if (!hdr) return std::unexpected(hdr.error());
+            return FlipFigure{hdr->mean, hdr->range.note, std::move(hdr->error)};
+        }
         auto ldr = flip_->device->ldr_loaded(reference, keep_map, kept);
         if (!ldr) return std::unexpected(ldr.error());
         return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
@@ -280,12 +285,10 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
     const ColorRange range = source.color_range();
     const bool against_reference = source.has_reference();
-    // Measured on the device (the device's FLIP on the resolve's queue, LDR): each output is
-    // checked, moved onto the range and measured where the resolve leaves it, and comes back only
-    // for an observer. HDR-FLIP's exposure range is derived on the host, from both images.
-    DeviceFlip* device = flip.device && range == ColorRange::ldr && &flip.device->context() == &resolve.context()
-                             ? flip.device
-                             : nullptr;
+    // Measured on the device (the device's FLIP on the resolve's queue): each output is checked,
+    // moved onto the range and measured where the resolve leaves it, and comes back only for an
+    // observer; HDR-FLIP's exposure range comes from luminances found there.
+    DeviceFlip* device = flip.device && &flip.device->context() == &resolve.context() ? flip.device : nullptr;
     if (device)
         if (auto ok = device->keep_slots(resolve.size()); !ok) return std::unexpected(ok.error());
     const bool observed = on_output || on_measured;
@@ -348,7 +351,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             auto on_the_device = [&](std::size_t s) -> Result<void> {
                 auto view = resolve.output_on_device(s);
                 if (!view) return std::unexpected(view.error());
-                auto outside = device->load(DeviceFlip::Input::test, *view, false, kOutputRounding);
+                auto outside = device->load(DeviceFlip::Input::test, *view, range == ColorRange::hdr, kOutputRounding);
                 if (!outside) return std::unexpected(outside.error());
                 if (*outside) {
                     const DeviceFlip::Outside& o = **outside;

@@ -48,11 +48,13 @@ struct FlipMean {
                                      bool same_reference)>
         pair;
     // The device's FLIP where it computes (device_flip_mean sets it): on the resolve's queue it
-    // measures LDR outputs where the resolve leaves them, checked and moved onto the range there
+    // measures outputs where the resolve leaves them, checked and moved onto the range there
     // (DeviceFlip::load), so only the figures come back, and the outputs only for an observer.
-    // kdop taa leaves it null on a CPU device, where reading back was as fast and held less
-    // (TaaEvaluation::flip_mean).
+    // HDR-FLIP's exposures are then `exposures`, each range derived on the device where its image
+    // is there alone (the previous output, for shimmer). kdop taa leaves it null on a CPU device,
+    // where reading back was as fast and held less (TaaEvaluation::flip_mean).
     DeviceFlip* device = nullptr;
+    ExposureOptions exposures;
 
     Result<FlipFigure> operator()(const Image& reference, const Image& test, ColorRange range, bool map,
                                   bool same_reference) const {

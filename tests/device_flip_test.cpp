@@ -16,6 +16,7 @@
 #include <glm/common.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -175,6 +176,73 @@ TEST(DeviceFlip, HdrMapsAreTheCpus) {
         ASSERT_TRUE(mean_only) << mean_only.error().message;
         EXPECT_EQ(mean_only->mean, got->mean);
         EXPECT_TRUE(mean_only->error.empty());
+    }
+    expect_quiet_validation();
+}
+
+// HDR-FLIP's exposure range of an image on the device alone: its luminances found there are
+// luminances_of's (flip/hdr_flip.h) to the bit, over decades of luminance, with ties, with -0,
+// where at least half the pixels are black (the median of the others) and where all are; and a
+// pair measured as loaded gives the figures, range and maps of the same pair from the host,
+// including a black reference (the range from the test image) and two black images.
+TEST(DeviceFlip, LoadedHdrImagesGiveTheHostsExposureRange) {
+    constexpr std::uint32_t w = 41, h = 23; // 943 pixels: an odd count, so the median is one value
+    auto device = device_flip(kPpd, w, h);
+    ASSERT_TRUE(device);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> stops(-30.0f, 30.0f);
+    auto spread = [&] {
+        Image image = noise(random(), w, h);
+        for (glm::vec4& p : image.pixels) p *= glm::vec4(glm::vec3(std::exp2(stops(random))), 1.0f);
+        return image;
+    };
+    Image ties = spread();
+    for (std::size_t i = 0; i < ties.pixels.size(); i += 2) ties.pixels[i] = {0.25f, 0.5f, 0.125f, 1.0f};
+    Image half_black = spread();
+    for (std::size_t i = 0; i < half_black.pixels.size(); i += 3) half_black.pixels[i] = {0, 0, 0, 1};
+    for (std::size_t i = 1; i < half_black.pixels.size(); i += 3) half_black.pixels[i] = {-0.0f, -0.0f, -0.0f, 1};
+    Image black(w, h);
+    for (glm::vec4& p : black.pixels) p = {0, 0, 0, 1};
+    const struct {
+        const char* what;
+        Image reference, test;
+    } cases[] = {{"spread", spread(), spread()},
+                 {"ties", ties, spread()},
+                 {"half black", half_black, spread()},
+                 {"black reference", black, spread()},
+                 {"both black", black, black}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.what);
+        ExposureOptions fixed; // both ends given: nothing derived while the pair is uploaded
+        fixed.start = 0.0f;
+        fixed.stop = 1.0f;
+        ASSERT_TRUE(device->hdr(c.reference, c.test, fixed, false));
+        for (auto [input, image] :
+             {std::pair{DeviceFlip::Input::reference, &c.reference}, std::pair{DeviceFlip::Input::test, &c.test}}) {
+            const Luminances expected = luminances_of(*image);
+            auto got = device->luminances(input);
+            ASSERT_TRUE(got) << got.error().message;
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(got->largest), std::bit_cast<std::uint32_t>(expected.largest));
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(got->median), std::bit_cast<std::uint32_t>(expected.median));
+            EXPECT_EQ(got->median_of_lit, expected.median_of_lit);
+        }
+        EXPECT_EQ(luminances_of(c.reference).median_of_lit, std::string(c.what) == "half black");
+
+        const ExposureOptions derived;
+        auto expected = device->hdr(c.reference, c.test, derived, true);
+        ASSERT_TRUE(expected) << expected.error().message;
+        auto from_host = device->hdr_loaded(&c.reference, derived, true);
+        auto loaded = device->hdr_loaded(nullptr, derived, true);
+        for (auto* got : {&from_host, &loaded}) {
+            ASSERT_TRUE(*got) << (*got).error().message;
+            EXPECT_EQ((*got)->range.start, expected->range.start);
+            EXPECT_EQ((*got)->range.stop, expected->range.stop);
+            EXPECT_EQ((*got)->range.count, expected->range.count);
+            EXPECT_EQ((*got)->range.note, expected->range.note);
+            EXPECT_EQ((*got)->mean, expected->mean);
+            EXPECT_EQ((*got)->error, expected->error);
+            EXPECT_EQ((*got)->exposure, expected->exposure);
+        }
     }
     expect_quiet_validation();
 }

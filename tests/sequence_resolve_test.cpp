@@ -459,7 +459,8 @@ TEST_F(ResolveGpu, MeasuredFramesCarryTheMapsTheirFiguresAreMeansOf) {
 // Measured on the device (DeviceFlip::load: each output checked, moved onto the range and
 // measured where the resolve leaves it) every figure, output and map is bit for bit what the host
 // path gives (outputs read back, within_range, uploaded to the same device FLIP), over a camera
-// cut, for ghosting and shimmer together and each alone, maps asked for or not.
+// cut, for ghosting and shimmer together and each alone, maps asked for or not, in LDR and in HDR
+// (each exposure range derived on the device where its image is there alone).
 TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
     constexpr std::uint32_t w = 48, h = 32;
     const SceneFrames moving("grass", make_texture(TextureFamily::grass, w, h, 8), 12, true, true);
@@ -478,48 +479,49 @@ TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
         std::vector<Image> outputs;
         std::vector<std::vector<float>> maps;
     };
-    for (const SequenceRoles roles : {SequenceRoles{}, SequenceRoles{.ghosting = true, .shimmer = false},
-                                      SequenceRoles{.ghosting = false, .shimmer = true}})
-        for (bool maps : {false, true}) {
-            const std::string what =
-                fmt::format("ghosting {}, shimmer {}, maps {}", roles.ghosting, roles.shimmer, maps);
-            const MeasuredFor source(std::make_shared<WithCut>(moving, 7, 0.0f), roles);
-            auto measure = [&](const FlipMean& flip) {
-                Seen seen;
-                auto resolve = TaaResolve::create(test::gpu(), both, w, h, {});
-                EXPECT_TRUE(resolve);
-                if (!resolve) return seen;
-                auto observe = [&](const MeasuredFrame& frame) -> Result<void> {
-                    for (const Image* output : frame.outputs) seen.outputs.push_back(*output);
-                    for (const std::vector<float>& map : frame.maps) seen.maps.push_back(map);
-                    return {};
+    for (const float hdr_scale : {0.0f, 40.0f})
+        for (const SequenceRoles roles : {SequenceRoles{}, SequenceRoles{.ghosting = true, .shimmer = false},
+                                          SequenceRoles{.ghosting = false, .shimmer = true}})
+            for (bool maps : {false, true}) {
+                const std::string what = fmt::format("ghosting {}, shimmer {}, maps {}, HDR scale {}", roles.ghosting,
+                                                     roles.shimmer, maps, hdr_scale);
+                const MeasuredFor source(std::make_shared<WithCut>(moving, 7, hdr_scale), roles);
+                auto measure = [&](const FlipMean& flip) {
+                    Seen seen;
+                    auto resolve = TaaResolve::create(test::gpu(), both, w, h, {});
+                    EXPECT_TRUE(resolve);
+                    if (!resolve) return seen;
+                    auto observe = [&](const MeasuredFrame& frame) -> Result<void> {
+                        for (const Image* output : frame.outputs) seen.outputs.push_back(*output);
+                        for (const std::vector<float>& map : frame.maps) seen.maps.push_back(map);
+                        return {};
+                    };
+                    auto measured = measure_sequence_all(**resolve, source, 3, flip, {}, {}, observe, maps);
+                    EXPECT_TRUE(measured) << what << ": " << measured.error().message;
+                    if (measured) seen.figures = std::move(*measured);
+                    return seen;
                 };
-                auto measured = measure_sequence_all(**resolve, source, 3, flip, {}, {}, observe, maps);
-                EXPECT_TRUE(measured) << what << ": " << measured.error().message;
-                if (measured) seen.figures = std::move(*measured);
-                return seen;
-            };
-            const Seen host = measure(read_back), here = measure(on_device);
-            ASSERT_EQ(here.figures.size(), 2u) << what;
-            ASSERT_EQ(host.figures.size(), 2u) << what;
-            for (std::size_t s = 0; s < 2; ++s) {
-                const SequenceMeasurement &a = here.figures[s], &b = host.figures[s];
-                EXPECT_TRUE(std::isnan(b.ghosting) ? std::isnan(a.ghosting) : a.ghosting == b.ghosting) << what;
-                EXPECT_TRUE(std::isnan(b.shimmer) ? std::isnan(a.shimmer) : a.shimmer == b.shimmer) << what;
-                ASSERT_EQ(a.per_frame.size(), b.per_frame.size()) << what;
-                for (std::size_t f = 0; f < a.per_frame.size(); ++f) {
-                    const FrameFigures &x = a.per_frame[f], &y = b.per_frame[f];
-                    EXPECT_TRUE(std::isnan(y.ghosting) ? std::isnan(x.ghosting) : x.ghosting == y.ghosting) << what;
-                    EXPECT_TRUE(std::isnan(y.shimmer) ? std::isnan(x.shimmer) : x.shimmer == y.shimmer) << what;
+                const Seen host = measure(read_back), here = measure(on_device);
+                ASSERT_EQ(here.figures.size(), 2u) << what;
+                ASSERT_EQ(host.figures.size(), 2u) << what;
+                for (std::size_t s = 0; s < 2; ++s) {
+                    const SequenceMeasurement &a = here.figures[s], &b = host.figures[s];
+                    EXPECT_TRUE(std::isnan(b.ghosting) ? std::isnan(a.ghosting) : a.ghosting == b.ghosting) << what;
+                    EXPECT_TRUE(std::isnan(b.shimmer) ? std::isnan(a.shimmer) : a.shimmer == b.shimmer) << what;
+                    ASSERT_EQ(a.per_frame.size(), b.per_frame.size()) << what;
+                    for (std::size_t f = 0; f < a.per_frame.size(); ++f) {
+                        const FrameFigures &x = a.per_frame[f], &y = b.per_frame[f];
+                        EXPECT_TRUE(std::isnan(y.ghosting) ? std::isnan(x.ghosting) : x.ghosting == y.ghosting) << what;
+                        EXPECT_TRUE(std::isnan(y.shimmer) ? std::isnan(x.shimmer) : x.shimmer == y.shimmer) << what;
+                    }
                 }
+                EXPECT_GT(host.figures[0].per_frame.size(), 0u);
+                ASSERT_EQ(here.outputs.size(), host.outputs.size()) << what;
+                for (std::size_t o = 0; o < host.outputs.size(); ++o)
+                    EXPECT_TRUE(bit_identical(here.outputs[o], host.outputs[o])) << what << ", output " << o;
+                EXPECT_EQ(here.maps, host.maps) << what;
+                EXPECT_EQ(host.maps.empty(), !maps) << what;
             }
-            EXPECT_GT(host.figures[0].per_frame.size(), 0u);
-            ASSERT_EQ(here.outputs.size(), host.outputs.size()) << what;
-            for (std::size_t o = 0; o < host.outputs.size(); ++o)
-                EXPECT_TRUE(bit_identical(here.outputs[o], host.outputs[o])) << what << ", output " << o;
-            EXPECT_EQ(here.maps, host.maps) << what;
-            EXPECT_EQ(host.maps.empty(), !maps) << what;
-        }
 }
 
 // A history holding a linear ramp, sampled between texels: Catmull-Rom reproduces it exactly (up
