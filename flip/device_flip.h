@@ -1,5 +1,5 @@
 // LDR-FLIP and HDR-FLIP on the device: the arithmetic of flip.h and hdr_flip.h, in the same order,
-// as three Vulkan compute passes (shader_templates/flip.comp.in) on any device, lavapipe included.
+// as Vulkan compute passes (shader_templates/flip.comp.in) on any device, lavapipe included.
 // The CPU classes stay the reference this one is tested against (tests/device_flip_test.cpp):
 // per-pixel maps within 1e-5, means within 1e-6 relative.
 //
@@ -113,8 +113,8 @@ public:
     Result<HdrFlipMaps> hdr_loaded(const Image* reference, const ExposureOptions& options, bool read_maps,
                                    Reference kept = Reference::new_one);
     // luminances_of (flip/hdr_flip.h) of the image in `input` (uploaded by the last evaluation, or
-    // loaded), to the bit: its largest luminance and counts of its luminances' bits come back, two
-    // or three times 256 KiB, not the image.
+    // loaded), to the bit: its largest luminance and counts of its luminances' bits come back (256
+    // KiB, two to four times), not the image.
     Result<Luminances> luminances(Input input);
 
 private:

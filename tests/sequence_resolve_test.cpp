@@ -256,7 +256,6 @@ TEST_F(ResolveGpu, AStillUnjitteredSequenceNeitherGhostsNorShimmers) {
     }
 }
 
-// A source that marks a camera cut at frame `cut` of another.
 // `inner` with a camera cut at frame `cut`; with `hdr_scale`, its colors times that, measured as HDR.
 class WithCut final : public FrameSource {
 public:
