@@ -141,6 +141,16 @@ Result<std::unique_ptr<RunnableVariant>> build_pass(const LdrFlip& cpu, int pass
     return std::make_unique<RunnableVariant>(std::move(built));
 }
 
+// One pass's dispatch of x by y by z workgroups: its pipeline, its set and `p` as its push constants.
+void record_dispatch(VkCommandBuffer cb, const Kernel& k, VkDescriptorSet set, const Parameters& p, std::uint32_t x,
+                     std::uint32_t y, std::uint32_t z) {
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
+    vkCmdDispatch(cb, x, y, z);
+}
+
 // Every write of one dispatch visible to the next one's reads and writes.
 void compute_barrier(VkCommandBuffer cb, VkAccessFlags src_access, VkPipelineStageFlags src_stage,
                      VkAccessFlags dst_access, VkPipelineStageFlags dst_stage) {
@@ -360,13 +370,7 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image* reference, cons
                       keep_reference ? compute : VkPipelineStageFlags(VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT), compute,
                       horizontal_.layers());
         auto dispatch = [&](int pass, const Parameters& p, std::uint32_t x, std::uint32_t y, std::uint32_t z) {
-            const Kernel& k = *kernels_[std::size_t(pass)];
-            vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
-            vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &sets_[std::size_t(pass)], 0,
-                                    nullptr);
-            vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                               std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
-            vkCmdDispatch(cb, x, y, z);
+            record_dispatch(cb, *kernels_[std::size_t(pass)], sets_[std::size_t(pass)], p, x, y, z);
             compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, shader_rw, compute);
         };
         // The maps the vertical pass writes: what is read back, and, from the second exposure on,
@@ -467,12 +471,7 @@ Result<std::optional<DeviceFlip::Outside>> DeviceFlip::load(Input input, VkImage
     vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
     const Parameters p{width_, height_, 1, 0, 0, 0, input == Input::test ? 1u : 0u, hdr ? 1u : 0u, rounding};
     auto ran = commands_->run([&](VkCommandBuffer cb) {
-        const Kernel& k = *kernels_[kLoad];
-        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
-        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &sets_[kLoad], 0, nullptr);
-        vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
-        vkCmdDispatch(cb, ceil_div(width_, kLocalSize), height_, 1);
+        record_dispatch(cb, *kernels_[kLoad], sets_[kLoad], p, ceil_div(width_, kLocalSize), height_, 1);
         // For the evaluation's passes and copies, and the host's count.
         compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT,
@@ -577,13 +576,7 @@ Result<Luminances> DeviceFlip::luminances(Input input) {
         std::memset(histogram, 0, kHistogramBytes);
         const Parameters p{width_, height_, 1, 0, 0, 0, input == Input::test ? 1u : 0u, 0, 0, prefix};
         auto ran = commands_->run([&](VkCommandBuffer cb) {
-            const Kernel& k = *kernels_[kLuminance];
-            vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline());
-            vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout(), 0, 1, &sets_[kLuminance], 0,
-                                    nullptr);
-            vkCmdPushConstants(cb, k.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                               std::min<std::uint32_t>(sizeof p, k.push_constant_size()), &p);
-            vkCmdDispatch(cb, ceil_div(width_, kLocalSize), height_, 1);
+            record_dispatch(cb, *kernels_[kLuminance], sets_[kLuminance], p, ceil_div(width_, kLocalSize), height_, 1);
             compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                             VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
         });
