@@ -20,11 +20,15 @@ std::string safe_name(const std::string& s) {
 
 } // namespace
 
-std::string accuracy_chart_name(const std::string& family) { return "pareto-" + safe_name(family) + ".png"; }
-
 std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade) {
     std::vector<std::string> names;
-    for (const std::string& family : trade_families(trade)) names.push_back(accuracy_chart_name(family));
+    for (const std::string& family : trade_families(trade)) {
+        // Families that keep to one name (a/x.png and a_x.png) are told apart by a number.
+        std::string name = "pareto-" + safe_name(family) + ".png";
+        for (int n = 2; std::find(names.begin(), names.end(), name) != names.end(); ++n)
+            name = fmt::format("pareto-{}-{}.png", safe_name(family), n);
+        names.push_back(name);
+    }
     return names;
 }
 
@@ -38,11 +42,10 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
         if (std::find(sets.begin(), sets.end(), safe_name(r.key.set)) == sets.end())
             sets.push_back(safe_name(r.key.set));
     const VariantChartStyle style(sets);
-    std::string script = fmt::format("set terminal pngcairo size {},600 font 'sans,10'\nset grid\n"
-                                     "set key outside right top spacing 1.1\n",
-                                     lavapipe ? 1800 : 1000);
+    std::string script =
+        gnuplot_terminal(lavapipe ? 1800 : 1000, 600) + "set grid\nset key outside right top spacing 1.1\n";
     for (std::size_t f = 0; f < families.size(); ++f) {
-        const std::string stem = (scratch / safe_name(families[f])).string();
+        const std::string stem = (scratch / fmt::format("family-{}", f)).string();
         std::vector<double> distances;
         std::vector<VariantKey> keys;
         for (const TradeRow& r : trade)
@@ -51,10 +54,12 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                 keys.push_back(r.key);
             }
         script += axis_scale('y', distances, "mean distance to the ideal clip");
-        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: accuracy against cost, one point "
-                              "per variant (color: mode and neighborhood; shape: axis set); black lines: the Pareto "
-                              "fronts'\n",
-                              (scratch / names[f]).string(), lavapipe ? 2 : 1, safe_name(families[f]));
+        script += gnuplot_output(scratch, f);
+        script += fmt::format("set multiplot layout 1,{} title {}\n", lavapipe ? 2 : 1,
+                              gnuplot_string(fmt::format("{}: accuracy against cost, one point per variant (color: "
+                                                         "mode and neighborhood; shape: axis set); black lines: the "
+                                                         "Pareto fronts",
+                                                         families[f])));
         struct Axis {
             std::string suffix, label;
             double (*cost)(const TradeRow&);
@@ -77,8 +82,9 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                     const std::string data =
                         fmt::format("{}-{}-{}.dat", stem, axis.suffix, VariantChartStyle::group(group_key));
                     if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
-                    plot += fmt::format("{}'{}' using 1:2:3 with points pt variable ps 1.5 lc rgb '{}' notitle",
-                                        plot.empty() ? "" : ", ", data, VariantChartStyle::color(group_key));
+                    plot += fmt::format("{}{} using 1:2:3 with points pt variable ps 1.5 lc rgb '{}' notitle",
+                                        plot.empty() ? "" : ", ", gnuplot_string(data),
+                                        VariantChartStyle::color(group_key));
                 }
             for (Neighborhood shape : kAllNeighborhoods) {
                 std::vector<const TradeRow*> members;
@@ -92,11 +98,11 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                     front.push_back({gnuplot_number(axis.cost(*r)), gnuplot_number(r->mean_dist)});
                 const std::string data = fmt::format("{}-{}-front-{}.dat", stem, axis.suffix, to_string(shape));
                 if (auto ok = write_text(data, gnuplot_data(front)); !ok) return std::unexpected(ok.error());
-                fronts +=
-                    fmt::format(", '{}' using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
-                                data, shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
+                fronts += fmt::format(", {} using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
+                                      gnuplot_string(data), shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
             }
-            script += fmt::format("set xlabel '{}'\nplot {}{}{}\n", axis.label, plot, style.key_entries(keys), fronts);
+            script += fmt::format("set xlabel {}\nplot {}{}{}\n", gnuplot_string(axis.label), plot,
+                                  style.key_entries(keys), fronts);
         }
         script += "unset multiplot\n";
     }

@@ -12,10 +12,9 @@
 
 namespace kdop {
 
-// pareto-<family>.png, the family's name kept to letters, digits, '.', '_' and '-'.
-std::string accuracy_chart_name(const std::string& family);
-
-// pareto-<family>.png for each family, in the order the report shows them.
+// pareto-<family>.png for each family, in the order the report shows them (trade_families): the
+// family's name kept to letters, digits, '.', '_' and '-', and a number added where two families
+// would keep to one name.
 std::vector<std::string> accuracy_chart_names(const std::vector<TradeRow>& trade);
 
 Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& trade,

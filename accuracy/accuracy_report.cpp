@@ -200,11 +200,13 @@ std::string accuracy_report_markdown(const AccuracyRun& run, const std::vector<T
 
     out += "\n## By family\n\n";
     if (lavapipe) out += fmt::format("The lavapipe column: {}.\n\n", lavapipe_label(trade));
-    for (const std::string& family : trade_families(trade)) {
+    const std::vector<std::string> families = trade_families(trade), charts = accuracy_chart_names(trade);
+    for (std::size_t f = 0; f < families.size(); ++f) {
+        const std::string& family = families[f];
         out += fmt::format("### {}\n\n", markdown_text(family));
         if (c.charts)
             out += fmt::format("![Accuracy against cost on {}]({})\n\n", markdown_text(family),
-                               markdown_destination(accuracy_chart_name(family)));
+                               markdown_destination(charts[f]));
         out += family_table(trade, family, lavapipe) + "\n";
     }
     return out;

@@ -92,8 +92,7 @@ std::string run_ms(double ms, double pixels) {
     return fmt::format("{:.2f} ms ({:.1f} ns/pixel)", ms, ms * 1e6 / pixels);
 }
 
-constexpr const char* kChartStyle = R"(set terminal pngcairo size 1400,560 font "sans,10"
-set style data histograms
+constexpr const char* kChartStyle = R"(set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.85 border -1
 set boxwidth 0.9
@@ -185,47 +184,47 @@ Result<std::vector<OutputFile>> cost_charts(const BenchResult& result, const std
     if (auto ok = write_text(data, clips.gnuplot(columns)); !ok) return std::unexpected(ok.error());
     const CostRow* gather = find_row(result, gather_key(Neighborhood::n9));
 
-    std::string script = kChartStyle;
-    script += fmt::format("set output '{}'\n", (scratch / names[0]).string());
+    const std::string data_file = gnuplot_string(data);
+    std::string script = gnuplot_terminal(1400, 560) + kChartStyle + gnuplot_output(scratch, 0);
     script += "set title 'Static cost: scalar float operations per pixel (optimized SPIR-V)'\nset ylabel 'float ops'\n";
-    script += fmt::format("plot '{0}' using 2:xtic(1) title 'emitted (kdop)', '' using 3 title 'analytic lower bound', "
+    script += fmt::format("plot {0} using 2:xtic(1) title 'emitted (kdop)', '' using 3 title 'analytic lower bound', "
                           "'' using 4 title 'loop form (supplement)'\n",
-                          data);
+                          data_file);
     // Measured cost: callgrind's instructions (when counted) above the times, drawn as medians with
     // their interquartile range; variants whose time is within noise of their loop form say so.
     const bool counted = measured_callgrind(result);
-    script +=
-        fmt::format("set output '{}'\nset terminal pngcairo size 1400,{} font 'sans,10'\nset multiplot layout {},1\n",
-                    (scratch / names[1]).string(), counted ? 1000 : 560, counted ? 2 : 1);
+    script += gnuplot_terminal(1400, counted ? 1000 : 560) + gnuplot_output(scratch, 1) +
+              fmt::format("set multiplot layout {},1\n", counted ? 2 : 1);
     if (counted) {
         script += "set title 'lavapipe: CPU instructions per pixel of one dispatch (callgrind, repeats exactly)'\n"
                   "set ylabel 'instructions / pixel'\n";
         script +=
-            fmt::format("plot '{0}' using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n", data,
+            fmt::format("plot {0} using 5:xtic(1) title 'emitted (kdop)', '' using 6 title 'loop form'{1}\n", data_file,
                         gather ? fmt::format(", {} with lines dt 2 lw 2 lc rgb 'black' title 'gather-n9 alone'",
                                              gnuplot_number(gather->instr_per_px))
                                : "");
     }
-    script += fmt::format("set title '{}: dispatch time, median with Q1..Q3; \"noise\": within the spread of its loop "
-                          "form'\nset ylabel 'ms'\nset style histogram errorbars gap 1 lw 1\n",
-                          device);
     script += fmt::format(
-        "plot '{0}' using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:11:12 title 'loop form, Q1..Q3', "
+        "set title {}\nset ylabel 'ms'\nset style histogram errorbars gap 1 lw 1\n",
+        gnuplot_string(fmt::format(
+            "{}: dispatch time, median with Q1..Q3; \"noise\": within the spread of its loop form", device)));
+    script += fmt::format(
+        "plot {0} using 7:8:9:xtic(1) title 'emitted (kdop), Q1..Q3', '' using 10:11:12 title 'loop form, Q1..Q3', "
         "'' using 0:(column(13) > 0 ? column(7) : 1/0):(\"noise\") with labels offset 0,1.5 notitle\n"
         "unset multiplot\n",
-        data);
+        data_file);
 
     if (!result.sweep.sizes.empty()) {
         const SweepResult& s = result.sweep;
         const std::string sweep_data = (scratch / "sweep.dat").string();
         if (auto ok = write_text(sweep_data, sweep_table(s).gnuplot({})); !ok) return std::unexpected(ok.error());
-        script += fmt::format("set terminal pngcairo size 1000,700 font 'sans,10'\nset output '{}'\n",
-                              (scratch / names[2]).string());
+        script += gnuplot_terminal(1000, 700) + gnuplot_output(scratch, 2);
         script += "set style data linespoints\nset logscale xy\nset xtics rotate by 0 scale 1\nset yrange [*:*]\n"
                   "set xlabel 'Mpixel'\nset ylabel 'ms (median)'\nset title 'Dispatch time against pixel count'\n";
         script += "plot ";
         for (std::size_t k = 0; k < s.kernels.size(); ++k)
-            script += fmt::format("{}'{}' using 2:{} title '{}'", k ? ", " : "", sweep_data, k + 3, s.kernels[k]);
+            script += fmt::format("{}{} using 2:{} title {}", k ? ", " : "", gnuplot_string(sweep_data), k + 3,
+                                  gnuplot_string(s.kernels[k]));
         script += "\n";
     }
     return draw_charts(script, names, scratch, out_dir);

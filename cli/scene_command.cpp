@@ -72,7 +72,7 @@ Action add_scene_command(CLI::App& app) {
             context = std::move(*created);
         }
         auto scenes = o->choice.select(size->first, size->second, o->seed, o->input_space, context.get());
-        if (!scenes) return report_error(scenes.error().message);
+        if (!scenes) return report(scenes.error());
 
         const auto on = [](const std::string& text) {
             return text.empty() ? std::nullopt : std::optional(text == "on");

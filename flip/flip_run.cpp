@@ -84,18 +84,20 @@ Result<OutputFile> histogram_chart(const std::vector<FlipTestResult>& tests, std
         }
         const std::filesystem::path data = scratch.path / fmt::format("test-{}.dat", t);
         if (auto ok = write_text(data, gnuplot_data(rows)); !ok) return std::unexpected(ok.error());
-        std::string title = std::filesystem::path(tests[t].test).filename().string();
-        std::erase(title, '\'');
-        plot += fmt::format("{}'{}' using 1:2 with histeps lw 2 title '{}: mean {:.4f}, weighted median {:.4f}'",
-                            plot.empty() ? "" : ", ", data.string(), title, tests[t].statistics.mean,
-                            tests[t].statistics.weighted_median);
+        const std::string title = fmt::format("{}: mean {:.4f}, weighted median {:.4f}",
+                                              std::filesystem::path(tests[t].test).filename().string(),
+                                              tests[t].statistics.mean, tests[t].statistics.weighted_median);
+        plot += fmt::format("{}{} using 1:2 with histeps lw 2 title {}", plot.empty() ? "" : ", ",
+                            gnuplot_string(data.string()), gnuplot_string(title));
     }
-    const std::string script = fmt::format(
-        "set terminal pngcairo size 1000,600 font 'sans,10'\nset output '{}'\nset grid\nset key top right\n"
-        "set title 'Weighted FLIP histogram ({} buckets): the pixels of each bucket times its error, per megapixel'\n"
-        "set xlabel 'FLIP error'\nset ylabel 'weighted FLIP sum per megapixel'\nset xrange [0:1]\nset yrange [0:*]\n"
-        "plot {}\n",
-        (scratch.path / "histogram.png").string(), kFlipHistogramBuckets, plot);
+    const std::string script = gnuplot_terminal(1000, 600) + gnuplot_output(scratch.path, 0) +
+                               fmt::format("set grid\nset key top right\n"
+                                           "set title 'Weighted FLIP histogram ({} buckets): the pixels of each bucket "
+                                           "times its error, per megapixel'\n"
+                                           "set xlabel 'FLIP error'\nset ylabel 'weighted FLIP sum per megapixel'\nset "
+                                           "xrange [0:1]\nset yrange [0:*]\n"
+                                           "plot {}\n",
+                                           kFlipHistogramBuckets, plot);
     auto drawn = draw_charts(script, {"histogram.png"}, scratch.path, to.parent_path());
     if (!drawn) return std::unexpected(drawn.error());
     OutputFile chart = std::move(drawn->front());

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/variant_key.h"
+#include "harness/gnuplot.h"
 
 #include <fmt/format.h>
 
@@ -45,10 +46,12 @@ public:
         for (const VariantKey& k : keys)
             if (std::find(groups.begin(), groups.end(), group(k)) == groups.end()) {
                 groups.push_back(group(k));
-                out += fmt::format(", NaN with points pt 7 ps 1.5 lc rgb '{}' title '{}'", color(k), group(k));
+                out += fmt::format(", NaN with points pt 7 ps 1.5 lc rgb '{}' title {}", color(k),
+                                   gnuplot_string(group(k)));
             }
         for (const std::string& set : sets_)
-            out += fmt::format(", NaN with points pt {} ps 1.5 lc rgb 'black' title '{}'", shape(set), set);
+            out +=
+                fmt::format(", NaN with points pt {} ps 1.5 lc rgb 'black' title {}", shape(set), gnuplot_string(set));
         return out;
     }
 
@@ -68,8 +71,9 @@ inline std::string axis_scale(char axis, std::span<const double> values, const s
             high = std::max(high, v);
         }
     if (low > 0 && high / low > 30)
-        return fmt::format("set logscale {0}\nset {0}range [*:*]\nset {0}label '{1} (log scale)'\n", axis, label);
-    return fmt::format("unset logscale {0}\nset {0}range [{2}:*]\nset {0}label '{1}'\n", axis, label,
+        return fmt::format("set logscale {0}\nset {0}range [*:*]\nset {0}label {1}\n", axis,
+                           gnuplot_string(label + " (log scale)"));
+    return fmt::format("unset logscale {0}\nset {0}range [{2}:*]\nset {0}label {1}\n", axis, gnuplot_string(label),
                        from_zero ? "0" : "*");
 }
 

@@ -21,6 +21,31 @@ std::string gnuplot_data(const std::vector<std::vector<std::string>>& table) {
 
 std::string gnuplot_number(double value) { return std::isfinite(value) ? fmt::format("{:.6g}", value) : "NaN"; }
 
+std::string gnuplot_string(std::string_view text) {
+    std::string out = "\"";
+    for (char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        const bool alnum = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        if (alnum || std::string_view(" .,:;()+=/_-").find(c) != std::string_view::npos)
+            out += c;
+        else
+            out += fmt::format("\\{:03o}", byte);
+    }
+    return out + "\"";
+}
+
+std::string gnuplot_terminal(int width, int height) {
+    return fmt::format("set terminal pngcairo noenhanced size {},{} font 'sans,10'\n", width, height);
+}
+
+namespace {
+std::string chart_file(std::size_t index) { return fmt::format("chart-{}.png", index); }
+} // namespace
+
+std::string gnuplot_output(const std::filesystem::path& scratch, std::size_t index) {
+    return fmt::format("set output {}\n", gnuplot_string((scratch / chart_file(index)).string()));
+}
+
 bool charts_available(bool wanted) {
     if (!wanted) return false;
     if (!find_program("gnuplot").empty()) return true;
@@ -51,10 +76,11 @@ Result<std::vector<OutputFile>> draw_charts(const std::string& script, const std
     if (*status != 0) return fail(fmt::format("gnuplot failed on {}:{}", script_path.string(), log_tail(log, 12)));
 
     std::vector<OutputFile> files;
-    for (const std::string& name : charts) {
-        std::ifstream in(scratch / name, std::ios::binary);
-        if (!in) return fail(fmt::format("gnuplot did not write {}", (scratch / name).string()));
-        files.push_back({out_dir / name, std::string(std::istreambuf_iterator<char>(in), {})});
+    for (std::size_t i = 0; i < charts.size(); ++i) {
+        const std::filesystem::path drawn = scratch / chart_file(i);
+        std::ifstream in(drawn, std::ios::binary);
+        if (!in) return fail(fmt::format("gnuplot did not write {} ({})", drawn.string(), charts[i]));
+        files.push_back({out_dir / charts[i], std::string(std::istreambuf_iterator<char>(in), {})});
     }
     return files;
 }

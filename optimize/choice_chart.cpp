@@ -27,31 +27,34 @@ Result<std::vector<OutputFile>> choice_chart(const ChooseResult& result, const s
     for (const auto& [name, rows] : files)
         if (auto ok = write_text(scratch / fmt::format("choice-{}.dat", name), gnuplot_data(*rows)); !ok)
             return std::unexpected(ok.error());
-    auto data = [&](const char* name) { return (scratch / fmt::format("choice-{}.dat", name)).string(); };
+    auto data = [&](const char* name) {
+        return gnuplot_string((scratch / fmt::format("choice-{}.dat", name)).string());
+    };
     if (!front.empty())
-        plot += fmt::format("'{}' using 1:2 with lines lw 2 lc rgb '#999999' title 'Pareto front'", data("front"));
+        plot += fmt::format("{} using 1:2 with lines lw 2 lc rgb '#999999' title 'Pareto front'", data("front"));
     if (!builtin.empty())
-        plot +=
-            fmt::format("{}'{}' using 1:2 with points pt 7 ps 1.6 lc rgb '#1f77b4' title 'built-in set', '{}' using "
-                        "1:2:3 with labels offset 1,0.6 left font 'sans,9' notitle",
-                        plot.empty() ? "" : ", ", data("builtin"), data("builtin"));
+        plot += fmt::format("{}{} using 1:2 with points pt 7 ps 1.6 lc rgb '#1f77b4' title 'built-in set', {} using "
+                            "1:2:3 with labels offset 1,0.6 left font 'sans,9' notitle",
+                            plot.empty() ? "" : ", ", data("builtin"), data("builtin"));
     // A fitted set's figure on the frames it was fitted to, joined to its held-out one: the gap a
     // figure measured in sample hides.
     if (!fitted.empty())
-        plot += fmt::format("{0}'{1}' using 1:4:(0):($2-$4) with vectors nohead dt 2 lc rgb '#d62728' notitle, '{1}' "
+        plot += fmt::format("{0}{1} using 1:4:(0):($2-$4) with vectors nohead dt 2 lc rgb '#d62728' notitle, {1} "
                             "using 1:4 with points pt 4 ps 1.6 lc rgb '#d62728' title 'fitted set, on its own frames', "
-                            "'{1}' using 1:2 with points pt 5 ps 1.6 lc rgb '#d62728' title 'fitted set, held out', "
-                            "'{1}' using 1:2:3 with labels offset 1,-0.6 left font 'sans,9' notitle",
+                            "{1} using 1:2 with points pt 5 ps 1.6 lc rgb '#d62728' title 'fitted set, held out', "
+                            "{1} using 1:2:3 with labels offset 1,-0.6 left font 'sans,9' notitle",
                             plot.empty() ? "" : ", ", data("fitted"));
     if (!chosen.empty())
-        plot += fmt::format("{}'{}' using 1:2 with points pt 6 ps 4 lw 2 lc rgb 'black' title 'recommended'",
+        plot += fmt::format("{}{} using 1:2 with points pt 6 ps 4 lw 2 lc rgb 'black' title 'recommended'",
                             plot.empty() ? "" : ", ", data("chosen"));
-    const std::string script = fmt::format(
-        "set terminal pngcairo size 1100,640 font 'sans,10'\nset output '{}'\nset grid\nset key outside right top\n"
-        "set offsets graph 0.05, graph 0.25, graph 0.08, graph 0.08\n"
-        "set title 'kdop choose: held-out ghosting against cost, one point per candidate (lower left is better)'\n"
-        "set xlabel 'float ops of the hardened clip'\nset ylabel 'ghosting (mean FLIP over the frames)'\nplot {}\n",
-        (scratch / "choice.png").string(), plot);
+    const std::string script =
+        gnuplot_terminal(1100, 640) + gnuplot_output(scratch, 0) +
+        fmt::format(
+            "set grid\nset key outside right top\n"
+            "set offsets graph 0.05, graph 0.25, graph 0.08, graph 0.08\n"
+            "set title 'kdop choose: held-out ghosting against cost, one point per candidate (lower left is better)'\n"
+            "set xlabel 'float ops of the hardened clip'\nset ylabel 'ghosting (mean FLIP over the frames)'\nplot {}\n",
+            plot);
     return draw_charts(script, {"choice.png"}, scratch, out_dir);
 }
 

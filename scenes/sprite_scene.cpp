@@ -1,5 +1,7 @@
 #include "scenes/sprite_scene.h"
 
+#include "core/file_name.h"
+#include "core/shown_text.h"
 #include "images/image_io.h"
 #include "images/texture_cases.h"
 
@@ -91,6 +93,12 @@ std::vector<std::string> sprite_scene_names() {
 
 Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
                                       InputSpace space) {
+    // The scene, its rows, charts and frames are named after the image's stem (core/file_name.h).
+    const std::string name = std::filesystem::path(path).stem().string();
+    if (auto problem = name_problem(name))
+        return usage_fail(fmt::format("--background: {}: the scene would be named after the file, and the name {}; "
+                                      "rename the file",
+                                      shown_text(path, 300), *problem));
     auto image = read_image(path, 0, space);
     if (!image) return fail(fmt::format("--background: {}", image.error().message));
     for (std::uint32_t y = 0; y < image->height; ++y)
@@ -103,7 +111,7 @@ Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t wid
                                             "from 0 to 1",
                                             path, x, y, "RGB"[c], v));
             }
-    return SpriteScene(std::filesystem::path(path).stem().string(), tiled(*image, width, height));
+    return SpriteScene(name, tiled(*image, width, height));
 }
 
 LoadedFrame render_scene(const Image& background, const FrameState& s) {

@@ -1,5 +1,6 @@
 #include "sequence/sequence.h"
 
+#include "core/file_name.h"
 #include "core/read_file.h"
 #include "core/shown_text.h"
 
@@ -149,6 +150,13 @@ Result<Sequence> read_sequence(const fs::path& dir) {
     const fs::path path = dir / "sequence.json";
     auto text = read_input_file(path);
     if (!text) return std::unexpected(text.error());
+    // Rows, charts, frames and pictures are named after the folder: refused here, before any work,
+    // where the name could not name them (core/file_name.h).
+    const std::string name = fs::weakly_canonical(dir).filename().string();
+    if (auto problem = name_problem(name))
+        return usage_fail(fmt::format("{}: the folder's name {}; kdop names the sequence's outputs after it, so rename "
+                                      "the folder",
+                                      shown_text(dir.string(), 300), *problem));
     json root;
     try {
         root = json::parse(*text);
@@ -181,7 +189,7 @@ Result<Sequence> read_sequence(const fs::path& dir) {
                                                       version->get<std::int64_t>(), kSequenceFormatVersion)));
     Sequence s;
     s.dir = dir;
-    s.name = fs::weakly_canonical(dir).filename().string();
+    s.name = name;
     auto width = reader.side(root, "width");
     if (!width) return std::unexpected(width.error());
     auto height = reader.side(root, "height");

@@ -39,9 +39,10 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
     }
     const VariantChartStyle style(sets);
     // Autoscaled around the points, with a margin: the variants' times and errors lie close together.
-    std::string script = "set terminal pngcairo size 1500,560 font 'sans,10'\nset grid\n"
-                         "set key outside right top spacing 1.1\nset offsets graph 0.08, graph 0.08, graph 0.08, "
-                         "graph 0.08\n";
+    std::string script =
+        gnuplot_terminal(1500, 560) +
+        "set grid\nset key outside right top spacing 1.1\nset offsets graph 0.08, graph 0.08, graph 0.08, "
+        "graph 0.08\n";
     for (std::size_t s = 0; s < scenes.size(); ++s) {
         std::vector<double> ms, ghosting, shimmer;
         std::string plot[2]; // ghosting, shimmer
@@ -69,19 +70,21 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
             const std::string data = (scratch / fmt::format("trade-{}-{}.dat", s, group)).string();
             if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
             for (int y = 0; y < 2; ++y)
-                plot[y] += fmt::format("{0}'{1}' using 1:{2}:4:5 with xerrorbars pt 0 lc rgb '{3}' notitle, '{1}' "
+                plot[y] += fmt::format("{0}{1} using 1:{2}:4:5 with xerrorbars pt 0 lc rgb '{3}' notitle, {1} "
                                        "using 1:{2}:6 with points pt variable ps 1.5 lc rgb '{3}' notitle",
-                                       plot[y].empty() ? "" : ", ", data, 2 + y, color);
+                                       plot[y].empty() ? "" : ", ", gnuplot_string(data), 2 + y, color);
         }
         // A panel per figure the scene or sequence is meant for (sequence.json's "measure").
         auto measured = [](const std::vector<double>& v) {
             return std::any_of(v.begin(), v.end(), [](double x) { return !std::isnan(x); });
         };
         const bool panels[2] = {measured(ghosting), measured(shimmer)};
-        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: cost against what a viewer sees, "
-                              "one point per variant (color: mode and neighborhood; shape: axis set; bars: Q1..Q3 of "
-                              "the time); lower left is better'\n",
-                              (scratch / names[s]).string(), int(panels[0]) + int(panels[1]), scenes[s]);
+        script += gnuplot_output(scratch, s);
+        script += fmt::format("set multiplot layout 1,{} title {}\n", int(panels[0]) + int(panels[1]),
+                              gnuplot_string(fmt::format("{}: cost against what a viewer sees, one point per variant "
+                                                         "(color: mode and neighborhood; shape: axis set; bars: "
+                                                         "Q1..Q3 of the time); lower left is better",
+                                                         scenes[s])));
         script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
         const char* flip = any && any->range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
         const char* against = any && any->ghosting_against == "reference" ? "reference" : "aliased frame";
@@ -109,8 +112,8 @@ Result<std::vector<OutputFile>> taa_over_time_charts(const std::vector<TaaFrameR
                                                      const std::filesystem::path& scratch,
                                                      const std::filesystem::path& out_dir) {
     const std::vector<std::string> scenes = scenes_of(rows), names = taa_over_time_chart_names(rows);
-    std::string script = "set terminal pngcairo size 1500,520 font 'sans,10'\nset grid\n"
-                         "set key outside right top spacing 1.1\nset xlabel 'frame'\n";
+    std::string script =
+        gnuplot_terminal(1500, 520) + "set grid\nset key outside right top spacing 1.1\nset xlabel 'frame'\n";
     double TaaFrameRow::*figures[2] = {&TaaFrameRow::ghosting, &TaaFrameRow::shimmer};
     const char* titles[2] = {"ghosting (FLIP against the truth of each frame)",
                              "shimmer (FLIP against the previous output)"};
@@ -128,13 +131,15 @@ Result<std::vector<OutputFile>> taa_over_time_charts(const std::vector<TaaFrameR
                 if (points.empty()) continue;
                 const std::string data = (scratch / fmt::format("over-time-{}-{}-{}.dat", s, f, v)).string();
                 if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
-                plots[f] += fmt::format("{}'{}' using 1:2 with linespoints pt 7 ps 0.6 lw 1.5 title '{}'",
-                                        plots[f].empty() ? "" : ", ", data, keys[v].name());
+                plots[f] +=
+                    fmt::format("{}{} using 1:2 with linespoints pt 7 ps 0.6 lw 1.5 title {}",
+                                plots[f].empty() ? "" : ", ", gnuplot_string(data), gnuplot_string(keys[v].name()));
             }
         const int panels = int(!plots[0].empty()) + int(!plots[1].empty());
-        script += fmt::format("set output '{}'\nset multiplot layout 1,{} title '{}: each variant over the measured "
-                              "frames (lower is better)'\n",
-                              (scratch / names[s]).string(), std::max(panels, 1), scenes[s]);
+        script += gnuplot_output(scratch, s);
+        script += fmt::format(
+            "set multiplot layout 1,{} title {}\n", std::max(panels, 1),
+            gnuplot_string(fmt::format("{}: each variant over the measured frames (lower is better)", scenes[s])));
         for (int f = 0; f < 2; ++f) // the key beside the last panel only: the variants are the same
             if (!plots[f].empty())
                 script += fmt::format("{}set ylabel '{}'\nplot {}\n",

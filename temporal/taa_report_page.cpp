@@ -81,9 +81,11 @@ nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants,
     return {{"variants", variants}, {"viewer", std::move(sequences)}};
 }
 
-// JSON inside <script>: '<' as \u003c, so no string in it can close the element.
+// JSON inside <script>: '<' as \u003c, so no string in it can close the element. Names are valid
+// UTF-8 by the time they get here (core/file_name.h); were one not, it is replaced, not the cause
+// of a run failing at its very end.
 std::string script_json(const nlohmann::ordered_json& json) {
-    std::string text = json.dump();
+    std::string text = json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
     std::string safe;
     for (char c : text) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
     return safe;

@@ -24,7 +24,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     TaaSources sources;
     for (const std::string& dir : request.sequences) {
         auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve);
-        if (!sequence) return fail(sequence.error().message);
+        if (!sequence) return std::unexpected(sequence.error());
         if (auto ok =
                 check_measurable(context, sequence->width, sequence->height, request.device_flip, request.variants);
             !ok)
@@ -39,15 +39,25 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     if (request.builtin) {
         request.scene_options.context = &context;
         auto selected = select_taa_scenes(request.scene_names, request.backgrounds, request.scene_options);
-        if (!selected) return fail(selected.error().message);
+        if (!selected) return std::unexpected(selected.error());
         sources.scenes = std::move(*selected);
     }
+    // Rows and charts are named after each scene and sequence, frames and pictures after each
+    // sequence, a scene's two included (<scene>-shimmer, <scene>-ghosting): every one of those names
+    // must be distinct, or one source's files would replace another's.
     std::set<std::string> names;
-    for (const auto& s : sources.scenes) names.insert(s->name());
+    for (const auto& scene : sources.scenes)
+        for (const std::string& name : {scene->name(), scene->name() + "-shimmer", scene->name() + "-ghosting"})
+            if (!names.insert(name).second)
+                return usage_fail(fmt::format("--background: the scene '{}' would write its files as '{}', which "
+                                              "another scene's files are named; rename the image",
+                                              scene->name(), name));
     for (const SequenceFrames& sequence : sources.sequences)
         if (!names.insert(sequence.name()).second)
-            return fail(fmt::format("{}: {}: a scene or sequence is already called '{}'", request.option,
-                                    sequence.sequence().dir.string(), sequence.name()));
+            return usage_fail(fmt::format("{} {}: its files would be named '{}', as a scene's or another "
+                                          "sequence's are (a scene's frames are <scene>-shimmer and "
+                                          "<scene>-ghosting); rename the folder",
+                                          request.option, sequence.sequence().dir.string(), sequence.name()));
     return sources;
 }
 

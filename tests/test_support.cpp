@@ -80,6 +80,18 @@ CommandResult run(const std::string& command_line) {
     return {exit_code, read_file(dir / "out"), read_file(dir / "err")};
 }
 
+std::string shell_word(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+CommandResult run(const std::vector<std::string>& arguments, const std::filesystem::path& cwd) {
+    std::string line = cwd.empty() ? "" : "cd " + shell_word(cwd.string()) + " &&";
+    for (const std::string& a : arguments) line += " " + shell_word(a);
+    return run(line);
+}
+
 std::string kdop_binary() { return KDOP_CLI_PATH; }
 std::string kdop_gen_binary() { return KDOP_GEN_PATH; }
 

@@ -40,6 +40,12 @@ struct CommandResult {
 // Runs a shell command line, capturing stdout and stderr.
 CommandResult run(const std::string& command_line);
 
+// `text` as one word of a shell command line, whatever it holds (quotes, $(), backticks, line
+// breaks): single-quoted, each ' written as '\''.
+std::string shell_word(const std::string& text);
+// Runs `arguments` as one command, each its own word, in `cwd` where given.
+CommandResult run(const std::vector<std::string>& arguments, const std::filesystem::path& cwd = {});
+
 // The rows of a CSV kdop wrote (harness/table.h: a header line, then one line per row; no field of
 // the tables tests read is quoted), each as its header's names to its fields.
 std::vector<std::map<std::string, std::string>> csv_rows(const std::string& csv);
