@@ -9,37 +9,20 @@
 #include "images/image_io.h"
 #include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
+#include "tests/interrupt_support.h"
 #include "tests/test_support.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <csignal>
-#include <fcntl.h>
-#include <map>
-#include <sys/wait.h>
-#include <thread>
-#include <unistd.h>
 
 namespace kdop {
 namespace {
 namespace fs = std::filesystem;
 
-// Every file under `dir` with its bytes: what a run must leave as it was.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-    std::map<std::string, std::string> files;
-    if (!fs::exists(dir)) return files;
-    for (const auto& entry : fs::recursive_directory_iterator(dir))
-        files[fs::relative(entry.path(), dir).string()] = entry.is_regular_file() ? test::read_file(entry.path()) : "/";
-    return files;
-}
-
-bool has_temporaries(const fs::path& dir) {
-    for (const auto& entry : fs::recursive_directory_iterator(dir))
-        if (entry.path().filename().string().find("kdop-partial") != std::string::npos) return true;
-    return false;
-}
+using test::has_temporaries;
+using test::snapshot;
 
 std::string kdop(const std::string& args) { return test::kdop_binary() + " " + args; }
 
@@ -116,40 +99,7 @@ TEST(WriteSet, FilesAreComparedByWhatTheyAreNotHowTheyAreSpelled) {
 // ---------------------------------------------------------------------------------------------
 // Interrupted runs (core/interrupt.h)
 
-struct Ending {
-    int exit_code; // -1 when it did not exit by itself
-    std::string err;
-};
-
-// Runs `command` (through sh, with `environment` added) until it holds at `point` (KDOP_TEST_HOLD;
-// by default before moving its outputs into place), sends it `signal` there, and returns how it ended.
-Ending interrupt_at_write(const std::string& command, int signal, const std::string& environment = "",
-                          const std::string& point = "write_atomically") {
-    test::TempDir dir;
-    const fs::path err = dir / "err";
-    const pid_t pid = fork();
-    if (pid == 0) {
-        const int fd = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(fd, 2);
-        const int null = open("/dev/null", O_WRONLY);
-        dup2(null, 1);
-        const std::string line = "KDOP_TEST_HOLD=" + point + " " + environment + " exec " + command;
-        execl("/bin/sh", "sh", "-c", line.c_str(), static_cast<char*>(nullptr));
-        _exit(127);
-    }
-    bool holding = false;
-    for (int i = 0; i < 12000 && !holding; ++i) { // up to two minutes
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        holding = test::read_file(err).find("holding for a signal") != std::string::npos;
-        int status = 0;
-        if (!holding && waitpid(pid, &status, WNOHANG) == pid)
-            return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, "ended before its write: " + test::read_file(err)};
-    }
-    kill(pid, holding ? signal : SIGKILL);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_file(err)};
-}
+using test::interrupt_at_write;
 
 TEST(CliInterrupt, SigtermWhileGenWritesLeavesTheFolderAsItWas) {
     test::TempDir dir;
