@@ -51,8 +51,10 @@ Result<int> run_program(const std::vector<std::string>& argv, const std::filesys
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    // The child starts with no signal blocked: kdop blocks SIGINT and SIGTERM for its watcher
-    // thread (core/interrupt.h), and a child inherits the mask.
+    // The child starts with no signal blocked: kdop blocks the signals its watcher thread waits
+    // for (core/interrupt.h), and a child inherits the mask. Handlers need no resetting (exec gives
+    // a caught signal its default action), and a signal ignored when kdop started stays ignored
+    // in the child, as it would have without kdop (nohup's SIGHUP).
     posix_spawnattr_t attributes;
     posix_spawnattr_init(&attributes);
     sigset_t none;
