@@ -1,5 +1,7 @@
 #include "generator/axis_set.h"
 
+#include "core/utf8.h"
+
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
@@ -176,6 +178,11 @@ Result<AxisSet> parse_axis_set(std::string_view text, std::string_view origin) {
         if (raw.ends_with('\r')) raw.remove_suffix(1); // CRLF line ends
         if (int c = control_character(raw); c >= 0)
             return fail(fmt::format("{}control character 0x{:02x}; axis files are plain text", where, c));
+        // The provenance is written into JSON (kdop gen's variants.json, kdop-gen --json), which holds
+        // only UTF-8: a Latin-1 "café" must be refused here, by line, not by the JSON writer at the end.
+        if (auto at = first_non_utf8_byte(raw))
+            return fail(fmt::format("{}byte 0x{:02x} (column {}) is not UTF-8; axis files are UTF-8 text", where,
+                                    static_cast<unsigned char>(raw[*at]), *at + 1));
 
         std::string_view line = trim(raw.substr(0, raw.find('#')));
         if (line.empty()) continue;

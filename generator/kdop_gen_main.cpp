@@ -3,6 +3,7 @@
 // and a test runs `kdop-gen glsl --check` to catch a stale generated/.
 #include "core/read_file.h"
 #include "core/shown_text.h"
+#include "core/utf8.h"
 #include "generator/command_line.h"
 #include "generator/project_shader.h"
 #include "generator/reflection_json.h"
@@ -73,6 +74,14 @@ int glsl_directory(const std::vector<BuiltVariant>& built, const fs::path& dir, 
     return 0;
 }
 
+// How the JSON `json` names the file `file_name` in `spirv_dir`: by its path from the JSON's folder
+// where there is one, else by its absolute path.
+std::string spirv_path_in_json(const fs::path& spirv_dir, const fs::path& json, const std::string& file_name) {
+    const fs::path file = fs::absolute(fs::path(spirv_dir) / file_name).lexically_normal();
+    const fs::path relative = file.lexically_relative(fs::absolute(json).parent_path());
+    return (relative.empty() ? file : relative).generic_string();
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -140,6 +149,12 @@ int main(int argc, char** argv) {
             else if (!spirv_dir.empty() && json.empty())
                 problem = "--spirv-dir writes the files the JSON names; give --json too";
             if (!problem) problem = registry_files_problem(header, source, depfile, json);
+            // The JSON names each .spv file by its path; JSON holds only UTF-8.
+            if (!problem && !spirv_dir.empty())
+                if (const std::string named = spirv_path_in_json(spirv_dir, json, "x.spv"); first_non_utf8_byte(named))
+                    problem = fmt::format("--spirv-dir: the JSON would name its files as '{}', which is not UTF-8, "
+                                          "and JSON holds nothing else; name a folder whose path is UTF-8",
+                                          shown_text(named, 300));
             if (!problem && cpp)
                 if (auto why = cpp_namespace_problem(cpp_namespace))
                     problem = fmt::format("--namespace: '{}' {}", shown_text(cpp_namespace), *why);
@@ -193,14 +208,11 @@ int main(int argc, char** argv) {
         }
         if (!json.empty()) {
             // Each .spv as the JSON's folder reaches it.
-            const fs::path json_dir = fs::absolute(json).parent_path();
             std::function<std::optional<std::string>(const BuiltVariant&)> spirv_name;
             if (!spirv_dir.empty()) {
                 for (const BuiltVariant& v : *built) files.push_back(spirv_file(v, spirv_dir));
                 spirv_name = [&](const BuiltVariant& v) {
-                    const fs::path file = fs::absolute(fs::path(spirv_dir) / (v.name + ".spv")).lexically_normal();
-                    const fs::path relative = file.lexically_relative(json_dir);
-                    return std::optional((relative.empty() ? file : relative).generic_string());
+                    return std::optional(spirv_path_in_json(spirv_dir, json, v.name + ".spv"));
                 };
             }
             files.push_back({json, reflection_json(*built, spirv_name)});

@@ -92,7 +92,10 @@ std::string reflection_json(std::span<const BuiltVariant> entries,
                            {"version", kReflectionFormatVersion},
                            {"generator", fmt::format("kdop-gen {}", KDOP_VERSION)},
                            {"entries", std::move(list)}};
-    return document.dump(2) + "\n";
+    // Every text in it is checked where it is read (axis files by line, shader names by file), so
+    // nothing here should be other than UTF-8; should something still be, it is written as U+FFFD
+    // rather than thrown at the end of the run, after all the work and before any file is written.
+    return document.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 } // namespace kdop

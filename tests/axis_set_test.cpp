@@ -152,7 +152,26 @@ TEST(AxisSet, ByteOrderMarksLineEndsSignsAndControlCharacters) {
     const std::string long_token(100000, '7');
     const std::string message = error_of(std::string(kHeader) + "1 0 x" + long_token + "\n");
     EXPECT_EQ(message, "t.axes:3: 'x777777777777777777777777777777777777777'… is not a number");
-    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 \xff\n"), "t.axes:3: '\\xff' is not a number");
+    EXPECT_EQ(error_of(std::string(kHeader) + "1 0 \xff\n"), "t.axes:3: byte 0xff (column 5) is not UTF-8; axis "
+                                                             "files are UTF-8 text");
+}
+
+// Text that is not UTF-8 is refused where the file is read, naming its line: a Latin-1 provenance
+// was accepted, then `kdop gen` and `kdop-gen --json` failed at the end with nlohmann's "invalid
+// UTF-8 byte", naming neither the file nor the line (issue 58, finding 7).
+TEST(AxisSet, RefusesTextThatIsNotUtf8NamingTheLine) {
+    const std::string axes = "1 0 0\n0 1 0\n0 0 1\n";
+    EXPECT_EQ(error_of("name: a\nprovenance: caf\xe9\n" + axes),
+              "t.axes:2: byte 0xe9 (column 16) is not UTF-8; axis files are UTF-8 text");
+    EXPECT_EQ(error_of("name: a\nprovenance: x\n# r\xe9sum\xe9\n" + axes),
+              "t.axes:3: byte 0xe9 (column 4) is not UTF-8; axis files are UTF-8 text");
+    EXPECT_NE(error_of("name: a\nprovenance: \xc0\xaf overlong\n" + axes).find("t.axes:2: byte 0xc0"),
+              std::string::npos);
+    EXPECT_NE(error_of("name: a\nprovenance: \xed\xa0\x80 surrogate\n" + axes).find("t.axes:2: byte 0xed"),
+              std::string::npos);
+    auto utf8 = parse_axis_set("name: a\nprovenance: caf\xc3\xa9 \xf0\x9f\x8c\xb2\n" + axes, "t.axes");
+    ASSERT_TRUE(utf8) << utf8.error().message;
+    EXPECT_EQ(utf8->provenance, "caf\xc3\xa9 \xf0\x9f\x8c\xb2");
 }
 
 // Components far from 1 are directions like any other: compared and spanned after scaling, so

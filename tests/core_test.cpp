@@ -1,6 +1,7 @@
 // The core: variant keys and names, the built-in set list read from the embedded axis files, and
 // output files written as a set.
 #include "core/builtin_sets.h"
+#include "core/utf8.h"
 #include "core/variant_key.h"
 #include "core/write_files.h"
 #include "generator/axis_set.h"
@@ -113,6 +114,29 @@ TEST(WriteFiles, OutputDirectoryIsCheckedBeforeAnyWork) {
     ASSERT_FALSE(proc);
     EXPECT_EQ(proc.error().message.rfind("--out: /proc/x: cannot create files in /proc", 0), 0u)
         << proc.error().message;
+}
+
+// Exactly what JSON writers accept: table 3-7's sequences, nothing shorter, longer or outside it.
+TEST(Utf8, FindsTheFirstByteThatIsNotWellFormed) {
+    using namespace std::string_view_literals;
+    for (std::string_view good : {""sv, "plain"sv, "caf\xc3\xa9"sv, "\xe0\xa0\x80"sv, "\xed\x9f\xbf"sv,
+                                  "\xf0\x90\x80\x80"sv, "\xf4\x8f\xbf\xbf"sv, "nul \0 is a byte"sv})
+        EXPECT_EQ(first_non_utf8_byte(good), std::nullopt) << good;
+    const std::pair<std::string_view, std::size_t> bad[] = {
+        {"caf\xe9"sv, 3},          // Latin-1
+        {"\x80"sv, 0},             // a continuation byte alone
+        {"\xc0\xaf"sv, 0},         // overlong '/'
+        {"\xc1\xbf"sv, 0},         // overlong
+        {"\xe0\x9f\xbf"sv, 0},     // overlong three bytes
+        {"\xed\xa0\x80"sv, 0},     // a surrogate
+        {"\xf0\x8f\xbf\xbf"sv, 0}, // overlong four bytes
+        {"\xf4\x90\x80\x80"sv, 0}, // past U+10FFFF
+        {"\xf5\x80\x80\x80"sv, 0},
+        {"ok\xff"sv, 2},
+        {"ab\xe2\x82"sv, 2}, // cut short
+        {"\xe2\x82x"sv, 0},
+    };
+    for (const auto& [text, at] : bad) EXPECT_EQ(first_non_utf8_byte(text), std::optional(at)) << text;
 }
 
 } // namespace

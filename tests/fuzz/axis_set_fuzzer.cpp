@@ -1,8 +1,10 @@
 // libFuzzer target: any bytes as an axis-set file, with the emitter behind the parser. Whatever
 // the parser accepts must emit every mode, neighborhood and form of GLSL in which no text from the
 // file leaves a comment (the injection the adversarial run found) and no axis became zero or
-// infinite (the loop form's raw axes). Everything it refuses must be refused with a message that
+// infinite (the loop form's raw axes), and whose provenance is UTF-8, which the registry's JSON must
+// hold (a Latin-1 one failed at the end of kdop gen). Everything it refuses must be refused with a message that
 // names the file and holds no raw control bytes. Any violation aborts, which libFuzzer reports.
+#include "core/utf8.h"
 #include "generator/axis_set.h"
 #include "generator/clip_emitter.h"
 #include "generator/variant_spec.h"
@@ -41,6 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         require(!has_control_bytes(message, false), "an error that echoes control bytes", message);
         return 0;
     }
+    require(!kdop::first_non_utf8_byte(set->provenance), "a provenance that is not UTF-8", set->provenance);
     for (kdop::Mode mode : kdop::kAllModes)
         for (kdop::Neighborhood n : kdop::kAllNeighborhoods)
             for (kdop::Form form : {kdop::Form::unrolled, kdop::Form::loop}) {
