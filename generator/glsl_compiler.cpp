@@ -1,13 +1,12 @@
 #include "generator/glsl_compiler.h"
 
+#include "generator/glslang_includer.h"
+
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
-#include <algorithm>
-#include <memory>
 #include <mutex>
 #include <optional>
 #include <regex>
@@ -67,53 +66,6 @@ std::pair<glslang::EShTargetClientVersion, glslang::EShTargetLanguageVersion> gl
     return {glslang::EShTargetVulkan_1_0, glslang::EShTargetSpv_1_0};
 }
 
-// How deeply includes may nest. glslang itself sets no limit, so files that include each other
-// without a guard would make it recurse until memory runs out.
-constexpr std::size_t kMaxIncludeDepth = 32;
-
-// glslang's side of an IncludeResolver. Included texts live as long as the compilation.
-class Includer : public glslang::TShader::Includer {
-public:
-    explicit Includer(const IncludeResolver& resolve) : resolve_(resolve) {}
-    IncludeResult* includeLocal(const char* header, const char* includer, size_t depth) override {
-        // glslang gives 1 for an include in the shader itself: chain_ holds the files above this one.
-        if (depth == 1) chain_.assign(1, includer);
-        chain_.resize(std::min(chain_.size(), depth));
-        if (depth > kMaxIncludeDepth) {
-            if (refusal_.empty()) refusal_ = too_deep();
-            return nullptr;
-        }
-        auto found = resolve_(header, includer);
-        if (!found) return nullptr;
-        auto& kept = sources_.emplace_back(std::make_unique<IncludedSource>(std::move(*found)));
-        chain_.push_back(kept->name);
-        return new IncludeResult(kept->name, kept->text.data(), kept->text.size(), nullptr);
-    }
-    IncludeResult* includeSystem(const char* header, const char* includer, size_t depth) override {
-        return includeLocal(header, includer, depth);
-    }
-    void releaseInclude(IncludeResult* result) override { delete result; }
-    // Why an include was refused for its depth, or empty.
-    const std::string& refusal() const { return refusal_; }
-
-private:
-    // The chain of includes, up to the first file that includes itself again where there is one.
-    std::string too_deep() const {
-        std::size_t end = chain_.size();
-        for (std::size_t j = 1; j < chain_.size() && end == chain_.size(); ++j)
-            if (std::find(chain_.begin(), chain_.begin() + j, chain_[j]) != chain_.begin() + j) end = j + 1;
-        const std::vector<std::string> shown(chain_.begin(), chain_.begin() + end);
-        return fmt::format(
-            "{}: includes nest deeper than {}: {}{}\n", chain_.front(), kMaxIncludeDepth, fmt::join(shown, " -> "),
-            end < chain_.size() ? " -> ... (files that include each other without an include guard)" : "");
-    }
-
-    const IncludeResolver& resolve_;
-    std::vector<std::unique_ptr<IncludedSource>> sources_;
-    std::vector<std::string> chain_;
-    std::string refusal_;
-};
-
 // Compiles one compute shader of `language` for `env`: parse, link, translate to SPIR-V. With a
 // resolver, #include works as with glslc (GL_GOOGLE_include_directive, enabled); without one, an
 // #include is an error.
@@ -169,15 +121,16 @@ Result<std::vector<std::uint32_t>> compile_shader(const CompileRequest& request,
             shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
     }
 
-    std::optional<Includer> includer;
+    std::optional<GlslangIncluder> includer;
     glslang::TShader::ForbidIncluder no_includes;
     if (resolve) {
         if (!hlsl) shader.setPreamble("#extension GL_GOOGLE_include_directive : enable\n"); // HLSL has #include
         includer.emplace(resolve);
     }
     glslang::TShader::Includer& chosen = includer ? static_cast<glslang::TShader::Includer&>(*includer) : no_includes;
-    if (!shader.parse(GetDefaultResources(), 450, false, messages, chosen))
-        return fail((includer ? includer->refusal() : "") + rewrite_log(shader.getInfoLog(), source, name));
+    const bool parsed = shader.parse(GetDefaultResources(), 450, false, messages, chosen);
+    if (includer && !includer->too_much().empty()) return fail(includer->too_much());
+    if (!parsed) return fail((includer ? includer->too_deep() : "") + rewrite_log(shader.getInfoLog(), source, name));
 
     glslang::TProgram program;
     program.addShader(&shader);

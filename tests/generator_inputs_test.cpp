@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 
@@ -34,6 +35,50 @@ test::CommandResult registry_json(const std::vector<fs::path>& shaders, const fs
     if (!shaders.empty()) command += " --shaders";
     for (const fs::path& s : shaders) command.append(" ").append(shell_word(s));
     return test::run(command);
+}
+
+// 25 files, each including the next twice: 2^24 includes. kdop-gen ran past a minute and 1.2 GB,
+// growing; now it stops at the limit within seconds, naming the shader and the limit. The same
+// files guarded against a second include compile.
+TEST(GeneratorInputs, AnIncludeBombIsStoppedAtTheLimit) {
+    for (const bool guarded : {false, true}) {
+        test::TempDir dir;
+        const fs::path shader = dir / "bomb.comp";
+        test::write_file(shader, "#version 450\n#include \"b0.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+        for (int i = 0; i < 25; ++i) {
+            const std::string next = i + 1 < 25 ? fmt::format("#include \"b{0}.glsl\"\n#include \"b{0}.glsl\"\n", i + 1)
+                                                : std::string("// the last\n");
+            test::write_file(dir / fmt::format("b{}.glsl", i),
+                             guarded ? fmt::format("#ifndef B{0}\n#define B{0}\n{1}#endif\n", i, next) : next);
+        }
+        const auto start = std::chrono::steady_clock::now();
+        auto r = test::run("timeout 60 " + test::kdop_gen_binary() +
+                           " registry --sets dop22 --modes clip --neighborhoods n9 --json " +
+                           (dir / "out.json").string() + " --shaders " + shader.string());
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (guarded) {
+            EXPECT_EQ(r.exit_code, 0) << r.err;
+            continue;
+        }
+        EXPECT_EQ(r.exit_code, 1) << r.err;
+        EXPECT_LT(seconds, 30) << "the limit is reached in seconds";
+        EXPECT_NE(r.err.find(shader.string() + ": more than 10000 includes, kdop's limit for one shader"),
+                  std::string::npos)
+            << r.err.substr(0, 2000);
+        EXPECT_NE(r.err.find("guard each with #ifndef"), std::string::npos) << r.err.substr(0, 2000);
+        EXPECT_LT(r.err.size(), 4000u) << "one message, not one an include";
+        EXPECT_FALSE(fs::exists(dir / "out.json"));
+    }
+    // The text they bring in is limited too: 17 includes of 1 MiB.
+    test::TempDir dir;
+    std::string includes;
+    for (int i = 0; i < 17; ++i) includes += fmt::format("#include \"big{}.glsl\"\n", i);
+    for (int i = 0; i < 17; ++i) test::write_file(dir / fmt::format("big{}.glsl", i), std::string(1 << 20, '\n'));
+    test::write_file(dir / "big.comp", "#version 450\n" + includes + "layout(local_size_x = 1) in;\nvoid main() {}\n");
+    auto r = registry_json({dir / "big.comp"}, dir / "out.json");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("big.comp: more than 16 MiB of included text, kdop's limit"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("big16.glsl"), std::string::npos) << "the include that went past it: " << r.err;
 }
 
 // A Latin-1 provenance was accepted, then `kdop gen` and `kdop-gen --json` failed at the end with
