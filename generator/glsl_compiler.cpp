@@ -1,6 +1,7 @@
 #include "generator/glsl_compiler.h"
 
 #include "generator/glslang_includer.h"
+#include "generator/source_names.h"
 
 #include <fmt/format.h>
 #include <glslang/Public/ResourceLimits.h>
@@ -29,9 +30,11 @@ std::string_view source_line(std::string_view source, int line) {
     return source.substr(0, source.find('\n'));
 }
 
-// glslang logs "ERROR: name:12: 'x' : undeclared identifier"; rewrite each such line as a
-// diagnostic with the source line, and keep any other text as it is.
-std::string rewrite_log(std::string_view log, std::string_view source, std::string_view name) {
+// glslang logs "ERROR: name:12: 'x' : undeclared identifier", where name is glslang's for the source
+// (source_names.h); rewrite each such line as a diagnostic naming the real source, with the source
+// line where it is the shader's own, and keep any other text as it is.
+std::string rewrite_log(std::string_view log, std::string_view source, std::string_view name,
+                        const SourceNames& names) {
     static const std::regex located(R"(^(ERROR|WARNING): ([^:]*):(\d+): (.*)$)");
     std::string out;
     std::string text(log);
@@ -44,10 +47,11 @@ std::string rewrite_log(std::string_view log, std::string_view source, std::stri
         if (line.find("compilation terminated") != std::string::npos) continue; // follows an error already shown
         if (std::regex_match(line, m, located)) {
             std::string severity = m[1] == "ERROR" ? "error" : "warning";
-            if (m[2].str() == name)
+            const std::string file = names.real(m[2].str());
+            if (file == name)
                 out += glsl_diagnostic(source, name, std::stoi(m[3]), severity + ": " + m[4].str());
             else // in an included source, whose text is not at hand here
-                out += fmt::format("{}:{}: {}: {}\n", m[2].str(), m[3].str(), severity, m[4].str());
+                out += fmt::format("{}:{}: {}: {}\n", file, m[3].str(), severity, m[4].str());
         } else if (!line.empty() && line.find("compilation errors") == std::string::npos) {
             out += fmt::format("{}: {}\n", name, line);
         }
@@ -103,9 +107,9 @@ Result<std::vector<std::uint32_t>> compile_shader(const CompileRequest& request,
     glslang::TShader shader(stage);
     const char* text = source.data();
     const int length = static_cast<int>(source.size());
-    const std::string name_string(name);
-    const char* names = name_string.c_str();
-    shader.setStringsWithLengthsAndNames(&text, &length, &names, 1);
+    SourceNames names;
+    const char* glslang_name = names.alias(std::string(name)).c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &glslang_name, 1);
     const auto [client, target] = glslang_target(env);
     shader.setEnvInput(language, stage, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, client);
@@ -125,16 +129,17 @@ Result<std::vector<std::uint32_t>> compile_shader(const CompileRequest& request,
     glslang::TShader::ForbidIncluder no_includes;
     if (resolve) {
         if (!hlsl) shader.setPreamble("#extension GL_GOOGLE_include_directive : enable\n"); // HLSL has #include
-        includer.emplace(resolve);
+        includer.emplace(resolve, names);
     }
     glslang::TShader::Includer& chosen = includer ? static_cast<glslang::TShader::Includer&>(*includer) : no_includes;
     const bool parsed = shader.parse(GetDefaultResources(), 450, false, messages, chosen);
     if (includer && !includer->too_much().empty()) return fail(includer->too_much());
-    if (!parsed) return fail((includer ? includer->too_deep() : "") + rewrite_log(shader.getInfoLog(), source, name));
+    if (!parsed)
+        return fail((includer ? includer->too_deep() : "") + rewrite_log(shader.getInfoLog(), source, name, names));
 
     glslang::TProgram program;
     program.addShader(&shader);
-    if (!program.link(messages)) return fail(rewrite_log(program.getInfoLog(), source, name));
+    if (!program.link(messages)) return fail(rewrite_log(program.getInfoLog(), source, name, names));
     // glslang only warns when an HLSL entry point is missing, and makes an empty one.
     if (hlsl && std::string_view(program.getInfoLog()).find("Entry point not found") != std::string_view::npos)
         return fail(fmt::format("{}: no function '{}', the entry point; name another with HLSL_ENTRY "

@@ -10,7 +10,7 @@ namespace kdop {
 glslang::TShader::Includer::IncludeResult* GlslangIncluder::includeLocal(const char* header, const char* includer,
                                                                          size_t depth) {
     // glslang gives 1 for an include in the shader itself: chain_ holds the files above this one.
-    const std::string includer_name = includer;
+    const std::string includer_name = names_.real(includer);
     if (depth == 1) chain_.assign(1, includer_name);
     chain_.resize(std::min(chain_.size(), depth));
     if (!too_much_.empty()) // an empty text costs glslang nothing and adds no message per include
@@ -40,7 +40,7 @@ glslang::TShader::Includer::IncludeResult* GlslangIncluder::includeLocal(const c
     }
     auto& kept = sources_.emplace_back(std::make_unique<IncludedSource>(std::move(*found)));
     chain_.push_back(kept->name);
-    return new IncludeResult(kept->name, kept->text.data(), kept->text.size(), nullptr);
+    return new IncludeResult(names_.alias(kept->name), kept->text.data(), kept->text.size(), nullptr);
 }
 
 // An include past the limits: no text, under a name no source has.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "generator/glsl_compiler.h"
+#include "generator/source_names.h"
 
 #include <glslang/Public/ShaderLang.h>
 
@@ -23,10 +24,11 @@ inline constexpr std::size_t kMaxIncludeDepth = 32;
 inline constexpr std::size_t kMaxIncludes = 10000;
 inline constexpr std::size_t kMaxIncludedBytes = std::size_t(16) << 20;
 
-// Included texts live as long as this object, which must outlive the compilation.
+// Included texts live as long as this object, which must outlive the compilation. glslang knows
+// every source by its name in `names`.
 class GlslangIncluder : public glslang::TShader::Includer {
 public:
-    explicit GlslangIncluder(const IncludeResolver& resolve) : resolve_(resolve) {}
+    GlslangIncluder(const IncludeResolver& resolve, SourceNames& names) : resolve_(resolve), names_(names) {}
     IncludeResult* includeLocal(const char* header, const char* includer, size_t depth) override;
     IncludeResult* includeSystem(const char* header, const char* includer, size_t depth) override {
         return includeLocal(header, includer, depth);
@@ -44,8 +46,9 @@ private:
     std::string chain_text() const;
 
     const IncludeResolver& resolve_;
+    SourceNames& names_;
     std::vector<std::unique_ptr<IncludedSource>> sources_;
-    std::vector<std::string> chain_; // the names of the files above the include at hand
+    std::vector<std::string> chain_; // the real names of the files above the include at hand
     std::string too_deep_, too_much_;
     std::size_t includes_ = 0, bytes_ = 0;
 };

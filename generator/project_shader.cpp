@@ -2,6 +2,7 @@
 
 #include "core/read_file.h"
 #include "core/shown_text.h"
+#include "core/utf8.h"
 #include "generator/glsl_compiler.h"
 
 #include <fmt/format.h>
@@ -74,6 +75,18 @@ constexpr StageSuffix kStageSuffixes[] = {
     {".lib.hlsl", std::nullopt, "a library"},
 };
 
+// Why `name`, a shader's file name less its stage suffix, cannot be its registry entry's name, or
+// nothing. The registry (C++ and JSON) holds any UTF-8 name as it is, but JSON holds nothing else,
+// and `..comp` became an entry named '.', whose SPIR-V file (--spirv-dir) is "..spv".
+std::optional<std::string> registry_name_problem(std::string_view name) {
+    if (auto at = first_non_utf8_byte(name))
+        return fmt::format("whose byte 0x{:02x} is not UTF-8, which the registry's JSON cannot hold",
+                           static_cast<unsigned char>(name[*at]));
+    if (name.starts_with('.'))
+        return "which begins with '.': a name of dots names no shader, and <name>.spv would be a hidden file";
+    return std::nullopt;
+}
+
 } // namespace
 
 Result<ShaderFile> shader_file_kind(const fs::path& file) {
@@ -85,7 +98,11 @@ Result<ShaderFile> shader_file_kind(const fs::path& file) {
             return fail(fmt::format("{}: '{}' is {} shader; kdop builds compute (.comp, .cs.hlsl), vertex (.vert, "
                                     ".vs.hlsl) and fragment (.frag, .ps.hlsl) shaders",
                                     file.string(), suffix, s.what));
-        return ShaderFile{*s.stage, suffix.ends_with(".hlsl"), file_name.substr(0, file_name.size() - suffix.size())};
+        ShaderFile kind{*s.stage, suffix.ends_with(".hlsl"), file_name.substr(0, file_name.size() - suffix.size())};
+        if (auto why = registry_name_problem(kind.name))
+            return fail(fmt::format("{}: the registry would name this shader '{}', {}; rename the file",
+                                    shown_text(file.string(), 300), shown_text(kind.name), *why));
+        return kind;
     }
     if (file.extension() == ".hlsl")
         return fail(fmt::format("{}: an HLSL shader's stage is read from the suffix before .hlsl, as DXC-based engines "

@@ -4,6 +4,7 @@
 #include "core/utf8.h"
 #include "fit/fitted_set.h"
 #include "generator/reflection_json.h"
+#include "generator/source_names.h"
 #include "generator/variant_builder.h"
 #include "tests/test_support.h"
 
@@ -35,6 +36,114 @@ test::CommandResult registry_json(const std::vector<fs::path>& shaders, const fs
     if (!shaders.empty()) command += " --shaders";
     for (const fs::path& s : shaders) command.append(" ").append(shell_word(s));
     return test::run(command);
+}
+
+// A TAA resolve as the adversarial run took it: the clip included, the history blended with mix().
+constexpr const char* kResolve = R"(#version 450
+#include "dop22-clip-n9.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D current_frame;
+layout(set = 0, binding = 1) uniform sampler2D history_frame;
+layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D resolved_frame;
+void main()
+{
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    vec3 n[9];
+    for (int i = 0; i < 9; ++i) n[i] = texelFetch(current_frame, p + ivec2(i % 3 - 1, i / 3 - 1), 0).rgb;
+    const vec3 clipped = kdop_dop22_clip_n9(n[4], texelFetch(history_frame, p, 0).rgb, n);
+    imageStore(resolved_frame, p, vec4(mix(clipped, n[4], 0.1), 1.0));
+}
+)";
+
+const Json* entry_named(const Json& document, const std::string& name) {
+    for (const Json& e : document["entries"])
+        if (e["name"] == name) return &e;
+    return nullptr;
+}
+
+// glslang writes `#line N "<shader>"` after an #include with the name unescaped: this name made the
+// resolve `mix(a, b, c) = b`, with no clip and no history (561 words instead of 3,625, the
+// history_frame binding gone), and exit 0. Now every name compiles to the same code as a plain one,
+// and names the shader, as it is, in messages.
+TEST(GeneratorInputs, AShaderNameIsNeverReadAsCode) {
+    test::TempDir dir;
+    const fs::path plain = dir / "taa.comp";
+    test::write_file(plain, kResolve);
+    const std::vector<std::string> names = {"e\"\n#define mix(a,b,c) (b)\n#line 11 \"taa", // the injection
+                                            "q\"x",                                        // gave "q:9: error: '#line'"
+                                            "back\\slash",
+                                            "a:b",
+                                            "100%",
+                                            "caf\xc3\xa9",
+                                            "tab\there",
+                                            "kdop-source-0"};
+    std::vector<fs::path> shaders{plain};
+    for (const std::string& name : names) {
+        shaders.push_back(dir / (name + ".comp"));
+        test::write_file(shaders.back(), kResolve);
+    }
+    auto r = registry_json(shaders, dir / "out.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json document = Json::parse(test::read_file(dir / "out.json"));
+    const Json* reference = entry_named(document, "taa");
+    ASSERT_TRUE(reference);
+    EXPECT_EQ((*reference)["bindings"].size(), 3u);
+    for (const std::string& name : names) {
+        const Json* entry = entry_named(document, name);
+        ASSERT_TRUE(entry) << name;
+        EXPECT_EQ((*entry)["spirv"]["fnv1a64"], (*reference)["spirv"]["fnv1a64"]) << name << ": other code";
+        EXPECT_EQ((*entry)["bindings"], (*reference)["bindings"]) << name;
+    }
+
+    // Errors name the shader and the included file as they are, with their lines.
+    fs::create_directories(dir / "we\"ird\\");
+    const fs::path shader = dir / "we\"ird\\" / "a:b\"c.comp";
+    test::write_file(shader, "#version 450\n#include \"blend.glsl\"\nlayout(local_size_x = 1) in;\n"
+                             "void main() { vec3 x = y; }\n");
+    test::write_file(dir / "we\"ird\\" / "blend.glsl", "// blend\nvec3 blend() { return z; }\n");
+    auto bad = registry_json({shader}, dir / "bad.json");
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find((dir / "we\"ird\\" / "blend.glsl").string() + ":2: error"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(dir / "bad.json"));
+}
+
+TEST(GeneratorInputs, SourceNamesAreGlslangsOwnAndMapBack) {
+    SourceNames names;
+    EXPECT_EQ(names.alias("taa.comp"), "taa.comp") << "a plain name is kept, for glslang's __FILE__";
+    const std::string alias = names.alias("q\"x.comp");
+    EXPECT_TRUE(is_plain_source_name(alias)) << alias;
+    EXPECT_EQ(names.real(alias), "q\"x.comp");
+    EXPECT_EQ(names.alias("q\"x.comp"), alias) << "one source, one name";
+    // A file really named as another's alias gets a name of its own.
+    const std::string own = names.alias(alias);
+    EXPECT_NE(own, alias);
+    EXPECT_EQ(names.real(own), alias);
+    for (const char* name : {"a\"b", "a\\b", "a\nb", "a:b", "caf\xc3\xa9", "x\xff", "", "50%"})
+        EXPECT_FALSE(is_plain_source_name(name)) << name;
+}
+
+// `..comp` became an entry named '.'; `x\xff.comp` failed at the end with nlohmann's "invalid UTF-8
+// byte", naming neither the file nor the reason. Both are refused before any work, naming the file.
+TEST(GeneratorInputs, ANameTheRegistryCannotHoldIsRefusedNamingTheFile) {
+    struct Case {
+        std::string file, expected;
+    };
+    const Case cases[] = {
+        {"..comp", "..comp: the registry would name this shader '.', which begins with '.'"},
+        {"...frag", "...frag: the registry would name this shader '..'"},
+        {".hidden.cs.hlsl", "the registry would name this shader '.hidden'"},
+        {"x\xff.comp", "x\\xff.comp: the registry would name this shader 'x\\xff', whose byte 0xff is not UTF-8"},
+        {"caf\xe9.vert", "caf\\xe9.vert: the registry would name this shader 'caf\\xe9'"},
+    };
+    for (const Case& c : cases) {
+        test::TempDir dir;
+        test::write_file(dir / c.file, kResolve);
+        auto r = registry_json({dir / c.file}, dir / "out.json");
+        EXPECT_EQ(r.exit_code, 1) << c.file;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("json.exception"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "out.json"));
+    }
 }
 
 // 25 files, each including the next twice: 2^24 includes. kdop-gen ran past a minute and 1.2 GB,
