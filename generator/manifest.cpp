@@ -3,6 +3,7 @@
 #include "core/builtin_sets.h"
 #include "core/read_file.h"
 #include "core/shown_text.h"
+#include "generator/inside_folder.h"
 
 #include <fmt/format.h>
 
@@ -43,6 +44,14 @@ Result<Manifest> read_manifest(const fs::path& path) {
             const std::string_view named = trimmed(line.substr(4));
             if (named.empty()) return fail(fmt::format("{}: `set:` names no axis-set file", where));
             const fs::path file = path.parent_path() / named;
+            // Confined as a shader's includes are: `set: /etc/passwd` read the file and echoed its
+            // lines in the parse errors ("/etc/passwd:1: unknown key 'root'"). It is refused unread.
+            if (!is_inside_folder(file, path.parent_path()))
+                return fail(
+                    fmt::format("{}: `set: {}` names a file outside the manifest's folder ({}); a manifest "
+                                "reads axis files only from its folder and below it, links resolved",
+                                where, shown_text(named, 200),
+                                shown_text(path.parent_path().empty() ? "." : path.parent_path().string(), 200)));
             auto set_text = read_input_file(file);
             if (!set_text)
                 return fail(fmt::format("{}: cannot read the axis-set file it names: {}", where,

@@ -4,6 +4,7 @@
 #include "core/shown_text.h"
 #include "core/utf8.h"
 #include "generator/glsl_compiler.h"
+#include "generator/inside_folder.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -16,16 +17,6 @@ namespace kdop {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Whether `file` lies in `folder` or below it, links and ".." resolved.
-bool is_inside(const fs::path& file, const fs::path& folder) {
-    std::error_code ec;
-    const fs::path f = fs::weakly_canonical(file, ec);
-    const fs::path d = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, ec);
-    if (ec) return false;
-    auto [end, _] = std::mismatch(d.begin(), d.end(), f.begin(), f.end());
-    return end == d.end();
-}
 
 // The two failures every HLSL port meets first, and why, where `message` is one; else nothing.
 std::string hlsl_port_note(const std::string& message, const std::string& name, TargetEnv env) {
@@ -143,7 +134,7 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
         for (const fs::path& folder : folders) {
             const fs::path candidate = folder / header;
             if (!fs::exists(candidate)) continue;
-            if (!is_inside(candidate, folder)) {
+            if (!is_inside_folder(candidate, folder)) {
                 outside.push_back(fmt::format("{}: #include \"{}\" names {}, which is outside {}; kdop includes "
                                               "only from the including file's folder and the include directories\n",
                                               includer, header, candidate.lexically_normal().string(),

@@ -3,6 +3,7 @@
 // JSON cannot hold; a manifest's `set:` line outside its folder. Each test failed before its fix.
 #include "core/utf8.h"
 #include "fit/fitted_set.h"
+#include "generator/manifest.h"
 #include "generator/reflection_json.h"
 #include "generator/source_names.h"
 #include "generator/variant_builder.h"
@@ -237,6 +238,36 @@ TEST(GeneratorInputs, AFittedSetNamingAnyInputIsAnAxisFileKdopReads) {
     EXPECT_EQ(set->provenance, "fitted to caf\\xe9/a.exr\\x0aname: x");
     EXPECT_NE(file->find("# from caf\\xe9\n# caf\xc3\xa9\n"), std::string::npos) << *file;
     EXPECT_EQ(utf8_line("tab\tcaf\xc3\xa9\x1b\xff"), "tab\tcaf\xc3\xa9\\x1b\\xff");
+}
+
+// A manifest's `set:` line read any file and echoed its lines in errors ("/etc/passwd:1: unknown key
+// 'root'"). It is confined as a shader's includes are: to the manifest's folder and below it.
+TEST(GeneratorInputs, AManifestReadsSetFilesOnlyFromItsFolder) {
+    test::TempDir dir;
+    fs::create_directories(dir / "level" / "axes");
+    constexpr const char* kSet = "name: forest\nprovenance: a test\n1 0 0\n0 1 0\n0 0 1\n";
+    test::write_file(dir / "level" / "axes" / "forest.axes", kSet);
+    test::write_file(dir / "outside.axes", "root:x:0:0:root:/root:/bin/bash\n");
+    fs::create_symlink(dir / "outside.axes", dir / "level" / "link.axes");
+    const std::vector<std::string> outside = {"/etc/passwd", "../outside.axes", "axes/../../outside.axes", "link.axes",
+                                              (dir / "outside.axes").string()};
+    for (const std::string& named : outside) {
+        test::write_file(dir / "level" / "scene.manifest", "set: " + named + "\nforest-clip-n9\n");
+        auto m = read_manifest(dir / "level" / "scene.manifest");
+        ASSERT_FALSE(m) << named;
+        EXPECT_NE(m.error().message.find("scene.manifest:1: `set: " + named +
+                                         "` names a file outside the "
+                                         "manifest's folder"),
+                  std::string::npos)
+            << m.error().message;
+        EXPECT_EQ(m.error().message.find("root"), std::string::npos) << "nothing of the file: " << m.error().message;
+    }
+    test::write_file(dir / "level" / "scene.manifest", "set: axes/forest.axes\nforest-clip-n9\n");
+    auto inside = read_manifest(dir / "level" / "scene.manifest");
+    ASSERT_TRUE(inside) << inside.error().message;
+    const fs::path absolute = fs::absolute(dir / "level" / "axes" / "forest.axes");
+    test::write_file(dir / "level" / "scene.manifest", "set: " + absolute.string() + "\nforest-clip-n9\n");
+    EXPECT_TRUE(read_manifest(dir / "level" / "scene.manifest")) << "an absolute path inside is inside";
 }
 
 } // namespace

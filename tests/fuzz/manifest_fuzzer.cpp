@@ -1,8 +1,10 @@
 // libFuzzer target: any bytes as a variant manifest, read from a file as every command reads one
 // (next to it, forest.axes, so `set: forest.axes` lines resolve). Whatever is refused must be
 // refused with a message that names the manifest, holds no raw control bytes and stays short
-// (the bytes of a long line are cut); whatever is read must list at least one variant, each once.
+// (the bytes of a long line are cut); whatever is read must list at least one variant, each once,
+// with set files from the manifest's folder only (`set: /etc/passwd` echoed the file's lines).
 // Any violation aborts, which libFuzzer reports.
+#include "generator/inside_folder.h"
 #include "generator/manifest.h"
 #include "tests/fuzz/fuzz_checks.h"
 
@@ -44,6 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     require(!manifest->variants.empty(), "a manifest read with no variant", "");
+    for (const std::filesystem::path& set : manifest->set_files)
+        require(kdop::is_inside_folder(set, folder()), "a set file outside the manifest's folder", set.string());
     for (std::size_t i = 0; i < manifest->variants.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             require(!(manifest->variants[i].key() == manifest->variants[j].key()), "a variant read twice",
