@@ -56,6 +56,21 @@ void main()
 }
 )";
 
+// The same in HLSL, whose front end writes the same #line.
+constexpr const char* kResolveHlsl = R"(#include "dop22-clip-n9.hlsl"
+Texture2D<float4> current_frame : register(t1);
+SamplerState point_sampler : register(s2);
+RWTexture2D<float4> resolved : register(u0, space1);
+[numthreads(8, 8, 1)]
+void main(uint3 id : SV_DispatchThreadID)
+{
+    float3 n[9];
+    for (int i = 0; i < 9; ++i)
+        n[i] = current_frame.Load(int3(id.xy + uint2(i % 3, i / 3), 0)).rgb;
+    resolved[id.xy] = float4(lerp(kdop_dop22_clip_n9(n[4], float3(0, 0, 0), n), n[4], 0.1), 1);
+}
+)";
+
 const Json* entry_named(const Json& document, const std::string& name) {
     for (const Json& e : document["entries"])
         if (e["name"] == name) return &e;
@@ -95,6 +110,19 @@ TEST(GeneratorInputs, AShaderNameIsNeverReadAsCode) {
         EXPECT_EQ((*entry)["spirv"]["fnv1a64"], (*reference)["spirv"]["fnv1a64"]) << name << ": other code";
         EXPECT_EQ((*entry)["bindings"], (*reference)["bindings"]) << name;
     }
+
+    // HLSL: lerp() for mix().
+    const fs::path plain_hlsl = dir / "taa_hlsl.cs.hlsl",
+                   injected_hlsl = dir / "e\"\n#define lerp(a,b,c) (b)\n#line 11 \"taa_hlsl.cs.hlsl";
+    test::write_file(plain_hlsl, kResolveHlsl);
+    test::write_file(injected_hlsl, kResolveHlsl);
+    auto hlsl = registry_json({plain_hlsl, injected_hlsl}, dir / "hlsl.json");
+    ASSERT_EQ(hlsl.exit_code, 0) << hlsl.err;
+    const Json hlsl_document = Json::parse(test::read_file(dir / "hlsl.json"));
+    const Json* plain_entry = entry_named(hlsl_document, "taa_hlsl");
+    const Json* injected_entry = entry_named(hlsl_document, "e\"\n#define lerp(a,b,c) (b)\n#line 11 \"taa_hlsl");
+    ASSERT_TRUE(plain_entry && injected_entry);
+    EXPECT_EQ((*injected_entry)["spirv"]["fnv1a64"], (*plain_entry)["spirv"]["fnv1a64"]) << "other code";
 
     // Errors name the shader and the included file as they are, with their lines.
     fs::create_directories(dir / "we\"ird\\");
