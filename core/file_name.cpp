@@ -1,55 +1,27 @@
 #include "core/file_name.h"
 
+#include "core/utf8.h"
+
 #include <fmt/format.h>
 
 namespace kdop {
 namespace {
 
-// The length of the UTF-8 sequence at text[i] and its code point, or 0 where it is not valid
-// (RFC 3629: no overlong forms, no surrogates, nothing past U+10FFFF).
-std::size_t utf8_sequence(std::string_view text, std::size_t i, char32_t& code_point) {
-    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-    const unsigned char lead = byte(i);
-    std::size_t length;
-    char32_t lowest;
-    if (lead < 0x80) {
-        code_point = lead;
-        return 1;
-    } else if (lead >= 0xc2 && lead <= 0xdf) {
-        length = 2, lowest = 0x80, code_point = lead & 0x1f;
-    } else if (lead >= 0xe0 && lead <= 0xef) {
-        length = 3, lowest = 0x800, code_point = lead & 0x0f;
-    } else if (lead >= 0xf0 && lead <= 0xf4) {
-        length = 4, lowest = 0x10000, code_point = lead & 0x07;
-    } else {
-        return 0;
-    }
-    if (i + length > text.size()) return 0;
-    for (std::size_t k = 1; k < length; ++k) {
-        if ((byte(i + k) & 0xc0) != 0x80) return 0;
-        code_point = (code_point << 6) | (byte(i + k) & 0x3f);
-    }
-    if (code_point < lowest || code_point > 0x10ffff || (code_point >= 0xd800 && code_point <= 0xdfff)) return 0;
-    return length;
-}
-
-// The Unicode controls that reorder how text around them is shown (UAX #9): a name holding one can
-// read as another name, or as a different extension, in a terminal, a listing or a page.
-bool bidi_control(char32_t c) {
-    return c == 0x061c || c == 0x200e || c == 0x200f || (c >= 0x202a && c <= 0x202e) || (c >= 0x2066 && c <= 0x2069);
+// The code point of the Unicode control at name[i] that would hide in a listing or reorder how the
+// name is shown (a C1 control, or a bidirectional-text control of UAX #9: U+061C, U+200E, U+200F,
+// U+202A to U+202E, U+2066 to U+2069), or 0. `name` is well-formed UTF-8, so these are read off
+// their encodings.
+char32_t hidden_control_at(std::string_view name, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return i + k < name.size() ? static_cast<unsigned char>(name[i + k]) : 0u; };
+    const unsigned b0 = byte(0), b1 = byte(1), b2 = byte(2);
+    if (b0 == 0xc2 && b1 >= 0x80 && b1 <= 0x9f) return b1;
+    if (b0 == 0xd8 && b1 == 0x9c) return 0x061c;
+    if (b0 == 0xe2 && b1 == 0x80 && (b2 == 0x8e || b2 == 0x8f || (b2 >= 0xaa && b2 <= 0xae))) return 0x2000 + b2 - 0x80;
+    if (b0 == 0xe2 && b1 == 0x81 && b2 >= 0xa6 && b2 <= 0xa9) return 0x2040 + b2 - 0x80;
+    return 0;
 }
 
 } // namespace
-
-std::optional<std::size_t> invalid_utf8_at(std::string_view text) {
-    for (std::size_t i = 0; i < text.size();) {
-        char32_t c;
-        const std::size_t n = utf8_sequence(text, i, c);
-        if (n == 0) return i;
-        i += n;
-    }
-    return std::nullopt;
-}
 
 std::optional<std::string> name_problem(std::string_view name) {
     if (name.empty()) return "is empty";
@@ -57,19 +29,17 @@ std::optional<std::string> name_problem(std::string_view name) {
     if (name.size() > kMaxNameBytes)
         return fmt::format("is {} bytes long; kdop names files after it and takes at most {}", name.size(),
                            kMaxNameBytes);
-    for (std::size_t i = 0; i < name.size();) {
-        char32_t c;
-        const std::size_t n = utf8_sequence(name, i, c);
-        if (n == 0)
-            return fmt::format("is not valid UTF-8 (byte {}: \\x{:02x}), which JSON and HTML cannot hold", i,
-                               static_cast<unsigned char>(name[i]));
+    if (auto at = first_non_utf8_byte(name))
+        return fmt::format("is not valid UTF-8 (byte {}: \\x{:02x}), which JSON and HTML cannot hold", *at,
+                           static_cast<unsigned char>(name[*at]));
+    for (std::size_t i = 0; i < name.size(); ++i) {
+        const auto c = static_cast<unsigned char>(name[i]);
         if (c == '/') return "holds a '/', which would make it a path";
-        if (c < 0x20 || c == 0x7f) return fmt::format("holds a control byte (\\x{:02x})", std::uint32_t(c));
-        if (c >= 0x80 && c < 0xa0) return fmt::format("holds a control character (U+{:04X})", std::uint32_t(c));
-        if (bidi_control(c))
-            return fmt::format("holds U+{:04X}, a bidirectional-text control that shows the name reordered",
-                               std::uint32_t(c));
-        i += n;
+        if (c < 0x20 || c == 0x7f) return fmt::format("holds a control byte (\\x{:02x})", c);
+        if (const char32_t hidden = hidden_control_at(name, i))
+            return fmt::format("holds U+{:04X}, a control character that hides in a listing or shows the name "
+                               "reordered",
+                               std::uint32_t(hidden));
     }
     return std::nullopt;
 }

@@ -25,8 +25,4 @@ inline constexpr std::size_t kMaxNameBytes = 128;
 // when it can. The caller says whose name it is and what to do.
 std::optional<std::string> name_problem(std::string_view name);
 
-// The byte offset of the first byte of `text` that does not begin or continue a valid UTF-8
-// sequence (overlong forms, surrogates and code points past U+10FFFF included), or nullopt.
-std::optional<std::size_t> invalid_utf8_at(std::string_view text);
-
 } // namespace kdop

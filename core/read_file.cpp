@@ -24,15 +24,20 @@ std::optional<std::string> not_a_readable_file(const fs::path& path) {
     return std::nullopt;
 }
 
-Result<std::string> read_input_file(const fs::path& path) {
+Result<std::string> read_own_file(const fs::path& path) {
     if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: {}", path.string(), *why));
     std::ifstream in(path, std::ios::binary);
     if (!in) return fail(fmt::format("{}: cannot open: {}", path.string(), std::strerror(errno)));
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) return fail(fmt::format("{}: read error", path.string()));
-    note_input(path);
     return text.str();
+}
+
+Result<std::string> read_input_file(const fs::path& path) {
+    auto text = read_own_file(path);
+    if (text) note_input(path);
+    return text;
 }
 
 std::optional<std::string> read_file(const fs::path& path) {

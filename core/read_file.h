@@ -16,7 +16,11 @@ namespace kdop {
 // unreadable).
 Result<std::string> read_input_file(const std::filesystem::path& path);
 
-// The same where the caller words the error itself.
+// The same for a file of kdop's own that this run will replace (an output folder's listing): read
+// the same way, but not noted as an input.
+Result<std::string> read_own_file(const std::filesystem::path& path);
+
+// read_input_file where the caller words the error itself.
 std::optional<std::string> read_file(const std::filesystem::path& path);
 
 // Why `path` cannot be read as an input file ("does not exist", "is a directory", ...), or

@@ -117,9 +117,9 @@ Result<void> check_destinations(const std::vector<OutputWriter>& files) {
     return {};
 }
 
-// Moves every temporary into place, keeping each file it replaces under another name until all are
-// in place, so that a failed move can put the previous set back whole.
-Result<void> commit(Transaction& t, const std::vector<OutputWriter>& files) {
+// Moves every temporary into place, keeping each file it replaces (and each stale file) under
+// another name until all are in place, so that a failed move can put the previous set back whole.
+Result<void> commit(Transaction& t, const std::vector<OutputWriter>& files, const std::vector<fs::path>& stale) {
     for (std::size_t i = 0; i < files.size(); ++i) {
         const fs::path& temporary = t.temporaries[i];
         const fs::path& path = files[i].path;
@@ -153,12 +153,22 @@ Result<void> commit(Transaction& t, const std::vector<OutputWriter>& files) {
         }
         t.placed.push_back(std::move(placed));
     }
+    // A stale file leaves its place under a second name, as a replaced file does, so abandon()
+    // puts it back.
+    for (const fs::path& path : stale) {
+        Transaction::Placed removed{path, temporary_path_for(path)};
+        std::error_code ec;
+        fs::rename(path, removed.previous, ec);
+        if (ec == std::errc::no_such_file_or_directory) continue; // removed by someone else meanwhile
+        if (ec) return fail(fmt::format("{}: cannot remove this earlier output: {}", path.string(), ec.message()));
+        t.placed.push_back(std::move(removed));
+    }
     return {};
 }
 
 } // namespace
 
-Result<void> write_atomically(const std::vector<OutputWriter>& files) {
+Result<void> write_atomically(const std::vector<OutputWriter>& files, const std::vector<fs::path>& stale) {
     if (auto ok = check_destinations(files); !ok) return ok;
     auto t = std::make_shared<Transaction>();
     const OnInterrupt undo([t] { t->abandon(); });
@@ -193,7 +203,7 @@ Result<void> write_atomically(const std::vector<OutputWriter>& files) {
     // new set complete, which it leaves.
     auto held = hold_interrupts();
     if (interrupted()) return abandon({"interrupted"});
-    if (auto ok = commit(*t, files); !ok) {
+    if (auto ok = commit(*t, files, stale); !ok) {
         t->abandon();
         return ok;
     }

@@ -37,7 +37,11 @@ struct OutputWriter {
     std::filesystem::path path;
     std::function<Result<void>(const std::filesystem::path& temporary)> write;
 };
-Result<void> write_atomically(const std::vector<OutputWriter>& files);
+// `stale`: files of an earlier set that this one replaces as a whole (core/output_listing.h).
+// They are moved aside as the set moves into place, put back if it fails or is interrupted, and
+// removed with the files the set replaced once it is in place.
+Result<void> write_atomically(const std::vector<OutputWriter>& files,
+                              const std::vector<std::filesystem::path>& stale = {});
 
 // The writer of `file`'s bytes (what write_files_atomically writes), for a set that mixes them with
 // files other libraries write. It refers to `file`, which must outlive the write.

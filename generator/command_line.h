@@ -1,8 +1,9 @@
 // How every kdop program ends: a usage error prints CLI11's message and exits 2 (--help and
 // --version exit 0); a failure the body reports is a message and exit 1 (the body returns it); and
 // an exception that escapes the body (memory, a library) is a message and exit 1 too, never an abort;
-// SIGINT and SIGTERM remove what the run left unfinished and exit 130 and 143 (core/interrupt.h);
-// and no output may replace a file the run read (core/input_files.h).
+// a signal that would end the run (SIGINT, SIGTERM, SIGHUP, SIGPIPE, ...) removes what it left
+// unfinished and exits 128 + its number (core/interrupt.h); and no output may replace a file the
+// run read (core/input_files.h).
 #pragma once
 
 #include "core/input_files.h"

@@ -1,6 +1,9 @@
 #include "harness/output_set.h"
 
+#include "core/output_listing.h"
 #include "images/image_io.h"
+
+#include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
@@ -8,7 +11,9 @@ namespace kdop {
 
 Result<OutputSet> OutputSet::prepare(const std::filesystem::path& dir, const std::string& option) {
     if (auto ok = check_output_directory(dir, option); !ok) return std::unexpected(ok.error());
-    return OutputSet(dir);
+    auto listed = read_output_listing(dir);
+    if (!listed) return fail(fmt::format("{} {}: {}", option, dir.string(), listed.error().message));
+    return OutputSet(dir, std::move(*listed));
 }
 
 void OutputSet::add(const std::string& name, std::string content) {
@@ -35,10 +40,27 @@ void OutputSet::add_image(const std::string& name, std::shared_ptr<const Image> 
 }
 
 Result<void> OutputSet::write() const {
+    namespace fs = std::filesystem;
     std::vector<OutputWriter> writers;
     for (const OutputFile& f : files_) writers.push_back(content_writer(f));
     writers.insert(writers.end(), images_.begin(), images_.end());
-    return write_atomically(writers);
+    // The listing names every file of the set and goes in place last.
+    std::vector<std::string> written;
+    for (const OutputWriter& w : writers) written.push_back(w.path.lexically_relative(dir_).generic_string());
+    const OutputFile listing{dir_ / kOutputListingName, output_listing_text(written)};
+    written.push_back(std::string(kOutputListingName));
+    writers.push_back(content_writer(listing));
+    const std::vector<fs::path> stale = stale_outputs(dir_, listed_, written);
+    if (auto ok = write_atomically(writers, stale); !ok) return ok;
+    // The folders the stale files leave empty (a sequence no longer measured), innermost first;
+    // one that holds anything else stays.
+    for (const fs::path& file : stale)
+        for (fs::path folder = file.parent_path(); folder != dir_ && folder.native().size() > dir_.native().size();
+             folder = folder.parent_path()) {
+            std::error_code not_empty;
+            if (!fs::remove(folder, not_empty)) break;
+        }
+    return {};
 }
 
 } // namespace kdop

@@ -3,6 +3,10 @@
 // all of them are written together at the end, all or nothing (core/write_files.h). Tables are
 // written as <stem>.csv and as <stem>.json, the JSON carrying the run's metadata and the columns'
 // units; images through OpenImageIO (images/image_io.h), in the format their extension names.
+//
+// The folder holds one run's outputs: what an earlier kdop run wrote there and this one does not is
+// removed with the new set, as part of it (core/output_listing.h), and the folders that leaves
+// empty go too.
 #pragma once
 
 #include "core/result.h"
@@ -20,7 +24,7 @@ namespace kdop {
 
 class OutputSet {
 public:
-    // Fails, naming `option`, when `dir` cannot be written.
+    // Fails, naming `option`, when `dir` cannot be written, or naming its listing where that is damaged.
     static Result<OutputSet> prepare(const std::filesystem::path& dir, const std::string& option = "--out");
 
     const std::filesystem::path& dir() const { return dir_; }
@@ -36,8 +40,10 @@ public:
     Result<void> write() const;
 
 private:
-    explicit OutputSet(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    OutputSet(std::filesystem::path dir, std::vector<std::string> listed)
+        : dir_(std::move(dir)), listed_(std::move(listed)) {}
     std::filesystem::path dir_;
+    std::vector<std::string> listed_; // what the folder's listing said an earlier run wrote
     std::vector<OutputFile> files_;
     std::vector<OutputWriter> images_;
 };
