@@ -12,10 +12,15 @@ namespace kdop {
 
 std::string shown_text(std::string_view text, std::size_t limit = 120);
 
-// Text a kdop program prints (an error naming a file, a progress line, "wrote <path>") as a
-// terminal may receive it: control bytes as \xNN, so a file named "\x1b[31mRED.exr" cannot recolor
-// or rewrite the terminal and a NUL cannot cut the line; line breaks and tabs (the layout of
-// multi-line messages) and every other byte, UTF-8 included, as they are.
+// Text a kdop program prints (an error naming a file, "wrote <path>") as a terminal may receive it:
+// control bytes as \xNN, so a file named "\x1b[31mRED.exr" cannot recolor or rewrite the terminal
+// and a NUL cannot cut the line, and the invisible Unicode controls (core/utf8.h, U+202E that shows
+// a name reordered) as the \xNN of their bytes; line breaks and tabs (the layout of multi-line
+// messages) and every other byte, UTF-8 included, as they are.
 std::string terminal_text(std::string_view text);
+
+// The same for text that must stay one line (a progress line, which a log keeps one per step): line
+// breaks and tabs as \xNN too, so a name cannot forge a line of its own.
+std::string one_line_text(std::string_view text);
 
 } // namespace kdop

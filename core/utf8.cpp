@@ -40,6 +40,18 @@ std::optional<std::size_t> first_non_utf8_byte(std::string_view text) {
     return std::nullopt;
 }
 
+char32_t hidden_control_at(std::string_view text, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return i + k < text.size() ? static_cast<unsigned char>(text[i + k]) : 0u; };
+    const unsigned b0 = byte(0), b1 = byte(1), b2 = byte(2);
+    if (b0 == 0xc2 && b1 >= 0x80 && b1 <= 0x9f) return b1;
+    if (b0 == 0xd8 && b1 == 0x9c) return 0x061c;
+    if (b0 == 0xe2 && b1 == 0x80 && (b2 == 0x8e || b2 == 0x8f || (b2 >= 0xaa && b2 <= 0xae))) return 0x2000 + b2 - 0x80;
+    if (b0 == 0xe2 && b1 == 0x81 && b2 >= 0xa6 && b2 <= 0xa9) return 0x2040 + b2 - 0x80;
+    return 0;
+}
+
+std::size_t hidden_control_bytes(char32_t control) { return control < 0x800 ? 2 : 3; }
+
 std::string utf8_line(std::string_view text) {
     std::string out;
     while (!text.empty()) {

@@ -38,8 +38,9 @@ void Progress::advance(const std::string& item) {
         done_ < total_ ? fmt::format(", about {} left", clock_text(elapsed / double(done_) * double(total_ - done_)))
                        : "";
     const int width = static_cast<int>(fmt::format("{}", total_).size());
-    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_, step_,
-               terminal_text(item), clock_text(elapsed), eta, terminal_ ? "" : "\n");
+    // One line a step, whatever the names in it hold (one_line_text): a log reads one line per step.
+    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_,
+               one_line_text(step_), one_line_text(item), clock_text(elapsed), eta, terminal_ ? "" : "\n");
     std::fflush(stderr);
 }
 

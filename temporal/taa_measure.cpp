@@ -225,7 +225,12 @@ public:
                                                       met.more == 1 ? "" : "s", note)
                                         : fmt::format("{}: {}", met.first_label, note));
         m_.ghosting = roles_.ghosting ? ghosting_sum_ / double(m_.frames) : NAN;
-        m_.shimmer = !roles_.shimmer ? NAN : shimmer_pairs_ ? shimmer_sum_ / double(shimmer_pairs_) : 0.0;
+        // Shimmer compares successive outputs of one history: where every measured frame starts a
+        // new one (a camera cut on each), there is no pair, and the figure is absent, not 0.
+        m_.shimmer = roles_.shimmer && shimmer_pairs_ ? shimmer_sum_ / double(shimmer_pairs_) : NAN;
+        if (roles_.shimmer && !shimmer_pairs_)
+            m_.notes.push_back("shimmer not measured: every measured frame starts a new history (a camera cut), "
+                               "so no two successive outputs share one");
         return std::move(m_);
     }
 

@@ -239,10 +239,11 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
           "the medians too.\n\n";
     if (std::any_of(rows.begin(), rows.end(),
                     [](const TaaRow& r) { return std::isnan(r.shimmer) || std::isnan(r.ghosting); }))
-        md += "A figure shown as – is one the sequence is not meant for: its sequence.json says \"measure\": "
-              "[\"ghosting\"] (a moving capture without jitter, whose shimmer would be the motion's) or [\"shimmer\"] "
-              "(a still, jittered capture, which has nothing to ghost). It is not measured, and is empty in the CSV "
-              "and null in the JSON.\n\n";
+        md += "A figure shown as – is not measured: one the sequence is not meant for (its sequence.json says "
+              "\"measure\": [\"ghosting\"], a moving capture without jitter, whose shimmer would be the motion's, "
+              "or [\"shimmer\"], a still, jittered capture, which has nothing to ghost), or shimmer where every "
+              "measured frame follows a camera cut, so that no two successive outputs share a history. It is empty "
+              "in the CSV and null in the JSON.\n\n";
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);

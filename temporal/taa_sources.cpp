@@ -36,6 +36,14 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
                                           *request.picture_frame, dir, request.warmup, sequence->frames.size() - 1));
         sources.sequences.emplace_back(std::move(*sequence), request.input_space);
     }
+    // --picture-frame picks the frame of a sequence's ghosting picture: kdop's scenes show their
+    // trail's frame, and a sequence meant for shimmer alone has no such picture.
+    if (request.picture_frame &&
+        std::ranges::none_of(sources.sequences, [](const SequenceFrames& s) { return s.sequence().measure.ghosting; }))
+        return usage_fail(fmt::format("--picture-frame {}: picks the frame of each --sequence's ghosting picture, "
+                                      "and no sequence given is measured for ghosting (kdop's own scenes show the "
+                                      "frame of their trail)",
+                                      *request.picture_frame));
     if (request.builtin) {
         request.scene_options.context = &context;
         auto selected = select_taa_scenes(request.scene_names, request.backgrounds, request.scene_options);

@@ -797,7 +797,8 @@ TEST(CliSequence, ASequenceMeantForOneFigureHasNoOtherAnywhere) {
         EXPECT_EQ(row["ghosting"].is_null(), !ghosting) << row;
     }
     const std::string report = test::read_file(out / "report.md");
-    EXPECT_NE(report.find("A figure shown as – is one the sequence is not meant for"), std::string::npos) << report;
+    EXPECT_NE(report.find("A figure shown as – is not measured: one the sequence is not meant for"), std::string::npos)
+        << report;
     EXPECT_NE(report.find("Least shimmer first."), std::string::npos) << report;
     for (const char* chart :
          {"trade-grass-ghosting.png", "over-time-grass-ghosting.png", "over-time-grass-shimmer.png"})
