@@ -183,8 +183,10 @@ def main():
         scenes, out = tmp / "scenes", tmp / "taa"
         subprocess.run([args.kdop, "scene", "--scenes", "grass", "--size", "64x36", "--frames", "16", "--out",
                         str(scenes)], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        # The sequence under a name of its own: the scene's own frames are grass-ghosting.
+        (scenes / "grass-ghosting").rename(scenes / "captured")
         subprocess.run([args.kdop, "taa", "--scenes", "grass", "--size", "64x36", "--warmup", "4", "--frames", "8",
-                        "--sequence", str(scenes / "grass-ghosting"), "--sets", "aabb", "dop22", "dop32", "--modes",
+                        "--sequence", str(scenes / "captured"), "--sets", "aabb", "dop22", "dop32", "--modes",
                         "clip", "--timing-rounds", "2", "--viewer-frames", "4", "--out", str(out)], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         variants = ["aabb-clip-n9", "dop22-clip-n9", "dop32-clip-n9"]
@@ -198,7 +200,7 @@ def main():
             browser.send("Page.enable")
             browser.send("Network.enable")
             browser.send("Network.setBlockedURLs", {"urls": ["http://*", "https://*", "ws://*", "wss://*", "ftp://*"]})
-            fragment = ("#sequence=grass-ghosting&frame=9&a=aabb-clip-n9&b=dop32-clip-n9&mode=side&map=frame")
+            fragment = ("#sequence=captured&frame=9&a=aabb-clip-n9&b=dop32-clip-n9&mode=side&map=frame")
             browser.send("Page.navigate", {"url": page + fragment})
             browser.wait_for_event("Page.loadEventFired")
             browser.wait_for_images()
@@ -207,7 +209,7 @@ def main():
             rows = browser.evaluate("Array.from(document.querySelectorAll('#results tbody tr'))"
                                     ".map(r => [r.cells[0].textContent, r.cells[1].textContent])")
             for variant in variants:
-                for scene in ("grass", "grass-ghosting"):
+                for scene in ("grass", "captured"):
                     check([variant, scene] in rows, f"the table has {variant} on {scene}: {rows}")
             # A click on "ghosting (mean)" sorts by it, ascending.
             column = browser.evaluate("Array.from(document.querySelectorAll('#results th'))"
@@ -228,12 +230,12 @@ def main():
 
             # The viewer follows the fragment: the sequence, the kept frame nearest 9, A and B side by side.
             data = json.loads(browser.evaluate("document.getElementById('kdop-data').textContent"))
-            sequence = next(s for s in data["viewer"] if s["name"] == "grass-ghosting" and s["scene"] == "grass-ghosting")
+            sequence = next(s for s in data["viewer"] if s["name"] == "captured" and s["scene"] == "captured")
             frames = sequence["frames"]
             nearest = min(frames, key=lambda f: (abs(f - 9), f))
             s = state(browser)
             check(s["frame"] == str(nearest) and s["mode"] == "side", f"the fragment's state: {s}")
-            base = f"viewer/grass-ghosting/grass-ghosting/{nearest:04}/"
+            base = f"viewer/captured/captured/{nearest:04}/"
             check(shown_images(browser) == [base + "aabb-clip-n9.png", base + "dop32-clip-n9.png"],
                   f"A and B side by side: {shown_images(browser)}")
 
