@@ -185,6 +185,32 @@ TEST(CliHostileNames, ASequenceNamedAsASceneSequenceIsRefused) {
     }
 }
 
+// kdop choose names its sets, tables, report, chart and manifest after the sequences it fits to and
+// judges on: the names reach each as data.
+TEST(CliHostileNames, ChooseCarriesSequenceNamesFaithfully) {
+    test::TempDir dir;
+    const fs::path source = template_sequence(dir.path());
+    const std::string fit = kCarried[0], validate = kCarried[3];
+    fs::create_directories(dir / "sequences");
+    for (const std::string& name : {fit, validate})
+        fs::copy(source, dir / "sequences" / name, fs::copy_options::recursive);
+    auto r = test::run(kdop_args({"choose", "--fit", (dir / "sequences" / fit).string(), "--validate",
+                                  (dir / "sequences" / validate).string(), "--fit-axes", "4", "--sets", "aabb",
+                                  "--warmup", "2", "--sample", "500", "--timing-rounds", "2", "--out", "out"}),
+                       dir.path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("left out"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "PWNED"));
+    const std::string report = test::read_file(dir / "out" / "choice.md");
+    for (const std::string& name : {fit, validate})
+        EXPECT_NE(report.find(markdown_text(name)), std::string::npos) << name << "\n" << report;
+    EXPECT_TRUE(fs::is_regular_file(dir / "out" / "choice.png"));
+    auto listed = test::run(kdop_args({"list", "--manifest", (dir / "out" / "kdop.manifest").string()}));
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+    for (const std::string& file : files_under(dir.path()))
+        EXPECT_TRUE(file.starts_with("out") || file.starts_with("sequences") || file.starts_with("template")) << file;
+}
+
 // kdop flip's histogram titles and kdop accuracy's charts carry test images' names as data (before,
 // a line break in a name lost the histogram).
 TEST(CliHostileNames, FlipAndAccuracyChartsCarryFileNames) {

@@ -429,8 +429,9 @@ TEST(CliTaa, TheDefaultScenesAreThe3dTestbedBesideThePaper) {
 // A scene's own variants: a manifest naming a user's set, on a user's background.
 TEST(CliTaa, TakesAManifestAndTheUsersBackground) {
     TaaRun t;
-    test::write_file(t.dir / "scene.manifest",
-                     "set: " + test::data_path("tiny.axes") + "\ntiny-varclip-n9\nycocg-clip-n9\n");
+    // The set file beside the manifest: a manifest reads axis files from its own folder only.
+    fs::copy_file(test::data_path("tiny.axes"), t.dir / "tiny.axes");
+    test::write_file(t.dir / "scene.manifest", "set: tiny.axes\ntiny-varclip-n9\nycocg-clip-n9\n");
     const std::string background = (t.dir / "meadow.exr").string();
     ASSERT_TRUE(write_image(background, make_texture(TextureFamily::grass, 40, 30, 9)));
     const fs::path out = t.dir / "taa";
