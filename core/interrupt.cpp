@@ -209,14 +209,26 @@ void OnInterrupt::forget() {
 
 std::unique_lock<InterruptLock> hold_interrupts() { return std::unique_lock(registry().lock); }
 
-void test_hold_point(const char* point) {
+namespace {
+
+// Whether KDOP_TEST_HOLD names `point`; then says so and waits until a signal has arrived.
+bool wait_at(const char* point) {
     const char* wanted = std::getenv("KDOP_TEST_HOLD");
-    if (!wanted || std::strcmp(wanted, point) != 0) return;
+    if (!wanted || std::strcmp(wanted, point) != 0) return false;
     std::fprintf(stderr, "%s: holding for a signal (KDOP_TEST_HOLD)\n", point);
     std::fflush(stderr);
     while (!interrupted()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return true;
+}
+
+} // namespace
+
+void test_hold_point(const char* point) {
+    if (!wait_at(point)) return;
     // The watcher exits the process; this thread only waits for it.
     for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
 }
+
+void test_pause_point(const char* point) { wait_at(point); }
 
 } // namespace kdop

@@ -97,5 +97,8 @@ std::unique_lock<InterruptLock> hold_interrupts();
 // `point`, prints "<point>: holding for a signal (KDOP_TEST_HOLD)" to stderr and waits here until
 // a signal arrives. Costs one getenv otherwise.
 void test_hold_point(const char* point);
+// The same, but once the signal has arrived the caller goes on: for a point inside a step that holds
+// the interrupt lock (the moves of an output set), which the signal's undo steps wait for.
+void test_pause_point(const char* point);
 
 } // namespace kdop

@@ -152,6 +152,7 @@ Result<void> commit(Transaction& t, const std::vector<OutputWriter>& files, cons
             return fail(fmt::format("{}: cannot move into place: {}", path.string(), ec.message()));
         }
         t.placed.push_back(std::move(placed));
+        if (t.placed.size() == 1) test_pause_point("commit"); // a signal amid the moves (tests/signal_test.cpp)
     }
     // A stale file leaves its place under a second name, as a replaced file does, so abandon()
     // puts it back.

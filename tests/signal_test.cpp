@@ -130,6 +130,30 @@ TEST(CliSignals, AFileOverTheSizeLimitEndsTheRunWith153AndNothingLeft) {
 // nohup leaves SIGHUP ignored, and a program it starts must not die of a hang-up. The SIGHUP is
 // sent first: had kdop taken it, it would have ended the run (of two pending signals the lower
 // number is taken first); ignored, it is discarded, and the SIGTERM after it ends the run.
+// A signal amid the moves of an output set (finding 8: SIGHUP there left a new taa.csv beside the
+// old run's frames) waits for them: the folder then holds the new set whole, its listing's files and
+// no file of the run before (here the charts, which the new run leaves out), and no temporary.
+TEST(CliSignals, ASignalAmidTheMovesLeavesTheNewSetWhole) {
+    test::TempDir dir;
+    const fs::path out = dir / "accuracy";
+    const std::string command = test::kdop_binary() +
+                                " accuracy --size 16 --sets aabb --modes clip --neighborhoods n9 --volume-samples 0 "
+                                "--out " +
+                                out.string();
+    auto first = test::run(command);
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    ASSERT_TRUE(fs::exists(out / "pareto-grass.png")) << "the first run draws its charts (gnuplot)";
+    auto ended = test::interrupt_at(command + " --no-charts", {SIGHUP}, "", "commit");
+    EXPECT_EQ(ended.exit_code, 128 + SIGHUP) << told(ended);
+    EXPECT_FALSE(test::has_temporaries(out));
+    std::string listed;
+    for (const auto& [name, bytes] : test::snapshot(out))
+        if (name != ".kdop-outputs") listed += name + "\n";
+    const std::string listing = test::read_file(out / ".kdop-outputs");
+    EXPECT_EQ(listing.substr(listing.find('\n') + 1), listed);
+    EXPECT_FALSE(fs::exists(out / "pareto-grass.png")) << "the earlier run's chart is left";
+}
+
 TEST(CliSignals, ASignalIgnoredWhenKdopStartsStaysIgnored) {
     AccuracyRun run;
     auto ended = test::interrupt_at("nohup " + run.command(), {SIGHUP, SIGTERM}, run.environment());
