@@ -37,27 +37,21 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                                                 const std::filesystem::path& out_dir) {
     const bool lavapipe = has_lavapipe_cost(trade);
     const std::vector<std::string> families = trade_families(trade), names = accuracy_chart_names(trade);
-    std::vector<std::string> sets; // in the order rows name them
-    for (const TradeRow& r : trade)
-        if (std::find(sets.begin(), sets.end(), safe_name(r.key.set)) == sets.end())
-            sets.push_back(safe_name(r.key.set));
-    const VariantChartStyle style(sets);
+    std::vector<VariantKey> keys;
+    for (const TradeRow& r : trade) keys.push_back(r.key);
+    const VariantChartStyle style(keys);
     std::string script =
         gnuplot_terminal(lavapipe ? 1800 : 1000, 600) + "set grid\nset key outside right top spacing 1.1\n";
     for (std::size_t f = 0; f < families.size(); ++f) {
         const std::string stem = (scratch / fmt::format("family-{}", f)).string();
         std::vector<double> distances;
-        std::vector<VariantKey> keys;
         for (const TradeRow& r : trade)
-            if (r.family == families[f]) {
-                distances.push_back(r.mean_dist);
-                keys.push_back(r.key);
-            }
+            if (r.family == families[f]) distances.push_back(r.mean_dist);
         script += axis_scale('y', distances, "mean distance to the ideal clip");
         script += gnuplot_output(scratch, f);
         script += fmt::format("set multiplot layout 1,{} title {}\n", lavapipe ? 2 : 1,
                               gnuplot_string(fmt::format("{}: accuracy against cost, one point per variant (color: "
-                                                         "mode and neighborhood; shape: axis set); black lines: the "
+                                                         "axis set; shape: mode and neighborhood); black lines: the "
                                                          "Pareto fronts",
                                                          families[f])));
         struct Axis {
@@ -72,19 +66,19 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
             std::string plot, fronts;
             for (Mode mode : kAllModes)
                 for (Neighborhood n : kAllNeighborhoods) {
+                    // One data file per group (its point shape), each point in its set's color.
                     const VariantKey group_key{"", mode, n};
                     std::vector<std::vector<std::string>> points;
                     for (const TradeRow& r : trade)
                         if (r.family == families[f] && r.key.mode == mode && r.key.neighborhood == n)
                             points.push_back({gnuplot_number(axis.cost(r)), gnuplot_number(r.mean_dist),
-                                              std::to_string(style.shape(safe_name(r.key.set)))});
+                                              VariantChartStyle::color_value(style.look(r.key).color)});
                     if (points.empty()) continue;
                     const std::string data =
                         fmt::format("{}-{}-{}.dat", stem, axis.suffix, VariantChartStyle::group(group_key));
                     if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
-                    plot += fmt::format("{}{} using 1:2:3 with points pt variable ps 1.5 lc rgb '{}' notitle",
-                                        plot.empty() ? "" : ", ", gnuplot_string(data),
-                                        VariantChartStyle::color(group_key));
+                    plot += fmt::format("{}{} using 1:2:3 with points pt {} ps 1.5 lc rgb variable notitle",
+                                        plot.empty() ? "" : ", ", gnuplot_string(data), style.look(group_key).point);
                 }
             for (Neighborhood shape : kAllNeighborhoods) {
                 std::vector<const TradeRow*> members;
@@ -101,8 +95,8 @@ Result<std::vector<OutputFile>> accuracy_charts(const std::vector<TradeRow>& tra
                 fronts += fmt::format(", {} using 1:2 with lines dt {} lw 1.5 lc rgb 'black' title 'Pareto front, {}'",
                                       gnuplot_string(data), shape == Neighborhood::n9 ? 2 : 3, to_string(shape));
             }
-            script += fmt::format("set xlabel {}\nplot {}{}{}\n", gnuplot_string(axis.label), plot,
-                                  style.key_entries(keys), fronts);
+            script += fmt::format("set xlabel {}\nplot {}{}{}\n", gnuplot_string(axis.label), plot, style.key_entries(),
+                                  fronts);
         }
         script += "unset multiplot\n";
     }

@@ -1,7 +1,8 @@
 // How every chart of variants tells them apart without labels beside the points (which collide
-// where two sets cost the same): a color per mode and neighborhood, a point shape per axis set, and
-// a key of both outside the plot, so it never covers a point; and a logarithmic axis where the
-// values span decades, so a few outliers do not flatten the rest.
+// where two sets cost the same): a color per family (an axis set, in a form and with numerics), a
+// point shape and a dash per mode and neighborhood, and a key of both outside the plot, so it never
+// covers a point; and a logarithmic axis where the values span decades, so a few outliers do not
+// flatten the rest.
 #pragma once
 
 #include "core/variant_key.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <iterator>
 #include <span>
 #include <string>
@@ -18,45 +20,40 @@
 
 namespace kdop {
 
+// A series' look in a chart: the color of its family, and the point type and dash type of its group.
+struct SeriesLook {
+    std::string color; // "#rrggbb"
+    int point = 7;     // gnuplot's pt
+    int dash = 1;      // gnuplot's dt
+};
+
+// Families are told apart by color, groups by point shape and dash, so that every variant of 30 (eight
+// sets in two modes and two neighborhoods) has a look of its own, in a point chart (color and point) as
+// in a line chart (color, dash and point): no two series share both color and point, or color and dash.
 class VariantChartStyle {
 public:
-    // `sets` in the order the key lists them.
-    explicit VariantChartStyle(std::vector<std::string> sets) : sets_(std::move(sets)) {}
+    // `keys` in the order the key lists their families.
+    explicit VariantChartStyle(std::span<const VariantKey> keys);
 
-    // The groups of the key, each a mode and a neighborhood: "clip-n9", ...
-    static std::string group(const VariantKey& key) {
-        return fmt::format("{}-{}", to_string(key.mode), to_string(key.neighborhood));
-    }
-    static const char* color(const VariantKey& key) {
-        static constexpr const char* colors[] = {"#7b2fbe", "#2b9fd9", "#e0a800", "#d62d20"}; // clip n9, n5; varclip
-        const int index = (key.mode == Mode::varclip ? 2 : 0) + (key.neighborhood == Neighborhood::n5 ? 1 : 0);
-        return colors[index];
-    }
-    // gnuplot's point type for the key's set: filled shapes first, then open ones, in turn.
-    int shape(const std::string& set) const {
-        static constexpr int shapes[] = {7, 5, 9, 11, 13, 15, 6, 4, 8, 10, 12, 14};
-        const auto at = std::find(sets_.begin(), sets_.end(), set) - sets_.begin();
-        return shapes[std::size_t(at) % std::size(shapes)];
-    }
-    // The key's entries, for the end of a plot command: each group drawn in its color, each set in
-    // its shape (NaN points, which only the key shows).
-    std::string key_entries(std::span<const VariantKey> keys) const {
-        std::vector<std::string> groups;
-        std::string out;
-        for (const VariantKey& k : keys)
-            if (std::find(groups.begin(), groups.end(), group(k)) == groups.end()) {
-                groups.push_back(group(k));
-                out += fmt::format(", NaN with points pt 7 ps 1.5 lc rgb '{}' title {}", color(k),
-                                   gnuplot_string(group(k)));
-            }
-        for (const std::string& set : sets_)
-            out +=
-                fmt::format(", NaN with points pt {} ps 1.5 lc rgb 'black' title {}", shape(set), gnuplot_string(set));
-        return out;
-    }
+    // A variant's family: its set, form and numerics ("dop32", "dop32 loop", "dop32 paper"), or its
+    // baseline ("gather", "copy").
+    static std::string family(const VariantKey& key);
+    // A variant's group: its mode and neighborhood ("clip-n9", "varclip-n5", "gather-n9").
+    static std::string group(const VariantKey& key);
+
+    SeriesLook look(const VariantKey& key) const;
+    // The color of the family's index-th member: ten of Tableau's, then hues spread by the golden
+    // angle, each distinct.
+    static std::string family_color(std::size_t index);
+    // The color as gnuplot's `lc rgb variable` reads it from a data column: 0xrrggbb in decimal.
+    static std::string color_value(const std::string& color);
+
+    // The key's entries, for the end of a plot command: each family as a line of its color, each group
+    // as its point and dash in black (NaN points and lines, which only the key shows).
+    std::string key_entries() const;
 
 private:
-    std::vector<std::string> sets_;
+    std::vector<std::string> families_, groups_;
 };
 
 // "set logscale <axis>" where `values` (the finite ones) are all positive and span more than a

@@ -31,13 +31,9 @@ std::vector<std::string> taa_chart_names(const std::vector<TaaRow>& rows) {
 Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, const std::filesystem::path& scratch,
                                            const std::filesystem::path& out_dir) {
     const std::vector<std::string> scenes = scenes_of(rows), names = taa_chart_names(rows);
-    std::vector<std::string> sets;
     std::vector<VariantKey> keys;
-    for (const TaaRow& r : rows) {
-        if (std::find(sets.begin(), sets.end(), r.key.set) == sets.end()) sets.push_back(r.key.set);
-        keys.push_back(r.key);
-    }
-    const VariantChartStyle style(sets);
+    for (const TaaRow& r : rows) keys.push_back(r.key);
+    const VariantChartStyle style(keys);
     // Autoscaled around the points, with a margin: the variants' times and errors lie close together.
     std::string script =
         gnuplot_terminal(1500, 560) +
@@ -57,22 +53,24 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
                 if (std::find(groups.begin(), groups.end(), VariantChartStyle::group(r.key)) == groups.end())
                     groups.push_back(VariantChartStyle::group(r.key));
             }
+        // One data file per group (its point shape), each point in its family's color.
         for (const std::string& group : groups) {
             std::vector<std::vector<std::string>> points;
-            const char* color = "black";
+            int point = 7;
             for (const TaaRow& r : rows)
                 if (r.scene == scenes[s] && VariantChartStyle::group(r.key) == group) {
-                    color = VariantChartStyle::color(r.key);
+                    const SeriesLook look = style.look(r.key);
+                    point = look.point;
                     points.push_back({gnuplot_number(r.ms), gnuplot_number(r.ghosting), gnuplot_number(r.shimmer),
                                       gnuplot_number(r.ms_q1), gnuplot_number(r.ms_q3),
-                                      std::to_string(style.shape(r.key.set))});
+                                      VariantChartStyle::color_value(look.color)});
                 }
             const std::string data = (scratch / fmt::format("trade-{}-{}.dat", s, group)).string();
             if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
             for (int y = 0; y < 2; ++y)
-                plot[y] += fmt::format("{0}{1} using 1:{2}:4:5 with xerrorbars pt 0 lc rgb '{3}' notitle, {1} "
-                                       "using 1:{2}:6 with points pt variable ps 1.5 lc rgb '{3}' notitle",
-                                       plot[y].empty() ? "" : ", ", gnuplot_string(data), 2 + y, color);
+                plot[y] += fmt::format("{0}{1} using 1:{2}:4:5:6 with xerrorbars pt 0 lc rgb variable notitle, {1} "
+                                       "using 1:{2}:6 with points pt {3} ps 1.5 lc rgb variable notitle",
+                                       plot[y].empty() ? "" : ", ", gnuplot_string(data), 2 + y, point);
         }
         // A panel per figure the scene or sequence is meant for (sequence.json's "measure").
         auto measured = [](const std::vector<double>& v) {
@@ -82,7 +80,7 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
         script += gnuplot_output(scratch, s);
         script += fmt::format("set multiplot layout 1,{} title {}\n", int(panels[0]) + int(panels[1]),
                               gnuplot_string(fmt::format("{}: cost against what a viewer sees, one point per variant "
-                                                         "(color: mode and neighborhood; shape: axis set; bars: "
+                                                         "(color: axis set; shape: mode and neighborhood; bars: "
                                                          "Q1..Q3 of the time); lower left is better",
                                                          scenes[s])));
         script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
@@ -95,7 +93,7 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
         for (int y = 0; y < 2; ++y) {
             if (!panels[y]) continue;
             script += axis_scale('y', *values[y], titles[y], false);
-            script += fmt::format("plot {}{}\n", plot[y], y == last ? style.key_entries(keys) : "");
+            script += fmt::format("plot {}{}\n", plot[y], y == last ? style.key_entries() : "");
         }
         script += "unset multiplot\n";
     }
@@ -121,6 +119,8 @@ Result<std::vector<OutputFile>> taa_over_time_charts(const std::vector<TaaFrameR
         std::vector<VariantKey> keys; // the scene's variants, in order
         for (const TaaFrameRow& r : rows)
             if (r.scene == scenes[s] && std::find(keys.begin(), keys.end(), r.key) == keys.end()) keys.push_back(r.key);
+        // Each variant a line of its own look: its set's color, its mode and neighborhood's dash and point.
+        const VariantChartStyle style(keys);
         std::string plots[2];
         for (int f = 0; f < 2; ++f)
             for (std::size_t v = 0; v < keys.size(); ++v) {
@@ -131,9 +131,11 @@ Result<std::vector<OutputFile>> taa_over_time_charts(const std::vector<TaaFrameR
                 if (points.empty()) continue;
                 const std::string data = (scratch / fmt::format("over-time-{}-{}-{}.dat", s, f, v)).string();
                 if (auto ok = write_text(data, gnuplot_data(points)); !ok) return std::unexpected(ok.error());
+                const SeriesLook look = style.look(keys[v]);
                 plots[f] +=
-                    fmt::format("{}{} using 1:2 with linespoints pt 7 ps 0.6 lw 1.5 title {}",
-                                plots[f].empty() ? "" : ", ", gnuplot_string(data), gnuplot_string(keys[v].name()));
+                    fmt::format("{}{} using 1:2 with linespoints pt {} ps 0.8 dt {} lw 1.5 lc rgb '{}' title {}",
+                                plots[f].empty() ? "" : ", ", gnuplot_string(data), look.point, look.dash, look.color,
+                                gnuplot_string(keys[v].name()));
             }
         const int panels = int(!plots[0].empty()) + int(!plots[1].empty());
         script += gnuplot_output(scratch, s);
