@@ -18,10 +18,13 @@ std::string image(const std::string& path, const std::string& alt) {
     return fmt::format("<img src=\"{}\" alt=\"{}\">", html_text(url_path(path)), html_text(alt));
 }
 
-// The table taa.csv holds, every column but the variant key's parts (the variant's name says
-// them), sortable by the script: each number cell carries its full value in data-value.
-std::string results_table(const Table& table) {
-    static const std::vector<std::string> left_out{"axis_set", "mode", "neighborhood", "form", "numerics"};
+// The table taa.csv holds, sortable by the script (each number cell carries its full value in
+// data-value) and sorted by `sorted_by` to begin with, every column but the variant key's parts
+// (the variant's name says them) and the medians (report.md leaves them out too), so that it fits a
+// 1400-pixel page.
+std::string results_table(const Table& table, const std::string& sorted_by) {
+    static const std::vector<std::string> left_out{"axis_set", "mode",           "neighborhood",   "form",
+                                                   "numerics", "shimmer_median", "ghosting_median"};
     std::vector<std::size_t> shown;
     for (std::size_t c = 0; c < table.columns().size(); ++c)
         if (std::find(left_out.begin(), left_out.end(), table.columns()[c].name) == left_out.end()) shown.push_back(c);
@@ -30,8 +33,9 @@ std::string results_table(const Table& table) {
         const Column& column = table.columns()[c];
         const std::string unit = column.unit.empty() || column.unit == "FLIP" ? "" : " (" + column.unit + ")";
         const std::string title = (column.title.empty() ? column.name : column.title) + unit;
-        html += fmt::format("<th title=\"{}\">{}</th>",
-                            html_text(column.name + (column.unit.empty() ? "" : ", " + column.unit)), html_text(title));
+        html += fmt::format("<th title=\"{}\"{}>{}</th>",
+                            html_text(column.name + (column.unit.empty() ? "" : ", " + column.unit)),
+                            column.name == sorted_by ? " aria-sort=\"ascending\"" : "", html_text(title));
     }
     html += "</tr></thead>\n<tbody>\n";
     for (std::size_t r = 0; r < table.rows().size(); ++r) {
@@ -51,10 +55,20 @@ std::string results_table(const Table& table) {
     return html + "</tbody></table></div>\n";
 }
 
+// `rows` by their ghosting, least first, as report.md orders each scene's (those without a ghosting
+// figure last, by their shimmer).
+std::vector<TaaRow> least_ghosting_first(std::vector<TaaRow> rows) {
+    auto rank = [](const TaaRow& r) {
+        return std::pair(std::isnan(r.ghosting) ? INFINITY : r.ghosting, std::isnan(r.shimmer) ? INFINITY : r.shimmer);
+    };
+    std::stable_sort(rows.begin(), rows.end(), [&](const TaaRow& a, const TaaRow& b) { return rank(a) < rank(b); });
+    return rows;
+}
+
 // The viewer's data: the variants, and per sequence its kept frames, worst frames and figures
 // (null where there is none).
-nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants,
-                                   const std::vector<ViewerSequence>& viewer) {
+nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants, const std::vector<ViewerSequence>& viewer,
+                                   const std::vector<TaaRow>& rows) {
     nlohmann::ordered_json sequences = nlohmann::ordered_json::array();
     for (const ViewerSequence& s : viewer) {
         if (s.frames.empty()) continue;
@@ -67,6 +81,16 @@ nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants,
                 row.push_back(std::isnan(figure) ? nlohmann::ordered_json() : nlohmann::ordered_json(figure));
             figures.push_back(std::move(row));
         }
+        // Each variant's mean figure over the sequence (its taa.csv row's), which the viewer opens
+        // on: the best variant against the worst, at the worst one's worst frame.
+        nlohmann::ordered_json means = nlohmann::ordered_json::array();
+        for (const std::string& variant : variants) {
+            double mean = NAN;
+            for (const TaaRow& r : rows)
+                if (r.scene == s.scene && r.key.name() == variant)
+                    mean = s.figure == ViewerFigure::ghosting ? r.ghosting : r.shimmer;
+            means.push_back(std::isnan(mean) ? nlohmann::ordered_json() : nlohmann::ordered_json(mean));
+        }
         sequences.push_back({{"name", s.name},
                              {"scene", s.scene},
                              {"figure", s.figure == ViewerFigure::ghosting ? "ghosting" : "shimmer"},
@@ -76,7 +100,8 @@ nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants,
                              {"height", s.height},
                              {"frames", s.frames},
                              {"worst", std::move(worst)},
-                             {"figures", std::move(figures)}});
+                             {"figures", std::move(figures)},
+                             {"means", std::move(means)}});
     }
     return {{"variants", variants}, {"viewer", std::move(sequences)}};
 }
@@ -94,6 +119,7 @@ std::string script_json(const nlohmann::ordered_json& json) {
 const char* kViewerControls = R"(<div class="controls">
 <label>sequence <select id="sequence"></select></label>
 <label><input type="range" id="frame-slider" min="0" value="0"> <span id="frame-label"></span></label>
+<span class="note" id="frame-note"></span>
 </div>
 <div class="controls">
 <label>A <select id="variant-a"></select></label>
@@ -144,7 +170,7 @@ std::string taa_report_html(const std::vector<TaaRow>& rows, const RunMetadata& 
     html += "<h2 id=\"table\">Every variant on every scene and sequence</h2>\n";
     html += "<p class=\"note\">A click on a column's header sorts by it. Shimmer and ghosting are means over the "
             "measured frames, p95 their 95th percentile; – is a figure the sequence is not meant for.</p>\n";
-    html += results_table(taa_table(rows));
+    html += results_table(taa_table(least_ghosting_first(rows)), "ghosting");
 
     if (has_viewer) {
         html += "<h2 id=\"viewer-section\">Frame viewer</h2>\n";
@@ -181,7 +207,7 @@ std::string taa_report_html(const std::vector<TaaRow>& rows, const RunMetadata& 
     if (run.seed) html += fmt::format("<li>seed: {}</li>\n", *run.seed);
     html += "</ul>\n";
 
-    html += "<script type=\"application/json\" id=\"kdop-data\">" + script_json(viewer_json(variants, viewer)) +
+    html += "<script type=\"application/json\" id=\"kdop-data\">" + script_json(viewer_json(variants, viewer, rows)) +
             "</script>\n<script>\n";
     html += report_page_script();
     html += "</script>\n</body>\n</html>\n";

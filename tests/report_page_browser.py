@@ -15,10 +15,12 @@ import base64
 import json
 import os
 import struct
+import select
 import subprocess
 import sys
 import tempfile
 import time
+import urllib.parse
 import zlib
 from pathlib import Path
 
@@ -73,8 +75,11 @@ class Browser:
                 return reply.get("result", {})
             self.events.append(reply)
 
-    def read(self):
+    def read(self, timeout=60):
+        """The next message; fails after `timeout` seconds without one, so that no wait hangs the test."""
         while b"\0" not in self.buffer:
+            if not select.select([self.from_browser], [], [], timeout)[0]:
+                raise RuntimeError(f"no message from the browser in {timeout} s")
             chunk = os.read(self.from_browser, 1 << 16)
             if not chunk:
                 raise RuntimeError("the browser closed its pipe")
@@ -88,7 +93,7 @@ class Browser:
             for i, event in enumerate(self.events):
                 if event.get("method") == method:
                     return self.events.pop(i)
-            self.events.append(self.read())
+            self.events.append(self.read(max(end - time.time(), 0.01)))
         raise RuntimeError("no " + method)
 
     def evaluate(self, expression):
@@ -200,7 +205,35 @@ def main():
             browser.send("Page.enable")
             browser.send("Network.enable")
             browser.send("Network.setBlockedURLs", {"urls": ["http://*", "https://*", "ws://*", "wss://*", "ftp://*"]})
+            # Without a fragment: the table sorted by ghosting, least first, within the 1400-pixel page, and
+            # the viewer on the first ghosting sequence, its least ghosting variant as A against its most
+            # as B, at B's worst frame.
+            browser.send("Page.navigate", {"url": page})
+            browser.wait_for_event("Page.loadEventFired")
+            column = browser.evaluate("Array.from(document.querySelectorAll('#results th'))"
+                                      ".findIndex(th => th.textContent.startsWith('ghosting (mean)'))")
+            values = browser.evaluate(f"Array.from(document.querySelectorAll('#results tbody tr'))"
+                                      f".map(r => Number(r.cells[{column}].dataset.value))")
+            check(column > 0 and values == sorted(values), f"sorted by ghosting to begin with: {values}")
+            widths = browser.evaluate("[document.documentElement.scrollWidth, "
+                                      "document.querySelector('.table-wrap').scrollWidth, "
+                                      "document.querySelector('.table-wrap').clientWidth]")
+            check(widths[0] <= 1400 and widths[1] <= widths[2], f"the page and its table fit 1400 pixels: {widths}")
+            data = json.loads(browser.evaluate("document.getElementById('kdop-data').textContent"))
+            first = next(s for s in data["viewer"] if s["figure"] == "ghosting")
+            measured = sorted((m, v) for v, m in enumerate(first["means"]) if m is not None)
+            best, worst = data["variants"][measured[0][1]], data["variants"][measured[-1][1]]
+            s = state(browser)
+            check(s["a"] == best and s["b"] == worst and s["frame"] == str(first["worst"][measured[-1][1]]) and
+                  urllib.parse.unquote(s["sequence"]) == (first["name"] if first["scene"] == first["name"] else
+                                                          first["scene"] + "/" + first["name"]),
+                  f"opens on {best} against {worst} at the latter's worst frame: {s}")
+            check(browser.evaluate("document.getElementById('frame-note').textContent") == "", "no note")
+
             fragment = ("#sequence=captured&frame=9&a=aabb-clip-n9&b=dop32-clip-n9&mode=side&map=frame")
+            # A page of its own in between: a fragment alone would navigate within the document, with no load.
+            browser.send("Page.navigate", {"url": "about:blank"})
+            browser.wait_for_event("Page.loadEventFired")
             browser.send("Page.navigate", {"url": page + fragment})
             browser.wait_for_event("Page.loadEventFired")
             browser.wait_for_images()
@@ -211,14 +244,18 @@ def main():
             for variant in variants:
                 for scene in ("grass", "captured"):
                     check([variant, scene] in rows, f"the table has {variant} on {scene}: {rows}")
-            # A click on "ghosting (mean)" sorts by it, ascending.
-            column = browser.evaluate("Array.from(document.querySelectorAll('#results th'))"
-                                      ".findIndex(th => th.textContent === 'ghosting (mean)')")
-            check(column > 0, "a ghosting column")
-            browser.evaluate(f"document.querySelectorAll('#results th')[{column}].click()")
-            values = browser.evaluate(f"Array.from(document.querySelectorAll('#results tbody tr'))"
-                                      f".map(r => Number(r.cells[{column}].dataset.value))")
-            check(values == sorted(values), f"sorted by ghosting: {values}")
+            # A click on "ghosting (mean)", which the table is sorted by to begin with, sorts by it
+            # descending; then a click on "shimmer (mean)" sorts by that, ascending (empty cells last).
+            for title, descending in (("ghosting (mean)", True), ("shimmer (mean)", False)):
+                column = browser.evaluate("Array.from(document.querySelectorAll('#results th'))"
+                                          f".findIndex(th => th.textContent === '{title}')")
+                check(column > 0, f"a {title} column")
+                browser.evaluate(f"document.querySelectorAll('#results th')[{column}].click()")
+                values = browser.evaluate(f"Array.from(document.querySelectorAll('#results tbody tr'))"
+                                          f".map(r => r.cells[{column}].dataset.value)")
+                numbers = [float(v) for v in values if v != ""]
+                check(numbers == sorted(numbers, reverse=descending) and values[len(numbers):] == [""] * (
+                    len(values) - len(numbers)), f"sorted by {title}: {values}")
 
             # Every image loaded; nothing but files was asked for.
             check(browser.evaluate("document.body.dataset.brokenImages") == "0", "no image failed to load")
@@ -235,6 +272,10 @@ def main():
             nearest = min(frames, key=lambda f: (abs(f - 9), f))
             s = state(browser)
             check(s["frame"] == str(nearest) and s["mode"] == "side", f"the fragment's state: {s}")
+            # A frame that was not kept is said to be another.
+            note = browser.evaluate("document.getElementById('frame-note').textContent")
+            check((nearest == 9) == (note == "") and (nearest == 9 or f"showing the nearest kept frame, {nearest}" in note),
+                  f"frame 9 said to be {nearest}: {note!r}")
             base = f"viewer/captured/captured/{nearest:04}/"
             check(shown_images(browser) == [base + "aabb-clip-n9.png", base + "dop32-clip-n9.png"],
                   f"A and B side by side: {shown_images(browser)}")

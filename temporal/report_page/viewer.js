@@ -2,7 +2,8 @@
 // Plain JavaScript, no library and no network: everything it shows is in the page's data
 // (<script id="kdop-data">) and the PNGs beside it. The viewer's state lives in the URL fragment
 // (#sequence=S (or SCENE/S)&frame=N&a=V&b=V&mode=side|flip&shown=a|b&map=frame|overlay|map&zoom=Z), so a state
-// can be linked to, and is what the tests drive it with.
+// can be linked to, and is what the tests drive it with. Without one it opens on the first sequence
+// measured for ghosting, its best variant against its worst, at the worst one's worst frame.
 "use strict";
 
 (function () {
@@ -166,18 +167,39 @@
     history.replaceState(null, "", "#" + fragment());
   }
 
+  // Where a sequence opens: the variant with the least mean figure as A, the one with the most as B,
+  // at B's worst frame, where the two differ most plainly.
+  function openOn(sequenceIndex) {
+    const sequence = data.viewer[sequenceIndex];
+    const measured = sequence.means.map((m, v) => [m, v]).filter(([m]) => m !== null);
+    if (measured.length === 0) return;
+    measured.sort((x, y) => x[0] - y[0] || x[1] - y[1]);
+    state.a = measured[0][1];
+    state.b = measured[measured.length - 1][1];
+    if (state.b === state.a) state.b = state.a === 0 ? Math.min(1, variants.length - 1) : 0;
+    const frame = sequence.frames.indexOf(sequence.worst[state.b]);
+    state.frame = frame >= 0 ? frame : 0;
+  }
+
   function readFragment() {
     const params = new URLSearchParams(location.hash.slice(1));
     const sequence = data.viewer.findIndex((s) => label(s) === params.get("sequence"));
-    if (sequence >= 0) state.sequence = sequence;
+    // Without one named, the first sequence measured for ghosting, the figure the table sorts by.
+    const ghosting = data.viewer.findIndex((s) => s.figure === "ghosting");
+    state.sequence = sequence >= 0 ? sequence : Math.max(ghosting, 0);
     const frames = data.viewer[state.sequence].frames;
     state.zoom = fitting(data.viewer[state.sequence]);
+    openOn(state.sequence);
+    $("frame-note").textContent = "";
     if (params.has("frame")) {
       const wanted = Number(params.get("frame"));
-      // The kept frame nearest the one asked for.
+      // The kept frame nearest the one asked for, saying so where it is another.
       let best = 0;
       frames.forEach((f, i) => { if (Math.abs(f - wanted) < Math.abs(frames[best] - wanted)) best = i; });
       state.frame = best;
+      if (frames[best] !== wanted)
+        $("frame-note").textContent = "frame " + params.get("frame") + " was not kept; showing the nearest kept " +
+          "frame, " + frames[best] + " (the kept frames: " + frames.join(", ") + ")";
     }
     for (const slot of ["a", "b"])
       if (params.has(slot)) {
@@ -192,10 +214,13 @@
 
   $("sequence").addEventListener("change", (e) => {
     state.sequence = Number(e.target.value);
-    state.frame = 0;
+    openOn(state.sequence);
     state.zoom = fitting(data.viewer[state.sequence]);
+    $("frame-note").textContent = "";
     update();
   });
+  const clearNote = () => { $("frame-note").textContent = ""; };
+  $("frame-slider").addEventListener("input", clearNote);
   $("frame-slider").addEventListener("input", (e) => { state.frame = Number(e.target.value); update(); });
   $("variant-a").addEventListener("change", (e) => { state.a = Number(e.target.value); update(); });
   $("variant-b").addEventListener("change", (e) => { state.b = Number(e.target.value); update(); });
