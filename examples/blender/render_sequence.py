@@ -7,10 +7,11 @@ little away from the camera, four near-black wheels that move with it, and a
 sun light. The camera is not jittered: ghosting is measured on jitter-off
 sequences.
 
-Why: it is content from outside kdop. kdop's own scenes are synthetic 2-D
-pictures; this one comes from a path tracer with real perspective, shading and
-motion vectors, and goes through the same reader as any renderer's captures
-(README "Frame sequences").
+Why: it is content from outside kdop. kdop's own scenes are drawn by kdop
+itself (2-D sprites over textures, and a rasterized 3-D testbed); this one comes
+from a path tracer with real perspective, shading and motion vectors, and goes
+through the same reader as any renderer's captures (docs/taa.md, "Frame
+sequences").
 
 How to run it (Blender 3.4 or later, no .blend file, nothing downloaded):
 
@@ -18,7 +19,10 @@ How to run it (Blender 3.4 or later, no .blend file, nothing downloaded):
         --python examples/blender/render_sequence.py -- \
         --out DIR [--frames N] [--size WxH] [--samples S] [--seed K] [--hdr]
 
-    kdop taa --sequence DIR --out RESULTS
+    kdop taa --sequence DIR --warmup 16 --out RESULTS
+
+(--warmup: the frames before measuring; its default, 100, is more than the 48
+frames rendered by default.)
 
 Defaults: 48 frames, 160x90, 16 samples, seed 1.
 
@@ -43,8 +47,9 @@ What it writes under DIR, frames numbered from 0000:
                      channels, so W is lost; kdop reads only X and Y).
     depth/NNNN.exr   the Depth (Z) pass, distance from the camera: smaller is
                      nearer, kdop's default.
-    sequence.json    format version 1, with the motion settings README's
-                     Blender row gives: "units": "pixels",
+    sequence.json    format version 1, with the motion settings the Blender
+                     row of docs/taa.md ("Motion settings for what engines
+                     write") gives: "units": "pixels",
                      "points_to": "previous", "y_axis": "up"; the color
                      range, "ldr" or (--hdr) "hdr"; and "measure":
                      ["ghosting"]: without jitter, only ghosting means
