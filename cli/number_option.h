@@ -3,7 +3,9 @@
 // range, a thread count. CLI::Range and CLI::PositiveNumber let NaN through (every comparison with
 // it is false), word their bounds with all 309 digits of the largest double, and take "-1" for an
 // unsigned option as 2^64 - 1 or fail its conversion with a message of their own; these refuse NaN,
-// the infinities and every value outside the range, and say the range as a person would.
+// the infinities and every value outside the range, and say the range as a person would. Numbers
+// are read as decimals only: CLI11 converts with strtold, which also takes "0x10" as 16, "0x1p4",
+// " 5" and "infinity", none of which a person means as a plain number.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -27,9 +29,15 @@ inline CLI::Validator finite_number(double min, double max, bool above_min = fal
                                           above_min ? "and at most" : "to", shown_number(max), unit);
     return CLI::Validator(
         [=](std::string& text) -> std::string {
+            // std::from_chars in the general format: digits, '.', an exponent and a leading '-', and
+            // nothing before or after them ("inf" and "nan" it reads, and the range refuses).
             double value = 0;
-            if (!CLI::detail::lexical_cast(text, value)) return fmt::format("'{}' is not a number", text);
-            if (!std::isfinite(value) || value < min || (above_min && value == min) || value > max)
+            const char* end = text.data() + text.size();
+            auto [stop, error] = std::from_chars(text.data(), end, value, std::chars_format::general);
+            if (text.empty() || stop != end || (error != std::errc{} && error != std::errc::result_out_of_range))
+                return fmt::format("'{}' is not a number", text);
+            if (error != std::errc{} || !std::isfinite(value) || value < min || (above_min && value == min) ||
+                value > max)
                 return fmt::format("'{}' is not {}", text, range);
             return {};
         },

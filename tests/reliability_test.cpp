@@ -564,10 +564,14 @@ TEST(CliCommandLine, EveryBadNumericValueIsExit2) {
                                       "scene" + out + " --size 1x1",
                                       "textures" + out + " --width 7",
                                       "textures" + out + " --height 16385",
-                                      "textures" + out + " --seed -1"};
-    for (const char* value : {"nan", "inf", "-inf", "x", "1e999", "-1", "101", ""})
+                                      "textures" + out + " --seed -1",
+                                      "choose --fit " + dir.path().string() + " --holdout 1" + out +
+                                          " --budget-ms 0x10"};
+    // strtod's forms beyond decimals: hex (0x10 was taken as 16), hex floats, spaces, "infinity".
+    for (const char* value :
+         {"nan", "inf", "-inf", "x", "1e999", "-1", "101", "", "0x10", "0x1p4", " 5", "5 ", "1e", "+5", "infinity"})
         cases.push_back(run + " --gamma '" + value + "'");
-    for (const char* value : {"nan", "inf", "x", "1e3", "-1", "1025", "", "0x10", "1.5"})
+    for (const char* value : {"nan", "inf", "x", "1e3", "-1", "1025", "", "0x10", "1.5", " 5", "5 ", "+5"})
         cases.push_back("gen" + out + " --threads '" + value + "'");
     std::vector<test::CommandResult> results(cases.size());
     auto worker = [&](std::size_t first) {
@@ -578,8 +582,9 @@ TEST(CliCommandLine, EveryBadNumericValueIsExit2) {
     other.join();
     for (std::size_t i = 0; i < cases.size(); ++i) {
         const test::CommandResult& r = results[i];
-        // The option is the last but one word of the case.
-        const std::string option = std::regex_replace(cases[i], std::regex(R"(^.* (--[a-z-]+) [^ ]*$)"), "$1");
+        // The option is the last but one word of the case (the last may be quoted, with spaces).
+        const std::string option =
+            std::regex_replace(cases[i], std::regex(R"(^.* (--[a-z-]+) ('[^']*'|[^ ]*)$)"), "$1");
         EXPECT_EQ(r.exit_code, 2) << cases[i] << "\n" << r.err;
         EXPECT_TRUE(r.err.starts_with("kdop: " + option + ":")) << cases[i] << "\n" << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
