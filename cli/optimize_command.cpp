@@ -98,7 +98,7 @@ Action add_optimize_command(CLI::App& app) {
     add_input_space_option(*cmd, o->run.input.input_space)->excludes(sphere);
     add_color_map_option(*cmd, o->run.input.color_map,
                          "The space to fit in, that of the resolve the set is for (kdop taa --color-map): linear, "
-                         "gamma:G or log; the file records it as color_map: [default: linear]")
+                         "gamma:G (G from 0.01 to 100) or log; the file records it as color_map: [default: linear]")
         ->excludes(sphere);
     cmd->add_option("--axes", o->run.axes, "Axes to fit (k = 2 x axes); with --target, the most to try")
         ->required()

@@ -30,10 +30,11 @@ inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool wit
            "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]")
         ->check(filter);
     if (with_color_map)
-        add_color_map_option(app, options.color_map,
-                             "The space the clip and the blend work in: linear, gamma:G (values raised to G, as the "
-                             "paper's own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which "
-                             "damps bright outliers) [default: linear]");
+        add_color_map_option(
+            app, options.color_map,
+            "The space the clip and the blend work in: linear, gamma:G (values raised to G, G from 0.01 "
+            "to 100, as the paper's own renderer maps them; gamma:0.5 is a square root) or log (log(c + 1e-5), which "
+            "damps bright outliers) [default: linear]");
     app.add_flag("--dilate-motion", options.dilate_motion,
                  "Take the motion of the nearest of the 3x3 neighbors by depth, so edges follow the nearer surface "
                  "(needs depth on every frame)");

@@ -7,8 +7,8 @@
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
 
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
 
 namespace kdop {
 
@@ -17,20 +17,32 @@ Result<ColorMap> parse_color_map(std::string_view text) {
     if (text == "log") return ColorMap{ColorMap::Kind::log, 1};
     constexpr std::string_view prefix = "gamma:";
     if (text.starts_with(prefix)) {
-        const std::string number(text.substr(prefix.size()));
-        char* end = nullptr;
-        const double g = number.empty() ? NAN : std::strtod(number.c_str(), &end);
-        if (end && *end == '\0' && std::isfinite(g) && g > 0 && g <= 100)
-            return ColorMap{ColorMap::Kind::power, float(g)};
-        return fail(fmt::format("'{}': the exponent of gamma:G must be a number above 0 and at most 100",
-                                shown_text(text, 40)));
+        // A decimal and nothing else: strtod took "0x10" as 16 and " 2" as 2.
+        const std::string_view number = text.substr(prefix.size());
+        double g = NAN;
+        const auto [stop, error] =
+            std::from_chars(number.data(), number.data() + number.size(), g, std::chars_format::general);
+        if (number.empty() || error != std::errc{} || stop != number.data() + number.size() || !std::isfinite(g) ||
+            g <= 0 || g > 100)
+            return fail(fmt::format("'{}': the exponent of gamma:G must be a number from {} to 100",
+                                    shown_text(text, 40), kMinColorMapExponent));
+        if (g < kMinColorMapExponent)
+            return fail(
+                fmt::format("'{}': the exponent of gamma:G must be a number from {} to 100: the resolve maps "
+                            "each color to c^G and back in float, which keeps it only to about 6e-8 / G of "
+                            "itself{}; as G goes to 0 the map tends to the log one, which --color-map log "
+                            "gives at full precision",
+                            shown_text(text, 40), kMinColorMapExponent,
+                            float(g) == 0 ? fmt::format(", and {} is 0 in float, mapping every color to 1", g) : ""));
+        return ColorMap{ColorMap::Kind::power, g};
     }
-    return fail(fmt::format("'{}' is not a color map; use linear, gamma:G (G > 0) or log", shown_text(text, 40)));
+    return fail(fmt::format("'{}' is not a color map; use linear, gamma:G (G from {} to 100) or log",
+                            shown_text(text, 40), kMinColorMapExponent));
 }
 
 std::string to_string(const ColorMap& map) {
     switch (map.kind) {
-    case ColorMap::Kind::power: return fmt::format("gamma:{}", map.exponent);
+    case ColorMap::Kind::power: return fmt::format("gamma:{}", map.exponent); // shortest round trip
     case ColorMap::Kind::log: return "log";
     case ColorMap::Kind::linear: break;
     }
@@ -39,7 +51,7 @@ std::string to_string(const ColorMap& map) {
 
 glm::vec3 map_color(const ColorMap& map, glm::vec3 c) {
     switch (map.kind) {
-    case ColorMap::Kind::power: return glm::pow(glm::max(c, 0.0f), glm::vec3(map.exponent));
+    case ColorMap::Kind::power: return glm::pow(glm::max(c, 0.0f), glm::vec3(float(map.exponent)));
     case ColorMap::Kind::log: return glm::log(glm::max(c, 0.0f) + kColorMapLogOffset);
     case ColorMap::Kind::linear: break;
     }

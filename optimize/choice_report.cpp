@@ -5,6 +5,7 @@
 #include "harness/gnuplot.h"
 #include "harness/scratch_directory.h"
 #include "optimize/choice_chart.h"
+#include "temporal/resolve_options.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -45,17 +46,17 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
         return fmt::format("{}", fmt::join(list | std::views::transform(markdown_text), ", "));
     };
     std::string md = "# kdop choose: the variant to ship\n\n";
-    md += fmt::format("Axis sets of {} axes were fitted to {} (the mean k-DOP volume over their frames' "
-                      "neighborhoods, the held-out frames left out), then every candidate was measured as `kdop taa "
-                      "--sequence` measures it. **Held-out ghosting** is measured on {}: the mean over the sequences "
-                      "of each one's mean FLIP over those of its measured frames (after {} frames of warm-up), and "
-                      "its median and 95th percentile are over all those frames together. **Ghosting on the fit "
-                      "frames** is the same figure on the frames fitted to: what a fitted set's own figures would "
-                      "have claimed. **Float ops** are the hardened clip's, as the generator counts them; **ms** the "
-                      "median device time of its rectification pass at the held-out frames' size, with its quartiles "
-                      "over interleaved rounds, as kdop taa times it.\n\n",
-                      fmt::join(o.fit_axes, ", "), names(r.fit_sequences), markdown_text(r.held_out),
-                      o.evaluation.schedule.warmup);
+    md += fmt::format("Axis sets of {} axes were fitted to {} (the mean k-DOP volume over their frames' neighborhoods, "
+                      "the held-out frames left out, in {} colors), then every candidate was measured as `kdop taa "
+                      "--sequence` measures it ({}). **Held-out ghosting** is measured on {}: the mean over the "
+                      "sequences of each one's mean FLIP over those of its measured frames (after {} frames of "
+                      "warm-up), and its median and 95th percentile are over all those frames together. **Ghosting on "
+                      "the fit frames** is the same figure on the frames fitted to: what a fitted set's own figures "
+                      "would have claimed. **Float ops** are the hardened clip's, as the generator counts them; **ms** "
+                      "the median device time of its rectification pass at the held-out frames' size, with its "
+                      "quartiles over interleaved rounds, as kdop taa times it.\n\n",
+                      fmt::join(o.fit_axes, ", "), names(r.fit_sequences), to_string(o.evaluation.resolve.color_map),
+                      describe(o.evaluation.resolve), markdown_text(r.held_out), o.evaluation.schedule.warmup);
 
     // Least held-out ghosting first.
     std::vector<Candidate> sorted = r.candidates;

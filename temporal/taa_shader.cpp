@@ -15,11 +15,12 @@ constexpr std::string_view kTemplate = "shader_templates/taa_resolve.comp.in";
 // The defines the template's resolve_options.glsl stands for.
 std::string option_defines(const ResolveOptions& o) {
     const int map = o.color_map.kind == ColorMap::Kind::power ? 1 : o.color_map.kind == ColorMap::Kind::log ? 2 : 0;
-    // The exponent with every digit a float has, so the shader's constant is the option's value.
+    // The exponent as the float the CPU's map_color uses, with every digit a float has, so the
+    // shader's constant is that value (the option's own digits would be rounded twice).
     return fmt::format("#define KDOP_HISTORY_FILTER {}\n#define KDOP_COLOR_MAP {}\n#define KDOP_MAP_EXPONENT {:.9g}\n"
                        "#define KDOP_MAP_LOG_OFFSET {:.9g}\n#define KDOP_DILATE_MOTION {}\n"
                        "#define KDOP_DEPTH_NEARER_LARGER {}\n",
-                       o.history_filter == HistoryFilter::catmull_rom ? 1 : 0, map, o.color_map.exponent,
+                       o.history_filter == HistoryFilter::catmull_rom ? 1 : 0, map, float(o.color_map.exponent),
                        kColorMapLogOffset, o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0);
 }
 

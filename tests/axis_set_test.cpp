@@ -1,6 +1,7 @@
 // Axis-set files: the accepted spellings, the built-in sets' numbers, and every refusal with its
 // file:line and reason.
 #include "core/builtin_sets.h"
+#include "fit/fitted_set.h"
 #include "generator/axis_set.h"
 #include "generator/variant_spec.h"
 
@@ -131,9 +132,44 @@ TEST(AxisSet, ReadsTheColorMapItWasFittedIn) {
     ASSERT_TRUE(gamma) << gamma.error().message;
     EXPECT_EQ(*gamma->color_map, (ColorMap{ColorMap::Kind::power, 0.5f}));
     EXPECT_EQ(error_of(std::string(kHeader) + "color_map: srgb\n" + axes),
-              "t.axes:3: color_map: 'srgb' is not a color map; use linear, gamma:G (G > 0) or log");
+              "t.axes:3: color_map: 'srgb' is not a color map; use linear, gamma:G (G from 0.01 to 100) or log");
     EXPECT_EQ(error_of(std::string(kHeader) + "color_map: log\ncolor_map: log\n" + axes),
               "t.axes:4: second 'color_map:' line (the first is on line 3)");
+}
+
+// gamma:G is kept as given, every digit: a file records the value the user wrote (gamma:1.00000001
+// was written as gamma:1, the float it computes with) and reads back the same. G is a decimal from
+// 0.01 to 100: below, the float round trip c -> c^G -> c loses about 6e-8 / G of each color, and
+// gamma:1e-300 was 0 in float (every color mapped to 1, and a file saying gamma:0 that no command
+// reads); hex and spaces, which strtod took, are refused.
+TEST(AxisSet, AColorMapsGammaIsKeptAsGiven) {
+    for (const char* given :
+         {"gamma:1.00000001", "gamma:2.2", "gamma:0.45454545454545453", "gamma:0.01", "gamma:100"}) {
+        SCOPED_TRACE(given);
+        auto map = parse_color_map(given);
+        ASSERT_TRUE(map) << map.error().message;
+        EXPECT_EQ(to_string(*map), given);
+        auto file =
+            fitted_set_file({"g", "the test's", {}, *map}, std::vector<glm::dvec3>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+        ASSERT_TRUE(file) << file.error().message;
+        EXPECT_NE(file->find(std::string("\ncolor_map: ") + given + "\n"), std::string::npos) << *file;
+        auto parsed = parse_axis_set(*file, "g.axes");
+        ASSERT_TRUE(parsed) << parsed.error().message;
+        EXPECT_EQ(*parsed->color_map, *map);
+    }
+    // The map computes in float, as the resolve's shader does.
+    EXPECT_EQ(map_color(*parse_color_map("gamma:1.00000001"), glm::vec3(0.5f)), glm::vec3(0.5f));
+    for (const char* bad :
+         {"gamma:1e-300", "gamma:0.001", "gamma:0", "gamma:-2", "gamma:101", "gamma:0x10", "gamma:0x1p1", "gamma: 2",
+          "gamma:2 ", "gamma:+2", "gamma:inf", "gamma:nan", "gamma:", "gamma:2e"}) {
+        auto map = parse_color_map(bad);
+        ASSERT_FALSE(map) << bad << " taken as " << to_string(*map);
+        EXPECT_NE(map.error().message.find("must be a number from 0.01 to 100"), std::string::npos)
+            << map.error().message;
+    }
+    EXPECT_NE(parse_color_map("gamma:1e-300").error().message.find("1e-300 is 0 in float, mapping every color to 1"),
+              std::string::npos);
+    EXPECT_NE(parse_color_map("gamma:0.001").error().message.find("--color-map log"), std::string::npos);
 }
 
 // What the adversarial run found: each is now accepted as meant or refused with a message that

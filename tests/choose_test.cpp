@@ -72,6 +72,22 @@ TEST(Choose, RecommendsTheLeastHeldOutGhostingWithinTheBudget) {
     EXPECT_EQ(choice_manifest(result), "# kdop choose's recommendation (choice.md says why).\ndop16-grass-clip-n9\n");
 }
 
+// choice.md says the space the sets were fitted and judged in, the color map as given, every digit
+// (gamma:1.00000001 was written as gamma:1), as the fitted files' color_map: lines record it.
+TEST(Choose, TheReportRecordsTheColorMapAsGiven) {
+    ChooseOptions options;
+    auto map = parse_color_map("gamma:1.00000001");
+    ASSERT_TRUE(map) << map.error().message;
+    options.evaluation.resolve.color_map = *map;
+    ChooseResult result;
+    result.candidates = {candidate("aabb", false, 87, 0.03)};
+    result.recommendation.chosen = 0;
+    const std::string md = choice_markdown(result, options, {});
+    EXPECT_NE(md.find("the held-out frames left out, in gamma:1.00000001 colors)"), std::string::npos) << md;
+    EXPECT_NE(md.find("measures it (bilinear history, gamma:1.00000001 colors, current weight"), std::string::npos)
+        << md;
+}
+
 // A fitted set recommended: the manifest names its variant and its file, and kdop gen builds
 // exactly that variant from them.
 TEST(CliChoose, TheManifestOfAFittedSetBuildsExactlyThatVariant) {

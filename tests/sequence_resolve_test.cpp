@@ -1096,7 +1096,7 @@ TEST(CliSequence, RefusesBadSequencesNamingTheFileAndWritesNothing) {
         << short_run.err;
     auto bad_map = t.kdop("taa --sequence " + good.string() + " --color-map gamma:0 --out " + (t.dir / "out").string());
     EXPECT_EQ(bad_map.exit_code, 2);
-    EXPECT_NE(bad_map.err.find("gamma:G must be a number above 0"), std::string::npos) << bad_map.err;
+    EXPECT_NE(bad_map.err.find("gamma:G must be a number from 0.01 to 100"), std::string::npos) << bad_map.err;
     EXPECT_FALSE(fs::exists(t.dir / "out"));
 }
 
