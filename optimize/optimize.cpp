@@ -100,6 +100,9 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
         return usage_fail(fmt::format("mpirun -np {}: --sphere has no frames to share over ranks (it takes well under "
                                       "a second); run it without mpirun",
                                       ranks.size()));
+    // With --target-ghosting, each row's set resolved over the sequences as kdop taa --sequence
+    // does, on rank 0 (its figures broadcast): its ghosting and shimmer columns.
+    std::unique_ptr<SequenceGhosting> ghosting;
     if (!o.sphere) {
         auto read = fit_inputs(o.input);
         if (!read) return fail(read.error().message);
@@ -119,6 +122,21 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
             largest = std::max(largest, neighborhood_bytes(frame.pixels, shape));
         if (auto ok = check_memory("the neighborhoods of the largest frame", largest); !ok)
             return fail(ok.error().message);
+        // Opened before the frames are read, so a sequence the resolve cannot take (--warmup beyond
+        // its frames, exit 2) is refused before any work, not after the reading.
+        if (o.target_ghosting) {
+            Result<void> opened;
+            if (ranks.is_root()) {
+                ResolveOptions resolve = o.resolve;
+                resolve.color_map = o.input.color_map; // the space the set is fitted in is the one it clips in
+                auto created = SequenceGhosting::create(o.input.sequences, o.input.input_space, resolve, o.warmup);
+                if (created)
+                    ghosting = std::move(*created);
+                else
+                    opened = std::unexpected(created.error());
+            }
+            if (auto ok = ranks.agree(opened); !ok) return std::unexpected(ok.error());
+        }
         // Held between passes while they take at most --memory MB (by default half what is
         // available); the frames beyond are read and gathered again on each pass. With --sample
         // the search passes over the sample alone, and every frame is read again only for the few
@@ -210,22 +228,6 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
         return cost;
     };
 
-    // With --target-ghosting, each row's set resolved over the sequences as kdop taa --sequence
-    // does, on rank 0 (its figures broadcast): its ghosting and shimmer columns.
-    std::unique_ptr<SequenceGhosting> ghosting;
-    if (o.target_ghosting) {
-        Result<void> opened;
-        if (ranks.is_root()) {
-            ResolveOptions resolve = o.resolve;
-            resolve.color_map = o.input.color_map; // the space the set is fitted in is the one it clips in
-            auto created = SequenceGhosting::create(o.input.sequences, o.input.input_space, resolve, o.warmup);
-            if (created)
-                ghosting = std::move(*created);
-            else
-                opened = std::unexpected(created.error());
-        }
-        if (auto ok = ranks.agree(opened); !ok) return fail(ok.error().message);
-    }
     // Each row's figures: ghosting, shimmer per sequence.
     auto measure_ghosting = [&](std::span<const glm::dvec3> axes) -> Result<std::vector<double>> {
         std::vector<double> figures(2 * o.input.sequences.size());

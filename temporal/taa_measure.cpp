@@ -111,12 +111,12 @@ Result<void> check_measurable(const Context& context, std::uint32_t width, std::
 }
 
 Result<Sequence> read_resolvable_sequence(const std::filesystem::path& dir, std::uint32_t warmup,
-                                          const ResolveOptions& options) {
+                                          const ResolveOptions& options, std::string_view option) {
     auto sequence = read_sequence(dir);
     if (!sequence) return sequence;
     if (warmup >= sequence->frames.size())
-        return fail(fmt::format("--sequence: {}: {} frames, and --warmup {} leaves none to measure", dir.string(),
-                                sequence->frames.size(), warmup));
+        return usage_fail(fmt::format("{}: {}: {} frames, and --warmup {} leaves none to measure", option, dir.string(),
+                                      sequence->frames.size(), warmup));
     if (options.dilate_motion)
         for (std::size_t i = 0; i < sequence->frames.size(); ++i)
             if (!sequence->starts_history(i) && sequence->frames[i].depth.empty())

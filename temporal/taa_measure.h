@@ -104,10 +104,11 @@ Result<void> check_measurable(const Context& context, std::uint32_t width, std::
                               std::size_t variants = 1);
 
 // read_sequence, and what the resolve needs of it checked before any frame is read: more frames
-// than `warmup`, and with --dilate-motion depth on every frame that has a history. Errors name the
-// folder (and frame) and the option.
+// than `warmup` (a usage error: the command line's --warmup), and with --dilate-motion depth on
+// every frame that has a history. Errors name the folder (and frame) and `option`, the one that
+// gave the folder (--sequence, kdop choose's --fit or --validate).
 Result<Sequence> read_resolvable_sequence(const std::filesystem::path& dir, std::uint32_t warmup,
-                                          const ResolveOptions& options);
+                                          const ResolveOptions& options, std::string_view option = "--sequence");
 
 // Called with each measured frame's index and output; an error stops the measurement.
 using OutputObserver = std::function<Result<void>(std::size_t index, const Image& output)>;

@@ -23,7 +23,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     if (auto ok = check_distinct_files(request.sequences, request.option); !ok) return usage_fail(ok.error().message);
     TaaSources sources;
     for (const std::string& dir : request.sequences) {
-        auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve);
+        auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve, request.option);
         if (!sequence) return std::unexpected(sequence.error());
         if (auto ok =
                 check_measurable(context, sequence->width, sequence->height, request.device_flip, request.variants);

@@ -114,6 +114,34 @@ TEST(CliChoose, TheManifestOfAFittedSetBuildsExactlyThatVariant) {
     EXPECT_EQ(built, (std::vector<std::string>{"fitted4-clip-n9"}));
 }
 
+// A color map the resolve cannot compute in, a number that is not a decimal and a warm-up longer
+// than a sequence: each a wrong command line, exit 2, refused before the fit (gamma:1e-300 failed
+// when its fitted file was parsed back, the warm-up exited 1 naming --sequence), naming the option
+// given (--fit or --validate); nothing is written.
+TEST(CliChoose, ClashesAndBadValuesAreRefusedBeforeTheFit) {
+    test::TempDir dir;
+    auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
+    const fs::path scenes = dir / "scenes", out = dir / "choose";
+    ASSERT_EQ(kdop("scene --scenes grass --size 32x24 --frames 8 --out " + scenes.string()).exit_code, 0);
+    ASSERT_EQ(kdop("scene --scenes asphalt --size 32x24 --frames 6 --out " + scenes.string() + "6").exit_code, 0);
+    const std::string choose = "choose --fit " + (scenes / "grass-ghosting").string() + " --validate " +
+                               (scenes.string() + "6") + "/asphalt-ghosting --sample 500 --out " + out.string() + " ";
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"--fit-axes 4 --color-map gamma:1e-300 --warmup 2", "1e-300 is 0 in float"},
+        {"--fit-axes 4 --budget-ms 0x10 --warmup 2", "--budget-ms: '0x10' is not a number"},
+        {"--fit-axes 4 --warmup 8",
+         "--fit: " + (scenes / "grass-ghosting").string() + ": 8 frames, and --warmup 8 leaves none to measure"},
+        {"--fit-axes 4 --warmup 6", "--validate: " + (scenes.string() + "6") +
+                                        "/asphalt-ghosting: 6 frames, and --warmup 6 leaves none to measure"}};
+    for (const auto& [args, message] : cases) {
+        auto r = kdop(choose + args);
+        EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.find("fitting"), std::string::npos) << "before the fit: " << args << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
+}
+
 // The held-out figures are kdop taa's on the held-out sequences, to the last digit (the same
 // evaluation), for the fitted set as for the built-in ones; without held-out sequences, or with a
 // sequence both fitted to and held out, the command line is refused and nothing is written.

@@ -1089,10 +1089,11 @@ TEST(CliSequence, RefusesBadSequencesNamingTheFileAndWritesNothing) {
         EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(out)) << c.message;
     }
-    // Options: a sequence too short for the warmup, a bad color map.
+    // Options: a sequence too short for the warmup (the command line's --warmup: exit 2), a bad color map.
     auto short_run = t.kdop("taa --sequence " + good.string() + " --warmup 8 --out " + (t.dir / "out").string());
-    EXPECT_EQ(short_run.exit_code, 1);
-    EXPECT_NE(short_run.err.find("8 frames, and --warmup 8 leaves none to measure"), std::string::npos)
+    EXPECT_EQ(short_run.exit_code, 2);
+    EXPECT_NE(short_run.err.find("--sequence: " + good.string() + ": 8 frames, and --warmup 8 leaves none to measure"),
+              std::string::npos)
         << short_run.err;
     auto bad_map = t.kdop("taa --sequence " + good.string() + " --color-map gamma:0 --out " + (t.dir / "out").string());
     EXPECT_EQ(bad_map.exit_code, 2);
