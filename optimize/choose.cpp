@@ -183,6 +183,24 @@ struct Plan {
     std::vector<SequenceFrames> fit, validate;
 };
 
+// Every candidate's set has a name of its own, or the timing's catalog refuses the second after
+// every fit has run: a count given twice to --fit-axes, a --sets file whose set is named as a
+// fitted one (fitted4) or as a built-in one. Refused before any work.
+Result<void> check_set_names(const ChooseOptions& o, const Plan& plan) {
+    for (auto axes = o.fit_axes.begin(); axes != o.fit_axes.end(); ++axes)
+        if (std::find(o.fit_axes.begin(), axes, *axes) != axes)
+            return usage_fail(
+                fmt::format("--fit-axes: {} is given twice; each count fits one set, fitted{}", *axes, *axes));
+    if (auto catalog = VariantCatalog::create(plan.builtin); !catalog) return usage_fail(catalog.error().message);
+    for (std::size_t axes : o.fit_axes)
+        for (const VariantSpec& spec : plan.builtin_specs)
+            if (spec.set.name == fmt::format("fitted{}", axes))
+                return usage_fail(fmt::format("--sets {}: its set is named '{}', as the set --fit-axes {} fits is; "
+                                              "rename it (its name: line) or leave {} out of --fit-axes",
+                                              spec.set.origin, spec.set.name, axes, axes));
+    return {};
+}
+
 Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, ChooseResult& result) {
     if (o.validate.empty() && o.holdout == 0)
         return usage_fail("choose: give --validate SEQUENCE... or --holdout FRAMES: every figure a choice rests on is "
@@ -213,6 +231,7 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
     for (const VariantSpec& spec : plan.builtin_specs)
         if (spec.set.name == plan.builtin_specs.front().set.name) plan.per_set.push_back(spec);
     const std::size_t candidates = plan.builtin_specs.size() + o.fit_axes.size() * plan.per_set.size();
+    if (auto ok = check_set_names(o, plan); !ok) return std::unexpected(ok.error());
 
     auto fit = read_sequences(context, o.fit, o, candidates, "--fit");
     if (!fit) return std::unexpected(fit.error());

@@ -95,10 +95,10 @@ struct ChooseResult {
 };
 
 // The run: checks (a usage Error where the command line is at fault: nothing held out, a sequence
-// both fitted to and held out), fits, measures, recommends. Writes nothing. Under mpirun every rank
-// checks, and the fits are shared over the ranks as kdop optimize shares them (the same sets for
-// any rank count); rank 0 alone then times and measures the candidates, and on the other ranks
-// the result holds the fitted files and no candidates.
+// both fitted to and held out, two candidates of one set name), fits, measures, recommends. Writes
+// nothing. Under mpirun every rank checks, and the fits are shared over the ranks as kdop optimize
+// shares them (the same sets for any rank count); rank 0 alone then times and measures the
+// candidates, and on the other ranks the result holds the fitted files and no candidates.
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& options, const Ranks& ranks);
 
 } // namespace kdop

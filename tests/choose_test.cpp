@@ -114,19 +114,26 @@ TEST(CliChoose, TheManifestOfAFittedSetBuildsExactlyThatVariant) {
     EXPECT_EQ(built, (std::vector<std::string>{"fitted4-clip-n9"}));
 }
 
-// A color map the resolve cannot compute in, a number that is not a decimal and a warm-up longer
-// than a sequence: each a wrong command line, exit 2, refused before the fit (gamma:1e-300 failed
-// when its fitted file was parsed back, the warm-up exited 1 naming --sequence), naming the option
-// given (--fit or --validate); nothing is written.
+// Two candidates of one set name, a color map the resolve cannot compute in and a warm-up longer
+// than a sequence: each a wrong command line, exit 2, refused before the fit (the clashes were
+// found after both fits, exit 1, gamma:1e-300 when its fitted file was parsed back), naming the
+// option given (--fit or --validate, not --sequence); nothing is written.
 TEST(CliChoose, ClashesAndBadValuesAreRefusedBeforeTheFit) {
     test::TempDir dir;
     auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
     const fs::path scenes = dir / "scenes", out = dir / "choose";
     ASSERT_EQ(kdop("scene --scenes grass --size 32x24 --frames 8 --out " + scenes.string()).exit_code, 0);
     ASSERT_EQ(kdop("scene --scenes asphalt --size 32x24 --frames 6 --out " + scenes.string() + "6").exit_code, 0);
+    const std::string axes = "provenance: the test's\nvec3(1, 0, 0),\nvec3(0, 1, 0),\nvec3(0, 0, 1)\n";
+    test::write_file(dir / "f4.axes", "name: fitted4\n" + axes);
+    test::write_file(dir / "d22.axes", "name: dop22\n" + axes);
     const std::string choose = "choose --fit " + (scenes / "grass-ghosting").string() + " --validate " +
                                (scenes.string() + "6") + "/asphalt-ghosting --sample 500 --out " + out.string() + " ";
     const std::vector<std::pair<std::string, std::string>> cases{
+        {"--fit-axes 4 4 --warmup 2", "--fit-axes: 4 is given twice"},
+        {"--fit-axes 4 --sets aabb " + (dir / "f4.axes").string() + " --warmup 2",
+         "its set is named 'fitted4', as the set --fit-axes 4 fits is"},
+        {"--fit-axes 4 --sets " + (dir / "d22.axes").string() + " --warmup 2", "the name of a built-in set"},
         {"--fit-axes 4 --color-map gamma:1e-300 --warmup 2", "1e-300 is 0 in float"},
         {"--fit-axes 4 --budget-ms 0x10 --warmup 2", "--budget-ms: '0x10' is not a number"},
         {"--fit-axes 4 --warmup 8",
