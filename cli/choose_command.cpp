@@ -44,8 +44,10 @@ Action add_choose_command(CLI::App& app) {
         ->excludes("--validate");
     cmd->add_option("--fit-axes", o->run.fit_axes, "Axis counts to fit, one set each [default: 4 8 16]")
         ->check(whole_number(3, 32));
-    cmd->add_option("--sets", o->run.sets,
-                    "Other sets among the candidates: built-in names or .axes files [default: the six built-in sets]")
+    cmd->add_option(
+           "--sets", o->run.sets,
+           "Other sets among the candidates: built-in names or .axes files (a file's set, recommended, is copied "
+           "beside kdop.manifest as <set>.axes) [default: the six built-in sets]")
         ->check(SelectionOptions::axis_set_name());
     cmd->add_option("--modes", o->run.modes, "clip and/or varclip [default: clip]")
         ->check(SelectionOptions::choice("mode", "clip or varclip", parse_mode));

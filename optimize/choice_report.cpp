@@ -82,8 +82,14 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
         md += fmt::format("None: {}. kdop.manifest is not written.\n\n", rec.why);
     } else {
         const Candidate& c = r.candidates[*rec.chosen];
+        const auto given = r.given_files.find(c.key.set);
         md += fmt::format("**{}**: {}. kdop.manifest selects it{}.\n\n", markdown_text(c.key.name()), rec.why,
-                          c.fitted ? fmt::format(", with its set's file, {}.axes", c.key.set) : "");
+                          c.fitted                       ? fmt::format(", with its set's file, {}.axes", c.key.set)
+                          : given == r.given_files.end() ? ""
+                          : given->second.in_place
+                              ? fmt::format(", with its set's file, {}.axes, given to --sets", c.key.set)
+                              : fmt::format(", with its set's file, {}.axes, a copy of {} (given to --sets)", c.key.set,
+                                            markdown_text(given->second.given)));
     }
     // Whether fitting paid off out of sample: the best fitted candidate against the best built-in one.
     const Candidate *best_fitted = nullptr, *best_builtin = nullptr;
@@ -113,7 +119,7 @@ std::string choice_manifest(const ChooseResult& r) {
     if (!r.recommendation.chosen) return {};
     const Candidate& c = r.candidates[*r.recommendation.chosen];
     std::string text = "# kdop choose's recommendation (choice.md says why).\n";
-    if (c.fitted) text += fmt::format("set: {}.axes\n", c.key.set);
+    if (c.fitted || r.given_files.count(c.key.set)) text += fmt::format("set: {}.axes\n", c.key.set);
     return text + c.key.name() + "\n";
 }
 
@@ -136,8 +142,13 @@ Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& opt
     outputs.add_table("candidates", candidates_table(chosen->candidates), run);
     outputs.add("choice.md", choice_markdown(*chosen, options, run, charted));
     for (const auto& [name, text] : chosen->fitted_files) outputs.add(name, text);
-    if (const std::string manifest = choice_manifest(*chosen); !manifest.empty())
+    if (const std::string manifest = choice_manifest(*chosen); !manifest.empty()) {
         outputs.add("kdop.manifest", manifest);
+        // A --sets file's set recommended: its copy beside the manifest, which reads no other folder.
+        const std::string& set = chosen->candidates[*chosen->recommendation.chosen].key.set;
+        if (auto given = chosen->given_files.find(set); given != chosen->given_files.end() && !given->second.in_place)
+            outputs.add(set + ".axes", given->second.text);
+    }
     if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
     return chosen;
 }

@@ -20,12 +20,13 @@ Table candidates_table(const std::vector<Candidate>& candidates);
 std::string choice_markdown(const ChooseResult& result, const ChooseOptions& options, const RunMetadata& run,
                             bool chart = false);
 
-// The recommended variant, with its `set:` line where its set is fitted (a file beside the
-// manifest); empty where nothing is recommended.
+// The recommended variant, with its `set:` line where its set is fitted or a --sets file's (a
+// file beside the manifest, written by run_choose); empty where nothing is recommended.
 std::string choice_manifest(const ChooseResult& result);
 
 // `kdop choose`'s run after its command line is read: choose(), then every file above (and the
-// fitted sets' files) added to `outputs` and written, all or nothing, by rank 0.
+// fitted sets' files, and the recommended --sets file's copy) added to `outputs` and written, all
+// or nothing, by rank 0.
 Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& options, const Ranks& ranks,
                                 OutputSet& outputs);
 

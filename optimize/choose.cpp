@@ -4,6 +4,7 @@
 #include "bench/timing.h"
 #include "core/builtin_sets.h"
 #include "core/input_files.h"
+#include "core/read_file.h"
 #include "generator/analytic_cost.h"
 #include "generator/axis_set.h"
 #include "harness/gnuplot.h"
@@ -201,6 +202,47 @@ Result<void> check_set_names(const ChooseOptions& o, const Plan& plan) {
     return {};
 }
 
+// Each --sets file that is not built in, read whole for kdop.manifest (GivenSetFile), by set name.
+Result<std::map<std::string, GivenSetFile>> given_set_files(const ChooseOptions& o, const Plan& plan) {
+    std::map<std::string, GivenSetFile> files;
+    for (const std::string& given : plan.builtin) {
+        if (is_builtin_set(given)) continue;
+        const auto spec =
+            std::ranges::find(plan.builtin_specs, given, [](const VariantSpec& s) { return s.set.origin; });
+        if (spec == plan.builtin_specs.end()) continue; // select_variants read every one: cannot happen
+        auto text = read_input_file(given);
+        if (!text) return fail(fmt::format("--sets: {}", text.error().message));
+        const std::filesystem::path copy = std::filesystem::path(o.out) / (spec->set.name + ".axes");
+        files[spec->set.name] = {given, std::move(*text), same_file(given, copy)};
+    }
+    return files;
+}
+
+// The set files kdop choose writes in --out (fitted<N>.axes, and the copy of a --sets file) must
+// not replace a file this run reads, which the write would refuse only after the work: a --sets
+// file left in --out under another set's name, say.
+Result<void> check_set_outputs(const ChooseOptions& o, const ChooseResult& result) {
+    std::vector<std::string> names;
+    for (std::size_t axes : o.fit_axes) names.push_back(fmt::format("fitted{}.axes", axes));
+    std::vector<std::filesystem::path> inputs;
+    for (const auto& [set, file] : result.given_files) {
+        inputs.emplace_back(file.given);
+        if (!file.in_place) names.push_back(set + ".axes");
+    }
+    for (const std::string& name : names) {
+        const std::filesystem::path output = std::filesystem::path(o.out) / name;
+        std::optional<std::filesystem::path> input = noted_input_at(output);
+        for (const std::filesystem::path& given : inputs)
+            if (!input && same_file(output, given)) input = given;
+        if (input)
+            return usage_fail(fmt::format("--out {}: kdop choose writes {} there, and that file is {}, an input of "
+                                          "this run; kdop never writes over an input, so give another --out or move "
+                                          "the file",
+                                          o.out, name, input->string()));
+    }
+    return {};
+}
+
 Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, ChooseResult& result) {
     if (o.validate.empty() && o.holdout == 0)
         return usage_fail("choose: give --validate SEQUENCE... or --holdout FRAMES: every figure a choice rests on is "
@@ -232,6 +274,10 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
         if (spec.set.name == plan.builtin_specs.front().set.name) plan.per_set.push_back(spec);
     const std::size_t candidates = plan.builtin_specs.size() + o.fit_axes.size() * plan.per_set.size();
     if (auto ok = check_set_names(o, plan); !ok) return std::unexpected(ok.error());
+    if (auto given = given_set_files(o, plan); given)
+        result.given_files = std::move(*given);
+    else
+        return std::unexpected(given.error());
 
     auto fit = read_sequences(context, o.fit, o, candidates, "--fit");
     if (!fit) return std::unexpected(fit.error());
@@ -263,6 +309,7 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
                           holdout.warmup + 3 * holdout.block, holdout.warmup + 4 * holdout.block - 1)
             : fmt::format("the sequences given to --validate ({})", fmt::join(result.validate_sequences, ", "));
     plan.fit = std::move(*fit), plan.validate = std::move(*validate);
+    if (auto ok = check_set_outputs(o, result); !ok) return std::unexpected(ok.error());
     return plan;
 }
 

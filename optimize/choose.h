@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,19 +87,30 @@ Recommendation recommend(const std::vector<Candidate>& candidates, const Budget&
 // as cheap) and ghosting less (or as little), one strictly. Indices, cheapest first.
 std::vector<std::size_t> pareto_front(const std::vector<Candidate>& candidates);
 
+// A --sets file's set, as kdop.manifest's `set:` line names it where that set is recommended: a
+// manifest reads set files only from its own folder and below (generator/manifest.h), so the file
+// is copied beside it, as <set>.axes.
+struct GivenSetFile {
+    std::string given;     // the path --sets gave
+    std::string text;      // what it holds, copied whole
+    bool in_place = false; // it already is <out>/<set>.axes: nothing to copy
+};
+
 struct ChooseResult {
     std::vector<Candidate> candidates; // the fitted ones first, then the built-in ones, each in spec order
     Recommendation recommendation;
     std::vector<std::pair<std::string, std::string>> fitted_files; // file name (fitted<N>.axes) and text
     std::vector<std::string> fit_sequences, validate_sequences;    // their names
     std::string held_out;                                          // what was held out, in words
+    std::map<std::string, GivenSetFile> given_files;               // by set name: every --sets file's
 };
 
 // The run: checks (a usage Error where the command line is at fault: nothing held out, a sequence
-// both fitted to and held out, two candidates of one set name), fits, measures, recommends. Writes
-// nothing. Under mpirun every rank checks, and the fits are shared over the ranks as kdop optimize
-// shares them (the same sets for any rank count); rank 0 alone then times and measures the
-// candidates, and on the other ranks the result holds the fitted files and no candidates.
+// both fitted to and held out, two candidates of one set name, a set file it would write over an
+// input), fits, measures, recommends. Writes nothing. Under mpirun every rank checks, and the fits
+// are shared over the ranks as kdop optimize shares them (the same sets for any rank count); rank
+// 0 alone then times and measures the candidates, and on the other ranks the result holds the
+// fitted files and no candidates.
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& options, const Ranks& ranks);
 
 } // namespace kdop

@@ -114,6 +114,66 @@ TEST(CliChoose, TheManifestOfAFittedSetBuildsExactlyThatVariant) {
     EXPECT_EQ(built, (std::vector<std::string>{"fitted4-clip-n9"}));
 }
 
+// A --sets file's set recommended: kdop.manifest names it with a `set:` line and the file is copied
+// beside it (a manifest reads set files only from its own folder), so kdop list, kdop gen and
+// kdop-gen registry (what kdop_add_variants(MANIFEST) runs) take the manifest; without the line,
+// `kdop list --manifest` exited 1. A --sets file already in --out under its set's name is named
+// where it is and kept; a set file kdop would write over an input is refused before the fit.
+TEST(CliChoose, AGivenSetRecommendedIsCopiedBesideTheManifest) {
+    test::TempDir dir;
+    auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
+    const fs::path scenes = dir / "scenes", out = dir / "choose";
+    auto s = kdop("scene --scenes grass asphalt --size 32x24 --frames 8 --out " + scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    // Three axes along R, G and B: as cheap as a clip gets, so the cheapest that reaches any target.
+    const std::string mine = "name: mine\nprovenance: the test's\nvec3(1, 0, 0),\nvec3(0, 1, 0),\nvec3(0, 0, 1)\n";
+    fs::create_directories(dir / "sets");
+    test::write_file(dir / "sets" / "my file.axes", mine);
+    const std::string choose = "choose --fit " + (scenes / "grass-ghosting").string() + " --validate " +
+                               (scenes / "asphalt-ghosting").string() +
+                               " --fit-axes 3 --warmup 2 --sample 500 --timing-rounds 2 --no-charts "
+                               "--target-ghosting 1 ";
+    auto r = kdop(choose + "--sets '" + (dir / "sets" / "my file.axes").string() + "' --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string manifest = "# kdop choose's recommendation (choice.md says why).\nset: mine.axes\nmine-clip-n9\n";
+    EXPECT_EQ(test::read_file(out / "kdop.manifest"), manifest);
+    EXPECT_EQ(test::read_file(out / "mine.axes"), mine);
+    const std::string md = test::read_file(out / "choice.md");
+    EXPECT_NE(md.find("with its set's file, mine.axes, a copy of "), std::string::npos) << md;
+
+    const std::string listed = (out / "kdop.manifest").string();
+    auto list = kdop("list --manifest " + listed);
+    EXPECT_EQ(list.exit_code, 0) << list.err;
+    EXPECT_NE(list.out.find("mine-clip-n9"), std::string::npos) << list.out;
+    auto gen = kdop("gen --manifest " + listed + " --out " + (dir / "gen").string());
+    EXPECT_EQ(gen.exit_code, 0) << gen.err;
+    EXPECT_TRUE(fs::exists(dir / "gen" / "mine-clip-n9.spv"));
+    const fs::path registry = dir / "registry";
+    auto built = test::run(test::kdop_gen_binary() + " registry --manifest " + listed + " --header " +
+                           (registry / "v.h").string() + " --source " + (registry / "v.cpp").string() +
+                           " --namespace choice --json " + (registry / "v.json").string());
+    EXPECT_EQ(built.exit_code, 0) << built.err;
+    EXPECT_NE(test::read_file(registry / "v.json").find("mine-clip-n9"), std::string::npos);
+
+    // The copy given back from --out: named where it is, and kept though this run does not write it.
+    auto again = kdop(choose + "--sets " + (out / "mine.axes").string() + " --out " + out.string());
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(test::read_file(out / "kdop.manifest"), manifest);
+    EXPECT_EQ(test::read_file(out / "mine.axes"), mine);
+    EXPECT_EQ(kdop("list --manifest " + listed).exit_code, 0);
+
+    // A --sets file at the name a fitted set is written as: refused before any work, left as it was.
+    const fs::path clash = dir / "clash";
+    fs::create_directories(clash);
+    test::write_file(clash / "fitted3.axes", mine);
+    auto refused = kdop(choose + "--sets " + (clash / "fitted3.axes").string() + " --out " + clash.string());
+    EXPECT_EQ(refused.exit_code, 2) << refused.err;
+    EXPECT_NE(refused.err.find("kdop choose writes fitted3.axes there, and that file is"), std::string::npos)
+        << refused.err;
+    EXPECT_EQ(refused.err.find("fitting"), std::string::npos) << refused.err;
+    EXPECT_EQ(test::read_file(clash / "fitted3.axes"), mine);
+}
+
 // Two candidates of one set name, a color map the resolve cannot compute in and a warm-up longer
 // than a sequence: each a wrong command line, exit 2, refused before the fit (the clashes were
 // found after both fits, exit 1, gamma:1e-300 when its fitted file was parsed back), naming the
