@@ -57,7 +57,7 @@ Action add_run_command(CLI::App& app) {
 
     return [o] {
         auto key = variant_option(o->variant, o->numerics, "--variant");
-        if (!key) return report_error(key.error().message);
+        if (!key) return usage_error(key.error().message);
         auto catalog = VariantCatalog::create(o->sets);
         if (!catalog) return report_error(catalog.error().message);
         auto variant = catalog->find(*key);

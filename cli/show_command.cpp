@@ -37,11 +37,12 @@ Action add_show_command(CLI::App& app) {
 
     return [options] {
         auto key = variant_option(options->name, options->numerics, "show");
-        if (!key) return report_error(key.error().message);
+        // The name and its set come from the command line: refusing them is a usage error.
+        if (!key) return usage_error(key.error().message);
         auto catalog = VariantCatalog::create(options->sets);
         if (!catalog) return report_error(catalog.error().message);
         auto spec = catalog->spec(*key, "show");
-        if (!spec) return report_error(spec.error().message);
+        if (!spec) return usage_error(spec.error().message);
         if (!options->compute) {
             std::cout << emit_function(*spec, options->wgsl ? kWgsl : options->hlsl ? kHlsl : kGlsl);
             return 0;
