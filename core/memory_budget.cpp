@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <malloc.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <fstream>
@@ -33,13 +34,41 @@ std::uint64_t cgroup_available() {
     return limit > current ? limit - current : 1;
 }
 
+// The bytes of `key` ("VmSize:") in /proc/self/status; 0 if unknown.
+std::uint64_t own_status_bytes(const std::string& key) {
+    std::ifstream status("/proc/self/status");
+    for (std::string name; status >> name;) {
+        if (name == key) {
+            std::uint64_t kib = 0;
+            status >> kib;
+            return kib * 1024;
+        }
+        status.ignore(1 << 20, '\n');
+    }
+    return 0;
+}
+
+// What `resource` (RLIMIT_AS, `ulimit -v`; RLIMIT_DATA, `ulimit -d`) still lets this process map
+// beyond the `used` bytes it has mapped (its VmSize, VmData); 0 where there is no limit. A large
+// allocation past it fails however much memory the system has free: a std::bad_alloc in the
+// middle of a read, not the refusal up front with the memory needed.
+std::uint64_t limit_available(int resource, const char* used_key) {
+    rlimit limit{};
+    if (getrlimit(resource, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+    const std::uint64_t used = own_status_bytes(used_key);
+    return limit.rlim_cur > used ? limit.rlim_cur - used : 1;
+}
+
 } // namespace
 
 std::uint64_t available_memory() {
-    // In a container the cgroup's limit, not the host's free memory, is what a process may use.
-    const std::uint64_t system = system_available(), cgroup = cgroup_available();
-    if (system == 0) return cgroup;
-    return cgroup == 0 ? system : std::min(system, cgroup);
+    // In a container the cgroup's limit, not the host's free memory, is what a process may use;
+    // under `ulimit -v` or `-d`, what is left of the limit.
+    std::uint64_t available = 0;
+    for (const std::uint64_t bound : {system_available(), cgroup_available(), limit_available(RLIMIT_AS, "VmSize:"),
+                                      limit_available(RLIMIT_DATA, "VmData:")})
+        if (bound != 0) available = available == 0 ? bound : std::min(available, bound);
+    return available;
 }
 
 Result<void> check_memory(const std::string& what, std::uint64_t bytes) {

@@ -11,7 +11,8 @@
 namespace kdop {
 
 // Bytes this process could still allocate without swapping: the kernel's MemAvailable, or less
-// where its cgroup's memory.max says so; 0 where unknown, and then nothing is refused.
+// where its cgroup's memory.max or its own limits (`ulimit -v`, `ulimit -d`) say so; 0 where
+// unknown, and then nothing is refused.
 std::uint64_t available_memory();
 
 // Fails, naming `what` and both figures, when `bytes` exceed available_memory().

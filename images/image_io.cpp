@@ -188,21 +188,36 @@ std::optional<InputSpace> parse_input_space(std::string_view text) {
     return std::nullopt;
 }
 
-Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputSpace space, const std::string& name) {
-    // Some of OpenImageIO's readers throw on a damaged file instead of reporting it (its BMP reader
-    // lets std::length_error out of open() for an RLE image claiming billions of rows; found by
-    // tests/fuzz/image_fuzzer.cpp), so that is a read error of this file too.
+namespace {
+
+// What `read` gives, or the error of a reader that threw instead of reporting. Some of
+// OpenImageIO's readers throw on a damaged file (its BMP reader lets std::length_error out of
+// open() for an RLE image claiming billions of rows; found by tests/fuzz/image_fuzzer.cpp), so that
+// is a read error of this file too. Memory that runs out in a reader despite the check on its
+// header (taken by another process since) is said as that, with what is left, never as
+// "std::bad_alloc".
+template <class T>
+Result<T> guarded(const std::string& path, const auto& read) {
     try {
-        return read_checked(path, max_side, space, 3, name);
+        return read();
+    } catch (const std::bad_alloc&) {
+        return fail(fmt::format("{}: cannot read image: memory ran out while decoding it ({:.1f} GiB are available)",
+                                path, double(available_memory()) / (1ull << 30)));
     } catch (const std::exception& e) {
-        return fail(fmt::format("{}: cannot read image: {}", name.empty() ? path : name, library_message(e.what())));
+        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
     }
+}
+
+} // namespace
+
+Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputSpace space, const std::string& name) {
+    return guarded<Image>(name.empty() ? path : name, [&] { return read_checked(path, max_side, space, 3, name); });
 }
 
 Result<glm::uvec2> read_image_size(const std::string& path) {
     if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
     if (auto why = unsafe_jpeg_metadata(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
-    try {
+    return guarded<glm::uvec2>(path, [&]() -> Result<glm::uvec2> {
         auto in = OIIO::ImageInput::open(path);
         if (!in) {
             const std::string reason = library_message(OIIO::geterror());
@@ -212,17 +227,12 @@ Result<glm::uvec2> read_image_size(const std::string& path) {
         if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
             return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
         return glm::uvec2(spec.width, spec.height);
-    } catch (const std::exception& e) {
-        return fail(fmt::format("{}: cannot read image: {}", path, library_message(e.what())));
-    }
+    });
 }
 
 Result<Image> read_data_image(const std::string& path, int channels, const std::string& name) {
-    try {
-        return read_checked(path, 0, InputSpace::linear, channels, name);
-    } catch (const std::exception& e) {
-        return fail(fmt::format("{}: cannot read image: {}", name.empty() ? path : name, library_message(e.what())));
-    }
+    return guarded<Image>(name.empty() ? path : name,
+                          [&] { return read_checked(path, 0, InputSpace::linear, channels, name); });
 }
 
 Result<Image> read_finite_image(const std::string& path, std::string_view why, InputSpace space) {

@@ -34,8 +34,10 @@ enum class InputSpace { from_file, linear, srgb };
 std::optional<InputSpace> parse_input_space(std::string_view text);
 
 // The header is checked before any pixel is read or allocated: sides beyond `max_side` (a device's
-// maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory are refused,
-// so a small file claiming an enormous image is an error, not an allocation failure.
+// maxImageDimension2D; 0 for no limit) and images whose pixels would not fit in memory
+// (core/memory_budget.h: what the system, the cgroup and `ulimit -v` leave) are refused, naming the
+// file and the memory needed, so a small file claiming an enormous image is an error, not an
+// allocation failure.
 //
 // `name`, where given, is the file's own name and `path` the /proc/self/fd path of a descriptor
 // already open on it (sequence frames, opened so that no link is followed after the check, see

