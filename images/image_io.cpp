@@ -5,6 +5,7 @@
 #include "core/read_file.h"
 #include "core/write_files.h"
 #include "images/jpeg_guard.h"
+#include "images/row_reader.h"
 #include "images/srgb.h"
 
 #include <OpenImageIO/imageio.h>
@@ -112,8 +113,6 @@ Result<Image> read_through_table(OIIO::ImageInput& in, int channels, const auto&
     return image;
 }
 
-// `needed`: the channels the caller needs, for the error when there are fewer: RGB (3) or a count
-// of data channels.
 // Opens `file` (the /proc/self/fd path of an open descriptor where `name` is given) with the
 // reader that `name`'s extension (else `file`'s) picks.
 std::unique_ptr<OIIO::ImageInput> open_input(const std::string& file, const std::string& name,
@@ -125,8 +124,61 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& file, const std:
     return in;
 }
 
+// Every pixel of `in`: 8- and 16-bit files through a table of their values, others straight into
+// the image's pixels.
+Result<Image> read_whole(OIIO::ImageInput& in, int channels, std::optional<float> gamma, const auto& decode,
+                         const std::string& path) {
+    const OIIO::ImageSpec& spec = in.spec();
+    Image image(spec.width, spec.height); // channels the file lacks stay 0, alpha 1
+    if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT8)
+        return read_through_table<std::uint8_t>(in, channels, decode, path, std::move(image));
+    if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT16)
+        return read_through_table<std::uint16_t>(in, channels, decode, path, std::move(image));
+    // Other formats straight into the image's pixels, a channel a float apart and a pixel a vec4.
+    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4)))
+        return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in.geterror())));
+    if (gamma != 1.0f) // sRGB (no gamma) or a power
+        for (glm::vec4& p : image.pixels)
+            for (int c = 0; c < std::min(channels, 3); ++c) p[c] = decode(p[c]);
+    return image;
+}
+
+// The rows of an image read at a time for its corner: about 16 MiB of floats, at least one row.
+std::uint32_t strip_rows(const OIIO::ImageSpec& spec, int channels, std::uint32_t height) {
+    const std::uint64_t row = std::uint64_t(spec.width) * std::uint64_t(channels) * sizeof(float);
+    return std::uint32_t(std::clamp<std::uint64_t>((16ull << 20) / row, 1, height));
+}
+
+// The top-left width x height pixels of `in`, read a strip of whole rows at a time (as floats:
+// OpenImageIO's own conversion, then `decode`, so the pixels are a whole read's, bit for bit) and
+// cropped: the rows below are never decoded, and the columns beyond never kept.
+Result<Image> read_corner(OIIO::ImageInput& in, int channels, const auto& decode, const std::string& path,
+                          std::uint32_t width, std::uint32_t height) {
+    const OIIO::ImageSpec& spec = in.spec();
+    const std::size_t row = std::size_t(spec.width) * std::size_t(channels);
+    const std::uint32_t rows = strip_rows(spec, channels, height);
+    std::vector<float> strip(row * rows);
+    Image image(width, height); // channels the file lacks stay 0, alpha 1
+    for (std::uint32_t y0 = 0; y0 < height; y0 += rows) {
+        const std::uint32_t y1 = std::min(height, y0 + rows);
+        if (!in.read_scanlines(0, 0, spec.y + int(y0), spec.y + int(y1), 0, 0, channels, OIIO::TypeDesc::FLOAT,
+                               strip.data()))
+            return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in.geterror())));
+        for (std::uint32_t y = y0; y < y1; ++y)
+            for (std::uint32_t x = 0; x < width; ++x)
+                for (int c = 0; c < channels; ++c) {
+                    const float v = strip[(y - y0) * row + std::size_t(x) * std::size_t(channels) + std::size_t(c)];
+                    image.at(x, y)[c] = c < 3 ? decode(v) : v;
+                }
+    }
+    return image;
+}
+
+// `needed`: the channels the caller needs, for the error when there are fewer: RGB (3) or a count
+// of data channels. `corner`, where not 0x0, limits the read to the image's top-left corner of at
+// most that size.
 Result<Image> read_checked(const std::string& file, std::uint32_t max_side, InputSpace space, int needed,
-                           const std::string& name) {
+                           const std::string& name, glm::uvec2 corner = {}) {
     const std::string& path = name.empty() ? file : name; // what messages name
     // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
     if (auto why = not_a_readable_file(file)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
@@ -155,28 +207,40 @@ Result<Image> read_checked(const std::string& file, std::uint32_t max_side, Inpu
         return fail(fmt::format("{}: {}x{} is larger than the device allows: at most {} pixels on a side", path,
                                 spec.width, spec.height, max_side));
     const int channels = std::min(spec.nchannels, 4);
-    // The image, and the decoded pixels of an 8- or 16-bit file.
-    const std::uint64_t bytes =
-        image_bytes(spec.width, spec.height) + std::uint64_t(spec.width) * spec.height * channels * 4;
-    if (auto ok = check_memory(fmt::format("{}: a {}x{} image", path, spec.width, spec.height), bytes); !ok)
-        return std::unexpected(ok.error());
     const std::optional<float> gamma = stored_gamma(spec, space);
     auto decode = [&](float v) {
         if (!gamma) return srgb_to_linear(v);
         return *gamma == 1.0f ? v : std::pow(v, *gamma);
     };
-    Image image(spec.width, spec.height); // channels the file lacks stay 0, alpha 1
-    if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT8)
-        return read_through_table<std::uint8_t>(*in, channels, decode, path, std::move(image));
-    if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT16)
-        return read_through_table<std::uint16_t>(*in, channels, decode, path, std::move(image));
-    // Other formats straight into the image's pixels, a channel a float apart and a pixel a vec4.
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4)))
-        return fail(fmt::format("{}: cannot read pixels: {}", path, library_message(in->geterror())));
-    if (gamma != 1.0f) // sRGB (no gamma) or a power
-        for (glm::vec4& p : image.pixels)
-            for (int c = 0; c < std::min(channels, 3); ++c) p[c] = decode(p[c]);
-    return image;
+    const std::uint32_t width = corner.x ? std::min(corner.x, std::uint32_t(spec.width)) : spec.width;
+    const std::uint32_t height = corner.y ? std::min(corner.y, std::uint32_t(spec.height)) : spec.height;
+    const bool cropped = width < std::uint32_t(spec.width) || height < std::uint32_t(spec.height);
+    if (cropped && decodes_by_rows(*in, file)) {
+        // The corner, and a strip of whole rows.
+        const std::uint64_t bytes = image_bytes(width, height) + std::uint64_t(spec.width) *
+                                                                     strip_rows(spec, channels, height) *
+                                                                     std::uint64_t(channels) * sizeof(float);
+        if (auto ok = check_memory(
+                fmt::format("{}: {}x{} pixels of a {}x{} image", path, width, height, spec.width, spec.height), bytes);
+            !ok)
+            return std::unexpected(ok.error());
+        return read_corner(*in, channels, decode, path, width, height);
+    }
+    // The image, and the decoded pixels of an 8- or 16-bit file (as much as a reader that holds the
+    // whole file's pixels takes besides: an interlaced PNG's), and a corner cut from it.
+    const std::uint64_t bytes = image_bytes(spec.width, spec.height) +
+                                std::uint64_t(spec.width) * spec.height * channels * 4 +
+                                (cropped ? image_bytes(width, height) : 0);
+    if (auto ok = check_memory(fmt::format("{}: a {}x{} image", path, spec.width, spec.height), bytes); !ok)
+        return fail(cropped ? fmt::format("{}; only its top-left {}x{} pixels are used, which a PNG without "
+                                          "interlacing or a scanline EXR gives without decoding the rest",
+                                          ok.error().message, width, height)
+                            : ok.error().message);
+    auto image = read_whole(*in, channels, gamma, decode, path);
+    if (!image || !cropped) return image;
+    Image kept(width, height);
+    for (std::uint32_t y = 0; y < height; ++y) std::copy_n(&image->at(0, y), width, &kept.at(0, y));
+    return kept;
 }
 
 } // namespace
@@ -212,6 +276,10 @@ Result<T> guarded(const std::string& path, const auto& read) {
 
 Result<Image> read_image(const std::string& path, std::uint32_t max_side, InputSpace space, const std::string& name) {
     return guarded<Image>(name.empty() ? path : name, [&] { return read_checked(path, max_side, space, 3, name); });
+}
+
+Result<Image> read_image_corner(const std::string& path, std::uint32_t width, std::uint32_t height, InputSpace space) {
+    return guarded<Image>(path, [&] { return read_checked(path, 0, space, 3, {}, {width, height}); });
 }
 
 Result<glm::uvec2> read_image_size(const std::string& path) {

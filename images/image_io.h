@@ -45,6 +45,15 @@ std::optional<InputSpace> parse_input_space(std::string_view text);
 Result<Image> read_image(const std::string& path, std::uint32_t max_side = 0, InputSpace space = InputSpace::from_file,
                          const std::string& name = {});
 
+// read_image of the image's top-left corner alone, at most `width` x `height` pixels (all of a
+// smaller image): what a caller that tiles or crops the image to that size uses of it. From a file
+// decoded a row at a time (a PNG that is not interlaced, a scanline EXR), the rows below the corner
+// are never decoded and the columns beyond it never kept, so a 20000x20000 PNG cropped to 320x180
+// costs a strip of its rows, not 6 GiB; from any other, it is read whole (and its memory checked
+// so), then cropped.
+Result<Image> read_image_corner(const std::string& path, std::uint32_t width, std::uint32_t height,
+                                InputSpace space = InputSpace::from_file);
+
 // The width and height in `path`'s header, no pixel read: what a caller planning the reads of many
 // frames (kdop optimize's sample shares) needs before it reads any of them.
 Result<glm::uvec2> read_image_size(const std::string& path);

@@ -23,7 +23,7 @@ std::vector<RealTexture> installed_real_textures() {
 }
 
 Image load_real_texture(const RealTexture& texture, std::uint32_t w, std::uint32_t h) {
-    auto source = read_image(texture.path); // decoded from sRGB, as the file says
+    auto source = read_image_corner(texture.path, w, h); // decoded from sRGB, as the file says
     if (!source) return {};
     Image image(w, h);
     for (std::uint32_t y = 0; y < h; ++y)

@@ -99,7 +99,9 @@ Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t wid
         return usage_fail(fmt::format("--background: {}: the scene would be named after the file, and the name {}; "
                                       "rename the file",
                                       shown_text(path, 300), *problem));
-    auto image = read_image(path, 0, space);
+    // Only the corner the frame is tiled or cropped from is read: a 10000x10000 PNG under a 320x180
+    // frame costs 320x180 pixels and a strip of rows, not 2 GB.
+    auto image = read_image_corner(path, width, height, space);
     if (!image) return fail(fmt::format("--background: {}", image.error().message));
     for (std::uint32_t y = 0; y < image->height; ++y)
         for (std::uint32_t x = 0; x < image->width; ++x)

@@ -60,8 +60,10 @@ std::vector<SpriteScene> default_sprite_scenes(std::uint32_t width, std::uint32_
 // Their names, without drawing or reading anything.
 std::vector<std::string> sprite_scene_names();
 
-// A user's background: read, then tiled or cropped to the frame. The error names the file; values
-// must lie in [0, 1] (the metric is LDR-FLIP), and one that does not is named with its pixel.
+// A user's background: its top-left corner of the frame's size read (images/image_io.h,
+// read_image_corner: no more of a larger image is decoded), then tiled to the frame. The error
+// names the file; values must lie in [0, 1] (the metric is LDR-FLIP), and one that does not is
+// named with its pixel.
 Result<SpriteScene> read_sprite_scene(const std::string& path, std::uint32_t width, std::uint32_t height,
                                       InputSpace space = InputSpace::from_file);
 

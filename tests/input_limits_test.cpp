@@ -122,6 +122,60 @@ TEST(InputLimits, TheHugeImagesAreWhatTheyClaim) {
     EXPECT_EQ(*size, glm::uvec2(16000, 16000));
 }
 
+// A corner is the whole read's corner bit for bit, from formats read by rows (8- and 16-bit PNG,
+// EXR) and from those read whole and cropped (TGA, an interlaced PNG); a corner larger than the
+// image is the image.
+TEST(InputLimits, ACornerIsTheWholeReadsCorner) {
+    test::TempDir dir;
+    Image picture(40, 30);
+    for (std::uint32_t y = 0; y < 30; ++y)
+        for (std::uint32_t x = 0; x < 40; ++x)
+            picture.at(x, y) = {float(x) / 40, float(y) / 30, float((x * 7 + y * 3) % 11) / 11,
+                                0.25f + float(x % 3) / 4};
+    std::vector<fs::path> files;
+    for (const char* name : {"rgba8.png", "float.exr", "rgba.tga"}) {
+        files.push_back(dir / name);
+        ASSERT_TRUE(write_image(files.back().string(), picture)) << name;
+    }
+    files.push_back(dir / "rgb16.png");
+    {
+        auto out = OIIO::ImageOutput::create(files.back().string());
+        OIIO::ImageSpec spec(40, 30, 3, OIIO::TypeDesc::UINT16);
+        std::vector<std::uint16_t> values(40 * 30 * 3);
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::uint16_t(i * 977);
+        ASSERT_TRUE(out->open(files.back().string(), spec) && out->write_image(OIIO::TypeDesc::UINT16, values.data()) &&
+                    out->close());
+    }
+    files.push_back(dir / "interlaced.png");
+    huge_png(files.back(), 40, 30, true);
+    for (const fs::path& file : files) {
+        auto whole = read_image(file.string());
+        ASSERT_TRUE(whole) << whole.error().message;
+        for (const glm::uvec2 corner : {glm::uvec2(17, 9), glm::uvec2(40, 1), glm::uvec2(1, 30), glm::uvec2(64, 64)}) {
+            auto part = read_image_corner(file.string(), corner.x, corner.y);
+            ASSERT_TRUE(part) << part.error().message;
+            ASSERT_EQ(part->width, std::min(corner.x, 40u)) << file;
+            ASSERT_EQ(part->height, std::min(corner.y, 30u)) << file;
+            for (std::uint32_t y = 0; y < part->height; ++y)
+                for (std::uint32_t x = 0; x < part->width; ++x)
+                    ASSERT_EQ(std::memcmp(&part->at(x, y), &whole->at(x, y), sizeof(glm::vec4)), 0)
+                        << file << " at (" << x << ", " << y << ")";
+        }
+    }
+}
+
+// The background is tiled from its corner: a 16000x16000 PNG gives the frame the same pixels as a
+// 64x36 crop of it, and costs what the crop costs (the whole would need 7 GiB).
+TEST(InputLimits, ABackgroundIsReadForTheCornerTheFrameUses) {
+    test::TempDir dir;
+    huge_png(dir / "huge.png", 16000, 16000);
+    auto scene = read_sprite_scene((dir / "huge.png").string(), 64, 36);
+    ASSERT_TRUE(scene) << scene.error().message;
+    EXPECT_EQ(scene->background().width, 64u);
+    EXPECT_EQ(scene->background().height, 36u);
+    EXPECT_EQ(scene->background().pixels.front(), glm::vec4(0, 0, 0, 1));
+}
+
 TEST(InputLimits, AHugeImageIsRefusedUpFrontUnderUlimitNamingTheMemory) {
     SKIP_UNDER_ULIMIT();
     test::TempDir dir;
@@ -135,6 +189,33 @@ TEST(InputLimits, AHugeImageIsRefusedUpFrontUnderUlimitNamingTheMemory) {
     EXPECT_FALSE(fs::exists(map));
 }
 
+// kdop scene reads a background's corner alone, so a huge one fits where its whole would not;
+// one that must be read whole (interlaced) is refused with the memory and what would fit.
+TEST(InputLimits, AHugeBackgroundCostsItsCornerUnderUlimit) {
+    SKIP_UNDER_ULIMIT();
+    test::TempDir dir;
+    huge_png(dir / "huge.png", 16000, 16000);
+    auto scene = test::run(limited(kdop("scene --background " + (dir / "huge.png").string() +
+                                        " --size 64x36 --frames 2 --animate on --out " + (dir / "seq").string())));
+    ASSERT_EQ(scene.exit_code, 0) << scene.err;
+    auto frame = read_image_size((dir / "seq" / "huge" / "color" / "0001.exr").string());
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(*frame, glm::uvec2(64, 36));
+
+    huge_png(dir / "interlaced.png", 16000, 16000, true);
+    auto refused = test::run(limited(kdop("scene --background " + (dir / "interlaced.png").string() +
+                                          " --size 64x36 --frames 2 --animate on --out " + (dir / "out").string())));
+    EXPECT_EQ(refused.exit_code, 1) << refused.err;
+    EXPECT_NE(
+        refused.err.find("--background: " + (dir / "interlaced.png").string() + ": a 16000x16000 image: needs about"),
+        std::string::npos)
+        << refused.err;
+    EXPECT_NE(refused.err.find("only its top-left 64x36 pixels are used, which a PNG without interlacing"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(fs::exists(dir / "out" / "interlaced"));
+}
+
 // ---------------------------------------------------------------------------------------------
 // On the device
 
@@ -143,6 +224,11 @@ TEST(CliInputLimits, EveryImageReadIsCheckedUnderUlimit) {
     test::TempDir dir;
     huge_png(dir / "huge.png", 16000, 16000);
     const std::string huge = (dir / "huge.png").string();
+    auto taa = test::run(limited(kdop("taa --background " + huge +
+                                      " --size 64x36 --warmup 2 --frames 2 --sets aabb --modes clip --timing-rounds 1 "
+                                      "--no-charts --viewer-frames 0 --out " +
+                                      (dir / "taa").string())));
+    EXPECT_EQ(taa.exit_code, 0) << "the background's corner alone is read: " << taa.err;
     for (const std::string& command :
          {"run --variant aabb-clip-n9 --current " + huge + " --history " + huge + " --out " + (dir / "r.exr").string(),
           "accuracy --sets aabb --images " + huge + " --out " + (dir / "accuracy").string()}) {

@@ -1,11 +1,13 @@
 // libFuzzer target: any bytes as an image file, through kdop's read_image (OpenImageIO picks the
 // reader from the content). Whatever is refused must be refused with a message that names the file
-// and holds no raw control bytes; whatever is read must be within the side limit it was given, and
-// must write to EXR and read back bit for bit (NaN and infinity included), so nothing read is
-// something kdop cannot keep. Any violation aborts, which libFuzzer reports; so does any sanitizer
-// report or an allocation beyond libFuzzer's limit (a header claiming more than it holds).
-// The corpus: 4x4 images in each format kdop reads (oiiotool --pattern ... -d uint8|uint16|half|float)
-// and the two oversized headers of tests/data.
+// and holds no raw control bytes; whatever is read must be within the side limit it was given, its
+// corner read alone (read_image_corner) must be the same pixels, and it must write to EXR and read
+// back bit for bit (NaN and infinity included), so nothing read is something kdop cannot keep. Any
+// violation aborts, which libFuzzer reports; so does any sanitizer report or an allocation beyond
+// libFuzzer's limit (a header claiming more than it holds).
+// The corpus: 4x4 images in each format kdop reads (oiiotool --pattern ... -d uint8|uint16|half|float),
+// a 5x4 interlaced PNG (read whole, where a plain one is read by rows) and the two oversized headers
+// of tests/data.
 #include "images/image_io.h"
 #include "tests/fuzz/fuzz_checks.h"
 
@@ -60,6 +62,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             "an image read beyond the side limit", shape);
     require(image->pixels.size() == std::size_t(image->width) * image->height, "pixels that do not fill the image",
             shape);
+
+    // The corner a tiled background takes (read_image_corner, read by rows where the format allows):
+    // only of an image the whole read took, so within the side limit; the same pixels, bit for bit.
+    const std::uint32_t corner_width = image->width / 2 + 1, corner_height = image->height / 3 + 1;
+    auto corner = kdop::read_image_corner(input, corner_width, corner_height);
+    require(corner.has_value(), "a corner that cannot be read of an image that can",
+            corner ? shape : corner.error().message);
+    require(corner->width == corner_width && corner->height == corner_height, "a corner of another shape", shape);
+    for (std::uint32_t y = 0; y < corner_height; ++y)
+        for (std::uint32_t x = 0; x < corner_width; ++x)
+            for (int c = 0; c < 4; ++c)
+                require(same_bits(corner->at(x, y)[c], image->at(x, y)[c]), "a corner with other values", shape);
 
     const std::string copy = (scratch.folder / "copy.exr").string();
     auto written = kdop::write_image(copy, *image);
