@@ -282,18 +282,19 @@ Result<Image> read_image_corner(const std::string& path, std::uint32_t width, st
     return guarded<Image>(path, [&] { return read_checked(path, 0, space, 3, {}, {width, height}); });
 }
 
-Result<glm::uvec2> read_image_size(const std::string& path) {
-    if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
-    if (auto why = unsafe_jpeg_metadata(path)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
-    return guarded<glm::uvec2>(path, [&]() -> Result<glm::uvec2> {
-        auto in = OIIO::ImageInput::open(path);
+Result<glm::uvec2> read_image_size(const std::string& path, const std::string& name) {
+    const std::string& shown = name.empty() ? path : name;
+    if (auto why = not_a_readable_file(path)) return fail(fmt::format("{}: cannot read image: {}", shown, *why));
+    if (auto why = unsafe_jpeg_metadata(path)) return fail(fmt::format("{}: cannot read image: {}", shown, *why));
+    return guarded<glm::uvec2>(shown, [&]() -> Result<glm::uvec2> {
+        auto in = open_input(path, name, nullptr);
         if (!in) {
             const std::string reason = library_message(OIIO::geterror());
-            return fail(fmt::format("{}: cannot read image: {}", path, reason.empty() ? "unknown format" : reason));
+            return fail(fmt::format("{}: cannot read image: {}", shown, reason.empty() ? "unknown format" : reason));
         }
         const OIIO::ImageSpec& spec = in->spec();
         if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
-            return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", path, spec.width, spec.height, spec.depth));
+            return fail(fmt::format("{}: not a 2-D image ({}x{}x{})", shown, spec.width, spec.height, spec.depth));
         return glm::uvec2(spec.width, spec.height);
     });
 }

@@ -55,8 +55,8 @@ Result<Image> read_image_corner(const std::string& path, std::uint32_t width, st
                                 InputSpace space = InputSpace::from_file);
 
 // The width and height in `path`'s header, no pixel read: what a caller planning the reads of many
-// frames (kdop optimize's sample shares) needs before it reads any of them.
-Result<glm::uvec2> read_image_size(const std::string& path);
+// frames (kdop optimize's sample shares) needs before it reads any of them. `name` as for read_image.
+Result<glm::uvec2> read_image_size(const std::string& path, const std::string& name = {});
 
 // An image of data, not color (motion vectors, depth): its values as stored, never decoded, from a
 // file with at least `channels` channels (1 to 4); the channels it lacks are 0 (alpha 1). `name`

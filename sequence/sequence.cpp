@@ -293,11 +293,11 @@ Result<Sequence> read_sequence(const fs::path& dir) {
 
 namespace {
 
-// Refuses an image of another size than the sequence's.
-Result<void> check_size(const Image& image, const fs::path& file, const Sequence& s) {
-    if (image.width == s.width && image.height == s.height) return {};
-    return fail(fmt::format("{}: {}x{}, but the sequence is {}x{} ({})", file.string(), image.width, image.height,
-                            s.width, s.height, (s.dir / "sequence.json").string()));
+// Refuses a file of another size than the sequence's.
+Result<void> check_size(glm::uvec2 size, const fs::path& file, const Sequence& s) {
+    if (size.x == s.width && size.y == s.height) return {};
+    return fail(fmt::format("{}: {}x{}, but the sequence is {}x{} ({})", file.string(), size.x, size.y, s.width,
+                            s.height, (s.dir / "sequence.json").string()));
 }
 
 // Refuses a NaN or infinite value among the first `channels`, naming the pixel.
@@ -345,13 +345,32 @@ private:
     int fd_ = -1;
 };
 
-Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace space, std::string_view what) {
+// Frame file `file`, opened, its size checked on its header before any pixel is decoded (a frame
+// that claims 16384x16384 in a 64x36 sequence is refused for that, not read), then read through
+// the descriptor by `read`.
+Result<Image> read_frame_file(const fs::path& file, const Sequence& s, const auto& read) {
     auto opened = FrameFile::open(file, s);
     if (!opened) return std::unexpected(opened.error());
-    auto image = read_image(opened->proc_path(), 0, space, file.string());
+    auto size = read_image_size(opened->proc_path(), file.string());
+    if (!size) return std::unexpected(size.error());
+    if (auto ok = check_size(*size, file, s); !ok) return std::unexpected(ok.error());
+    return read(opened->proc_path());
+}
+
+Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace space, std::string_view what) {
+    auto image =
+        read_frame_file(file, s, [&](const std::string& fd) { return read_image(fd, 0, space, file.string()); });
     if (!image) return image;
-    if (auto ok = check_size(*image, file, s); !ok) return std::unexpected(ok.error());
     if (auto ok = check_finite(*image, file, 3, what); !ok) return std::unexpected(ok.error());
+    return image;
+}
+
+// A data file (motion, depth) of `channels` channels, each value finite.
+Result<Image> read_data(const fs::path& file, const Sequence& s, int channels, std::string_view what) {
+    auto image =
+        read_frame_file(file, s, [&](const std::string& fd) { return read_data_image(fd, channels, file.string()); });
+    if (!image) return image;
+    if (auto ok = check_finite(*image, file, channels, what); !ok) return std::unexpected(ok.error());
     return image;
 }
 
@@ -368,23 +387,15 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
     if (!color) return std::unexpected(color.error());
     out.color = std::move(*color);
     if (!s.starts_history(index)) {
-        auto opened = FrameFile::open(f.motion, s);
-        if (!opened) return std::unexpected(opened.error());
-        auto motion = read_data_image(opened->proc_path(), 2, f.motion.string());
+        auto motion = read_data(f.motion, s, 2, "motion");
         if (!motion) return std::unexpected(motion.error());
-        if (auto ok = check_size(*motion, f.motion, s); !ok) return std::unexpected(ok.error());
-        if (auto ok = check_finite(*motion, f.motion, 2, "motion"); !ok) return std::unexpected(ok.error());
         out.motion.reserve(motion->pixels.size());
         for (const glm::vec4& m : motion->pixels)
             out.motion.push_back(canonical_motion(glm::vec2(m), s.motion, s.width, s.height));
     }
     if (depth && !f.depth.empty()) {
-        auto opened = FrameFile::open(f.depth, s);
-        if (!opened) return std::unexpected(opened.error());
-        auto image = read_data_image(opened->proc_path(), 1, f.depth.string());
+        auto image = read_data(f.depth, s, 1, "depth");
         if (!image) return std::unexpected(image.error());
-        if (auto ok = check_size(*image, f.depth, s); !ok) return std::unexpected(ok.error());
-        if (auto ok = check_finite(*image, f.depth, 1, "depth"); !ok) return std::unexpected(ok.error());
         out.depth = std::move(*image);
     }
     if (!f.reference.empty()) {

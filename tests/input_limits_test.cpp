@@ -217,6 +217,39 @@ TEST(InputLimits, AHugeBackgroundCostsItsCornerUnderUlimit) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Sequences
+
+// A 4x4 sequence of two frames in `dir`: color/0000.exr and color/0001.exr, motion/0001.exr.
+void small_sequence(const fs::path& dir, const std::string& second_color = "color/0001.exr") {
+    fs::create_directories(dir / "color");
+    fs::create_directories(dir / "motion");
+    for (int i = 0; i < 2; ++i)
+        EXPECT_TRUE(write_image((dir / fmt::format("color/{:04}.exr", i)).string(),
+                                Image(4, 4, {0.25f * float(i + 1), 0.5f, 0.125f, 1})));
+    EXPECT_TRUE(write_image((dir / "motion" / "0001.exr").string(), Image(4, 4, {0, 0, 0, 1})));
+    test::write_file(dir / "sequence.json", fmt::format(R"({{"kdop_sequence": 1, "width": 4, "height": 4, "frames": [
+  {{"color": "color/0000.exr"}}, {{"color": "{}", "motion": "motion/0001.exr"}}]}})",
+                                                        second_color));
+}
+
+// A frame whose header claims another size is refused from its header: under ulimit, the size,
+// not the memory a 16000x16000 frame would need (which was the message when it was decoded first).
+TEST(InputLimits, AFrameOfAnotherSizeIsRefusedFromItsHeader) {
+    SKIP_UNDER_ULIMIT();
+    test::TempDir dir;
+    small_sequence(dir / "s", "color/huge.png");
+    huge_png(dir / "s" / "color" / "huge.png", 16000, 16000);
+    auto fit = test::run(limited(kdop("optimize --sequence " + (dir / "s").string() +
+                                      " --axes 4 --starts 1 --iterations 2 --accuracy-samples 0 --out " +
+                                      (dir / "fitted.axes").string())));
+    EXPECT_EQ(fit.exit_code, 1) << fit.err;
+    EXPECT_NE(fit.err.find((dir / "s" / "color" / "huge.png").string() + ": 16000x16000, but the sequence is 4x4"),
+              std::string::npos)
+        << fit.err;
+    EXPECT_FALSE(fs::exists(dir / "fitted.axes"));
+}
+
+// ---------------------------------------------------------------------------------------------
 // On the device
 
 TEST(CliInputLimits, EveryImageReadIsCheckedUnderUlimit) {
