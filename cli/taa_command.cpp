@@ -11,6 +11,7 @@
 #include "generator/selection_options.h"
 #include "harness/output_set.h"
 #include "harness/variant_catalog.h"
+#include "sequence/sequence.h"
 #include "temporal/taa_run.h"
 
 #include <fmt/format.h>
@@ -110,6 +111,8 @@ Action add_taa_command(CLI::App& app) {
                                     o->choice.options(size->first, size->second, o->seed, o->input_space),
                                     picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt});
         if (!sources) return report(sources.error());
+        for (const SequenceFrames& sequence : sources->sequences)
+            if (auto ok = check_outside(sequence.sequence(), outputs->dir(), "--out"); !ok) return report(ok.error());
         for (const CLI::Option* option : hdr_options)
             if (option->count() && !sources->any_hdr())
                 return usage_error(

@@ -43,10 +43,10 @@ void protect_inputs(bool on) {
     if (!on) inputs().by_id.clear();
 }
 
-void note_input(const fs::path& path) {
+void note_input(const fs::path& path, const fs::path& shown) {
     std::lock_guard held(inputs().lock);
     if (!inputs().on) return;
-    if (const auto id = file_id(path)) inputs().by_id.emplace(*id, path);
+    if (const auto id = file_id(path)) inputs().by_id.emplace(*id, shown.empty() ? path : shown);
 }
 
 std::optional<fs::path> noted_input_at(const fs::path& output) {

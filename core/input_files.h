@@ -27,8 +27,10 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 // inode numbers are reused once a file is deleted.
 void protect_inputs(bool on = true);
 
-// Records `path` as read by this process (nothing when it does not exist, or protection is off).
-void note_input(const std::filesystem::path& path);
+// Records `path` as read by this process (nothing when it does not exist, or protection is off),
+// under the name `shown` where given: the file's own name when `path` is the /proc/self/fd path it
+// was read through, so that a refusal names the file the user knows.
+void note_input(const std::filesystem::path& path, const std::filesystem::path& shown = {});
 
 // The noted input that `output` is, if any.
 std::optional<std::filesystem::path> noted_input_at(const std::filesystem::path& output);

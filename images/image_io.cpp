@@ -183,7 +183,9 @@ Result<Image> read_checked(const std::string& file, std::uint32_t max_side, Inpu
     // Before OpenImageIO opens it: a device (/dev/zero) or a pipe would be read without end.
     if (auto why = not_a_readable_file(file)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
     if (auto why = unsafe_jpeg_metadata(file)) return fail(fmt::format("{}: cannot read image: {}", path, *why));
-    note_input(file);
+    // Noted as the file it is, by its own name: an output that would replace it is refused naming
+    // that, not the /proc/self/fd path it was read through.
+    note_input(file, path);
     // Color as stored: readers of formats with unassociated alpha (PNG, TGA, TIFF) would otherwise
     // multiply it by alpha.
     OIIO::ImageSpec config;

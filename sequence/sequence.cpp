@@ -1,6 +1,7 @@
 #include "sequence/sequence.h"
 
 #include "core/file_name.h"
+#include "core/input_files.h"
 #include "core/read_file.h"
 #include "core/shown_text.h"
 
@@ -25,6 +26,11 @@ using nlohmann::json;
 namespace {
 
 constexpr std::uint32_t kMaxSide = 16384;
+
+// Whether `path` is `folder` or lies inside it, both resolved already.
+bool lies_inside(const fs::path& path, const fs::path& folder) {
+    return std::mismatch(folder.begin(), folder.end(), path.begin(), path.end()).first == folder.end();
+}
 
 // "line L, column C" of byte `offset` (1-based, as nlohmann counts it) of `text`.
 std::string position_of(std::string_view text, std::size_t offset) {
@@ -280,6 +286,12 @@ Result<Sequence> read_sequence(const fs::path& dir) {
         }
         s.frames.push_back(std::move(frame));
     }
+    // Every file named is an input from here on, read yet or not (a depth file the resolve never
+    // reads included): an output that would replace one is refused, and an earlier run's listing
+    // never removes one (core/input_files.h, core/output_listing.h).
+    for (const SequenceFrame& frame : s.frames)
+        for (const fs::path* file : {&frame.color, &frame.motion, &frame.depth, &frame.reference})
+            if (!file->empty()) note_input(*file);
     // The declared size against the first frame's header (no pixel read): a sequence.json that says
     // 8192x8192 over 32x16 frames would otherwise size every buffer of a run for frames it never has.
     const fs::path& first = s.frames.front().color;
@@ -289,6 +301,25 @@ Result<Sequence> read_sequence(const fs::path& dir) {
         return fail(fmt::format("{}: {}x{}, but {} says {}x{}", first.string(), size->x, size->y,
                                 (s.dir / "sequence.json").string(), s.width, s.height));
     return s;
+}
+
+Result<void> check_outside(const Sequence& s, const fs::path& out, std::string_view option) {
+    std::error_code ec;
+    const fs::path folder = fs::weakly_canonical(out, ec);
+    if (ec) return {}; // an --out that cannot be resolved is refused as that where it is prepared
+    std::vector<fs::path> files{s.dir / "sequence.json"};
+    for (const SequenceFrame& frame : s.frames)
+        for (const fs::path* file : {&frame.color, &frame.motion, &frame.depth, &frame.reference})
+            if (!file->empty()) files.push_back(*file);
+    for (const fs::path& file : files) {
+        const fs::path real = fs::canonical(file, ec);
+        if (!ec && lies_inside(real, folder))
+            return usage_fail(fmt::format("{} {}: holds {}, a file of the sequence {}; kdop writes this run's outputs "
+                                          "there and never over an input, so give a folder outside the sequence's "
+                                          "files",
+                                          option, out.string(), file.string(), s.dir.string()));
+    }
+    return {};
 }
 
 namespace {
@@ -327,7 +358,7 @@ public:
             return fail(fmt::format("{}: is no longer a regular file", file.string()));
         std::error_code ec;
         const fs::path opened = fs::read_symlink(f.proc_path(), ec), folder = fs::canonical(s.dir, ec);
-        if (ec || std::mismatch(folder.begin(), folder.end(), opened.begin(), opened.end()).first != folder.end())
+        if (ec || !lies_inside(opened, folder))
             return fail(fmt::format("{}: now leads outside the sequence's folder {} (to {}); kdop reads only the "
                                     "files inside it",
                                     file.string(), folder.string(), opened.string()));

@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace kdop {
@@ -88,6 +89,12 @@ struct Sequence {
 // jitter outside [-0.5, 0.5], and any named file that is missing, not a regular file, or outside
 // the folder.
 Result<Sequence> read_sequence(const std::filesystem::path& dir);
+
+// Fails, a usage error naming `option` and the file, when a file of `sequence` (sequence.json or a
+// frame's, its links followed) lies inside the folder `out`, where a run writes its outputs: one
+// of them could replace it, found only when the set is written, after all the work, and a file an
+// earlier run listed there could be removed as that run's. Checked before the work instead.
+Result<void> check_outside(const Sequence& sequence, const std::filesystem::path& out, std::string_view option);
 
 // One frame's images, as the resolve takes them.
 struct LoadedFrame {

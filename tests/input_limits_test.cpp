@@ -249,6 +249,46 @@ TEST(InputLimits, AFrameOfAnotherSizeIsRefusedFromItsHeader) {
     EXPECT_FALSE(fs::exists(dir / "fitted.axes"));
 }
 
+TEST(InputLimits, ASequenceFileInsideTheOutputFolderIsRefused) {
+    test::TempDir dir;
+    small_sequence(dir / "s");
+    auto sequence = read_sequence(dir / "s");
+    ASSERT_TRUE(sequence) << sequence.error().message;
+    EXPECT_TRUE(check_outside(*sequence, dir / "out", "--out"));
+    EXPECT_TRUE(check_outside(*sequence, dir / "s" / "report", "--out")) << "a folder of its own inside the sequence";
+    auto inside = check_outside(*sequence, dir / "s", "--out");
+    ASSERT_FALSE(inside);
+    EXPECT_TRUE(inside.error().usage);
+    EXPECT_EQ(inside.error().message, fmt::format("--out {0}/s: holds {0}/s/sequence.json, a file of the sequence "
+                                                  "{0}/s; kdop writes this run's outputs there and never over an "
+                                                  "input, so give a folder outside the sequence's files",
+                                                  dir.path().string()));
+    // A frame linked to a file in the output folder, inside the sequence's.
+    fs::create_directories(dir / "s" / "out");
+    fs::rename(dir / "s" / "color" / "0001.exr", dir / "s" / "out" / "0001.exr");
+    fs::create_symlink("../out/0001.exr", dir / "s" / "color" / "0001.exr");
+    auto linked = check_outside(*sequence, dir / "s" / "out", "--out");
+    ASSERT_FALSE(linked);
+    EXPECT_NE(linked.error().message.find("holds " + (dir / "s" / "color" / "0001.exr").string()), std::string::npos)
+        << linked.error().message;
+}
+
+// What a frame read through its descriptor is noted as: its own path, which a refusal names.
+TEST(InputLimits, AFrameIsNotedAsAnInputByItsOwnPath) {
+    test::TempDir dir;
+    small_sequence(dir / "s");
+    protect_inputs(true);
+    auto sequence = read_sequence(dir / "s");
+    ASSERT_TRUE(sequence);
+    // Noted on reading the list, before any frame is read: a depth file the resolve never reads too.
+    EXPECT_EQ(noted_input_at(dir / "s" / "motion" / "0001.exr"), sequence->frames[1].motion);
+    protect_inputs(false);
+    protect_inputs(true);
+    ASSERT_TRUE(load_frame(*sequence, 1));
+    EXPECT_EQ(noted_input_at(dir / "s" / "color" / "0001.exr"), sequence->frames[1].color);
+    protect_inputs(false);
+}
+
 // ---------------------------------------------------------------------------------------------
 // On the device
 
@@ -272,6 +312,33 @@ TEST(CliInputLimits, EveryImageReadIsCheckedUnderUlimit) {
     }
     EXPECT_FALSE(fs::exists(dir / "r.exr"));
     EXPECT_FALSE(fs::exists(dir / "accuracy"));
+}
+
+// A sequence whose files lie where kdop taa writes is refused before the work, as a usage error
+// (here its second frame is where the run writes its ghosting picture's aliased frame, which was
+// refused only after the work, named /proc/self/fd/3); a frame hard-linked to an output is found
+// when the set is written, and named by its own path.
+TEST(CliInputLimits, ASequenceFileWhereTheRunWritesIsRefused) {
+    test::TempDir dir;
+    small_sequence(dir / "s", "frames/s/aliased.exr");
+    fs::create_directories(dir / "s" / "frames" / "s");
+    fs::rename(dir / "s" / "color" / "0001.exr", dir / "s" / "frames" / "s" / "aliased.exr");
+    const std::string taa = " --warmup 1 --sets aabb --modes clip --timing-rounds 1 --no-charts --viewer-frames 0 ";
+    auto inside = test::run(kdop("taa --sequence " + (dir / "s").string() + taa + "--out " + (dir / "s").string()));
+    EXPECT_EQ(inside.exit_code, 2) << inside.err;
+    EXPECT_NE(inside.err.find("--out " + (dir / "s").string() + ": holds "), std::string::npos) << inside.err;
+    EXPECT_EQ(inside.err.find("TAA of"), std::string::npos) << "refused before the work: " << inside.err;
+    EXPECT_FALSE(fs::exists(dir / "s" / "taa.csv"));
+
+    fs::create_directories(dir / "out" / "frames" / "s");
+    fs::create_hard_link(dir / "s" / "color" / "0000.exr", dir / "out" / "frames" / "s" / "aliased.exr");
+    auto linked = test::run(kdop("taa --sequence " + (dir / "s").string() + taa + "--out " + (dir / "out").string()));
+    EXPECT_EQ(linked.exit_code, 1) << linked.err;
+    EXPECT_NE(linked.err.find("(the same file as " + (dir / "s" / "color" / "0000.exr").string() + ")"),
+              std::string::npos)
+        << linked.err;
+    EXPECT_EQ(linked.err.find("/proc/self/fd"), std::string::npos) << linked.err;
+    EXPECT_FALSE(fs::exists(dir / "out" / "taa.csv"));
 }
 
 } // namespace
