@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <fcntl.h>
@@ -124,9 +125,24 @@ public:
             return std::unexpected(
                 error(where, fmt::format("\"{}\" is absolute; name files relative to the sequence's folder", shown)));
         const fs::path path = dir / relative;
+        // A path the kernel cannot take is refused as that, not as one outside the folder (which
+        // is what its failed resolution would otherwise look like).
+        if (path.native().size() >= PATH_MAX)
+            return std::unexpected(
+                error(where, fmt::format("\"{}\" makes a path of {} bytes with the sequence's folder; Linux opens no "
+                                         "path of {} bytes or more (PATH_MAX)",
+                                         shown, path.native().size(), PATH_MAX)));
+        for (const fs::path& part : relative)
+            if (part.native().size() > NAME_MAX)
+                return std::unexpected(
+                    error(where, fmt::format("\"{}\" holds a name of {} bytes; a file's name has at most {} (NAME_MAX)",
+                                             shown, part.native().size(), NAME_MAX)));
         std::error_code ec;
-        const fs::path inside = fs::weakly_canonical(dir, ec), resolved = fs::weakly_canonical(path, ec);
-        if (std::mismatch(inside.begin(), inside.end(), resolved.begin(), resolved.end()).first != inside.end())
+        const fs::path resolved = fs::weakly_canonical(path, ec);
+        if (ec)
+            return std::unexpected(error(where, fmt::format("\"{}\": cannot be resolved: {}", shown, ec.message())));
+        const fs::path inside = fs::weakly_canonical(dir, ec);
+        if (ec || !lies_inside(resolved, inside))
             return std::unexpected(error(where, fmt::format("\"{}\" is outside the sequence's folder", shown)));
         // Shown as the folder and the name as written, escaped: a name is the file's text, and may
         // hold control bytes (found by tests/fuzz/sequence_fuzzer.cpp) or be any length.

@@ -232,6 +232,29 @@ void small_sequence(const fs::path& dir, const std::string& second_color = "colo
                                                         second_color));
 }
 
+TEST(InputLimits, AFramePathTheKernelCannotOpenIsSaidSo) {
+    test::TempDir dir;
+    std::string deep = "color/";
+    while (deep.size() < 4200) deep += "a/";
+    small_sequence(dir / "deep", deep + "0001.exr");
+    auto too_long = read_sequence(dir / "deep");
+    ASSERT_FALSE(too_long);
+    const std::string json = (dir / "deep" / "sequence.json").string();
+    EXPECT_EQ(too_long.error().message.rfind(json + ": frames[1].color: \"color/a/a/", 0), 0u)
+        << too_long.error().message;
+    EXPECT_NE(too_long.error().message.find("Linux opens no path of 4096 bytes or more (PATH_MAX)"), std::string::npos)
+        << too_long.error().message;
+    EXPECT_EQ(too_long.error().message.find("outside"), std::string::npos) << too_long.error().message;
+
+    small_sequence(dir / "wide", "color/" + std::string(300, 'b') + ".exr");
+    auto wide = read_sequence(dir / "wide");
+    ASSERT_FALSE(wide);
+    EXPECT_NE(wide.error().message.find("frames[1].color: \"color/bbb"), std::string::npos) << wide.error().message;
+    EXPECT_NE(wide.error().message.find("holds a name of 304 bytes; a file's name has at most 255 (NAME_MAX)"),
+              std::string::npos)
+        << wide.error().message;
+}
+
 // A frame whose header claims another size is refused from its header: under ulimit, the size,
 // not the memory a 16000x16000 frame would need (which was the message when it was decoded first).
 TEST(InputLimits, AFrameOfAnotherSizeIsRefusedFromItsHeader) {
