@@ -65,8 +65,9 @@ Result<void> check_not_an_input(const fs::path& output, std::string_view option,
     if (!input) return {};
     const std::string same =
         input->string() == output.string() ? "" : fmt::format(", the same file as {}", input->string());
-    return fail(fmt::format("{} {}: is an input of this run{}; kdop never writes over an input, so name another file",
-                            option, output.string(), same));
+    return usage_fail(
+        fmt::format("{} {}: is an input of this run{}; kdop never writes over an input, so name another file", option,
+                    output.string(), same));
 }
 
 Result<void> check_distinct_files(std::span<const std::string> paths, std::string_view option) {

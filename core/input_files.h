@@ -35,7 +35,9 @@ void note_input(const std::filesystem::path& path, const std::filesystem::path& 
 // The noted input that `output` is, if any.
 std::optional<std::filesystem::path> noted_input_at(const std::filesystem::path& output);
 
-// Fails, naming `option` and both paths, when `output` is one of `inputs` or a noted input.
+// Fails, naming `option` and both paths, when `output` is one of `inputs` or a noted input: a usage
+// error (exit 2), since the command line named the output and, directly or through a folder or
+// manifest it named, the input.
 Result<void> check_not_an_input(const std::filesystem::path& output, std::string_view option,
                                 std::span<const std::filesystem::path> inputs = {});
 

@@ -130,7 +130,7 @@ Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
         if (i == 3 && extension != ".png")
             return usage_fail(fmt::format("{}: {}: the histogram is drawn as a .png", option, *path));
         if (auto ok = check_output_file(*path, option); !ok) return usage_fail(ok.error().message);
-        if (auto ok = check_not_an_input(*path, option, inputs); !ok) return fail(ok.error().message);
+        if (auto ok = check_not_an_input(*path, option, inputs); !ok) return std::unexpected(ok.error());
         for (std::size_t j = 0; j < i; ++j)
             if (!outputs[j].second->empty() && *outputs[j].second == *path)
                 return usage_fail(fmt::format("{} and {} both name {}", outputs[j].first, option, *path));

@@ -19,7 +19,7 @@ Result<RectifyRunResult> run_rectify(const Variant& variant, const RectifyRunOpt
         return usage_fail(fmt::format("--out: {}: no image format for this extension", o.out));
     const std::filesystem::path inputs[] = {o.current, o.history};
     if (auto ok = check_output_file(o.out, "--out"); !ok) return usage_fail(ok.error().message);
-    if (auto ok = check_not_an_input(o.out, "--out", inputs); !ok) return fail(ok.error().message);
+    if (auto ok = check_not_an_input(o.out, "--out", inputs); !ok) return std::unexpected(ok.error());
 
     // The device first: its size limit is checked on each image's header, before its pixels.
     auto context = Context::create(o.device);

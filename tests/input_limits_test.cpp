@@ -313,6 +313,23 @@ TEST(InputLimits, AFrameIsNotedAsAnInputByItsOwnPath) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Outputs naming inputs
+
+TEST(InputLimits, AFlipOutputNamingAnInputIsAUsageError) {
+    test::TempDir dir;
+    const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string();
+    ASSERT_TRUE(write_image(a, Image(8, 8, {0.5f, 0.5f, 0.5f, 1})));
+    ASSERT_TRUE(write_image(b, Image(8, 8, {0.25f, 0.5f, 0.5f, 1})));
+    const std::string before = test::read_file(b);
+    for (const char* option : {"--out", "--csv", "--histogram"}) {
+        auto r = test::run(kdop(fmt::format("flip --cpu --reference {} --test {} {} {}", a, b, option, b)));
+        EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+        EXPECT_NE(r.err.find(fmt::format("{} {}: is an input of this run", option, b)), std::string::npos) << r.err;
+    }
+    EXPECT_EQ(test::read_file(b), before);
+}
+
+// ---------------------------------------------------------------------------------------------
 // On the device
 
 TEST(CliInputLimits, EveryImageReadIsCheckedUnderUlimit) {
@@ -362,6 +379,16 @@ TEST(CliInputLimits, ASequenceFileWhereTheRunWritesIsRefused) {
         << linked.err;
     EXPECT_EQ(linked.err.find("/proc/self/fd"), std::string::npos) << linked.err;
     EXPECT_FALSE(fs::exists(dir / "out" / "taa.csv"));
+}
+
+TEST(CliInputLimits, ARunOutputNamingAnInputIsAUsageError) {
+    test::TempDir dir;
+    const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
+    ASSERT_TRUE(write_image(a, Image(8, 8, {0.5f, 0.5f, 0.5f, 1})));
+    ASSERT_TRUE(write_image(b, Image(8, 8, {0.25f, 0.5f, 0.5f, 1})));
+    auto r = test::run(kdop("run --variant aabb-clip-n9 --current " + a + " --history " + b + " --out " + b));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--out " + b + ": is an input of this run"), std::string::npos) << r.err;
 }
 
 } // namespace
