@@ -312,6 +312,26 @@ TEST(InputLimits, AFrameIsNotedAsAnInputByItsOwnPath) {
     protect_inputs(false);
 }
 
+// A file of the sequence that no fit reads (depth) is an input all the same: kdop optimize --out
+// naming it wrote an axis set over it.
+TEST(InputLimits, AnOutputNamingAnUnreadSequenceFileIsRefused) {
+    test::TempDir dir;
+    small_sequence(dir / "s");
+    fs::create_directories(dir / "s" / "depth");
+    ASSERT_TRUE(write_image((dir / "s" / "depth" / "0001.exr").string(), Image(4, 4, {0.5f, 0, 0, 1})));
+    std::string json = test::read_file(dir / "s" / "sequence.json");
+    json.replace(json.find("\"motion\": \"motion/0001.exr\""), 0, "\"depth\": \"depth/0001.exr\", ");
+    test::write_file(dir / "s" / "sequence.json", json);
+    const fs::path depth = dir / "s" / "depth" / "0001.exr";
+    const std::string before = test::read_file(depth);
+    auto fit = test::run(kdop("optimize --sequence " + (dir / "s").string() +
+                              " --axes 4 --starts 1 --iterations 2 --accuracy-samples 0 --name fitted --out " +
+                              depth.string()));
+    EXPECT_NE(fit.exit_code, 0) << fit.err;
+    EXPECT_NE(fit.err.find("--out " + depth.string() + ": is an input of this run"), std::string::npos) << fit.err;
+    EXPECT_EQ(test::read_file(depth), before);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Outputs naming inputs
 
