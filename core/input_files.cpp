@@ -32,6 +32,12 @@ Inputs& inputs() {
 
 } // namespace
 
+std::optional<FileIdentity> file_identity(const fs::path& path) {
+    const auto id = file_id(path);
+    if (!id) return std::nullopt;
+    return FileIdentity{std::uint64_t(id->first), std::uint64_t(id->second)};
+}
+
 bool same_file(const fs::path& a, const fs::path& b) {
     const auto id_a = file_id(a);
     return id_a && id_a == file_id(b);

@@ -10,16 +10,23 @@
 
 #include "core/result.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace kdop {
 
 // Whether `a` and `b` are the same existing file (false when either does not exist).
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+// What a file is, however it is spelled or linked: its device and inode; none when it does not
+// exist. For comparing many files at once (same_file compares two).
+using FileIdentity = std::pair<std::uint64_t, std::uint64_t>;
+std::optional<FileIdentity> file_identity(const std::filesystem::path& path);
 
 // Turns the noting on for the rest of the process (kdop's programs, in run_command_line: one
 // process, one run), or off, forgetting what was noted. Off by default, so that a process that

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 
 namespace kdop {
@@ -102,6 +103,9 @@ Result<std::vector<SequenceFrames>> read_sequences(const Context& context, const
     request.option = option;
     auto sources = taa_sources(context, request);
     if (!sources) return std::unexpected(sources.error());
+    // No output may land on a sequence's file: refused now, not when the set is written.
+    for (const SequenceFrames& s : sources->sequences)
+        if (auto ok = check_outside(s.sequence(), o.out, "--out"); !ok) return std::unexpected(ok.error());
     return std::move(sources->sequences);
 }
 
@@ -290,6 +294,20 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
                 return usage_fail(fmt::format("{} {}: its sequence.json measures only shimmer, and kdop choose judges "
                                               "candidates by their ghosting",
                                               option, s.sequence().dir.string()));
+    // A held-out sequence made of the fit's own frame files (a copy of hard links, `cp -al`, or of
+    // links) holds nothing out, whatever its folder is called.
+    std::map<FileIdentity, std::filesystem::path> fitted_frames;
+    for (const SequenceFrames& s : *fit)
+        for (const SequenceFrame& frame : s.sequence().frames)
+            if (auto id = file_identity(frame.color)) fitted_frames.emplace(*id, frame.color);
+    for (const SequenceFrames& s : *validate)
+        for (const SequenceFrame& frame : s.sequence().frames)
+            if (auto id = file_identity(frame.color); id && fitted_frames.contains(*id))
+                return usage_fail(fmt::format("--validate {}: its frame {} is the same file as --fit's {} (a hard "
+                                              "link or a link); a held-out sequence must not hold the frames fitted "
+                                              "to",
+                                              s.sequence().dir.string(), frame.color.string(),
+                                              fitted_frames.at(*id).string()));
     // Held-out blocks: every fit sequence must have a frame in one.
     const Holdout& holdout = plan.holdout;
     if (holdout.block > 0)

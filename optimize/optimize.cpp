@@ -107,7 +107,7 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
         auto read = fit_inputs(o.input);
         if (!read) return fail(read.error().message);
         inputs = std::move(*read);
-        if (auto ok = check_not_an_input(o.out, "--out", inputs.paths); !ok) return fail(ok.error().message);
+        if (auto ok = check_not_an_input(o.out, "--out", inputs.paths); !ok) return std::unexpected(ok.error());
         // Each rank reads and evaluates whole frames: the sums of a frame are the unit whose
         // fixed order makes the result the same for any rank count.
         if (std::size_t(ranks.size()) > inputs.frames.size())

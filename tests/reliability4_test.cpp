@@ -93,5 +93,39 @@ TEST(CliReliability4, APictureFrameNothingShowsIsRefused) {
     }
 }
 
+// kdop choose's held-out sequence, made of the fit's own frame files (cp -al, hard links), held
+// nothing out and was judged as if it did (finding 12); an --out that holds a fit sequence's files
+// could have one replaced, found only at the end (finding 10).
+TEST(CliReliability4, ChooseRefusesHeldOutFramesThatAreTheFitsAndAnOutInsideASequence) {
+    test::TempDir dir;
+    const fs::path fit = scene_sequences(dir.path()) / "grass-ghosting", linked = dir / "linked";
+    fs::create_directories(linked);
+    for (const auto& entry : fs::recursive_directory_iterator(fit)) {
+        const fs::path to = linked / fs::relative(entry.path(), fit);
+        if (entry.is_directory())
+            fs::create_directories(to);
+        else if (entry.path().filename() == "sequence.json")
+            fs::copy_file(entry.path(), to);
+        else
+            fs::create_hard_link(entry.path(), to);
+    }
+    auto choose = [&](const fs::path& validate, const fs::path& out) {
+        return test::run(kdop_args({"choose", "--fit", fit.string(), "--validate", validate.string(), "--fit-axes", "4",
+                                    "--sets", "aabb", "--warmup", "2", "--sample", "500", "--timing-rounds", "2",
+                                    "--no-charts", "--out", out.string()}));
+    };
+    auto linked_run = choose(linked, dir / "out");
+    EXPECT_EQ(linked_run.exit_code, 2) << linked_run.err;
+    EXPECT_NE(linked_run.err.find("is the same file as --fit's"), std::string::npos) << linked_run.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    const fs::path other = scene_sequences(dir / "other") / "grass-ghosting";
+    const std::string before = test::read_file(fit / "sequence.json");
+    auto inside = choose(other, fit);
+    EXPECT_EQ(inside.exit_code, 2) << inside.err;
+    EXPECT_NE(inside.err.find("--out"), std::string::npos) << inside.err;
+    EXPECT_FALSE(fs::exists(fit / "choice.md"));
+    EXPECT_EQ(test::read_file(fit / "sequence.json"), before);
+}
+
 } // namespace
 } // namespace kdop

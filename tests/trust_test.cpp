@@ -197,9 +197,7 @@ TEST(CliTrust, NoOutputReplacesAnInputHoweverItIsSpelled) {
          {fs::path(t.grass), t.dir / "sub" / ".." / "grass.exr", t.dir / "link.exr", t.dir / "hard.exr"}) {
         auto r = test::run(
             kdop("optimize --images " + t.grass + TrustRun::kQuickFit + " --name fitted --out " + out.string()));
-        // 1, not the usage error flip and run give: optimize/optimize.cpp passes check_not_an_input's
-        // error on as a plain failure.
-        EXPECT_EQ(r.exit_code, 1) << out;
+        EXPECT_EQ(r.exit_code, 2) << out;
         EXPECT_NE(r.err.find("is an input of this run"), std::string::npos) << r.err;
         EXPECT_EQ(r.err.find("fitting"), std::string::npos) << "refused before the fit: " << r.err;
     }
