@@ -93,6 +93,40 @@ TEST(CliReliability4, APictureFrameNothingShowsIsRefused) {
     }
 }
 
+// Every refusal of what a command line asked for exits 2, as docs/cli.md says, before any work
+// (issue 59, finding 7: a --warmup longer than a sequence and `kdop show dop32-clip-n7` exited 1).
+// One table over the commands; each case is refused in well under a second.
+TEST(CliReliability4, EveryUsageRefusalExits2BeforeAnyWork) {
+    test::TempDir dir;
+    const fs::path scenes = scene_sequences(dir.path());
+    const std::string ghosting = (scenes / "grass-ghosting").string(), out = (dir / "out").string();
+    const std::string image = (scenes / "grass-ghosting" / "color" / "0001.exr").string();
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"show", "dop32-clip-n7"}, "'dop32-clip-n7' is not a variant name"},
+        {{"show", "nosuch-clip-n9"}, "no axis set is named 'nosuch'"},
+        {{"run", "--variant", "dop32-clip-n7", "--current", image, "--history", image, "--out", out + ".exr"},
+         "'dop32-clip-n7' is not a variant name"},
+        {{"taa", "--sequence", ghosting, "--sets", "aabb", "--out", out},
+         "5 frames, and --warmup 100 leaves none to measure; give a shorter warm-up, e.g. --warmup 1"},
+        {{"taa", "--sequence", (scenes / "grass-shimmer").string(), "--warmup", "2", "--picture-frame", "3", "--out",
+          out},
+         "--picture-frame 3: picks the frame of each --sequence's ghosting picture"},
+        {{"choose", "--fit", ghosting, "--holdout", "1", "--fit-axes", "4", "4", "--out", out}, "given twice"},
+        {{"choose", "--fit", ghosting, "--holdout", "1", "--budget-ms", "0x10", "--out", out}, "is not a number"},
+        {{"flip", "--cpu", "--reference", image, "--test", image, "--out", image}, "is an input of this run"},
+        {{"optimize", "--images", image, "--axes", "4", "--name", "mine", "--out", image}, "is an input of this run"},
+    };
+    for (const auto& [args, expected] : cases) {
+        std::vector<std::string> line{test::kdop_binary()};
+        line.insert(line.end(), args.begin(), args.end());
+        auto r = test::run(line);
+        EXPECT_EQ(r.exit_code, 2) << args[0] << " " << args[1] << ": " << r.err;
+        EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "out")) << args[0] << " " << args[1];
+        EXPECT_FALSE(fs::exists(dir / "out.exr")) << args[0] << " " << args[1];
+    }
+}
+
 // kdop choose's held-out sequence, made of the fit's own frame files (cp -al, hard links), held
 // nothing out and was judged as if it did (finding 12); an --out that holds a fit sequence's files
 // could have one replaced, found only at the end (finding 10).
