@@ -248,7 +248,8 @@ TEST(Cli, ExitStatusSaysUsageErrorsApartFromFailures) {
     EXPECT_EQ(run(kdop("run --variant aabb-clip-n9")).exit_code, 2); // --current and others missing
     EXPECT_EQ(run(kdop("bench --out x --repeat 0")).exit_code, 2);
     EXPECT_EQ(run(test::kdop_gen_binary() + " glsl").exit_code, 2);
-    EXPECT_EQ(run(kdop("show dop99-clip-n9")).exit_code, 1);
+    EXPECT_EQ(run(kdop("show dop99-clip-n9")).exit_code, 2); // no such set: the command line names it
+    EXPECT_EQ(run(kdop("show dop22-clip-n9 --sets /no/such/file.axes")).exit_code, 1); // a file that cannot be read
     EXPECT_EQ(run(kdop("list --help")).exit_code, 0);
 }
 
