@@ -1,10 +1,6 @@
 #include "flip/device_flip.h"
 
-#include "core/embedded_files.h"
-#include "flip/color_spaces.h"
-#include "generator/glsl_compiler.h"
 #include "generator/runnable_variant.h"
-#include "generator/variant_builder.h"
 #include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
@@ -13,7 +9,6 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <numbers>
 #include <string>
 #include <tuple>
 #include <variant>
@@ -21,25 +16,10 @@
 namespace kdop {
 namespace {
 
-constexpr std::string_view kTemplate = "shader_templates/flip.comp.in";
-constexpr std::uint32_t kLocalSize = 64;                         // the template's local_size_x
-constexpr VkFormat kPlaneFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the template's rgba32f images
-
-// Pixels each invocation of the filter passes computes along the filter's direction (the
-// template's FLIP_RUN; `pass` is its FLIP_PASS: 0 horizontal, 1 vertical). On a CPU device
-// (lavapipe) the neighbors' fetches (and, horizontally, their color transforms) are then shared
-// within an invocation, in registers: at 480x270 one pixel per invocation took 5.5x the CPU time
-// of runs of 16 (planes in buffers). Callgrind, per pixel of a 480x272 LDR evaluation: horizontal
-// runs of 4, 6, 8, 10, 12 and 16 cost 1042, 1164, 909, 971, 1032 and 1152 instructions (LLVM's
-// register allocation, not the fetches, decides), vertical runs of 16, 24 and 32 cost 899, 909
-// and 905; the wall times order alike. Longer runs compile slower. A GPU has the loads cached and
-// lanes to spare.
-std::uint32_t run_length(const Context& context, int pass) {
-    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return 1;
-    return pass == 0 ? 8u : pass == 1 ? 24u : 1u;
-}
+constexpr std::uint32_t kLocalSize = 64; // the template's local_size_x
 
 std::uint32_t ceil_div(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
+constexpr VkFormat kPlaneFormat = VK_FORMAT_R32G32B32A32_SFLOAT; // the template's rgba32f images
 
 // The template's push constants, as std430 lays them out.
 struct Parameters {
@@ -53,93 +33,6 @@ struct Parameters {
 };
 // Parameters::maps, the template's kMap* bits.
 constexpr std::uint32_t kMapFirstExposure = 1, kMapExposure = 2, kMapTerms = 4;
-
-// A float as a GLSL literal that reads back as the same float (nine significant digits), always
-// with a point or an exponent so GLSL takes it as a float.
-std::string literal(float v) {
-    std::string s = fmt::format("{:.9g}", v);
-    if (s.find_first_of(".e") == std::string::npos) s += ".0";
-    return s;
-}
-
-// weights[0..radius], padded with zeros to `length` so that every offset the unrolled loop
-// names exists (the zeros are never reached: each kernel's taps stop at its radius).
-std::string weights(const char* name, const std::vector<float>& k, int length) {
-    std::string s = fmt::format("const float {}[{}] = float[](", name, length);
-    for (int j = 0; j < length; ++j) s += (j ? ", " : "") + literal(j < int(k.size()) ? k[std::size_t(j)] : 0.0f);
-    return s + ");\n";
-}
-
-// flip_constants.glsl: the pass, the kernels and the color constants, each the float the CPU code
-// computes with.
-std::string constants(const LdrFlip& cpu, int pass, std::uint32_t run) {
-    const flip::CsfKernels& csf = cpu.csf_kernels();
-    const flip::FeatureKernels& features = cpu.feature_kernels();
-    const int max_radius = std::max(csf.radius, features.radius);
-    std::string s = fmt::format("#define FLIP_PASS {}\n#define CSF_RADIUS {}\n#define FEATURE_RADIUS {}\n"
-                                "#define MAX_RADIUS {}\n#define FLIP_RUN {}\n#define FLIP_WINDOW {}\n",
-                                pass, csf.radius, features.radius, max_radius, run, run + 2 * max_radius);
-    s += weights("CSF_Y", csf.achromatic, max_radius + 1);
-    s += weights("CSF_CX", csf.red_green, max_radius + 1);
-    s += weights("CSF_CZ1", csf.blue_yellow_1, max_radius + 1);
-    s += weights("CSF_CZ2", csf.blue_yellow_2, max_radius + 1);
-    s += weights("FEATURE_GAUSSIAN", features.gaussian, max_radius + 1);
-    s += weights("FEATURE_EDGE", features.edge, max_radius + 1);
-    s += weights("FEATURE_POINT", features.point, max_radius + 1);
-    auto define = [&](const std::string& name, float v) { s += fmt::format("#define {} {}\n", name, literal(v)); };
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-            define(fmt::format("RGB_TO_XYZ_{}{}", r, c), float(flip::kLinearRgbToXyz[r][c]));
-            define(fmt::format("XYZ_TO_RGB_{}{}", r, c), float(flip::kXyzToLinearRgb[r][c]));
-        }
-    define("WHITE_X", float(flip::kD65White[0]));
-    define("WHITE_Y", float(flip::kD65White[1]));
-    define("WHITE_Z", float(flip::kD65White[2]));
-    // The color error's remapping, as LdrFlip::evaluate computes each part in float.
-    const float cmax = cpu.max_color_distance(), pc_cmax = cpu.pc_max_color_distance();
-    define("QC", flip::kQc);
-    define("PT", flip::kPt);
-    define("PC_CMAX", pc_cmax);
-    define("PT_OVER_PC_CMAX", flip::kPt / pc_cmax);
-    define("CMAX_MINUS_PC_CMAX", cmax - pc_cmax);
-    define("ONE_MINUS_PT", 1.0f - flip::kPt);
-    define("INV_SQRT2", float(1.0 / std::numbers::sqrt2));
-    for (auto [name, mapper] : {std::pair{"ACES", ToneMapper::aces}, std::pair{"HABLE", ToneMapper::hable}}) {
-        const ToneCurve& k = tone_curve(mapper);
-        if (k.c != 0.0f) return "#error the tone curve's c is not 0\n"; // the shader leaves it out
-        define(fmt::format("{}_A", name), k.a);
-        define(fmt::format("{}_B", name), k.b);
-        define(fmt::format("{}_D", name), k.d);
-        define(fmt::format("{}_E", name), k.e);
-        define(fmt::format("{}_F", name), k.f);
-    }
-    return s;
-}
-
-Result<std::unique_ptr<RunnableVariant>> build_pass(const LdrFlip& cpu, int pass, std::uint32_t run) {
-    static constexpr const char* kNames[] = {"flip-horizontal", "flip-vertical", "flip-row-sums", "flip-load",
-                                             "flip-luminance"};
-    auto source = find_embedded_file(kTemplate);
-    if (!source) return fail(fmt::format("internal error: {} is not embedded", kTemplate));
-    BuiltVariant built;
-    built.spec.mode = Mode::shader;
-    built.name = kNames[pass];
-    built.compute_glsl = std::string(*source);
-    const std::string file = built.name + ".comp";
-    const std::string defines = constants(cpu, pass, run);
-    IncludeResolver resolve = [&](std::string_view header, std::string_view) -> std::optional<IncludedSource> {
-        if (header == "flip_constants.glsl") return IncludedSource{built.name + "/flip_constants.glsl", defines};
-        return std::nullopt;
-    };
-    auto compiled = compile_glsl_compute(built.compute_glsl, file, TargetEnv::vulkan1_0, resolve);
-    // Unoptimized: the passes are written unrolled, and SPIRV-Tools takes seconds over their
-    // thousands of taps for nothing the driver's compiler does not do.
-    if (auto ok = compile_into(built, built.compute_glsl, file, TargetEnv::vulkan1_0, std::move(compiled),
-                               SpirvOptimization::none);
-        !ok)
-        return std::unexpected(ok.error());
-    return std::make_unique<RunnableVariant>(std::move(built));
-}
 
 // One pass's dispatch of x by y by z workgroups: its pipeline, its set and `p` as its push constants.
 void record_dispatch(VkCommandBuffer cb, const Kernel& k, VkDescriptorSet set, const Parameters& p, std::uint32_t x,
@@ -201,10 +94,10 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     if (auto ok = check_pixels_per_degree(pixels_per_degree); !ok) return std::unexpected(ok.error());
     if (auto ok = check_limits(context, width, height); !ok) return std::unexpected(ok.error());
     std::unique_ptr<DeviceFlip> f(new DeviceFlip(context, pixels_per_degree, width, height));
-    f->runs_ = {run_length(context, kHorizontal), run_length(context, kVertical)};
+    f->runs_ = {flip_run_length(context, kHorizontal), flip_run_length(context, kVertical)};
     const LdrFlip cpu(pixels_per_degree); // the kernels and constants, as the CPU code computes them
     for (int pass = 0; pass < kPasses; ++pass) {
-        auto shader = build_pass(cpu, pass, run_length(context, pass));
+        auto shader = build_flip_pass(cpu, pass, flip_run_length(context, pass));
         if (!shader) return std::unexpected(shader.error());
         auto kernel = Kernel::create(context, (*shader)->variant());
         if (!kernel) return std::unexpected(kernel.error());
@@ -326,9 +219,9 @@ DeviceFlip::~DeviceFlip() {
 
 Result<void> DeviceFlip::check_pair(const Image* reference, const Image* test,
                                     Result<void> (*check_values)(const Image&, const std::string&),
-                                    Reference kept) const {
-    // An unchanged reference that the last evaluation took was checked then.
-    const bool checked = kept == Reference::unchanged && reference_planes_ && reference_planes_->image == reference;
+                                    ReferenceKey key) const {
+    // A reference whose planes the last evaluation left was checked then.
+    const bool checked = key != kNoKey && reference_planes_ && reference_planes_->key == key;
     for (auto [image, what] : {std::pair{reference, "reference image"}, std::pair{test, "test image"}}) {
         if (!image || (image == reference && checked)) continue;
         if (image->width != width_ || image->height != height_)
@@ -342,17 +235,16 @@ Result<void> DeviceFlip::check_pair(const Image* reference, const Image* test,
 Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image* reference, const Image* test,
                                                     std::optional<ToneMapper> tone_mapper,
                                                     std::span<const Exposure> exposures, ReadBack read_back,
-                                                    Reference kept) {
+                                                    ReferenceKey key) {
     const std::uint32_t mapper = !tone_mapper                        ? 0u
                                  : *tone_mapper == ToneMapper::aces  ? 1u
                                  : *tone_mapper == ToneMapper::hable ? 2u
                                                                      : 3u;
-    // The reference's upload and horizontal filters are kept where the caller says it is the
-    // last one and the planes still hold it at this exposure (Reference, in the header).
-    const bool keep_reference = reference && kept == Reference::unchanged && exposures.size() == 1 &&
-                                reference_planes_ && reference_planes_->image == reference &&
-                                reference_planes_->exposure_scale == exposures[0].scale &&
-                                reference_planes_->tone_mapper == mapper;
+    // The reference's upload and horizontal filters are kept where its key is the last one's and
+    // the planes still hold it at this exposure (ReferenceKey, in the header).
+    const bool keep_reference =
+        reference && key != kNoKey && exposures.size() == 1 && reference_planes_ && reference_planes_->key == key &&
+        reference_planes_->exposure_scale == exposures[0].scale && reference_planes_->tone_mapper == mapper;
     reference_planes_.reset(); // until this evaluation has run
     const std::size_t n = std::size_t(width_) * height_;
     auto* inputs = static_cast<std::byte*>(inputs_.mapped());
@@ -389,7 +281,8 @@ Result<DeviceFlip::Evaluation> DeviceFlip::evaluate(const Image* reference, cons
         compute_barrier(cb, VK_ACCESS_SHADER_WRITE_BIT, compute, VK_ACCESS_HOST_READ_BIT, VK_PIPELINE_STAGE_HOST_BIT);
     });
     if (!ran) return std::unexpected(ran.error());
-    if (exposures.size() == 1 && reference) reference_planes_ = ReferencePlanes{reference, exposures[0].scale, mapper};
+    if (exposures.size() == 1 && reference && key != kNoKey)
+        reference_planes_ = ReferencePlanes{key, exposures[0].scale, mapper};
 
     Evaluation out;
     const auto* rows = static_cast<const float*>(row_sums_.mapped());
@@ -413,39 +306,39 @@ Result<double> DeviceFlip::mean(const Image& reference, const Image& test) {
     return evaluated->mean;
 }
 
-Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map, Reference kept) {
-    if (auto ok = check_pair(&reference, &test, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
+Result<FlipMap> DeviceFlip::ldr(const Image& reference, const Image& test, bool read_map, ReferenceKey key) {
+    return ldr(&reference, &test, read_map, key);
+}
+
+Result<FlipMap> DeviceFlip::ldr(const Image* reference, const Image* test, bool read_map, ReferenceKey key) {
+    if (auto ok = check_pair(reference, test, check_ldr_image, key); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(&reference, &test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
+    auto e = evaluate(reference, test, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, key);
     if (!e) return std::unexpected(e.error());
     return FlipMap{e->mean, std::move(e->error)};
 }
 
 Result<FlipTerms> DeviceFlip::terms(const Image& reference, const Image& test) {
-    if (auto ok = check_pair(&reference, &test, check_ldr_image, Reference::new_one); !ok)
-        return std::unexpected(ok.error());
+    if (auto ok = check_pair(&reference, &test, check_ldr_image, kNoKey); !ok) return std::unexpected(ok.error());
     const Exposure one[1];
-    auto e = evaluate(&reference, &test, std::nullopt, one, ReadBack::terms, Reference::new_one);
+    auto e = evaluate(&reference, &test, std::nullopt, one, ReadBack::terms, kNoKey);
     if (!e) return std::unexpected(e.error());
     return FlipTerms{std::move(e->color), std::move(e->feature), std::move(e->error)};
 }
 
 Result<HdrFlipMaps> DeviceFlip::hdr(const Image& reference, const Image& test, const ExposureOptions& options,
-                                    bool read_maps, Reference kept) {
-    if (auto ok = check_pair(&reference, &test, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
-    auto range = exposure_range(reference, options, &test);
-    if (!range) return std::unexpected(range.error());
-    return hdr_over(&reference, &test, *range, options.tone_mapper, read_maps, kept);
+                                    bool read_maps, ReferenceKey key) {
+    return hdr(&reference, &test, options, read_maps, key);
 }
 
 Result<HdrFlipMaps> DeviceFlip::hdr_over(const Image* reference, const Image* test, const ExposureRange& range,
-                                         ToneMapper tone_mapper, bool read_maps, Reference kept) {
+                                         ToneMapper tone_mapper, bool read_maps, ReferenceKey key) {
     std::vector<Exposure> exposures(std::size_t(range.count));
     for (int i = 0; i < range.count; ++i)
         exposures[std::size_t(i)] = {std::pow(2.0f, range.exposure(i)),
                                      range.count == 1 ? 0.0f : float(i) / float(range.count - 1)};
     auto e = evaluate(reference, test, tone_mapper, exposures,
-                      read_maps ? ReadBack::error_and_exposure : ReadBack::mean, kept);
+                      read_maps ? ReadBack::error_and_exposure : ReadBack::mean, key);
     if (!e) return std::unexpected(e.error());
     HdrFlipMaps out;
     out.range = range;
@@ -501,37 +394,17 @@ Image DeviceFlip::loaded(Input input) const {
     return image;
 }
 
-Result<void> DeviceFlip::keep_slots(std::size_t total) {
-    if (kept_.size() >= total) return {};
-    const std::size_t count = total - kept_.size();
-    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16;
-    for (std::size_t i = 0; i < count; ++i) {
-        auto buffer =
-            DeviceBuffer::create(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 DeviceBuffer::Memory::device, "a kept image of FLIP's");
-        if (!buffer) return std::unexpected(buffer.error());
-        kept_.push_back(std::move(*buffer));
-    }
-    auto cleared = commands_->run([&](VkCommandBuffer cb) {
-        for (std::size_t i = kept_.size() - count; i < kept_.size(); ++i)
-            vkCmdFillBuffer(cb, kept_[i].buffer(), 0, VK_WHOLE_SIZE, 0);
-        compute_barrier(cb, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                        VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    });
-    if (!cleared) return std::unexpected(cleared.error());
-    return {};
-}
+Result<void> DeviceFlip::store(Input input, const DeviceBuffer& buffer) { return copy(input, buffer, true); }
 
-Result<void> DeviceFlip::keep(Input input, std::size_t slot) { return copy_kept(input, slot, true); }
-
-Result<void> DeviceFlip::load_kept(std::size_t slot, Input input) {
+Result<void> DeviceFlip::restore(const DeviceBuffer& buffer, Input input) {
     if (input == Input::reference) reference_planes_.reset();
-    return copy_kept(input, slot, false);
+    return copy(input, buffer, false);
 }
 
-Result<void> DeviceFlip::copy_kept(Input input, std::size_t slot, bool into_slot) {
-    if (slot >= kept_.size()) return fail(fmt::format("internal error: kept slot {} of {}", slot, kept_.size()));
-    const VkDeviceSize bytes = VkDeviceSize(width_) * height_ * 16, half = bytes * VkDeviceSize(input == Input::test);
+Result<void> DeviceFlip::copy(Input input, const DeviceBuffer& buffer, bool into_buffer) {
+    const VkDeviceSize bytes = image_bytes(), half = bytes * VkDeviceSize(input == Input::test);
+    if (buffer.size() < bytes)
+        return fail(fmt::format("internal error: a buffer of {} bytes for an image of {}", buffer.size(), bytes));
     auto copied = commands_->run([&](VkCommandBuffer cb) {
         // After every pass, load and host write before it; before every pass and host read after it.
         const VkAccessFlags all = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT |
@@ -539,32 +412,26 @@ Result<void> DeviceFlip::copy_kept(Input input, std::size_t slot, bool into_slot
         const VkPipelineStageFlags stages =
             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
         compute_barrier(cb, all, stages, all, stages);
-        const VkBufferCopy region{into_slot ? half : 0, into_slot ? 0 : half, bytes};
-        vkCmdCopyBuffer(cb, into_slot ? inputs_.buffer() : kept_[slot].buffer(),
-                        into_slot ? kept_[slot].buffer() : inputs_.buffer(), 1, &region);
+        const VkBufferCopy region{into_buffer ? half : 0, into_buffer ? 0 : half, bytes};
+        vkCmdCopyBuffer(cb, into_buffer ? inputs_.buffer() : buffer.buffer(),
+                        into_buffer ? buffer.buffer() : inputs_.buffer(), 1, &region);
         compute_barrier(cb, all, stages, all, stages);
     });
     if (!copied) return std::unexpected(copied.error());
     return {};
 }
 
-Result<FlipMap> DeviceFlip::ldr_loaded(const Image* reference, bool read_map, Reference kept) {
-    if (auto ok = check_pair(reference, nullptr, check_ldr_image, kept); !ok) return std::unexpected(ok.error());
-    const Exposure one[1];
-    auto e = evaluate(reference, nullptr, std::nullopt, one, read_map ? ReadBack::error : ReadBack::mean, kept);
-    if (!e) return std::unexpected(e.error());
-    return FlipMap{e->mean, std::move(e->error)};
-}
-
-Result<HdrFlipMaps> DeviceFlip::hdr_loaded(const Image* reference, const ExposureOptions& options, bool read_maps,
-                                           Reference kept) {
-    if (auto ok = check_pair(reference, nullptr, check_hdr_image, kept); !ok) return std::unexpected(ok.error());
-    const LuminancesSource of_reference = [&]() -> Result<Luminances> {
-        return reference ? luminances_of(*reference) : luminances(Input::reference);
+Result<HdrFlipMaps> DeviceFlip::hdr(const Image* reference, const Image* test, const ExposureOptions& options,
+                                    bool read_maps, ReferenceKey key) {
+    if (auto ok = check_pair(reference, test, check_hdr_image, key); !ok) return std::unexpected(ok.error());
+    // Each image's luminances where it is: on the host, or (loaded) on the device.
+    auto of = [&](const Image* image, Input input) -> LuminancesSource {
+        return
+            [this, image, input]() -> Result<Luminances> { return image ? luminances_of(*image) : luminances(input); };
     };
-    auto range = exposure_range(options, of_reference, [&] { return luminances(Input::test); });
+    auto range = exposure_range(options, of(reference, Input::reference), of(test, Input::test));
     if (!range) return std::unexpected(range.error());
-    return hdr_over(reference, nullptr, *range, options.tone_mapper, read_maps, kept);
+    return hdr_over(reference, test, *range, options.tone_mapper, read_maps, key);
 }
 
 Result<Luminances> DeviceFlip::luminances(Input input) {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "core/result.h"
+#include "flip/device_flip_passes.h"
 #include "flip/flip.h"
 #include "flip/hdr_flip.h"
 #include "images/image.h"
@@ -58,27 +59,30 @@ public:
     // allocating anything, so a command can refuse a size before its work.
     static Result<void> check_limits(const Context& context, std::uint32_t width, std::uint32_t height);
 
-    // Whether the reference of an evaluation is the one of the call before: the same Image object,
-    // unchanged since, which only the caller knows (FLIP never reads back what it uploaded, which
-    // on a GPU lies in uncached memory). Its upload, its range check and its half of the horizontal
-    // pass are then kept from the evaluation before, when that one left them: one exposure (LDR-FLIP, or
-    // HDR-FLIP over a range of one), the same exposure and tone mapper, and no evaluation of
-    // another reference in between. Every variant's ghosting on a frame is measured against the
-    // same reference (temporal/taa_measure.h). The figures are the same bits either way.
-    enum class Reference { new_one, unchanged };
+    // A name the caller gives a reference's pixels, for the work an evaluation can keep: a nonzero
+    // key promises that every image given with it holds the same pixels (temporal/output_store.h
+    // gives each image it holds a key of its own). FLIP never reads back what it uploaded, which on
+    // a GPU lies in uncached memory, so only the caller can vouch for that. Where an evaluation's
+    // reference has the key of the one before, its upload, its range check and its half of the
+    // horizontal pass are kept from that one, when that one left them: one exposure (LDR-FLIP, or
+    // HDR-FLIP over a range of one), the same exposure and tone mapper, and no evaluation or load
+    // of another reference in between. Every variant's ghosting on a frame is measured against
+    // the same reference (temporal/taa_measure.h). The figures are the same bits either way.
+    using ReferenceKey = std::uint64_t;
+    static constexpr ReferenceKey kNoKey = 0;
 
     // LDR-FLIP as LdrFlip computes it: linear RGB in [0, 1], both of the object's size; anything
     // else is an error naming the image, the pixel and the value, as LdrFlip's.
     Result<double> mean(const Image& reference, const Image& test);
     // The mean and, with `read_map`, the error map (LdrFlip::error_map's): the one map the mean
     // is taken of, read back instead of computed again.
-    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map, Reference kept = Reference::new_one);
+    Result<FlipMap> ldr(const Image& reference, const Image& test, bool read_map, ReferenceKey key = kNoKey);
     Result<FlipTerms> terms(const Image& reference, const Image& test);
 
     // HDR-FLIP as HdrFlip::maps computes it (inputs and range checked the same way). With
     // `read_maps` false only `range` and `mean` are filled: nothing per pixel comes back.
     Result<HdrFlipMaps> hdr(const Image& reference, const Image& test, const ExposureOptions& options,
-                            bool read_maps = true, Reference kept = Reference::new_one);
+                            bool read_maps = true, ReferenceKey key = kNoKey);
 
     // ---- A pair loaded on the device: a TAA resolve's outputs measured where they are ----
 
@@ -99,19 +103,20 @@ public:
     Result<std::optional<Outside>> load(Input input, VkImageView source, bool hdr, float rounding);
     // The loaded image, read from the inputs (for what the host shows of a frame).
     Image loaded(Input input) const;
-    // At least `count` slots, each a copy of a loaded image kept on the device (a resolve's
-    // previous output, for shimmer); new ones are cleared to zero.
-    Result<void> keep_slots(std::size_t count);
-    // Copies the loaded `input` into slot `slot`, or slot `slot` into `input`.
-    Result<void> keep(Input input, std::size_t slot);
-    Result<void> load_kept(std::size_t slot, Input input);
-    // LDR-FLIP with the test as loaded and the reference uploaded from `reference` or, where null,
-    // as loaded; what was loaded is not checked again.
-    Result<FlipMap> ldr_loaded(const Image* reference, bool read_map, Reference kept = Reference::new_one);
+    // Bytes of one image of the pair, as store() and restore() copy it.
+    std::uint64_t image_bytes() const { return std::uint64_t(width_) * height_ * 16; }
+    // Copies the loaded `input` into `buffer` (image_bytes() or more, a transfer destination), or
+    // `buffer` into `input`: an image the caller keeps on the device to measure again (a resolve's
+    // previous output, temporal/output_store.h).
+    Result<void> store(Input input, const DeviceBuffer& buffer);
+    Result<void> restore(const DeviceBuffer& buffer, Input input);
+    // LDR-FLIP of `test` against `reference`, each uploaded from the host or, where null, as loaded
+    // on the device (not checked again: load() checked it).
+    Result<FlipMap> ldr(const Image* reference, const Image* test, bool read_map, ReferenceKey key = kNoKey);
     // HDR-FLIP likewise. The exposure range's luminances of an image that is on the device alone
-    // are found there (luminances()); those of `reference` on the host, where it came from.
-    Result<HdrFlipMaps> hdr_loaded(const Image* reference, const ExposureOptions& options, bool read_maps,
-                                   Reference kept = Reference::new_one);
+    // are found there (luminances()); those of one from the host, where it came from.
+    Result<HdrFlipMaps> hdr(const Image* reference, const Image* test, const ExposureOptions& options, bool read_maps,
+                            ReferenceKey key = kNoKey);
     // luminances_of (flip/hdr_flip.h) of the image in `input` (uploaded by the last evaluation, or
     // loaded), to the bit: its largest luminance and counts of its luminances' bits come back (256
     // KiB, two to four times), not the image.
@@ -129,38 +134,38 @@ private:
         std::vector<float> error, exposure, color, feature; // filled when asked for
     };
     enum class ReadBack { mean, error, error_and_exposure, terms };
-    // The copy keep() (`into_slot`) and load_kept() make, between `input` and slot `slot`.
-    Result<void> copy_kept(Input input, std::size_t slot, bool into_slot);
+    // The copy store() (`into_buffer`) and restore() make, between `input` and `buffer`.
+    Result<void> copy(Input input, const DeviceBuffer& buffer, bool into_buffer);
     // HDR-FLIP over `range`, the images as evaluate() takes them.
     Result<HdrFlipMaps> hdr_over(const Image* reference, const Image* test, const ExposureRange& range,
-                                 ToneMapper tone_mapper, bool read_maps, Reference kept);
+                                 ToneMapper tone_mapper, bool read_maps, ReferenceKey key);
     // Null images are as loaded on the device.
     Result<Evaluation> evaluate(const Image* reference, const Image* test, std::optional<ToneMapper> tone_mapper,
-                                std::span<const Exposure> exposures, ReadBack read_back, Reference kept);
+                                std::span<const Exposure> exposures, ReadBack read_back, ReferenceKey key);
     // Both images of the object's size, their values accepted by `check_values` (the reference
     // once: not again where it is kept; a null image is as loaded on the device, checked then).
     Result<void> check_pair(const Image* reference, const Image* test,
-                            Result<void> (*check_values)(const Image&, const std::string&), Reference kept) const;
+                            Result<void> (*check_values)(const Image&, const std::string&), ReferenceKey key) const;
 
     const Context& context_;
     double ppd_;
     std::uint32_t width_, height_;
-    enum { kHorizontal, kVertical, kRowSums, kLoad, kLuminance, kPasses }; // the template's FLIP_PASS values
+    static constexpr int kHorizontal = kFlipHorizontal, kVertical = kFlipVertical, kRowSums = kFlipRowSums,
+                         kLoad = kFlipLoad, kLuminance = kFlipLuminance, kPasses = kFlipPasses;
     std::array<std::unique_ptr<RunnableVariant>, kPasses> shaders_;
     std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
     std::array<VkDescriptorSet, kPasses> sets_{};
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
-    // Pixels per invocation of the horizontal and the vertical pass (run_length in the .cpp).
+    // Pixels per invocation of the horizontal and the vertical pass (flip_run_length).
     std::array<std::uint32_t, 2> runs_{1, 1};
     DeviceBuffer inputs_, maps_, row_sums_, outside_, histogram_;
-    std::vector<DeviceBuffer> kept_;            // keep_slots()'s
     VkSampler sampler_ = VK_NULL_HANDLE;        // load()'s source, fetched texel by texel
     VkBufferView inputs_view_ = VK_NULL_HANDLE; // the inputs as the texel buffer the passes fetch from
     DeviceImage horizontal_;
     // What the reference's planes in horizontal_ hold after an evaluation of one exposure: which
-    // reference (by address) at which exposure and tone mapper; nullopt after any other.
+    // reference (by its key) at which exposure and tone mapper; nullopt after any other.
     struct ReferencePlanes {
-        const Image* image = nullptr;
+        ReferenceKey key = kNoKey;
         float exposure_scale = 1;
         std::uint32_t tone_mapper = 0;
     };

@@ -13,7 +13,7 @@ namespace kdop {
 // ghosting-<scene>.png
 std::string ghosting_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
 
-Result<std::vector<std::vector<float>>> ghosting_maps(const PictureFlip& flip, const Image& truth,
+Result<std::vector<std::vector<float>>> ghosting_maps(PictureFlip& flip, const Image& truth,
                                                       const std::vector<std::shared_ptr<const Image>>& frames) {
     std::vector<std::vector<float>> maps;
     for (const auto& frame : frames) {
@@ -34,7 +34,7 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown,
     auto add_frame = [&](const std::string& stem, const std::shared_ptr<const Image>& image) {
         outputs.add_image(fmt::format("frames/{}/{}.exr", shown.source, stem), image);
         outputs.add_image(fmt::format("frames/{}/{}.png", shown.source, stem),
-                          flip.range == ColorRange::ldr ? image : std::make_shared<const Image>(flip.shown(*image)));
+                          flip.range() == ColorRange::ldr ? image : std::make_shared<const Image>(flip.shown(*image)));
     };
     std::vector<Image> maps, looks;
     maps.reserve(trails.size()); // the picture points into both
@@ -55,7 +55,7 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown,
     const Image bar = flip::magma_image(ramp, std::uint32_t(ramp.size()), 1);
     const std::string caption =
         fmt::format("{} against the {}{}", flip.name(), truth_name == "aliased" ? "aliased frame" : truth_name,
-                    flip.range == ColorRange::hdr ? " (frames tone mapped)" : "");
+                    flip.range() == ColorRange::hdr ? " (frames tone mapped)" : "");
     const ColorScale scale{&bar, caption};
     auto picture = trail_picture(labeled, shown.crop, 4, &scale);
     if (!picture) return std::unexpected(picture.error());

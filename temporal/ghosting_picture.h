@@ -34,7 +34,7 @@ struct PictureFrame {
 // Each of `frames`' FLIP map against `truth` (LDR- or HDR-FLIP, as `flip` measures), the truth's
 // work kept from one frame to the next: what the picture below shows, and what a sequence's crop
 // is chosen by.
-Result<std::vector<std::vector<float>>> ghosting_maps(const PictureFlip& flip, const Image& truth,
+Result<std::vector<std::vector<float>>> ghosting_maps(PictureFlip& flip, const Image& truth,
                                                       const std::vector<std::shared_ptr<const Image>>& frames);
 
 // What a scene or sequence shows of its ghosting, added to `outputs`: the truth (the aliased frame,

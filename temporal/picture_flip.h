@@ -6,24 +6,30 @@
 #include "core/result.h"
 #include "flip/hdr_flip.h"
 #include "sequence/sequence.h"
-#include "temporal/taa_measure.h"
+#include "temporal/flip_evaluator.h"
 
 #include <string>
 #include <vector>
 
 namespace kdop {
 
-struct PictureFlip {
-    FlipMean flip; // the figures' (TaaEvaluation::flip_mean), whose evaluator must outlive this
-    ColorRange range = ColorRange::ldr;
-    ExposureOptions exposure; // HDR-FLIP's, for hdr, as `flip` was made with
+class PictureFlip {
+public:
+    // `flip` is the figures' (TaaEvaluation::flip_evaluator), done measuring, and must outlive this.
+    PictureFlip(FlipEvaluator& flip, ColorRange range) : flip_(&flip), range_(range) {}
 
     // Each pixel's FLIP of `test` against `reference`, as the figures measure it. `same_reference`:
-    // `reference` is the Image of the call before, unchanged (FlipMean).
-    Result<std::vector<float>> map(const Image& reference, const Image& test, bool same_reference = false) const;
+    // `reference` holds the pixels of the call before's, whose work the device keeps.
+    Result<std::vector<float>> map(const Image& reference, const Image& test, bool same_reference = false);
     // `image` as a picture shows it: LDR as it is, HDR tone mapped.
     Image shown(const Image& image) const;
-    const char* name() const { return range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"; }
+    ColorRange range() const { return range_; }
+    const char* name() const { return range_ == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"; }
+
+private:
+    FlipEvaluator* flip_;
+    ColorRange range_;
+    FrameHandle reference_; // the last map's, in the evaluator's store
 };
 
 } // namespace kdop

@@ -23,6 +23,7 @@ Result<TaaEvaluation> TaaEvaluation::create(const Context& context, std::vector<
 
 Result<void> TaaEvaluation::set_variants(std::vector<VariantSpec> specs) {
     specs_ = std::move(specs);
+    resolve_.reset();
     for (auto& built : shaders_) built.clear();
     // Every variant's resolve is built now, so a shader that does not compile fails before any frame.
     if (!specs_.empty())
@@ -48,25 +49,31 @@ Result<const Variant*> TaaEvaluation::shader(std::size_t v, bool nearer_larger) 
     return &built[v]->variant();
 }
 
-Result<FlipMean> TaaEvaluation::flip_mean(std::uint32_t width, std::uint32_t height) {
-    if (cpu_flip_) return cpu_flip_mean(*cpu_flip_, options_.exposure);
-    std::unique_ptr<DeviceFlip>& device = device_flips_[{width, height}];
-    if (!device) {
-        auto created = DeviceFlip::create(*context_, options_.ppd, width, height);
-        if (!created) return std::unexpected(created.error());
-        device = std::move(*created);
+Result<FlipEvaluator*> TaaEvaluation::flip_evaluator(std::uint32_t width, std::uint32_t height) {
+    std::unique_ptr<FlipEvaluator>& evaluator = evaluators_[{width, height}];
+    if (evaluator) return evaluator.get();
+    if (cpu_flip_) {
+        evaluator = cpu_flip_evaluator(*cpu_flip_, options_.exposure);
+        return evaluator.get();
     }
-    FlipMean mean = device_flip_mean(*device, options_.exposure);
-    // On a CPU device (lavapipe) the outputs are read back and fed to FLIP from the host: measured
-    // where they are (DeviceFlip::load), a 1920x1080 run of 12 variants took as long (1.02x) and
-    // held one more frame per variant (+380 MiB), since the device's memory is the host's and every
-    // copy the CPU's either way (docs/results.md, "Outputs measured where they are").
-    if (context_->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) mean.device = nullptr;
-    return mean;
+    auto created = DeviceFlip::create(*context_, options_.ppd, width, height);
+    if (!created) return std::unexpected(created.error());
+    DeviceFlip& device = *(device_flips_[{width, height}] = std::move(*created));
+    // On a CPU device (lavapipe) the outputs are read back and fed to FLIP from the host: as fast
+    // as measuring them where they are, with one frame a variant less held (docs/results.md,
+    // "Outputs measured where they are").
+    const bool cpu_device = context_->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    evaluator =
+        device_flip_evaluator(device, options_.exposure, cpu_device ? OutputPlacement::host : OutputPlacement::device);
+    return evaluator.get();
 }
 
-Result<std::unique_ptr<TaaResolve>> TaaEvaluation::resolve(std::uint32_t width, std::uint32_t height,
-                                                           bool nearer_larger) {
+Result<TaaResolve*> TaaEvaluation::resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger) {
+    // The last one is kept: a scene's two sequences go through one resolve, each starting its
+    // histories afresh. Only one is held, so that sources of other sizes do not add up.
+    const ResolveKey key{width, height, nearer_larger};
+    if (resolve_ && resolve_key_ == key) return resolve_.get();
+    resolve_.reset();
     std::vector<const Variant*> shaders;
     std::vector<std::string> names;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
@@ -75,71 +82,82 @@ Result<std::unique_ptr<TaaResolve>> TaaEvaluation::resolve(std::uint32_t width, 
         shaders.push_back(*shader);
         names.push_back(variant_name(specs_[v]));
     }
-    return TaaResolve::create(*context_, shaders, width, height, options_.resolve, std::move(names));
+    auto made = TaaResolve::create(*context_, shaders, width, height, options_.resolve, std::move(names));
+    if (!made) return std::unexpected(made.error());
+    resolve_ = std::move(*made);
+    resolve_key_ = key;
+    return resolve_.get();
 }
 
 std::size_t TaaEvaluation::frames(const TaaScene&) const {
     return 2 * std::size_t(options_.schedule.warmup + options_.schedule.frames); // its two sequences
 }
 
-Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene, const EvaluationObserver& observer) {
-    auto mean = flip_mean(scene.width(), scene.height());
-    if (!mean) return fail(fmt::format("{}: {}", scene.name(), mean.error().message));
-    auto resolve = this->resolve(scene.width(), scene.height(), false);
-    if (!resolve) return std::unexpected(resolve.error());
-    auto on_frame = [&] {
-        if (observer.frame) observer.frame(scene.name());
-    };
-    auto measured = measure_scene_all(**resolve, scene, options_.schedule, *mean, observer.output, on_frame,
-                                      observer.measured, observer.maps);
-    if (!measured) return fail(fmt::format("{}: {}", scene.name(), measured.error().message));
-    std::vector<EvaluationRow> rows;
-    for (std::size_t v = 0; v < specs_.size(); ++v) {
-        TaaMeasurement& m = (*measured)[v];
-        rows.push_back({v,
-                        scene.name(),
-                        m.shimmer,
-                        m.ghosting,
-                        m.against_reference,
-                        ColorRange::ldr,
-                        std::make_shared<const Image>(std::move(m.trail)),
-                        {},
-                        std::move(m.per_frame)});
-    }
-    return rows;
-}
-
-Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& sequence,
+Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const FrameSource& source, bool nearer_larger,
                                                           const EvaluationObserver& observer) {
-    auto mean = flip_mean(sequence.width(), sequence.height());
-    if (!mean) return fail(fmt::format("{}: {}", sequence.name(), mean.error().message));
-    auto resolve = this->resolve(sequence.width(), sequence.height(), sequence.sequence().depth_nearer_larger);
+    auto flip = flip_evaluator(source.width(), source.height());
+    if (!flip) return fail(fmt::format("{}: {}", source.name(), flip.error().message));
+    auto resolve = this->resolve(source.width(), source.height(), nearer_larger);
     if (!resolve) return std::unexpected(resolve.error());
     ShaderOutputObserver output;
     if (observer.output)
         output = [&](std::size_t v, std::size_t index, const Image& image) {
-            return observer.output(sequence.name(), v, index, image);
+            return observer.output(source.name(), v, index, image);
         };
-    auto on_frame = [&] {
-        if (observer.frame) observer.frame(sequence.name());
-    };
-    // A resolve that does not dilate motion never reads depth: its files are not decoded.
-    const SequenceFrames without_depth = sequence.without_depth();
-    const SequenceFrames& source = options_.resolve.dilate_motion ? sequence : without_depth;
-    auto measured = measure_sequence_all(**resolve, source, options_.schedule.warmup, *mean, output, on_frame,
+    std::function<void()> on_frame;
+    if (observer.frame) on_frame = [&] { observer.frame(observer.source.empty() ? source.name() : observer.source); };
+    auto measured = measure_sequence_all(**resolve, source, options_.schedule.warmup, **flip, output, on_frame,
                                          observer.measured, observer.maps);
-    if (!measured) return fail(fmt::format("{}: {}", sequence.name(), measured.error().message));
+    if (!measured) return fail(fmt::format("{}: {}", source.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them
     for (std::size_t v = 0; v < specs_.size(); ++v) {
         SequenceMeasurement& m = (*measured)[v];
-        EvaluationRow row{v,  sequence.name(),       m.shimmer, m.ghosting, m.against_reference, m.range, nullptr,
+        EvaluationRow row{v,  source.name(),         m.shimmer, m.ghosting, m.against_reference, m.range, nullptr,
                           {}, std::move(m.per_frame)};
         for (const std::string& note : m.notes)
             if (noted.insert(note).second) row.notes.push_back(note);
         rows.push_back(std::move(row));
     }
     return rows;
+}
+
+Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene, const EvaluationObserver& observer) {
+    // A scene is two sequences, measured as any other: shimmer on the still one, ghosting on the
+    // moving one, whose frame scene.trail_frame(schedule) is the scene's trail.
+    const std::uint32_t shown = scene.trail_frame(options_.schedule);
+    std::vector<std::shared_ptr<const Image>> trails(specs_.size());
+    EvaluationObserver each = observer;
+    each.source = scene.name(); // progress counts the scene's frames
+    auto still = measure(*shimmer_frames(scene, options_.schedule), false, each);
+    if (!still) return std::unexpected(still.error());
+    each.output = [&](const std::string& sequence, std::size_t v, std::size_t index, const Image& output) {
+        if (index == shown) trails[v] = std::make_shared<const Image>(output);
+        return observer.output ? observer.output(sequence, v, index, output) : Result<void>{};
+    };
+    auto moving = measure(*ghosting_frames(scene, options_.schedule), false, each);
+    if (!moving) return std::unexpected(moving.error());
+    std::vector<EvaluationRow> rows;
+    for (std::size_t v = 0; v < specs_.size(); ++v) {
+        EvaluationRow row = std::move((*moving)[v]);
+        EvaluationRow& shimmer = (*still)[v];
+        row.source = scene.name();
+        row.shimmer = shimmer.shimmer;
+        row.range = ColorRange::ldr;
+        row.trail = trails[v] ? trails[v] : std::make_shared<const Image>();
+        row.per_frame.insert(row.per_frame.begin(), shimmer.per_frame.begin(), shimmer.per_frame.end());
+        row.notes.insert(row.notes.begin(), shimmer.notes.begin(), shimmer.notes.end());
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+
+Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& sequence,
+                                                          const EvaluationObserver& observer) {
+    // A resolve that does not dilate motion never reads depth: its files are not decoded.
+    const SequenceFrames without_depth = sequence.without_depth();
+    const SequenceFrames& source = options_.resolve.dilate_motion ? sequence : without_depth;
+    return measure(source, sequence.sequence().depth_nearer_larger, observer);
 }
 
 } // namespace kdop

@@ -11,6 +11,7 @@
 #include "runtime/context.h"
 #include "scenes/taa_scene.h"
 #include "sequence/frame_source.h"
+#include "temporal/flip_evaluator.h"
 #include "temporal/resolve_options.h"
 #include "temporal/taa_measure.h"
 #include "temporal/taa_resolve.h"
@@ -21,6 +22,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace kdop {
@@ -51,12 +53,15 @@ struct EvaluationObserver {
     std::function<Result<void>(const std::string& sequence, std::size_t variant, std::size_t index,
                                const Image& output)>
         output;
-    // After each frame of a source, every variant resolved and measured on it, naming the source.
+    // After each frame of a source, every variant resolved and measured on it, naming the source
+    // (a scene's name for both of its sequences).
     std::function<void(const std::string& source)> frame;
     // After each measured frame, every variant's figures and output on it (a scene's sequences are
     // <scene>-shimmer and <scene>-ghosting), and with `maps` their FLIP maps (MeasuredFrame::maps).
     MeasuredFrameObserver measured;
     bool maps = false;
+    // What frame() names, where not the frame source's own name (set by measure() for a scene).
+    std::string source;
 };
 
 class TaaEvaluation {
@@ -81,22 +86,32 @@ public:
     std::size_t frames(const TaaScene& scene) const;
 
     // The FLIP the figures of outputs of one size are measured with (the device's, one evaluator per
-    // size made when first needed, or with --cpu-flip the CPU's): what the pictures show too.
-    Result<FlipMean> flip_mean(std::uint32_t width, std::uint32_t height);
+    // size made when first needed, or with --cpu-flip the CPU's): what the pictures show too. Valid
+    // while the evaluation lives.
+    Result<FlipEvaluator*> flip_evaluator(std::uint32_t width, std::uint32_t height);
 
 private:
     TaaEvaluation(const Context& context, const EvaluationOptions& options);
+    // Every variant on one frame source: the one path both measure()s take. `nearer_larger`: the
+    // source's depth convention (only --dilate-motion reads depth).
+    Result<std::vector<EvaluationRow>> measure(const FrameSource& source, bool nearer_larger,
+                                               const EvaluationObserver& observer);
     // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth).
     Result<const Variant*> shader(std::size_t v, bool nearer_larger);
     // One resolve of every variant's shader, for frames of this size and depth convention.
-    Result<std::unique_ptr<TaaResolve>> resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger);
+    Result<TaaResolve*> resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger);
 
     const Context* context_;
     std::vector<VariantSpec> specs_;
     EvaluationOptions options_;
-    std::vector<std::unique_ptr<RunnableVariant>> shaders_[2]; // by depth convention, built when first needed
+    std::vector<std::unique_ptr<RunnableVariant>> shaders_[2];         // by depth convention, built when first needed
+    using ResolveKey = std::tuple<std::uint32_t, std::uint32_t, bool>; // width, height, nearer_larger
+    std::unique_ptr<TaaResolve> resolve_;                              // the last resolve(), for its key
+    ResolveKey resolve_key_;
     std::unique_ptr<HdrFlip> cpu_flip_;
+    // By frame size: the device's FLIP, and the evaluator over it (or over cpu_flip_).
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<DeviceFlip>> device_flips_;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<FlipEvaluator>> evaluators_;
 };
 
 } // namespace kdop

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <span>
 
 namespace kdop {
 
@@ -58,37 +59,6 @@ FigureSpread ghosting_spread(const std::vector<FrameFigures>& figures) {
 }
 FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures) {
     return spread(figures, &FrameFigures::shimmer);
-}
-
-FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures) {
-    return FlipMean{[&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
-                                       bool) -> Result<FlipFigure> {
-        if (range == ColorRange::ldr) { // LdrFlip::mean is the mean_error of this map
-            auto error = flip.ldr().error_map(reference, test);
-            if (!error) return std::unexpected(error.error());
-            return FlipFigure{mean_error(*error), {}, map ? std::move(*error) : std::vector<float>{}};
-        }
-        auto maps = flip.maps(reference, test, exposures);
-        if (!maps) return std::unexpected(maps.error());
-        return FlipFigure{maps->mean, maps->range.note, map ? std::move(maps->error) : std::vector<float>{}};
-    }};
-}
-
-FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures) {
-    return FlipMean{[&flip, exposures](const Image& reference, const Image& test, ColorRange range, bool map,
-                                       bool same_reference) -> Result<FlipFigure> {
-                        const auto kept =
-                            same_reference ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one;
-                        if (range == ColorRange::ldr) {
-                            auto evaluated = flip.ldr(reference, test, map, kept);
-                            if (!evaluated) return std::unexpected(evaluated.error());
-                            return FlipFigure{evaluated->mean, {}, std::move(evaluated->error)};
-                        }
-                        auto maps = flip.hdr(reference, test, exposures, map, kept);
-                        if (!maps) return std::unexpected(maps.error());
-                        return FlipFigure{maps->mean, maps->range.note, std::move(maps->error)};
-                    },
-                    &flip, exposures};
 }
 
 Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip,
@@ -158,13 +128,11 @@ Result<void> check_range(const Image& image, ColorRange range, const std::string
 
 namespace {
 
-// One shader's measurement as the frames go by: its previous output, its sums and the notes it met.
-// Its outputs are Images on the host, or, measured on the device (`on_device`), what DeviceFlip
-// loaded there, with the previous one kept in the device's slot `slot`.
+// One shader's measurement as the frames go by: its sums and the notes it met. Its frames are
+// handles into the evaluator's store (temporal/output_store.h), wherever that keeps them.
 class Meter {
 public:
-    Meter(const FrameSource& source, const FlipMean& flip, bool on_device, std::size_t slot)
-        : flip_(&flip), on_device_(on_device), slot_(slot), roles_(source.roles()) {
+    Meter(const FrameSource& source, FlipEvaluator& flip) : flip_(&flip), roles_(source.roles()) {
         m_.against_reference = source.has_reference();
         m_.range = source.color_range();
         sequence_ = source.name();
@@ -176,50 +144,31 @@ public:
         ++m_.frames;
         map_.clear();
     }
-    // The frame's output `current` (already within range; on the device, null: the one loaded
-    // there) against `truth`; with `map`, the map of the figure maps_show_ghosting names is kept
-    // (take_map()). `same_truth`: `truth` is the reference of the FLIP call before, unchanged
-    // (FlipMean).
-    Result<void> ghosting(const Image& truth, const Image* current, const std::string& label, bool map,
-                          bool same_truth) {
+    // The frame's output against `truth`; with `map`, the map of the figure maps_show_ghosting
+    // names is kept (take_map()).
+    Result<void> ghosting(FrameHandle truth, FrameHandle output, const std::string& label, bool map) {
         if (!roles_.ghosting) return {};
         const bool keep_map = map && maps_show_ghosting(roles_);
         auto ghosting = figure(
             label, m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
-            keep_map, [&]() -> Result<FlipFigure> {
-                if (!on_device_) return (*flip_)(truth, *current, m_.range, keep_map, same_truth);
-                return loaded_figure(&truth, keep_map,
-                                     same_truth ? DeviceFlip::Reference::unchanged : DeviceFlip::Reference::new_one);
-            });
+            keep_map, truth, output);
         if (!ghosting) return std::unexpected(ghosting.error());
         ghosting_sum_ += *ghosting;
         m_.per_frame.back().ghosting = *ghosting;
         return {};
     }
-    // The same output against the one kept last (none where the frame starts a history).
-    Result<void> shimmer(const Image* current, bool starts_history, const std::string& label, bool map) {
+    // The same output against the one before (none where the frame starts a history).
+    Result<void> shimmer(FrameHandle previous, FrameHandle output, bool starts_history, const std::string& label,
+                         bool map) {
         if (!roles_.shimmer || starts_history) return {};
         const bool keep_map = map && !maps_show_ghosting(roles_);
-        auto shimmer = figure(label, "shimmer against the previous output", keep_map, [&]() -> Result<FlipFigure> {
-            if (!on_device_) return (*flip_)(previous_, *current, m_.range, keep_map, false);
-            if (auto ok = flip_->device->load_kept(slot_, DeviceFlip::Input::reference); !ok)
-                return std::unexpected(ok.error());
-            return loaded_figure(nullptr, keep_map, DeviceFlip::Reference::new_one);
-        });
+        auto shimmer = figure(label, "shimmer against the previous output", keep_map, previous, output);
         if (!shimmer) return std::unexpected(shimmer.error());
         shimmer_sum_ += *shimmer;
         ++shimmer_pairs_;
         m_.per_frame.back().shimmer = *shimmer;
         return {};
     }
-    // Keeps the frame's output as the next one's previous: `output`, or on the device the one loaded.
-    Result<void> keep(Image output) {
-        if (on_device_) return flip_->device->keep(DeviceFlip::Input::test, slot_);
-        previous_ = std::move(output);
-        return {};
-    }
-    // The output kept last on the host (the frame's, once kept).
-    const Image& output() const { return previous_; }
     const FrameFigures& last_figures() const { return m_.per_frame.back(); }
     // The map kept by the last measure() (empty where none was asked for or measured).
     std::vector<float> take_map() { return std::move(map_); }
@@ -240,22 +189,11 @@ public:
     }
 
 private:
-    // FLIP on the device of the output loaded there against `reference` (null: the one loaded).
-    Result<FlipFigure> loaded_figure(const Image* reference, bool keep_map, DeviceFlip::Reference kept) {
-        if (m_.range == ColorRange::hdr) {
-            auto hdr = flip_->device->hdr_loaded(reference, flip_->exposures, keep_map, kept);
-            if (!hdr) return std::unexpected(hdr.error());
-            return FlipFigure{hdr->mean, hdr->range.note, std::move(hdr->error)};
-        }
-        auto ldr = flip_->device->ldr_loaded(reference, keep_map, kept);
-        if (!ldr) return std::unexpected(ldr.error());
-        return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
-    }
-    // One figure of frame `label` as `evaluate` gives it, its error naming the frame and what was
-    // measured.
-    Result<double> figure(const std::string& label, const char* what, bool map,
-                          const std::function<Result<FlipFigure>()>& evaluate) {
-        auto figure = evaluate();
+    // One figure of frame `label`, `test` against `reference`, its error naming the frame and what
+    // was measured.
+    Result<double> figure(const std::string& label, const char* what, bool map, FrameHandle reference,
+                          FrameHandle test) {
+        auto figure = flip_->evaluate(reference, test, m_.range, map);
         if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
         if (!figure->note.empty()) {
             auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
@@ -269,23 +207,97 @@ private:
         std::string first_label;
         std::size_t more = 0;
     };
-    const FlipMean* flip_;
-    bool on_device_;
-    std::size_t slot_;
+    FlipEvaluator* flip_;
     SequenceRoles roles_;
     std::string sequence_;
     SequenceMeasurement m_;
-    Image previous_;
     std::vector<float> map_;
     double shimmer_sum_ = 0, ghosting_sum_ = 0;
     std::size_t shimmer_pairs_ = 0;
     std::map<std::string, Met> notes_; // by note
 };
 
+// Each frame of a source resolved by every shader: read (a frame ahead, on a worker, while the
+// device works) or drawn on the device, and checked once where it reaches the host, whatever the
+// number of shaders.
+class FrameReader {
+public:
+    FrameReader(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup)
+        : resolve_(resolve), source_(source), warmup_(warmup) {
+        if (source.reads_ahead())
+            ahead_.emplace(source.frame_count(), 1, [&source](std::size_t i) { return source.frame(i); });
+        // A source that draws on the device draws every frame straight into the resolve: motion and
+        // depth never come back, color and reference only for the frames measured.
+        on_device_ = ahead_ ? nullptr : source.device_frames();
+    }
+
+    // Frame `i` through every shader, its outputs read back with `read_outputs`; the frame as it
+    // reached the host (nullopt for a frame drawn on the device before the warm-up's end).
+    Result<std::optional<LoadedFrame>> resolve(std::size_t i, bool read_outputs, const std::string& label) {
+        const bool starts = source_.starts_history(i), measured = i >= warmup_;
+        if (on_device_) {
+            auto drawn = resolve_.advance_all(*on_device_, i, starts, read_outputs, measured);
+            if (!drawn) return fail(fmt::format("{}: {}", label, drawn.error().message));
+            if (!measured) return std::nullopt;
+            if (auto ok = check(*drawn, i, label); !ok) return std::unexpected(ok.error());
+            return std::move(*drawn);
+        }
+        auto read = ahead_ ? ahead_->take() : source_.frame(i);
+        if (!read) return std::unexpected(read.error());
+        if (auto ok = check(*read, i, label); !ok) return std::unexpected(ok.error());
+        if (auto ok = resolve_.advance_all(*read, starts, read_outputs); !ok)
+            return fail(fmt::format("{}: {}", label, ok.error().message));
+        return std::move(*read);
+    }
+
+private:
+    Result<void> check(const LoadedFrame& frame, std::size_t i, const std::string& label) const {
+        const ColorRange range = source_.color_range();
+        const bool against_reference = source_.has_reference();
+        if (auto ok = check_range(frame.color, range, label, "color"); !ok) return ok;
+        if (frame.reference.has_value() != against_reference)
+            return fail(fmt::format("{}: {} a reference, unlike the sequence's others; give every frame a "
+                                    "reference or none",
+                                    label, against_reference ? "has no" : "has"));
+        if (i >= warmup_ && against_reference) return check_range(*frame.reference, range, label, "reference");
+        return {};
+    }
+
+    TaaResolve& resolve_;
+    const FrameSource& source_;
+    std::uint32_t warmup_;
+    std::optional<Prefetch<Result<LoadedFrame>>> ahead_;
+    const DeviceFrames* on_device_ = nullptr;
+};
+
+// A measured frame, every shader done, as `on_measured` sees it.
+Result<void> observe(OutputStore& store, std::vector<Meter>& meters, std::span<const FrameHandle> outputs,
+                     FrameHandle truth, std::string_view sequence, std::size_t index, bool maps,
+                     const MeasuredFrameObserver& on_measured) {
+    std::vector<FrameFigures> figures;
+    std::vector<const Image*> shown_outputs;
+    std::vector<std::vector<float>> frame_maps;
+    for (std::size_t s = 0; s < meters.size(); ++s) {
+        figures.push_back(meters[s].last_figures());
+        auto image = store.image(outputs[s]);
+        if (!image) return std::unexpected(image.error());
+        shown_outputs.push_back(*image);
+        if (maps) frame_maps.push_back(meters[s].take_map());
+    }
+    auto shown_truth = store.image(truth);
+    if (!shown_truth) return std::unexpected(shown_truth.error());
+    return on_measured(MeasuredFrame{.sequence = sequence,
+                                     .index = index,
+                                     .figures = figures,
+                                     .outputs = shown_outputs,
+                                     .maps = frame_maps,
+                                     .truth = *shown_truth});
+}
+
 } // namespace
 
 Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
-                                                              std::uint32_t warmup, const FlipMean& flip,
+                                                              std::uint32_t warmup, FlipEvaluator& flip,
                                                               const ShaderOutputObserver& on_output,
                                                               const std::function<void()>& on_frame,
                                                               const MeasuredFrameObserver& on_measured, bool maps) {
@@ -295,134 +307,62 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             fmt::format("{}: {} frames, and a warmup of {} leaves none to measure", source.name(), count, warmup));
     const ColorRange range = source.color_range();
     const bool against_reference = source.has_reference();
-    // Measured on the device (the device's FLIP on the resolve's queue): each output is checked,
-    // moved onto the range and measured where the resolve leaves it, and comes back only for an
-    // observer; HDR-FLIP's exposure range comes from luminances found there.
-    DeviceFlip* device = flip.device && &flip.device->context() == &resolve.context() ? flip.device : nullptr;
-    if (device)
-        if (auto ok = device->keep_slots(resolve.size()); !ok) return std::unexpected(ok.error());
-    const bool observed = on_output || on_measured;
+    const std::size_t shaders = resolve.size();
+    // The frames FLIP compares, where the evaluator keeps them: slot 0 holds the frame's truth, and
+    // shader s's outputs alternate between slots 1 + 2s and 2 + 2s, the other one its previous.
+    OutputStore& store = flip.store();
+    auto output_slot = [](std::size_t s, std::size_t i) { return 1 + 2 * s + i % 2; };
     std::vector<Meter> meters;
-    for (std::size_t s = 0; s < resolve.size(); ++s) meters.emplace_back(source, flip, device != nullptr, s);
-    // Files are read (and decoded) on a worker a frame ahead, in order, while the device works.
-    std::optional<Prefetch<Result<LoadedFrame>>> ahead;
-    if (source.reads_ahead()) ahead.emplace(count, 1, [&source](std::size_t i) { return source.frame(i); });
-    // A source that draws on the device draws every frame straight into the resolve: motion and
-    // depth never come back, color and reference only for the frames measured.
-    const DeviceFrames* on_device = ahead ? nullptr : source.device_frames();
+    for (std::size_t s = 0; s < shaders; ++s) meters.emplace_back(source, flip);
+    std::vector<FrameHandle> previous(shaders);
+    auto each_shader = [&](auto step) -> Result<void> {
+        for (std::size_t s = 0; s < shaders; ++s)
+            if (auto ok = step(s); !ok) return fail(fmt::format("{}: {}", resolve.name(s), ok.error().message));
+        return {};
+    };
+    FrameReader reader(resolve, source, warmup);
     for (std::size_t i = 0; i < count; ++i) {
         const std::string label = source.frame_label(i);
-        // Outputs are checked from the frame before the first measured (its shimmer's previous)
-        // on, and come back to the host for it unless measured on the device.
-        const bool check_outputs = i + 1 >= warmup, read_outputs = check_outputs && !device;
-        // Each frame is drawn or read once, and checked once where it reaches the host, whatever the
-        // number of shaders.
-        auto check = [&](const LoadedFrame& frame) -> Result<void> {
-            if (auto ok = check_range(frame.color, range, label, "color"); !ok) return ok;
-            if (frame.reference.has_value() != against_reference)
-                return fail(fmt::format("{}: {} a reference, unlike the sequence's others; give every frame a "
-                                        "reference or none",
-                                        label, against_reference ? "has no" : "has"));
-            if (i >= warmup && against_reference) return check_range(*frame.reference, range, label, "reference");
-            return {};
-        };
-        std::optional<LoadedFrame> frame;
-        if (on_device) {
-            const bool measured = i >= warmup;
-            auto drawn = resolve.advance_all(*on_device, i, source.starts_history(i), read_outputs, measured);
-            if (!drawn) return fail(fmt::format("{}: {}", label, drawn.error().message));
-            if (measured) {
-                if (auto ok = check(*drawn); !ok) return std::unexpected(ok.error());
-                frame = std::move(*drawn);
-            }
-        } else {
-            auto read = ahead ? ahead->take() : source.frame(i);
-            if (!read) return std::unexpected(read.error());
-            if (auto ok = check(*read); !ok) return std::unexpected(ok.error());
-            if (auto ok = resolve.advance_all(*read, source.starts_history(i), read_outputs); !ok)
-                return fail(fmt::format("{}: {}", label, ok.error().message));
-            frame = std::move(*read);
-        }
+        // Outputs are checked from the frame before the first measured (its shimmer's previous) on.
+        const bool check_outputs = i + 1 >= warmup, measured = i >= warmup;
+        auto frame = reader.resolve(i, check_outputs && store.reads_back(), label);
+        if (!frame) return std::unexpected(frame.error());
         if (check_outputs) {
-            // Each shader's output is moved onto the range and measured, then kept as the next
-            // frame's "previous" (what the observer sees of the frame: the maps carry what it is
-            // compared against).
-            const bool measured = i >= warmup;
-            const bool map = maps && on_measured;
             // What ghosting is measured against, on a measured frame.
-            const Image* truth = !measured ? nullptr : against_reference ? &*frame->reference : &frame->color;
-            std::vector<Image> outputs(resolve.size());
-            auto each_shader = [&](auto step) -> Result<void> {
-                for (std::size_t s = 0; s < resolve.size(); ++s)
-                    if (auto ok = step(s); !ok) return fail(fmt::format("{}: {}", resolve.name(s), ok.error().message));
+            const FrameHandle truth = !measured           ? FrameHandle{}
+                                      : against_reference ? store.put(0, std::move(*(*frame)->reference))
+                                                          : store.put(0, std::move((*frame)->color));
+            std::vector<FrameHandle> outputs(shaders);
+            auto taken = each_shader([&](std::size_t s) -> Result<void> {
+                auto output = store.take_output(output_slot(s, i), resolve, s, range, label);
+                if (!output) return std::unexpected(output.error());
+                outputs[s] = *output;
                 return {};
-            };
-            // On the device each shader's output is loaded once and measured whole.
-            auto on_the_device = [&](std::size_t s) -> Result<void> {
-                auto view = resolve.output_on_device(s);
-                if (!view) return std::unexpected(view.error());
-                auto outside = device->load(DeviceFlip::Input::test, *view, range == ColorRange::hdr, kOutputRounding);
-                if (!outside) return std::unexpected(outside.error());
-                if (*outside) {
-                    const DeviceFlip::Outside& o = **outside;
-                    auto why = outside_range(o.value, range, label, o.x, o.y);
-                    return fail(why ? *why
-                                    : fmt::format("internal error: {}: pixel ({}, {}) is outside the range on the "
-                                                  "device, not on the host",
-                                                  label, o.x, o.y));
-                }
-                if (measured) {
-                    meters[s].begin(i);
-                    if (auto ok = meters[s].ghosting(*truth, nullptr, label, map, s > 0); !ok) return ok;
-                    if (auto ok = meters[s].shimmer(nullptr, source.starts_history(i), label, map); !ok) return ok;
-                    if (observed) outputs[s] = device->loaded(DeviceFlip::Input::test);
-                    if (on_output)
-                        if (auto ok = on_output(s, i, outputs[s]); !ok) return ok;
-                }
-                return meters[s].keep({});
-            };
-            if (device) {
-                if (auto ok = each_shader(on_the_device); !ok) return std::unexpected(ok.error());
-            } else {
-                // On the host, every shader's ghosting first: each is measured against the same truth,
-                // whose FLIP work the device keeps from one to the next.
+            });
+            if (!taken) return std::unexpected(taken.error());
+            if (measured) {
+                const bool map = maps && on_measured;
+                // Every shader's ghosting first: each is measured against the same truth, whose FLIP
+                // work the device keeps from one to the next.
                 auto ghosting = each_shader([&](std::size_t s) -> Result<void> {
-                    auto output = within_range(resolve.take_output(s), range, label);
-                    if (!output) return std::unexpected(output.error());
-                    outputs[s] = std::move(*output);
-                    if (!measured) return {};
                     meters[s].begin(i);
-                    return meters[s].ghosting(*truth, &outputs[s], label, map, s > 0);
+                    return meters[s].ghosting(truth, outputs[s], label, map);
                 });
                 if (!ghosting) return std::unexpected(ghosting.error());
                 auto shimmer = each_shader([&](std::size_t s) -> Result<void> {
-                    if (measured) {
-                        if (auto ok = meters[s].shimmer(&outputs[s], source.starts_history(i), label, map); !ok)
-                            return ok;
-                        if (on_output)
-                            if (auto ok = on_output(s, i, outputs[s]); !ok) return ok;
-                    }
-                    return meters[s].keep(std::move(outputs[s]));
+                    if (auto ok = meters[s].shimmer(previous[s], outputs[s], source.starts_history(i), label, map); !ok)
+                        return ok;
+                    if (!on_output) return {};
+                    auto image = store.image(outputs[s]);
+                    if (!image) return std::unexpected(image.error());
+                    return on_output(s, i, **image);
                 });
                 if (!shimmer) return std::unexpected(shimmer.error());
+                if (on_measured)
+                    if (auto ok = observe(store, meters, outputs, truth, source.name(), i, maps, on_measured); !ok)
+                        return fail(fmt::format("{}: {}", label, ok.error().message));
             }
-            if (on_measured && i >= warmup) {
-                std::vector<FrameFigures> figures;
-                std::vector<const Image*> shown_outputs;
-                std::vector<std::vector<float>> frame_maps;
-                for (std::size_t s = 0; s < resolve.size(); ++s) {
-                    figures.push_back(meters[s].last_figures());
-                    shown_outputs.push_back(device ? &outputs[s] : &meters[s].output());
-                    if (maps) frame_maps.push_back(meters[s].take_map());
-                }
-                const MeasuredFrame shown{.sequence = source.name(),
-                                          .index = i,
-                                          .figures = figures,
-                                          .outputs = shown_outputs,
-                                          .maps = frame_maps,
-                                          .truth = truth};
-                if (auto ok = on_measured(shown); !ok) return fail(fmt::format("{}: {}", label, ok.error().message));
-            }
+            previous = std::move(outputs);
         }
         // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
         if (i == warmup) test_hold_point("taa_pass");
@@ -434,7 +374,7 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
 }
 
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const FlipMean& flip, const OutputObserver& on_output,
+                                             FlipEvaluator& flip, const OutputObserver& on_output,
                                              const std::function<void()>& on_frame) {
     ShaderOutputObserver first;
     if (on_output)
@@ -447,7 +387,7 @@ Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSou
 }
 
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
-                                                      const TaaSchedule& schedule, const FlipMean& flip,
+                                                      const TaaSchedule& schedule, FlipEvaluator& flip,
                                                       const SceneShaderOutputObserver& on_output,
                                                       const std::function<void()>& on_frame,
                                                       const MeasuredFrameObserver& on_measured, bool maps) {
@@ -478,7 +418,7 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
 }
 
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
-                                     const FlipMean& flip, const SceneOutputObserver& on_output,
+                                     FlipEvaluator& flip, const SceneOutputObserver& on_output,
                                      const std::function<void()>& on_frame) {
     SceneShaderOutputObserver first;
     if (on_output)

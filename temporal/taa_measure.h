@@ -13,11 +13,11 @@
 #pragma once
 
 #include "core/result.h"
-#include "flip/device_flip.h"
 #include "flip/hdr_flip.h"
 #include "images/image.h"
 #include "scenes/taa_scene.h"
 #include "sequence/frame_source.h"
+#include "temporal/flip_evaluator.h"
 #include "temporal/taa_resolve.h"
 #include "temporal/trail_picture.h"
 
@@ -30,41 +30,6 @@
 #include <vector>
 
 namespace kdop {
-
-// The mean FLIP of a pair, and, for HDR-FLIP, how its exposure range departed from the reference
-// code's derivation (ExposureRange::note: a black reference, a mostly black one), or nothing.
-struct FlipFigure {
-    double mean = 0;
-    std::string note;
-    std::vector<float> map; // with a map asked for: the pair's FLIP per pixel, row-major, the mean's
-};
-// The mean FLIP of a pair, LDR-FLIP for an `ldr` range and HDR-FLIP for `hdr`, and with `map` its
-// per-pixel map too, where it is computed: the CPU code (cpu_flip_mean) or the device
-// (flip/device_flip.h, what kdop taa uses: the map it took the mean of, read back).
-// `same_reference`: the reference is the Image of the call before, unchanged, whose work the
-// device keeps (DeviceFlip::Reference); the figure is the same either way.
-struct FlipMean {
-    std::function<Result<FlipFigure>(const Image& reference, const Image& test, ColorRange range, bool map,
-                                     bool same_reference)>
-        pair;
-    // The device's FLIP where it computes (device_flip_mean sets it): on the resolve's queue it
-    // measures outputs where the resolve leaves them, checked and moved onto the range there
-    // (DeviceFlip::load), so only the figures come back, and the outputs only for an observer.
-    // HDR-FLIP's exposures are then `exposures`, each range derived on the device where its image
-    // is there alone (the previous output, for shimmer). kdop taa leaves it null on a CPU device,
-    // where reading back was as fast and held less (TaaEvaluation::flip_mean).
-    DeviceFlip* device = nullptr;
-    ExposureOptions exposures;
-
-    Result<FlipFigure> operator()(const Image& reference, const Image& test, ColorRange range, bool map,
-                                  bool same_reference) const {
-        return pair(reference, test, range, map, same_reference);
-    }
-};
-// HDR-FLIP at `exposures` (by default each pair's range, derived from its reference, as
-// NVlabs/flip derives it). `flip` must outlive what this returns.
-FlipMean cpu_flip_mean(const HdrFlip& flip, const ExposureOptions& exposures = {});
-FlipMean device_flip_mean(DeviceFlip& flip, const ExposureOptions& exposures = {});
 
 // One measured frame's figures. NaN where the frame has none: shimmer on the first measured frame
 // and after a camera cut, and a figure the source is not meant for (FrameSource::roles).
@@ -122,7 +87,7 @@ using ShaderOutputObserver = std::function<Result<void>(std::size_t shader, std:
 // refused, naming the frame, the pixel and the value, never clamped. `on_frame` is called after
 // each frame, measured or not.
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
-                                             const FlipMean& flip, const OutputObserver& on_output = {},
+                                             FlipEvaluator& flip, const OutputObserver& on_output = {},
                                              const std::function<void()>& on_frame = {});
 
 struct TaaMeasurement {
@@ -169,19 +134,19 @@ using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& fr
 // the frame's FLIP maps where `maps` asks for them (each is a read-back: only for an observer that
 // shows them).
 Result<std::vector<SequenceMeasurement>>
-measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, const FlipMean& flip,
+measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, FlipEvaluator& flip,
                      const ShaderOutputObserver& on_output = {}, const std::function<void()>& on_frame = {},
                      const MeasuredFrameObserver& on_measured = {}, bool maps = false);
 // Both of a scene's sequences through every shader of `resolve`, in one pass each.
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
-                                                      const TaaSchedule& schedule, const FlipMean& flip,
+                                                      const TaaSchedule& schedule, FlipEvaluator& flip,
                                                       const SceneShaderOutputObserver& on_output = {},
                                                       const std::function<void()>& on_frame = {},
                                                       const MeasuredFrameObserver& on_measured = {}, bool maps = false);
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
-                                     const FlipMean& flip, const SceneOutputObserver& on_output = {},
+                                     FlipEvaluator& flip, const SceneOutputObserver& on_output = {},
                                      const std::function<void()>& on_frame = {});
 
 // A resolve's output ready for FLIP (and, for ldr, PNG): the resolve's blends and clips land on

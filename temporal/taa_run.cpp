@@ -49,7 +49,7 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
 // A sequence's ghosting picture at the frame `chooser` kept, cropped where the variants differ most.
 Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequence,
                                   const PictureFrameChooser& chooser, const std::vector<VariantKey>& keys,
-                                  const std::vector<EvaluationRow>& measured, const PictureFlip& flip) {
+                                  const std::vector<EvaluationRow>& measured, PictureFlip& flip) {
     auto frame = sequence.without_depth().frame(chooser.index()); // its truth, as the pass read it
     if (!frame) return std::unexpected(frame.error());
     const bool has_reference = frame->reference.has_value();
@@ -150,9 +150,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             std::vector<double> ghosting;
             for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
             const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
-            auto flip = evaluation->flip_mean(truth->width, truth->height);
+            auto flip = evaluation->flip_evaluator(truth->width, truth->height);
             if (!flip) return std::unexpected(flip.error());
-            const PictureFlip picture_flip{*flip, ColorRange::ldr, settings.evaluation.exposure};
+            PictureFlip picture_flip(**flip, ColorRange::ldr);
             auto maps = ghosting_maps(picture_flip, *truth, trails);
             if (!maps) return std::unexpected(maps.error());
             if (auto ok = add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys,
@@ -176,9 +176,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
             if (pictured && chooser.chosen()) {
-                auto mean = evaluation->flip_mean(sequence.width(), sequence.height());
-                if (!mean) return std::unexpected(mean.error());
-                const PictureFlip flip{*mean, sequence.color_range(), settings.evaluation.exposure};
+                auto evaluator = evaluation->flip_evaluator(sequence.width(), sequence.height());
+                if (!evaluator) return std::unexpected(evaluator.error());
+                PictureFlip flip(**evaluator, sequence.color_range());
                 if (auto ok = add_sequence_picture(outputs, sequence, chooser, keys, *measured, flip); !ok)
                     return std::unexpected(ok.error());
                 pictures.push_back(ghosting_picture_name(sequence.name()));

@@ -231,8 +231,8 @@ TEST(DeviceFlip, LoadedHdrImagesGiveTheHostsExposureRange) {
         const ExposureOptions derived;
         auto expected = device->hdr(c.reference, c.test, derived, true);
         ASSERT_TRUE(expected) << expected.error().message;
-        auto from_host = device->hdr_loaded(&c.reference, derived, true);
-        auto loaded = device->hdr_loaded(nullptr, derived, true);
+        auto from_host = device->hdr(&c.reference, nullptr, derived, true);
+        auto loaded = device->hdr(nullptr, nullptr, derived, true);
         for (auto* got : {&from_host, &loaded}) {
             ASSERT_TRUE(*got) << (*got).error().message;
             EXPECT_EQ((*got)->range.start, expected->range.start);
@@ -274,18 +274,19 @@ TEST(DeviceFlip, HugeValuesScoreAsOnTheCpu) {
     expect_quiet_validation();
 }
 
-// A reference kept from the evaluation before (DeviceFlip::Reference::unchanged: its upload and
+// A reference kept from the evaluation before (the same DeviceFlip::ReferenceKey: its upload and
 // horizontal filters skipped) gives every map and mean bit for bit as evaluated afresh, over tests
 // that differ, with another reference, an HDR-FLIP of several exposures and a refused pair in
-// between. And it is kept: a reference changed against the promise still scores as the old one.
+// between. And it is kept: a reference changed against the key's promise still scores as the old
+// one.
 TEST(DeviceFlip, AKeptReferenceGivesTheFiguresOfAFreshOne) {
     constexpr std::uint32_t w = 67, h = 43;
     const Image reference = shapes(21, w, h, 0.0f), other = shapes(22, w, h, 0.1f);
     const Image tests[] = {shapes(23, w, h, 0.03f), noise(24, w, h), shapes(25, w, h, -0.05f)};
     auto fresh = device_flip(kPpd, w, h), kept = device_flip(kPpd, w, h);
     ASSERT_TRUE(fresh && kept);
-    using Reference = DeviceFlip::Reference;
-    auto expect_same = [&](const Image& ref, const Image& test, Reference how, const std::string& what) {
+    constexpr DeviceFlip::ReferenceKey kReference = 7, kNone = DeviceFlip::kNoKey;
+    auto expect_same = [&](const Image& ref, const Image& test, DeviceFlip::ReferenceKey how, const std::string& what) {
         SCOPED_TRACE(what);
         auto expected = fresh->ldr(ref, test, true);
         auto got = kept->ldr(ref, test, true, how);
@@ -293,26 +294,25 @@ TEST(DeviceFlip, AKeptReferenceGivesTheFiguresOfAFreshOne) {
         EXPECT_EQ(got->mean, expected->mean);
         EXPECT_EQ(got->error, expected->error);
     };
-    expect_same(reference, tests[0], Reference::unchanged, "nothing to keep yet");
-    expect_same(reference, tests[1], Reference::unchanged, "kept");
-    expect_same(reference, tests[2], Reference::unchanged, "kept again");
-    expect_same(other, tests[0], Reference::new_one, "another reference");
-    expect_same(reference, tests[1], Reference::unchanged, "after another reference");
+    expect_same(reference, tests[0], kReference, "nothing to keep yet");
+    expect_same(reference, tests[1], kReference, "kept");
+    expect_same(reference, tests[2], kReference, "kept again");
+    expect_same(other, tests[0], kNone, "another reference");
+    expect_same(reference, tests[1], kReference, "after another reference");
     Image bright = reference;
     for (glm::vec4& p : bright.pixels) p *= glm::vec4(glm::vec3(40.0f), 1.0f);
     ASSERT_TRUE(kept->hdr(bright, tests[0], {}, false));
-    expect_same(reference, tests[2], Reference::unchanged, "after HDR-FLIP's exposures");
+    expect_same(reference, tests[2], kReference, "after HDR-FLIP's exposures");
     Image negative = tests[0];
     negative.at(3, 2).g = -1.0f;
-    EXPECT_FALSE(kept->ldr(reference, negative, false, Reference::unchanged));
-    expect_same(reference, tests[0], Reference::unchanged, "after a refused pair");
+    EXPECT_FALSE(kept->ldr(reference, negative, false, kReference));
+    expect_same(reference, tests[0], kReference, "after a refused pair");
 
-    Image changed = reference; // one object, kept, then changed behind the promise
-    auto first = kept->ldr(changed, tests[1], false);
+    constexpr DeviceFlip::ReferenceKey kChanged = 8; // one key, kept, then its pixels changed behind it
+    auto first = kept->ldr(reference, tests[1], false, kChanged);
     ASSERT_TRUE(first);
-    changed = other;
-    auto stale = kept->ldr(changed, tests[1], false, Reference::unchanged);
-    auto honest = kept->ldr(changed, tests[1], false);
+    auto stale = kept->ldr(other, tests[1], false, kChanged);
+    auto honest = kept->ldr(other, tests[1], false);
     ASSERT_TRUE(stale && honest);
     EXPECT_EQ(stale->mean, first->mean) << "the planes of the reference kept";
     EXPECT_NE(honest->mean, first->mean);

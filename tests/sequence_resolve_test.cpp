@@ -241,7 +241,7 @@ TEST_F(ResolveGpu, AStillUnjitteredSequenceNeitherGhostsNorShimmers) {
         ASSERT_TRUE(shader);
         auto resolve = make_resolve(*shader, w, h, options);
         ASSERT_TRUE(resolve);
-        auto m = measure_sequence(*resolve, still, 2, cpu_flip_mean(flip));
+        auto m = measure_sequence(*resolve, still, 2, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(m) << m.error().message;
         if (options.color_map.kind == ColorMap::Kind::linear) {
             EXPECT_EQ(m->ghosting, 0.0);
@@ -359,14 +359,14 @@ TEST_F(ResolveGpu, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
         ASSERT_TRUE(all) << all.error().message;
         std::vector<std::size_t> outputs(variants.size());
         auto together = measure_sequence_all(
-            **all, source, 3, cpu_flip_mean(flip),
+            **all, source, 3, *cpu_flip_evaluator(flip),
             [&](std::size_t s, std::size_t, const Image&) -> Result<void> { return ++outputs[s], Result<void>{}; });
         ASSERT_TRUE(together) << together.error().message;
         for (std::size_t s = 0; s < variants.size(); ++s) {
             EXPECT_EQ(outputs[s], source.frame_count() - 3);
             auto alone_resolve = make_resolve(*shaders[s], w, h, {});
             ASSERT_TRUE(alone_resolve);
-            auto alone = measure_sequence(*alone_resolve, source, 3, cpu_flip_mean(flip));
+            auto alone = measure_sequence(*alone_resolve, source, 3, *cpu_flip_evaluator(flip));
             ASSERT_TRUE(alone) << alone.error().message;
             const SequenceMeasurement& t = (*together)[s];
             EXPECT_EQ(t.range, hdr_scale > 0 ? ColorRange::hdr : ColorRange::ldr);
@@ -441,14 +441,14 @@ TEST_F(ResolveGpu, MeasuredFramesCarryTheMapsTheirFiguresAreMeansOf) {
                     }
                     return {};
                 };
-                const FlipMean mean = on_device ? device_flip_mean(**device) : cpu_flip_mean(flip);
-                auto measured = measure_sequence_all(**resolve, source, 3, mean, {}, {}, check, true);
+                auto mean = on_device ? device_flip_evaluator(**device) : cpu_flip_evaluator(flip);
+                auto measured = measure_sequence_all(**resolve, source, 3, *mean, {}, {}, check, true);
                 ASSERT_TRUE(measured) << what << ": " << measured.error().message;
                 EXPECT_EQ(frames, source.frame_count() - 3);
                 // Without maps asked for, none come.
                 auto plain = TaaResolve::create(test::gpu(), both, w, h, {});
                 ASSERT_TRUE(plain);
-                ASSERT_TRUE(measure_sequence_all(**plain, source, 3, mean, {}, {}, [&](const MeasuredFrame& frame) {
+                ASSERT_TRUE(measure_sequence_all(**plain, source, 3, *mean, {}, {}, [&](const MeasuredFrame& frame) {
                     EXPECT_TRUE(frame.maps.empty());
                     return Result<void>{};
                 }));
@@ -470,9 +470,8 @@ TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
     auto dop = resolve_shader("dop32", Mode::varclip, {});
     ASSERT_TRUE(box && dop);
     const Variant* both[] = {&box->variant(), &dop->variant()};
-    const FlipMean on_device = device_flip_mean(**device);
-    FlipMean read_back = on_device;
-    read_back.device = nullptr; // the same FLIP, fed from the host
+    auto on_device = device_flip_evaluator(**device);
+    auto read_back = device_flip_evaluator(**device, {}, OutputPlacement::host); // the same FLIP, fed from the host
     struct Seen {
         std::vector<SequenceMeasurement> figures;
         std::vector<Image> outputs;
@@ -485,7 +484,7 @@ TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
                 const std::string what = fmt::format("ghosting {}, shimmer {}, maps {}, HDR scale {}", roles.ghosting,
                                                      roles.shimmer, maps, hdr_scale);
                 const MeasuredFor source(std::make_shared<WithCut>(moving, 7, hdr_scale), roles);
-                auto measure = [&](const FlipMean& flip) {
+                auto measure = [&](FlipEvaluator& flip) {
                     Seen seen;
                     auto resolve = TaaResolve::create(test::gpu(), both, w, h, {});
                     EXPECT_TRUE(resolve);
@@ -500,7 +499,7 @@ TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
                     if (measured) seen.figures = std::move(*measured);
                     return seen;
                 };
-                const Seen host = measure(read_back), here = measure(on_device);
+                const Seen host = measure(*read_back), here = measure(*on_device);
                 ASSERT_EQ(here.figures.size(), 2u) << what;
                 ASSERT_EQ(host.figures.size(), 2u) << what;
                 for (std::size_t s = 0; s < 2; ++s) {

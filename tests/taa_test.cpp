@@ -252,14 +252,14 @@ TEST_F(TaaGpu, OnePassOverTheFramesGivesEachVariantTheFiguresOfItsOwnPass) {
     auto all = TaaResolve::create(test::gpu(), variants, w, h, {});
     ASSERT_TRUE(all) << all.error().message;
     std::size_t frames = 0;
-    auto together = measure_scene_all(**all, scene, schedule, cpu_flip_mean(flip), {}, [&] { ++frames; });
+    auto together = measure_scene_all(**all, scene, schedule, *cpu_flip_evaluator(flip), {}, [&] { ++frames; });
     ASSERT_TRUE(together) << together.error().message;
     EXPECT_EQ(frames, 2u * (schedule.warmup + schedule.frames)) << "each frame drawn once";
     ASSERT_EQ(together->size(), shaders.size());
     for (std::size_t s = 0; s < shaders.size(); ++s) {
         auto alone_resolve = make_resolve(*shaders[s], w, h);
         ASSERT_TRUE(alone_resolve);
-        auto alone = measure_scene(*alone_resolve, scene, schedule, cpu_flip_mean(flip));
+        auto alone = measure_scene(*alone_resolve, scene, schedule, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(alone) << alone.error().message;
         const TaaMeasurement& t = (*together)[s];
         EXPECT_EQ(t.shimmer, alone->shimmer) << variants[s]->name;
@@ -287,8 +287,8 @@ TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     auto none_resolve = make_resolve(**current_only, w, h);
     auto dop32_resolve = make_resolve(*dop32, w, h);
     ASSERT_TRUE(none_resolve && dop32_resolve);
-    auto none = measure_scene(*none_resolve, SpriteScene("grass", background), schedule, cpu_flip_mean(flip));
-    auto clipped = measure_scene(*dop32_resolve, SpriteScene("grass", background), schedule, cpu_flip_mean(flip));
+    auto none = measure_scene(*none_resolve, SpriteScene("grass", background), schedule, *cpu_flip_evaluator(flip));
+    auto clipped = measure_scene(*dop32_resolve, SpriteScene("grass", background), schedule, *cpu_flip_evaluator(flip));
     ASSERT_TRUE(none && clipped);
     EXPECT_EQ(none->ghosting, 0.0);
     EXPECT_GT(none->shimmer, 0.0);
@@ -310,7 +310,7 @@ TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
         ASSERT_TRUE(shader);
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
-        auto m = measure_scene(*resolve, SpriteScene("grass", background), schedule, cpu_flip_mean(flip));
+        auto m = measure_scene(*resolve, SpriteScene("grass", background), schedule, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(m) << m.error().message;
         ghosting[i++] = m->ghosting;
     }
@@ -328,19 +328,17 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
     const HdrFlip flip(ppd);
     auto device = DeviceFlip::create(test::gpu(), ppd, w, h);
     ASSERT_TRUE(device) << device.error().message;
-    const FlipMean on_device = device_flip_mean(**device);
     auto shader = taa_shader("dop16-grass", Mode::clip);
     ASSERT_TRUE(shader);
-    FlipMean read_back = on_device;
-    read_back.device = nullptr;
     const TaaSchedule schedule{8, 5};
     TaaMeasurement m[3];
-    const FlipMean* means[] = {nullptr, &on_device, &read_back};
+    const std::unique_ptr<FlipEvaluator> evaluators[] = {
+        cpu_flip_evaluator(flip), device_flip_evaluator(**device),
+        device_flip_evaluator(**device, {}, OutputPlacement::host)}; // the same FLIP, fed from the host
     for (int i = 0; i < 3; ++i) {
         auto resolve = make_resolve(*shader, w, h);
         ASSERT_TRUE(resolve);
-        auto measured =
-            measure_scene(*resolve, SpriteScene("grass", background), schedule, i ? *means[i] : cpu_flip_mean(flip));
+        auto measured = measure_scene(*resolve, SpriteScene("grass", background), schedule, *evaluators[i]);
         ASSERT_TRUE(measured) << measured.error().message;
         m[i] = std::move(*measured);
     }

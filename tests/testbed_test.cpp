@@ -283,7 +283,7 @@ TEST_F(Testbed, AStillSceneWithoutJitterLeavesNoGhost) {
     auto resolve = TaaResolve::create(test::gpu(), (*shader)->variant(), w, h, {});
     ASSERT_TRUE(resolve) << resolve.error().message;
     const HdrFlip flip(pixels_per_degree(ViewingConditions{}));
-    auto m = measure_sequence(**resolve, still, 3, cpu_flip_mean(flip));
+    auto m = measure_sequence(**resolve, still, 3, *cpu_flip_evaluator(flip));
     ASSERT_TRUE(m) << m.error().message;
     EXPECT_TRUE(m->against_reference);
     EXPECT_EQ(m->ghosting, 0.0);
@@ -315,12 +315,12 @@ TEST_F(Testbed, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
     }
     auto all = TaaResolve::create(test::gpu(), variants, w, h, {});
     ASSERT_TRUE(all) << all.error().message;
-    auto together = measure_sequence_all(**all, panning, 4, cpu_flip_mean(flip));
+    auto together = measure_sequence_all(**all, panning, 4, *cpu_flip_evaluator(flip));
     ASSERT_TRUE(together) << together.error().message;
     for (std::size_t s = 0; s < variants.size(); ++s) {
         auto alone_resolve = TaaResolve::create(test::gpu(), *variants[s], w, h, {});
         ASSERT_TRUE(alone_resolve);
-        auto alone = measure_sequence(**alone_resolve, panning, 4, cpu_flip_mean(flip));
+        auto alone = measure_sequence(**alone_resolve, panning, 4, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(alone) << alone.error().message;
         EXPECT_TRUE((*together)[s].against_reference);
         EXPECT_GT((*together)[s].ghosting, 0.0);
@@ -409,8 +409,8 @@ TEST_F(Testbed, FramesDrawnIntoTheResolveGiveTheOutputsOfFramesReadBack) {
         auto all = TaaResolve::create(test::gpu(), variants, w, h, options);
         auto all_read = TaaResolve::create(test::gpu(), variants, w, h, options);
         ASSERT_TRUE(all && all_read);
-        auto figures = measure_sequence_all(**all, panning, 4, cpu_flip_mean(flip));
-        auto figures_read = measure_sequence_all(**all_read, read_back, 4, cpu_flip_mean(flip));
+        auto figures = measure_sequence_all(**all, panning, 4, *cpu_flip_evaluator(flip));
+        auto figures_read = measure_sequence_all(**all_read, read_back, 4, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(figures && figures_read);
         for (std::size_t s = 0; s < variants.size(); ++s) {
             EXPECT_GT((*figures)[s].ghosting, 0.0);
@@ -421,13 +421,13 @@ TEST_F(Testbed, FramesDrawnIntoTheResolveGiveTheOutputsOfFramesReadBack) {
         // where they are), what the same FLIP gives frames and outputs read back and uploaded.
         auto device = DeviceFlip::create(test::gpu(), pixels_per_degree(ViewingConditions{}), w, h);
         ASSERT_TRUE(device) << device.error().message;
-        FlipMean from_host = device_flip_mean(**device);
-        from_host.device = nullptr;
+        auto from_device = device_flip_evaluator(**device);
+        auto from_host = device_flip_evaluator(**device, {}, OutputPlacement::host);
         auto on_device = TaaResolve::create(test::gpu(), variants, w, h, options);
         auto on_host = TaaResolve::create(test::gpu(), variants, w, h, options);
         ASSERT_TRUE(on_device && on_host);
-        auto here = measure_sequence_all(**on_device, panning, 4, device_flip_mean(**device));
-        auto there = measure_sequence_all(**on_host, read_back, 4, from_host);
+        auto here = measure_sequence_all(**on_device, panning, 4, *from_device);
+        auto there = measure_sequence_all(**on_host, read_back, 4, *from_host);
         ASSERT_TRUE(here && there);
         for (std::size_t s = 0; s < variants.size(); ++s) {
             EXPECT_GT((*here)[s].ghosting, 0.0);
