@@ -30,6 +30,20 @@ Action add_taa_command(CLI::App& app);
 Action add_scene_command(CLI::App& app);
 Action add_choose_command(CLI::App& app);
 
+// One of kdop's commands: what registers it, and whether it shares its work over MPI ranks (every
+// other command refuses to run under mpirun: each rank would do all of it and write the same files).
+struct Command {
+    Action (*add)(CLI::App& app);
+    bool shares_over_ranks = false;
+};
+// Every command, in the order --help lists them.
+inline constexpr Command kCommands[] = {
+    {add_list_command},           {add_gen_command},   {add_show_command},   {add_run_command},
+    {add_textures_command},       {add_bench_command}, {add_stress_command}, {add_accuracy_command},
+    {add_optimize_command, true}, {add_flip_command},  {add_taa_command},    {add_scene_command},
+    {add_choose_command, true},
+};
+
 // Prints an error message (which already names file/line or argument) to stderr; returns 1.
 int report_error(const std::string& message);
 
