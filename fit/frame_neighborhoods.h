@@ -7,7 +7,7 @@
 // The objective is summed frame by frame in frame order (each frame's sum in fixed chunks,
 // axis_fit.cpp), so it is the same figure whether a frame was held or read again, on any number
 // of threads, and on any number of processes: a process evaluates its own range of frames and
-// `share` (an MPI all-gather, cli/ranks.h) hands every process every frame's sums before they
+// `share` (an MPI all-gather, harness/ranks.h) hands every process every frame's sums before they
 // are added up in frame order.
 #pragma once
 

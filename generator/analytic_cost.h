@@ -4,44 +4,8 @@
 // component, a select one, integer operations (the sign-bit test) none. Lavapipe emits no fused
 // multiply-add, so there each Fma becomes a multiply and an add: the counts here and lavapipe's
 // instructions disagree by the number of Fmas, beyond its 8 pixels per SIMD instruction.
-//
-// The function: per slab, the extent of the neighbors' projections (or mean +- gamma * sigma of
-// them, widened to contain the current color's), padded by the paper's 1e-5 per unit of axis length
-// after it is measured from the current color, which stands for the center pixel; the ray's exit
-// through the plane it heads for. For an axis with m nonzero components (scaled so one is exactly 1,
-// each projection costs m - 1 multiply-adds) and a neighborhood of N colors:
-//
-//   per pixel     18 + 3(N - 1)   ray direction (3); whether the history is usable,
-//                 (relative)      |dir|_1 + |current|_1 <= FLT_MAX (3 + 3 abs, 3 + 2 adds, a
-//                                 compare); current + t * dir (3 multiply-adds; the unusable case
-//                                 returns current through a branch); and, relative, the N - 1
-//                                 neighbors minus current
-//                 18 (absolute)
-//   clip slab     N(m - 1) + 2N + 3                relative: the N - 1 neighbors' and the ray's
-//                                                  projections; min and max of the neighbors and
-//                                                  the center (0); the padding (2); the exit (a
-//                                                  select of the plane, a division, a min into t)
-//                 (N + 1)(m - 1) + 2N + 5          absolute: the current color's projection too;
-//                                                  min and max of N - 1 projections (2(N - 2)),
-//                                                  minus that projection (2), joined with the
-//                                                  center (2); the padding; the exit
-//   varclip       per pixel 18 + 3(N - 1) + 11     the power-of-two scale of the relative frame
-//                                                  (the largest |current| channel by 2 max, a
-//                                                  compare, two selects, origin and ray scaled)
-//                 per slab N(m - 1) + 2N + 11      the N - 1 projections and the ray's; the sum
-//                                                  (N - 2 adds) and the mean (1); the variance
-//                                                  (N - 1 squares, 3 more) and sigma (max, sqrt);
-//                                                  mean -/+ gamma * sigma joined with the origin
-//                                                  and padded (6); the exit
-//
-// An axis whose two scaled components have one magnitude (YCoCg's Y and Cg) projects them as
-// (c.a +- c.b) * k: one multiply-add per projection on a sum that every axis with the same pair
-// shares, once per color.
-//
-// The bound is the cheaper frame. The emitted variance clip spends up to 1 per slab more (where
-// spirv-opt leaves a negation unfolded), which the tests allow for and no more. The emitter takes the cheaper one too
-// (hardened_frame below), but starts the absolute frame's running extents from +-FLT_MAX (2 per slab more),
-// which it does on purpose because it measured cheaper on lavapipe; see write_clip_slab().
+// The derivation, per pixel and per slab for each frame and the variance clip, is in
+// docs/clip.md, "The analytic bound".
 #pragma once
 
 #include "generator/axis_set.h"
