@@ -49,9 +49,11 @@ Action add_choose_command(CLI::App& app) {
            "Other sets among the candidates: built-in names or .axes files (a file's set, recommended, is copied "
            "beside kdop.manifest as <set>.axes) [default: the six built-in sets]")
         ->check(SelectionOptions::axis_set_name());
-    cmd->add_option("--modes", o->run.modes, "clip and/or varclip [default: clip]")
+    cmd->add_option("--modes", o->run.modes,
+                    "clip and/or varclip [default: " + default_modes_text(kCommandDefaults) + ", as kdop gen and taa]")
         ->check(SelectionOptions::choice("mode", "clip or varclip", parse_mode));
-    cmd->add_option("--neighborhoods", o->run.neighborhoods, "n9 and/or n5 [default: n9]")
+    cmd->add_option("--neighborhoods", o->run.neighborhoods,
+                    "n9 and/or n5 [default: " + default_neighborhoods_text(kCommandDefaults) + ", as kdop gen and taa]")
         ->check(SelectionOptions::choice("neighborhood", "n9 or n5", parse_neighborhood));
     cmd->add_option("--budget-ops", o->run.budget_ops,
                     "Recommend the least held-out ghosting among the candidates whose clip costs at most this many "

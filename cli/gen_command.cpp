@@ -42,7 +42,7 @@ Action add_gen_command(CLI::App& app) {
                "(compute shader) and <name>.spv (optimized SPIR-V) per variant and their reflection as "
                "variants.json, then print a table of them");
     gen->add_option("--out", options->out, "Output directory (created if missing)")->required();
-    options->selection.add_to(*gen, /*with_manifest=*/true);
+    options->selection.add_to(*gen, /*with_manifest=*/true, kCommandDefaults);
     gen->add_option("--threads", options->threads, "Compile on this many threads [default: one per core]")
         ->check(thread_count());
 

@@ -45,7 +45,7 @@ Action add_taa_command(CLI::App& app) {
                "charts and a frame viewer), selected frames as EXR and PNG and a labeled ghosting picture per scene "
                "and sequence");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
-    o->selection.add_to(*taa, true, "n9, the paper's rows");
+    o->selection.add_to(*taa, true, kCommandDefaults);
     o->choice.add_to(*taa);
     taa->add_option("--sequence", o->sequences,
                     "Frame sequences to measure (folders with sequence.json; docs/taa.md, \"Frame sequences\"); with "
@@ -95,8 +95,6 @@ Action add_taa_command(CLI::App& app) {
         if (!size) return usage_error(size.error().message);
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
-        // The paper's rows are 3x3 neighborhoods; n5 on request.
-        if (o->selection.manifest.empty() && o->selection.neighborhoods.empty()) o->selection.neighborhoods = {"n9"};
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
         warn_fitted_space(*specs, o->resolve.color_map, "this run (--color-map)");

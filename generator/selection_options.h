@@ -22,19 +22,22 @@ struct SelectionOptions {
     std::string projection = "multiply-add", extent = "running", numerics = "hardened", target_env = "vulkan1.0";
     std::string manifest; // a scene's variant manifest (manifest.h), instead of the cross product
     bool strip_names = false;
+    // What the command selects without --modes or --neighborhoods: every variant, or the default of
+    // kdop gen, taa and choose (variant_spec.h).
+    SelectionDefaults defaults = kEveryVariant;
 
     // `with_manifest`: also --manifest FILE, which excludes the options that select by cross product.
-    // `neighborhoods_default`: what the command selects without --neighborhoods, for its help.
-    void add_to(CLI::App& app, bool with_manifest = false, const std::string& neighborhoods_default = "both") {
+    void add_to(CLI::App& app, bool with_manifest = false, const SelectionDefaults& selected = kEveryVariant) {
+        defaults = selected;
         std::vector<CLI::Option*> cross_product{
             app.add_option("--sets", sets,
                            "Axis sets: built-in names (" + builtin_set_list() +
                                ") or paths to .axes files [default: every built-in set]")
                 ->check(axis_set_name()),
-            app.add_option("--modes", modes, "clip and/or varclip [default: both]")
+            app.add_option("--modes", modes, "clip and/or varclip [default: " + default_modes_text(defaults) + "]")
                 ->check(choice("mode", "clip or varclip", parse_mode)),
             app.add_option("--neighborhoods", neighborhoods,
-                           "n9 (3x3) and/or n5 (plus) [default: " + neighborhoods_default + "]")
+                           "n9 (3x3) and/or n5 (plus) [default: " + default_neighborhoods_text(defaults) + "]")
                 ->check(choice("neighborhood", "n9 or n5", parse_neighborhood)),
             app.add_option(
                    "--forms", forms,
@@ -124,7 +127,7 @@ struct SelectionOptions {
             }
             return std::move(listed->variants);
         }
-        auto specs = select_variants(sets, modes, neighborhoods, forms);
+        auto specs = select_variants(sets, modes, neighborhoods, forms, defaults);
         if (specs)
             for (VariantSpec& s : *specs) {
                 s.style = style();

@@ -38,6 +38,18 @@ Result<std::vector<T>> parse_choices(const std::vector<std::string>& args, std::
 
 } // namespace
 
+std::string default_modes_text(const SelectionDefaults& defaults) {
+    std::vector<std::string> names;
+    for (Mode mode : defaults.modes) names.push_back(to_string(mode));
+    return fmt::format("{}", fmt::join(names, " "));
+}
+
+std::string default_neighborhoods_text(const SelectionDefaults& defaults) {
+    std::vector<std::string> names;
+    for (Neighborhood n : defaults.neighborhoods) names.push_back(to_string(n));
+    return fmt::format("{}", fmt::join(names, " "));
+}
+
 std::vector<VariantKey> keys_of(const std::vector<VariantSpec>& specs) {
     std::vector<VariantKey> keys;
     for (const VariantSpec& spec : specs) keys.push_back(spec.key());
@@ -74,7 +86,8 @@ Result<AxisSet> resolve_axis_set(std::string_view name_or_path) {
 Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& set_args,
                                                  const std::vector<std::string>& mode_args,
                                                  const std::vector<std::string>& neighborhood_args,
-                                                 const std::vector<std::string>& form_args) {
+                                                 const std::vector<std::string>& form_args,
+                                                 const SelectionDefaults& defaults) {
     std::vector<std::string> set_names(set_args.begin(), set_args.end());
     if (set_names.empty()) set_names.assign(builtin_set_names().begin(), builtin_set_names().end());
 
@@ -90,10 +103,10 @@ Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>&
         sets.push_back(std::move(*set));
     }
 
-    auto modes = parse_choices<Mode>(mode_args, "--modes", "mode", "clip or varclip", parse_mode, kAllModes);
+    auto modes = parse_choices<Mode>(mode_args, "--modes", "mode", "clip or varclip", parse_mode, defaults.modes);
     if (!modes) return std::unexpected(modes.error());
     auto neighborhoods = parse_choices<Neighborhood>(neighborhood_args, "--neighborhoods", "neighborhood", "n9 or n5",
-                                                     parse_neighborhood, kAllNeighborhoods);
+                                                     parse_neighborhood, defaults.neighborhoods);
     if (!neighborhoods) return std::unexpected(neighborhoods.error());
     constexpr Form kDefaultForms[] = {Form::unrolled};
     auto forms = parse_choices<Form>(form_args, "--forms", "form", "unrolled or loop", parse_form, kDefaultForms);

@@ -67,16 +67,37 @@ int neighborhood_center(Neighborhood n);
 inline constexpr Mode kAllModes[] = {Mode::clip, Mode::varclip}; // the clips; see baseline_kernels()
 inline constexpr Neighborhood kAllNeighborhoods[] = {Neighborhood::n9, Neighborhood::n5};
 
+// What a selection without --modes or --neighborhoods takes (without --sets: every built-in set).
+struct SelectionDefaults {
+    std::span<const Mode> modes;
+    std::span<const Neighborhood> neighborhoods;
+};
+// Every variant there is: the registry kdop embeds, kdop-gen and kdop_add_variants, kdop list,
+// stress and accuracy, which check or list each variant rather than choose among them.
+inline constexpr SelectionDefaults kEveryVariant{kAllModes, kAllNeighborhoods};
+// The one default of kdop gen, kdop taa and kdop choose, so the variants one measures and chooses
+// among are those another generates: both modes, since a varclip ghosted least on kdop's 3-D scenes
+// (dop32-varclip-n9, docs/results.md) and on a team's Blender frames (issue 59), while a clip
+// shimmers less, so a default without one would hide the winner; the 3x3 neighborhood only, the
+// paper's and an engine's usual, since n5 doubles every measuring run (--neighborhoods n5).
+inline constexpr Mode kCommandModes[] = {Mode::clip, Mode::varclip};
+inline constexpr Neighborhood kCommandNeighborhoods[] = {Neighborhood::n9};
+inline constexpr SelectionDefaults kCommandDefaults{kCommandModes, kCommandNeighborhoods};
+// "clip varclip", "n9": a default as its option's help gives it.
+std::string default_modes_text(const SelectionDefaults& defaults);
+std::string default_neighborhoods_text(const SelectionDefaults& defaults);
+
 // A built-in set by name, or else an axis-set file by path. Errors name the argument.
 Result<AxisSet> resolve_axis_set(std::string_view name_or_path);
 
 // The cross product sets x modes x neighborhoods x forms, in that nesting order. Empty lists mean
-// "all defaults" (for forms: unrolled only). Unknown names, repeated entries and two different
-// sets with one name are refused.
+// `defaults` (for forms: unrolled only). Unknown names, repeated entries and two different sets
+// with one name are refused.
 Result<std::vector<VariantSpec>> select_variants(const std::vector<std::string>& sets,
                                                  const std::vector<std::string>& modes,
                                                  const std::vector<std::string>& neighborhoods,
-                                                 const std::vector<std::string>& forms = {});
+                                                 const std::vector<std::string>& forms = {},
+                                                 const SelectionDefaults& defaults = kEveryVariant);
 
 // The keys of `specs`, in order.
 std::vector<VariantKey> keys_of(const std::vector<VariantSpec>& specs);

@@ -271,7 +271,7 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
     // neighborhood asked for. Their count is known before the fit, so everything is checked first.
     plan.builtin =
         o.sets.empty() ? std::vector<std::string>(builtin_set_names().begin(), builtin_set_names().end()) : o.sets;
-    auto builtin_specs = select_variants(plan.builtin, o.modes, o.neighborhoods, {});
+    auto builtin_specs = select_variants(plan.builtin, o.modes, o.neighborhoods, {}, kCommandDefaults);
     if (!builtin_specs) return usage_fail("--sets: " + builtin_specs.error().message);
     plan.builtin_specs = std::move(*builtin_specs);
     for (const VariantSpec& spec : plan.builtin_specs)

@@ -30,7 +30,8 @@ struct ChooseOptions {
     std::size_t holdout = 0;
     std::vector<std::size_t> fit_axes{4, 8, 16}; // one fitted set per count
     std::vector<std::string> sets;               // built-in candidates; empty: every built-in set
-    std::vector<std::string> modes{"clip"}, neighborhoods{"n9"};
+    // Empty: the default selection kdop gen and kdop taa make too (kCommandDefaults, variant_spec.h).
+    std::vector<std::string> modes, neighborhoods;
     std::optional<std::size_t> budget_ops; // the most float ops a candidate's clip may cost
     std::optional<double> budget_ms;       // or the longest median device time its pass may take
     std::optional<double> target_ghosting; // else: the cheapest whose held-out ghosting reaches it

@@ -104,7 +104,8 @@ using test::interrupt_at_write;
 TEST(CliInterrupt, SigtermWhileGenWritesLeavesTheFolderAsItWas) {
     test::TempDir dir;
     const fs::path out = dir / "variants";
-    ASSERT_EQ(test::run(kdop("gen --sets dop22 --modes clip --out " + out.string())).exit_code, 0);
+    ASSERT_EQ(test::run(kdop("gen --sets dop22 --modes clip --neighborhoods n9 n5 --out " + out.string())).exit_code,
+              0);
     const auto before = snapshot(out);
     ASSERT_EQ(before.size(), 11u); // dop22-clip-n9 and -n5: .glsl .hlsl .wgsl .comp .spv; variants.json
     auto ended = interrupt_at_write(kdop("gen --sets dop22 --out " + out.string() + " --forms unrolled loop"), SIGTERM);
