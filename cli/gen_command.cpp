@@ -51,11 +51,13 @@ Action add_gen_command(CLI::App& app) {
         if (auto ok = check_output_directory(options->out); !ok) return report_error(ok.error().message);
         auto specs = options->selection.select();
         if (!specs) return report_error(specs.error().message);
+        auto resolve = options->selection.resolve();
+        if (!resolve) return report_error(resolve.error().message);
 
         Progress progress("built", specs->size());
-        auto generated =
-            generate_variants(*specs, options->out, options->threads,
-                              [&](std::size_t, std::size_t, const std::string& name) { progress.advance(name); });
+        auto generated = generate_variants(
+            *specs, options->out, options->threads,
+            [&](std::size_t, std::size_t, const std::string& name) { progress.advance(name); }, *resolve);
         progress.finish();
         if (!generated) return report_error(generated.error().message);
         std::cout << printed_header(kVariantColumns) << "\n";

@@ -7,7 +7,9 @@
 #     [FORMS <unrolled|loop>...]        default: unrolled; loop is the supplement's form, a baseline
 #     [BASELINES]                       also the cost baselines gather-n9, gather-n5 and copy
 #     [MANIFEST <file>]                 instead of the five above: exactly the variants a scene's manifest
-#                                       lists (generator/manifest.h; its `set:` files are inputs too)
+#                                       lists (generator/manifest.h; its `set:` files are inputs too); the
+#                                       resolve it records (kdop choose's), the header declares as
+#                                       resolve_settings and the JSON holds as "resolve"
 #     [NAMESPACE <ns>]                  C++ namespace of the registry; default: <target> made an identifier
 #     [HEADER <file-name>]              default: <target>_kdop_variants.h
 #     [PUBLIC]                          also give <target>'s users the header (for a library target)
@@ -149,8 +151,9 @@ function(kdop_add_variants target)
     endif()
     list(APPEND arguments --manifest "${manifest}")
     list(APPEND depends "${manifest}")
-    # Its `set:` files are inputs too, and its other lines the variants' names (kdop-gen checks
-    # them); reconfigure when it changes, in case they did.
+    # Its `set:` files are inputs too, its other `key: value` lines the resolve it records (which
+    # kdop-gen checks and declares in the header), and its other lines the variants' names (kdop-gen
+    # checks them); reconfigure when it changes, in case they did.
     set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${manifest}")
     get_filename_component(manifest_dir "${manifest}" DIRECTORY)
     file(STRINGS "${manifest}" lines)
@@ -160,6 +163,8 @@ function(kdop_add_variants target)
       if(line MATCHES "^set:(.*)")
         string(STRIP "${CMAKE_MATCH_1}" set_file)
         list(APPEND depends "${manifest_dir}/${set_file}")
+      elseif(line MATCHES ":")
+        # gamma:, current-weight:, color-map:, history-filter:, dilate-motion: (no variant name has a colon)
       elseif(line)
         list(APPEND variant_names "${line}")
       endif()

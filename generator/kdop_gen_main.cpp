@@ -166,6 +166,8 @@ int main(int argc, char** argv) {
 
         auto specs = *registry ? selection.select() : select_variants({}, {}, {});
         if (!specs) return report(specs.error());
+        auto resolve = *registry ? selection.resolve() : std::optional<ResolveSettings>();
+        if (!resolve) return report(resolve.error());
         auto built = build_variants(*specs);
         if (!built) return report(built.error());
 
@@ -202,7 +204,7 @@ int main(int argc, char** argv) {
         }
 
         if (!header.empty()) {
-            auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string());
+            auto sources = write_registry(*built, cpp_namespace, fs::path(header).filename().string(), *resolve);
             files.push_back({header, sources.header});
             files.push_back({source, sources.source});
         }
@@ -215,7 +217,7 @@ int main(int argc, char** argv) {
                     return std::optional(spirv_path_in_json(spirv_dir, json, v.name + ".spv"));
                 };
             }
-            files.push_back({json, reflection_json(*built, spirv_name)});
+            files.push_back({json, reflection_json(*built, spirv_name, *resolve)});
         }
         if (auto ok = write_files_atomically(files); !ok) return report(ok.error());
         return 0;

@@ -1,13 +1,17 @@
 #include "generator/manifest.h"
 
 #include "core/builtin_sets.h"
+#include "core/color_map.h"
 #include "core/read_file.h"
 #include "core/shown_text.h"
 #include "generator/inside_folder.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <map>
 
 namespace kdop {
@@ -21,7 +25,97 @@ std::string_view trimmed(std::string_view s) {
     return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
+// The resolve's keys, in the order resolve_lines writes them.
+constexpr std::string_view kResolveKeys[] = {"gamma", "current-weight", "color-map", "history-filter", "dilate-motion"};
+
+// A decimal above 0 and at most `max`, as float: the commands' numbers (cli/number_option.h), so
+// "0x10", " 5" and "inf" are refused; a value float cannot hold above 0 (1e-50) is refused too.
+Result<float> positive_float(std::string_view text, double max) {
+    double value = 0;
+    const char* end = text.data() + text.size();
+    auto [stop, error] = std::from_chars(text.data(), end, value, std::chars_format::general);
+    if (text.empty() || stop != end || (error != std::errc{} && error != std::errc::result_out_of_range))
+        return fail(fmt::format("'{}' is not a number", shown_text(text, 80)));
+    if (error != std::errc{} || !std::isfinite(value) || !(float(value) > 0) || value > max)
+        return fail(fmt::format("'{}' is not a number above 0 and at most {}", shown_text(text, 80), max));
+    return float(value);
+}
+
+// What the resolve lines read so far: each key's value, and the line that gave it.
+struct ResolveLines {
+    ResolveSettings settings{1, 0.1f, ColorMapKind::linear, 1, HistoryFilter::bilinear, false};
+    std::map<std::string_view, int> given; // key, line number
+
+    // `key: value` on line `number`, `where` naming it.
+    Result<void> read(std::string_view key, std::string_view value, int number, const std::string& where) {
+        const auto known = std::ranges::find(kResolveKeys, key);
+        if (known == std::end(kResolveKeys))
+            return fail(fmt::format("{}: unknown key '{}'; a line is a variant name, `set: FILE`, or one of the "
+                                    "resolve's settings (gamma:, current-weight:, color-map:, history-filter:, "
+                                    "dilate-motion:)",
+                                    where, shown_text(key, 80)));
+        if (auto earlier = given.find(*known); earlier != given.end())
+            return fail(fmt::format("{}: '{}:' is given twice (first on line {})", where, key, earlier->second));
+        given.emplace(*known, number);
+        auto refused = [&](const std::string& why) { return fail(fmt::format("{}: {}: {}", where, key, why)); };
+        if (key == "gamma" || key == "current-weight") {
+            auto number_read = positive_float(value, key == "gamma" ? 100 : 1);
+            if (!number_read) return refused(number_read.error().message);
+            (key == "gamma" ? settings.gamma : settings.current_weight) = *number_read;
+        } else if (key == "color-map") {
+            auto map = parse_color_map(value);
+            if (!map) return refused(shown_text(map.error().message, 300));
+            settings.color_map = map->kind == ColorMap::Kind::power ? ColorMapKind::power
+                                 : map->kind == ColorMap::Kind::log ? ColorMapKind::log
+                                                                    : ColorMapKind::linear;
+            settings.color_map_exponent = map->kind == ColorMap::Kind::power ? map->exponent : 1.0;
+        } else if (key == "history-filter") {
+            if (value == to_string(HistoryFilter::bilinear))
+                settings.history_filter = HistoryFilter::bilinear;
+            else if (value == to_string(HistoryFilter::catmull_rom))
+                settings.history_filter = HistoryFilter::catmull_rom;
+            else
+                return refused(
+                    fmt::format("'{}' is not a history filter; use bilinear or catmull-rom", shown_text(value, 80)));
+        } else if (value == "yes" || value == "no") {
+            settings.dilate_motion = value == "yes";
+        } else {
+            return refused(fmt::format("'{}' is neither yes nor no", shown_text(value, 80)));
+        }
+        return {};
+    }
+
+    // All five or none.
+    Result<std::optional<ResolveSettings>> finish(const fs::path& path) const {
+        if (given.empty()) return std::optional<ResolveSettings>();
+        std::vector<std::string_view> missing;
+        for (std::string_view key : kResolveKeys)
+            if (!given.count(key)) missing.push_back(key);
+        if (!missing.empty())
+            return fail(fmt::format("{}: records its resolve's settings but not {}: a manifest records all five "
+                                    "(gamma:, current-weight:, color-map:, history-filter:, dilate-motion:) or none, "
+                                    "so none is left to a guess",
+                                    path.string(), fmt::join(missing, ", ")));
+        return std::optional(settings);
+    }
+};
+
 } // namespace
+
+std::string color_map_text(const ResolveSettings& resolve) {
+    ColorMap map;
+    map.kind = resolve.color_map == ColorMapKind::power ? ColorMap::Kind::power
+               : resolve.color_map == ColorMapKind::log ? ColorMap::Kind::log
+                                                        : ColorMap::Kind::linear;
+    map.exponent = resolve.color_map_exponent;
+    return to_string(map);
+}
+
+std::string resolve_lines(const ResolveSettings& resolve) {
+    return fmt::format("gamma: {}\ncurrent-weight: {}\ncolor-map: {}\nhistory-filter: {}\ndilate-motion: {}\n",
+                       resolve.gamma, resolve.current_weight, color_map_text(resolve),
+                       to_string(resolve.history_filter), resolve.dilate_motion ? "yes" : "no");
+}
 
 Result<Manifest> read_manifest(const fs::path& path) {
     auto content = read_input_file(path);
@@ -30,6 +124,7 @@ Result<Manifest> read_manifest(const fs::path& path) {
     if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3); // a UTF-8 byte-order mark some editors write
     Manifest manifest;
     std::map<std::string, AxisSet> declared; // `set:` files by set name
+    ResolveLines resolve;
     int number = 0;
     while (!rest.empty()) {
         const std::size_t end = std::min(rest.find('\n'), rest.size());
@@ -66,6 +161,13 @@ Result<Manifest> read_manifest(const fs::path& path) {
             declared.emplace(set->name, std::move(*set));
             continue;
         }
+        // No variant name holds a colon: any other `key: value` line is one of the resolve's.
+        if (const std::size_t colon = line.find(':'); colon != std::string_view::npos) {
+            if (auto ok = resolve.read(trimmed(line.substr(0, colon)), trimmed(line.substr(colon + 1)), number, where);
+                !ok)
+                return std::unexpected(ok.error());
+            continue;
+        }
 
         auto key = parse_variant_key(line, where);
         if (!key) return std::unexpected(key.error());
@@ -86,6 +188,9 @@ Result<Manifest> read_manifest(const fs::path& path) {
         manifest.variants.push_back(std::move(spec));
     }
     if (manifest.variants.empty()) return fail(fmt::format("{}: lists no variant", path.string()));
+    auto settings = resolve.finish(path);
+    if (!settings) return std::unexpected(settings.error());
+    manifest.resolve = *settings;
     return manifest;
 }
 

@@ -1,5 +1,6 @@
 #include "generator/reflection_json.h"
 
+#include "generator/manifest.h"
 #include "generator/provenance.h"
 #include "generator/spirv_module.h"
 
@@ -82,15 +83,28 @@ Json entry_json(const BuiltVariant& v, const std::optional<std::string>& spirv_f
     return entry;
 }
 
+// A float as JSON: the decimal that reads back as the same float (0.1, not 0.10000000149011612).
+Json float_json(float value) { return std::stod(fmt::format("{}", value)); }
+
+Json resolve_json(const ResolveSettings& r) {
+    return {{"gamma", float_json(r.gamma)},
+            {"current_weight", float_json(r.current_weight)},
+            {"color_map", color_map_text(r)},
+            {"history_filter", to_string(r.history_filter)},
+            {"dilate_motion", r.dilate_motion}};
+}
+
 } // namespace
 
 std::string reflection_json(std::span<const BuiltVariant> entries,
-                            const std::function<std::optional<std::string>(const BuiltVariant&)>& spirv_file) {
+                            const std::function<std::optional<std::string>(const BuiltVariant&)>& spirv_file,
+                            const std::optional<ResolveSettings>& resolve) {
     Json list = Json::array();
     for (const BuiltVariant& v : entries) list.push_back(entry_json(v, spirv_file ? spirv_file(v) : std::nullopt));
     const Json document = {{"format", "kdop-reflection"},
                            {"version", kReflectionFormatVersion},
                            {"generator", fmt::format("kdop-gen {}", KDOP_VERSION)},
+                           {"resolve", resolve ? resolve_json(*resolve) : Json(nullptr)},
                            {"entries", std::move(list)}};
     // Every text in it is checked where it is read (axis files by line, shader names by file), so
     // nothing here should be other than UTF-8; should something still be, it is written as U+FFFD

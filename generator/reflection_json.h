@@ -2,7 +2,8 @@
 // Rust (wgpu), C# or Zig, a Meson, Bazel or premake build. Every variant and project shader with
 // what its pipeline needs (stage, entry point, local size, bindings, push constants, color outputs),
 // its SPIR-V's size and hash (the registry's FNV-1a 64) and file where one was written, and, for a
-// variant, its axis set and where the set's numbers came from. Written beside the header by
+// variant, its axis set and where the set's numbers came from, and the TAA resolve a manifest
+// records its variants were measured with. Written beside the header by
 // kdop_add_variants, by `kdop-gen registry --json` and by `kdop gen` (variants.json); the format is
 // versioned and described by docs/reflection.schema.json, which the tests validate it against.
 #pragma once
@@ -21,8 +22,10 @@ inline constexpr int kReflectionFormatVersion = 1;
 
 // The JSON text (two-space indents, keys in a fixed order, a final line break: the same variants
 // give the same bytes). `spirv_file`, where given, names each entry's .spv as the JSON names it
-// (relative to the JSON's folder), or nothing where no .spv was written.
+// (relative to the JSON's folder), or nothing where no .spv was written. `resolve`: the resolve a
+// manifest records (manifest.h), as "resolve"; null where there is none.
 std::string reflection_json(std::span<const BuiltVariant> entries,
-                            const std::function<std::optional<std::string>(const BuiltVariant&)>& spirv_file = {});
+                            const std::function<std::optional<std::string>(const BuiltVariant&)>& spirv_file = {},
+                            const std::optional<ResolveSettings>& resolve = std::nullopt);
 
 } // namespace kdop

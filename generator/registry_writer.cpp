@@ -4,6 +4,7 @@
 #include "core/input_files.h"
 #include "core/shown_text.h"
 #include "core/write_files.h"
+#include "generator/manifest.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -50,6 +51,35 @@ private:
     std::string prefix_;
     std::map<std::string, std::string> names_;
 };
+
+// A float as a C++ literal that reads back as the same float: "1.0f", "0.1f", "1e-05f".
+std::string float_literal(float value) {
+    std::string text = fmt::format("{}", value);
+    if (text.find_first_of(".e") == std::string::npos) text += ".0";
+    return text + "f";
+}
+
+// The manifest's resolve, as constants an engine reads at compile time.
+std::string resolve_declaration(const ResolveSettings& r) {
+    const char* map = r.color_map == ColorMapKind::power ? "power"
+                      : r.color_map == ColorMapKind::log ? "log"
+                                                         : "linear";
+    std::string exponent = fmt::format("{}", r.color_map_exponent);
+    if (exponent.find_first_of(".e") == std::string::npos) exponent += ".0";
+    return fmt::format("// The TAA resolve the manifest records these variants were measured with (its gamma:,\n"
+                       "// current-weight:, color-map:, history-filter: and dilate-motion: lines): build the resolve\n"
+                       "// with it, and give a varclip variant `gamma` as its push constant.\n"
+                       "inline constexpr kdop::ResolveSettings resolve_settings{{\n"
+                       "    {}, // gamma\n"
+                       "    {}, // current_weight\n"
+                       "    kdop::ColorMapKind::{}, {}, // color-map: {}\n"
+                       "    kdop::HistoryFilter::{}, // history-filter: {}\n"
+                       "    {}, // dilate_motion\n"
+                       "}};\n\n",
+                       float_literal(r.gamma), float_literal(r.current_weight), map, exponent, color_map_text(r),
+                       r.history_filter == HistoryFilter::catmull_rom ? "catmull_rom" : "bilinear",
+                       to_string(r.history_filter), r.dilate_motion ? "true" : "false");
+}
 
 } // namespace
 
@@ -122,7 +152,7 @@ std::optional<std::string> registry_files_problem(const std::filesystem::path& h
 }
 
 RegistrySources write_registry(std::span<const BuiltVariant> variants, std::string_view cpp_namespace,
-                               std::string_view header_include) {
+                               std::string_view header_include, const std::optional<ResolveSettings>& resolve) {
     // Distinct sets, modes and neighborhoods in first-seen order, for the summary line.
     std::vector<std::string> sets, modes, neighborhoods;
     auto note = [](std::vector<std::string>& list, std::string value) {
@@ -154,7 +184,9 @@ RegistrySources write_registry(std::span<const BuiltVariant> variants, std::stri
                               line_comment_text(summary), cpp_namespace);
     out.header += "// The variants embedded in this target, in generation order (sets x modes x neighborhoods).\n";
     out.header += "// Look one up with variants().find(\"dop32-clip-n9\").\n";
-    out.header += fmt::format("kdop::VariantList variants();\n\n}} // namespace {}\n", cpp_namespace);
+    out.header += "kdop::VariantList variants();\n\n";
+    if (resolve) out.header += resolve_declaration(*resolve);
+    out.header += fmt::format("}} // namespace {}\n", cpp_namespace);
 
     std::string arrays;
     DedupArrays modules("spirv"), bindings("bindings"), push_constants("push_constants");

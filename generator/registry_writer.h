@@ -20,9 +20,13 @@ struct RegistrySources {
 };
 
 // `cpp_namespace` must pass cpp_namespace_problem; `header_include` is what the source
-// #includes to reach the header (its file name, when both sit in one directory).
+// #includes to reach the header (its file name, when both sit in one directory). `resolve`, a
+// manifest's recorded resolve (manifest.h), is declared in the header as
+// `inline constexpr kdop::ResolveSettings resolve_settings`, and only where there is one: code that
+// needs the settings fails to build against a manifest that lost them instead of guessing.
 RegistrySources write_registry(std::span<const BuiltVariant> variants, std::string_view cpp_namespace,
-                               std::string_view header_include);
+                               std::string_view header_include,
+                               const std::optional<ResolveSettings>& resolve = std::nullopt);
 
 // Why `ns` cannot name the registry's namespace, or nullopt where it can: identifiers separated by
 // "::", e.g. "my_app::taa", none of them a keyword ("int", "class") or a name reserved for the

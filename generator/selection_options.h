@@ -116,6 +116,15 @@ struct SelectionOptions {
         return files;
     }
 
+    // The TAA resolve the manifest records its variants were measured with (manifest.h); none
+    // without a manifest or where it records none.
+    Result<std::optional<ResolveSettings>> resolve() const {
+        if (manifest.empty()) return std::optional<ResolveSettings>();
+        auto listed = read_manifest(manifest);
+        if (!listed) return std::unexpected(listed.error());
+        return listed->resolve;
+    }
+
     Result<std::vector<VariantSpec>> select() const {
         if (!manifest.empty()) {
             auto listed = read_manifest(manifest);

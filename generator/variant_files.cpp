@@ -33,7 +33,8 @@ OutputFile spirv_file(const BuiltVariant& v, const fs::path& dir) {
 }
 
 Result<GeneratedVariants> generate_variants(std::span<const VariantSpec> specs, const fs::path& dir, unsigned threads,
-                                            const BuildProgress& progress) {
+                                            const BuildProgress& progress,
+                                            const std::optional<ResolveSettings>& resolve) {
     auto built = build_variants(specs, threads, progress);
     if (!built) return std::unexpected(built.error());
     std::vector<OutputFile> files;
@@ -43,7 +44,8 @@ Result<GeneratedVariants> generate_variants(std::span<const VariantSpec> specs, 
     }
     // Their reflection, each entry naming its .spv beside it.
     files.push_back({dir / "variants.json",
-                     reflection_json(*built, [](const BuiltVariant& v) { return std::optional(v.name + ".spv"); })});
+                     reflection_json(
+                         *built, [](const BuiltVariant& v) { return std::optional(v.name + ".spv"); }, resolve)});
     if (auto ok = write_files_atomically(files); !ok) return std::unexpected(ok.error());
     return GeneratedVariants{std::move(*built), files.size()};
 }

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,9 +31,10 @@ struct GeneratedVariants {
 };
 
 // `kdop gen`: builds `specs` (build_variants, on `threads`) and writes each one's glsl_files and
-// spirv_file into `dir`, and their reflection as variants.json (generator/reflection_json.h), all
-// or nothing.
+// spirv_file into `dir`, and their reflection as variants.json (generator/reflection_json.h, with
+// `resolve`, a manifest's recorded resolve), all or nothing.
 Result<GeneratedVariants> generate_variants(std::span<const VariantSpec> specs, const std::filesystem::path& dir,
-                                            unsigned threads, const BuildProgress& progress = {});
+                                            unsigned threads, const BuildProgress& progress = {},
+                                            const std::optional<ResolveSettings>& resolve = std::nullopt);
 
 } // namespace kdop

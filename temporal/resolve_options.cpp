@@ -12,8 +12,12 @@ Result<HistoryFilter> parse_history_filter(std::string_view text) {
     return fail(fmt::format("'{}' is not a history filter; use bilinear or catmull-rom", shown_text(text, 40)));
 }
 
-std::string to_string(HistoryFilter filter) {
-    return filter == HistoryFilter::catmull_rom ? "catmull-rom" : "bilinear";
+ResolveSettings resolve_settings(const ResolveOptions& o) {
+    const ColorMapKind map = o.color_map.kind == ColorMap::Kind::power ? ColorMapKind::power
+                             : o.color_map.kind == ColorMap::Kind::log ? ColorMapKind::log
+                                                                       : ColorMapKind::linear;
+    return {o.gamma,          o.current_weight, map, map == ColorMapKind::power ? o.color_map.exponent : 1.0,
+            o.history_filter, o.dilate_motion};
 }
 
 std::string describe(const ResolveOptions& o) {

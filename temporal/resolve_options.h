@@ -8,12 +8,12 @@
 #include "core/color_map.h"
 #include "core/result.h"
 
+#include <kdop/variant.h> // HistoryFilter, ResolveSettings
+
 #include <string>
 #include <string_view>
 
 namespace kdop {
-
-enum class HistoryFilter { bilinear, catmull_rom };
 
 struct ResolveOptions {
     HistoryFilter history_filter = HistoryFilter::bilinear;
@@ -27,11 +27,14 @@ struct ResolveOptions {
     float gamma = 1; // variance-clip width; Salvi's recommended 1, as in the paper's +Var rows
 };
 
-// "bilinear" or "catmull-rom".
+// "bilinear" or "catmull-rom" (to_string in kdop/variant.h spells it).
 Result<HistoryFilter> parse_history_filter(std::string_view text);
-std::string to_string(HistoryFilter filter);
 
 // What the options say, for a report: "bilinear history, linear colors, w = 0.1".
 std::string describe(const ResolveOptions& options);
+
+// The options as a manifest records them and a registry declares them (kdop/variant.h); the
+// sequence's depth convention is the sequence's, not the resolve's, and stays out.
+ResolveSettings resolve_settings(const ResolveOptions& options);
 
 } // namespace kdop

@@ -50,6 +50,20 @@ TEST(Manifest, AnythingElseIsAnErrorNamingItsLine) {
         {"set: forest.axes\nset: copy.axes\n", "scene.manifest:2: "},
         {"set: dop22.axes\n", "which is built in"},
         {"# nothing\n", "scene.manifest: lists no variant"},
+        // The resolve's lines: each key known, once, its value in range; all five or none.
+        {"gamma: 1\nblend: 0.1\ndop22-clip-n9\n", "scene.manifest:2: unknown key 'blend'"},
+        {"gamma: 1\ngamma: 2\ndop22-clip-n9\n", "scene.manifest:2: 'gamma:' is given twice (first on line 1)"},
+        {"gamma: 0x10\ndop22-clip-n9\n", "scene.manifest:1: gamma: '0x10' is not a number"},
+        {"gamma: 101\ndop22-clip-n9\n", "scene.manifest:1: gamma: '101' is not a number above 0 and at most 100"},
+        {"gamma: 1e-50\ndop22-clip-n9\n", "gamma: '1e-50' is not a number above 0"},
+        {"current-weight: 0\ndop22-clip-n9\n", "scene.manifest:1: current-weight: '0' is not a number above 0"},
+        {"current-weight: nan\ndop22-clip-n9\n", "current-weight: 'nan' is not a number above 0 and at most 1"},
+        {"color-map: gamma:0\ndop22-clip-n9\n", "scene.manifest:1: color-map: "},
+        {"history-filter: nearest\ndop22-clip-n9\n",
+         "scene.manifest:1: history-filter: 'nearest' is not a history filter; use bilinear or catmull-rom"},
+        {"dilate-motion: true\ndop22-clip-n9\n", "scene.manifest:1: dilate-motion: 'true' is neither yes nor no"},
+        {"gamma: 1\ncolor-map: log\ndop22-clip-n9\n",
+         "scene.manifest: records its resolve's settings but not current-weight, history-filter, dilate-motion"},
     };
     for (const Case& c : cases) {
         test::TempDir dir;
@@ -67,6 +81,45 @@ TEST(Manifest, AnythingElseIsAnErrorNamingItsLine) {
     EXPECT_NE(missing.error().message.find("/nonexistent/scene.manifest: does not exist (the manifest)"),
               std::string::npos)
         << missing.error().message;
+}
+
+// The resolve a manifest records (kdop choose's): read back exactly as resolve_lines writes it,
+// anywhere in the file, and none where it records none.
+TEST(Manifest, RecordsTheResolveItsVariantsWereMeasuredWith) {
+    test::TempDir dir;
+    test::write_file(dir / "forest.axes", kSceneSet);
+    test::write_file(dir / "scene.manifest", "# measured with\n"
+                                             "dilate-motion: yes\n"
+                                             "set: forest.axes\n"
+                                             "forest-varclip-n9\n"
+                                             "  color-map:   gamma:2.2   # the paper's renderer's\n"
+                                             "history-filter: catmull-rom\n"
+                                             "gamma: 1.25\n"
+                                             "current-weight: 0.05\n");
+    auto m = read_manifest(dir / "scene.manifest");
+    ASSERT_TRUE(m) << m.error().message;
+    ASSERT_TRUE(m->resolve);
+    EXPECT_EQ(m->resolve->gamma, 1.25f);
+    EXPECT_EQ(m->resolve->current_weight, 0.05f);
+    EXPECT_EQ(m->resolve->color_map, ColorMapKind::power);
+    EXPECT_EQ(m->resolve->color_map_exponent, 2.2);
+    EXPECT_EQ(m->resolve->history_filter, HistoryFilter::catmull_rom);
+    EXPECT_TRUE(m->resolve->dilate_motion);
+    EXPECT_EQ(variant_name(m->variants.at(0)), "forest-varclip-n9");
+
+    // Written back in the documented order, the fewest digits that read back the same.
+    const std::string lines = resolve_lines(*m->resolve);
+    EXPECT_EQ(lines, "gamma: 1.25\ncurrent-weight: 0.05\ncolor-map: gamma:2.2\nhistory-filter: catmull-rom\n"
+                     "dilate-motion: yes\n");
+    test::write_file(dir / "again.manifest", lines + "aabb-clip-n9\n");
+    auto again = read_manifest(dir / "again.manifest");
+    ASSERT_TRUE(again && again->resolve) << (again ? "no resolve" : again.error().message);
+    EXPECT_EQ(resolve_lines(*again->resolve), lines);
+
+    test::write_file(dir / "plain.manifest", "dop22-clip-n9\n");
+    auto plain = read_manifest(dir / "plain.manifest");
+    ASSERT_TRUE(plain) << plain.error().message;
+    EXPECT_FALSE(plain->resolve);
 }
 
 TEST(Cli, ManifestSelectsWhatListAndGenProduce) {

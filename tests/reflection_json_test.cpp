@@ -2,7 +2,9 @@
 // exactly what the C++ registry it was generated with holds, entry by entry (this binary's test
 // registry: a variant and GLSL and HLSL project shaders); kdop-gen writes it alone, with the .spv
 // files it names, and refuses what it cannot write; kdop gen writes variants.json beside its .spv
-// files. The schema check is the test reflection_json_schema (tests/validate_reflection.py).
+// files; the resolve a manifest records reaches the header as constants and the JSON as "resolve".
+// The schema check is the test reflection_json_schema (tests/validate_reflection.py).
+#include "kdop_resolve_test_variants.h"
 #include "kdop_test_shaders.h"
 #include "tests/test_support.h"
 
@@ -142,6 +144,38 @@ TEST(ReflectionJson, KdopGenWritesVariantsJsonBesideTheSpirv) {
     EXPECT_EQ(fs::file_size(dir / "variants" / "dop22-varclip-n5.spv"), entry["spirv"]["bytes"].get<std::uint64_t>());
     ASSERT_EQ(entry["push_constants"]["members"].size(), 1u) << "varclip's gamma";
     EXPECT_EQ(entry["push_constants"]["members"][0]["name"], "gamma");
+}
+
+// The resolve tests/data/resolve.manifest records, as kdop choose writes one, reaches the build
+// through kdop_add_variants(MANIFEST): the header declares it as constants an engine reads at compile
+// time, the JSON holds it, and a registry without a manifest holds none (null in its JSON). Before
+// the manifest had resolve lines, `gamma: 1.5` was "not a variant name" and nothing carried them.
+TEST(ReflectionJson, CarriesTheResolveTheManifestRecords) {
+    constexpr ResolveSettings r = resolve_test_variants::resolve_settings;
+    static_assert(r.gamma == 1.5f && r.current_weight == 0.125f, "read at compile time");
+    EXPECT_EQ(r.color_map, ColorMapKind::power);
+    EXPECT_EQ(r.color_map_exponent, 2.2);
+    EXPECT_EQ(r.history_filter, HistoryFilter::catmull_rom);
+    EXPECT_TRUE(r.dilate_motion);
+    ASSERT_NE(resolve_test_variants::variants().find("aabb-varclip-n9"), nullptr);
+
+    const Json document = read_json(KDOP_RESOLVE_TEST_JSON);
+    EXPECT_EQ(document["resolve"], Json::parse(R"({"gamma": 1.5, "current_weight": 0.125, "color_map": "gamma:2.2",
+                                                   "history_filter": "catmull-rom", "dilate_motion": true})"));
+    EXPECT_TRUE(read_json(KDOP_TEST_SHADERS_JSON)["resolve"].is_null()) << "no manifest, no resolve";
+
+    // kdop gen --manifest writes it into variants.json too; kdop-gen's header declares nothing
+    // without a manifest, so code that needs the settings fails to build rather than guess gamma = 1.
+    test::TempDir dir;
+    const std::string manifest = (fs::path(KDOP_TEST_DATA_DIR) / "resolve.manifest").string();
+    auto gen = test::run(test::kdop_binary() + " gen --manifest " + manifest + " --out " + (dir / "gen").string());
+    ASSERT_EQ(gen.exit_code, 0) << gen.err;
+    EXPECT_EQ(read_json(dir / "gen" / "variants.json")["resolve"], document["resolve"]);
+    auto plain =
+        test::run(test::kdop_gen_binary() + " registry --sets aabb --modes varclip --neighborhoods n9 --header " +
+                  (dir / "plain.h").string() + " --source " + (dir / "plain.cpp").string() + " --namespace plain");
+    ASSERT_EQ(plain.exit_code, 0) << plain.err;
+    EXPECT_EQ(test::read_file(dir / "plain.h").find("resolve_settings"), std::string::npos);
 }
 
 } // namespace

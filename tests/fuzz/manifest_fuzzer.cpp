@@ -2,8 +2,9 @@
 // (next to it, forest.axes, so `set: forest.axes` lines resolve). Whatever is refused must be
 // refused with a message that names the manifest, holds no raw control bytes and stays short
 // (the bytes of a long line are cut); whatever is read must list at least one variant, each once,
-// with set files from the manifest's folder only (`set: /etc/passwd` echoed the file's lines).
-// Any violation aborts, which libFuzzer reports.
+// with set files from the manifest's folder only (`set: /etc/passwd` echoed the file's lines), and
+// a resolve it records must hold values in their ranges and read back the same once written
+// (resolve_lines, what kdop choose writes). Any violation aborts, which libFuzzer reports.
 #include "generator/inside_folder.h"
 #include "generator/manifest.h"
 #include "tests/fuzz/fuzz_checks.h"
@@ -52,5 +53,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (std::size_t j = 0; j < i; ++j)
             require(!(manifest->variants[i].key() == manifest->variants[j].key()), "a variant read twice",
                     manifest->variants[i].key().name());
+    if (const auto& r = manifest->resolve) {
+        const std::string lines = kdop::resolve_lines(*r);
+        require(r->gamma > 0 && r->gamma <= 100, "a gamma out of its range", lines);
+        require(r->current_weight > 0 && r->current_weight <= 1, "a current weight out of its range", lines);
+        require(r->color_map == kdop::ColorMapKind::power
+                    ? r->color_map_exponent >= 0.01 && r->color_map_exponent <= 100
+                    : r->color_map_exponent == 1,
+                "a color map exponent out of its range", lines);
+        const std::filesystem::path again = folder() / "again.manifest";
+        std::ofstream(again, std::ios::binary | std::ios::trunc) << lines << "aabb-clip-n9\n";
+        auto reread = kdop::read_manifest(again);
+        require(reread && reread->resolve && kdop::resolve_lines(*reread->resolve) == lines &&
+                    reread->resolve->gamma == r->gamma && reread->resolve->current_weight == r->current_weight &&
+                    reread->resolve->color_map_exponent == r->color_map_exponent,
+                "a resolve that does not read back as written", lines);
+    }
     return 0;
 }

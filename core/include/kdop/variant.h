@@ -113,6 +113,34 @@ struct Variant {
     std::uint32_t color_output_count; // fragment shaders: color attachments written (highest location + 1)
 };
 
+// Where a TAA resolve clips and blends: colors as they are, raised to an exponent, or log(c + 1e-5)
+// (kdop's --color-map linear, gamma:G, log).
+enum class ColorMapKind : std::uint8_t {
+    linear,
+    power,
+    log,
+};
+
+// How a resolve samples the history at the reprojected position (--history-filter).
+enum class HistoryFilter : std::uint8_t {
+    bilinear,
+    catmull_rom, // the 4x4 Catmull-Rom cubic
+};
+
+// The TAA resolve a manifest's variants were measured with: `kdop choose` records it in the
+// kdop.manifest it writes (gamma:, current-weight:, color-map:, history-filter: and dilate-motion:
+// lines), and kdop_add_variants(MANIFEST) declares it in the registry's header as
+// `resolve_settings`. Build the resolve with these, give a varclip variant `gamma` as its push
+// constant, and the figures the variant was chosen by hold for your resolve too.
+struct ResolveSettings {
+    float gamma;                  // the variance clip's width in standard deviations
+    float current_weight;         // the current frame's share of the blend
+    ColorMapKind color_map;       // the space the clip and the blend happen in
+    double color_map_exponent;    // ColorMapKind::power: each color channel raised to it; otherwise 1
+    HistoryFilter history_filter; // how the history is sampled
+    bool dilate_motion;           // the motion of the nearest of the 3x3 neighbors by depth, not the pixel's own
+};
+
 struct VariantList {
     const Variant* first;
     std::size_t count;
@@ -167,6 +195,10 @@ inline std::uint32_t vulkan_stage_bit(ShaderStage stage) {
     case ShaderStage::fragment: return 0x10; // VK_SHADER_STAGE_FRAGMENT_BIT
     }
     return 0;
+}
+// "bilinear", "catmull-rom": as --history-filter and a manifest's history-filter: line spell it.
+inline const char* to_string(HistoryFilter filter) {
+    return filter == HistoryFilter::catmull_rom ? "catmull-rom" : "bilinear";
 }
 inline const char* to_string(Form form) { return form == Form::unrolled ? "unrolled" : "loop"; }
 inline const char* to_string(Numerics numerics) { return numerics == Numerics::hardened ? "hardened" : "paper"; }
