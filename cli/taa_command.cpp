@@ -74,7 +74,8 @@ Action add_taa_command(CLI::App& app) {
         ->check(finite_number(kMinPixelsPerDegree, kMaxPixelsPerDegree));
     taa->add_option("--timing-rounds", o->timing_rounds, "Interleaved dispatches per variant for ms [default: 15]")
         ->check(whole_number(1, 10000));
-    taa->add_option("--seed", o->seed, "Seed of the synthetic textures and the 3-D scenes [default: 1]")
+    taa->add_option("--seed", o->seed,
+                    "Seed of the synthetic textures, the 3-D scenes and the bootstrap intervals [default: 1]")
         ->check(seed_number());
     taa->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");

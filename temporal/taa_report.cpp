@@ -168,12 +168,22 @@ Table taa_table(const std::vector<TaaRow>& rows) {
              [](const TaaRow& r) { return maybe(r.shimmer_median); }},
             {{"shimmer_p95", "FLIP", Shown::fixed, 4, "shimmer p95"},
              [](const TaaRow& r) { return maybe(r.shimmer_p95); }},
+            {{"shimmer_low", "FLIP", Shown::fixed, 4, "shimmer 95% interval from"},
+             [](const TaaRow& r) { return maybe(r.shimmer_interval.low); }},
+            {{"shimmer_high", "FLIP", Shown::fixed, 4, "to"},
+             [](const TaaRow& r) { return maybe(r.shimmer_interval.high); }},
             {{"ghosting", "FLIP", Shown::fixed, 4, "ghosting (mean)"},
              [](const TaaRow& r) { return maybe(r.ghosting); }},
             {{"ghosting_median", "FLIP", Shown::fixed, 4, "ghosting median"},
              [](const TaaRow& r) { return maybe(r.ghosting_median); }},
             {{"ghosting_p95", "FLIP", Shown::fixed, 4, "ghosting p95"},
              [](const TaaRow& r) { return maybe(r.ghosting_p95); }},
+            {{"ghosting_low", "FLIP", Shown::fixed, 4, "ghosting 95% interval from"},
+             [](const TaaRow& r) { return maybe(r.ghosting_interval.low); }},
+            {{"ghosting_high", "FLIP", Shown::fixed, 4, "to"},
+             [](const TaaRow& r) { return maybe(r.ghosting_interval.high); }},
+            {{"ghosting_noise", "", Shown::flag, 0, "ghosting within noise of the least"},
+             [](const TaaRow& r) { return r.ghosting_noise ? Value(*r.ghosting_noise) : Value(); }},
             {{"worst_ghosting_frame", "", Shown::text, 0, "most ghosting at"},
              [](const TaaRow& r) { return r.worst_ghosting_frame.empty() ? Value() : Value(r.worst_ghosting_frame); }},
             {{"worst_shimmer_frame", "", Shown::text, 0, "most shimmer at"},
@@ -236,7 +246,14 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
     md += "- **shimmer** and **ghosting** are means over the measured frames; **p95** is the 95th percentile over "
           "the same frames (linear interpolation between order statistics, as numpy's default), which a trail a few "
           "frames long moves where the mean hardly moves. taa_frames.csv has every frame's figures, and taa.csv "
-          "the medians too.\n\n";
+          "the medians too.\n";
+    md += fmt::format("- taa.csv gives each mean a 95% interval (shimmer_low to shimmer_high, ghosting_low to "
+                      "ghosting_high): a block bootstrap over the measured frames, in blocks of {} consecutive frames "
+                      "(ceil(1 / current weight): frames of one block share their history), 2000 replicates drawn "
+                      "with seed {}, the same blocks for every variant of a scene; ghosting_noise says whether a "
+                      "variant's ghosting is *within noise* of the least in its scene, their paired difference's "
+                      "interval holding 0. A scene or sequence of fewer than two blocks of frames has none.\n\n",
+                      history_block(s.resolve.current_weight), run.seed.value_or(1));
     if (std::any_of(rows.begin(), rows.end(),
                     [](const TaaRow& r) { return std::isnan(r.shimmer) || std::isnan(r.ghosting); }))
         md += "A figure shown as – is not measured: one the sequence is not meant for (its sequence.json says "
@@ -247,9 +264,9 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-    const std::vector<std::string> shown{"variant", "ms",          "ms_q1",    "ms_q3",        "ms_noise",
-                                         "shimmer", "shimmer_p95", "ghosting", "ghosting_p95", "ghosting_against",
-                                         "flip"};
+    const std::vector<std::string> shown{
+        "variant",     "ms",       "ms_q1",        "ms_q3",          "ms_noise",         "shimmer",
+        "shimmer_p95", "ghosting", "ghosting_p95", "ghosting_noise", "ghosting_against", "flip"};
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<TaaRow> in_scene;
         std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),

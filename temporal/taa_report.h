@@ -6,12 +6,14 @@
 
 #include "core/variant_key.h"
 #include "flip/hdr_flip.h"
+#include "harness/block_bootstrap.h"
 #include "harness/run_metadata.h"
 #include "harness/table.h"
 #include "sequence/sequence.h"
 #include "temporal/resolve_options.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +36,10 @@ struct TaaRow {
     std::string ghosting_against = "aliased";
     // What shimmer and ghosting were measured in: LDR-FLIP, or HDR-FLIP for an HDR sequence.
     ColorRange range = ColorRange::ldr;
+    // Their 95% block-bootstrap intervals over the measured frames, and whether the ghosting is
+    // within noise of the least in the scene (taa_intervals.h); unknown where the frames are too few.
+    Interval shimmer_interval, ghosting_interval;
+    std::optional<bool> ghosting_noise;
 };
 
 // Whether `row`'s time differs from the fastest row's by no more than the larger interquartile

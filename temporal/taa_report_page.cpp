@@ -20,11 +20,12 @@ std::string image(const std::string& path, const std::string& alt) {
 
 // The table taa.csv holds, sortable by the script (each number cell carries its full value in
 // data-value) and sorted by `sorted_by` to begin with, every column but the variant key's parts
-// (the variant's name says them) and the medians (report.md leaves them out too), so that it fits a
-// 1400-pixel page.
+// (the variant's name says them), the medians and the intervals (report.md leaves them out too), so
+// that it fits a 1400-pixel page.
 std::string results_table(const Table& table, const std::string& sorted_by) {
-    static const std::vector<std::string> left_out{"axis_set", "mode",           "neighborhood",   "form",
-                                                   "numerics", "shimmer_median", "ghosting_median"};
+    static const std::vector<std::string> left_out{
+        "axis_set",    "mode",         "neighborhood", "form",          "numerics",       "shimmer_median",
+        "shimmer_low", "shimmer_high", "ghosting_low", "ghosting_high", "ghosting_noise", "ghosting_median"};
     std::vector<std::size_t> shown;
     for (std::size_t c = 0; c < table.columns().size(); ++c)
         if (std::find(left_out.begin(), left_out.end(), table.columns()[c].name) == left_out.end()) shown.push_back(c);

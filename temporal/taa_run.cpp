@@ -9,6 +9,7 @@
 #include "harness/statistics.h"
 #include "temporal/ghosting_picture.h"
 #include "temporal/taa_chart.h"
+#include "temporal/taa_intervals.h"
 #include "temporal/taa_report.h"
 #include "temporal/taa_report_page.h"
 #include "temporal/viewer_frames.h"
@@ -217,6 +218,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     std::vector<std::string> sequence_names;
     for (const SequenceFrames& s : sequences) sequence_names.push_back(s.name());
     const EvaluationOptions& e = settings.evaluation;
+    BootstrapOptions bootstrap;
+    bootstrap.block = history_block(e.resolve.current_weight), bootstrap.seed = settings.seed;
+    add_intervals(rows, frame_rows, bootstrap);
     outputs.add_table("taa", taa_table(rows), run_info);
     outputs.add_table("taa_frames", taa_frames_table(frame_rows), run_info);
     const TaaReportSettings report{width,          height,      schedule.warmup,  schedule.frames, e.ppd,

@@ -8,6 +8,7 @@
 #include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "scenes/sprite_scene.h"
+#include "temporal/taa_intervals.h"
 #include "temporal/taa_measure.h"
 #include "temporal/taa_report.h"
 #include "temporal/taa_resolve.h"
@@ -138,6 +139,59 @@ TEST(TaaReport, MarksTimesWithinNoiseOfTheFastest) {
     const std::string csv = taa_table(rows).csv();
     EXPECT_NE(csv.find(",1.25,1.2,1.3,1,"), std::string::npos) << csv;
     EXPECT_NE(csv.find(",1.35,1.3,1.4,0,"), std::string::npos) << csv;
+}
+
+// Each row's shimmer and ghosting get the block bootstrap of its own frames (a kdop scene's shimmer
+// from its -shimmer sequence, its ghosting from its -ghosting one), drawn alike for the variants of
+// one scene, and ghosting_noise says whether the paired difference from the least ghosting holds 0;
+// a scene of too few frames gets none. The intervals are those bootstrap_replicates gives on the
+// same figures, recomputed here from the frame rows.
+TEST(TaaReport, IntervalsAreTheBlockBootstrapOfEachRowsFrames) {
+    const VariantKey keys[3] = {{"aabb", Mode::clip, Neighborhood::n9},
+                                {"dop32", Mode::clip, Neighborhood::n9},
+                                {"ycocg", Mode::clip, Neighborhood::n9}};
+    std::vector<TaaFrameRow> frames;
+    std::vector<std::vector<std::vector<double>>> ghosting(3, {{}}), shimmer(3, {{}});
+    for (std::size_t f = 0; f < 24; ++f) {
+        const double g = 0.02 + 0.001 * double(f % 5), sh = 0.01 + 0.0005 * double(f % 3);
+        // dop32 ghosts 0.003 less than aabb on every frame: beyond noise; ycocg wobbles around dop32: within it.
+        const double values[3] = {g, g - 0.003, g - 0.003 + (f % 2 ? 0.0004 : -0.0004)};
+        for (std::size_t v = 0; v < 3; ++v) {
+            frames.push_back({keys[v], "grass", "grass-ghosting", 100 + f, values[v], NAN});
+            frames.push_back({keys[v], "grass", "grass-shimmer", 100 + f, NAN, sh + 0.001 * double(v)});
+            ghosting[v][0].push_back(values[v]);
+            shimmer[v][0].push_back(sh + 0.001 * double(v));
+        }
+    }
+    frames.push_back({keys[0], "short", "short", 0, 0.5, 0.5});
+    std::vector<TaaRow> rows(4);
+    for (std::size_t v = 0; v < 3; ++v) {
+        rows[v].key = keys[v], rows[v].scene = "grass", rows[v].ghosting = 0;
+        for (double x : ghosting[v][0]) rows[v].ghosting += x / 24;
+    }
+    rows[1].ghosting -= 1e-9; // dop32 the least, whatever the rounding of the sums
+    rows[3].key = keys[0], rows[3].scene = "short";
+    const BootstrapOptions options{4, 500, 3, 0.95};
+    add_intervals(rows, frames, options);
+    const auto g = *bootstrap_replicates(ghosting, options), s = *bootstrap_replicates(shimmer, options);
+    for (std::size_t v = 0; v < 3; ++v) {
+        SCOPED_TRACE(v);
+        EXPECT_EQ(rows[v].ghosting_interval.low, percentile_interval(g[v], 0.95).low);
+        EXPECT_EQ(rows[v].ghosting_interval.high, percentile_interval(g[v], 0.95).high);
+        EXPECT_EQ(rows[v].shimmer_interval.low, percentile_interval(s[v], 0.95).low);
+        EXPECT_EQ(rows[v].shimmer_interval.high, percentile_interval(s[v], 0.95).high);
+        EXPECT_LT(rows[v].ghosting_interval.low, rows[v].ghosting_interval.high);
+    }
+    EXPECT_EQ(rows[0].ghosting_noise, false) << "0.003 more than the least on every frame";
+    EXPECT_EQ(rows[1].ghosting_noise, true) << "the least itself";
+    EXPECT_EQ(rows[2].ghosting_noise, true) << "+-0.0004 around the least, frame by frame";
+    EXPECT_FALSE(rows[3].ghosting_interval.known()) << "one frame";
+    EXPECT_FALSE(rows[3].ghosting_noise);
+    const auto csv = test::csv_rows(taa_table(rows).csv());
+    EXPECT_EQ(csv[0].at("ghosting_noise"), "0");
+    EXPECT_EQ(csv[2].at("ghosting_noise"), "1");
+    EXPECT_FALSE(csv[0].at("shimmer_low").empty());
+    EXPECT_TRUE(csv[3].at("ghosting_low").empty());
 }
 
 // The report sets kdop's figures beside the paper's Tables 1 and 2, by rank.
@@ -371,9 +425,11 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     auto r = t.kdop("--sets aabb dop22 --modes clip --scenes grass asphalt --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = test::read_file(out / "taa.csv");
-    EXPECT_EQ(csv.substr(0, csv.find('\n')),
-              "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,shimmer_median,shimmer_p95,"
-              "ghosting,ghosting_median,ghosting_p95,worst_ghosting_frame,worst_shimmer_frame,ghosting_against,flip");
+    EXPECT_EQ(
+        csv.substr(0, csv.find('\n')),
+        "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,shimmer_median,shimmer_p95,"
+        "shimmer_low,shimmer_high,ghosting,ghosting_median,ghosting_p95,ghosting_low,ghosting_high,ghosting_noise,"
+        "worst_ghosting_frame,worst_shimmer_frame,ghosting_against,flip");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << "2 variants x 2 scenes:\n" << csv;
     EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,"), std::string::npos) << csv;
     for (const char* scene : {"grass", "asphalt"}) {
