@@ -57,7 +57,7 @@ Action add_choose_command(CLI::App& app) {
         ->check(SelectionOptions::choice("neighborhood", "n9 or n5", parse_neighborhood));
     cmd->add_option("--budget-ops", o->run.budget_ops,
                     "Recommend the least held-out ghosting among the candidates whose clip costs at most this many "
-                    "float ops [default: no budget]")
+                    "float ops, as kdop gen and kdop bench count them [default: no budget]")
         ->check(whole_number(1, 1000000));
     cmd->add_option("--budget-ms", o->run.budget_ms,
                     "Or among those whose rectification pass takes at most this many ms (median, on the device, as "
@@ -84,7 +84,9 @@ Action add_choose_command(CLI::App& app) {
         ->check(finite_number(kMinPixelsPerDegree, kMaxPixelsPerDegree));
     cmd->add_option("--sample", o->run.sample, "Fit to this many sampled neighborhoods (as kdop optimize --sample)")
         ->check(whole_number(1, (1ll << 40)));
-    cmd->add_option("--seed", o->run.seed, "Seed of the fit [default: 1]")->check(seed_number());
+    cmd->add_option("--seed", o->run.seed,
+                    "Seed of the fit and of the bootstrap of the held-out ghosting's intervals [default: 1]")
+        ->check(seed_number());
     cmd->add_option("--threads", o->run.threads, "Threads of the fit [default: one per core]")->check(thread_count());
     cmd->add_option("--device", o->device,
                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]");
@@ -107,7 +109,8 @@ Action add_choose_command(CLI::App& app) {
         if (!chosen) return report(chosen.error());
         if (!(*ranks)->is_root()) return 0;
         const Recommendation& r = chosen->recommendation;
-        std::cout << (r.chosen ? fmt::format("kdop choose: {}: {}\n", chosen->candidates[*r.chosen].key.name(), r.why)
+        std::cout << (r.chosen ? fmt::format("kdop choose: {}: {}.\n{}\n", chosen->candidates[*r.chosen].key.name(),
+                                             r.why, r.noise)
                                : fmt::format("kdop choose: no recommendation: {}\n", r.why))
                   << terminal_text((outputs->dir() / "choice.md").string()) << "\n";
         return 0;

@@ -1,6 +1,7 @@
 #include "optimize/choice_report.h"
 
 #include "core/escaped_text.h"
+#include "generator/manifest.h"
 #include "harness/declared_table.h"
 #include "harness/gnuplot.h"
 #include "harness/scratch_directory.h"
@@ -15,49 +16,127 @@
 
 namespace kdop {
 
+namespace {
+
+const char* flip_mode(ColorRange range) { return range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"; }
+
+} // namespace
+
 Table candidates_table(const std::vector<Candidate>& candidates) {
+    // Every figure's unit is the FLIP mode it was measured in, and a column says it too (taa.csv's).
+    const std::string flip = flip_mode(candidates.empty() ? ColorRange::ldr : candidates.front().range);
     const DeclaredColumns<Candidate> columns =
         variant_key_columns<Candidate>([](const Candidate& c) -> const VariantKey& { return c.key; }) +
         DeclaredColumns<Candidate>{
             {{"fitted", "", Shown::flag, 0}, [](const Candidate& c) { return Value(c.fitted); }},
-            {{"float_ops", "", Shown::integer, 0, "float ops"},
+            {{"float_ops", "", Shown::integer, 0, "float ops (generator)"},
              [](const Candidate& c) { return Value(std::int64_t(c.float_ops)); }},
+            {{"analytic_min_ops", "", Shown::integer, 0, "analytic min"},
+             [](const Candidate& c) { return Value(std::int64_t(c.analytic_ops)); }},
         } +
         time_columns<Candidate>(&Candidate::ms, &Candidate::ms_q1, &Candidate::ms_q3) +
         DeclaredColumns<Candidate>{
+            {{"ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"},
+             [](const Candidate& c) { return std::isfinite(c.ms) ? Value(c.ms_noise) : Value(); }},
             {{"lavapipe_instr", "instr/px", Shown::fixed, 1, "lavapipe instr/px beyond the gather"},
              [](const Candidate& c) { return maybe(c.lavapipe_instructions); }},
-            {{"fit_ghosting", "FLIP", Shown::fixed, 4, "ghosting on the fit frames"},
+            {{"fit_ghosting", flip, Shown::fixed, 4, "ghosting on the fit frames"},
              [](const Candidate& c) { return maybe(c.fit_ghosting); }},
-            {{"validation_ghosting", "FLIP", Shown::fixed, 4, "held-out ghosting"},
+            {{"validation_ghosting", flip, Shown::fixed, 4, "held-out ghosting"},
              [](const Candidate& c) { return maybe(c.validation_ghosting); }},
-            {{"validation_ghosting_median", "FLIP", Shown::fixed, 4, "held-out median"},
+            {{"validation_ghosting_low", flip, Shown::fixed, 4,
+              fmt::format("{:.0f}% interval from", 100 * kChoiceLevel)},
+             [](const Candidate& c) { return maybe(c.validation_ghosting_interval.low); }},
+            {{"validation_ghosting_high", flip, Shown::fixed, 4, "to"},
+             [](const Candidate& c) { return maybe(c.validation_ghosting_interval.high); }},
+            {{"ghosting_noise", "", Shown::flag, 0, "held-out ghosting within noise of the recommended"},
+             [](const Candidate& c) { return c.ghosting_noise ? Value(*c.ghosting_noise) : Value(); }},
+            {{"validation_ghosting_median", flip, Shown::fixed, 4, "held-out median"},
              [](const Candidate& c) { return maybe(c.validation_ghosting_median); }},
-            {{"validation_ghosting_p95", "FLIP", Shown::fixed, 4, "held-out p95"},
+            {{"validation_ghosting_p95", flip, Shown::fixed, 4, "held-out p95"},
              [](const Candidate& c) { return maybe(c.validation_ghosting_p95); }},
-            {{"validation_shimmer", "FLIP", Shown::fixed, 4, "held-out shimmer"},
+            {{"validation_shimmer", flip, Shown::fixed, 4, "held-out shimmer"},
              [](const Candidate& c) { return maybe(c.validation_shimmer); }},
+            {{"flip", "", Shown::text, 0, "measured in"},
+             [](const Candidate& c) { return Value(std::string(flip_mode(c.range))); }},
         };
     return declared_table<Candidate>(columns, candidates);
 }
+
+namespace {
+
+// How the intervals were drawn, or why there are none.
+std::string bootstrap_paragraph(const ChooseResult& r) {
+    const BootstrapOptions& b = r.bootstrap;
+    const bool drawn = std::any_of(r.candidates.begin(), r.candidates.end(),
+                                   [](const Candidate& c) { return c.validation_ghosting_interval.known(); });
+    if (!drawn)
+        return fmt::format("The held-out frames are too few for intervals: each held-out sequence needs at least two "
+                           "bootstrap blocks of {} frames, so nothing here says which differences are noise.\n\n",
+                           b.block);
+    return fmt::format(
+        "**The interval** beside each held-out ghosting is a {:.0f}% block-bootstrap interval: each held-out "
+        "sequence's frames are cut into blocks of {} consecutive frames (ceil(1 / current weight), about the frames "
+        "one "
+        "history averages, so frames of one block share their history), and {} replicates draw as many blocks with "
+        "replacement (seed {}, `--seed`); the interval spans the middle {:.0f}% of the replicates' figure. Every "
+        "candidate is drawn on the same blocks, so a candidate is *within noise* of the recommended one "
+        "(ghosting_noise; of the least held-out ghosting where none is recommended) where the interval of their "
+        "difference holds 0: the held-out frames do not tell the two apart.\n\n",
+        100 * b.level, b.block, b.replicates, b.seed, 100 * b.level);
+}
+
+// Every setting the figures were measured with: the variant's, the resolve's, FLIP's.
+std::string settings_section(const ChooseResult& r, const ChooseOptions& o) {
+    const ResolveOptions& resolve = o.evaluation.resolve;
+    const ResolveSettings settings = resolve_settings(resolve);
+    std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
+    if (r.recommendation.chosen) {
+        const Candidate& c = r.candidates[*r.recommendation.chosen];
+        md += fmt::format("| mode (recommended) | {} |\n| neighborhood (recommended) | {} |\n", to_string(c.key.mode),
+                          to_string(c.key.neighborhood));
+    }
+    md += fmt::format("| gamma (the variance clip's width; varclip only) | {} |\n| current weight | {} |\n"
+                      "| color map | {} |\n| history filter | {} |\n| motion dilation | {} |\n"
+                      "| FLIP | {} at {:.1f} pixels per degree |\n| warm-up | {} frames |\n\n",
+                      settings.gamma, settings.current_weight, markdown_text(color_map_text(settings)),
+                      to_string(settings.history_filter), settings.dilate_motion ? "yes" : "no",
+                      r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP", o.evaluation.ppd,
+                      o.evaluation.schedule.warmup);
+    if (r.recommendation.chosen)
+        md += "kdop.manifest records the resolve's settings beside the variant (its gamma:, current-weight:, "
+              "color-map:, history-filter: and dilate-motion: lines), and kdop_add_variants(MANIFEST) gives them to "
+              "the build as `resolve_settings` in the registry's header and \"resolve\" in its JSON "
+              "(docs/embedding.md): a resolve built otherwise may not see these figures.\n\n";
+    return md;
+}
+
+} // namespace
 
 std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const RunMetadata& run, bool chart) {
     const auto names = [](const std::vector<std::string>& list) {
         return fmt::format("{}", fmt::join(list | std::views::transform(markdown_text), ", "));
     };
+    const char* flip = r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
     std::string md = "# kdop choose: the variant to ship\n\n";
-    md += fmt::format("Axis sets of {} axes were fitted to {} (the mean k-DOP volume over their frames' neighborhoods, "
-                      "the held-out frames left out, in {} colors), then every candidate was measured as `kdop taa "
-                      "--sequence` measures it ({}). **Held-out ghosting** is measured on {}: the mean over the "
-                      "sequences of each one's mean FLIP over those of its measured frames (after {} frames of "
-                      "warm-up), and its median and 95th percentile are over all those frames together. **Ghosting on "
-                      "the fit frames** is the same figure on the frames fitted to: what a fitted set's own figures "
-                      "would have claimed. **Float ops** are the hardened clip's, as the generator counts them; **ms** "
-                      "the median device time of its rectification pass at the held-out frames' size, with its "
-                      "quartiles over interleaved rounds, as kdop taa times it.\n\n",
-                      fmt::join(o.fit_axes, ", "), names(r.fit_sequences), to_string(o.evaluation.resolve.color_map),
-                      describe(o.evaluation.resolve), markdown_text(r.held_out), o.evaluation.schedule.warmup);
-
+    md += fmt::format(
+        "Axis sets of {} axes were fitted to {} (the mean k-DOP volume over their frames' neighborhoods, the held-out "
+        "frames left out, in {} colors), then every candidate was measured as `kdop taa --sequence` measures it ({}). "
+        "**Every ghosting and shimmer here is {}**: the sequences are {}, and kdop choose refuses sequences of two "
+        "ranges, whose figures are on different scales. **Held-out ghosting** is measured on {}: the mean over the "
+        "sequences of each one's mean FLIP over those of its measured frames (after {} frames of warm-up), and its "
+        "median and 95th percentile are over all those frames together. **Ghosting on the fit frames** is the same "
+        "figure on the frames fitted to: what a fitted set's own figures would have claimed. **Float ops** are those "
+        "of the candidate's compute shader as the generator counts them in its optimized SPIR-V: the count `kdop gen` "
+        "and `kdop bench` print, which `--budget-ops` is held against; **analytic min** is the analytic lower bound "
+        "of its clip (kdop bench's column of that name), a few below. **ms** is the median device time of its "
+        "rectification pass at the held-out frames' size, with its quartiles over interleaved rounds, as kdop taa "
+        "times it, and *within noise* of the fastest (ms_noise) where it differs from the fastest's by no more than "
+        "the larger interquartile range of the two.\n\n",
+        fmt::join(o.fit_axes, ", "), names(r.fit_sequences), to_string(o.evaluation.resolve.color_map),
+        describe(o.evaluation.resolve), flip, r.range == ColorRange::hdr ? "HDR" : "LDR", markdown_text(r.held_out),
+        o.evaluation.schedule.warmup);
+    md += bootstrap_paragraph(r);
     // Least held-out ghosting first.
     std::vector<Candidate> sorted = r.candidates;
     std::stable_sort(sorted.begin(), sorted.end(), [](const Candidate& a, const Candidate& b) {
@@ -83,13 +162,14 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
     } else {
         const Candidate& c = r.candidates[*rec.chosen];
         const auto given = r.given_files.find(c.key.set);
-        md += fmt::format("**{}**: {}. kdop.manifest selects it{}.\n\n", markdown_text(c.key.name()), rec.why,
+        md += fmt::format("**{}**: {}. kdop.manifest selects it{}.\n\n{}\n\n", markdown_text(c.key.name()), rec.why,
                           c.fitted                       ? fmt::format(", with its set's file, {}.axes", c.key.set)
                           : given == r.given_files.end() ? ""
                           : given->second.in_place
                               ? fmt::format(", with its set's file, {}.axes, given to --sets", c.key.set)
                               : fmt::format(", with its set's file, {}.axes, a copy of {} (given to --sets)", c.key.set,
-                                            markdown_text(given->second.given)));
+                                            markdown_text(given->second.given)),
+                          markdown_text(rec.noise));
     }
     // Whether fitting paid off out of sample: the best fitted candidate against the best built-in one.
     const Candidate *best_fitted = nullptr, *best_builtin = nullptr;
@@ -112,13 +192,15 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
                               markdown_text(best_fitted->key.name()), best_fitted->validation_ghosting,
                               markdown_text(best_builtin->key.name()), best_builtin->validation_ghosting);
     }
-    return md + metadata_markdown(run);
+    return md + settings_section(r, o) + metadata_markdown(run);
 }
 
-std::string choice_manifest(const ChooseResult& r) {
+std::string choice_manifest(const ChooseResult& r, const ChooseOptions& o) {
     if (!r.recommendation.chosen) return {};
     const Candidate& c = r.candidates[*r.recommendation.chosen];
-    std::string text = "# kdop choose's recommendation (choice.md says why).\n";
+    std::string text = "# kdop choose's recommendation (choice.md says why), and the TAA resolve it was measured\n"
+                       "# with: build the resolve with these (kdop_add_variants declares them as resolve_settings).\n";
+    text += resolve_lines(resolve_settings(o.evaluation.resolve));
     if (c.fitted || r.given_files.count(c.key.set)) text += fmt::format("set: {}.axes\n", c.key.set);
     return text + c.key.name() + "\n";
 }
@@ -133,7 +215,7 @@ Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& opt
     if (charts_available(options.chart)) {
         ScratchDirectory scratch("kdop-choose");
         auto chart = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
-                                          : choice_chart(*chosen, scratch.path, outputs.dir());
+                                          : choice_chart(*chosen, options, scratch.path, outputs.dir());
         if (chart)
             outputs.add(std::move(*chart)), charted = true;
         else
@@ -142,7 +224,7 @@ Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& opt
     outputs.add_table("candidates", candidates_table(chosen->candidates), run);
     outputs.add("choice.md", choice_markdown(*chosen, options, run, charted));
     for (const auto& [name, text] : chosen->fitted_files) outputs.add(name, text);
-    if (const std::string manifest = choice_manifest(*chosen); !manifest.empty()) {
+    if (const std::string manifest = choice_manifest(*chosen, options); !manifest.empty()) {
         outputs.add("kdop.manifest", manifest);
         // A --sets file's set recommended: its copy beside the manifest, which reads no other folder.
         const std::string& set = chosen->candidates[*chosen->recommendation.chosen].key.set;

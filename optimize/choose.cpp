@@ -1,5 +1,6 @@
 #include "optimize/choose.h"
 
+#include "bench/cost_table.h"
 #include "bench/set_cost.h"
 #include "bench/timing.h"
 #include "core/builtin_sets.h"
@@ -7,6 +8,7 @@
 #include "core/read_file.h"
 #include "generator/analytic_cost.h"
 #include "generator/axis_set.h"
+#include "generator/spirv_cost.h"
 #include "harness/gnuplot.h"
 #include "harness/progress.h"
 #include "harness/scratch_directory.h"
@@ -25,8 +27,12 @@
 
 namespace kdop {
 
-Recommendation recommend(const std::vector<Candidate>& candidates, const Budget& budget,
-                         std::optional<double> target_ghosting) {
+namespace {
+
+// The candidate the rule picks among those not `excluded` (recommend's rule), or none.
+std::optional<std::size_t> best_candidate(const std::vector<Candidate>& candidates, const Budget& budget,
+                                          std::optional<double> target_ghosting,
+                                          std::optional<std::size_t> excluded = std::nullopt) {
     std::optional<std::size_t> best;
     auto better = [&](const Candidate& c, const Candidate& b) {
         if (target_ghosting)
@@ -37,12 +43,56 @@ Recommendation recommend(const std::vector<Candidate>& candidates, const Budget&
     };
     for (std::size_t i = 0; i < candidates.size(); ++i) {
         const Candidate& c = candidates[i];
-        if (std::isnan(c.validation_ghosting)) continue;
+        if (i == excluded || std::isnan(c.validation_ghosting)) continue;
         if (target_ghosting && !(c.validation_ghosting <= *target_ghosting)) continue;
         if (!target_ghosting && !budget.admits(c)) continue;
         if (!best || better(c, candidates[*best])) best = i;
     }
-    Recommendation r{best, {}};
+    return best;
+}
+
+// To 4 decimals, as every ghosting is shown; a difference that rounds to 0 is 0, not -0.0000.
+std::string shown_figure(double x) {
+    const std::string text = fmt::format("{:.4f}", x);
+    return text == "-0.0000" ? text.substr(1) : text;
+}
+std::string shown_interval(const Interval& i) {
+    return fmt::format("[{}, {}]", shown_figure(i.low), shown_figure(i.high));
+}
+
+// What the frames say of the chosen candidate against the runner-up, and of the target.
+std::string noise_sentences(const std::vector<Candidate>& candidates, const Recommendation& r,
+                            std::optional<double> target_ghosting) {
+    const Candidate& c = candidates[*r.chosen];
+    if (!c.validation_ghosting_interval.known())
+        return "The held-out frames are too few for an interval (each held-out sequence needs two bootstrap "
+               "blocks of frames), so nothing says whether another candidate is within noise of it.";
+    std::string text = fmt::format("Its held-out ghosting's {:.0f}% interval is {}.", 100 * kChoiceLevel,
+                                   shown_interval(c.validation_ghosting_interval));
+    if (target_ghosting && c.validation_ghosting_interval.high > *target_ghosting)
+        text += fmt::format(" That interval reaches above the target {:.4g}: on other frames like these it may "
+                            "miss it.",
+                            *target_ghosting);
+    if (!r.runner_up) return text + " No other candidate qualifies.";
+    const Candidate& next = candidates[*r.runner_up];
+    if (r.difference.holds(0))
+        return text + fmt::format(" The runner-up, {}, ghosts {:.4f}, within noise of it: their paired "
+                                  "difference's {:.0f}% interval, {}, holds 0, so the held-out frames do not tell "
+                                  "the two apart.",
+                                  next.key.name(), next.validation_ghosting, 100 * kChoiceLevel,
+                                  shown_interval(r.difference));
+    return text + fmt::format(" The runner-up, {}, ghosts {:.4f}, beyond noise: their paired difference's {:.0f}% "
+                              "interval, {}, does not hold 0.",
+                              next.key.name(), next.validation_ghosting, 100 * kChoiceLevel,
+                              shown_interval(r.difference));
+}
+
+} // namespace
+
+Recommendation recommend(const std::vector<Candidate>& candidates, const Budget& budget,
+                         std::optional<double> target_ghosting) {
+    const std::optional<std::size_t> best = best_candidate(candidates, budget, target_ghosting);
+    Recommendation r{best, {}, {}, {}, {}};
     const std::string within = budget.ops  ? fmt::format("at most {} float ops", *budget.ops)
                                : budget.ms ? fmt::format("at most {:.3g} ms (median)", *budget.ms)
                                            : std::string();
@@ -53,6 +103,10 @@ Recommendation recommend(const std::vector<Candidate>& candidates, const Budget&
         return r;
     }
     const Candidate& c = candidates[*best];
+    r.runner_up = best_candidate(candidates, budget, target_ghosting, best);
+    if (r.runner_up)
+        r.difference =
+            difference_interval(candidates[*r.runner_up].ghosting_replicates, c.ghosting_replicates, kChoiceLevel);
     const std::string costs = fmt::format("{} float ops, {:.3f} ms", c.float_ops, c.ms);
     r.why =
         target_ghosting ? fmt::format("the cheapest candidate ({}) whose held-out ghosting, {:.4f}, reaches the "
@@ -63,7 +117,29 @@ Recommendation recommend(const std::vector<Candidate>& candidates, const Budget&
                           c.validation_ghosting, within, costs)
             : fmt::format("the least held-out ghosting, {:.4f}, of every candidate (no budget given; it costs {})",
                           c.validation_ghosting, costs);
+    r.noise = noise_sentences(candidates, r, target_ghosting);
     return r;
+}
+
+void mark_noise(std::vector<Candidate>& candidates, const Recommendation& recommendation) {
+    std::optional<std::size_t> reference = recommendation.chosen;
+    if (!reference)
+        for (std::size_t i = 0; i < candidates.size(); ++i)
+            if (!std::isnan(candidates[i].validation_ghosting) &&
+                (!reference || candidates[i].validation_ghosting < candidates[*reference].validation_ghosting))
+                reference = i;
+    const Candidate* fastest = nullptr;
+    for (const Candidate& c : candidates)
+        if (std::isfinite(c.ms) && (!fastest || c.ms < fastest->ms)) fastest = &c;
+    for (Candidate& c : candidates) {
+        c.ms_noise = fastest && std::isfinite(c.ms) &&
+                     bench::within_noise({c.ms, c.ms_q1, c.ms_q3}, {fastest->ms, fastest->ms_q1, fastest->ms_q3});
+        c.ghosting_noise.reset();
+        if (!reference) continue;
+        const Interval difference =
+            difference_interval(c.ghosting_replicates, candidates[*reference].ghosting_replicates, kChoiceLevel);
+        if (difference.known()) c.ghosting_noise = difference.holds(0);
+    }
 }
 
 std::vector<std::size_t> pareto_front(const std::vector<Candidate>& candidates) {
@@ -111,10 +187,18 @@ Result<std::vector<SequenceFrames>> read_sequences(const Context& context, const
 
 // Each variant's figures over the frames of `sequences` that `counted` accepts (all measured
 // frames without it): its ghosting and shimmer as the mean over the sequences of each one's mean
-// (what taa.csv holds, the same sums in the same order), and every counted frame's ghosting.
+// (what taa.csv holds, the same sums in the same order), and every counted frame's ghosting, by
+// sequence (frames[variant][sequence]), for the median, the 95th percentile and the bootstrap.
 struct Figures {
     std::vector<double> ghosting, shimmer;
-    std::vector<std::vector<double>> frames;
+    std::vector<std::vector<std::vector<double>>> frames;
+
+    std::vector<double> all_frames(std::size_t variant) const {
+        std::vector<double> all;
+        for (const std::vector<double>& sequence : frames[variant])
+            all.insert(all.end(), sequence.begin(), sequence.end());
+        return all;
+    }
 };
 using FrameFilter = std::function<bool(std::size_t frame)>;
 
@@ -131,7 +215,7 @@ Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const st
     const std::size_t variants = evaluation.specs().size();
     std::vector<Figures> figures(filters.size(),
                                  {std::vector<double>(variants, 0.0), std::vector<double>(variants, 0.0),
-                                  std::vector<std::vector<double>>(variants)});
+                                  std::vector<std::vector<std::vector<double>>>(variants)});
     EvaluationObserver observer;
     observer.frame = [&](const std::string& source) { progress.advance(source); };
     for (const SequenceFrames& sequence : sequences) {
@@ -148,19 +232,25 @@ Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const st
                 Figures& into = figures[f];
                 into.ghosting[row.variant] += mean_of(ghosting) / double(sequences.size());
                 into.shimmer[row.variant] += mean_of(shimmer) / double(sequences.size());
-                std::ranges::copy(ghosting, std::back_inserter(into.frames[row.variant]));
+                into.frames[row.variant].push_back(std::move(ghosting));
             }
     }
     return figures;
 }
 
 // The candidates' rectification passes timed on the device (bench/timing.h, as kdop taa times
-// them), interleaved. `sets` are --sets' names and files; the fitted sets are known to the catalog
-// through their files, written to a scratch folder for it.
-Result<bench::TimingRun> time_candidates(const Context& context, const std::vector<VariantSpec>& specs,
-                                         const std::vector<std::pair<std::string, std::string>>& fitted_files,
-                                         const std::vector<std::string>& sets, std::uint32_t width,
-                                         std::uint32_t height, unsigned rounds) {
+// them), interleaved, and the float ops of each pass's SPIR-V as the generator counts them (what
+// kdop gen and kdop bench print: the same catalog, the same modules). `sets` are --sets' names and
+// files; the fitted sets are known to the catalog through their files, written to a scratch folder
+// for it.
+struct TimedCandidates {
+    bench::TimingRun timing;
+    std::vector<std::size_t> float_ops;
+};
+Result<TimedCandidates> time_candidates(const Context& context, const std::vector<VariantSpec>& specs,
+                                        const std::vector<std::pair<std::string, std::string>>& fitted_files,
+                                        const std::vector<std::string>& sets, std::uint32_t width, std::uint32_t height,
+                                        unsigned rounds) {
     ScratchDirectory scratch("kdop-choose");
     if (scratch.path.empty()) return fail("cannot create a scratch folder for the fitted sets (is TMPDIR writable?)");
     std::vector<std::string> known = sets; // built-in names and the user's files, as --sets gave them
@@ -174,8 +264,14 @@ Result<bench::TimingRun> time_candidates(const Context& context, const std::vect
     for (const VariantSpec& spec : specs) keys.push_back(spec.key());
     auto rectifiers = catalog->find_all(keys, "--sets");
     if (!rectifiers) return std::unexpected(rectifiers.error());
+    TimedCandidates timed;
+    for (const Variant* v : *rectifiers)
+        timed.float_ops.push_back(count_float_ops({v->spirv, v->spirv_word_count}).total());
     Progress progress(fmt::format("timing {} candidates on {},", specs.size(), context.device_name()), rounds);
-    return bench::time_interleaved(context, *rectifiers, width, height, rounds, progress);
+    auto timing = bench::time_interleaved(context, *rectifiers, width, height, rounds, progress);
+    if (!timing) return std::unexpected(timing.error());
+    timed.timing = std::move(*timing);
+    return timed;
 }
 
 // What every rank checks and reads before the fit: the candidates that are not fitted, the
@@ -308,6 +404,24 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
                                               "to",
                                               s.sequence().dir.string(), frame.color.string(),
                                               fitted_frames.at(*id).string()));
+    // Every figure in one FLIP mode: an LDR sequence's ghosting (LDR-FLIP) and an HDR one's
+    // (HDR-FLIP) are on different scales, and a gap between them would read as overfitting.
+    const SequenceFrames* first = !fit->empty() ? &fit->front() : nullptr;
+    for (const auto& [option, sequences] : {std::pair{"--fit", &*fit}, std::pair{"--validate", &*validate}})
+        for (const SequenceFrames& s : *sequences)
+            if (first && s.color_range() != first->color_range()) {
+                auto mode = [](const SequenceFrames& f) {
+                    return f.color_range() == ColorRange::hdr ? "HDR, measured in HDR-FLIP"
+                                                              : "LDR, measured in LDR-FLIP";
+                };
+                return usage_fail(fmt::format("{} {}: its sequence.json's color range is {}, and --fit {} is {}; "
+                                              "ghosting in LDR-FLIP and in HDR-FLIP are on different scales, so "
+                                              "held-out and fitted figures of both cannot be compared: give "
+                                              "sequences of one range",
+                                              option, s.sequence().dir.string(), mode(s),
+                                              first->sequence().dir.string(), mode(*first)));
+            }
+    result.range = first ? first->color_range() : ColorRange::ldr;
     // Held-out blocks: every fit sequence must have a frame in one.
     const Holdout& holdout = plan.holdout;
     if (holdout.block > 0)
@@ -390,9 +504,9 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
 
     // Each candidate's rectification pass timed as kdop taa times it, at the held-out frames' size.
     const SequenceFrames& sized = validate.empty() ? fit.front() : validate.front();
-    auto timing = time_candidates(context, *specs, result.fitted_files, plan->builtin, sized.width(), sized.height(),
-                                  o.timing_rounds);
-    if (!timing) return std::unexpected(timing.error());
+    auto timed = time_candidates(context, *specs, result.fitted_files, plan->builtin, sized.width(), sized.height(),
+                                 o.timing_rounds);
+    if (!timed) return std::unexpected(timed.error());
 
     // With --lavapipe-cost, each clip's instructions beyond the gather (varclip has no such count).
     std::vector<double> instructions(specs->size(), NAN);
@@ -434,23 +548,36 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
         held = std::move((*split)[0]), in_sample = std::move((*split)[1]);
     }
 
+    // Each held-out ghosting's interval: blocks of frames that share their history, drawn alike for
+    // every candidate (harness/block_bootstrap.h).
+    result.bootstrap.block = history_block(o.evaluation.resolve.current_weight);
+    result.bootstrap.seed = o.seed, result.bootstrap.level = kChoiceLevel;
+    const auto replicates = bootstrap_replicates(held.frames, result.bootstrap);
     for (std::size_t v = 0; v < specs->size(); ++v) {
         const VariantSpec& spec = (*specs)[v];
         Candidate c;
         c.key = spec.key();
         c.fitted = v < fitted_count;
-        c.float_ops = analytic_min_float_ops(spec.set, spec.mode, spec.neighborhood);
-        const std::vector<double>& ms = timing->ms[v];
+        c.float_ops = timed->float_ops[v];
+        c.analytic_ops = analytic_min_float_ops(spec.set, spec.mode, spec.neighborhood);
+        c.range = result.range;
+        const std::vector<double>& ms = timed->timing.ms[v];
         c.ms = median(ms), c.ms_q1 = quantile(ms, 0.25), c.ms_q3 = quantile(ms, 0.75);
         c.lavapipe_instructions = instructions[v];
         c.fit_ghosting = in_sample.ghosting[v];
         c.validation_ghosting = held.ghosting[v];
         c.validation_shimmer = held.shimmer[v];
-        c.validation_ghosting_median = quantile(held.frames[v], 0.5);
-        c.validation_ghosting_p95 = quantile(held.frames[v], 0.95);
+        const std::vector<double> frames = held.all_frames(v);
+        c.validation_ghosting_median = quantile(frames, 0.5);
+        c.validation_ghosting_p95 = quantile(frames, 0.95);
+        if (replicates) {
+            c.ghosting_replicates = (*replicates)[v];
+            c.validation_ghosting_interval = percentile_interval(c.ghosting_replicates, kChoiceLevel);
+        }
         result.candidates.push_back(std::move(c));
     }
     result.recommendation = recommend(result.candidates, {o.budget_ops, o.budget_ms}, o.target_ghosting);
+    mark_noise(result.candidates, result.recommendation);
     return result;
 }
 

@@ -4,11 +4,15 @@
 // blocks of frames left out of the fit (Holdout), with kdop taa's evaluation (temporal/taa_evaluation.h, the same
 // call): no figure a choice rests on comes from the frames a set was fitted to. The recommendation is the candidate
 // with the least held-out ghosting within a cost budget, or the cheapest that meets a ghosting
-// target; a built-in set wins whenever it is better.
+// target; a built-in set wins whenever it is better. Every held-out ghosting comes with a block
+// bootstrap interval (harness/block_bootstrap.h), and the recommendation says when the runner-up
+// is within it. Every figure is in one FLIP mode: fit and held-out sequences of two color ranges
+// (LDR-FLIP beside HDR-FLIP, whose scales differ) are refused.
 #pragma once
 
 #include "core/result.h"
 #include "core/variant_key.h"
+#include "harness/block_bootstrap.h"
 #include "harness/ranks.h"
 #include "optimize/optimize.h"
 #include "runtime/context.h"
@@ -40,7 +44,7 @@ struct ChooseOptions {
     bool lavapipe_cost = false; // also count each clip candidate's lavapipe instructions per pixel (callgrind)
     InputSpace input_space = InputSpace::from_file;
     // The fit's: its color space is the resolve's (evaluation.resolve.color_map).
-    std::uint64_t seed = 1;
+    std::uint64_t seed = 1; // of the fit, and of the bootstrap of the held-out ghosting
     unsigned threads = 0;
     std::optional<std::size_t> sample; // fit on this many sampled neighborhoods
     std::string out;                   // the folder the fitted sets are named for (fitted<N>.axes)
@@ -51,7 +55,10 @@ struct ChooseOptions {
 struct Candidate {
     VariantKey key;
     bool fitted = false;
-    std::size_t float_ops = 0; // the hardened clip's, as the generator counts them (analytic_cost.h)
+    // The float ops of its compute shader's SPIR-V as the generator counts them (spirv_cost.h): the
+    // count kdop gen and kdop bench print, which --budget-ops is held against. Beside it the
+    // analytic lower bound of the same clip (analytic_cost.h; bench's "analytic min"), a few below.
+    std::size_t float_ops = 0, analytic_ops = 0;
     // The device time of its rectification pass at the sequences' frame size, as kdop taa times it:
     // the median and quartiles over interleaved rounds.
     double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
@@ -62,12 +69,30 @@ struct Candidate {
     double fit_ghosting = NAN, validation_ghosting = NAN, validation_shimmer = NAN;
     // Over every measured frame of the held-out sequences together.
     double validation_ghosting_median = NAN, validation_ghosting_p95 = NAN;
+    // What every FLIP figure above is in: LDR-FLIP, or HDR-FLIP for HDR sequences (one per run).
+    ColorRange range = ColorRange::ldr;
+    // The held-out ghosting's bootstrap replicates (paired with every other candidate's: the same
+    // frames drawn), their interval, and whether this candidate's held-out ghosting is within noise
+    // of the recommended one's (of the least, where none is): the paired difference's interval
+    // holds 0. Empty, unknown and nullopt where the held-out frames are too few for an interval.
+    std::vector<double> ghosting_replicates;
+    Interval validation_ghosting_interval;
+    std::optional<bool> ghosting_noise;
+    bool ms_noise = false; // its median ms within the larger interquartile range of its own and the fastest's
 };
 
-// Which candidate to ship, and why, in words.
+// The coverage of every interval choose reports.
+inline constexpr double kChoiceLevel = 0.95;
+
+// Which candidate to ship, and why, in words. The runner-up is the one the rule would choose were
+// the chosen one not there; `difference` is the interval of its held-out ghosting minus the
+// chosen's (paired bootstrap), which holding 0 makes the two within noise of each other.
 struct Recommendation {
     std::optional<std::size_t> chosen; // into the candidates; none where none qualifies
-    std::string why;
+    std::string why;                   // the rule it won by, no final stop
+    std::string noise; // sentences: its interval, and the runner-up within noise of it or not; empty with none
+    std::optional<std::size_t> runner_up;
+    Interval difference;
 };
 
 // What a candidate may cost: float ops or median ms (one of them, or neither).
@@ -80,7 +105,8 @@ struct Budget {
 // The rule: with a target, the candidate of fewest float ops whose held-out ghosting is at most the
 // target (of equal cost, the one that ghosts least); else the one of least held-out ghosting among
 // those within the budget (any cost without one; of equal ghosting, the cheaper). Candidates with
-// no held-out figure never qualify; the earliest of exact ties.
+// no held-out figure never qualify; the earliest of exact ties. `why` names the runner-up and
+// whether it is within noise, and, with a target, whether the chosen one's interval reaches above it.
 Recommendation recommend(const std::vector<Candidate>& candidates, const Budget& budget,
                          std::optional<double> target_ghosting);
 
@@ -97,6 +123,10 @@ struct GivenSetFile {
     bool in_place = false; // it already is <out>/<set>.axes: nothing to copy
 };
 
+// Each candidate's ghosting_noise: within noise of the recommended candidate, or of the one of
+// least held-out ghosting where none is recommended; its ms_noise: within noise of the fastest.
+void mark_noise(std::vector<Candidate>& candidates, const Recommendation& recommendation);
+
 struct ChooseResult {
     std::vector<Candidate> candidates; // the fitted ones first, then the built-in ones, each in spec order
     Recommendation recommendation;
@@ -104,14 +134,15 @@ struct ChooseResult {
     std::vector<std::string> fit_sequences, validate_sequences;    // their names
     std::string held_out;                                          // what was held out, in words
     std::map<std::string, GivenSetFile> given_files;               // by set name: every --sets file's
+    ColorRange range = ColorRange::ldr;                            // every sequence's, so every figure's FLIP mode
+    BootstrapOptions bootstrap;                                    // how the held-out ghosting's intervals were drawn
 };
 
 // The run: checks (a usage Error where the command line is at fault: nothing held out, a sequence
-// both fitted to and held out, two candidates of one set name, a set file it would write over an
-// input), fits, measures, recommends. Writes nothing. Under mpirun every rank checks, and the fits
-// are shared over the ranks as kdop optimize shares them (the same sets for any rank count); rank
-// 0 alone then times and measures the candidates, and on the other ranks the result holds the
-// fitted files and no candidates.
+// both fitted to and held out, sequences of two color ranges, two candidates of one set name, a set
+// file it would write over an input), fits, measures, recommends. Writes nothing. Under mpirun every rank checks, and
+// the fits are shared over the ranks as kdop optimize shares them (the same sets for any rank count); rank 0 alone then
+// times and measures the candidates, and on the other ranks the result holds the fitted files and no candidates.
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& options, const Ranks& ranks);
 
 } // namespace kdop
