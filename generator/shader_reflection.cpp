@@ -39,7 +39,9 @@ Result<std::uint32_t> descriptor_count(const SPIRType& type, const std::string& 
     return count;
 }
 
-// A block's variable name, or its block name when the block has no instance name.
+// The name the shader's code uses (BindingInfo::name): the variable's, or a block's name when the
+// block has no instance name (GLSL's `uniform B { ... };`; glslang gives HLSL's `cbuffer B` no
+// variable name either). Not r.name, which is a block's name even where it has an instance.
 std::string resource_name(const Compiler& compiler, const Resource& r) {
     std::string name = compiler.get_name(r.id);
     return name.empty() ? compiler.get_name(r.base_type_id) : name;

@@ -21,6 +21,11 @@ struct BindingInfo {
     std::uint32_t set;
     std::uint32_t binding;
     DescriptorType type;
+    // The name the shader's code uses, one rule for GLSL and HLSL: the variable's; for a block, its
+    // instance name (GLSL `uniform B { ... } b;`, HLSL `ConstantBuffer<B> b`: "b"), or where it has
+    // none its block name (GLSL `uniform B { ... };`, HLSL `cbuffer B`: "B"). Not SPIRV-Cross's
+    // Resource::name, the block's name: glslang's SPIR-V of `ConstantBuffer<B> b` has no B, so a
+    // GLSL block and its HLSL port would differ. docs/embedding.md#binding-names.
     std::string name;
     std::uint32_t count = 1;      // array length; 1 for a single descriptor
     std::uint32_t block_size = 0; // buffers: declared block size in bytes

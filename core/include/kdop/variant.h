@@ -72,7 +72,9 @@ struct DescriptorBinding {
     std::uint32_t set;
     std::uint32_t binding;
     DescriptorType type;
-    const char* name;         // the GLSL variable name (a block without one: its block name)
+    const char* name;         // as the shader's code names it, GLSL or HLSL: the variable; a block's instance
+                              // (`uniform B {...} b;`, `ConstantBuffer<B> b`), or without one its block
+                              // (`uniform B {...};`, `cbuffer B`): b, b, B, B (docs/embedding.md#binding-names)
     std::uint32_t count;      // descriptors in the binding: 1, or the array's length (uniform sampler2D t[4])
     std::uint32_t stages;     // VkShaderStageFlags of the entry's stage
     std::uint32_t block_size; // buffers: the block's size in bytes, a trailing runtime array not counted; else 0
