@@ -91,6 +91,7 @@ struct CompileRequest {
     ShaderStage stage = ShaderStage::compute;
     std::string entry_point = "main"; // HLSL; GLSL's is always main
     HlslTextures textures = HlslTextures::combined;
+    std::vector<DeclaredResource>* declared = nullptr; // filled from the syntax tree, where given
 };
 
 Result<std::vector<std::uint32_t>> compile_shader(const CompileRequest& request, std::string_view source,
@@ -146,6 +147,10 @@ Result<std::vector<std::uint32_t>> compile_shader(const CompileRequest& request,
                                 "(kdop-gen --hlsl-entry)\n",
                                 name, request.entry_point));
 
+    // The tree has every resource declared; the SPIR-V made from it has, for HLSL, only those the
+    // entry point reaches.
+    if (request.declared) *request.declared = declared_resources(*program.getIntermediate(stage));
+
     std::vector<std::uint32_t> words;
     spv::SpvBuildLogger logger;
     glslang::SpvOptions options;
@@ -171,8 +176,9 @@ Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source,
 }
 
 Result<std::vector<std::uint32_t>> compile_glsl(std::string_view source, std::string_view name, ShaderStage stage,
-                                                TargetEnv env, const IncludeResolver& resolve) {
-    return compile_shader({.stage = stage}, source, name, env, resolve);
+                                                TargetEnv env, const IncludeResolver& resolve,
+                                                std::vector<DeclaredResource>* declared) {
+    return compile_shader({.stage = stage, .declared = declared}, source, name, env, resolve);
 }
 
 Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source, std::string_view name, TargetEnv env) {
@@ -181,8 +187,10 @@ Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source,
 
 Result<std::vector<std::uint32_t>> compile_hlsl(std::string_view source, std::string_view name, ShaderStage stage,
                                                 std::string_view entry_point, TargetEnv env,
-                                                const IncludeResolver& resolve) {
-    const CompileRequest request{glslang::EShSourceHlsl, stage, std::string(entry_point), HlslTextures::separate};
+                                                const IncludeResolver& resolve,
+                                                std::vector<DeclaredResource>* declared) {
+    const CompileRequest request{glslang::EShSourceHlsl, stage, std::string(entry_point), HlslTextures::separate,
+                                 declared};
     return compile_shader(request, source, name, env, resolve);
 }
 

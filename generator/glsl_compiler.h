@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/result.h"
+#include "generator/declared_resources.h"
 #include "generator/target_env.h"
 
 #include <kdop/variant.h>
@@ -34,10 +35,13 @@ Result<std::vector<std::uint32_t>> compile_glsl_compute(std::string_view source,
                                                         TargetEnv env = TargetEnv::vulkan1_0,
                                                         const IncludeResolver& resolve = {});
 
-// The same for a shader of any stage kdop builds (a project's vertex and fragment SHADERS).
+// The same for a shader of any stage kdop builds (a project's vertex and fragment SHADERS). With
+// `declared`, also every resource the source declares, used or not (declared_resources.h), which
+// the SPIR-V alone cannot say.
 Result<std::vector<std::uint32_t>> compile_glsl(std::string_view source, std::string_view name, ShaderStage stage,
                                                 TargetEnv env = TargetEnv::vulkan1_0,
-                                                const IncludeResolver& resolve = {});
+                                                const IncludeResolver& resolve = {},
+                                                std::vector<DeclaredResource>* declared = nullptr);
 
 // Compiles one HLSL compute shader (entry point "main") through glslang's HLSL front end, with
 // textures upgraded to combined image samplers; messages as for GLSL. Thread-safe.
@@ -48,11 +52,13 @@ Result<std::vector<std::uint32_t>> compile_hlsl_compute(std::string_view source,
 // front end, as DXC-based engines write them: Texture2D stays a sampled image and SamplerState a
 // sampler; register(t1, space2) becomes set 2, binding 1 (glslang's mapping: the register's number,
 // whatever its class, so t0 and s0 collide), and [[vk::binding(1, 2)]] says so explicitly. With
-// `resolve`, #include looks up through it; messages as for GLSL. Thread-safe.
+// `resolve`, #include looks up through it; messages as for GLSL; `declared` as for compile_glsl.
+// Thread-safe.
 Result<std::vector<std::uint32_t>> compile_hlsl(std::string_view source, std::string_view name, ShaderStage stage,
                                                 std::string_view entry_point = "main",
                                                 TargetEnv env = TargetEnv::vulkan1_0,
-                                                const IncludeResolver& resolve = {});
+                                                const IncludeResolver& resolve = {},
+                                                std::vector<DeclaredResource>* declared = nullptr);
 
 // "name:LINE: <message>" and the source line under it, the form every GLSL diagnostic takes.
 std::string glsl_diagnostic(std::string_view source, std::string_view name, int line, std::string_view message);

@@ -189,6 +189,7 @@ int main(int argc, char** argv) {
         for (const std::string& file : shaders) {
             auto shader = build_project_shader(file, std::span(built->data(), variant_count), shader_options);
             if (!shader) return report(shader.error());
+            for (const std::string& warning : shader->warnings) std::cerr << "kdop-gen: " << terminal_text(warning);
             for (const BuiltVariant& v : *built)
                 if (v.name == shader->built.name)
                     return report({fmt::format("{}: a shader named '{}' would hide the variant or shader of that name; "

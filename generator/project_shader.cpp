@@ -5,6 +5,7 @@
 #include "core/utf8.h"
 #include "generator/glsl_compiler.h"
 #include "generator/inside_folder.h"
+#include "generator/unused_resources.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -152,8 +153,10 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     const TargetEnv env = options.env;
     out.built.spec.target_env = env;
     out.built.spec.strip_names = options.strip_names;
-    auto compiled = kind->hlsl ? compile_hlsl(text, name, kind->stage, options.hlsl_entry_point, env, resolve)
-                               : compile_glsl(text, name, kind->stage, env, resolve);
+    std::vector<DeclaredResource> declared;
+    auto compiled = kind->hlsl
+                        ? compile_hlsl(text, name, kind->stage, options.hlsl_entry_point, env, resolve, &declared)
+                        : compile_glsl(text, name, kind->stage, env, resolve, &declared);
     if (!compiled && !outside.empty()) return fail(compiled.error().message + outside.front());
     if (!compiled && !unresolved.empty()) {
         std::vector<std::string> functions;
@@ -168,6 +171,9 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
         if (!message.ends_with('\n')) message += '\n';
         return fail(message + hlsl_port_note(message, name, env));
     }
+    out.built.unused_resources = unused_resources(declared, out.built.interface);
+    for (const DeclaredResource& r : out.built.unused_resources)
+        out.warnings.push_back(unused_resource_warning(name, out.built.interface.entry_point, r));
     return out;
 }
 

@@ -19,6 +19,7 @@ namespace kdop {
 struct ProjectShader {
     BuiltVariant built;                            // mode shader, name = the file's name without its extensions
     std::vector<std::filesystem::path> read_files; // the shader and every file it included, for a depfile
+    std::vector<std::string> warnings;             // lines "<file>: warning: ...": each resource unused
 };
 
 struct ProjectShaderOptions {
@@ -41,7 +42,8 @@ Result<ShaderFile> shader_file_kind(const std::filesystem::path& file);
 // Compiles `file`. `#include "<variant>.glsl"` (in HLSL, "<variant>.hlsl") names the includable
 // function of one of `variants`; any other include is looked up next to the including file, then
 // in the include directories, in order. Loops are allowed: this is the project's code, not a
-// variant. SPIR-V for `options.env`.
+// variant. SPIR-V for `options.env`. A resource the shader declares and its entry point does not
+// use is in built.unused_resources, with a warning naming it.
 Result<ProjectShader> build_project_shader(const std::filesystem::path& file, std::span<const BuiltVariant> variants,
                                            const ProjectShaderOptions& options = {});
 

@@ -48,6 +48,11 @@ Json entry_json(const BuiltVariant& v, const std::optional<std::string>& spirv_f
                             {"stages", stage_bit},
                             {"block_size", b.block_size},
                             {"format", b.format}});
+    // What the source declares and the SPIR-V lacks (unused_resources.h), so a reader sees why a
+    // binding it expected is not above.
+    Json unused = Json::array();
+    for (const DeclaredResource& r : v.unused_resources)
+        unused.push_back({{"name", r.name}, {"type", r.type ? type_name(*r.type) : "push_constants"}});
     Json members = Json::array();
     for (const PushConstantInfo& p : in.push_constants)
         members.push_back({{"name", p.name}, {"offset", p.offset}, {"size", p.size}});
@@ -59,6 +64,7 @@ Json entry_json(const BuiltVariant& v, const std::optional<std::string>& spirv_f
         {"entry_point", in.entry_point},
         {"local_size", {in.local_size[0], in.local_size[1], in.local_size[2]}},
         {"bindings", std::move(bindings)},
+        {"unused_resources", std::move(unused)},
         {"push_constants",
          {{"size", in.push_constant_size},
           {"stages", in.push_constant_size ? stage_bit : 0u},

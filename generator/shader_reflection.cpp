@@ -59,12 +59,14 @@ Result<void> add_bindings(const Compiler& compiler, const spirv_cross::SmallVect
         if (!count) return std::unexpected(count.error());
         BindingInfo b{compiler.get_decoration(r.id, spv::DecorationDescriptorSet),
                       compiler.get_decoration(r.id, spv::DecorationBinding), type, name, *count};
-        // A sampled image whose dimension is Buffer is a texel buffer, and so is such a storage image.
-        const bool buffer_dim = (type == DescriptorType::sampled_image || type == DescriptorType::storage_image) &&
-                                spirv_type.image.dim == spv::DimBuffer;
+        // An image whose dimension is Buffer is a texel buffer: Vulkan binds GLSL's samplerBuffer (a
+        // combined image sampler in the SPIR-V) and textureBuffer as uniform texel buffers.
+        const bool image = type == DescriptorType::combined_image_sampler || type == DescriptorType::sampled_image ||
+                           type == DescriptorType::storage_image;
+        const bool buffer_dim = image && spirv_type.image.dim == spv::DimBuffer;
         if (buffer_dim)
-            b.type = type == DescriptorType::sampled_image ? DescriptorType::uniform_texel_buffer
-                                                           : DescriptorType::storage_texel_buffer;
+            b.type = type == DescriptorType::storage_image ? DescriptorType::storage_texel_buffer
+                                                           : DescriptorType::uniform_texel_buffer;
         if (type == DescriptorType::storage_image || buffer_dim)
             b.format = vulkan_format_of_image_format(static_cast<std::uint32_t>(spirv_type.image.format));
         if (type == DescriptorType::uniform_buffer || type == DescriptorType::storage_buffer)

@@ -49,9 +49,10 @@ struct ShaderInterface {
 };
 
 // Reflects a module with one compute, vertex or fragment entry point. Names come from OpName, so
-// reflect before names are stripped. Fails, naming the resource, for what kdop does not reflect:
-// other stages, acceleration structures, atomic counters, input attachments, runtime-sized
-// descriptor arrays, resources without a set or binding.
+// reflect before names are stripped. What the source declares and the entry point does not use is
+// not in the module, so not here (unused_resources.h says what). Fails, naming the resource, for
+// what kdop does not reflect: other stages, acceleration structures, atomic counters, input
+// attachments, runtime-sized descriptor arrays, resources without a set or binding.
 Result<ShaderInterface> reflect_interface(std::span<const std::uint32_t> words);
 
 // The VkFormat value of a SPIR-V image format (spv::ImageFormat), 0 for Unknown.

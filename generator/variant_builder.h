@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/result.h"
+#include "generator/declared_resources.h"
 #include "generator/shader_dialect.h"
 #include "generator/shader_reflection.h"
 #include "generator/spirv_module.h"
@@ -26,6 +27,9 @@ struct BuiltVariant {
     std::string compute_hlsl;           // the HLSL compute shader, when built from HLSL
     std::vector<std::uint32_t> spirv;   // optimized, validated, as shipped (.spv), from the compute shader
     ShaderInterface interface;
+    // A project shader's resources that its source declares and `spirv` lacks, unused by the entry
+    // point (unused_resources.h); empty for a variant.
+    std::vector<DeclaredResource> unused_resources;
     SpirvCounts counts;
 
     // The includable function in `dialect` (one of kShaderLanguages').
