@@ -12,6 +12,7 @@
 #include "harness/output_set.h"
 #include "harness/variant_catalog.h"
 #include "sequence/sequence.h"
+#include "temporal/metrics.h"
 #include "temporal/taa_run.h"
 
 #include <fmt/format.h>
@@ -24,7 +25,7 @@ namespace kdop::cli {
 Action add_taa_command(CLI::App& app) {
     struct Options {
         std::string out, size = "320x180", device;
-        std::vector<std::string> sequences;
+        std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
         SceneChoice choice;
         SelectionOptions selection;
         std::uint32_t warmup = 100, frames = 100;
@@ -86,12 +87,18 @@ Action add_taa_command(CLI::App& app) {
     // HDR sequences ("color": {"range": "hdr"}) are measured in HDR-FLIP at these.
     const std::vector<CLI::Option*> hdr_options = add_hdr_flip_options(*taa, o->exposure);
     taa->add_flag("--no-charts", o->no_charts, "Write the tables, report and pictures without the trade charts");
+    taa->add_option("--metrics", o->metrics,
+                    fmt::format("What each output is measured with: {} (docs/taa.md, \"Metrics\"); psnr and tpsnr "
+                                "only where a sequence has reference frames [default: shimmer ghosting, the paper's]",
+                                metric_names(default_metrics())));
 
     return [o, taa, hdr_options, picture_frame] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
         if (auto ok = check_pixels_per_degree(ppd); !ok) return usage_error("--ppd: " + ok.error().message);
+        auto metrics = metrics_named(o->metrics);
+        if (!metrics) return report(metrics.error());
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
         auto outputs = OutputSet::prepare(o->out);
@@ -103,12 +110,18 @@ Action add_taa_command(CLI::App& app) {
         if (auto misuse = o->choice.misuse()) return usage_error(*misuse);
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
-        auto sources =
-            taa_sources(**context, {o->sequences, o->warmup, o->resolve, o->input_space, !o->cpu_flip, specs->size(),
-                                    o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty(),
-                                    o->choice.scenes, o->choice.backgrounds,
-                                    o->choice.options(size->first, size->second, o->seed, o->input_space),
-                                    picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt});
+        auto sources = taa_sources(
+            **context, {.sequences = o->sequences,
+                        .warmup = o->warmup,
+                        .resolve = o->resolve,
+                        .input_space = o->input_space,
+                        .device_flip = !o->cpu_flip,
+                        .variants = specs->size(),
+                        .builtin = o->sequences.empty() || !o->choice.scenes.empty() || !o->choice.backgrounds.empty(),
+                        .scene_names = o->choice.scenes,
+                        .backgrounds = o->choice.backgrounds,
+                        .scene_options = o->choice.options(size->first, size->second, o->seed, o->input_space),
+                        .picture_frame = picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt});
         if (!sources) return report(sources.error());
         for (const SequenceFrames& sequence : sources->sequences)
             if (auto ok = check_outside(sequence.sequence(), outputs->dir(), "--out"); !ok) return report(ok.error());
@@ -125,15 +138,21 @@ Action add_taa_command(CLI::App& app) {
 
         auto rectifiers = catalog->find_all(keys_of(*specs), o->selection.manifest.empty() ? "--sets" : "--manifest");
         if (!rectifiers) return report_error(rectifiers.error().message);
-        const TaaRunSettings settings{{o->resolve, {o->warmup, o->frames}, ppd, o->cpu_flip, o->exposure},
-                                      size->first,
-                                      size->second,
-                                      o->timing_rounds,
-                                      o->seed,
-                                      o->write_frames,
-                                      !o->no_charts,
-                                      o->viewer_frames,
-                                      picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt};
+        const TaaRunSettings settings{.evaluation = {.resolve = o->resolve,
+                                                     .schedule = {o->warmup, o->frames},
+                                                     .ppd = ppd,
+                                                     .cpu_flip = o->cpu_flip,
+                                                     .exposure = o->exposure,
+                                                     .metrics = *metrics},
+                                      .width = size->first,
+                                      .height = size->second,
+                                      .timing_rounds = o->timing_rounds,
+                                      .seed = o->seed,
+                                      .write_frames = o->write_frames,
+                                      .charts = !o->no_charts,
+                                      .viewer_frames = o->viewer_frames,
+                                      .picture_frame =
+                                          picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt};
         auto run_info = run_taa(**context, *specs, *rectifiers, *sources, settings, *outputs);
         report_validation_messages((*context)->validation_messages());
         if (!run_info) return report_error(run_info.error().message);

@@ -181,9 +181,10 @@ nlohmann::json Table::json() const {
                 field = *i;
             else if (const auto* b = std::get_if<bool>(&v))
                 field = *b;
+            else if (const double d = std::get<double>(v); std::isinf(d))
+                field = d > 0 ? "inf" : "-inf"; // JSON has no infinity; a PSNR of identical frames is one
             else
-                field =
-                    std::isfinite(std::get<double>(v)) ? nlohmann::json(std::get<double>(v)) : nlohmann::json(nullptr);
+                field = std::isfinite(d) ? nlohmann::json(d) : nlohmann::json(nullptr);
         }
         rows.push_back(std::move(object));
     }

@@ -72,7 +72,8 @@ public:
     std::string markdown(std::span<const std::string> only = {}) const;
     // Whitespace-separated rows of `only` for gnuplot; text is double-quoted.
     std::string gnuplot(std::span<const std::string> only) const;
-    // {"columns": [{"name", "unit"}...], "rows": [{name: value}...]}.
+    // {"columns": [{"name", "unit"}...], "rows": [{name: value}...]}; an infinite number is the
+    // string "inf" or "-inf", a missing one null.
     nlohmann::json json() const;
 
     // One value as Markdown shows it.

@@ -226,8 +226,8 @@ Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const st
                 std::vector<double> ghosting, shimmer;
                 for (const FrameFigures& frame : row.per_frame) {
                     if (filters[f] && !filters[f](frame.index)) continue;
-                    if (!std::isnan(frame.ghosting)) ghosting.push_back(frame.ghosting);
-                    if (!std::isnan(frame.shimmer)) shimmer.push_back(frame.shimmer);
+                    if (!std::isnan(frame.value(kGhosting))) ghosting.push_back(frame.value(kGhosting));
+                    if (!std::isnan(frame.value(kShimmer))) shimmer.push_back(frame.value(kShimmer));
                 }
                 Figures& into = figures[f];
                 into.ghosting[row.variant] += mean_of(ghosting) / double(sequences.size());

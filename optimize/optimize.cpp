@@ -238,7 +238,7 @@ Result<OptimizeResult> run(const OptimizeOptions& o, const Ranks& ranks, const O
             auto m = set ? ghosting->measure(*set, shape) : std::unexpected(set.error());
             if (m)
                 for (std::size_t i = 0; i < m->size(); ++i)
-                    figures[2 * i] = (*m)[i].ghosting, figures[2 * i + 1] = (*m)[i].shimmer;
+                    figures[2 * i] = (*m)[i].mean(kGhosting), figures[2 * i + 1] = (*m)[i].mean(kShimmer);
             else
                 measured = std::unexpected(m.error());
         }

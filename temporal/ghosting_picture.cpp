@@ -65,7 +65,8 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown,
 
 void PictureFrameChooser::offer(const MeasuredFrame& frame) {
     double low = INFINITY, high = -INFINITY;
-    for (const FrameFigures& f : frame.figures) low = std::min(low, f.ghosting), high = std::max(high, f.ghosting);
+    for (const FrameFigures& f : frame.figures)
+        low = std::min(low, f.value(kGhosting)), high = std::max(high, f.value(kGhosting));
     const double spread = frame.figures.size() == 1 ? high : high - low;
     if (fixed_ ? frame.index != *fixed_ : !(spread > spread_))
         return; // NaN (no ghosting measured) never wins; the earliest of equals stays

@@ -48,8 +48,7 @@ Result<std::vector<SequenceMeasurement>> SequenceGhosting::measure(const AxisSet
         auto rows = evaluation_->measure(sequence);
         if (!rows) return std::unexpected(rows.error());
         const EvaluationRow& row = rows->front();
-        measured.push_back({.shimmer = row.shimmer,
-                            .ghosting = row.ghosting,
+        measured.push_back({.means = row.means,
                             .range = row.range,
                             .against_reference = row.against_reference,
                             .frames = row.per_frame.size(),

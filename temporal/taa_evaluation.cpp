@@ -107,13 +107,13 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const FrameSource& sou
     std::function<void()> on_frame;
     if (observer.frame) on_frame = [&] { observer.frame(observer.source.empty() ? source.name() : observer.source); };
     auto measured = measure_sequence_all(**resolve, source, options_.schedule.warmup, **flip, output, on_frame,
-                                         observer.measured, observer.maps);
+                                         observer.measured, observer.maps, options_.metrics);
     if (!measured) return fail(fmt::format("{}: {}", source.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them
     for (std::size_t v = 0; v < specs_.size(); ++v) {
         SequenceMeasurement& m = (*measured)[v];
-        EvaluationRow row{v,  source.name(),         m.shimmer, m.ghosting, m.against_reference, m.range, nullptr,
+        EvaluationRow row{v,  source.name(),         std::move(m.means), m.against_reference, m.range, nullptr,
                           {}, std::move(m.per_frame)};
         for (const std::string& note : m.notes)
             if (noted.insert(note).second) row.notes.push_back(note);
@@ -142,7 +142,7 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
         EvaluationRow row = std::move((*moving)[v]);
         EvaluationRow& shimmer = (*still)[v];
         row.source = scene.name();
-        row.shimmer = shimmer.shimmer;
+        row.means = scene_means(shimmer.means, row.means);
         row.range = ColorRange::ldr;
         row.trail = trails[v] ? trails[v] : std::make_shared<const Image>();
         row.per_frame.insert(row.per_frame.begin(), shimmer.per_frame.begin(), shimmer.per_frame.end());

@@ -33,13 +33,15 @@ struct EvaluationOptions {
     double ppd = 0;           // FLIP's pixels per degree
     bool cpu_flip = false;    // FLIP on the CPU (the reference code) instead of on the device
     ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
+    Metrics metrics = default_metrics(); // what each frame is measured with (temporal/metrics.h)
 };
 
 // One variant's figures on one scene or sequence.
 struct EvaluationRow {
-    std::size_t variant = 0;             // into the evaluation's specs
-    std::string source;                  // the scene's or sequence's name
-    double shimmer = 0, ghosting = 0;    // NaN for a figure the sequence is not meant for (its roles)
+    std::size_t variant = 0;   // into the evaluation's specs
+    std::string source;        // the scene's or sequence's name
+    std::vector<double> means; // by metric (MetricId); NaN where not measured (the source's roles)
+    double mean(std::size_t metric) const { return metric < means.size() ? means[metric] : NAN; }
     bool against_reference = false;      // ghosting against reference frames, not each frame's own color
     ColorRange range = ColorRange::ldr;  // measured in LDR-FLIP or HDR-FLIP
     std::shared_ptr<const Image> trail;  // scenes: the ghosting sequence's frame scene.trail_frame(schedule)

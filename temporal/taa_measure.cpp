@@ -42,25 +42,6 @@ Result<Image> within_range(Image frame, ColorRange range, std::string_view what)
     return frame;
 }
 
-namespace {
-
-FigureSpread spread(const std::vector<FrameFigures>& figures, double FrameFigures::*figure) {
-    std::vector<double> values;
-    for (const FrameFigures& f : figures)
-        if (!std::isnan(f.*figure)) values.push_back(f.*figure);
-    std::sort(values.begin(), values.end());
-    return {quantile_of_sorted(values, 0.5), quantile_of_sorted(values, 0.95)};
-}
-
-} // namespace
-
-FigureSpread ghosting_spread(const std::vector<FrameFigures>& figures) {
-    return spread(figures, &FrameFigures::ghosting);
-}
-FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures) {
-    return spread(figures, &FrameFigures::shimmer);
-}
-
 Result<void> check_measurable(const Context& context, std::uint32_t width, std::uint32_t height, bool device_flip,
                               std::size_t variants) {
     const std::uint32_t limit = context.properties().limits.maxImageDimension2D;
@@ -128,45 +109,47 @@ Result<void> check_range(const Image& image, ColorRange range, const std::string
 
 namespace {
 
-// One shader's measurement as the frames go by: its sums and the notes it met. Its frames are
-// handles into the evaluator's store (temporal/output_store.h), wherever that keeps them.
+// One shader's measurement as the frames go by: each metric's figures and the notes met. Its frames
+// are handles into the evaluator's store (temporal/output_store.h), wherever that keeps them.
 class Meter {
 public:
-    Meter(const FrameSource& source, FlipEvaluator& flip) : flip_(&flip), roles_(source.roles()) {
+    Meter(const FrameSource& source, const Metrics& metrics) : metrics_(&metrics) {
         m_.against_reference = source.has_reference();
         m_.range = source.color_range();
         sequence_ = source.name();
+        for (const Metric& metric : metrics) {
+            measured_.push_back(measured_on(metric, source.roles(), source.has_reference()));
+            // A metric the run asked for that this source cannot give: said, not left to a blank.
+            if (!measured_.back() && measured_on(metric, source.roles(), true))
+                m_.notes.push_back(fmt::format("{} not measured: {} has no reference frames to compare with",
+                                               metric.name, source.name()));
+        }
+        // The map the viewer shows: ghosting where the source measures it, else shimmer.
+        mapped_ = maps_show_ghosting(source.roles()) ? kGhosting : kShimmer;
     }
 
-    // Frame `i` is measured: ghosting() and shimmer() give its figures, in either order.
+    // Frame `i` is measured: measure() gives its figures, in any order.
     void begin(std::size_t i) {
-        m_.per_frame.push_back(FrameFigures{sequence_, i});
+        m_.per_frame.push_back(FrameFigures{sequence_, i, std::vector<double>(metrics_->size(), NAN)});
         ++m_.frames;
         map_.clear();
     }
-    // The frame's output against `truth`; with `map`, the map of the figure maps_show_ghosting
-    // names is kept (take_map()).
-    Result<void> ghosting(FrameHandle truth, FrameHandle output, const std::string& label, bool map) {
-        if (!roles_.ghosting) return {};
-        const bool keep_map = map && maps_show_ghosting(roles_);
-        auto ghosting = figure(
-            label, m_.against_reference ? "ghosting against the reference" : "ghosting against the frame's color",
-            keep_map, truth, output);
-        if (!ghosting) return std::unexpected(ghosting.error());
-        ghosting_sum_ += *ghosting;
-        m_.per_frame.back().ghosting = *ghosting;
-        return {};
-    }
-    // The same output against the one before (none where the frame starts a history).
-    Result<void> shimmer(FrameHandle previous, FrameHandle output, bool starts_history, const std::string& label,
-                         bool map) {
-        if (!roles_.shimmer || starts_history) return {};
-        const bool keep_map = map && !maps_show_ghosting(roles_);
-        auto shimmer = figure(label, "shimmer against the previous output", keep_map, previous, output);
-        if (!shimmer) return std::unexpected(shimmer.error());
-        shimmer_sum_ += *shimmer;
-        ++shimmer_pairs_;
-        m_.per_frame.back().shimmer = *shimmer;
+    // Metric `metric` of the frame, where it is measured and the frame has what it compares; with
+    // `frame.map`, the map of the metric the viewer shows is kept (take_map()).
+    Result<void> measure(std::size_t metric, MetricFrame frame, const std::string& label) {
+        const Metric& m = (*metrics_)[metric];
+        if (!measured_[metric]) return {};
+        if (m.compares != Compared::truth && !frame.previous_output) return {};
+        if (m.compares == Compared::change && !frame.previous_truth) return {};
+        frame.map = frame.map && metric == mapped_;
+        auto figure = m.compute(frame);
+        if (!figure) return fail(fmt::format("{}: {} ({}): {}", label, m.name, m.description, figure.error().message));
+        if (!figure->note.empty()) {
+            auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
+            if (!first) ++it->second.more;
+        }
+        if (frame.map) map_ = std::move(figure->map);
+        m_.per_frame.back().values[metric] = figure->mean;
         return {};
     }
     const FrameFigures& last_figures() const { return m_.per_frame.back(); }
@@ -178,42 +161,31 @@ public:
             m_.notes.push_back(met.more ? fmt::format("{} and {} more frame{}: {}", met.first_label, met.more,
                                                       met.more == 1 ? "" : "s", note)
                                         : fmt::format("{}: {}", met.first_label, note));
-        m_.ghosting = roles_.ghosting ? ghosting_sum_ / double(m_.frames) : NAN;
-        // Shimmer compares successive outputs of one history: where every measured frame starts a
-        // new one (a camera cut on each), there is no pair, and the figure is absent, not 0.
-        m_.shimmer = roles_.shimmer && shimmer_pairs_ ? shimmer_sum_ / double(shimmer_pairs_) : NAN;
-        if (roles_.shimmer && !shimmer_pairs_)
-            m_.notes.push_back("shimmer not measured: every measured frame starts a new history (a camera cut), "
-                               "so no two successive outputs share one");
+        for (std::size_t metric = 0; metric < metrics_->size(); ++metric) {
+            const Metric& m = (*metrics_)[metric];
+            const double mean = summarize(m_.per_frame, metric, m.higher_is_better).mean;
+            m_.means.push_back(measured_[metric] ? mean : NAN);
+            // A figure of successive outputs where every measured frame starts a new history (a
+            // camera cut on each) has no pair: absent, not 0.
+            if (measured_[metric] && std::isnan(mean) && m.compares != Compared::truth)
+                m_.notes.push_back(fmt::format("{} not measured: every measured frame starts a new history (a "
+                                               "camera cut), so no two successive outputs share one",
+                                               m.name));
+        }
         return std::move(m_);
     }
 
 private:
-    // One figure of frame `label`, `test` against `reference`, its error naming the frame and what
-    // was measured.
-    Result<double> figure(const std::string& label, const char* what, bool map, FrameHandle reference,
-                          FrameHandle test) {
-        auto figure = flip_->evaluate(reference, test, m_.range, map);
-        if (!figure) return fail(fmt::format("{}: {}: {}", label, what, figure.error().message));
-        if (!figure->note.empty()) {
-            auto [it, first] = notes_.try_emplace(figure->note, Met{label, 0});
-            if (!first) ++it->second.more;
-        }
-        if (map) map_ = std::move(figure->map);
-        return figure->mean;
-    }
-
     struct Met {
         std::string first_label;
         std::size_t more = 0;
     };
-    FlipEvaluator* flip_;
-    SequenceRoles roles_;
+    const Metrics* metrics_;
+    std::vector<bool> measured_; // by metric: on this source
+    std::size_t mapped_;
     std::string sequence_;
     SequenceMeasurement m_;
     std::vector<float> map_;
-    double shimmer_sum_ = 0, ghosting_sum_ = 0;
-    std::size_t shimmer_pairs_ = 0;
     std::map<std::string, Met> notes_; // by note
 };
 
@@ -296,11 +268,10 @@ Result<void> observe(OutputStore& store, std::vector<Meter>& meters, std::span<c
 
 } // namespace
 
-Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolve, const FrameSource& source,
-                                                              std::uint32_t warmup, FlipEvaluator& flip,
-                                                              const ShaderOutputObserver& on_output,
-                                                              const std::function<void()>& on_frame,
-                                                              const MeasuredFrameObserver& on_measured, bool maps) {
+Result<std::vector<SequenceMeasurement>>
+measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, FlipEvaluator& flip,
+                     const ShaderOutputObserver& on_output, const std::function<void()>& on_frame,
+                     const MeasuredFrameObserver& on_measured, bool maps, const Metrics& metrics) {
     const std::size_t count = source.frame_count();
     if (warmup >= count)
         return fail(
@@ -308,13 +279,16 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
     const ColorRange range = source.color_range();
     const bool against_reference = source.has_reference();
     const std::size_t shaders = resolve.size();
-    // The frames FLIP compares, where the evaluator keeps them: slot 0 holds the frame's truth, and
-    // shader s's outputs alternate between slots 1 + 2s and 2 + 2s, the other one its previous.
+    // The frames the metrics compare, where the evaluator keeps them: a frame's truth alternates
+    // between slots 0 and 1, and shader s's outputs between slots 2 + 2s and 3 + 2s, the other
+    // one of each pair holding the frame before's.
     OutputStore& store = flip.store();
-    auto output_slot = [](std::size_t s, std::size_t i) { return 1 + 2 * s + i % 2; };
+    auto truth_slot = [](std::size_t i) { return i % 2; };
+    auto output_slot = [](std::size_t s, std::size_t i) { return 2 + 2 * s + i % 2; };
     std::vector<Meter> meters;
-    for (std::size_t s = 0; s < shaders; ++s) meters.emplace_back(source, flip);
+    for (std::size_t s = 0; s < shaders; ++s) meters.emplace_back(source, metrics);
     std::vector<FrameHandle> previous(shaders);
+    FrameHandle previous_truth;
     auto each_shader = [&](auto step) -> Result<void> {
         for (std::size_t s = 0; s < shaders; ++s)
             if (auto ok = step(s); !ok) return fail(fmt::format("{}: {}", resolve.name(s), ok.error().message));
@@ -330,8 +304,8 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
         if (check_outputs) {
             // What ghosting is measured against, on a measured frame.
             const FrameHandle truth = !measured           ? FrameHandle{}
-                                      : against_reference ? store.put(0, std::move(*(*frame)->reference))
-                                                          : store.put(0, std::move((*frame)->color));
+                                      : against_reference ? store.put(truth_slot(i), std::move(*(*frame)->reference))
+                                                          : store.put(truth_slot(i), std::move((*frame)->color));
             std::vector<FrameHandle> outputs(shaders);
             auto taken = each_shader([&](std::size_t s) -> Result<void> {
                 auto output = store.take_output(output_slot(s, i), resolve, s, range, label);
@@ -341,28 +315,38 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
             });
             if (!taken) return std::unexpected(taken.error());
             if (measured) {
-                const bool map = maps && on_measured;
-                // Every shader's ghosting first: each is measured against the same truth, whose FLIP
-                // work the device keeps from one to the next.
-                auto ghosting = each_shader([&](std::size_t s) -> Result<void> {
-                    meters[s].begin(i);
-                    return meters[s].ghosting(truth, outputs[s], label, map);
-                });
-                if (!ghosting) return std::unexpected(ghosting.error());
-                auto shimmer = each_shader([&](std::size_t s) -> Result<void> {
-                    if (auto ok = meters[s].shimmer(previous[s], outputs[s], source.starts_history(i), label, map); !ok)
-                        return ok;
-                    if (!on_output) return {};
-                    auto image = store.image(outputs[s]);
-                    if (!image) return std::unexpected(image.error());
-                    return on_output(s, i, **image);
-                });
-                if (!shimmer) return std::unexpected(shimmer.error());
+                // A frame that starts a history has nothing before it to compare with.
+                const bool starts = source.starts_history(i);
+                for (std::size_t s = 0; s < shaders; ++s) meters[s].begin(i);
+                // Metric by metric, each over every shader: a FLIP metric's shaders measured against
+                // one truth in a row, whose FLIP work the device keeps from one to the next.
+                for (std::size_t m = 0; m < metrics.size(); ++m) {
+                    auto ok = each_shader([&](std::size_t s) -> Result<void> {
+                        const MetricFrame frame{flip,
+                                                range,
+                                                truth,
+                                                starts ? FrameHandle{} : previous_truth,
+                                                outputs[s],
+                                                starts ? FrameHandle{} : previous[s],
+                                                maps && on_measured};
+                        return meters[s].measure(m, frame, label);
+                    });
+                    if (!ok) return std::unexpected(ok.error());
+                }
+                if (on_output)
+                    if (auto ok = each_shader([&](std::size_t s) -> Result<void> {
+                            auto image = store.image(outputs[s]);
+                            if (!image) return std::unexpected(image.error());
+                            return on_output(s, i, **image);
+                        });
+                        !ok)
+                        return std::unexpected(ok.error());
                 if (on_measured)
                     if (auto ok = observe(store, meters, outputs, truth, source.name(), i, maps, on_measured); !ok)
                         return fail(fmt::format("{}: {}", label, ok.error().message));
             }
             previous = std::move(outputs);
+            previous_truth = truth;
         }
         // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
         if (i == warmup) test_hold_point("taa_pass");
@@ -375,22 +359,28 @@ Result<std::vector<SequenceMeasurement>> measure_sequence_all(TaaResolve& resolv
 
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
                                              FlipEvaluator& flip, const OutputObserver& on_output,
-                                             const std::function<void()>& on_frame) {
+                                             const std::function<void()>& on_frame, const Metrics& metrics) {
     ShaderOutputObserver first;
     if (on_output)
         first = [&](std::size_t s, std::size_t index, const Image& output) -> Result<void> {
             return s == 0 ? on_output(index, output) : Result<void>{};
         };
-    auto measured = measure_sequence_all(resolve, source, warmup, flip, first, on_frame);
+    auto measured = measure_sequence_all(resolve, source, warmup, flip, first, on_frame, {}, false, metrics);
     if (!measured) return std::unexpected(measured.error());
     return std::move(measured->front());
 }
 
-Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
-                                                      const TaaSchedule& schedule, FlipEvaluator& flip,
-                                                      const SceneShaderOutputObserver& on_output,
-                                                      const std::function<void()>& on_frame,
-                                                      const MeasuredFrameObserver& on_measured, bool maps) {
+std::vector<double> scene_means(std::span<const double> still, std::span<const double> moving) {
+    std::vector<double> means(std::max(still.size(), moving.size()), NAN);
+    for (std::size_t m = 0; m < means.size(); ++m)
+        means[m] = m < still.size() && !std::isnan(still[m]) ? still[m] : m < moving.size() ? moving[m] : NAN;
+    return means;
+}
+
+Result<std::vector<TaaMeasurement>>
+measure_scene_all(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule, FlipEvaluator& flip,
+                  const SceneShaderOutputObserver& on_output, const std::function<void()>& on_frame,
+                  const MeasuredFrameObserver& on_measured, bool maps, const Metrics& metrics) {
     std::vector<TaaMeasurement> m(resolve.size());
     const auto still = shimmer_frames(scene, schedule);
     const auto moving = ghosting_frames(scene, schedule);
@@ -402,14 +392,13 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
         };
     };
     auto shimmer = measure_sequence_all(resolve, *still, schedule.warmup, flip, pass_on(*still, false), on_frame,
-                                        on_measured, maps);
+                                        on_measured, maps, metrics);
     if (!shimmer) return std::unexpected(shimmer.error());
     auto ghosting = measure_sequence_all(resolve, *moving, schedule.warmup, flip, pass_on(*moving, true), on_frame,
-                                         on_measured, maps);
+                                         on_measured, maps, metrics);
     if (!ghosting) return std::unexpected(ghosting.error());
     for (std::size_t s = 0; s < m.size(); ++s) {
-        m[s].shimmer = (*shimmer)[s].shimmer;
-        m[s].ghosting = (*ghosting)[s].ghosting;
+        m[s].means = scene_means((*shimmer)[s].means, (*ghosting)[s].means);
         m[s].against_reference = (*ghosting)[s].against_reference;
         m[s].per_frame = std::move((*shimmer)[s].per_frame);
         m[s].per_frame.insert(m[s].per_frame.end(), (*ghosting)[s].per_frame.begin(), (*ghosting)[s].per_frame.end());
@@ -419,13 +408,13 @@ Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const
 
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
                                      FlipEvaluator& flip, const SceneOutputObserver& on_output,
-                                     const std::function<void()>& on_frame) {
+                                     const std::function<void()>& on_frame, const Metrics& metrics) {
     SceneShaderOutputObserver first;
     if (on_output)
         first = [&](const std::string& sequence, std::size_t s, std::size_t index, const Image& output) {
             return s == 0 ? on_output(sequence, index, output) : Result<void>{};
         };
-    auto measured = measure_scene_all(resolve, scene, schedule, flip, first, on_frame);
+    auto measured = measure_scene_all(resolve, scene, schedule, flip, first, on_frame, {}, false, metrics);
     if (!measured) return std::unexpected(measured.error());
     return std::move(measured->front());
 }

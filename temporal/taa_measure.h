@@ -18,6 +18,7 @@
 #include "scenes/taa_scene.h"
 #include "sequence/frame_source.h"
 #include "temporal/flip_evaluator.h"
+#include "temporal/metrics.h"
 #include "temporal/taa_resolve.h"
 #include "temporal/trail_picture.h"
 
@@ -31,25 +32,11 @@
 
 namespace kdop {
 
-// One measured frame's figures. NaN where the frame has none: shimmer on the first measured frame
-// and after a camera cut, and a figure the source is not meant for (FrameSource::roles).
-struct FrameFigures {
-    std::string sequence; // the source's name
-    std::size_t index = 0;
-    double ghosting = NAN, shimmer = NAN;
-};
-
-// The median and 95th percentile of `figures`' ghosting or shimmer over the frames that have one
-// (quantile(): linear interpolation between order statistics, numpy's default); NaN for none.
-struct FigureSpread {
-    double median = NAN, p95 = NAN;
-};
-FigureSpread ghosting_spread(const std::vector<FrameFigures>& figures);
-FigureSpread shimmer_spread(const std::vector<FrameFigures>& figures);
-
 struct SequenceMeasurement {
-    // The means over the measured frames; NaN for a figure the source is not meant for.
-    double shimmer = 0, ghosting = 0;
+    // Each metric's mean over the measured frames (MetricSummary::mean), by MetricId; NaN for one
+    // the source is not meant for or the run does not measure.
+    std::vector<double> means;
+    double mean(std::size_t metric) const { return metric < means.size() ? means[metric] : NAN; }
     ColorRange range = ColorRange::ldr;  // the source's: measured in LDR-FLIP or in HDR-FLIP
     bool against_reference = false;      // ghosting against the frames' references, not their own color
     std::size_t frames = 0;              // frames measured
@@ -88,10 +75,12 @@ using ShaderOutputObserver = std::function<Result<void>(std::size_t shader, std:
 // each frame, measured or not.
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
                                              FlipEvaluator& flip, const OutputObserver& on_output = {},
-                                             const std::function<void()>& on_frame = {});
+                                             const std::function<void()>& on_frame = {},
+                                             const Metrics& metrics = default_metrics());
 
 struct TaaMeasurement {
-    double shimmer = 0, ghosting = 0;
+    std::vector<double> means; // shimmer's of the shimmer sequence, the others' of the ghosting sequence
+    double mean(std::size_t metric) const { return metric < means.size() ? means[metric] : NAN; }
     bool against_reference = false; // ghosting against the frames' references (3-D scenes with --reference-samples)
     // The ghosting sequence's frame scene.trail_frame(schedule): where a trail is longest.
     Image trail;
@@ -136,18 +125,25 @@ using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& fr
 Result<std::vector<SequenceMeasurement>>
 measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, FlipEvaluator& flip,
                      const ShaderOutputObserver& on_output = {}, const std::function<void()>& on_frame = {},
-                     const MeasuredFrameObserver& on_measured = {}, bool maps = false);
+                     const MeasuredFrameObserver& on_measured = {}, bool maps = false,
+                     const Metrics& metrics = default_metrics());
+// A scene's figures from its two sequences' means (by metric): each metric's from the sequence
+// that measures it, the still one (shimmer's role) or the moving one (ghosting's).
+std::vector<double> scene_means(std::span<const double> still, std::span<const double> moving);
+
 // Both of a scene's sequences through every shader of `resolve`, in one pass each.
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
                                                       const TaaSchedule& schedule, FlipEvaluator& flip,
                                                       const SceneShaderOutputObserver& on_output = {},
                                                       const std::function<void()>& on_frame = {},
-                                                      const MeasuredFrameObserver& on_measured = {}, bool maps = false);
+                                                      const MeasuredFrameObserver& on_measured = {}, bool maps = false,
+                                                      const Metrics& metrics = default_metrics());
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
                                      FlipEvaluator& flip, const SceneOutputObserver& on_output = {},
-                                     const std::function<void()>& on_frame = {});
+                                     const std::function<void()>& on_frame = {},
+                                     const Metrics& metrics = default_metrics());
 
 // A resolve's output ready for FLIP (and, for ldr, PNG): the resolve's blends and clips land on
 // segments between colors in the range, so anything beyond it is float rounding. Values outside

@@ -77,7 +77,7 @@ std::string paper_comparison(const std::string& scene, const std::vector<TaaRow>
     std::vector<double> ps, pg, os, og;
     for (std::size_t i = 0; i < paper.size(); ++i) {
         ps.push_back(paper[i].shimmer), pg.push_back(paper[i].ghosting);
-        os.push_back(ours[i]->shimmer), og.push_back(ours[i]->ghosting);
+        os.push_back(ours[i]->mean(kShimmer)), og.push_back(ours[i]->mean(kGhosting));
     }
     const auto rps = ranks(ps), rpg = ranks(pg), ros = ranks(os), rog = ranks(og);
     std::string md =
@@ -129,18 +129,39 @@ std::string describe_exposures(const ExposureOptions& o) {
                        given(o.stop, "the one the reference's median luminance gives"));
 }
 
-// Where each variant's figures are largest, the frames to look at first.
-std::string worst_frames(const std::vector<TaaRow>& rows) {
+// Where each variant's figures are worst, the frames to look at first.
+std::string worst_frames(const std::vector<TaaRow>& rows, const Metrics& metrics) {
     std::string md;
     for (const TaaRow& r : rows) {
         std::vector<std::string> worst;
-        if (!r.worst_ghosting_frame.empty())
-            worst.push_back(fmt::format("most ghosting at {}", markdown_text(r.worst_ghosting_frame)));
-        if (!r.worst_shimmer_frame.empty())
-            worst.push_back(fmt::format("most shimmer at {}", markdown_text(r.worst_shimmer_frame)));
+        for (std::size_t m = 0; m < metrics.size() && m < r.figures.size(); ++m)
+            if (metrics[m].measured && !r.figures[m].worst_frame.empty())
+                worst.push_back(fmt::format("{} {} at {}", metrics[m].higher_is_better ? "least" : "most",
+                                            metrics[m].name, markdown_text(r.figures[m].worst_frame)));
         if (!worst.empty()) md += fmt::format("- {}: {}\n", markdown_text(r.key.name()), fmt::join(worst, "; "));
     }
     return md.empty() ? md : "Each variant's worst frames:\n\n" + md + "\n";
+}
+
+// The names of the measured metrics in bold, "**a**, **b** and **c**".
+std::string measured_names(const Metrics& metrics) {
+    std::vector<std::string> names;
+    for (const Metric& m : metrics)
+        if (m.measured) names.push_back("**" + m.name + "**");
+    if (names.size() < 2) return names.empty() ? std::string() : names.front();
+    const std::string last = names.back();
+    names.pop_back();
+    return fmt::format("{} and {}", fmt::join(names, ", "), last);
+}
+
+// What each measured metric beyond the paper's two compares, from the registry.
+std::string metric_descriptions(const Metrics& metrics) {
+    std::string md;
+    for (std::size_t m = 0; m < metrics.size(); ++m)
+        if (metrics[m].measured && m != kShimmer && m != kGhosting)
+            md += fmt::format("- **{}** ({}): {}{}.\n", metrics[m].name, metrics[m].unit, metrics[m].description,
+                              metrics[m].needs_reference ? ", where the sequence has reference frames" : "");
+    return md;
 }
 
 } // namespace
@@ -153,59 +174,68 @@ bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows)
     return std::abs(row.ms - fastest->ms) <= std::max(row.ms_q3 - row.ms_q1, fastest->ms_q3 - fastest->ms_q1);
 }
 
-Table taa_table(const std::vector<TaaRow>& rows) {
-    const DeclaredColumns<TaaRow> columns =
+Table taa_table(const std::vector<TaaRow>& rows, const Metrics& metrics) {
+    DeclaredColumns<TaaRow> columns =
         variant_key_columns<TaaRow>([](const TaaRow& r) -> const VariantKey& { return r.key; }) +
         DeclaredColumns<TaaRow>{{{"scene", "", Shown::text}, [](const TaaRow& r) { return Value(r.scene); }}} +
         time_columns<TaaRow>(&TaaRow::ms, &TaaRow::ms_q1, &TaaRow::ms_q3) +
         DeclaredColumns<TaaRow>{
-            {{"ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"},
-             [&rows](const TaaRow& r) {
+            {{"ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"}, [&rows](const TaaRow& r) {
                  return std::isfinite(r.ms) ? Value(within_noise_of_fastest(r, rows)) : Value();
-             }},
-            {{"shimmer", "FLIP", Shown::fixed, 4, "shimmer (mean)"}, [](const TaaRow& r) { return maybe(r.shimmer); }},
-            {{"shimmer_median", "FLIP", Shown::fixed, 4, "shimmer median"},
-             [](const TaaRow& r) { return maybe(r.shimmer_median); }},
-            {{"shimmer_p95", "FLIP", Shown::fixed, 4, "shimmer p95"},
-             [](const TaaRow& r) { return maybe(r.shimmer_p95); }},
-            {{"shimmer_low", "FLIP", Shown::fixed, 4, "shimmer 95% interval from"},
-             [](const TaaRow& r) { return maybe(r.shimmer_interval.low); }},
-            {{"shimmer_high", "FLIP", Shown::fixed, 4, "to"},
-             [](const TaaRow& r) { return maybe(r.shimmer_interval.high); }},
-            {{"ghosting", "FLIP", Shown::fixed, 4, "ghosting (mean)"},
-             [](const TaaRow& r) { return maybe(r.ghosting); }},
-            {{"ghosting_median", "FLIP", Shown::fixed, 4, "ghosting median"},
-             [](const TaaRow& r) { return maybe(r.ghosting_median); }},
-            {{"ghosting_p95", "FLIP", Shown::fixed, 4, "ghosting p95"},
-             [](const TaaRow& r) { return maybe(r.ghosting_p95); }},
-            {{"ghosting_low", "FLIP", Shown::fixed, 4, "ghosting 95% interval from"},
-             [](const TaaRow& r) { return maybe(r.ghosting_interval.low); }},
-            {{"ghosting_high", "FLIP", Shown::fixed, 4, "to"},
-             [](const TaaRow& r) { return maybe(r.ghosting_interval.high); }},
-            {{"ghosting_noise", "", Shown::flag, 0, "ghosting within noise of the least"},
-             [](const TaaRow& r) { return r.ghosting_noise ? Value(*r.ghosting_noise) : Value(); }},
-            {{"worst_ghosting_frame", "", Shown::text, 0, "most ghosting at"},
-             [](const TaaRow& r) { return r.worst_ghosting_frame.empty() ? Value() : Value(r.worst_ghosting_frame); }},
-            {{"worst_shimmer_frame", "", Shown::text, 0, "most shimmer at"},
-             [](const TaaRow& r) { return r.worst_shimmer_frame.empty() ? Value() : Value(r.worst_shimmer_frame); }},
-            {{"ghosting_against", "", Shown::text, 0, "ghosting against"},
-             [](const TaaRow& r) { return std::isnan(r.ghosting) ? Value() : Value(r.ghosting_against); }},
-            {{"flip", "", Shown::text, 0, "measured in"},
-             [](const TaaRow& r) { return Value(std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP")); }},
-        };
+             }}};
+    // Each measured metric's figures, then its worst frames, all from the registry.
+    auto figure = [](std::size_t m, double MetricFigures::*f) {
+        return [m, f](const TaaRow& r) { return m < r.figures.size() ? maybe(r.figures[m].*f) : Value(); };
+    };
+    auto bound = [](std::size_t m, double Interval::*f) {
+        return [m, f](const TaaRow& r) { return m < r.figures.size() ? maybe(r.figures[m].interval.*f) : Value(); };
+    };
+    for (std::size_t m = 0; m < metrics.size(); ++m) {
+        const Metric& metric = metrics[m];
+        if (!metric.measured) continue;
+        const std::string& n = metric.name;
+        const int d = metric.digits;
+        columns.push_back({{n, metric.unit, Shown::fixed, d, n + " (mean)"}, figure(m, &MetricFigures::mean)});
+        columns.push_back(
+            {{n + "_median", metric.unit, Shown::fixed, d, n + " median"}, figure(m, &MetricFigures::median)});
+        columns.push_back({{n + "_p95", metric.unit, Shown::fixed, d, n + " p95"}, figure(m, &MetricFigures::p95)});
+        columns.push_back(
+            {{n + "_low", metric.unit, Shown::fixed, d, n + " 95% interval from"}, bound(m, &Interval::low)});
+        columns.push_back({{n + "_high", metric.unit, Shown::fixed, d, "to"}, bound(m, &Interval::high)});
+    }
+    columns.push_back({{"ghosting_noise", "", Shown::flag, 0, "ghosting within noise of the least"},
+                       [](const TaaRow& r) { return r.ghosting_noise ? Value(*r.ghosting_noise) : Value(); }});
+    for (std::size_t m : ranking_first(metrics))
+        if (metrics[m].measured)
+            columns.push_back({{"worst_" + metrics[m].name + "_frame", "", Shown::text, 0,
+                                fmt::format("{} at", metrics[m].higher_is_better ? "least " + metrics[m].name
+                                                                                 : "most " + metrics[m].name)},
+                               [m](const TaaRow& r) {
+                                   return m < r.figures.size() && !r.figures[m].worst_frame.empty()
+                                              ? Value(r.figures[m].worst_frame)
+                                              : Value();
+                               }});
+    columns.push_back({{"ghosting_against", "", Shown::text, 0, "ghosting against"}, [](const TaaRow& r) {
+                           return std::isnan(r.mean(kGhosting)) ? Value() : Value(r.ghosting_against);
+                       }});
+    columns.push_back({{"flip", "", Shown::text, 0, "measured in"}, [](const TaaRow& r) {
+                           return Value(std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"));
+                       }});
     return declared_table<TaaRow>(columns, rows);
 }
 
-Table taa_frames_table(const std::vector<TaaFrameRow>& rows) {
-    const DeclaredColumns<TaaFrameRow> columns =
+Table taa_frames_table(const std::vector<TaaFrameRow>& rows, const Metrics& metrics) {
+    DeclaredColumns<TaaFrameRow> columns =
         variant_key_columns<TaaFrameRow>([](const TaaFrameRow& r) -> const VariantKey& { return r.key; }) +
         DeclaredColumns<TaaFrameRow>{
             {{"scene", "", Shown::text}, [](const TaaFrameRow& r) { return Value(r.scene); }},
             {{"sequence", "", Shown::text}, [](const TaaFrameRow& r) { return Value(r.sequence); }},
             {{"frame", "", Shown::integer}, [](const TaaFrameRow& r) { return Value(std::int64_t(r.frame)); }},
-            {{"ghosting", "FLIP", Shown::fixed, 4}, [](const TaaFrameRow& r) { return maybe(r.ghosting); }},
-            {{"shimmer", "FLIP", Shown::fixed, 4}, [](const TaaFrameRow& r) { return maybe(r.shimmer); }},
         };
+    for (std::size_t m : ranking_first(metrics))
+        if (metrics[m].measured)
+            columns.push_back({{metrics[m].name, metrics[m].unit, Shown::fixed, metrics[m].digits},
+                               [m](const TaaFrameRow& r) { return maybe(r.value(m)); }});
     return declared_table<TaaFrameRow>(columns, rows);
 }
 
@@ -243,10 +273,12 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                           "them (ghosting_against = reference), else against its own color; shimmer between "
                           "successive outputs, none across a camera cut.\n\n",
                           fmt::join(s.sequences | std::views::transform(markdown_text), ", "), s.warmup);
-    md += "- **shimmer** and **ghosting** are means over the measured frames; **p95** is the 95th percentile over "
-          "the same frames (linear interpolation between order statistics, as numpy's default), which a trail a few "
-          "frames long moves where the mean hardly moves. taa_frames.csv has every frame's figures, and taa.csv "
-          "the medians too.\n";
+    md += fmt::format("- {} are means over the measured frames; **p95** is the 95th percentile over "
+                      "the same frames (linear interpolation between order statistics, as numpy's default), which a "
+                      "trail a few frames long moves where the mean hardly moves. taa_frames.csv has every frame's "
+                      "figures, and taa.csv the medians too.\n",
+                      measured_names(s.metrics));
+    md += metric_descriptions(s.metrics);
     md += fmt::format("- taa.csv gives each mean a 95% interval (shimmer_low to shimmer_high, ghosting_low to "
                       "ghosting_high): a block bootstrap over the measured frames, in blocks of {} consecutive frames "
                       "(ceil(1 / current weight): frames of one block share their history), 2000 replicates drawn "
@@ -255,7 +287,7 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
                       "interval holding 0. A scene or sequence of fewer than two blocks of frames has none.\n\n",
                       history_block(s.resolve.current_weight), run.seed.value_or(1));
     if (std::any_of(rows.begin(), rows.end(),
-                    [](const TaaRow& r) { return std::isnan(r.shimmer) || std::isnan(r.ghosting); }))
+                    [](const TaaRow& r) { return std::isnan(r.mean(kShimmer)) || std::isnan(r.mean(kGhosting)); }))
         md += "A figure shown as – is not measured: one the sequence is not meant for (its sequence.json says "
               "\"measure\": [\"ghosting\"], a moving capture without jitter, whose shimmer would be the motion's, "
               "or [\"shimmer\"], a still, jittered capture, which has nothing to ghost), or shimmer where every "
@@ -264,25 +296,26 @@ std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetada
     std::vector<std::string> scenes;
     for (const TaaRow& r : rows)
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-    const std::vector<std::string> shown{
-        "variant",     "ms",       "ms_q1",        "ms_q3",          "ms_noise",         "shimmer",
-        "shimmer_p95", "ghosting", "ghosting_p95", "ghosting_noise", "ghosting_against", "flip"};
+    std::vector<std::string> shown{"variant", "ms", "ms_q1", "ms_q3", "ms_noise"};
+    for (const Metric& m : s.metrics)
+        if (m.measured) shown.insert(shown.end(), {m.name, m.name + "_p95"});
+    shown.insert(shown.end(), {"ghosting_noise", "ghosting_against", "flip"});
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<TaaRow> in_scene;
         std::copy_if(rows.begin(), rows.end(), std::back_inserter(in_scene),
                      [&](const TaaRow& r) { return r.scene == scenes[i]; });
         // Least ghosting first, or, for a sequence meant for shimmer alone, least shimmer.
-        const bool by_shimmer =
-            std::all_of(in_scene.begin(), in_scene.end(), [](const TaaRow& r) { return std::isnan(r.ghosting); });
+        const bool by_shimmer = std::all_of(in_scene.begin(), in_scene.end(),
+                                            [](const TaaRow& r) { return std::isnan(r.mean(kGhosting)); });
         std::stable_sort(in_scene.begin(), in_scene.end(), [by_shimmer](const TaaRow& a, const TaaRow& b) {
-            return by_shimmer ? a.shimmer < b.shimmer : a.ghosting < b.ghosting;
+            return by_shimmer ? a.mean(kShimmer) < b.mean(kShimmer) : a.mean(kGhosting) < b.mean(kGhosting);
         });
         md += fmt::format("## {}\n\n", markdown_text(scenes[i]));
         for (const auto& [name, content] : s.scene_contents)
             if (name == scenes[i]) md += fmt::format("The scene: {}.\n\n", markdown_text(content));
         md += fmt::format("Least {} first.\n\n{}\n", by_shimmer ? "shimmer" : "ghosting",
-                          taa_table(in_scene).markdown(shown));
-        md += worst_frames(in_scene);
+                          taa_table(in_scene, s.metrics).markdown(shown));
+        md += worst_frames(in_scene, s.metrics);
         if (i < s.charts.size())
             md += fmt::format("What each variant costs against the ghosting and shimmer it leaves (lower left is "
                               "better): ![cost against ghosting and shimmer, {0}]({1})\n\n",

@@ -10,6 +10,7 @@
 #include "harness/run_metadata.h"
 #include "harness/table.h"
 #include "sequence/sequence.h"
+#include "temporal/metrics.h"
 #include "temporal/resolve_options.h"
 
 #include <cmath>
@@ -20,25 +21,31 @@
 
 namespace kdop {
 
+// One metric's figures in a row of taa.csv: its MetricSummary over the measured frames, its 95%
+// block-bootstrap interval (taa_intervals.h; unknown where the frames are too few) and its worst
+// frame as "<sequence> frame <index>" (empty where none is measured).
+struct MetricFigures {
+    double mean = NAN, median = NAN, p95 = NAN;
+    Interval interval;
+    std::string worst_frame;
+};
+
 struct TaaRow {
     VariantKey key;
     std::string scene;
     // The lavapipe time of the variant's rectification pass at the frame size: median and quartiles.
     double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
-    // The means over the measured frames; NaN where the scene or sequence is not meant for one
-    // (sequence.json's "measure"). Beside each, its median and 95th percentile over the frames
-    // (FigureSpread), and the frame where it is largest ("<sequence> frame <index>").
-    double shimmer = NAN, ghosting = NAN;
-    double shimmer_median = NAN, shimmer_p95 = NAN, ghosting_median = NAN, ghosting_p95 = NAN;
-    std::string worst_shimmer_frame, worst_ghosting_frame;
+    // Each metric's figures, by MetricId (temporal/metrics.h); NaN where the scene or sequence is
+    // not meant for one (sequence.json's "measure") or the run does not measure it.
+    std::vector<MetricFigures> figures;
+    double mean(std::size_t metric) const { return metric < figures.size() ? figures[metric].mean : NAN; }
     // What the ghosting was measured against: "aliased" (each frame's own color, the paper's
     // ground truth with jitter off) or "reference" (the sequence's reference frames).
     std::string ghosting_against = "aliased";
     // What shimmer and ghosting were measured in: LDR-FLIP, or HDR-FLIP for an HDR sequence.
     ColorRange range = ColorRange::ldr;
-    // Their 95% block-bootstrap intervals over the measured frames, and whether the ghosting is
-    // within noise of the least in the scene (taa_intervals.h); unknown where the frames are too few.
-    Interval shimmer_interval, ghosting_interval;
+    // Whether the ghosting is within noise of the least in the scene (taa_intervals.h); unknown
+    // where the frames are too few.
     std::optional<bool> ghosting_noise;
 };
 
@@ -46,7 +53,8 @@ struct TaaRow {
 // range of the two: a difference a reader should not believe.
 bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows);
 
-Table taa_table(const std::vector<TaaRow>& rows);
+// taa.csv: per measured metric of `metrics` its mean, median, p95 and interval, then the worst frames.
+Table taa_table(const std::vector<TaaRow>& rows, const Metrics& metrics);
 
 // One measured frame of one variant: the figures the means of taa.csv are the means of.
 struct TaaFrameRow {
@@ -54,10 +62,12 @@ struct TaaFrameRow {
     std::string scene;    // the row of taa.csv it belongs to
     std::string sequence; // the frames it was measured on: the sequence, or a scene's -shimmer or -ghosting one
     std::size_t frame = 0;
-    double ghosting = NAN, shimmer = NAN; // NaN: not measured on this frame
+    std::vector<double> values;         // by MetricId; NaN: not measured on this frame
+    ColorRange range = ColorRange::ldr; // measured in LDR-FLIP or HDR-FLIP (not a column: taa.csv has it)
+    double value(std::size_t metric) const { return metric < values.size() ? values[metric] : NAN; }
 };
 
-Table taa_frames_table(const std::vector<TaaFrameRow>& rows);
+Table taa_frames_table(const std::vector<TaaFrameRow>& rows, const Metrics& metrics);
 
 struct TaaReportSettings {
     std::uint32_t width = 0, height = 0, warmup = 0, frames = 0;
@@ -70,8 +80,9 @@ struct TaaReportSettings {
     std::vector<std::pair<std::string, std::string>> scene_contents;
     // The sequences measured (`kdop taa --sequence`), by name, beside kdop's own scenes.
     std::vector<std::string> sequences;
-    bool flip_on_device = false; // ghosting and shimmer measured by the device's FLIP, not the CPU's
-    ExposureOptions hdr;         // HDR-FLIP's tone mapper and exposures, for the HDR sequences
+    bool flip_on_device = false;         // ghosting and shimmer measured by the device's FLIP, not the CPU's
+    ExposureOptions hdr;                 // HDR-FLIP's tone mapper and exposures, for the HDR sequences
+    Metrics metrics = default_metrics(); // what the rows were measured with
 };
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,

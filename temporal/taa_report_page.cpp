@@ -23,12 +23,17 @@ std::string image(const std::string& path, const std::string& alt) {
 // (the variant's name says them), the medians and the intervals (report.md leaves them out too), so
 // that it fits a 1400-pixel page.
 std::string results_table(const Table& table, const std::string& sorted_by) {
-    static const std::vector<std::string> left_out{
-        "axis_set",    "mode",         "neighborhood", "form",          "numerics",       "shimmer_median",
-        "shimmer_low", "shimmer_high", "ghosting_low", "ghosting_high", "ghosting_noise", "ghosting_median"};
+    static const std::vector<std::string> left_out{"axis_set", "mode",     "neighborhood",
+                                                   "form",     "numerics", "ghosting_noise"};
+    auto left_out_figure = [](std::string_view name) { // every metric's median and interval
+        return name.ends_with("_median") || name.ends_with("_low") || name.ends_with("_high");
+    };
     std::vector<std::size_t> shown;
-    for (std::size_t c = 0; c < table.columns().size(); ++c)
-        if (std::find(left_out.begin(), left_out.end(), table.columns()[c].name) == left_out.end()) shown.push_back(c);
+    for (std::size_t c = 0; c < table.columns().size(); ++c) {
+        const std::string& name = table.columns()[c].name;
+        if (std::find(left_out.begin(), left_out.end(), name) == left_out.end() && !left_out_figure(name))
+            shown.push_back(c);
+    }
     std::string html = "<div class=\"table-wrap\"><table class=\"results\" id=\"results\">\n<thead><tr>";
     for (std::size_t c : shown) {
         const Column& column = table.columns()[c];
@@ -60,7 +65,8 @@ std::string results_table(const Table& table, const std::string& sorted_by) {
 // figure last, by their shimmer).
 std::vector<TaaRow> least_ghosting_first(std::vector<TaaRow> rows) {
     auto rank = [](const TaaRow& r) {
-        return std::pair(std::isnan(r.ghosting) ? INFINITY : r.ghosting, std::isnan(r.shimmer) ? INFINITY : r.shimmer);
+        const double ghosting = r.mean(kGhosting), shimmer = r.mean(kShimmer);
+        return std::pair(std::isnan(ghosting) ? INFINITY : ghosting, std::isnan(shimmer) ? INFINITY : shimmer);
     };
     std::stable_sort(rows.begin(), rows.end(), [&](const TaaRow& a, const TaaRow& b) { return rank(a) < rank(b); });
     return rows;
@@ -88,13 +94,12 @@ nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants, con
         for (const std::string& variant : variants) {
             double mean = NAN;
             for (const TaaRow& r : rows)
-                if (r.scene == s.scene && r.key.name() == variant)
-                    mean = s.figure == ViewerFigure::ghosting ? r.ghosting : r.shimmer;
+                if (r.scene == s.scene && r.key.name() == variant) mean = r.mean(s.figure);
             means.push_back(std::isnan(mean) ? nlohmann::ordered_json() : nlohmann::ordered_json(mean));
         }
         sequences.push_back({{"name", s.name},
                              {"scene", s.scene},
-                             {"figure", s.figure == ViewerFigure::ghosting ? "ghosting" : "shimmer"},
+                             {"figure", s.figure == kGhosting ? "ghosting" : "shimmer"},
                              {"truth", s.truth},
                              {"map", s.map},
                              {"width", s.width},
@@ -171,7 +176,7 @@ std::string taa_report_html(const std::vector<TaaRow>& rows, const RunMetadata& 
     html += "<h2 id=\"table\">Every variant on every scene and sequence</h2>\n";
     html += "<p class=\"note\">A click on a column's header sorts by it. Shimmer and ghosting are means over the "
             "measured frames, p95 their 95th percentile; – is a figure the sequence is not meant for.</p>\n";
-    html += results_table(taa_table(least_ghosting_first(rows)), "ghosting");
+    html += results_table(taa_table(least_ghosting_first(rows), s.metrics), "ghosting");
 
     if (has_viewer) {
         html += "<h2 id=\"viewer-section\">Frame viewer</h2>\n";

@@ -23,25 +23,20 @@
 namespace kdop {
 namespace {
 
-// "<sequence> frame <index>" where `figure` is largest over `frames`; empty where none has it.
-std::string worst_frame(const std::vector<FrameFigures>& frames, double FrameFigures::*figure) {
-    const FrameFigures* worst = nullptr;
-    for (const FrameFigures& f : frames)
-        if (!std::isnan(f.*figure) && (!worst || f.*figure > worst->*figure)) worst = &f;
-    return worst ? fmt::format("{} frame {}", worst->sequence, worst->index) : std::string();
-}
-
-// taa.csv's row of variant `key` on `m.source`, timed by `ms`.
-TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<double>& ms) {
-    const FigureSpread ghosting = ghosting_spread(m.per_frame), shimmer = shimmer_spread(m.per_frame);
+// taa.csv's row of variant `key` on `m.source`, timed by `ms`: each metric's figures summarized
+// over its frames (the mean as measured).
+TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<double>& ms, const Metrics& metrics) {
     TaaRow row;
     row.key = key, row.scene = m.source;
     row.ms = median(ms), row.ms_q1 = quantile(ms, 0.25), row.ms_q3 = quantile(ms, 0.75);
-    row.shimmer = m.shimmer, row.ghosting = m.ghosting;
-    row.shimmer_median = shimmer.median, row.shimmer_p95 = shimmer.p95;
-    row.ghosting_median = ghosting.median, row.ghosting_p95 = ghosting.p95;
-    row.worst_shimmer_frame = worst_frame(m.per_frame, &FrameFigures::shimmer);
-    row.worst_ghosting_frame = worst_frame(m.per_frame, &FrameFigures::ghosting);
+    for (std::size_t metric = 0; metric < metrics.size(); ++metric) {
+        const MetricSummary summary = summarize(m.per_frame, metric, metrics[metric].higher_is_better);
+        MetricFigures& f = row.figures.emplace_back();
+        f.mean = m.mean(metric), f.median = summary.median, f.p95 = summary.p95;
+        if (summary.worst)
+            f.worst_frame =
+                fmt::format("{} frame {}", m.per_frame[*summary.worst].sequence, m.per_frame[*summary.worst].index);
+    }
     row.ghosting_against = m.against_reference ? "reference" : "aliased";
     row.range = m.range;
     return row;
@@ -58,7 +53,7 @@ Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequ
     auto maps = ghosting_maps(flip, *truth, chooser.outputs());
     if (!maps) return fail(fmt::format("{}: {}", sequence.frame_label(chooser.index()), maps.error().message));
     std::vector<double> ghosting;
-    for (const EvaluationRow& m : measured) ghosting.push_back(m.ghosting);
+    for (const EvaluationRow& m : measured) ghosting.push_back(m.mean(kGhosting));
     const PictureFrame shown{sequence.name(), chooser.index(),
                              disagreement_crop(*maps, sequence.width(), sequence.height())};
     return add_ghosting_picture(outputs, shown, has_reference ? "reference" : "aliased", truth, keys, chooser.outputs(),
@@ -74,6 +69,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     std::vector<VariantKey> keys;
     for (const VariantSpec& spec : specs) keys.push_back(spec.key());
     const TaaSchedule& schedule = settings.evaluation.schedule;
+    const Metrics& metrics = settings.evaluation.metrics;
     auto evaluation = TaaEvaluation::create(context, specs, settings.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
 
@@ -131,9 +127,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
         auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
             for (const EvaluationRow& m : measured) {
-                rows.push_back(taa_row(keys[m.variant], m, timing->ms[m.variant]));
+                rows.push_back(taa_row(keys[m.variant], m, timing->ms[m.variant], metrics));
                 for (const FrameFigures& f : m.per_frame)
-                    frame_rows.push_back({keys[m.variant], m.source, f.sequence, f.index, f.ghosting, f.shimmer});
+                    frame_rows.push_back({keys[m.variant], m.source, f.sequence, f.index, f.values, m.range});
                 for (const std::string& note : m.notes)
                     if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
             }
@@ -149,7 +145,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
             std::vector<std::shared_ptr<const Image>> trails;
             std::vector<double> ghosting;
-            for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.ghosting);
+            for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.mean(kGhosting));
             const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
             auto flip = evaluation->flip_evaluator(truth->width, truth->height);
             if (!flip) return std::unexpected(flip.error());
@@ -202,8 +198,8 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     if (charts_available(settings.charts)) {
         ScratchDirectory scratch("kdop-taa");
         auto drawn = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
-                                          : taa_charts(rows, scratch.path, outputs.dir());
-        auto over_time = drawn ? taa_over_time_charts(frame_rows, scratch.path, outputs.dir()) : drawn;
+                                          : taa_charts(rows, metrics, scratch.path, outputs.dir());
+        auto over_time = drawn ? taa_over_time_charts(frame_rows, metrics, scratch.path, outputs.dir()) : drawn;
         if (drawn && over_time) {
             outputs.add(std::move(*drawn));
             outputs.add(std::move(*over_time));
@@ -220,12 +216,23 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     const EvaluationOptions& e = settings.evaluation;
     BootstrapOptions bootstrap;
     bootstrap.block = history_block(e.resolve.current_weight), bootstrap.seed = settings.seed;
-    add_intervals(rows, frame_rows, bootstrap);
-    outputs.add_table("taa", taa_table(rows), run_info);
-    outputs.add_table("taa_frames", taa_frames_table(frame_rows), run_info);
-    const TaaReportSettings report{width,          height,      schedule.warmup,  schedule.frames, e.ppd,
-                                   pictures,       charts,      over_time_charts, e.resolve,       scene_contents,
-                                   sequence_names, !e.cpu_flip, e.exposure};
+    add_intervals(rows, frame_rows, metrics.size(), bootstrap);
+    outputs.add_table("taa", taa_table(rows, metrics), run_info);
+    outputs.add_table("taa_frames", taa_frames_table(frame_rows, metrics), run_info);
+    const TaaReportSettings report{.width = width,
+                                   .height = height,
+                                   .warmup = schedule.warmup,
+                                   .frames = schedule.frames,
+                                   .pixels_per_degree = e.ppd,
+                                   .pictures = pictures,
+                                   .charts = charts,
+                                   .over_time = over_time_charts,
+                                   .resolve = e.resolve,
+                                   .scene_contents = scene_contents,
+                                   .sequences = sequence_names,
+                                   .flip_on_device = !e.cpu_flip,
+                                   .hdr = e.exposure,
+                                   .metrics = metrics};
     outputs.add("report.md", taa_report_markdown(rows, run_info, report));
     outputs.add("report.html", taa_report_html(rows, run_info, report, variant_names, *viewed));
     if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());

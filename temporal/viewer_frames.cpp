@@ -88,13 +88,13 @@ void ViewerFrames::plan(const std::string& sequence, const std::string& scene, s
     ViewerSequence& shown = kept->shown;
     shown.name = sequence;
     shown.scene = scene;
-    shown.figure = maps_show_ghosting(roles) ? ViewerFigure::ghosting : ViewerFigure::shimmer;
+    shown.figure = maps_show_ghosting(roles) ? kGhosting : kShimmer;
     shown.range = range;
     shown.truth = against_reference ? "reference" : "aliased";
     const char* flip = range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
-    shown.map = shown.figure == ViewerFigure::shimmer ? fmt::format("{} against the output before", flip)
-                : against_reference                   ? fmt::format("{} against the reference", flip)
-                                                      : fmt::format("{} against the aliased frame", flip);
+    shown.map = shown.figure == kShimmer ? fmt::format("{} against the output before", flip)
+                : against_reference      ? fmt::format("{} against the reference", flip)
+                                         : fmt::format("{} against the aliased frame", flip);
     shown.worst.assign(variants_.size(), ViewerSequence::kNone);
     kept->spread = spread_frames(first, last, spread_);
     kept->worst_value.assign(variants_.size(), -INFINITY);
@@ -115,7 +115,7 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
     bool keep = spread;
     for (std::size_t v = 0; v < frame.figures.size(); ++v) {
         const FrameFigures& f = frame.figures[v];
-        figures.push_back(kept.shown.figure == ViewerFigure::ghosting ? f.ghosting : f.shimmer);
+        figures.push_back(f.value(kept.shown.figure));
         if (figures.back() > kept.worst_value[v]) { // NaN never wins; the earliest of equals stays
             kept.worst_value[v] = figures.back();
             kept.shown.worst[v] = frame.index;

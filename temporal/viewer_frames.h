@@ -31,13 +31,11 @@
 
 namespace kdop {
 
-enum class ViewerFigure { ghosting, shimmer };
-
 // What the viewer shows of one sequence once the pass is over.
 struct ViewerSequence {
-    std::string name;  // the sequence's (a scene's: <scene>-shimmer, <scene>-ghosting)
-    std::string scene; // taa.csv's row it belongs to
-    ViewerFigure figure = ViewerFigure::ghosting;
+    std::string name;               // the sequence's (a scene's: <scene>-shimmer, <scene>-ghosting)
+    std::string scene;              // taa.csv's row it belongs to
+    std::size_t figure = kGhosting; // the metric its maps show (MetricId): ghosting, else shimmer
     ColorRange range = ColorRange::ldr;
     std::string truth; // the truth image's name: "reference" or "aliased"
     std::string map;   // what the FLIP maps compare: "LDR-FLIP against the aliased frame"

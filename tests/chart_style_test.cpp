@@ -57,9 +57,9 @@ TEST(ChartStyle, TheOverTimeChartDrawsEachVariantInItsOwnLook) {
     std::vector<TaaFrameRow> rows;
     for (const VariantKey& key : thirty_variants())
         for (std::size_t frame = 0; frame < 3; ++frame)
-            rows.push_back({key, "scene", "scene-ghosting", frame, 0.01 * double(frame + 1), NAN});
+            rows.push_back({key, "scene", "scene-ghosting", frame, {NAN, 0.01 * double(frame + 1)}});
     ScratchDirectory scratch("kdop-chart-test");
-    auto charts = taa_over_time_charts(rows, scratch.path, scratch.path / "out");
+    auto charts = taa_over_time_charts(rows, default_metrics(), scratch.path, scratch.path / "out");
     ASSERT_TRUE(charts) << charts.error().message;
     const std::string script = test::read_file(scratch.path / "charts.gp");
     const std::regex series(R"(with linespoints pt (\d+) ps [0-9.]+ dt (\d+) lw [0-9.]+ lc rgb '(#[0-9a-f]{6})')");

@@ -75,14 +75,14 @@ TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
     const Image truth = gray(0.5f);
     for (std::size_t i = 2; i <= 10; ++i) {
         const auto [a, b] = ghosting[i - 2];
-        const std::vector<FrameFigures> figures{{"moving", i, a, NAN}, {"moving", i, b, NAN}};
+        const std::vector<FrameFigures> figures{{"moving", i, {NAN, a}}, {"moving", i, {NAN, b}}};
         const Image output_a = gray(float(i) / 20), output_b = gray(float(i) / 20 + 0.25f);
         const std::vector<const Image*> outputs{&output_a, &output_b};
         const std::vector<std::vector<float>> maps{flat_map(float(i) / 10), flat_map(1.0f - float(i) / 20)};
         ASSERT_TRUE(viewer.offer({"moving", i, figures, outputs, maps, &truth}));
     }
     // A frame of a sequence not planned is not kept.
-    const std::vector<FrameFigures> other{{"other", 3, 1.0, NAN}, {"other", 3, 1.0, NAN}};
+    const std::vector<FrameFigures> other{{"other", 3, {NAN, 1.0}}, {"other", 3, {NAN, 1.0}}};
     const std::vector<const Image*> outputs{&truth, &truth};
     ASSERT_TRUE(viewer.offer({"other", 3, other, outputs, {}, &truth}));
 
@@ -129,7 +129,7 @@ TEST(ViewerFrames, ShowsTheMapsTheFiguresWereMeasuredWith) {
     viewer.measuring("scene");
     const Image truth = gray(0.5f), now = gray(0.6f);
     const std::vector<const Image*> outputs{&now};
-    const std::vector<FrameFigures> first{{"still", 1, NAN, NAN}}, second{{"still", 2, NAN, 0.3}};
+    const std::vector<FrameFigures> first{{"still", 1, {NAN, NAN}}}, second{{"still", 2, {0.3, NAN}}};
     const std::vector<std::vector<float>> none{{}}, measured{flat_map(0.3f)};
     ASSERT_TRUE(viewer.offer({"still", 1, first, outputs, none, &truth})); // a cut: nothing before
     ASSERT_TRUE(viewer.offer({"still", 2, second, outputs, measured, &truth}));

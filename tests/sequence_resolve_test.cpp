@@ -244,12 +244,12 @@ TEST_F(ResolveGpu, AStillUnjitteredSequenceNeitherGhostsNorShimmers) {
         auto m = measure_sequence(*resolve, still, 2, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(m) << m.error().message;
         if (options.color_map.kind == ColorMap::Kind::linear) {
-            EXPECT_EQ(m->ghosting, 0.0);
-            EXPECT_EQ(m->shimmer, 0.0);
+            EXPECT_EQ(m->mean(kGhosting), 0.0);
+            EXPECT_EQ(m->mean(kShimmer), 0.0);
         } else {
             // pow(pow(c, 2), 0.5) is c only to float rounding, which FLIP sees, barely.
-            EXPECT_LT(m->ghosting, 1e-4) << map;
-            EXPECT_LT(m->shimmer, 1e-4) << map;
+            EXPECT_LT(m->mean(kGhosting), 1e-4) << map;
+            EXPECT_LT(m->mean(kShimmer), 1e-4) << map;
         }
         EXPECT_EQ(m->frames, 8u);
         EXPECT_FALSE(m->against_reference);
@@ -370,8 +370,8 @@ TEST_F(ResolveGpu, OnePassGivesEachVariantTheFiguresOfItsOwnPass) {
             ASSERT_TRUE(alone) << alone.error().message;
             const SequenceMeasurement& t = (*together)[s];
             EXPECT_EQ(t.range, hdr_scale > 0 ? ColorRange::hdr : ColorRange::ldr);
-            EXPECT_EQ(t.ghosting, alone->ghosting) << variants[s]->name << " x" << hdr_scale;
-            EXPECT_EQ(t.shimmer, alone->shimmer) << variants[s]->name << " x" << hdr_scale;
+            EXPECT_EQ(t.mean(kGhosting), alone->mean(kGhosting)) << variants[s]->name << " x" << hdr_scale;
+            EXPECT_EQ(t.mean(kShimmer), alone->mean(kShimmer)) << variants[s]->name << " x" << hdr_scale;
             EXPECT_EQ(t.frames, alone->frames);
             EXPECT_EQ(t.notes, alone->notes);
         }
@@ -411,7 +411,8 @@ TEST_F(ResolveGpu, MeasuredFramesCarryTheMapsTheirFiguresAreMeansOf) {
                     for (std::size_t s = 0; s < 2 && frame.maps.size() == 2; ++s) {
                         const Image& output = *frame.outputs[s];
                         const std::vector<float>& map = frame.maps[s];
-                        const double figure = roles.ghosting ? frame.figures[s].ghosting : frame.figures[s].shimmer;
+                        const double figure =
+                            roles.ghosting ? frame.figures[s].value(kGhosting) : frame.figures[s].value(kShimmer);
                         if (!roles.ghosting && frame.index == kCut) {
                             EXPECT_TRUE(map.empty()) << what << ": no output before a cut";
                         } else if (roles.ghosting || !before[s].pixels.empty()) { // frame 2's is not observed
@@ -504,13 +505,21 @@ TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
                 ASSERT_EQ(host.figures.size(), 2u) << what;
                 for (std::size_t s = 0; s < 2; ++s) {
                     const SequenceMeasurement &a = here.figures[s], &b = host.figures[s];
-                    EXPECT_TRUE(std::isnan(b.ghosting) ? std::isnan(a.ghosting) : a.ghosting == b.ghosting) << what;
-                    EXPECT_TRUE(std::isnan(b.shimmer) ? std::isnan(a.shimmer) : a.shimmer == b.shimmer) << what;
+                    EXPECT_TRUE(std::isnan(b.mean(kGhosting)) ? std::isnan(a.mean(kGhosting))
+                                                              : a.mean(kGhosting) == b.mean(kGhosting))
+                        << what;
+                    EXPECT_TRUE(std::isnan(b.mean(kShimmer)) ? std::isnan(a.mean(kShimmer))
+                                                             : a.mean(kShimmer) == b.mean(kShimmer))
+                        << what;
                     ASSERT_EQ(a.per_frame.size(), b.per_frame.size()) << what;
                     for (std::size_t f = 0; f < a.per_frame.size(); ++f) {
                         const FrameFigures &x = a.per_frame[f], &y = b.per_frame[f];
-                        EXPECT_TRUE(std::isnan(y.ghosting) ? std::isnan(x.ghosting) : x.ghosting == y.ghosting) << what;
-                        EXPECT_TRUE(std::isnan(y.shimmer) ? std::isnan(x.shimmer) : x.shimmer == y.shimmer) << what;
+                        EXPECT_TRUE(std::isnan(y.value(kGhosting)) ? std::isnan(x.value(kGhosting))
+                                                                   : x.value(kGhosting) == y.value(kGhosting))
+                            << what;
+                        EXPECT_TRUE(std::isnan(y.value(kShimmer)) ? std::isnan(x.value(kShimmer))
+                                                                  : x.value(kShimmer) == y.value(kShimmer))
+                            << what;
                     }
                 }
                 EXPECT_GT(host.figures[0].per_frame.size(), 0u);

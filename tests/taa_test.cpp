@@ -122,6 +122,13 @@ TEST(TaaMeasure, AnOutputIsCheckedAgainstItsRange) {
     }
 }
 
+// A frame's figures by MetricId: its ghosting and shimmer, nothing else measured.
+std::vector<double> figures(double ghosting, double shimmer) {
+    std::vector<double> values(kBuiltinMetrics, NAN);
+    values[kGhosting] = ghosting, values[kShimmer] = shimmer;
+    return values;
+}
+
 TEST(TaaReport, MarksTimesWithinNoiseOfTheFastest) {
     auto row = [](double ms, double q1, double q3) {
         TaaRow r;
@@ -136,7 +143,7 @@ TEST(TaaReport, MarksTimesWithinNoiseOfTheFastest) {
     EXPECT_TRUE(within_noise_of_fastest(rows[1], rows)) << "0.25 apart, the fastest's spread 0.3";
     EXPECT_FALSE(within_noise_of_fastest(rows[2], rows)) << "0.35 apart";
     EXPECT_FALSE(within_noise_of_fastest(rows[3], rows)) << "not measured";
-    const std::string csv = taa_table(rows).csv();
+    const std::string csv = taa_table(rows, default_metrics()).csv();
     EXPECT_NE(csv.find(",1.25,1.2,1.3,1,"), std::string::npos) << csv;
     EXPECT_NE(csv.find(",1.35,1.3,1.4,0,"), std::string::npos) << csv;
 }
@@ -157,37 +164,40 @@ TEST(TaaReport, IntervalsAreTheBlockBootstrapOfEachRowsFrames) {
         // dop32 ghosts 0.003 less than aabb on every frame: beyond noise; ycocg wobbles around dop32: within it.
         const double values[3] = {g, g - 0.003, g - 0.003 + (f % 2 ? 0.0004 : -0.0004)};
         for (std::size_t v = 0; v < 3; ++v) {
-            frames.push_back({keys[v], "grass", "grass-ghosting", 100 + f, values[v], NAN});
-            frames.push_back({keys[v], "grass", "grass-shimmer", 100 + f, NAN, sh + 0.001 * double(v)});
+            frames.push_back({keys[v], "grass", "grass-ghosting", 100 + f, figures(values[v], NAN)});
+            frames.push_back({keys[v], "grass", "grass-shimmer", 100 + f, figures(NAN, sh + 0.001 * double(v))});
             ghosting[v][0].push_back(values[v]);
             shimmer[v][0].push_back(sh + 0.001 * double(v));
         }
     }
-    frames.push_back({keys[0], "short", "short", 0, 0.5, 0.5});
+    frames.push_back({keys[0], "short", "short", 0, figures(0.5, 0.5)});
     std::vector<TaaRow> rows(4);
+    for (TaaRow& row : rows) row.figures.resize(kBuiltinMetrics);
     for (std::size_t v = 0; v < 3; ++v) {
-        rows[v].key = keys[v], rows[v].scene = "grass", rows[v].ghosting = 0;
-        for (double x : ghosting[v][0]) rows[v].ghosting += x / 24;
+        rows[v].key = keys[v], rows[v].scene = "grass", rows[v].figures[kGhosting].mean = 0;
+        for (double x : ghosting[v][0]) rows[v].figures[kGhosting].mean += x / 24;
     }
-    rows[1].ghosting -= 1e-9; // dop32 the least, whatever the rounding of the sums
+    rows[1].figures[kGhosting].mean -= 1e-9; // dop32 the least, whatever the rounding of the sums
     rows[3].key = keys[0], rows[3].scene = "short";
     const BootstrapOptions options{4, 500, 3, 0.95};
-    add_intervals(rows, frames, options);
+    add_intervals(rows, frames, kBuiltinMetrics, options);
     const auto g = *bootstrap_replicates(ghosting, options), s = *bootstrap_replicates(shimmer, options);
     for (std::size_t v = 0; v < 3; ++v) {
         SCOPED_TRACE(v);
-        EXPECT_EQ(rows[v].ghosting_interval.low, percentile_interval(g[v], 0.95).low);
-        EXPECT_EQ(rows[v].ghosting_interval.high, percentile_interval(g[v], 0.95).high);
-        EXPECT_EQ(rows[v].shimmer_interval.low, percentile_interval(s[v], 0.95).low);
-        EXPECT_EQ(rows[v].shimmer_interval.high, percentile_interval(s[v], 0.95).high);
-        EXPECT_LT(rows[v].ghosting_interval.low, rows[v].ghosting_interval.high);
+        const Interval &ghosting_interval = rows[v].figures[kGhosting].interval,
+                       &shimmer_interval = rows[v].figures[kShimmer].interval;
+        EXPECT_EQ(ghosting_interval.low, percentile_interval(g[v], 0.95).low);
+        EXPECT_EQ(ghosting_interval.high, percentile_interval(g[v], 0.95).high);
+        EXPECT_EQ(shimmer_interval.low, percentile_interval(s[v], 0.95).low);
+        EXPECT_EQ(shimmer_interval.high, percentile_interval(s[v], 0.95).high);
+        EXPECT_LT(ghosting_interval.low, ghosting_interval.high);
     }
     EXPECT_EQ(rows[0].ghosting_noise, false) << "0.003 more than the least on every frame";
     EXPECT_EQ(rows[1].ghosting_noise, true) << "the least itself";
     EXPECT_EQ(rows[2].ghosting_noise, true) << "+-0.0004 around the least, frame by frame";
-    EXPECT_FALSE(rows[3].ghosting_interval.known()) << "one frame";
+    EXPECT_FALSE(rows[3].figures[kGhosting].interval.known()) << "one frame";
     EXPECT_FALSE(rows[3].ghosting_noise);
-    const auto csv = test::csv_rows(taa_table(rows).csv());
+    const auto csv = test::csv_rows(taa_table(rows, default_metrics()).csv());
     EXPECT_EQ(csv[0].at("ghosting_noise"), "0");
     EXPECT_EQ(csv[2].at("ghosting_noise"), "1");
     EXPECT_FALSE(csv[0].at("shimmer_low").empty());
@@ -205,8 +215,9 @@ TEST(TaaReport, SetsTheFiguresBesideThePapersTables) {
         r.key = VariantKey{set, mode, Neighborhood::n9};
         r.scene = scene;
         r.ms = 1.0;
-        r.shimmer = shimmer;
-        r.ghosting = ghosting;
+        r.figures.resize(kBuiltinMetrics);
+        r.figures[kShimmer].mean = shimmer;
+        r.figures[kGhosting].mean = ghosting;
         return r;
     };
     for (int i = 0; i < 7; ++i) // ghosting rises down the paper's list, shimmer falls
@@ -316,12 +327,12 @@ TEST_F(TaaGpu, OnePassOverTheFramesGivesEachVariantTheFiguresOfItsOwnPass) {
         auto alone = measure_scene(*alone_resolve, scene, schedule, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(alone) << alone.error().message;
         const TaaMeasurement& t = (*together)[s];
-        EXPECT_EQ(t.shimmer, alone->shimmer) << variants[s]->name;
-        EXPECT_EQ(t.ghosting, alone->ghosting) << variants[s]->name;
+        EXPECT_EQ(t.mean(kShimmer), alone->mean(kShimmer)) << variants[s]->name;
+        EXPECT_EQ(t.mean(kGhosting), alone->mean(kGhosting)) << variants[s]->name;
         ASSERT_EQ(t.trail.pixels.size(), alone->trail.pixels.size());
         EXPECT_EQ(std::memcmp(t.trail.pixels.data(), alone->trail.pixels.data(), t.trail.pixels.size() * 16), 0);
     }
-    EXPECT_NE((*together)[0].ghosting, (*together)[1].ghosting) << "each variant has its own history";
+    EXPECT_NE((*together)[0].mean(kGhosting), (*together)[1].mean(kGhosting)) << "each variant has its own history";
 }
 
 // A resolve whose rectification throws the history away shows the aliased frame every frame: no
@@ -344,10 +355,10 @@ TEST_F(TaaGpu, KeepingNoHistoryLeavesNoGhostButShimmers) {
     auto none = measure_scene(*none_resolve, SpriteScene("grass", background), schedule, *cpu_flip_evaluator(flip));
     auto clipped = measure_scene(*dop32_resolve, SpriteScene("grass", background), schedule, *cpu_flip_evaluator(flip));
     ASSERT_TRUE(none && clipped);
-    EXPECT_EQ(none->ghosting, 0.0);
-    EXPECT_GT(none->shimmer, 0.0);
-    EXPECT_LT(clipped->shimmer, none->shimmer);
-    EXPECT_GT(clipped->ghosting, 0.0) << "a history that is kept lags the moving objects";
+    EXPECT_EQ(none->mean(kGhosting), 0.0);
+    EXPECT_GT(none->mean(kShimmer), 0.0);
+    EXPECT_LT(clipped->mean(kShimmer), none->mean(kShimmer));
+    EXPECT_GT(clipped->mean(kGhosting), 0.0) << "a history that is kept lags the moving objects";
 }
 
 // The paper's point: on grass (high-frequency chroma and luma) the box lets the objects' colors
@@ -366,7 +377,7 @@ TEST_F(TaaGpu, ADop32GhostsLessThanTheBoxOnGrass) {
         ASSERT_TRUE(resolve);
         auto m = measure_scene(*resolve, SpriteScene("grass", background), schedule, *cpu_flip_evaluator(flip));
         ASSERT_TRUE(m) << m.error().message;
-        ghosting[i++] = m->ghosting;
+        ghosting[i++] = m->mean(kGhosting);
     }
     EXPECT_LT(ghosting[1], ghosting[0]) << "dop32 " << ghosting[1] << ", aabb " << ghosting[0];
 }
@@ -396,12 +407,12 @@ TEST_F(TaaGpu, TheDeviceMeasuresWhatTheCpuMeasures) {
         ASSERT_TRUE(measured) << measured.error().message;
         m[i] = std::move(*measured);
     }
-    ASSERT_GT(m[0].shimmer, 0.0);
-    ASSERT_GT(m[0].ghosting, 0.0);
-    EXPECT_NEAR(m[1].shimmer, m[0].shimmer, 1e-6 * m[0].shimmer);
-    EXPECT_NEAR(m[1].ghosting, m[0].ghosting, 1e-6 * m[0].ghosting);
-    EXPECT_EQ(m[1].shimmer, m[2].shimmer);
-    EXPECT_EQ(m[1].ghosting, m[2].ghosting);
+    ASSERT_GT(m[0].mean(kShimmer), 0.0);
+    ASSERT_GT(m[0].mean(kGhosting), 0.0);
+    EXPECT_NEAR(m[1].mean(kShimmer), m[0].mean(kShimmer), 1e-6 * m[0].mean(kShimmer));
+    EXPECT_NEAR(m[1].mean(kGhosting), m[0].mean(kGhosting), 1e-6 * m[0].mean(kGhosting));
+    EXPECT_EQ(m[1].mean(kShimmer), m[2].mean(kShimmer));
+    EXPECT_EQ(m[1].mean(kGhosting), m[2].mean(kGhosting));
     ASSERT_EQ(m[1].trail.pixels.size(), m[2].trail.pixels.size());
     EXPECT_GT(m[1].trail.pixels.size(), 0u);
     EXPECT_EQ(std::memcmp(m[1].trail.pixels.data(), m[2].trail.pixels.data(), m[1].trail.pixels.size() * 16), 0);
