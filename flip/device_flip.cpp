@@ -11,7 +11,6 @@
 #include <cstring>
 #include <string>
 #include <tuple>
-#include <variant>
 
 namespace kdop {
 namespace {
@@ -149,60 +148,29 @@ Result<std::unique_ptr<DeviceFlip>> DeviceFlip::create(const Context& context, d
     // One set per pass, written once: each reads binding 0 and writes binding 1, a buffer, an image
     // or (the inputs) a texel buffer. The load pass's source (its binding 0) is written per load,
     // and it counts into binding 2.
-    VkDevice device = context.device();
-    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 3},
-                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
-    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool.maxSets = kPasses;
-    pool.poolSizeCount = 4;
-    pool.pPoolSizes = sizes;
-    KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &f->descriptor_pool_));
-    using Binding = std::variant<std::monostate, const DeviceBuffer*, const DeviceImage*, const VkBufferView*>;
-    const Binding bindings[kPasses][3] = {{&f->inputs_view_, &f->horizontal_, {}},
-                                          {&f->horizontal_, &f->maps_, {}},
-                                          {&f->maps_, &f->row_sums_, {}},
-                                          {{}, &f->inputs_view_, &f->outside_},
-                                          {&f->inputs_view_, &f->histogram_, {}}};
+    std::vector<const Kernel*> kernels;
+    for (const auto& kernel : f->kernels_) kernels.push_back(kernel.get());
+    auto sets = KernelSets::create(context, kernels);
+    if (!sets) return std::unexpected(sets.error());
+    f->kernel_sets_ = std::move(*sets);
+    const BoundTexels inputs{f->inputs_view_};
+    const BoundImage planes{f->horizontal_.view()};
+    auto buffer = [](const DeviceBuffer& b) { return BoundBuffer{b.buffer()}; };
+    const std::vector<Bound> bindings[kPasses] = {{{0, inputs}, {1, planes}},
+                                                  {{0, planes}, {1, buffer(f->maps_)}},
+                                                  {{0, buffer(f->maps_)}, {1, buffer(f->row_sums_)}},
+                                                  {{1, inputs}, {2, buffer(f->outside_)}},
+                                                  {{0, inputs}, {1, buffer(f->histogram_)}}};
     for (int pass = 0; pass < kPasses; ++pass) {
         const Kernel& kernel = *f->kernels_[std::size_t(pass)];
         const std::size_t expected = pass == kLoad ? 3 : 2;
         if (kernel.bindings().size() != expected)
             return fail(fmt::format("internal error: {} has {} bindings, not {}", kernel.name(),
                                     kernel.bindings().size(), expected));
-        VkDescriptorSetLayout layout = kernel.set_layout();
-        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        alloc.descriptorPool = f->descriptor_pool_;
-        alloc.descriptorSetCount = 1;
-        alloc.pSetLayouts = &layout;
-        KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &f->sets_[std::size_t(pass)]));
-        VkDescriptorBufferInfo buffer_infos[3];
-        VkDescriptorImageInfo image_infos[3];
-        VkWriteDescriptorSet writes[3];
-        std::uint32_t count = 0;
-        for (std::uint32_t b = 0; b < 3; ++b) {
-            if (std::holds_alternative<std::monostate>(bindings[pass][b])) continue;
-            VkWriteDescriptorSet& w = writes[count++];
-            w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = f->sets_[std::size_t(pass)];
-            w.dstBinding = b;
-            w.descriptorCount = 1;
-            if (auto* buffer = std::get_if<const DeviceBuffer*>(&bindings[pass][b])) {
-                buffer_infos[b] = {(*buffer)->buffer(), 0, VK_WHOLE_SIZE};
-                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-                w.pBufferInfo = &buffer_infos[b];
-            } else if (auto* texels = std::get_if<const VkBufferView*>(&bindings[pass][b])) {
-                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
-                w.pTexelBufferView = *texels;
-            } else {
-                image_infos[b] = {VK_NULL_HANDLE, std::get<const DeviceImage*>(bindings[pass][b])->view(),
-                                  VK_IMAGE_LAYOUT_GENERAL};
-                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-                w.pImageInfo = &image_infos[b];
-            }
-        }
-        vkUpdateDescriptorSets(device, count, writes, 0, nullptr);
+        auto set = f->kernel_sets_.allocate(kernel);
+        if (!set) return std::unexpected(set.error());
+        f->sets_[std::size_t(pass)] = *set;
+        if (auto ok = f->kernel_sets_.write(kernel, *set, bindings[pass]); !ok) return std::unexpected(ok.error());
     }
     return f;
 }
@@ -212,7 +180,6 @@ DeviceFlip::DeviceFlip(const Context& context, double ppd, std::uint32_t width, 
 
 DeviceFlip::~DeviceFlip() {
     vkDeviceWaitIdle(context_.device());
-    vkDestroyDescriptorPool(context_.device(), descriptor_pool_, nullptr);
     vkDestroyBufferView(context_.device(), inputs_view_, nullptr);
     vkDestroySampler(context_.device(), sampler_, nullptr);
 }
@@ -353,15 +320,9 @@ Result<std::optional<DeviceFlip::Outside>> DeviceFlip::load(Input input, VkImage
     auto* outside = static_cast<std::uint32_t*>(outside_.mapped());
     outside[0] = 0;          // the count
     outside[1] = UINT32_MAX; // the first, as atomicMin finds it
-    VkDescriptorImageInfo image{sampler_, source, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = sets_[kLoad];
-    write.dstBinding = 0;
-    write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    write.pImageInfo = &image;
     // The set is not in use: every run waits for its commands to finish.
-    vkUpdateDescriptorSets(context_.device(), 1, &write, 0, nullptr);
+    const Bound image[] = {{0, BoundImage{source, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_}}};
+    if (auto ok = kernel_sets_.write(*kernels_[kLoad], sets_[kLoad], image); !ok) return std::unexpected(ok.error());
     const Parameters p{width_, height_, 1, 0, 0, 0, input == Input::test ? 1u : 0u, hdr ? 1u : 0u, rounding};
     auto ran = commands_->run([&](VkCommandBuffer cb) {
         record_dispatch(cb, *kernels_[kLoad], sets_[kLoad], p, ceil_div(width_, kLocalSize), height_, 1);

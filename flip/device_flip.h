@@ -22,6 +22,7 @@
 #include "runtime/device_buffer.h"
 #include "runtime/device_image.h"
 #include "runtime/kernel.h"
+#include "runtime/kernel_sets.h"
 #include "runtime/one_shot_commands.h"
 
 #include <array>
@@ -155,7 +156,7 @@ private:
     std::array<std::unique_ptr<RunnableVariant>, kPasses> shaders_;
     std::array<std::unique_ptr<Kernel>, kPasses> kernels_;
     std::array<VkDescriptorSet, kPasses> sets_{};
-    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    KernelSets kernel_sets_;
     // Pixels per invocation of the horizontal and the vertical pass (flip_run_length).
     std::array<std::uint32_t, 2> runs_{1, 1};
     DeviceBuffer inputs_, maps_, row_sums_, outside_, histogram_;
