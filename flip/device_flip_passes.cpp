@@ -85,12 +85,8 @@ std::string constants(const LdrFlip& cpu, int pass, std::uint32_t run) {
 // Pixels each invocation of the filter passes computes along the filter's direction (the
 // template's FLIP_RUN; `pass` is its FLIP_PASS: 0 horizontal, 1 vertical). On a CPU device
 // (lavapipe) the neighbors' fetches (and, horizontally, their color transforms) are then shared
-// within an invocation, in registers: at 480x270 one pixel per invocation took 5.5x the CPU time
-// of runs of 16 (planes in buffers). Callgrind, per pixel of a 480x272 LDR evaluation: horizontal
-// runs of 4, 6, 8, 10, 12 and 16 cost 1042, 1164, 909, 971, 1032 and 1152 instructions (LLVM's
-// register allocation, not the fetches, decides), vertical runs of 16, 24 and 32 cost 899, 909
-// and 905; the wall times order alike. Longer runs compile slower. A GPU has the loads cached and
-// lanes to spare.
+// within an invocation, in registers; the lengths are the cheapest measured (docs/results.md,
+// "FLIP on lavapipe: run lengths"). A GPU has the loads cached and lanes to spare.
 std::uint32_t flip_run_length(const Context& context, int pass) {
     if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return 1;
     return pass == 0 ? 8u : pass == 1 ? 24u : 1u;

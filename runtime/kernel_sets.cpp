@@ -33,14 +33,19 @@ Result<KernelSets> KernelSets::create(const Context& context, std::span<const Ke
         for (const Kernel::Binding& b : kernel->bindings()) counts[to_vulkan(b.type)] += sets_per_kernel;
     std::vector<VkDescriptorPoolSize> sizes;
     for (const auto& [type, count] : counts) sizes.push_back({type, count});
+    return create(context, sizes, std::max<std::uint32_t>(1, std::uint32_t(kernels.size()) * sets_per_kernel));
+}
+
+Result<KernelSets> KernelSets::create(const Context& context, std::span<const VkDescriptorPoolSize> sizes,
+                                      std::uint32_t sets) {
     VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool.maxSets = std::max<std::uint32_t>(1, std::uint32_t(kernels.size()) * sets_per_kernel);
+    pool.maxSets = sets;
     pool.poolSizeCount = std::uint32_t(sizes.size());
     pool.pPoolSizes = sizes.data();
-    KernelSets sets;
-    sets.device_ = context.device();
-    if (!sizes.empty()) KDOP_VK_TRY(vkCreateDescriptorPool(context.device(), &pool, nullptr, &sets.pool_));
-    return sets;
+    KernelSets made;
+    made.device_ = context.device();
+    if (!sizes.empty()) KDOP_VK_TRY(vkCreateDescriptorPool(context.device(), &pool, nullptr, &made.pool_));
+    return made;
 }
 
 KernelSets& KernelSets::operator=(KernelSets&& other) noexcept {

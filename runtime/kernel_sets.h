@@ -39,6 +39,9 @@ public:
     // A pool for `sets_per_kernel` sets of each of `kernels`. Not copyable; it releases its pool.
     static Result<KernelSets> create(const Context& context, std::span<const Kernel* const> kernels,
                                      std::uint32_t sets_per_kernel = 1);
+    // A pool of `sizes` for at most `sets` sets, for kernels a pass does not know yet.
+    static Result<KernelSets> create(const Context& context, std::span<const VkDescriptorPoolSize> sizes,
+                                     std::uint32_t sets);
     KernelSets() = default;
     KernelSets(KernelSets&& other) noexcept { *this = std::move(other); }
     KernelSets& operator=(KernelSets&& other) noexcept;

@@ -162,11 +162,9 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
 
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, input_count},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
-    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool.maxSets = 1;
-    pool.poolSizeCount = 2;
-    pool.pPoolSizes = sizes;
-    KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &p->descriptor_pool_));
+    auto sets = KernelSets::create(context, sizes, 1);
+    if (!sets) return std::unexpected(sets.error());
+    p->kernel_sets_ = std::move(*sets);
 
     auto commands = OneShotCommands::create(context);
     if (!commands) return std::unexpected(commands.error());
@@ -263,20 +261,15 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
 
     VkDevice device = context_.device();
 
-    KDOP_VK_TRY(vkResetDescriptorPool(device, descriptor_pool_, 0));
-    VkDescriptorSetLayout layout = kernel.set_layout();
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = descriptor_pool_;
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &layout;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &set));
+    if (auto ok = kernel_sets_.reset(); !ok) return std::unexpected(ok.error());
+    auto allocated = kernel_sets_.allocate(kernel);
+    if (!allocated) return std::unexpected(allocated.error());
+    const VkDescriptorSet set = *allocated;
     // Each binding the registry reports gets the image its name asks for (the names of the
     // compute-shader template, shader_templates/rectify.comp.in, or those given to create()),
     // whatever its binding number.
     const std::size_t count = kernel.bindings().size();
-    std::vector<VkDescriptorImageInfo> infos(count);
-    std::vector<VkWriteDescriptorSet> writes(count);
+    std::vector<Bound> bound;
     for (std::size_t i = 0; i < count; ++i) {
         const Kernel::Binding& b = kernel.bindings()[i];
         const auto input =
@@ -295,17 +288,12 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
         }
         if (input != inputs_.end() && !input->uploaded)
             return fail(fmt::format("{}: dispatch before '{}' was uploaded", kernel.name(), b.name));
-        infos[i] = {storage ? VK_NULL_HANDLE : sampler_, texture->view,
-                    storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = set;
-        writes[i].dstBinding = b.binding;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType =
-            storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        writes[i].pImageInfo = &infos[i];
+        bound.push_back(
+            {b.binding,
+             BoundImage{texture->view, storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                        storage ? VK_NULL_HANDLE : sampler_}});
     }
-    vkUpdateDescriptorSets(device, static_cast<uint32_t>(count), writes.data(), 0, nullptr);
+    if (auto ok = kernel_sets_.write(kernel, set, bound); !ok) return std::unexpected(ok.error());
     // Push constants by name, as the registry lays them out: every member needs a value of its size.
     std::vector<std::byte> push(kernel.push_constant_size());
     for (const Kernel::PushConstant& p : kernel.push_constants()) {
@@ -483,7 +471,6 @@ RectifyPass::~RectifyPass() {
     VkDevice device = context_.device();
     vkDeviceWaitIdle(device);
     vkDestroyQueryPool(device, timestamps_, nullptr);
-    vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     vkDestroySampler(device, sampler_, nullptr);
     for (Input& in : inputs_)
         for (Texture& t : in.slots) destroy(t);

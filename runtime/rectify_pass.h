@@ -10,6 +10,7 @@
 #include "runtime/context.h"
 #include "runtime/device_buffer.h"
 #include "runtime/kernel.h"
+#include "runtime/kernel_sets.h"
 #include "runtime/one_shot_commands.h"
 
 #include <memory>
@@ -133,7 +134,7 @@ private:
     VkImageLayout output_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
     DeviceBuffer upload_, readback_; // host-visible
     VkSampler sampler_ = VK_NULL_HANDLE;
-    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    KernelSets kernel_sets_; // one set, written afresh for each dispatch's kernel
     std::unique_ptr<OneShotCommands> commands_;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
     bool dispatched_ = false;                 // the output holds a dispatch's result

@@ -3,19 +3,21 @@
 namespace kdop {
 namespace {
 
-Result<FlipFigure> figure(Result<FlipMap> ldr) {
+Result<FlipFigure> flip_figure(Result<FlipMap> ldr) {
     if (!ldr) return std::unexpected(ldr.error());
     return FlipFigure{ldr->mean, {}, std::move(ldr->error)};
 }
 
-Result<FlipFigure> figure(Result<HdrFlipMaps> hdr) {
+Result<FlipFigure> flip_figure(Result<HdrFlipMaps> hdr) {
     if (!hdr) return std::unexpected(hdr.error());
     return FlipFigure{hdr->mean, std::move(hdr->range.note), std::move(hdr->error)};
 }
 
-class CpuFlipEvaluator final : public FlipEvaluator {
+// An evaluator of frames on the host: each pair fetched from its store, then measured by
+// figure(), given the reference's generation as the key device FLIP keeps its work by.
+class HostFrames : public FlipEvaluator {
 public:
-    CpuFlipEvaluator(const HdrFlip& flip, const ExposureOptions& exposures) : flip_(flip), exposures_(exposures) {}
+    explicit HostFrames(const ExposureOptions& exposures) : exposures_(exposures) {}
     OutputStore& store() override { return store_; }
     const ExposureOptions& exposures() const override { return exposures_; }
 
@@ -24,43 +26,52 @@ public:
         if (!r) return std::unexpected(r.error());
         auto t = store_.image(test);
         if (!t) return std::unexpected(t.error());
+        return figure(**r, **t, reference.generation, range, map);
+    }
+
+protected:
+    virtual Result<FlipFigure> figure(const Image& reference, const Image& test, DeviceFlip::ReferenceKey key,
+                                      ColorRange range, bool map) = 0;
+    ExposureOptions exposures_;
+
+private:
+    HostOutputStore store_;
+};
+
+class CpuFlipEvaluator final : public HostFrames {
+public:
+    CpuFlipEvaluator(const HdrFlip& flip, const ExposureOptions& exposures) : HostFrames(exposures), flip_(flip) {}
+
+private:
+    Result<FlipFigure> figure(const Image& reference, const Image& test, DeviceFlip::ReferenceKey, ColorRange range,
+                              bool map) override {
         if (range == ColorRange::ldr) { // LdrFlip::mean is the mean_error of this map
-            auto error = flip_.ldr().error_map(**r, **t);
+            auto error = flip_.ldr().error_map(reference, test);
             if (!error) return std::unexpected(error.error());
             return FlipFigure{mean_error(*error), {}, map ? std::move(*error) : std::vector<float>{}};
         }
-        auto maps = flip_.maps(**r, **t, exposures_);
+        auto maps = flip_.maps(reference, test, exposures_);
         if (!maps) return std::unexpected(maps.error());
         return FlipFigure{maps->mean, maps->range.note, map ? std::move(maps->error) : std::vector<float>{}};
     }
 
-private:
     const HdrFlip& flip_;
-    ExposureOptions exposures_;
-    HostOutputStore store_;
 };
 
 // Device FLIP over frames on the host: each pair uploaded, the reference's work kept while its
 // generation is the last one's.
-class DeviceFlipOnHost final : public FlipEvaluator {
+class DeviceFlipOnHost final : public HostFrames {
 public:
-    DeviceFlipOnHost(DeviceFlip& flip, const ExposureOptions& exposures) : flip_(flip), exposures_(exposures) {}
-    OutputStore& store() override { return store_; }
-    const ExposureOptions& exposures() const override { return exposures_; }
-
-    Result<FlipFigure> evaluate(FrameHandle reference, FrameHandle test, ColorRange range, bool map) override {
-        auto r = store_.image(reference);
-        if (!r) return std::unexpected(r.error());
-        auto t = store_.image(test);
-        if (!t) return std::unexpected(t.error());
-        if (range == ColorRange::ldr) return figure(flip_.ldr(**r, **t, map, reference.generation));
-        return figure(flip_.hdr(**r, **t, exposures_, map, reference.generation));
-    }
+    DeviceFlipOnHost(DeviceFlip& flip, const ExposureOptions& exposures) : HostFrames(exposures), flip_(flip) {}
 
 private:
+    Result<FlipFigure> figure(const Image& reference, const Image& test, DeviceFlip::ReferenceKey key, ColorRange range,
+                              bool map) override {
+        if (range == ColorRange::ldr) return flip_figure(flip_.ldr(reference, test, map, key));
+        return flip_figure(flip_.hdr(reference, test, exposures_, map, key));
+    }
+
     DeviceFlip& flip_;
-    ExposureOptions exposures_;
-    HostOutputStore store_;
 };
 
 // Device FLIP over outputs kept on the device: each loaded into FLIP's pair unless it is there;
@@ -82,8 +93,8 @@ public:
         if (*r) store_.pair_overwritten(Input::reference);
         if (*t) store_.pair_overwritten(Input::test);
         const DeviceFlip::ReferenceKey key = *r ? reference.generation : DeviceFlip::kNoKey;
-        if (range == ColorRange::ldr) return figure(flip_.ldr(*r, *t, map, key));
-        return figure(flip_.hdr(*r, *t, exposures_, map, key));
+        if (range == ColorRange::ldr) return flip_figure(flip_.ldr(*r, *t, map, key));
+        return flip_figure(flip_.hdr(*r, *t, exposures_, map, key));
     }
 
 private:

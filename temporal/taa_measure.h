@@ -1,6 +1,7 @@
-// Shimmer and ghosting of one TAA resolve over one frame source, as Ikkala et al. 2024 measure them
-// (Sec. 4), in LDR-FLIP (flip/flip.h), or in HDR-FLIP (flip/hdr_flip.h) where the source's frames
-// are HDR (FrameSource::color_range). After `warmup` frames, so the history is full:
+// The metrics (temporal/metrics.h) of one TAA resolve over one frame source, after `warmup` frames
+// so the history is full; by default shimmer and ghosting as Ikkala et al. 2024 measure them (Sec.
+// 4), in LDR-FLIP (flip/flip.h), or in HDR-FLIP (flip/hdr_flip.h) where the source's frames are HDR
+// (FrameSource::color_range):
 //   ghosting: the mean FLIP between each output and its frame's reference, or, where the source has
 //             none, the frame's own color: the aliased frame a renderer without TAA shows, which
 //             is the paper's ground truth for jitter-off sequences (with jitter off the resolve no
@@ -10,6 +11,8 @@
 //             outputs differ, so this is the temporal instability clipping causes.
 // kdop's own scenes are measured as the paper does: shimmer on a still, jittered sequence and
 // ghosting on a moving one without jitter (measure_scene below); a captured sequence gives both.
+// One loop serves every source and every FLIP: the frames it compares are handles into the FLIP
+// evaluator's store (temporal/output_store.h), on the host or on the device.
 #pragma once
 
 #include "core/result.h"
