@@ -60,6 +60,80 @@ Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequ
                                 *maps, ghosting, flip);
 }
 
+// A scene's ghosting picture: every variant's trail frame over its FLIP map against the truth.
+Result<void> add_scene_picture(OutputSet& outputs, const TaaScene& scene, const TaaSchedule& schedule,
+                               const std::vector<VariantKey>& keys, const std::vector<EvaluationRow>& measured,
+                               TaaEvaluation& evaluation) {
+    auto shown = ghosting_frames(scene, schedule)->frame(scene.trail_frame(schedule));
+    if (!shown) return std::unexpected(shown.error());
+    const bool has_reference = shown->reference.has_value();
+    auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
+    std::vector<std::shared_ptr<const Image>> trails;
+    std::vector<double> ghosting;
+    for (const EvaluationRow& m : measured) trails.push_back(m.trail), ghosting.push_back(m.mean(kGhosting));
+    const PictureFrame at{scene.name(), scene.trail_frame(schedule), scene.trail_crop(schedule)};
+    auto flip = evaluation.flip_evaluator(truth->width, truth->height);
+    if (!flip) return std::unexpected(flip.error());
+    PictureFlip picture_flip(**flip, ColorRange::ldr);
+    auto maps = ghosting_maps(picture_flip, *truth, trails);
+    if (!maps) return std::unexpected(maps.error());
+    return add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys, trails, *maps,
+                                ghosting, picture_flip);
+}
+
+// The viewer's frames of every sequence measured, planned before the pass.
+void plan_viewer(ViewerFrames& viewer, const TaaSources& sources, const TaaSchedule& schedule) {
+    const std::size_t last = schedule.warmup + schedule.frames - 1;
+    for (const auto& scene : sources.scenes) {
+        const auto still = shimmer_frames(*scene, schedule), moving = ghosting_frames(*scene, schedule);
+        for (const FrameSource* frames : {still.get(), moving.get()})
+            viewer.plan(frames->name(), scene->name(), schedule.warmup, last, frames->roles(), frames->color_range(),
+                        frames->has_reference());
+    }
+    for (const SequenceFrames& sequence : sources.sequences)
+        viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
+                    sequence.color_range(), sequence.has_reference());
+}
+
+// The trade and over-time charts, added to `outputs` with their names. A chart that fails costs the
+// charts, not the run: the data, report and pictures are still written.
+void add_charts(OutputSet& outputs, const std::vector<TaaRow>& rows, const std::vector<TaaFrameRow>& frame_rows,
+                const Metrics& metrics, std::vector<std::string>& charts, std::vector<std::string>& over_time_charts) {
+    ScratchDirectory scratch("kdop-taa");
+    auto drawn = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
+                                      : taa_charts(rows, metrics, scratch.path, outputs.dir());
+    auto over_time = drawn ? taa_over_time_charts(frame_rows, metrics, scratch.path, outputs.dir()) : drawn;
+    if (!drawn || !over_time) return warn_no_charts((drawn ? over_time : drawn).error().message);
+    outputs.add(std::move(*drawn));
+    outputs.add(std::move(*over_time));
+    charts = taa_chart_names(rows);
+    over_time_charts = taa_over_time_chart_names(frame_rows);
+}
+
+// What report.md and report.html say of the run, but for its pictures and charts.
+TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSettings& settings, std::uint32_t width,
+                                  std::uint32_t height) {
+    std::vector<std::pair<std::string, std::string>> scene_contents;
+    for (const auto& scene : sources.scenes) scene_contents.emplace_back(scene->name(), scene->content());
+    std::vector<std::string> sequence_names;
+    for (const SequenceFrames& s : sources.sequences) sequence_names.push_back(s.name());
+    const EvaluationOptions& e = settings.evaluation;
+    return {.width = width,
+            .height = height,
+            .warmup = e.schedule.warmup,
+            .frames = e.schedule.frames,
+            .pixels_per_degree = e.ppd,
+            .pictures = {},
+            .charts = {},
+            .over_time = {},
+            .resolve = e.resolve,
+            .scene_contents = std::move(scene_contents),
+            .sequences = std::move(sequence_names),
+            .flip_on_device = !e.cpu_flip,
+            .hdr = e.exposure,
+            .metrics = e.metrics};
+}
+
 } // namespace
 
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
@@ -84,22 +158,12 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             return written_frames.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index), output);
         };
 
-    // The viewer's frames of every sequence measured, planned before the pass.
     std::vector<std::string> variant_names;
     for (const VariantKey& key : keys) variant_names.push_back(key.name());
     StagedImages viewer_images;
     ViewerFrames viewer(settings.viewer_frames, variant_names, viewer_images, settings.evaluation.exposure);
     if (settings.viewer_frames > 0) {
-        const std::size_t last = schedule.warmup + schedule.frames - 1;
-        for (const auto& scene : scenes) {
-            const auto still = shimmer_frames(*scene, schedule), moving = ghosting_frames(*scene, schedule);
-            for (const FrameSource* frames : {still.get(), moving.get()})
-                viewer.plan(frames->name(), scene->name(), schedule.warmup, last, frames->roles(),
-                            frames->color_range(), frames->has_reference());
-        }
-        for (const SequenceFrames& sequence : sequences)
-            viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
-                        sequence.color_range(), sequence.has_reference());
+        plan_viewer(viewer, sources, schedule);
         observer.measured = [&](const MeasuredFrame& frame) { return viewer.offer(frame); };
         observer.maps = true; // the viewer shows the maps the figures were measured with
     }
@@ -139,22 +203,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             auto measured = evaluation->measure(*scene, observer);
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
-            auto shown = ghosting_frames(*scene, schedule)->frame(scene->trail_frame(schedule));
-            if (!shown) return std::unexpected(shown.error());
-            const bool has_reference = shown->reference.has_value();
-            auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
-            std::vector<std::shared_ptr<const Image>> trails;
-            std::vector<double> ghosting;
-            for (const EvaluationRow& m : *measured) trails.push_back(m.trail), ghosting.push_back(m.mean(kGhosting));
-            const PictureFrame at{scene->name(), scene->trail_frame(schedule), scene->trail_crop(schedule)};
-            auto flip = evaluation->flip_evaluator(truth->width, truth->height);
-            if (!flip) return std::unexpected(flip.error());
-            PictureFlip picture_flip(**flip, ColorRange::ldr);
-            auto maps = ghosting_maps(picture_flip, *truth, trails);
-            if (!maps) return std::unexpected(maps.error());
-            if (auto ok = add_ghosting_picture(outputs, at, has_reference ? "reference" : "aliased", truth, keys,
-                                               trails, *maps, ghosting, picture_flip);
-                !ok)
+            if (auto ok = add_scene_picture(outputs, *scene, schedule, keys, *measured, *evaluation); !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
         }
@@ -193,46 +242,15 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
 
     RunMetadata run_info = describe_run(context);
     run_info.seed = settings.seed;
-    // A chart that fails costs the charts, not the run: the data, report and pictures are still written.
-    std::vector<std::string> charts, over_time_charts;
-    if (charts_available(settings.charts)) {
-        ScratchDirectory scratch("kdop-taa");
-        auto drawn = scratch.path.empty() ? Result<std::vector<OutputFile>>(fail("no scratch directory"))
-                                          : taa_charts(rows, metrics, scratch.path, outputs.dir());
-        auto over_time = drawn ? taa_over_time_charts(frame_rows, metrics, scratch.path, outputs.dir()) : drawn;
-        if (drawn && over_time) {
-            outputs.add(std::move(*drawn));
-            outputs.add(std::move(*over_time));
-            charts = taa_chart_names(rows);
-            over_time_charts = taa_over_time_chart_names(frame_rows);
-        } else {
-            warn_no_charts((drawn ? over_time : drawn).error().message);
-        }
-    }
-    std::vector<std::pair<std::string, std::string>> scene_contents;
-    for (const auto& scene : scenes) scene_contents.emplace_back(scene->name(), scene->content());
-    std::vector<std::string> sequence_names;
-    for (const SequenceFrames& s : sequences) sequence_names.push_back(s.name());
-    const EvaluationOptions& e = settings.evaluation;
+    TaaReportSettings report = report_settings(sources, settings, width, height);
+    report.pictures = pictures;
+    if (charts_available(settings.charts))
+        add_charts(outputs, rows, frame_rows, metrics, report.charts, report.over_time);
     BootstrapOptions bootstrap;
-    bootstrap.block = history_block(e.resolve.current_weight), bootstrap.seed = settings.seed;
+    bootstrap.block = history_block(settings.evaluation.resolve.current_weight), bootstrap.seed = settings.seed;
     add_intervals(rows, frame_rows, metrics.size(), bootstrap);
     outputs.add_table("taa", taa_table(rows, metrics), run_info);
     outputs.add_table("taa_frames", taa_frames_table(frame_rows, metrics), run_info);
-    const TaaReportSettings report{.width = width,
-                                   .height = height,
-                                   .warmup = schedule.warmup,
-                                   .frames = schedule.frames,
-                                   .pixels_per_degree = e.ppd,
-                                   .pictures = pictures,
-                                   .charts = charts,
-                                   .over_time = over_time_charts,
-                                   .resolve = e.resolve,
-                                   .scene_contents = scene_contents,
-                                   .sequences = sequence_names,
-                                   .flip_on_device = !e.cpu_flip,
-                                   .hdr = e.exposure,
-                                   .metrics = metrics};
     outputs.add("report.md", taa_report_markdown(rows, run_info, report));
     outputs.add("report.html", taa_report_html(rows, run_info, report, variant_names, *viewed));
     if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
