@@ -22,23 +22,31 @@
 
 namespace kdop::cli {
 
-Action add_taa_command(CLI::App& app) {
-    struct Options {
-        std::string out, size = "320x180", device;
-        std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
-        SceneChoice choice;
-        SelectionOptions selection;
-        std::uint32_t warmup = 100, frames = 100;
-        unsigned timing_rounds = 15;
-        std::size_t viewer_frames = 8, picture_frame = 0;
-        std::uint64_t seed = 1;
-        double ppd = 0;
-        bool validation = false, no_charts = false, write_frames = false, cpu_flip = false;
-        InputSpace input_space = InputSpace::from_file;
-        ResolveOptions resolve;
-        ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
-    };
-    auto o = std::make_shared<Options>();
+namespace {
+
+struct TaaOptions {
+    std::string out, size = "320x180", device;
+    std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
+    SceneChoice choice;
+    SelectionOptions selection;
+    std::uint32_t warmup = 100, frames = 100;
+    unsigned timing_rounds = 15;
+    std::size_t viewer_frames = 8, picture_frame = 0;
+    std::uint64_t seed = 1;
+    double ppd = 0;
+    bool validation = false, no_charts = false, write_frames = false, cpu_flip = false;
+    InputSpace input_space = InputSpace::from_file;
+    ResolveOptions resolve;
+    ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
+};
+
+// taa's subcommand and its options, read into `o`; the options a later check needs by name.
+struct TaaDeclared {
+    CLI::App* taa;
+    std::vector<CLI::Option*> hdr_options;
+    CLI::Option* picture_frame;
+};
+TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     CLI::App* taa = app.add_subcommand(
         "taa", "Run every variant in one TAA resolve on the device over kdop's scenes or your own frame sequences "
                "and measure the ghosting and shimmer a viewer sees, in LDR-FLIP (HDR sequences in HDR-FLIP), as Ikkala "
@@ -92,6 +100,17 @@ Action add_taa_command(CLI::App& app) {
                                 "only where a sequence has reference frames [default: shimmer ghosting, the paper's]",
                                 metric_names(default_metrics())));
 
+    return {taa, hdr_options, picture_frame};
+}
+
+} // namespace
+
+Action add_taa_command(CLI::App& app) {
+    auto o = std::make_shared<TaaOptions>();
+    const TaaDeclared declared = declare_taa(app, o.get());
+    CLI::App* taa = declared.taa;
+    CLI::Option* picture_frame = declared.picture_frame;
+    const std::vector<CLI::Option*> hdr_options = declared.hdr_options;
     return [o, taa, hdr_options, picture_frame] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
