@@ -7,12 +7,15 @@
 #include "cli/number_option.h"
 #include "cli/resolve_option.h"
 #include "core/shown_text.h"
+#include "core/write_files.h"
 #include "generator/command_line.h"
+#include "optimize/fit_check.h"
 #include "optimize/optimize.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -32,6 +35,46 @@ double peak_memory_mb() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
+}
+
+// A conflict of the options (fit_check.h), named by the flags that gave them.
+std::string conflict_message(FitConflict conflict, const OptimizeOptions& o, int ranks) {
+    const std::string name_option = o.name.empty() ? "--out" : "--name";
+    switch (conflict) {
+    case FitConflict::distance_without_samples:
+        return "--objective distance: the distance is taken on --accuracy-samples pixels; give more than 0";
+    case FitConflict::cost_without_table:
+        return "--lavapipe-cost: counts the rows of --target's, --target-ghosting's or --max-nonzero's table; give "
+               "one of them";
+    case FitConflict::rgb_fills_axes:
+        return fmt::format("--force-rgb fixes 3 axes; --axes {} leaves none to fit", o.axes);
+    case FitConflict::nonzero_below_axes:
+        return fmt::format("--max-nonzero {}: each of the {} axes keeps at least one component", *o.max_nonzero,
+                           o.axes);
+    case FitConflict::not_a_set_name:
+        return fmt::format("{}: '{}' is not a set name (lowercase letters and digits, single '-' between words); "
+                           "give one with --name",
+                           name_option, set_name(o));
+    case FitConflict::builtin_set_name:
+        return fmt::format("{}: '{}' is the name of a built-in set, which every command would take instead of this "
+                           "file; give another with --name",
+                           name_option, set_name(o));
+    case FitConflict::sphere_over_ranks:
+        return fmt::format("mpirun -np {}: --sphere has no frames to share over ranks (it takes well under a "
+                           "second); run it without mpirun",
+                           ranks);
+    }
+    return "";
+}
+
+// The options' conflicts and the --out file the run would be refused, before any work: exit 2.
+std::optional<int> refused(const OptimizeOptions& o, int ranks) {
+    if (auto conflict = check(o)) return usage_error(conflict_message(*conflict, o, ranks));
+    if (std::error_code ec; std::filesystem::is_directory(o.out, ec))
+        return usage_error(fmt::format("--out {}: is a directory; name the axis-set file to write", o.out));
+    if (auto ok = check_output_file(o.out, "--out"); !ok) return usage_error(ok.error().message);
+    if (auto conflict = check_ranks(o, ranks)) return usage_error(conflict_message(*conflict, o, ranks));
+    return std::nullopt;
 }
 
 // What the run found, as the command prints it after the file is written.
@@ -179,6 +222,7 @@ Action add_optimize_command(CLI::App& app) {
         options.neighborhood = *parse_neighborhood(o->neighborhood); // checked by CLI11
         options.objective =
             o->objective == "distance" ? OptimizeOptions::Objective::distance : OptimizeOptions::Objective::volume;
+        if (auto status = refused(options, (*ranks)->size())) return *status;
         auto result = optimize(options, **ranks, [](const std::string& row) { std::cout << row << "\n"; });
         if (!result) return report(result.error());
         return (*ranks)->is_root() ? print(options, *result, **ranks) : 0;

@@ -14,6 +14,9 @@
 #include "harness/scratch_directory.h"
 #include "harness/statistics.h"
 #include "harness/variant_catalog.h"
+#include "optimize/fit_compare.h"
+#include "optimize/fit_data.h"
+#include "optimize/fit_strategies.h"
 #include "temporal/taa_sources.h"
 
 #include <fmt/format.h>
@@ -445,31 +448,38 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
     return plan;
 }
 
-// One set per --fit-axes count, fitted as kdop optimize fits (over the ranks), each in the modes
-// and neighborhoods of the built-in candidates; their files into `result`.
+// One set per --fit-axes count, fitted as kdop optimize fits a fixed axis count to the fit
+// sequences (read once, shared over the ranks), each in the modes and neighborhoods of the built-in
+// candidates; their files, as kdop optimize writes them, into `result`.
 Result<std::vector<VariantSpec>> fit_candidates(const ChooseOptions& o, const Plan& plan, const Ranks& ranks,
                                                 ChooseResult& result) {
+    const unsigned threads = rank_threads(o.threads);
+    const ColorMap& space = o.evaluation.resolve.color_map; // the space the set clips in
+    auto data = read_fit_data(
+        {{{}, o.fit, 1, plan.holdout, o.input_space, space}, Neighborhood::n9, o.sample, o.seed, std::nullopt, ""},
+        ranks);
+    if (!data) return std::unexpected(data.error());
+    const std::string objective = fit_objective(*data, Neighborhood::n9, space);
     std::vector<VariantSpec> specs;
     for (std::size_t axes : o.fit_axes) {
-        OptimizeOptions fitting;
-        fitting.input.sequences = o.fit;
-        fitting.input.input_space = o.input_space;
-        fitting.input.color_map = o.evaluation.resolve.color_map; // the space the set clips in
-        fitting.input.holdout = plan.holdout;
-        fitting.axes = axes;
-        fitting.name = fmt::format("fitted{}", axes);
-        fitting.out = (std::filesystem::path(o.out) / (fitting.name + ".axes")).string();
-        fitting.write_out = false;
-        fitting.seed = o.seed;
-        fitting.threads = o.threads;
-        fitting.sample = o.sample;
-        fitting.accuracy_samples = 0;
-        auto fitted = optimize(fitting, ranks);
-        if (!fitted) return std::unexpected(fitted.error());
-        auto set = parse_axis_set(fitted->file, fitting.out);
+        const FitResult fit = fit_axis_count({data->fitted_to(), {axes, false, o.seed, threads, 0, 0, {}}}, axes);
+        FitRecord record;
+        record.name = fmt::format("fitted{}", axes);
+        record.seed = o.seed;
+        record.stopped_early = fit.stopped_early;
+        record.color_map = space;
+        record.objective = objective;
+        record.sets = compared_sets(&*data->neighborhoods, fit.axes, threads);
+        record.score = record.sets[0].score;
+        if (o.sample)
+            record.notes.push_back(fmt::format("Sampled: {}.", sample_line(*data, o.seed, fit.score, record.score)));
+        auto file = fitted_set_text(record, fit.axes);
+        if (!file) return fail(file.error().message);
+        const std::string name = record.name + ".axes";
+        auto set = parse_axis_set(*file, (std::filesystem::path(o.out) / name).string());
         if (!set) return std::unexpected(set.error());
         for (const VariantSpec& like : plan.per_set) specs.push_back({*set, like.mode, like.neighborhood});
-        result.fitted_files.emplace_back(fitting.name + ".axes", fitted->file);
+        result.fitted_files.emplace_back(name, std::move(*file));
     }
     return specs;
 }
@@ -493,7 +503,8 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
     if (auto ok = ranks.agree(plan ? Result<void>{} : std::unexpected(plan.error())); !ok)
         return std::unexpected(ok.error());
 
-    auto specs = fit_candidates(o, *plan, ranks, result);
+    auto specs = stop_ranks_on_lost_frame<std::vector<VariantSpec>>(
+        ranks, [&] { return fit_candidates(o, *plan, ranks, result); });
     if (!specs) return std::unexpected(specs.error());
     // The fit is every rank's; the measuring is rank 0's, and so are the outputs.
     if (!ranks.is_root()) return result;

@@ -37,9 +37,8 @@ struct OptimizeOptions {
     std::size_t axes = 0;  // with a target, the most to try
     bool force_rgb = false;
     Neighborhood neighborhood = Neighborhood::n9;
-    std::string out;       // the axis-set file to write
-    bool write_out = true; // false: only return its text (OptimizeResult::file); kdop choose writes it with the rest
-    std::string name;      // the set's name; empty: out's stem
+    std::string out;  // the axis-set file to write
+    std::string name; // the set's name; empty: out's stem
     std::uint64_t seed = 1;
     std::size_t starts = 0, iterations = 0; // 0: the fit's defaults
     unsigned threads = 0;                   // 0: every core, shared with the other ranks on the machine
@@ -72,9 +71,12 @@ struct OptimizeResult {
 // A row of a --target, --target-ghosting or --max-nonzero table, as it is computed.
 using OptimizeRows = std::function<void(const std::string& row)>;
 
-// The whole run: checks (an Error with `usage` set where the command line is at fault), reads,
-// fits, compares, and writes options.out (rank 0). Every rank returns the same result. A frame a
-// rank can no longer read mid-fit stops every rank (Ranks::abort).
+// The whole run, in its stages: reads (fit_data.h), fits (fit_strategies.h, the sets costed and
+// measured by set_evaluator.h), compares and writes options.out (rank 0; fit_compare.h). The options
+// must pass check() and check_ranks() (fit_check.h), which the command line words; an error with
+// `usage` set is still the command line's fault (more ranks than frames, an input as --out). Every
+// rank returns the same result. A frame a rank can no longer read mid-fit stops every rank
+// (Ranks::abort).
 Result<OptimizeResult> optimize(const OptimizeOptions& options, const Ranks& ranks, const OptimizeRows& on_row = {});
 
 } // namespace kdop
