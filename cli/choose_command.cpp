@@ -17,6 +17,27 @@
 #include <memory>
 
 namespace kdop::cli {
+namespace {
+
+// A conflict of the options (ChooseConflict), named by the flags that gave them.
+std::string conflict_message(const ChooseConflict& conflict) {
+    using Kind = ChooseConflict::Kind;
+    switch (conflict.kind) {
+    case Kind::nothing_held_out:
+        return "choose: give --validate SEQUENCE... or --holdout FRAMES: every figure a choice rests on is measured "
+               "on frames the sets were not fitted to, and without either there are none";
+    case Kind::held_out_twice:
+        return "--validate and --holdout: hold out either whole sequences or blocks of frames, not both";
+    case Kind::nothing_fitted: return "choose: give --fit SEQUENCE... to fit the axis sets to";
+    case Kind::fitted_and_held_out:
+        return fmt::format("--validate {}: also given to --fit; a held-out sequence must not be fitted to",
+                           conflict.sequence);
+    case Kind::two_rules: return "--budget-ops, --budget-ms and --target-ghosting: give one rule to choose by";
+    }
+    return "";
+}
+
+} // namespace
 
 Action add_choose_command(CLI::App& app) {
     struct Options {
@@ -105,6 +126,7 @@ Action add_choose_command(CLI::App& app) {
         // waiting in the fit.
         if (auto ok = (*ranks)->agree(context ? Result<void>{} : std::unexpected(context.error())); !ok)
             return report_error(ok.error().message);
+        if (auto conflict = check(o->run)) return usage_error(conflict_message(*conflict));
         auto chosen = run_choose(**context, o->run, **ranks, *outputs);
         if (!chosen) return report(chosen.error());
         if (!(*ranks)->is_root()) return 0;

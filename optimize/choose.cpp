@@ -92,6 +92,21 @@ std::string noise_sentences(const std::vector<Candidate>& candidates, const Reco
 
 } // namespace
 
+std::optional<ChooseConflict> check(const ChooseOptions& o) {
+    using Kind = ChooseConflict::Kind;
+    if (o.validate.empty() && o.holdout == 0) return ChooseConflict{Kind::nothing_held_out, {}};
+    if (!o.validate.empty() && o.holdout > 0) return ChooseConflict{Kind::held_out_twice, {}};
+    if (o.fit.empty()) return ChooseConflict{Kind::nothing_fitted, {}};
+    for (const std::string& held : o.validate)
+        for (const std::string& fitted : o.fit) {
+            std::error_code ec;
+            if (std::filesystem::equivalent(held, fitted, ec)) return ChooseConflict{Kind::fitted_and_held_out, held};
+        }
+    if (int(o.budget_ops.has_value()) + int(o.budget_ms.has_value()) + int(o.target_ghosting.has_value()) > 1)
+        return ChooseConflict{Kind::two_rules, {}};
+    return std::nullopt;
+}
+
 Recommendation recommend(const std::vector<Candidate>& candidates, const Budget& budget,
                          std::optional<double> target_ghosting) {
     const std::optional<std::size_t> best = best_candidate(candidates, budget, target_ghosting);
@@ -347,23 +362,6 @@ Result<void> check_set_outputs(const ChooseOptions& o, const ChooseResult& resul
 }
 
 Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, ChooseResult& result) {
-    if (o.validate.empty() && o.holdout == 0)
-        return usage_fail("choose: give --validate SEQUENCE... or --holdout FRAMES: every figure a choice rests on is "
-                          "measured on frames the sets were not fitted to, and without either there are none");
-    if (!o.validate.empty() && o.holdout > 0)
-        return usage_fail("--validate and --holdout: hold out either whole sequences or blocks of frames, not both");
-    if (o.fit.empty()) return usage_fail("choose: give --fit SEQUENCE... to fit the axis sets to");
-    for (const std::string& held : o.validate)
-        for (const std::string& fitted : o.fit) {
-            std::error_code ec;
-            if (std::filesystem::equivalent(held, fitted, ec))
-                return usage_fail(fmt::format("--validate {}: also given to --fit; a held-out sequence must not be "
-                                              "fitted to",
-                                              held));
-        }
-    if (int(o.budget_ops.has_value()) + int(o.budget_ms.has_value()) + int(o.target_ghosting.has_value()) > 1)
-        return usage_fail("--budget-ops, --budget-ms and --target-ghosting: give one rule to choose by");
-
     Plan plan;
     plan.holdout = {o.holdout, o.evaluation.schedule.warmup};
     // The candidates: a fitted set per axis count, then the built-in sets, each in every mode and
@@ -495,7 +493,7 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
         callgrind_scratch ? callgrind_scratch->path : std::filesystem::path(), 256, ""};
 
     ChooseResult result;
-    auto plan = plan_candidates(context, o, result);
+    auto plan = check(o) ? fail("kdop choose: options that check() refuses") : plan_candidates(context, o, result);
     if (plan && o.lavapipe_cost && (callgrind.scratch.empty() || !std::filesystem::exists(callgrind.probe)))
         plan = fail(fmt::format("--lavapipe-cost: needs {} (built with kdop) and a scratch directory",
                                 callgrind.probe.string()));

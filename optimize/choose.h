@@ -14,7 +14,7 @@
 #include "core/variant_key.h"
 #include "harness/block_bootstrap.h"
 #include "harness/ranks.h"
-#include "optimize/optimize.h"
+#include "optimize/fit_inputs.h"
 #include "runtime/context.h"
 #include "temporal/taa_evaluation.h"
 
@@ -50,6 +50,24 @@ struct ChooseOptions {
     std::string out;                   // the folder the fitted sets are named for (fitted<N>.axes)
     bool chart = true;                 // choice.png (none where gnuplot is missing)
 };
+
+// Options of kdop choose that do not go together, in its own terms; the command line words them
+// with its flags (cli/choose_command.cpp).
+struct ChooseConflict {
+    enum class Kind {
+        nothing_held_out,    // neither validate nor holdout: no frame the sets were not fitted to
+        held_out_twice,      // both validate and holdout
+        nothing_fitted,      // no fit sequence
+        fitted_and_held_out, // a validate sequence is also a fit one (`sequence`, as validate gives it)
+        two_rules,           // more than one of budget_ops, budget_ms and target_ghosting
+    };
+    Kind kind;
+    std::string sequence;
+};
+
+// The first conflict of the options, or none. Writes and reads nothing; only the sequences'
+// folders are looked up, for one given to both fit and validate however it is spelled.
+std::optional<ChooseConflict> check(const ChooseOptions& options);
 
 // One candidate: a variant, what its clip costs and what it leaves on the fit and held-out frames.
 struct Candidate {
@@ -138,8 +156,8 @@ struct ChooseResult {
     BootstrapOptions bootstrap;                                    // how the held-out ghosting's intervals were drawn
 };
 
-// The run: checks (a usage Error where the command line is at fault: nothing held out, a sequence
-// both fitted to and held out, sequences of two color ranges, two candidates of one set name, a set
+// The run, on options that pass check(): checks (a usage Error where the command line is at fault:
+// sequences of two color ranges, two candidates of one set name, a set
 // file it would write over an input), fits, measures, recommends. Writes nothing. Under mpirun every rank checks, and
 // the fits are shared over the ranks as kdop optimize shares them (the same sets for any rank count); rank 0 alone then
 // times and measures the candidates, and on the other ranks the result holds the fitted files and no candidates.
