@@ -45,19 +45,15 @@ struct Registry {
     Json json;
 };
 
+// kdop-gen registry of dop22-clip-n9, its reflection into `json`, the shaders to follow.
+std::vector<std::string> registry_command(const fs::path& json) {
+    return {test::kdop_gen_binary(), "registry", "--sets", "dop22",       "--modes",  "clip",
+            "--neighborhoods",       "n9",       "--json", json.string(), "--shaders"};
+}
+
 // kdop-gen registry --json over `shaders`, each written into `dir` as name -> text.
 Registry generate(const test::TempDir& dir, const std::vector<std::pair<std::string, std::string>>& shaders) {
-    std::vector<std::string> command{test::kdop_gen_binary(),
-                                     "registry",
-                                     "--sets",
-                                     "dop22",
-                                     "--modes",
-                                     "clip",
-                                     "--neighborhoods",
-                                     "n9",
-                                     "--json",
-                                     (dir / "registry.json").string(),
-                                     "--shaders"};
+    std::vector<std::string> command = registry_command(dir / "registry.json");
     for (const auto& [name, text] : shaders) {
         test::write_file(dir / name, text);
         command.push_back((dir / name).string());
@@ -219,17 +215,7 @@ RWStructuredBuffer<float> distances : register(u7);
 TEST(UnusedResources, TheExamplesShadersUseEverythingTheyDeclare) {
     test::TempDir dir;
     const fs::path examples = fs::path(KDOP_SOURCE_DIR) / "examples";
-    std::vector<std::string> command{test::kdop_gen_binary(),
-                                     "registry",
-                                     "--sets",
-                                     "dop22",
-                                     "--modes",
-                                     "clip",
-                                     "--neighborhoods",
-                                     "n9",
-                                     "--json",
-                                     (dir / "examples.json").string(),
-                                     "--shaders"};
+    std::vector<std::string> command = registry_command(dir / "examples.json");
     for (const char* file :
          {"taa_resolve/taa_resolve.comp", "engine_resolve/resolve_compute.comp", "engine_resolve/fullscreen.vert",
           "engine_resolve/resolve_fragment.frag", "engine_resolve/hlsl_resolve_compute.cs.hlsl",
