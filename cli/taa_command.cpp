@@ -117,7 +117,7 @@ Action add_taa_command(CLI::App& app) {
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
         if (auto ok = check_pixels_per_degree(ppd); !ok) return usage_error("--ppd: " + ok.error().message);
         auto metrics = metrics_named(o->metrics);
-        if (!metrics) return report(metrics.error());
+        if (!metrics) return usage_error("--metrics: " + metrics.error().message);
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
         auto outputs = OutputSet::prepare(o->out);

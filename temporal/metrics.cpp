@@ -97,14 +97,14 @@ Result<Metrics> metrics_named(std::span<const std::string> names) {
     for (const std::string& name : names) {
         auto it = std::find_if(metrics.begin(), metrics.end(), [&](const Metric& m) { return m.name == name; });
         if (it == metrics.end())
-            return usage_fail(fmt::format("--metrics: no metric '{}'; kdop measures {}", name, metric_names(metrics)));
+            return usage_fail(fmt::format("no metric '{}'; kdop measures {}", name, metric_names(metrics)));
         it->measured = true;
     }
     // What report.md and report.html rank the variants by, and the pictures and viewer choose
     // their frames by.
     if (!metrics[kGhosting].measured)
-        return usage_fail(fmt::format("--metrics: ghosting is what kdop ranks variants by; give it beside {}",
-                                      fmt::join(names, ", ")));
+        return usage_fail(
+            fmt::format("ghosting is what kdop ranks variants by; give it beside {}", fmt::join(names, ", ")));
     return metrics;
 }
 

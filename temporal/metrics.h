@@ -72,8 +72,8 @@ enum MetricId : std::size_t { kShimmer, kGhosting, kPsnr, kTpsnr, kBuiltinMetric
 
 // kdop's metrics, shimmer and ghosting measured (the paper's), PSNR and tPSNR not.
 Metrics default_metrics();
-// The same with exactly the metrics `names` names measured (--metrics); an unknown name is a
-// usage error naming it and the known ones.
+// The same with exactly the metrics `names` names measured (kdop taa's --metrics); an unknown
+// name is a usage error naming it and the known ones, as is a list without ghosting.
 Result<Metrics> metrics_named(std::span<const std::string> names);
 // "shimmer, ghosting, psnr, tpsnr".
 std::string metric_names(const Metrics& metrics);
