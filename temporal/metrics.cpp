@@ -6,39 +6,50 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <array>
 
 namespace kdop {
 namespace {
 
-// A frame as PSNR sees it: LDR as it is, HDR tone mapped at exposure 0 (what the pictures show).
-Result<Image> as_shown(const MetricFrame& f, FrameHandle handle) {
+// A frame as PSNR sees it: LDR as it is in the store (no copy; valid while the computation runs,
+// which changes no slot), HDR tone mapped at exposure 0 (what the pictures show) into `mapped`.
+Result<const Image*> as_shown(const MetricFrame& f, FrameHandle handle, Image& mapped) {
     auto image = f.flip.store().image(handle);
-    if (!image) return std::unexpected(image.error());
-    if (f.range == ColorRange::ldr) return **image;
-    return HdrFlip::tone_mapped(**image, f.flip.exposures().tone_mapper, 0.0f);
+    if (!image || f.range == ColorRange::ldr) return image;
+    mapped = HdrFlip::tone_mapped(**image, f.flip.exposures().tone_mapper, 0.0f);
+    return &mapped;
 }
 
 Result<FlipFigure> flip_figure(const MetricFrame& f, FrameHandle reference) {
     return f.flip.evaluate(reference, f.output, f.range, f.map);
 }
 
+// The frames `handles` name as PSNR sees them, in order.
+template <std::size_t N>
+Result<std::array<const Image*, N>> shown_frames(const MetricFrame& f, const FrameHandle (&handles)[N],
+                                                 std::array<Image, N>& mapped) {
+    std::array<const Image*, N> shown{};
+    for (std::size_t i = 0; i < N; ++i) {
+        auto image = as_shown(f, handles[i], mapped[i]);
+        if (!image) return std::unexpected(image.error());
+        shown[i] = *image;
+    }
+    return shown;
+}
+
 Result<FlipFigure> psnr_figure(const MetricFrame& f) {
-    auto reference = as_shown(f, f.truth);
-    if (!reference) return std::unexpected(reference.error());
-    auto test = as_shown(f, f.output);
-    if (!test) return std::unexpected(test.error());
-    return FlipFigure{psnr(*reference, *test), {}, {}};
+    std::array<Image, 2> mapped;
+    auto shown = shown_frames(f, {f.truth, f.output}, mapped);
+    if (!shown) return std::unexpected(shown.error());
+    return FlipFigure{psnr(*(*shown)[0], *(*shown)[1]), {}, {}};
 }
 
 Result<FlipFigure> temporal_psnr_figure(const MetricFrame& f) {
-    Image shown[4];
-    const FrameHandle handles[4] = {f.previous_truth, f.truth, f.previous_output, f.output};
-    for (int i = 0; i < 4; ++i) {
-        auto image = as_shown(f, handles[i]);
-        if (!image) return std::unexpected(image.error());
-        shown[i] = std::move(*image);
-    }
-    return FlipFigure{temporal_psnr(shown[0], shown[1], shown[2], shown[3]), {}, {}};
+    std::array<Image, 4> mapped;
+    auto shown = shown_frames(f, {f.previous_truth, f.truth, f.previous_output, f.output}, mapped);
+    if (!shown) return std::unexpected(shown.error());
+    const auto& [truth_before, truth, output_before, output] = *shown;
+    return FlipFigure{temporal_psnr(*truth_before, *truth, *output_before, *output), {}, {}};
 }
 
 // 10 log10(1 / MSE) over `sum` of squared errors of `n` values.
@@ -74,7 +85,7 @@ Metrics default_metrics() {
                 .compute = psnr_figure};
     m[kTpsnr] = {.name = "tpsnr",
                  .unit = "dB",
-                 .description = "PSNR of each output's change against the reference's change",
+                 .description = "PSNR of the output's change against the reference's",
                  .compares = Compared::change,
                  .role = MetricRole::ghosting,
                  .needs_reference = true,
