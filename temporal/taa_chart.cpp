@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace kdop {
 namespace {
@@ -20,12 +21,16 @@ std::vector<std::string> scenes_of(const std::vector<Row>& rows) {
     return scenes;
 }
 
-// A metric's axis title: its name, its unit (a FLIP metric's, the rows' FLIP mode) and what it
-// compares, and which way is better.
-std::string metric_title(const Metric& metric, ColorRange range) {
+// A metric's panel: what it compares as the title, in a small font over the panel, and its name,
+// unit (a FLIP metric's, the rows' FLIP mode) and which way is better as the axis label, short
+// enough for a panel of four.
+std::string metric_panel(char axis, std::span<const double> values, const Metric& metric, ColorRange range) {
     const std::string unit = !metric.flip ? metric.unit : range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP";
-    return fmt::format("{}, {}: {} ({} is better)", metric.name, unit, metric.description,
-                       metric.higher_is_better ? "higher" : "lower");
+    const std::string label =
+        fmt::format("{} ({}, {} is better)", metric.name, unit, metric.higher_is_better ? "higher" : "lower");
+    return fmt::format("set title {} font \",9\"\n", gnuplot_string(metric.description)) +
+           (values.empty() ? fmt::format("set {}label {}\n", axis, gnuplot_string(label))
+                           : axis_scale(axis, values, label, false));
 }
 
 } // namespace
@@ -95,7 +100,7 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
                                                          scenes[s])));
         script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
         for (std::size_t m : panels) {
-            script += axis_scale('y', values[m], metric_title(metrics[m], any ? any->range : ColorRange::ldr), false);
+            script += metric_panel('y', values[m], metrics[m], any ? any->range : ColorRange::ldr);
             script += fmt::format("plot {}{}\n", plot[m], m == panels.back() ? style.key_entries() : "");
         }
         script += "unset multiplot\n";
@@ -147,9 +152,9 @@ Result<std::vector<OutputFile>> taa_over_time_charts(const std::vector<TaaFrameR
         script += fmt::format("set multiplot layout 1,{} title {}\n", std::max<std::size_t>(panels.size(), 1),
                               gnuplot_string(fmt::format("{}: each variant over the measured frames", scenes[s])));
         for (std::size_t m : panels) // the key beside the last panel only: the variants are the same
-            script += fmt::format("{}set ylabel {}\nplot {}\n",
+            script += fmt::format("{}{}plot {}\n",
                                   m != panels.back() ? "unset key\n" : "set key outside right top spacing 1.1\n",
-                                  gnuplot_string(metric_title(metrics[m], range)), plots[m]);
+                                  metric_panel('y', {}, metrics[m], range), plots[m]);
         script += "unset multiplot\n";
     }
     return draw_charts(script, names, scratch, out_dir);
