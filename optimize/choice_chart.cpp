@@ -17,19 +17,18 @@ ChoicePlot choice_plot(const ChooseResult& result, const ChooseOptions& options,
     // Columns: float ops, held-out ghosting, name, ghosting on the frames fitted to, the interval's ends.
     for (const Candidate& c : result.candidates) {
         (c.fitted ? fitted : builtin)
-            .push_back({gnuplot_number(double(c.float_ops)), gnuplot_number(c.validation_ghosting),
-                        '"' + c.key.name() + '"', gnuplot_number(c.fit_ghosting),
-                        gnuplot_number(c.validation_ghosting_interval.low),
-                        gnuplot_number(c.validation_ghosting_interval.high)});
+            .push_back({gnuplot_number(double(c.float_ops)), gnuplot_number(c.ranked()), '"' + c.key.name() + '"',
+                        gnuplot_number(c.ranked_fit()), gnuplot_number(c.interval.low),
+                        gnuplot_number(c.interval.high)});
         if (options.budget_ms && !budget.admits(c))
-            over.push_back({gnuplot_number(double(c.float_ops)), gnuplot_number(c.validation_ghosting)});
+            over.push_back({gnuplot_number(double(c.float_ops)), gnuplot_number(c.ranked())});
     }
     for (std::size_t i : pareto_front(result.candidates))
-        front.push_back({gnuplot_number(double(result.candidates[i].float_ops)),
-                         gnuplot_number(result.candidates[i].validation_ghosting)});
+        front.push_back(
+            {gnuplot_number(double(result.candidates[i].float_ops)), gnuplot_number(result.candidates[i].ranked())});
     if (const auto& i = result.recommendation.chosen)
-        chosen.push_back({gnuplot_number(double(result.candidates[*i].float_ops)),
-                          gnuplot_number(result.candidates[*i].validation_ghosting)});
+        chosen.push_back(
+            {gnuplot_number(double(result.candidates[*i].float_ops)), gnuplot_number(result.candidates[*i].ranked())});
     ChoicePlot out;
     const std::pair<const char*, const std::vector<std::vector<std::string>>*> files[] = {
         {"fitted", &fitted}, {"builtin", &builtin}, {"front", &front}, {"chosen", &chosen}, {"over", &over}};
@@ -40,7 +39,7 @@ ChoicePlot choice_plot(const ChooseResult& result, const ChooseOptions& options,
     };
     // The held-out figure with its interval where there is one (a NaN end would hide the point).
     const bool intervals = std::all_of(result.candidates.begin(), result.candidates.end(),
-                                       [](const Candidate& c) { return c.validation_ghosting_interval.known(); });
+                                       [](const Candidate& c) { return c.interval.known(); });
     const char* held_out = intervals ? "1:2:5:6 with yerrorbars" : "1:2 with points";
     std::string plot;
     auto add = [&](const std::string& series) { plot += (plot.empty() ? "" : ", ") + series; };
@@ -70,8 +69,7 @@ ChoicePlot choice_plot(const ChooseResult& result, const ChooseOptions& options,
     double x_low = INFINITY, x_high = -INFINITY, y_low = INFINITY, y_high = -INFINITY;
     for (const Candidate& c : result.candidates) {
         x_low = std::min(x_low, double(c.float_ops)), x_high = std::max(x_high, double(c.float_ops));
-        for (double y : {c.validation_ghosting, c.fit_ghosting, c.validation_ghosting_interval.low,
-                         c.validation_ghosting_interval.high})
+        for (double y : {c.ranked(), c.ranked_fit(), c.interval.low, c.interval.high})
             if (std::isfinite(y)) y_low = std::min(y_low, y), y_high = std::max(y_high, y);
     }
     std::vector<std::vector<std::string>> line;

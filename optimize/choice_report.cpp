@@ -20,11 +20,47 @@ namespace {
 
 const char* flip_mode(ColorRange range) { return range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"; }
 
+// The columns of each metric's figures: the ranking metric's (ghosting's) on the fit frames and
+// held out, with its interval, noise flag, median and p95; every other one measured held out.
+DeclaredColumns<Candidate> figure_columns(const Metrics& metrics, ColorRange range) {
+    DeclaredColumns<Candidate> columns;
+    auto figure = [](std::size_t m, double CandidateFigure::*field) {
+        return [m, field](const Candidate& c) { return maybe(m < c.figures.size() ? c.figures[m].*field : NAN); };
+    };
+    for (std::size_t m : ranking_first(metrics)) {
+        const Metric& metric = metrics[m];
+        if (!metric.measured) continue;
+        // Every FLIP figure's unit is the mode it was measured in, and a column says it too (taa.csv's).
+        const std::string unit = metric.flip ? flip_mode(range) : metric.unit, &n = metric.name;
+        const int d = metric.digits;
+        if (m != ranking_first(metrics).front()) {
+            columns.push_back(
+                {{"validation_" + n, unit, Shown::fixed, d, "held-out " + n}, figure(m, &CandidateFigure::held_out)});
+            continue;
+        }
+        columns.push_back(
+            {{"fit_" + n, unit, Shown::fixed, d, n + " on the fit frames"}, figure(m, &CandidateFigure::fit)});
+        columns.push_back(
+            {{"validation_" + n, unit, Shown::fixed, d, "held-out " + n}, figure(m, &CandidateFigure::held_out)});
+        columns.push_back({{"validation_" + n + "_low", unit, Shown::fixed, d,
+                            fmt::format("{:.0f}% interval from", 100 * kChoiceLevel)},
+                           [](const Candidate& c) { return maybe(c.interval.low); }});
+        columns.push_back({{"validation_" + n + "_high", unit, Shown::fixed, d, "to"},
+                           [](const Candidate& c) { return maybe(c.interval.high); }});
+        columns.push_back({{n + "_noise", "", Shown::flag, 0, "held-out " + n + " within noise of the recommended"},
+                           [](const Candidate& c) { return c.within_noise ? Value(*c.within_noise) : Value(); }});
+        columns.push_back({{"validation_" + n + "_median", unit, Shown::fixed, d, "held-out median"},
+                           figure(m, &CandidateFigure::held_out_median)});
+        columns.push_back({{"validation_" + n + "_p95", unit, Shown::fixed, d, "held-out p95"},
+                           figure(m, &CandidateFigure::held_out_p95)});
+    }
+    return columns;
+}
+
 } // namespace
 
-Table candidates_table(const std::vector<Candidate>& candidates) {
-    // Every figure's unit is the FLIP mode it was measured in, and a column says it too (taa.csv's).
-    const std::string flip = flip_mode(candidates.empty() ? ColorRange::ldr : candidates.front().range);
+Table candidates_table(const std::vector<Candidate>& candidates, const Metrics& metrics) {
+    const ColorRange range = candidates.empty() ? ColorRange::ldr : candidates.front().range;
     const DeclaredColumns<Candidate> columns =
         variant_key_columns<Candidate>([](const Candidate& c) -> const VariantKey& { return c.key; }) +
         DeclaredColumns<Candidate>{
@@ -40,23 +76,9 @@ Table candidates_table(const std::vector<Candidate>& candidates) {
              [](const Candidate& c) { return std::isfinite(c.ms) ? Value(c.ms_noise) : Value(); }},
             {{"lavapipe_instr", "instr/px", Shown::fixed, 1, "lavapipe instr/px beyond the gather"},
              [](const Candidate& c) { return maybe(c.lavapipe_instructions); }},
-            {{"fit_ghosting", flip, Shown::fixed, 4, "ghosting on the fit frames"},
-             [](const Candidate& c) { return maybe(c.fit_ghosting); }},
-            {{"validation_ghosting", flip, Shown::fixed, 4, "held-out ghosting"},
-             [](const Candidate& c) { return maybe(c.validation_ghosting); }},
-            {{"validation_ghosting_low", flip, Shown::fixed, 4,
-              fmt::format("{:.0f}% interval from", 100 * kChoiceLevel)},
-             [](const Candidate& c) { return maybe(c.validation_ghosting_interval.low); }},
-            {{"validation_ghosting_high", flip, Shown::fixed, 4, "to"},
-             [](const Candidate& c) { return maybe(c.validation_ghosting_interval.high); }},
-            {{"ghosting_noise", "", Shown::flag, 0, "held-out ghosting within noise of the recommended"},
-             [](const Candidate& c) { return c.ghosting_noise ? Value(*c.ghosting_noise) : Value(); }},
-            {{"validation_ghosting_median", flip, Shown::fixed, 4, "held-out median"},
-             [](const Candidate& c) { return maybe(c.validation_ghosting_median); }},
-            {{"validation_ghosting_p95", flip, Shown::fixed, 4, "held-out p95"},
-             [](const Candidate& c) { return maybe(c.validation_ghosting_p95); }},
-            {{"validation_shimmer", flip, Shown::fixed, 4, "held-out shimmer"},
-             [](const Candidate& c) { return maybe(c.validation_shimmer); }},
+        } +
+        figure_columns(metrics, range) +
+        DeclaredColumns<Candidate>{
             {{"flip", "", Shown::text, 0, "measured in"},
              [](const Candidate& c) { return Value(std::string(flip_mode(c.range))); }},
         };
@@ -68,8 +90,8 @@ namespace {
 // How the intervals were drawn, or why there are none.
 std::string bootstrap_paragraph(const ChooseResult& r) {
     const BootstrapOptions& b = r.bootstrap;
-    const bool drawn = std::any_of(r.candidates.begin(), r.candidates.end(),
-                                   [](const Candidate& c) { return c.validation_ghosting_interval.known(); });
+    const bool drawn =
+        std::any_of(r.candidates.begin(), r.candidates.end(), [](const Candidate& c) { return c.interval.known(); });
     if (!drawn)
         return fmt::format("The held-out frames are too few for intervals: each held-out sequence needs at least two "
                            "bootstrap blocks of {} frames, so nothing here says which differences are noise.\n\n",
@@ -139,17 +161,17 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
     md += bootstrap_paragraph(r);
     // Least held-out ghosting first.
     std::vector<Candidate> sorted = r.candidates;
-    std::stable_sort(sorted.begin(), sorted.end(), [](const Candidate& a, const Candidate& b) {
-        return a.validation_ghosting < b.validation_ghosting;
-    });
-    md += "## Every candidate, least held-out ghosting first\n\n" + candidates_table(sorted).markdown() + "\n";
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.ranked() < b.ranked(); });
+    md +=
+        "## Every candidate, least held-out ghosting first\n\n" + candidates_table(sorted, r.metrics).markdown() + "\n";
 
     md += "## The Pareto front of held-out ghosting against cost\n\nNo other candidate is as cheap and ghosts as "
           "little; cheapest first:\n\n";
     for (std::size_t i : pareto_front(r.candidates)) {
         const Candidate& c = r.candidates[i];
         md += fmt::format("- {}: {} float ops, held-out ghosting {:.4f}{}\n", markdown_text(c.key.name()), c.float_ops,
-                          c.validation_ghosting, c.fitted ? " (fitted)" : "");
+                          c.ranked(), c.fitted ? " (fitted)" : "");
     }
 
     if (chart)
@@ -175,22 +197,20 @@ std::string choice_markdown(const ChooseResult& r, const ChooseOptions& o, const
     const Candidate *best_fitted = nullptr, *best_builtin = nullptr;
     for (const Candidate& c : r.candidates) {
         const Candidate*& best = c.fitted ? best_fitted : best_builtin;
-        if (!std::isnan(c.validation_ghosting) && (!best || c.validation_ghosting < best->validation_ghosting))
-            best = &c;
+        if (!std::isnan(c.ranked()) && (!best || c.ranked() < best->ranked())) best = &c;
     }
     if (best_fitted && best_builtin) {
-        if (best_builtin->validation_ghosting <= best_fitted->validation_ghosting)
+        if (best_builtin->ranked() <= best_fitted->ranked())
             md += fmt::format("**The fitted sets lost on the held-out frames**: the best built-in candidate, {}, "
                               "ghosts {:.4f} there, the best fitted one, {}, {:.4f} (on the frames it was fitted to, "
                               "{:.4f}).\n\n",
-                              markdown_text(best_builtin->key.name()), best_builtin->validation_ghosting,
-                              markdown_text(best_fitted->key.name()), best_fitted->validation_ghosting,
-                              best_fitted->fit_ghosting);
+                              markdown_text(best_builtin->key.name()), best_builtin->ranked(),
+                              markdown_text(best_fitted->key.name()), best_fitted->ranked(), best_fitted->ranked_fit());
         else
             md += fmt::format("The best fitted candidate, {}, ghosts {:.4f} on the held-out frames, less than the best "
                               "built-in one, {}, at {:.4f}.\n\n",
-                              markdown_text(best_fitted->key.name()), best_fitted->validation_ghosting,
-                              markdown_text(best_builtin->key.name()), best_builtin->validation_ghosting);
+                              markdown_text(best_fitted->key.name()), best_fitted->ranked(),
+                              markdown_text(best_builtin->key.name()), best_builtin->ranked());
     }
     return md + settings_section(r, o) + metadata_markdown(run);
 }
@@ -221,7 +241,7 @@ Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& opt
         else
             warn_no_charts(chart.error().message);
     }
-    outputs.add_table("candidates", candidates_table(chosen->candidates), run);
+    outputs.add_table("candidates", candidates_table(chosen->candidates, chosen->metrics), run);
     outputs.add("choice.md", choice_markdown(*chosen, options, run, charted));
     for (const auto& [name, text] : chosen->fitted_files) outputs.add(name, text);
     if (const std::string manifest = choice_manifest(*chosen, options); !manifest.empty()) {

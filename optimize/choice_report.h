@@ -15,7 +15,7 @@
 
 namespace kdop {
 
-Table candidates_table(const std::vector<Candidate>& candidates);
+Table candidates_table(const std::vector<Candidate>& candidates, const Metrics& metrics);
 
 // `chart`: choice.png was drawn, and is shown.
 std::string choice_markdown(const ChooseResult& result, const ChooseOptions& options, const RunMetadata& run,

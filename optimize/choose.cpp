@@ -68,19 +68,25 @@ Result<std::vector<SequenceFrames>> read_sequences(const Context& context, const
     return std::move(sources->sequences);
 }
 
-// Each variant's figures over the frames of `sequences` that `counted` accepts (all measured
-// frames without it): its ghosting and shimmer as the mean over the sequences of each one's mean
-// (what taa.csv holds, the same sums in the same order), and every counted frame's ghosting, by
-// sequence (frames[variant][sequence]), for the median, the 95th percentile and the bootstrap.
+// Each variant's figures over the frames of `sequences` that a filter accepts (all measured
+// frames without one), by metric: the mean over the sequences of each one's mean (what taa.csv
+// holds, the same sums in the same order), and every counted frame's value by sequence, for the
+// median, the 95th percentile and the bootstrap.
 struct Figures {
-    std::vector<double> ghosting, shimmer;
-    std::vector<std::vector<std::vector<double>>> frames;
+    std::vector<std::vector<double>> means;                            // [variant][metric]
+    std::vector<std::vector<std::vector<std::vector<double>>>> frames; // [variant][metric][sequence][frame]
 
-    std::vector<double> all_frames(std::size_t variant) const {
+    std::vector<double> all_frames(std::size_t variant, std::size_t metric) const {
         std::vector<double> all;
-        for (const std::vector<double>& sequence : frames[variant])
+        for (const std::vector<double>& sequence : frames[variant][metric])
             all.insert(all.end(), sequence.begin(), sequence.end());
         return all;
+    }
+    // One metric's frames of every variant, [variant][sequence][frame]: what the bootstrap draws from.
+    std::vector<std::vector<std::vector<double>>> of_metric(std::size_t metric) const {
+        std::vector<std::vector<std::vector<double>>> out;
+        for (const auto& variant : frames) out.push_back(variant[metric]);
+        return out;
     }
 };
 using FrameFilter = std::function<bool(std::size_t frame)>;
@@ -95,28 +101,27 @@ double mean_of(const std::vector<double>& values) {
 // Measures every variant on `sequences` once, and gives the figures of each filter's frames.
 Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const std::vector<SequenceFrames>& sequences,
                                              const std::vector<FrameFilter>& filters, Progress& progress) {
-    const std::size_t variants = evaluation.specs().size();
-    std::vector<Figures> figures(filters.size(),
-                                 {std::vector<double>(variants, 0.0), std::vector<double>(variants, 0.0),
-                                  std::vector<std::vector<std::vector<double>>>(variants)});
+    const std::size_t variants = evaluation.specs().size(), metrics = evaluation.metrics().size();
+    const Figures empty{std::vector<std::vector<double>>(variants, std::vector<double>(metrics, 0.0)),
+                        std::vector<std::vector<std::vector<std::vector<double>>>>(
+                            variants, std::vector<std::vector<std::vector<double>>>(metrics))};
+    std::vector<Figures> figures(filters.size(), empty);
     EvaluationObserver observer;
     observer.frame = [&](const std::string& source) { progress.advance(source); };
     for (const SequenceFrames& sequence : sequences) {
         auto rows = evaluation.measure(sequence, observer);
         if (!rows) return std::unexpected(rows.error());
         for (const EvaluationRow& row : *rows)
-            for (std::size_t f = 0; f < filters.size(); ++f) {
-                std::vector<double> ghosting, shimmer;
-                for (const FrameFigures& frame : row.per_frame) {
-                    if (filters[f] && !filters[f](frame.index)) continue;
-                    if (!std::isnan(frame.value(kGhosting))) ghosting.push_back(frame.value(kGhosting));
-                    if (!std::isnan(frame.value(kShimmer))) shimmer.push_back(frame.value(kShimmer));
+            for (std::size_t f = 0; f < filters.size(); ++f)
+                for (std::size_t m = 0; m < metrics; ++m) {
+                    std::vector<double> values;
+                    for (const FrameFigures& frame : row.per_frame)
+                        if ((!filters[f] || filters[f](frame.index)) && !std::isnan(frame.value(m)))
+                            values.push_back(frame.value(m));
+                    Figures& into = figures[f];
+                    into.means[row.variant][m] += mean_of(values) / double(sequences.size());
+                    into.frames[row.variant][m].push_back(std::move(values));
                 }
-                Figures& into = figures[f];
-                into.ghosting[row.variant] += mean_of(ghosting) / double(sequences.size());
-                into.shimmer[row.variant] += mean_of(shimmer) / double(sequences.size());
-                into.frames[row.variant].push_back(std::move(ghosting));
-            }
     }
     return figures;
 }
@@ -288,6 +293,7 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
                                               first->sequence().dir.string(), mode(*first)));
             }
     result.range = first ? first->color_range() : ColorRange::ldr;
+    result.metrics = o.evaluation.metrics;
     // Held-out blocks: every fit sequence must have a frame in one.
     const Holdout& holdout = plan.holdout;
     if (holdout.block > 0)
@@ -426,7 +432,7 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
     // every candidate (harness/block_bootstrap.h).
     result.bootstrap.block = history_block(o.evaluation.resolve.current_weight);
     result.bootstrap.seed = o.seed, result.bootstrap.level = kChoiceLevel;
-    const auto replicates = bootstrap_replicates(held.frames, result.bootstrap);
+    const auto replicates = bootstrap_replicates(held.of_metric(kGhosting), result.bootstrap);
     for (std::size_t v = 0; v < specs->size(); ++v) {
         const VariantSpec& spec = (*specs)[v];
         Candidate c;
@@ -438,15 +444,16 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
         const std::vector<double>& ms = timed->timing.ms[v];
         c.ms = median(ms), c.ms_q1 = quantile(ms, 0.25), c.ms_q3 = quantile(ms, 0.75);
         c.lavapipe_instructions = instructions[v];
-        c.fit_ghosting = in_sample.ghosting[v];
-        c.validation_ghosting = held.ghosting[v];
-        c.validation_shimmer = held.shimmer[v];
-        const std::vector<double> frames = held.all_frames(v);
-        c.validation_ghosting_median = quantile(frames, 0.5);
-        c.validation_ghosting_p95 = quantile(frames, 0.95);
+        for (std::size_t m = 0; m < result.metrics.size(); ++m) {
+            const std::vector<double> frames = held.all_frames(v, m);
+            c.figures.push_back({.fit = in_sample.means[v][m],
+                                 .held_out = held.means[v][m],
+                                 .held_out_median = quantile(frames, 0.5),
+                                 .held_out_p95 = quantile(frames, 0.95)});
+        }
         if (replicates) {
-            c.ghosting_replicates = (*replicates)[v];
-            c.validation_ghosting_interval = percentile_interval(c.ghosting_replicates, kChoiceLevel);
+            c.replicates = (*replicates)[v];
+            c.interval = percentile_interval(c.replicates, kChoiceLevel);
         }
         result.candidates.push_back(std::move(c));
     }

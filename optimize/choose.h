@@ -69,6 +69,13 @@ struct ChooseConflict {
 // folders are looked up, for one given to both fit and validate however it is spelled.
 std::optional<ChooseConflict> check(const ChooseOptions& options);
 
+// One metric's figures of a candidate: its mean over the sequences on the fit frames and on the
+// held-out frames (each sequence's mean over its measured frames, as kdop taa's taa.csv), and the
+// median and 95th percentile over every held-out frame together. NaN where not measured.
+struct CandidateFigure {
+    double fit = NAN, held_out = NAN, held_out_median = NAN, held_out_p95 = NAN;
+};
+
 // One candidate: a variant, what its clip costs and what it leaves on the fit and held-out frames.
 struct Candidate {
     VariantKey key;
@@ -83,19 +90,21 @@ struct Candidate {
     // With lavapipe_cost, the instructions per pixel lavapipe runs for its clip beyond the gather,
     // counted by callgrind as kdop bench counts them; NaN where not counted (varclip has no count).
     double lavapipe_instructions = NAN;
-    // Means over the sequences (each sequence's mean over its measured frames, as kdop taa's taa.csv).
-    double fit_ghosting = NAN, validation_ghosting = NAN, validation_shimmer = NAN;
-    // Over every measured frame of the held-out sequences together.
-    double validation_ghosting_median = NAN, validation_ghosting_p95 = NAN;
-    // What every FLIP figure above is in: LDR-FLIP, or HDR-FLIP for HDR sequences (one per run).
+    // Each metric's figures, by metric (the evaluation's registry, temporal/metrics.h).
+    std::vector<CandidateFigure> figures;
+    // The held-out figure the rules rank by, kdop's ranking metric's (ghosting), and the same on the
+    // fit frames.
+    double ranked() const { return kGhosting < figures.size() ? figures[kGhosting].held_out : NAN; }
+    double ranked_fit() const { return kGhosting < figures.size() ? figures[kGhosting].fit : NAN; }
+    // What every FLIP figure is in: LDR-FLIP, or HDR-FLIP for HDR sequences (one per run).
     ColorRange range = ColorRange::ldr;
-    // The held-out ghosting's bootstrap replicates (paired with every other candidate's: the same
-    // frames drawn), their interval, and whether this candidate's held-out ghosting is within noise
-    // of the recommended one's (of the least, where none is): the paired difference's interval
-    // holds 0. Empty, unknown and nullopt where the held-out frames are too few for an interval.
-    std::vector<double> ghosting_replicates;
-    Interval validation_ghosting_interval;
-    std::optional<bool> ghosting_noise;
+    // ranked()'s bootstrap replicates (paired with every other candidate's: the same frames drawn),
+    // their interval, and whether ranked() is within noise of the recommended one's (of the least,
+    // where none is): the paired difference's interval holds 0. Empty, unknown and nullopt where
+    // the held-out frames are too few for an interval.
+    std::vector<double> replicates;
+    Interval interval;
+    std::optional<bool> within_noise;
     bool ms_noise = false; // its median ms within the larger interquartile range of its own and the fastest's
 };
 
@@ -154,6 +163,7 @@ struct ChooseResult {
     std::map<std::string, GivenSetFile> given_files;               // by set name: every --sets file's
     ColorRange range = ColorRange::ldr;                            // every sequence's, so every figure's FLIP mode
     BootstrapOptions bootstrap;                                    // how the held-out ghosting's intervals were drawn
+    Metrics metrics; // what each candidate's figures are, by index: the evaluation's
 };
 
 // The run, on options that pass check(): checks (a usage Error where the command line is at fault:

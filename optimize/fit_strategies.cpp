@@ -40,7 +40,8 @@ FitResult fit_axis_count(const FitSearch& search, std::size_t axes) {
 
 Result<FitResult> fit_to_target(const OptimizeOptions& o, const FitSearch& search, const SetEvaluator& evaluator,
                                 FitTable& table) {
-    const auto columns = axis_count_columns(o.target_ghosting ? o.input.sequences.size() : 0, o.lavapipe_cost);
+    const auto columns =
+        axis_count_columns(evaluator.metrics(), o.target_ghosting ? o.input.sequences.size() : 0, o.lavapipe_cost);
     table.add(printed_header(columns));
     FitResult result;
     bool reached = false;
@@ -49,15 +50,13 @@ Result<FitResult> fit_to_target(const OptimizeOptions& o, const FitSearch& searc
         result = fit_axis_count(search, axes);
         auto cost = evaluator.cost(result.axes);
         if (!cost) return fail(cost.error().message);
-        AxisCountRow row{axes, result.score, {}, {}, *cost};
+        AxisCountRow row{axes, result.score, {}, *cost};
         if (o.target_ghosting) {
-            auto figures = evaluator.ghosting(result.axes);
+            auto figures = evaluator.figures(result.axes);
             if (!figures) return fail(figures.error().message);
-            for (std::size_t i = 0; i < figures->size(); i += 2) {
-                row.ghosting.push_back((*figures)[i]);
-                row.shimmer.push_back((*figures)[i + 1]);
-            }
-            worst = std::ranges::max(row.ghosting);
+            row.figures = std::move(*figures);
+            worst = 0;
+            for (const std::vector<double>& sequence : row.figures) worst = std::max(worst, sequence[kGhosting]);
         }
         table.add(printed_row(columns, row));
         reached = o.target ? result.score <= *o.target : worst <= *o.target_ghosting;

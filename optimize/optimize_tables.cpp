@@ -20,19 +20,20 @@ PrintedColumns<Row> cost_columns(bool lavapipe, const ClipCost Row::*cost) {
 
 } // namespace
 
-PrintedColumns<AxisCountRow> axis_count_columns(std::size_t sequences, bool lavapipe) {
+PrintedColumns<AxisCountRow> axis_count_columns(const Metrics& metrics, std::size_t sequences, bool lavapipe) {
     PrintedColumns<AxisCountRow> columns{
         {"axes", 4, [](const AxisCountRow& r) { return fmt::format("{}", r.axes); }},
         {"k", 4, [](const AxisCountRow& r) { return fmt::format("{}", 2 * r.axes); }},
         {"volume", 14, [](const AxisCountRow& r) { return fmt::format("{:.6g}", r.volume); }}};
-    for (std::size_t i = 0; i < sequences; ++i) {
-        columns.push_back(
-            {"ghosting", 12, [i](const AxisCountRow& r) { return fmt::format("{:.6f}", r.ghosting[i]); }});
-        // A sequence meant for ghosting alone (sequence.json's "measure") has no shimmer.
-        columns.push_back({"shimmer", 12, [i](const AxisCountRow& r) {
-                               return std::isnan(r.shimmer[i]) ? std::string("–") : fmt::format("{:.6f}", r.shimmer[i]);
-                           }});
-    }
+    for (std::size_t i = 0; i < sequences; ++i)
+        for (std::size_t m : ranking_first(metrics)) {
+            if (!metrics[m].measured) continue;
+            // A sequence not meant for a metric (sequence.json's "measure") has none.
+            columns.push_back({metrics[m].name, 12, [i, m](const AxisCountRow& r) {
+                                   const double value = r.figures[i][m];
+                                   return std::isnan(value) ? std::string("–") : fmt::format("{:.6f}", value);
+                               }});
+        }
     return columns + cost_columns(lavapipe, &AxisCountRow::cost);
 }
 

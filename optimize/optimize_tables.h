@@ -4,6 +4,7 @@
 #pragma once
 
 #include "harness/printed_table.h"
+#include "temporal/metrics.h"
 
 #include <glm/vec3.hpp>
 
@@ -22,12 +23,12 @@ struct ClipCost {
     std::optional<double> lavapipe_instructions;
 };
 
-// One axis count tried: the fitted set's volume and, with --target-ghosting, its ghosting and
-// shimmer on each sequence, in the order given.
+// One axis count tried: the fitted set's volume and, with --target-ghosting, its figures on each
+// sequence in the order given, each by metric (temporal/metrics.h, NaN where not measured).
 struct AxisCountRow {
     std::size_t axes = 0;
     double volume = 0;
-    std::vector<double> ghosting, shimmer;
+    std::vector<std::vector<double>> figures;
     ClipCost cost;
 };
 
@@ -46,8 +47,9 @@ struct ComparedSet {
     double score = NAN, distance = NAN;
 };
 
-// `sequences` ghosting and shimmer columns (0: none); `lavapipe`: the callgrind column.
-PrintedColumns<AxisCountRow> axis_count_columns(std::size_t sequences, bool lavapipe);
+// For each of `sequences` sequences (0: none), a column of each metric `metrics` measures, the one
+// ranked by first (ranking_first); `lavapipe`: the callgrind column.
+PrintedColumns<AxisCountRow> axis_count_columns(const Metrics& metrics, std::size_t sequences, bool lavapipe);
 PrintedColumns<SparserRow> sparser_columns(bool lavapipe);
 // Each set's volume (and distance) with its ratio to `fitted`'s.
 PrintedColumns<ComparedSet> compared_set_columns(const ComparedSet& fitted, bool with_distance);

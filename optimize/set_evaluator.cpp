@@ -60,21 +60,26 @@ Result<ClipCost> SetEvaluator::cost(std::span<const glm::dvec3> axes) const {
     return cost;
 }
 
-Result<std::vector<double>> SetEvaluator::ghosting(std::span<const glm::dvec3> axes) const {
-    std::vector<double> figures(2 * sequences_);
+Result<std::vector<std::vector<double>>> SetEvaluator::figures(std::span<const glm::dvec3> axes) const {
+    // Flat, sequence after sequence, for the broadcast.
+    std::vector<double> flat(sequences_ * metrics_.size(), NAN);
     Result<void> measured;
     if (ranks_.is_root()) {
-        Progress progress("measuring ghosting and shimmer on the sequences", 1);
+        Progress progress("measuring the sequences", 1);
         auto set = axis_set(axes);
         auto m = set ? ghosting_->measure(*set, shape_) : std::unexpected(set.error());
         if (m)
             for (std::size_t i = 0; i < m->size(); ++i)
-                figures[2 * i] = (*m)[i].mean(kGhosting), figures[2 * i + 1] = (*m)[i].mean(kShimmer);
+                for (std::size_t metric = 0; metric < metrics_.size(); ++metric)
+                    flat[i * metrics_.size() + metric] = (*m)[i].mean(metric);
         else
             measured = std::unexpected(m.error());
     }
     if (auto ok = ranks_.agree(measured); !ok) return std::unexpected(ok.error());
-    ranks_.broadcast(figures);
+    ranks_.broadcast(flat);
+    std::vector<std::vector<double>> figures;
+    for (auto sequence = flat.begin(); sequence != flat.end(); sequence += std::ptrdiff_t(metrics_.size()))
+        figures.emplace_back(sequence, sequence + std::ptrdiff_t(metrics_.size()));
     return figures;
 }
 

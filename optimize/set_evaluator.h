@@ -1,7 +1,7 @@
 // What an axis set a fit found would cost and leave, as the tables of kdop optimize's strategies
 // show it: the float ops of its hardened clip (with lavapipe_cost, lavapipe's instructions per
-// pixel too, by callgrind) and, with a ghosting target, its ghosting and shimmer on each sequence
-// as kdop taa --sequence measures them (on rank 0, the figures broadcast to every rank).
+// pixel too, by callgrind) and, with a ghosting target, its figures on each sequence as kdop taa
+// --sequence measures them (on rank 0, the figures broadcast to every rank).
 #pragma once
 
 #include "core/color_map.h"
@@ -41,8 +41,10 @@ public:
     // `axes` as the set the file will hold: what the generator costs and the resolve runs.
     Result<AxisSet> axis_set(std::span<const glm::dvec3> axes) const;
     Result<ClipCost> cost(std::span<const glm::dvec3> axes) const;
-    // Ghosting and shimmer of each sequence, in turn; the same on every rank.
-    Result<std::vector<double>> ghosting(std::span<const glm::dvec3> axes) const;
+    // What figures() measures: kdop taa's default metrics.
+    const Metrics& metrics() const { return metrics_; }
+    // Each sequence's figures in turn, by metric (NaN where not measured); the same on every rank.
+    Result<std::vector<std::vector<double>>> figures(std::span<const glm::dvec3> axes) const;
 
 private:
     std::string name_, out_;
@@ -51,6 +53,7 @@ private:
     bool lavapipe_cost_;
     std::size_t sequences_;
     SequenceGhosting* ghosting_;
+    Metrics metrics_ = default_metrics(); // SequenceGhosting's too
     const Ranks& ranks_;
     std::optional<ScratchDirectory> scratch_; // callgrind's files, with lavapipe_cost
     std::filesystem::path probe_;

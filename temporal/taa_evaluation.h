@@ -73,6 +73,8 @@ public:
                                         const EvaluationOptions& options);
 
     const std::vector<VariantSpec>& specs() const { return specs_; }
+    // What each frame is measured with: EvaluationRow::means and FrameFigures index it.
+    const Metrics& metrics() const { return options_.metrics; }
 
     // Other variants on the same device, its FLIP evaluators kept: kdop optimize measures one
     // fitted set after another.

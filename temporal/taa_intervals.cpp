@@ -57,7 +57,7 @@ void add_intervals(std::vector<TaaRow>& rows, const std::vector<TaaFrameRow>& fr
                 if (!std::isnan(ghosting) && (!best || ghosting < in_scene[*best]->mean(kGhosting))) best = v;
             }
             for (std::size_t v = 0; best && v < in_scene.size(); ++v)
-                in_scene[v]->ghosting_noise =
+                in_scene[v]->within_noise =
                     difference_interval((*replicates)[v], (*replicates)[*best], options.level).holds(0);
         }
     }

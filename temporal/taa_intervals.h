@@ -13,7 +13,7 @@
 
 namespace kdop {
 
-// Fills every row's interval of each of the first `metrics` metrics, and its ghosting_noise, from
+// Fills every row's interval of each of the first `metrics` metrics, and its within_noise, from
 // `frames`, its per-frame figures (taa_frames.csv's rows). A scene or sequence with fewer than two
 // blocks of measured frames of a metric gets none.
 void add_intervals(std::vector<TaaRow>& rows, const std::vector<TaaFrameRow>& frames, std::size_t metrics,

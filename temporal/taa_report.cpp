@@ -203,8 +203,9 @@ Table taa_table(const std::vector<TaaRow>& rows, const Metrics& metrics) {
             {{n + "_low", metric.unit, Shown::fixed, d, n + " 95% interval from"}, bound(m, &Interval::low)});
         columns.push_back({{n + "_high", metric.unit, Shown::fixed, d, "to"}, bound(m, &Interval::high)});
     }
-    columns.push_back({{"ghosting_noise", "", Shown::flag, 0, "ghosting within noise of the least"},
-                       [](const TaaRow& r) { return r.ghosting_noise ? Value(*r.ghosting_noise) : Value(); }});
+    const std::string& ranked = metrics[ranking_first(metrics).front()].name;
+    columns.push_back({{ranked + "_noise", "", Shown::flag, 0, ranked + " within noise of the least"},
+                       [](const TaaRow& r) { return r.within_noise ? Value(*r.within_noise) : Value(); }});
     for (std::size_t m : ranking_first(metrics))
         if (metrics[m].measured)
             columns.push_back({{"worst_" + metrics[m].name + "_frame", "", Shown::text, 0,
@@ -215,9 +216,8 @@ Table taa_table(const std::vector<TaaRow>& rows, const Metrics& metrics) {
                                               ? Value(r.figures[m].worst_frame)
                                               : Value();
                                }});
-    columns.push_back({{"ghosting_against", "", Shown::text, 0, "ghosting against"}, [](const TaaRow& r) {
-                           return std::isnan(r.mean(kGhosting)) ? Value() : Value(r.ghosting_against);
-                       }});
+    columns.push_back({{ranked + "_against", "", Shown::text, 0, ranked + " against"},
+                       [](const TaaRow& r) { return std::isnan(r.mean(kGhosting)) ? Value() : Value(r.truth); }});
     columns.push_back({{"flip", "", Shown::text, 0, "measured in"}, [](const TaaRow& r) {
                            return Value(std::string(r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP"));
                        }});

@@ -39,14 +39,15 @@ struct TaaRow {
     // not meant for one (sequence.json's "measure") or the run does not measure it.
     std::vector<MetricFigures> figures;
     double mean(std::size_t metric) const { return metric < figures.size() ? figures[metric].mean : NAN; }
-    // What the ghosting was measured against: "aliased" (each frame's own color, the paper's
-    // ground truth with jitter off) or "reference" (the sequence's reference frames).
-    std::string ghosting_against = "aliased";
-    // What shimmer and ghosting were measured in: LDR-FLIP, or HDR-FLIP for an HDR sequence.
+    // The truth the metrics that compare with one were measured against: "aliased" (each frame's
+    // own color, the paper's ground truth with jitter off) or "reference" (the sequence's
+    // reference frames).
+    std::string truth = "aliased";
+    // What the FLIP metrics were measured in: LDR-FLIP, or HDR-FLIP for an HDR sequence.
     ColorRange range = ColorRange::ldr;
-    // Whether the ghosting is within noise of the least in the scene (taa_intervals.h); unknown
-    // where the frames are too few.
-    std::optional<bool> ghosting_noise;
+    // Whether the ranking metric's mean (ghosting's, ranking_first) is within noise of the least in
+    // the scene (taa_intervals.h); unknown where the frames are too few.
+    std::optional<bool> within_noise;
 };
 
 // Whether `row`'s time differs from the fastest row's by no more than the larger interquartile

@@ -37,7 +37,7 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
             f.worst_frame =
                 fmt::format("{} frame {}", m.per_frame[*summary.worst].sequence, m.per_frame[*summary.worst].index);
     }
-    row.ghosting_against = m.against_reference ? "reference" : "aliased";
+    row.truth = m.against_reference ? "reference" : "aliased";
     row.range = m.range;
     return row;
 }

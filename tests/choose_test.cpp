@@ -41,8 +41,9 @@ Candidate candidate(const std::string& set, bool fitted, std::size_t ops, double
     c.key = {set, Mode::clip, Neighborhood::n9};
     c.fitted = fitted;
     c.float_ops = ops;
-    c.validation_ghosting = held_out;
-    c.fit_ghosting = fit;
+    c.figures.resize(kBuiltinMetrics);
+    c.figures[kGhosting].held_out = held_out;
+    c.figures[kGhosting].fit = fit;
     return c;
 }
 
@@ -190,11 +191,11 @@ TEST(Choose, TheRecommendationSaysWhenTheRunnerUpIsWithinNoise) {
     // Replicates around each figure: b's difference from a crosses 0 (+-0.001 around +0.0006); c's does not.
     for (std::size_t r = 0; r < 200; ++r) {
         const double wobble = 0.001 * (double(r % 21) - 10) / 10;
-        candidates[0].ghosting_replicates.push_back(0.0094 + wobble);
-        candidates[1].ghosting_replicates.push_back(0.0100 + wobble + (r % 2 ? 0.001 : -0.001));
-        candidates[2].ghosting_replicates.push_back(0.0200 + wobble);
+        candidates[0].replicates.push_back(0.0094 + wobble);
+        candidates[1].replicates.push_back(0.0100 + wobble + (r % 2 ? 0.001 : -0.001));
+        candidates[2].replicates.push_back(0.0200 + wobble);
     }
-    for (Candidate& c : candidates) c.validation_ghosting_interval = percentile_interval(c.ghosting_replicates, 0.95);
+    for (Candidate& c : candidates) c.interval = percentile_interval(c.replicates, 0.95);
     const Recommendation all = recommend(candidates, {}, std::nullopt);
     ASSERT_EQ(all.chosen, 0u);
     EXPECT_EQ(all.runner_up, 1u);
@@ -220,10 +221,10 @@ TEST(Choose, TheRecommendationSaysWhenTheRunnerUpIsWithinNoise) {
     EXPECT_EQ(md.find("\\*"), std::string::npos) << md;
 
     mark_noise(candidates, all);
-    EXPECT_EQ(candidates[0].ghosting_noise, true);
-    EXPECT_EQ(candidates[1].ghosting_noise, true);
-    EXPECT_EQ(candidates[2].ghosting_noise, false);
-    const auto rows = test::csv_rows(candidates_table(candidates).csv());
+    EXPECT_EQ(candidates[0].within_noise, true);
+    EXPECT_EQ(candidates[1].within_noise, true);
+    EXPECT_EQ(candidates[2].within_noise, false);
+    const auto rows = test::csv_rows(candidates_table(candidates, default_metrics()).csv());
     EXPECT_EQ(rows[1].at("ghosting_noise"), "1");
     EXPECT_EQ(rows[2].at("ghosting_noise"), "0");
     EXPECT_FALSE(rows[2].at("validation_ghosting_low").empty());
@@ -233,7 +234,7 @@ TEST(Choose, TheRecommendationSaysWhenTheRunnerUpIsWithinNoise) {
     const Recommendation none = recommend(bare, {}, std::nullopt);
     EXPECT_NE(none.noise.find("too few for an interval"), std::string::npos) << none.noise;
     mark_noise(bare, none);
-    EXPECT_FALSE(bare[1].ghosting_noise);
+    EXPECT_FALSE(bare[1].within_noise);
 }
 
 // choice.png draws the budget: a line at --budget-ops or at --target-ghosting, across the
@@ -242,8 +243,7 @@ TEST(Choose, TheRecommendationSaysWhenTheRunnerUpIsWithinNoise) {
 TEST(Choose, TheChartDrawsTheBudget) {
     ChooseResult result;
     result.candidates = {candidate("aabb", false, 93, 0.03), candidate("dop22", false, 381, 0.02)};
-    for (Candidate& c : result.candidates)
-        c.validation_ghosting_interval = {c.validation_ghosting - 0.001, c.validation_ghosting + 0.001};
+    for (Candidate& c : result.candidates) c.interval = {c.ranked() - 0.001, c.ranked() + 0.001};
     result.recommendation = recommend(result.candidates, {.ops = 400}, std::nullopt);
     auto file = [](const ChoicePlot& plot, const std::string& name) {
         const auto at = std::ranges::find(plot.data, name, [](const auto& file) { return file.first; });

@@ -2,8 +2,11 @@
 // absent figures written as such, and a metric added as one registry row reaching every table
 // kdop taa writes.
 #include "harness/output_set.h"
+#include "harness/printed_table.h"
 #include "harness/variant_catalog.h"
 #include "images/image_io.h"
+#include "optimize/choice_report.h"
+#include "optimize/optimize_tables.h"
 #include "sequence/sequence.h"
 #include "temporal/metrics.h"
 #include "temporal/taa_report.h"
@@ -88,6 +91,41 @@ TEST(Metrics, AnUnknownNameOrNoGhostingIsAUsageError) {
     ASSERT_TRUE(chosen);
     EXPECT_TRUE((*chosen)[kPsnr].measured && (*chosen)[kGhosting].measured);
     EXPECT_FALSE((*chosen)[kShimmer].measured || (*chosen)[kTpsnr].measured);
+}
+
+// kdop choose's candidates and kdop optimize's table of axis counts take their figures' columns
+// from the registry too: a test-only row measured is a column of each, a row not measured none.
+TEST(Metrics, ChoosesAndOptimizesTablesTakeTheirColumnsFromTheRegistry) {
+    Metrics metrics = default_metrics();
+    Metric extra = metrics[kPsnr];
+    extra.name = "sharpness";
+    extra.measured = true;
+    metrics.push_back(extra);
+    const std::size_t extra_id = metrics.size() - 1;
+
+    Candidate c;
+    c.key = {"aabb", Mode::clip, Neighborhood::n9};
+    c.figures.resize(metrics.size());
+    c.figures[kGhosting] = {.fit = 0.02, .held_out = 0.03};
+    c.figures[extra_id].held_out = 0.25;
+    const Table candidates = candidates_table({c}, metrics);
+    const auto rows = test::csv_rows(candidates.csv());
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_DOUBLE_EQ(std::stod(rows[0].at("validation_sharpness")), 0.25);
+    EXPECT_DOUBLE_EQ(std::stod(rows[0].at("validation_ghosting")), 0.03);
+    EXPECT_DOUBLE_EQ(std::stod(rows[0].at("fit_ghosting")), 0.02);
+    EXPECT_FALSE(rows[0].contains("validation_psnr")) << "psnr is not measured";
+    EXPECT_NE(candidates.markdown().find("held-out sharpness"), std::string::npos);
+
+    AxisCountRow row{.axes = 4, .volume = 1, .figures = {std::vector<double>(metrics.size(), NAN)}};
+    row.figures[0][kGhosting] = 0.125, row.figures[0][extra_id] = 0.5;
+    const auto columns = axis_count_columns(metrics, 1, false);
+    const std::string header = printed_header(columns), printed = printed_row(columns, row);
+    EXPECT_NE(header.find("sharpness"), std::string::npos) << header;
+    EXPECT_EQ(header.find("psnr"), std::string::npos) << header;
+    EXPECT_NE(printed.find("0.500000"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("0.125000"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("–"), std::string::npos) << "no shimmer measured: " << printed;
 }
 
 // kdop taa --metrics: PSNR and tPSNR of every measured frame are what this test computes from the

@@ -192,11 +192,11 @@ TEST(TaaReport, IntervalsAreTheBlockBootstrapOfEachRowsFrames) {
         EXPECT_EQ(shimmer_interval.high, percentile_interval(s[v], 0.95).high);
         EXPECT_LT(ghosting_interval.low, ghosting_interval.high);
     }
-    EXPECT_EQ(rows[0].ghosting_noise, false) << "0.003 more than the least on every frame";
-    EXPECT_EQ(rows[1].ghosting_noise, true) << "the least itself";
-    EXPECT_EQ(rows[2].ghosting_noise, true) << "+-0.0004 around the least, frame by frame";
+    EXPECT_EQ(rows[0].within_noise, false) << "0.003 more than the least on every frame";
+    EXPECT_EQ(rows[1].within_noise, true) << "the least itself";
+    EXPECT_EQ(rows[2].within_noise, true) << "+-0.0004 around the least, frame by frame";
     EXPECT_FALSE(rows[3].figures[kGhosting].interval.known()) << "one frame";
-    EXPECT_FALSE(rows[3].ghosting_noise);
+    EXPECT_FALSE(rows[3].within_noise);
     const auto csv = test::csv_rows(taa_table(rows, default_metrics()).csv());
     EXPECT_EQ(csv[0].at("ghosting_noise"), "0");
     EXPECT_EQ(csv[2].at("ghosting_noise"), "1");
