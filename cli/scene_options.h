@@ -1,5 +1,6 @@
 // The options that pick kdop's own scenes, shared by `kdop scene` (which writes them) and
-// `kdop taa` (which measures them): --scenes, --background, --camera, --reference-samples.
+// `kdop taa` (which measures them): --scenes, --background, --camera, --reference-samples, and
+// for kdop taa --upscale.
 #pragma once
 
 #include "core/input_files.h"
@@ -21,8 +22,10 @@ struct SceneChoice {
     std::vector<std::string> scenes, backgrounds;
     std::string camera = "still";
     std::uint32_t reference_samples = 0;
+    double upscale = 1;
 
-    void add_to(CLI::App& app) {
+    // With `upscaling`, --upscale too.
+    void add_to(CLI::App& app, bool upscaling = false) {
         app.add_option("--scenes", scenes,
                        fmt::format("Built-in scenes: {} (grass3d and asphalt3d are 3-D, rasterized on the device; "
                                    "the others 2-D) [default: grass3d asphalt3d, unless --background is given]",
@@ -38,6 +41,13 @@ struct SceneChoice {
                        "3-D scenes: add a reference to every frame, the mean of N samples per pixel (ghosting is "
                        "then measured against it) [default: 0, none]")
             ->check(whole_number(0, 1024));
+        if (upscaling)
+            app.add_option("--upscale", upscale,
+                           "3-D scenes: draw the frames at --size over R (R from 1 to 4: 1.5, 1.7, 2 and 3 are FSR 2's "
+                           "ratios), jittered over ceil(8 R^2) Halton phases, and measure the resolve upscaling "
+                           "them to --size against references of --reference-samples samples at --size (docs/taa.md, "
+                           "\"Upscaling\") [default: 1, no upscaling; with R > 1, 16 reference samples]")
+                ->check(finite_number(1, 4));
     }
 
     // A usage error's message, if any: a scene or background given twice, 3-D options without a
@@ -47,8 +57,10 @@ struct SceneChoice {
             if (std::find(scenes.begin(), scenes.begin() + i, scenes[i]) != scenes.begin() + i)
                 return fmt::format("--scenes: '{}' is given twice", scenes[i]);
         if (auto ok = check_distinct_files(backgrounds, "--background"); !ok) return ok.error().message;
-        if (!selects_testbed_scene(scenes, backgrounds) && (camera != "still" || reference_samples > 0))
-            return std::string(camera != "still" ? "--camera" : "--reference-samples") +
+        if (!selects_testbed_scene(scenes, backgrounds) && (camera != "still" || reference_samples > 0 || upscale > 1))
+            return std::string(camera != "still"       ? "--camera"
+                               : reference_samples > 0 ? "--reference-samples"
+                                                       : "--upscale") +
                    ": only the 3-D scenes (grass3d, asphalt3d) take it, and none is selected";
         return std::nullopt;
     }
@@ -58,7 +70,9 @@ struct SceneChoice {
     // The scenes' options at this size; `context` draws the 3-D ones.
     SceneOptions options(std::uint32_t width, std::uint32_t height, std::uint64_t seed, InputSpace space,
                          const Context* context = nullptr) const {
-        return {width, height, seed, space, context, camera == "pan", reference_samples};
+        // An upscaled output is measured against a reference at its size: 16 samples (NSS's) unless given.
+        const std::uint32_t samples = upscale > 1 && reference_samples == 0 ? 16 : reference_samples;
+        return {width, height, seed, space, context, camera == "pan", samples, upscale};
     }
 
     Result<std::vector<std::shared_ptr<const TaaScene>>> select(std::uint32_t width, std::uint32_t height,

@@ -25,7 +25,7 @@ namespace kdop::cli {
 namespace {
 
 struct TaaOptions {
-    std::string out, size = "320x180", device;
+    std::string out, size = "320x180", device, upscale_filter = "lanczos2";
     std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
     SceneChoice choice;
     SelectionOptions selection;
@@ -55,7 +55,12 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
                "and sequence");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true, kCommandDefaults);
-    o->choice.add_to(*taa);
+    o->choice.add_to(*taa, true);
+    taa->add_option("--upscale-filter", o->upscale_filter,
+                    "With --upscale: how the resolve reconstructs each output pixel's current color from the input "
+                    "samples around it: lanczos2 (clamped to the neighborhood's range, as FSR 2) or gaussian "
+                    "[default: lanczos2]")
+        ->check(CLI::IsMember({"lanczos2", "gaussian"}));
     taa->add_option("--sequence", o->sequences,
                     "Frame sequences to measure (folders with sequence.json; docs/taa.md, \"Frame sequences\"); with "
                     "--sequence, kdop's own scenes run only if --scenes or --background is given too");
@@ -116,6 +121,7 @@ Action add_taa_command(CLI::App& app) {
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
         if (auto ok = check_pixels_per_degree(ppd); !ok) return usage_error("--ppd: " + ok.error().message);
+        o->resolve.upscale_filter = *parse_upscale_filter(o->upscale_filter); // checked by CLI11
         auto metrics = metrics_named(o->metrics);
         if (!metrics) return usage_error("--metrics: " + metrics.error().message);
         auto size = size_option("--size", o->size);

@@ -72,12 +72,13 @@ Result<void> RectifyPass::allocate(const VkMemoryRequirements& req, VkMemoryProp
     return {};
 }
 
-Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage) {
+Result<void> RectifyPass::create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage, uint32_t width,
+                                         uint32_t height) {
     VkDevice device = context_.device();
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
-    info.extent = {width_, height_, 1};
+    info.extent = {width, height, 1};
     info.mipLevels = info.arrayLayers = 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -116,9 +117,19 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     // Checked here rather than left to vkCreateImage, which is undefined (and a validation error)
     // beyond the limit.
     const uint32_t limit = context.properties().limits.maxImageDimension2D;
-    if (width > limit || height > limit)
-        return fail(fmt::format("a {}x{} image is larger than {} allows: at most {} pixels on a side", width, height,
+    for (PassInput& in : inputs) {
+        if (in.width == 0 && in.height == 0) in.width = width, in.height = height;
+        if (in.width == 0 || in.height == 0)
+            return fail(fmt::format("input '{}': cannot rectify an empty {}x{} image", in.name, in.width, in.height));
+    }
+    auto too_large = [&](uint32_t w, uint32_t h) -> Result<void> {
+        if (w <= limit && h <= limit) return {};
+        return fail(fmt::format("a {}x{} image is larger than {} allows: at most {} pixels on a side", w, h,
                                 context.device_name(), limit));
+    };
+    if (auto ok = too_large(width, height); !ok) return std::unexpected(ok.error());
+    for (const PassInput& in : inputs)
+        if (auto ok = too_large(in.width, in.height); !ok) return std::unexpected(ok.error());
     std::unique_ptr<RectifyPass> p(new RectifyPass(context));
     p->width_ = width;
     p->height_ = height;
@@ -135,14 +146,16 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
         if (in.channels != 4 && format == TextureFormat::rgba16f)
             return fail(
                 fmt::format("input '{}' of {} channels: an rgba16f pass's inputs have 4", in.name, in.channels));
-        p->inputs_.push_back({std::move(in.name), in.channels, std::vector<Texture>(1)});
-        if (auto ok = p->create_texture(p->inputs_.back().slots[0], vk_format(format, in.channels), input_usage); !ok)
+        p->inputs_.push_back({std::move(in.name), in.channels, in.width, in.height, std::vector<Texture>(1)});
+        if (auto ok = p->create_texture(p->inputs_.back().slots[0], vk_format(format, in.channels), input_usage,
+                                        in.width, in.height);
+            !ok)
             return std::unexpected(ok.error());
-        upload_bytes += pixels * texel_bytes(format, in.channels);
+        upload_bytes += VkDeviceSize(in.width) * in.height * texel_bytes(format, in.channels);
     }
     const auto input_count = static_cast<uint32_t>(p->inputs_.size());
-    if (auto ok =
-            p->create_texture(p->output_, kOutputFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    if (auto ok = p->create_texture(p->output_, kOutputFormat,
+                                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, width, height);
         !ok)
         return std::unexpected(ok.error());
     auto upload = DeviceBuffer::create(context, upload_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -192,9 +205,11 @@ Result<void> RectifyPass::upload(const Image& current, const Image& history) {
 Result<void> RectifyPass::upload(std::span<const Image* const> images) {
     if (images.size() != inputs_.size())
         return fail(fmt::format("{} images for a pass of {} inputs", images.size(), inputs_.size()));
-    for (const Image* image : images)
-        if (image && (image->width != width_ || image->height != height_))
-            return fail(fmt::format("image is {}x{}, the pass is {}x{}", image->width, image->height, width_, height_));
+    for (std::size_t i = 0; i < images.size(); ++i)
+        if (const Image* image = images[i];
+            image && (image->width != inputs_[i].width || image->height != inputs_[i].height))
+            return fail(fmt::format("image is {}x{}, the pass's input '{}' is {}x{}", image->width, image->height,
+                                    inputs_[i].name, inputs_[i].width, inputs_[i].height));
     const std::vector<VkDeviceSize> offsets = upload_offsets();
     auto* bytes = static_cast<std::byte*>(upload_.mapped());
     std::vector<bool> which(images.size());
@@ -209,10 +224,10 @@ Result<void> RectifyPass::upload(std::span<const Image* const> images) {
 Result<void> RectifyPass::upload(std::string_view name, std::span<const float> texels) {
     auto in = input(name);
     if (!in) return std::unexpected(in.error());
-    const std::size_t floats = std::size_t(width_) * height_ * (*in)->channels;
+    const std::size_t floats = std::size_t((*in)->width) * (*in)->height * (*in)->channels;
     if (format_ != TextureFormat::rgba32f || texels.size() != floats)
         return fail(fmt::format("'{}': {} floats for a {} input of {}x{} pixels of {} channels", name, texels.size(),
-                                to_string(format_), width_, height_, (*in)->channels));
+                                to_string(format_), (*in)->width, (*in)->height, (*in)->channels));
     const std::size_t i = std::size_t(*in - inputs_.data());
     std::memcpy(static_cast<std::byte*>(upload_.mapped()) + upload_offsets()[i], texels.data(), floats * 4);
     std::vector<bool> which(inputs_.size());
@@ -221,10 +236,12 @@ Result<void> RectifyPass::upload(std::string_view name, std::span<const float> t
 }
 
 std::vector<VkDeviceSize> RectifyPass::upload_offsets() const {
-    const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
     std::vector<VkDeviceSize> offsets(inputs_.size());
-    for (std::size_t i = 1; i < inputs_.size(); ++i)
-        offsets[i] = offsets[i - 1] + pixels * texel_bytes(format_, inputs_[i - 1].channels);
+    for (std::size_t i = 1; i < inputs_.size(); ++i) {
+        const Input& before = inputs_[i - 1];
+        offsets[i] =
+            offsets[i - 1] + VkDeviceSize(before.width) * before.height * texel_bytes(format_, before.channels);
+    }
     return offsets;
 }
 
@@ -237,7 +254,7 @@ Result<void> RectifyPass::copy_uploads(const std::vector<bool>& which) {
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT);
-            VkBufferImageCopy copy = whole_image(width_, height_, offsets[i]);
+            VkBufferImageCopy copy = whole_image(inputs_[i].width, inputs_[i].height, offsets[i]);
             vkCmdCopyBufferToImage(cb, upload_.buffer(), t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
             image_barrier(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -381,7 +398,10 @@ Result<void> RectifyPass::add_slots(std::string_view name, std::size_t count) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     (*in)->slots.resize(count);
     for (std::size_t i = 1; i < count; ++i)
-        if (auto ok = create_texture((*in)->slots[i], vk_format(format_, (*in)->channels), usage); !ok) return ok;
+        if (auto ok = create_texture((*in)->slots[i], vk_format(format_, (*in)->channels), usage, (*in)->width,
+                                     (*in)->height);
+            !ok)
+            return ok;
     // Zero, not whatever the memory held: a first frame's blend weighs its history by 0, and 0 x NaN is NaN.
     auto cleared = commands_->run([&](VkCommandBuffer cb) {
         const VkClearColorValue zero{};
@@ -417,6 +437,9 @@ Result<void> RectifyPass::copy_output_to(std::string_view name) {
     if (format_ != TextureFormat::rgba32f || (*in)->channels != 4)
         return fail(fmt::format("'{}' is {} with {} channels, and the output copies only into rgba32f", name,
                                 to_string(format_), (*in)->channels));
+    if ((*in)->width != width_ || (*in)->height != height_)
+        return fail(
+            fmt::format("'{}' is {}x{}, and the output {}x{}", name, (*in)->width, (*in)->height, width_, height_));
     const Texture& into = (*in)->texture();
     // A texture never uploaded holds nothing to keep.
     const VkImageLayout was = (*in)->uploaded ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;

@@ -29,12 +29,14 @@ enum class TextureFormat {
 std::optional<TextureFormat> parse_texture_format(std::string_view s);
 const char* to_string(TextureFormat format);
 
-// An input texture: its name in the kernels and its channels (1, 2 or 4; fewer than four in rgba32f
-// passes only) of the pass's format. A motion field needs two and a depth one, so a frame drawn on
-// the device copies into them as it is.
+// An input texture: its name in the kernels, its channels (1, 2 or 4; fewer than four in rgba32f
+// passes only) of the pass's format, and its size, the pass's (the output's) unless given. A
+// motion field needs two channels and a depth one, so a frame drawn on the device copies into them
+// as it is; an upscaling resolve's frame is smaller than its output and history.
 struct PassInput {
     std::string name;
     std::uint32_t channels = 4;
+    std::uint32_t width = 0, height = 0; // 0: the pass's
 };
 
 struct DispatchTiming {
@@ -59,7 +61,7 @@ public:
 
     // Both images must have the pass's size.
     Result<void> upload(const Image& current, const Image& history);
-    // One image per input, in the order create() named them, each of the pass's size; a null one
+    // One image per input, in the order create() named them, each of its input's size; a null one
     // is not uploaded, and a kernel that reads an input never uploaded is refused. An input of fewer
     // than four channels takes each pixel's first ones.
     Result<void> upload(std::span<const Image* const> images);
@@ -107,7 +109,7 @@ private:
     };
     explicit RectifyPass(const Context& context) : context_(context) {}
     Result<void> allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory);
-    Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage);
+    Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage, uint32_t width, uint32_t height);
     void output_to_transfer_source(VkCommandBuffer cb);
     void destroy(Texture& t);
 
@@ -117,6 +119,7 @@ private:
     struct Input {
         std::string name;
         std::uint32_t channels = 4;
+        uint32_t width = 0, height = 0;
         std::vector<Texture> slots; // one, or add_slots()'s
         std::size_t selected = 0;
         bool uploaded = false;

@@ -27,11 +27,16 @@ const TestbedEntry* testbed_entry(const std::string& name) {
 
 bool is_testbed_scene(const std::string& name) { return testbed_entry(name) != nullptr; }
 
+std::vector<std::string> testbed_names() {
+    std::vector<std::string> names;
+    for (const TestbedEntry& e : kTestbedScenes) names.push_back(e.name);
+    return names;
+}
+
 } // namespace
 
 std::vector<std::string> builtin_scene_names() {
-    std::vector<std::string> names;
-    for (const TestbedEntry& e : kTestbedScenes) names.push_back(e.name);
+    std::vector<std::string> names = testbed_names();
     for (const std::string& name : sprite_scene_names()) names.push_back(name);
     return names;
 }
@@ -54,11 +59,14 @@ Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std
             if (!o.context)
                 return fail(fmt::format("--scenes: {} is drawn on a Vulkan device, and none is open", name));
             auto created = TestbedScene::create(*o.context, testbed->make(o.seed), o.width, o.height, o.camera_pan,
-                                                o.reference_samples);
+                                                o.reference_samples, o.upscale);
             if (!created) return fail(fmt::format("--scenes: {}: {}", name, created.error().message));
             out.push_back(std::move(*created));
             continue;
         }
+        if (o.upscale > 1)
+            return fail(fmt::format("--scenes: {} is a 2-D scene, drawn at one size; --upscale takes the 3-D ones ({})",
+                                    name, fmt::join(testbed_names(), ", ")));
         if (sprites.empty()) sprites = default_sprite_scenes(o.width, o.height, o.seed);
         auto it = std::find_if(sprites.begin(), sprites.end(), [&](const SpriteScene& s) { return s.name() == name; });
         if (it == sprites.end())
@@ -66,6 +74,8 @@ Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std
                                     fmt::join(builtin_scene_names(), ", ")));
         out.push_back(std::make_shared<SpriteScene>(*it));
     }
+    if (o.upscale > 1 && !backgrounds.empty())
+        return fail("--background: a 2-D scene is drawn at one size; --upscale takes the 3-D scenes");
     for (const std::string& path : backgrounds) {
         auto scene = read_sprite_scene(path, o.width, o.height, o.input_space);
         if (!scene) return std::unexpected(scene.error());

@@ -21,6 +21,7 @@ struct SceneOptions {
     const Context* context = nullptr;               // where the 3-D scenes are drawn; must outlive them
     bool camera_pan = false;                        // 3-D scenes: the camera slides sideways (--camera pan)
     std::uint32_t reference_samples = 0;            // 3-D scenes: > 0 adds a supersampled reference per frame
+    double upscale = 1; // 3-D scenes: > 1 draws the frames smaller by this ratio, to be upscaled to width x height
 };
 
 // The built-in scenes: the 3-D testbed's two, then the 2-D ones.

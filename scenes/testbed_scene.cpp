@@ -1,5 +1,7 @@
 #include "scenes/testbed_scene.h"
 
+#include "sequence/jitter.h"
+
 #include "testbed/camera.h"
 #include "testbed/scene3d_frames.h"
 
@@ -15,24 +17,42 @@ namespace kdop {
 
 Result<std::shared_ptr<TestbedScene>> TestbedScene::create(const Context& context, Scene3d scene, std::uint32_t width,
                                                            std::uint32_t height, bool camera_pan,
-                                                           std::uint32_t reference_samples) {
-    auto renderer = TestbedRenderer::create(context, std::make_shared<const Scene3d>(std::move(scene)), width, height);
+                                                           std::uint32_t reference_samples, double upscale) {
+    if (upscale < 1) return fail(fmt::format("an upscaling ratio of {} (at least 1)", upscale));
+    if (upscale > 1 && reference_samples == 0)
+        return fail("frames drawn to be upscaled are measured against references at the output size: give them "
+                    "reference samples");
+    auto shared = std::make_shared<const Scene3d>(std::move(scene));
+    auto input_side = [&](std::uint32_t side) {
+        return std::max<std::uint32_t>(1, std::uint32_t(std::lround(double(side) / upscale)));
+    };
+    auto renderer = TestbedRenderer::create(context, shared, input_side(width), input_side(height));
     if (!renderer) return std::unexpected(renderer.error());
+    std::shared_ptr<TestbedRenderer> frames(std::move(*renderer)), references = frames;
+    if (upscale > 1) {
+        auto output = TestbedRenderer::create(context, shared, width, height);
+        if (!output) return std::unexpected(output.error());
+        references = std::move(*output);
+    }
     return std::shared_ptr<TestbedScene>(
-        new TestbedScene(std::shared_ptr<TestbedRenderer>(std::move(*renderer)), camera_pan, reference_samples));
+        new TestbedScene(std::move(frames), std::move(references), camera_pan, reference_samples, upscale));
 }
 
 std::string TestbedScene::content() const {
     std::string s = "3-D, rasterized on the device: " + renderer_->scene().content;
     if (camera_pan_) s += "; the camera pans";
     if (reference_samples_ > 0) s += fmt::format("; references of {} samples per pixel", reference_samples_);
+    if (upscale_ > 1)
+        s += fmt::format("; drawn at {}x{}, jittered over {} Halton phases, to be upscaled {:g}x", renderer_->width(),
+                         renderer_->height(), upscale_jitter_phases(upscale_), upscale_);
     return s;
 }
 
 std::shared_ptr<const FrameSource> TestbedScene::frames(const std::string& name, std::size_t count, bool animate,
                                                         bool jitter) const {
-    return std::make_shared<Scene3dFrames>(name, renderer_,
-                                           Scene3dTimeline{count, animate, jitter, camera_pan_, reference_samples_});
+    return std::make_shared<Scene3dFrames>(
+        name, renderer_, reference_renderer_,
+        Scene3dTimeline{count, animate, jitter, camera_pan_, reference_samples_, upscale_});
 }
 
 TestbedScene::OnScreen TestbedScene::on_screen(double time) const {

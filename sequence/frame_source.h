@@ -22,8 +22,15 @@ class FrameSource {
 public:
     virtual ~FrameSource() = default;
     virtual const std::string& name() const = 0;
+    // The size the resolve outputs at, and the reference has (and, but for an upscaling source,
+    // the frames' color, motion and depth).
     virtual std::uint32_t width() const = 0;
     virtual std::uint32_t height() const = 0;
+    // The size of the frames' color, motion and depth: smaller than width() x height() for a source
+    // rendered for temporal upscaling (docs/taa.md, "Upscaling"), whose reference is at the output size.
+    virtual std::uint32_t input_width() const { return width(); }
+    virtual std::uint32_t input_height() const { return height(); }
+    bool upscales() const { return input_width() != width() || input_height() != height(); }
     virtual std::size_t frame_count() const = 0;
     // The range the frames' color and reference keep to, and so the FLIP they are measured in.
     virtual ColorRange color_range() const = 0;
@@ -57,6 +64,8 @@ public:
     const std::string& name() const override { return source_->name(); }
     std::uint32_t width() const override { return source_->width(); }
     std::uint32_t height() const override { return source_->height(); }
+    std::uint32_t input_width() const override { return source_->input_width(); }
+    std::uint32_t input_height() const override { return source_->input_height(); }
     std::size_t frame_count() const override { return source_->frame_count(); }
     ColorRange color_range() const override { return source_->color_range(); }
     bool starts_history(std::size_t index) const override { return source_->starts_history(index); }

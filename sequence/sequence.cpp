@@ -433,6 +433,7 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
     auto color = read_color(f.color, s, space, "color");
     if (!color) return std::unexpected(color.error());
     out.color = std::move(*color);
+    out.jitter = s.frames[index].jitter.value_or(glm::vec2(0.0f));
     if (!s.starts_history(index)) {
         auto motion = read_data(f.motion, s, 2, "motion");
         if (!motion) return std::unexpected(motion.error());

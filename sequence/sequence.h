@@ -102,6 +102,9 @@ struct LoadedFrame {
     std::vector<glm::vec2> motion;  // per pixel, row-major: pixels, to the previous frame, y down; empty at a start
     std::optional<Image> depth;     // depth in the red channel
     std::optional<Image> reference; // linear RGB
+    // Where the frame's samples lie: pixel i's at i + 0.5 + jitter (pixels, y down). What an
+    // upscaling resolve reconstructs the output from; a resolve at the frame's size ignores it.
+    glm::vec2 jitter{0.0f};
 };
 
 // Reads frame `index` of `sequence`. `space` decodes color and reference files (EXR is linear

@@ -12,6 +12,14 @@ Result<HistoryFilter> parse_history_filter(std::string_view text) {
     return fail(fmt::format("'{}' is not a history filter; use bilinear or catmull-rom", shown_text(text, 40)));
 }
 
+Result<UpscaleFilter> parse_upscale_filter(std::string_view text) {
+    if (text == "lanczos2") return UpscaleFilter::lanczos2;
+    if (text == "gaussian") return UpscaleFilter::gaussian;
+    return fail(fmt::format("'{}' is not an upscaling filter; use lanczos2 or gaussian", shown_text(text, 40)));
+}
+
+const char* to_string(UpscaleFilter filter) { return filter == UpscaleFilter::gaussian ? "gaussian" : "lanczos2"; }
+
 ResolveSettings resolve_settings(const ResolveOptions& o) {
     const ColorMapKind map = o.color_map.kind == ColorMap::Kind::power ? ColorMapKind::power
                              : o.color_map.kind == ColorMap::Kind::log ? ColorMapKind::log

@@ -15,6 +15,13 @@
 
 namespace kdop {
 
+// How an upscaling resolve reconstructs the current color from the input samples around an
+// output pixel (docs/taa.md, "Upscaling").
+enum class UpscaleFilter {
+    lanczos2, // Lanczos-2 of the distance, clamped to the neighborhood's range (FSR 2's)
+    gaussian, // a Gaussian of standard deviation 0.5 input pixels
+};
+
 struct ResolveOptions {
     HistoryFilter history_filter = HistoryFilter::bilinear;
     ColorMap color_map;               // the space the clip and the blend happen in (color_map.h)
@@ -25,7 +32,13 @@ struct ResolveOptions {
     // jitter cycle.
     float current_weight = 0.1f;
     float gamma = 1; // variance-clip width; Salvi's recommended 1, as in the paper's +Var rows
+    UpscaleFilter upscale_filter = UpscaleFilter::lanczos2; // for sources whose output is larger than their input
+    bool upscale = false; // the source's: input smaller than the output (set by the evaluation per source)
 };
+
+// "lanczos2" or "gaussian".
+Result<UpscaleFilter> parse_upscale_filter(std::string_view text);
+const char* to_string(UpscaleFilter filter);
 
 // "bilinear" or "catmull-rom" (to_string in kdop/variant.h spells it).
 Result<HistoryFilter> parse_history_filter(std::string_view text);

@@ -31,13 +31,14 @@ Result<void> TaaEvaluation::set_variants(std::vector<VariantSpec> specs) {
     return {};
 }
 
-Result<const Variant*> TaaEvaluation::shader(std::size_t v, bool nearer_larger) {
+Result<const Variant*> TaaEvaluation::shader(std::size_t v, bool nearer_larger, bool upscale) {
     const bool reads_depth = options_.resolve.dilate_motion && nearer_larger;
-    auto& built = shaders_[reads_depth ? 1 : 0];
+    auto& built = shaders_[2 * int(upscale) + int(reads_depth)];
     if (built.empty()) {
         // All or none: a failed build leaves nothing half-built for the next call to index into.
         ResolveOptions options = options_.resolve;
         options.depth_nearer_larger = reads_depth;
+        options.upscale = upscale;
         std::vector<std::unique_ptr<RunnableVariant>> shaders;
         for (const VariantSpec& spec : specs_) {
             auto shader = build_taa_shader(spec, options);
@@ -68,21 +69,25 @@ Result<FlipEvaluator*> TaaEvaluation::flip_evaluator(std::uint32_t width, std::u
     return evaluator.get();
 }
 
-Result<TaaResolve*> TaaEvaluation::resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger) {
+Result<TaaResolve*> TaaEvaluation::resolve(const FrameSource& source, bool nearer_larger) {
     // The last one is kept: a scene's two sequences go through one resolve, each starting its
     // histories afresh. Only one is held, so that sources of other sizes do not add up.
-    const ResolveKey key{width, height, nearer_larger};
+    const bool upscale = source.upscales();
+    const ResolveKey key{source.input_width(), source.input_height(), source.width(), source.height(), nearer_larger};
     if (resolve_ && resolve_key_ == key) return resolve_.get();
     resolve_.reset();
     std::vector<const Variant*> shaders;
     std::vector<std::string> names;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
-        auto shader = this->shader(v, nearer_larger);
+        auto shader = this->shader(v, nearer_larger, upscale);
         if (!shader) return std::unexpected(shader.error());
         shaders.push_back(*shader);
         names.push_back(variant_name(specs_[v]));
     }
-    auto made = TaaResolve::create(*context_, shaders, width, height, options_.resolve, std::move(names));
+    ResolveOptions options = options_.resolve;
+    options.upscale = upscale;
+    auto made = TaaResolve::create(*context_, shaders, source.input_width(), source.input_height(), source.width(),
+                                   source.height(), options, std::move(names));
     if (!made) return std::unexpected(made.error());
     resolve_ = std::move(*made);
     resolve_key_ = key;
@@ -97,7 +102,13 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const FrameSource& sou
                                                           const EvaluationObserver& observer) {
     auto flip = flip_evaluator(source.width(), source.height());
     if (!flip) return fail(fmt::format("{}: {}", source.name(), flip.error().message));
-    auto resolve = this->resolve(source.width(), source.height(), nearer_larger);
+    // An upscaled output is compared with the truth at its size, which the input is not.
+    if (source.upscales() && !source.has_reference())
+        return fail(fmt::format("{}: its frames are {}x{} and its outputs {}x{}, and it has no reference frames at the "
+                                "output size to measure them against",
+                                source.name(), source.input_width(), source.input_height(), source.width(),
+                                source.height()));
+    auto resolve = this->resolve(source, nearer_larger);
     if (!resolve) return std::unexpected(resolve.error());
     ShaderOutputObserver output;
     if (observer.output)

@@ -100,17 +100,20 @@ private:
     // source's depth convention (only --dilate-motion reads depth).
     Result<std::vector<EvaluationRow>> measure(const FrameSource& source, bool nearer_larger,
                                                const EvaluationObserver& observer);
-    // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth).
-    Result<const Variant*> shader(std::size_t v, bool nearer_larger);
-    // One resolve of every variant's shader, for frames of this size and depth convention.
-    Result<TaaResolve*> resolve(std::uint32_t width, std::uint32_t height, bool nearer_larger);
+    // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth), and
+    // for upscaling or not.
+    Result<const Variant*> shader(std::size_t v, bool nearer_larger, bool upscale = false);
+    // One resolve of every variant's shader, for `source`'s frame sizes and a depth convention.
+    Result<TaaResolve*> resolve(const FrameSource& source, bool nearer_larger);
 
     const Context* context_;
     std::vector<VariantSpec> specs_;
     EvaluationOptions options_;
-    std::vector<std::unique_ptr<RunnableVariant>> shaders_[2];         // by depth convention, built when first needed
-    using ResolveKey = std::tuple<std::uint32_t, std::uint32_t, bool>; // width, height, nearer_larger
-    std::unique_ptr<TaaResolve> resolve_;                              // the last resolve(), for its key
+    // By upscaling and depth convention (2 x upscale + nearer_larger), built when first needed.
+    std::vector<std::unique_ptr<RunnableVariant>> shaders_[4];
+    // Input width and height, output width and height, nearer_larger.
+    using ResolveKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, bool>;
+    std::unique_ptr<TaaResolve> resolve_; // the last resolve(), for its key
     ResolveKey resolve_key_;
     std::unique_ptr<HdrFlip> cpu_flip_;
     // By frame size: the device's FLIP, and the evaluator over it (or over cpu_flip_).

@@ -23,9 +23,22 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, c
 Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, std::span<const Variant* const> shaders,
                                                        std::uint32_t width, std::uint32_t height,
                                                        const ResolveOptions& options, std::vector<std::string> names) {
+    return create(context, shaders, width, height, width, height, options, std::move(names));
+}
+
+Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, std::span<const Variant* const> shaders,
+                                                       std::uint32_t input_width, std::uint32_t input_height,
+                                                       std::uint32_t width, std::uint32_t height,
+                                                       const ResolveOptions& options, std::vector<std::string> names) {
     if (shaders.empty()) return fail("a resolve of no shader");
     if (!names.empty() && names.size() != shaders.size()) return fail("a resolve's shaders and names differ in count");
-    std::unique_ptr<TaaResolve> r(new TaaResolve(context, width, height, options));
+    const bool smaller = input_width != width || input_height != height;
+    if (smaller != options.upscale)
+        return fail(fmt::format("internal error: a resolve of {}x{} frames to {}x{} built {}for upscaling", input_width,
+                                input_height, width, height, options.upscale ? "" : "not "));
+    std::unique_ptr<TaaResolve> r(new TaaResolve(context, options));
+    r->input_width_ = input_width, r->input_height_ = input_height;
+    r->width_ = width, r->height_ = height;
     r->names_ = std::move(names);
     if (r->names_.empty())
         for (const Variant* shader : shaders) r->names_.push_back(shader->name);
@@ -37,12 +50,15 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
     r->outputs_.resize(shaders.size());
     // In the order advance_all() uploads them; motion and depth with the channels they have.
     auto pass = RectifyPass::create(context, width, height, TextureFormat::rgba32f,
-                                    std::vector<PassInput>{{kColor, 4}, {kHistory, 4}, {kMotion, 2}, {kDepth, 1}});
+                                    std::vector<PassInput>{{kColor, 4, input_width, input_height},
+                                                           {kHistory, 4},
+                                                           {kMotion, 2, input_width, input_height},
+                                                           {kDepth, 1, input_width, input_height}});
     if (!pass) return std::unexpected(pass.error());
     r->pass_ = std::move(*pass);
     // Every shader's history, zero until its first frame.
     if (auto ok = r->pass_->add_slots(kHistory, shaders.size()); !ok) return std::unexpected(ok.error());
-    r->zeros_.assign(2 * std::size_t(width) * height, 0.0f);
+    r->zeros_.assign(2 * std::size_t(input_width) * input_height, 0.0f);
     return r;
 }
 
@@ -52,13 +68,13 @@ Result<const Image*> TaaResolve::advance(const LoadedFrame& frame, bool starts_h
 }
 
 Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs) {
-    if (frame.color.width != width_ || frame.color.height != height_)
-        return fail(
-            fmt::format("a {}x{} frame for a {}x{} resolve", frame.color.width, frame.color.height, width_, height_));
-    if (auto ok = check_mappable(options_.color_map, frame.color.pixels, width_, "color"); !ok)
+    if (frame.color.width != input_width_ || frame.color.height != input_height_)
+        return fail(fmt::format("a {}x{} frame for a resolve of {}x{} frames", frame.color.width, frame.color.height,
+                                input_width_, input_height_));
+    if (auto ok = check_mappable(options_.color_map, frame.color.pixels, input_width_, "color"); !ok)
         return std::unexpected(ok.error());
     const bool has_motion = !starts_history;
-    const std::size_t pixels = std::size_t(width_) * height_;
+    const std::size_t pixels = std::size_t(input_width_) * input_height_;
     if (has_motion && frame.motion.size() != pixels) return fail("a frame with a history but no motion");
     if (options_.dilate_motion && has_motion && !frame.depth)
         return fail("--dilate-motion takes the motion of the nearest neighbor, and this frame has no depth");
@@ -73,7 +89,7 @@ Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_histo
     if (options_.dilate_motion && !frame.depth)
         if (auto ok = pass_->upload(kDepth, std::span<const float>(zeros_).first(pixels)); !ok)
             return std::unexpected(ok.error());
-    return resolve_all(starts_history, read_outputs);
+    return resolve_all(starts_history, read_outputs, frame.jitter);
 }
 
 Result<LoadedFrame> TaaResolve::advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
@@ -89,7 +105,7 @@ Result<LoadedFrame> TaaResolve::advance_all(const DeviceFrames& frames, std::siz
         if (auto ok = pass_->upload(kMotion, zeros_); !ok) return std::unexpected(ok.error());
     auto frame = frames.draw_into(index, targets, read_frame);
     if (!frame) return frame;
-    if (auto ok = resolve_all(starts_history, read_outputs); !ok) return std::unexpected(ok.error());
+    if (auto ok = resolve_all(starts_history, read_outputs, frame->jitter); !ok) return std::unexpected(ok.error());
     return frame;
 }
 
@@ -98,11 +114,14 @@ Result<VkImageView> TaaResolve::output_on_device(std::size_t s) {
     return pass_->view_to_sample(kHistory);
 }
 
-Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs) {
-    const RectifyPass::PushConstantValue values[] = {
+Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter) {
+    const RectifyPass::PushConstantValue all[] = {
         {"current_weight", {starts_history ? 1.0f : options_.current_weight}},
         {"gamma", {options_.gamma}},
+        {"jitter", {jitter.x, jitter.y}},
     };
+    // Only an upscaling resolve takes the jitter.
+    const std::span<const RectifyPass::PushConstantValue> values = std::span(all).first(options_.upscale ? 3 : 2);
     for (std::size_t s = 0; s < kernels_.size(); ++s) {
         auto resolved = [&]() -> Result<void> {
             if (auto ok = pass_->select_slot(kHistory, s); !ok) return ok;

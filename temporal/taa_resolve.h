@@ -33,6 +33,13 @@ public:
                                                       std::uint32_t width, std::uint32_t height,
                                                       const ResolveOptions& options,
                                                       std::vector<std::string> names = {});
+    // An upscaling resolve (options.upscale): frames of input_width x input_height in, outputs and
+    // histories of width x height.
+    static Result<std::unique_ptr<TaaResolve>> create(const Context& context, std::span<const Variant* const> shaders,
+                                                      std::uint32_t input_width, std::uint32_t input_height,
+                                                      std::uint32_t width, std::uint32_t height,
+                                                      const ResolveOptions& options,
+                                                      std::vector<std::string> names = {});
     // One shader.
     static Result<std::unique_ptr<TaaResolve>> create(const Context& context, const Variant& shader,
                                                       std::uint32_t width, std::uint32_t height,
@@ -67,20 +74,20 @@ public:
     Result<const Image*> advance(const LoadedFrame& frame, bool starts_history);
 
 private:
-    TaaResolve(const Context& context, std::uint32_t width, std::uint32_t height, const ResolveOptions& options)
-        : context_(&context), options_(options), width_(width), height_(height) {}
+    TaaResolve(const Context& context, const ResolveOptions& options) : context_(&context), options_(options) {}
     // Every shader on the frame in the inputs: its history, its dispatch, its output kept as its
-    // next history and, with `read_outputs`, read back.
-    Result<void> resolve_all(bool starts_history, bool read_outputs);
+    // next history and, with `read_outputs`, read back. `jitter`: the frame's (upscaling only).
+    Result<void> resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter);
 
     const Context* context_;
     ResolveOptions options_;
-    std::uint32_t width_, height_;
+    std::uint32_t input_width_ = 0, input_height_ = 0; // the frames'
+    std::uint32_t width_ = 0, height_ = 0;             // the outputs and histories
     std::vector<std::unique_ptr<Kernel>> kernels_;
     std::unique_ptr<RectifyPass> pass_;
     std::vector<Image> outputs_; // one per shader, read back
     std::vector<std::string> names_;
-    std::vector<float> zeros_; // two per pixel: the motion, or the depth, where a frame has none
+    std::vector<float> zeros_; // two per input pixel: the motion, or the depth, where a frame has none
 };
 
 } // namespace kdop

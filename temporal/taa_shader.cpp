@@ -19,9 +19,10 @@ std::string option_defines(const ResolveOptions& o) {
     // shader's constant is that value (the option's own digits would be rounded twice).
     return fmt::format("#define KDOP_HISTORY_FILTER {}\n#define KDOP_COLOR_MAP {}\n#define KDOP_MAP_EXPONENT {:.9g}\n"
                        "#define KDOP_MAP_LOG_OFFSET {:.9g}\n#define KDOP_DILATE_MOTION {}\n"
-                       "#define KDOP_DEPTH_NEARER_LARGER {}\n",
+                       "#define KDOP_DEPTH_NEARER_LARGER {}\n#define KDOP_UPSCALE {}\n#define KDOP_UPSCALE_FILTER {}\n",
                        o.history_filter == HistoryFilter::catmull_rom ? 1 : 0, map, float(o.color_map.exponent),
-                       kColorMapLogOffset, o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0);
+                       kColorMapLogOffset, o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0, o.upscale ? 1 : 0,
+                       o.upscale_filter == UpscaleFilter::gaussian ? 1 : 0);
 }
 
 } // namespace

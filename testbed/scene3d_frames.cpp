@@ -11,6 +11,7 @@ Camera3d Scene3dFrames::camera(std::size_t index) const {
 }
 
 std::optional<glm::vec2> Scene3dFrames::jitter(std::size_t index) const {
+    if (timeline_.upscale > 1) return halton_jitter(std::uint32_t(index), upscale_jitter_phases(timeline_.upscale));
     if (!timeline_.jitter) return std::nullopt;
     return r2_jitter(std::uint32_t(index));
 }
@@ -28,7 +29,7 @@ Result<Image> Scene3dFrames::reference(std::size_t index) const {
     for (std::uint32_t s = 0; s < timeline_.reference_samples; ++s) {
         // Only the color of a sample comes back.
         Image sample;
-        if (auto ok = renderer_->draw_into(now, camera_now, now, camera_now, r2_point(s), {}, &sample); !ok)
+        if (auto ok = reference_renderer_->draw_into(now, camera_now, now, camera_now, r2_point(s), {}, &sample); !ok)
             return fail(fmt::format("{}: reference: {}", frame_label(index), ok.error().message));
         for (std::size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += sample.pixels[i];
     }
@@ -38,6 +39,7 @@ Result<Image> Scene3dFrames::reference(std::size_t index) const {
 
 Result<LoadedFrame> Scene3dFrames::draw_into(std::size_t index, const RasterTargets& targets, bool read_back) const {
     LoadedFrame out;
+    out.jitter = jitter(index).value_or(glm::vec2(0));
     auto drawn = renderer_->draw_into(time(index), camera(index), previous_time(index), previous_camera(index),
                                       jitter(index).value_or(glm::vec2(0)), targets, read_back ? &out.color : nullptr);
     if (!drawn) return fail(fmt::format("{}: {}", frame_label(index), drawn.error().message));
@@ -54,6 +56,7 @@ Result<LoadedFrame> Scene3dFrames::frame(std::size_t index) const {
                                  jitter(index).value_or(glm::vec2(0)));
     if (!drawn) return fail(fmt::format("{}: {}", frame_label(index), drawn.error().message));
     LoadedFrame out;
+    out.jitter = jitter(index).value_or(glm::vec2(0));
     out.color = std::move(drawn->color);
     out.motion = std::move(drawn->motion);
     out.depth = Image(width(), height());

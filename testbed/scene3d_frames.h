@@ -20,21 +20,33 @@ struct Scene3dTimeline {
     bool pan = false;                    // the camera slides sideways (camera_at)
     std::uint32_t reference_samples = 0; // > 0: each frame has a reference, the mean of this many
                                          // samples per pixel at the first R2 points
+    // > 1: frames drawn for temporal upscaling by this ratio, always jittered (Halton 2, 3 over
+    // upscale_jitter_phases), their references at the output size.
+    double upscale = 1;
 };
 
 class Scene3dFrames final : public FrameSource, public DeviceFrames {
 public:
     // `renderer` is shared: the sources of one scene draw on one pass, one frame at a time.
+    // `reference_renderer` draws the references, at the output size: `renderer` itself but for an
+    // upscaling timeline.
+    Scene3dFrames(std::string name, std::shared_ptr<TestbedRenderer> renderer,
+                  std::shared_ptr<TestbedRenderer> reference_renderer, const Scene3dTimeline& timeline)
+        : name_(std::move(name)), renderer_(std::move(renderer)), reference_renderer_(std::move(reference_renderer)),
+          timeline_(timeline) {}
+    // Frames and references drawn by one renderer, at one size.
     Scene3dFrames(std::string name, std::shared_ptr<TestbedRenderer> renderer, const Scene3dTimeline& timeline)
-        : name_(std::move(name)), renderer_(std::move(renderer)), timeline_(timeline) {}
+        : Scene3dFrames(std::move(name), renderer, renderer, timeline) {}
 
     // The animation time of frame `index`: the index, or 0 without animation.
     double time(std::size_t index) const { return timeline_.animate ? double(index) : 0.0; }
     Camera3d camera(std::size_t index) const;
 
     const std::string& name() const override { return name_; }
-    std::uint32_t width() const override { return renderer_->width(); }
-    std::uint32_t height() const override { return renderer_->height(); }
+    std::uint32_t width() const override { return reference_renderer_->width(); }
+    std::uint32_t height() const override { return reference_renderer_->height(); }
+    std::uint32_t input_width() const override { return renderer_->width(); }
+    std::uint32_t input_height() const override { return renderer_->height(); }
     std::size_t frame_count() const override { return timeline_.frames; }
     ColorRange color_range() const override { return ColorRange::ldr; }
     bool starts_history(std::size_t index) const override { return index == 0; }
@@ -56,7 +68,7 @@ private:
     Result<Image> reference(std::size_t index) const;
 
     std::string name_;
-    std::shared_ptr<TestbedRenderer> renderer_;
+    std::shared_ptr<TestbedRenderer> renderer_, reference_renderer_;
     Scene3dTimeline timeline_;
 };
 
