@@ -26,14 +26,21 @@ Kind kind_of(DescriptorType type) {
 
 } // namespace
 
-Result<KernelSets> KernelSets::create(const Context& context, std::span<const Kernel* const> kernels,
-                                      std::uint32_t sets_per_kernel) {
+Result<KernelSets> KernelSets::create(const Context& context, std::span<const ReflectedSet> programs,
+                                      std::uint32_t sets_per_program) {
     std::map<VkDescriptorType, std::uint32_t> counts;
-    for (const Kernel* kernel : kernels)
-        for (const Kernel::Binding& b : kernel->bindings()) counts[to_vulkan(b.type)] += sets_per_kernel;
+    for (const ReflectedSet& program : programs)
+        for (const Kernel::Binding& b : program.bindings) counts[to_vulkan(b.type)] += sets_per_program;
     std::vector<VkDescriptorPoolSize> sizes;
     for (const auto& [type, count] : counts) sizes.push_back({type, count});
-    return create(context, sizes, std::max<std::uint32_t>(1, std::uint32_t(kernels.size()) * sets_per_kernel));
+    return create(context, sizes, std::max<std::uint32_t>(1, std::uint32_t(programs.size()) * sets_per_program));
+}
+
+Result<KernelSets> KernelSets::create(const Context& context, std::span<const Kernel* const> kernels,
+                                      std::uint32_t sets_per_kernel) {
+    std::vector<ReflectedSet> programs;
+    for (const Kernel* kernel : kernels) programs.push_back(reflected_set(*kernel));
+    return create(context, std::span<const ReflectedSet>(programs), sets_per_kernel);
 }
 
 Result<KernelSets> KernelSets::create(const Context& context, std::span<const VkDescriptorPoolSize> sizes,
@@ -58,8 +65,8 @@ KernelSets::~KernelSets() {
     if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
 }
 
-Result<VkDescriptorSet> KernelSets::allocate(const Kernel& kernel) {
-    VkDescriptorSetLayout layout = kernel.set_layout();
+Result<VkDescriptorSet> KernelSets::allocate(const ReflectedSet& program) {
+    VkDescriptorSetLayout layout = program.layout;
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = pool_;
     alloc.descriptorSetCount = 1;
@@ -74,17 +81,17 @@ Result<void> KernelSets::reset() {
     return {};
 }
 
-Result<void> KernelSets::write(const Kernel& kernel, VkDescriptorSet set, std::span<const Bound> bound) const {
+Result<void> KernelSets::write(const ReflectedSet& program, VkDescriptorSet set, std::span<const Bound> bound) const {
     // Filled before any write points into them: the writes hold their addresses.
     std::vector<VkDescriptorImageInfo> images(bound.size());
     std::vector<VkDescriptorBufferInfo> buffers(bound.size());
     std::vector<VkBufferView> texels(bound.size());
     std::vector<VkWriteDescriptorSet> writes;
     for (std::size_t i = 0; i < bound.size(); ++i) {
-        const auto reflected = std::find_if(kernel.bindings().begin(), kernel.bindings().end(),
+        const auto reflected = std::find_if(program.bindings.begin(), program.bindings.end(),
                                             [&](const Kernel::Binding& b) { return b.binding == bound[i].binding; });
-        if (reflected == kernel.bindings().end())
-            return fail(fmt::format("internal error: {} has no binding {}", kernel.name(), bound[i].binding));
+        if (reflected == program.bindings.end())
+            return fail(fmt::format("internal error: {} has no binding {}", program.name, bound[i].binding));
         const Kind kind = kind_of(reflected->type);
         const bool matches = std::visit(
             [&](const auto& r) {
@@ -95,8 +102,8 @@ Result<void> KernelSets::write(const Kernel& kernel, VkDescriptorSet set, std::s
             },
             bound[i].resource);
         if (!matches)
-            return fail(fmt::format("internal error: {} binding {} ('{}') is a {}, not what it was given",
-                                    kernel.name(), reflected->binding, reflected->name, to_string(reflected->type)));
+            return fail(fmt::format("internal error: {} binding {} ('{}') is a {}, not what it was given", program.name,
+                                    reflected->binding, reflected->name, to_string(reflected->type)));
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = set;
         w.dstBinding = reflected->binding;
