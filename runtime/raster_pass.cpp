@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -14,69 +15,9 @@ constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT, kMotionFormat =
                    kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr VkDeviceSize kColorBytes = 16, kMotionBytes = 8, kDepthBytes = 4;
 
-Result<VkShaderModule> shader_module(VkDevice device, const std::vector<std::uint32_t>& spirv) {
-    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = spirv.size() * sizeof(std::uint32_t);
-    info.pCode = spirv.data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    KDOP_VK_TRY(vkCreateShaderModule(device, &info, nullptr, &module));
-    return module;
-}
-
-} // namespace
-
-Result<std::unique_ptr<RasterPass>> RasterPass::create(const Context& context, std::uint32_t width,
-                                                       std::uint32_t height, const RasterPipeline& pipeline,
-                                                       const Image& texture) {
-    if (!(context.queue_flags() & VK_QUEUE_GRAPHICS_BIT))
-        return fail(fmt::format("{} has no graphics queue to rasterize on", context.device_name()));
-    if (pipeline.attribute_floats.empty()) return fail("a raster pipeline without vertex attributes");
-    std::unique_ptr<RasterPass> p(new RasterPass(context));
-    p->width_ = width;
-    p->height_ = height;
-    p->uniform_bytes_ = pipeline.uniform_bytes;
-    p->clear_color_ = pipeline.clear_color;
-    for (std::uint32_t floats : pipeline.attribute_floats) {
-        if (floats < 1 || floats > 4) return fail(fmt::format("a vertex attribute of {} floats", floats));
-        p->stride_ += floats * 4;
-    }
-    const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    auto color = DeviceImage::create(context, width, height, 1, kColorFormat, attachment, "the color attachment");
-    if (!color) return std::unexpected(color.error());
-    p->color_ = std::move(*color);
-    auto motion = DeviceImage::create(context, width, height, 1, kMotionFormat, attachment, "the motion attachment");
-    if (!motion) return std::unexpected(motion.error());
-    p->motion_ = std::move(*motion);
-    auto depth = DeviceImage::create(context, width, height, 1, kDepthFormat,
-                                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                     "the depth attachment", VK_IMAGE_ASPECT_DEPTH_BIT);
-    if (!depth) return std::unexpected(depth.error());
-    p->depth_ = std::move(*depth);
-
-    auto uniforms = DeviceBuffer::create(context, std::max<VkDeviceSize>(pipeline.uniform_bytes, 1),
-                                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, DeviceBuffer::Memory::host,
-                                         "the raster pass's uniform block");
-    if (!uniforms) return std::unexpected(uniforms.error());
-    p->uniforms_ = std::move(*uniforms);
-    const VkDeviceSize pixels = VkDeviceSize(width) * height;
-    auto readback = DeviceBuffer::create(context, pixels * (kColorBytes + kMotionBytes + kDepthBytes),
-                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, DeviceBuffer::Memory::host,
-                                         "the raster pass's read-back");
-    if (!readback) return std::unexpected(readback.error());
-    p->readback_ = std::move(*readback);
-    auto commands = OneShotCommands::create(context);
-    if (!commands) return std::unexpected(commands.error());
-    p->commands_ = std::move(*commands);
-
-    if (auto ok = p->create_pipeline(pipeline); !ok) return std::unexpected(ok.error());
-    if (auto ok = p->upload_texture(texture); !ok) return std::unexpected(ok.error());
-    return p;
-}
-
-Result<void> RasterPass::create_pipeline(const RasterPipeline& pipeline) {
-    const VkDevice device = context_.device();
-    // Every attachment is cleared, kept, and left ready to be copied out; the dependencies order
-    // the last draw's copies before this draw's writes and this draw's writes before its copies.
+// Every attachment is cleared, kept, and left ready to be copied out; the dependencies order the
+// last draw's copies before this draw's writes and this draw's writes before its copies.
+Result<VkRenderPass> create_render_pass(VkDevice device) {
     std::array<VkAttachmentDescription, 3> attachments{};
     const std::array<VkFormat, 3> formats{kColorFormat, kMotionFormat, kDepthFormat};
     for (std::size_t i = 0; i < attachments.size(); ++i) {
@@ -114,8 +55,118 @@ Result<void> RasterPass::create_pipeline(const RasterPipeline& pipeline) {
     rp.pSubpasses = &subpass;
     rp.dependencyCount = std::uint32_t(dependencies.size());
     rp.pDependencies = dependencies.data();
-    KDOP_VK_TRY(vkCreateRenderPass(device, &rp, nullptr, &render_pass_));
+    VkRenderPass render_pass = VK_NULL_HANDLE;
+    KDOP_VK_TRY(vkCreateRenderPass(device, &rp, nullptr, &render_pass));
+    return render_pass;
+}
 
+// The texture's: repeated, bilinear, without mipmaps.
+Result<VkSampler> create_sampler(VkDevice device) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = info.minFilter = VK_FILTER_LINEAR;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    info.maxLod = 0;
+    VkSampler sampler = VK_NULL_HANDLE;
+    KDOP_VK_TRY(vkCreateSampler(device, &info, nullptr, &sampler));
+    return sampler;
+}
+
+// One attribute per location, packed in order in binding 0's records.
+std::vector<VkVertexInputAttributeDescription> vertex_attributes(std::span<const std::uint32_t> attribute_floats) {
+    const std::array<VkFormat, 4> format{VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32_SFLOAT,
+                                         VK_FORMAT_R32G32B32A32_SFLOAT};
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    std::uint32_t offset = 0;
+    for (std::uint32_t floats : attribute_floats) {
+        attributes.push_back({std::uint32_t(attributes.size()), 0, format[floats - 1], offset});
+        offset += floats * 4;
+    }
+    return attributes;
+}
+
+// Set 0's bindings of both stages, each once (as the pipeline's layout merges them).
+Result<std::vector<Kernel::Binding>> set_bindings(const Variant& vertex, const Variant& fragment) {
+    std::vector<Kernel::Binding> bindings;
+    for (const Variant* stage : {&vertex, &fragment})
+        for (std::uint32_t i = 0; i < stage->binding_count; ++i) {
+            const DescriptorBinding& b = stage->bindings[i];
+            if (b.set != 0)
+                return fail(fmt::format("{}: binding '{}' is in descriptor set {}; the raster pass binds set 0 only",
+                                        stage->name, b.name, b.set));
+            if (std::none_of(bindings.begin(), bindings.end(),
+                             [&](const Kernel::Binding& seen) { return seen.binding == b.binding; }))
+                bindings.push_back({b.binding, b.type, b.name});
+        }
+    return bindings;
+}
+
+} // namespace
+
+Result<std::unique_ptr<RasterPass>> RasterPass::create(const Context& context, std::uint32_t width,
+                                                       std::uint32_t height, const RasterPipeline& pipeline,
+                                                       const Image& texture) {
+    if (!(context.queue_flags() & VK_QUEUE_GRAPHICS_BIT))
+        return fail(fmt::format("{} has no graphics queue to rasterize on", context.device_name()));
+    if (pipeline.attribute_floats.empty()) return fail("a raster pipeline without vertex attributes");
+    if (!pipeline.vertex || !pipeline.fragment) return fail("a raster pipeline without a vertex and a fragment stage");
+    std::unique_ptr<RasterPass> p(new RasterPass(context));
+    p->width_ = width;
+    p->height_ = height;
+    p->uniform_bytes_ = pipeline.uniform_bytes;
+    p->clear_color_ = pipeline.clear_color;
+    for (std::uint32_t floats : pipeline.attribute_floats) {
+        if (floats < 1 || floats > 4) return fail(fmt::format("a vertex attribute of {} floats", floats));
+        p->stride_ += floats * 4;
+    }
+    auto commands = OneShotCommands::create(context);
+    if (!commands) return std::unexpected(commands.error());
+    p->commands_ = std::move(*commands);
+    if (auto ok = p->create_attachments(); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->create_buffers(); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->create_framebuffer(); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->create_pipeline(pipeline); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->create_descriptor_set(); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->upload_texture(texture); !ok) return std::unexpected(ok.error());
+    if (auto ok = p->write_descriptor_set(); !ok) return std::unexpected(ok.error());
+    return p;
+}
+
+Result<void> RasterPass::create_attachments() {
+    const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    auto color = DeviceImage::create(context_, width_, height_, 1, kColorFormat, attachment, "the color attachment");
+    if (!color) return std::unexpected(color.error());
+    color_ = std::move(*color);
+    auto motion = DeviceImage::create(context_, width_, height_, 1, kMotionFormat, attachment, "the motion attachment");
+    if (!motion) return std::unexpected(motion.error());
+    motion_ = std::move(*motion);
+    auto depth = DeviceImage::create(context_, width_, height_, 1, kDepthFormat,
+                                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                     "the depth attachment", VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (!depth) return std::unexpected(depth.error());
+    depth_ = std::move(*depth);
+    return {};
+}
+
+Result<void> RasterPass::create_buffers() {
+    auto uniforms =
+        DeviceBuffer::create(context_, std::max<VkDeviceSize>(uniform_bytes_, 1), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                             DeviceBuffer::Memory::host, "the raster pass's uniform block");
+    if (!uniforms) return std::unexpected(uniforms.error());
+    uniforms_ = std::move(*uniforms);
+    const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
+    auto readback = DeviceBuffer::create(context_, pixels * (kColorBytes + kMotionBytes + kDepthBytes),
+                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT, DeviceBuffer::Memory::host,
+                                         "the raster pass's read-back");
+    if (!readback) return std::unexpected(readback.error());
+    readback_ = std::move(*readback);
+    return {};
+}
+
+Result<void> RasterPass::create_framebuffer() {
+    auto render_pass = create_render_pass(context_.device());
+    if (!render_pass) return std::unexpected(render_pass.error());
+    render_pass_ = *render_pass;
     const std::array<VkImageView, 3> views{color_.view(), motion_.view(), depth_.view()};
     VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fb.renderPass = render_pass_;
@@ -124,121 +175,52 @@ Result<void> RasterPass::create_pipeline(const RasterPipeline& pipeline) {
     fb.width = width_;
     fb.height = height_;
     fb.layers = 1;
-    KDOP_VK_TRY(vkCreateFramebuffer(device, &fb, nullptr, &framebuffer_));
+    KDOP_VK_TRY(vkCreateFramebuffer(context_.device(), &fb, nullptr, &framebuffer_));
+    return {};
+}
 
-    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    sampler.magFilter = sampler.minFilter = VK_FILTER_LINEAR;
-    sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    sampler.maxLod = 0;
-    KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &sampler_));
-
-    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, both, nullptr},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
-    }};
-    VkDescriptorSetLayoutCreateInfo sl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    sl.bindingCount = std::uint32_t(bindings.size());
-    sl.pBindings = bindings.data();
-    KDOP_VK_TRY(vkCreateDescriptorSetLayout(device, &sl, nullptr, &set_layout_));
-    VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pl.setLayoutCount = 1;
-    pl.pSetLayouts = &set_layout_;
-    KDOP_VK_TRY(vkCreatePipelineLayout(device, &pl, nullptr, &pipeline_layout_));
-
-    auto vertex = shader_module(device, pipeline.vertex_spirv);
-    if (!vertex) return std::unexpected(vertex.error());
-    auto fragment = shader_module(device, pipeline.fragment_spirv);
-    if (!fragment) {
-        vkDestroyShaderModule(device, *vertex, nullptr);
-        return std::unexpected(fragment.error());
-    }
-    std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                 nullptr,
-                 0,
-                 VK_SHADER_STAGE_VERTEX_BIT,
-                 *vertex,
-                 "main",
-                 nullptr};
-    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                 nullptr,
-                 0,
-                 VK_SHADER_STAGE_FRAGMENT_BIT,
-                 *fragment,
-                 "main",
-                 nullptr};
+// The pipeline and its layouts from what the stages reflect, by the call a renderer makes
+// (kdop/vulkan_pipeline.h) and the compute passes' kernels make for theirs. What that call leaves
+// to its caller is this pass's own: the vertex records, the depth test, the render pass.
+Result<void> RasterPass::create_pipeline(const RasterPipeline& pipeline) {
+    const Variant &vertex = *pipeline.vertex, &fragment = *pipeline.fragment;
+    name_ = fmt::format("{} + {}", vertex.name, fragment.name);
+    if (fragment.color_output_count != 2)
+        return fail(fmt::format("{}: {} color outputs; the raster pass draws two, color and motion", fragment.name,
+                                fragment.color_output_count));
+    auto bindings = set_bindings(vertex, fragment);
+    if (!bindings) return std::unexpected(bindings.error());
+    bindings_ = std::move(*bindings);
     const VkVertexInputBindingDescription binding{0, stride_, VK_VERTEX_INPUT_RATE_VERTEX};
-    std::vector<VkVertexInputAttributeDescription> attributes;
-    std::uint32_t offset = 0;
-    for (std::uint32_t floats : pipeline.attribute_floats) {
-        const std::array<VkFormat, 4> format{VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32_SFLOAT,
-                                             VK_FORMAT_R32G32B32A32_SFLOAT};
-        attributes.push_back({std::uint32_t(attributes.size()), 0, format[floats - 1], offset});
-        offset += floats * 4;
-    }
+    const std::vector<VkVertexInputAttributeDescription> attributes = vertex_attributes(pipeline.attribute_floats);
     VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     input.vertexBindingDescriptionCount = 1;
     input.pVertexBindingDescriptions = &binding;
     input.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
     input.pVertexAttributeDescriptions = attributes.data();
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    const VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
-    const VkRect2D scissor{{0, 0}, {width_, height_}};
-    VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    vp.viewportCount = vp.scissorCount = 1;
-    vp.pViewports = &viewport;
-    vp.pScissors = &scissor;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    raster.lineWidth = 1;
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
-    // Identical for both attachments (without the independentBlend feature they must be); the
-    // motion attachment has no blue or alpha to write.
-    std::array<VkPipelineColorBlendAttachmentState, 2> blend{};
-    for (VkPipelineColorBlendAttachmentState& b : blend)
-        b.colorWriteMask =
-            VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    VkPipelineColorBlendStateCreateInfo blending{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blending.attachmentCount = std::uint32_t(blend.size());
-    blending.pAttachments = blend.data();
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.stageCount = std::uint32_t(stages.size());
-    info.pStages = stages.data();
-    info.pVertexInputState = &input;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &vp;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depth;
-    info.pColorBlendState = &blending;
-    info.layout = pipeline_layout_;
-    info.renderPass = render_pass_;
-    const VkResult created = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-    vkDestroyShaderModule(device, *vertex, nullptr);
-    vkDestroyShaderModule(device, *fragment, nullptr);
-    if (created != VK_SUCCESS) return vk_failure("vkCreateGraphicsPipelines", created);
+    GraphicsState state;
+    state.vertex_input = &input;
+    state.depth_test = state.depth_write = true;
+    state.depth_compare = VK_COMPARE_OP_LESS;
+    GraphicsTargets targets;
+    targets.render_pass = render_pass_;
+    const VkResult created = create_variant_graphics_pipeline(prototype_variant_functions(), context_.device(), vertex,
+                                                              fragment, targets, program_, state);
+    if (created != VK_SUCCESS)
+        return fail(fmt::format("{}: kdop::create_variant_graphics_pipeline failed: {} ({})", name_,
+                                program_.failure ? program_.failure : "", vk_result_text(created)));
+    return {};
+}
 
-    const std::array<VkDescriptorPoolSize, 2> sizes{
-        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}}};
-    VkDescriptorPoolCreateInfo pool{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool.maxSets = 1;
-    pool.poolSizeCount = std::uint32_t(sizes.size());
-    pool.pPoolSizes = sizes.data();
-    KDOP_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &descriptor_pool_));
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = descriptor_pool_;
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &set_layout_;
-    KDOP_VK_TRY(vkAllocateDescriptorSets(device, &alloc, &set_));
+// One set of the pipeline's layout, from a pool sized by what the stages reflect.
+Result<void> RasterPass::create_descriptor_set() {
+    const ReflectedSet program = reflected_set();
+    auto sets = KernelSets::create(context_, std::span(&program, 1));
+    if (!sets) return std::unexpected(sets.error());
+    sets_ = std::move(*sets);
+    auto set = sets_.allocate(program);
+    if (!set) return std::unexpected(set.error());
+    set_ = *set;
     return {};
 }
 
@@ -266,31 +248,24 @@ Result<void> RasterPass::upload_texture(const Image& texture) {
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
     });
     if (!ran) return std::unexpected(ran.error());
-
-    const VkDescriptorBufferInfo uniform{uniforms_.buffer(), 0, VK_WHOLE_SIZE};
-    const VkDescriptorImageInfo sampled{sampler_, texture_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    std::array<VkWriteDescriptorSet, 2> writes{};
-    for (std::uint32_t i = 0; i < writes.size(); ++i) {
-        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[i].dstSet = set_;
-        writes[i].dstBinding = i;
-        writes[i].descriptorCount = 1;
-    }
-    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    writes[0].pBufferInfo = &uniform;
-    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    writes[1].pImageInfo = &sampled;
-    vkUpdateDescriptorSets(context_.device(), std::uint32_t(writes.size()), writes.data(), 0, nullptr);
     return {};
+}
+
+// Binding 0 the uniform block, binding 1 the texture with its sampler; each binding's type as the
+// stages reflect it.
+Result<void> RasterPass::write_descriptor_set() {
+    auto sampler = create_sampler(context_.device());
+    if (!sampler) return std::unexpected(sampler.error());
+    sampler_ = *sampler;
+    const Bound bound[] = {{0, BoundBuffer{uniforms_.buffer()}},
+                           {1, BoundImage{texture_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler_}}};
+    return sets_.write(reflected_set(), set_, bound);
 }
 
 RasterPass::~RasterPass() {
     const VkDevice device = context_.device();
     vkDeviceWaitIdle(device);
-    vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
-    vkDestroyPipeline(device, pipeline_, nullptr);
-    vkDestroyPipelineLayout(device, pipeline_layout_, nullptr);
-    vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
+    destroy_variant_pipeline(device, program_);
     vkDestroySampler(device, sampler_, nullptr);
     vkDestroyFramebuffer(device, framebuffer_, nullptr);
     vkDestroyRenderPass(device, render_pass_, nullptr);
@@ -331,8 +306,12 @@ void RasterPass::record_draw(VkCommandBuffer cb) {
     begin.clearValueCount = std::uint32_t(clear.size());
     begin.pClearValues = clear.data();
     vkCmdBeginRenderPass(cb, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, program_.pipeline);
+    const VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
+    const VkRect2D scissor{{0, 0}, {width_, height_}};
+    vkCmdSetViewport(cb, 0, 1, &viewport); // dynamic in every pipeline of kdop/vulkan_pipeline.h
+    vkCmdSetScissor(cb, 0, 1, &scissor);
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, program_.pipeline_layout, 0, 1, &set_, 0, nullptr);
     for (const Slot& s : slots_) {
         if (s.vertices == 0) continue;
         const VkBuffer buffer = s.buffer.buffer();

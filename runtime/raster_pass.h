@@ -4,11 +4,13 @@
 // What a renderer hands its TAA resolve, made on lavapipe: the 3-D testbed (testbed/) draws its
 // scenes with it.
 //
-// The shaders see one uniform block (set 0, binding 0, for both stages) and one texture
-// (binding 1: a sampler2DArray of one layer, rgba32f, repeated, bilinear, without mipmaps, so that
-// a minified texture aliases as a renderer's distant detail does without them). Vertices are
-// `stride`-byte records whose attributes (locations 0, 1, ...) are packed in order, each 1 to 4
-// floats. Back faces are drawn too. Every Vulkan call is checked.
+// The stages come as registry entries (kdop/variant.h), and the pipeline, its layout, the
+// descriptor set and its writes from what they reflect, through the same calls as the compute
+// passes' (kdop/vulkan_pipeline.h, runtime/kernel_sets.h). The shaders see one uniform block (set 0,
+// binding 0) and one texture (binding 1: a sampler2DArray of one layer, rgba32f, repeated,
+// bilinear, without mipmaps, so that a minified texture aliases as a renderer's distant detail does
+// without them). Vertices are `stride`-byte records whose attributes (locations 0, 1, ...) are
+// packed in order, each 1 to 4 floats. Back faces are drawn too. Every Vulkan call is checked.
 #pragma once
 
 #include "core/result.h"
@@ -16,7 +18,11 @@
 #include "runtime/context.h"
 #include "runtime/device_buffer.h"
 #include "runtime/device_image.h"
+#include "runtime/kernel_sets.h"
 #include "runtime/one_shot_commands.h"
+
+#include <kdop/variant.h>
+#include <kdop/vulkan_pipeline.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
@@ -25,15 +31,18 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace kdop {
 
 struct RasterPipeline {
-    std::vector<std::uint32_t> vertex_spirv, fragment_spirv; // entry points "main"
-    std::vector<std::uint32_t> attribute_floats;             // per location: 1 to 4 floats
-    std::uint32_t uniform_bytes = 0;                         // the uniform block's size
-    glm::vec4 clear_color{0, 0, 0, 1};                       // where nothing is drawn
+    // The stages with what they reflect (their bindings in set 0); needed only while the pass is made.
+    const Variant* vertex = nullptr;
+    const Variant* fragment = nullptr;           // two color outputs: color and motion
+    std::vector<std::uint32_t> attribute_floats; // per location: 1 to 4 floats
+    std::uint32_t uniform_bytes = 0;             // the uniform block's size
+    glm::vec4 clear_color{0, 0, 0, 1};           // where nothing is drawn
 };
 
 // One draw's attachments, read back.
@@ -75,8 +84,15 @@ public:
 
 private:
     explicit RasterPass(const Context& context) : context_(context) {}
+    Result<void> create_attachments();
+    Result<void> create_buffers();
+    Result<void> create_framebuffer();
     Result<void> create_pipeline(const RasterPipeline& pipeline);
+    Result<void> create_descriptor_set();
     Result<void> upload_texture(const Image& texture);
+    Result<void> write_descriptor_set();
+    // The descriptor set's reflected interface: what KernelSets allocates and writes by.
+    ReflectedSet reflected_set() const { return {name_, program_.set_layouts[0], bindings_}; }
     Result<void> set_uniforms(std::span<const std::byte> uniforms);
     // Clears the attachments and draws every slot, leaving them ready to be copied from.
     void record_draw(VkCommandBuffer cb);
@@ -87,10 +103,10 @@ private:
     VkRenderPass render_pass_ = VK_NULL_HANDLE;
     VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    std::string name_;                      // "<vertex> + <fragment>", the stages' names
+    VariantPipeline program_;               // set layout, pipeline layout and pipeline, as reflected
+    std::vector<Kernel::Binding> bindings_; // set 0's, of both stages
+    KernelSets sets_;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     glm::vec4 clear_color_{0};
     DeviceBuffer uniforms_, readback_; // host-visible

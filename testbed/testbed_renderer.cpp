@@ -1,6 +1,8 @@
 #include "testbed/testbed_renderer.h"
 
 #include "generator/glsl_compiler.h"
+#include "generator/runnable_variant.h"
+#include "generator/shader_reflection.h"
 #include "generator/spirv_tools.h"
 #include "testbed/camera.h"
 
@@ -76,11 +78,20 @@ void main() {
 }
 )";
 
-Result<std::vector<std::uint32_t>> build(const std::string& source, const char* name, ShaderStage stage) {
+// A stage as glslang compiles it (validated, not optimized), with what it reflects: the registry
+// entry the raster pass builds its pipeline and descriptor set from.
+Result<std::unique_ptr<RunnableVariant>> build(const std::string& source, const char* name, ShaderStage stage) {
     auto spirv = compile_glsl(source, name, stage);
     if (!spirv) return std::unexpected(spirv.error());
     if (auto ok = validate_spirv(*spirv, source, name, "glslang output"); !ok) return std::unexpected(ok.error());
-    return spirv;
+    auto interface = reflect_interface(*spirv);
+    if (!interface) return std::unexpected(interface.error());
+    BuiltVariant built;
+    built.spec.mode = Mode::shader;
+    built.name = name;
+    built.spirv = std::move(*spirv);
+    built.interface = std::move(*interface);
+    return std::make_unique<RunnableVariant>(std::move(built));
 }
 
 // The vertices the pipeline takes: each vertex's position now and at the earlier instant.
@@ -107,7 +118,8 @@ Result<std::unique_ptr<TestbedRenderer>> TestbedRenderer::create(const Context& 
     if (!vertex) return std::unexpected(vertex.error());
     auto fragment = build(header + kFragmentMain, "testbed.frag", ShaderStage::fragment);
     if (!fragment) return std::unexpected(fragment.error());
-    RasterPipeline pipeline{*vertex, *fragment, {3, 3, 3, 4}, sizeof(FrameUniforms), scene->sky};
+    RasterPipeline pipeline{
+        &(*vertex)->variant(), &(*fragment)->variant(), {3, 3, 3, 4}, sizeof(FrameUniforms), scene->sky};
     auto pass = RasterPass::create(context, width, height, pipeline, scene->texture);
     if (!pass) return std::unexpected(pass.error());
     std::unique_ptr<TestbedRenderer> r(new TestbedRenderer);

@@ -20,8 +20,8 @@ namespace kdop {
 
 class TestbedRenderer {
 public:
-    // Builds the shaders (glslang, then SPIRV-Tools' validator) and uploads the still mesh and the
-    // texture. `context` must outlive the renderer.
+    // Builds the shaders (glslang, SPIRV-Tools' validator, then reflection) and uploads the still
+    // mesh and the texture. `context` must outlive the renderer.
     static Result<std::unique_ptr<TestbedRenderer>> create(const Context& context, std::shared_ptr<const Scene3d> scene,
                                                            std::uint32_t width, std::uint32_t height);
 
