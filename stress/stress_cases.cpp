@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 
 namespace kdop {
@@ -149,6 +150,131 @@ StressCase magnitude_case(std::string name, std::string description, double lo, 
     return std::move(b).finish();
 }
 
+StressCase float_max_case(const AxisSet&, Random& r) {
+    CaseBuilder b("float-max", "channels of either sign up to FLT_MAX: sums and differences overflow");
+    for (int i = 0; i < 3; ++i) b.add_usual_histories(random_colors(r, 0.5 * kFloatMax, kFloatMax), r);
+    for (int i = 0; i < 3; ++i) b.add_usual_histories(random_colors(r, -kFloatMax, kFloatMax), r);
+    return std::move(b).finish();
+}
+
+StressCase denormal_case(const AxisSet&, Random& r) {
+    CaseBuilder b("denormal", "denormal channels (below 1.2e-38), zeros and the smallest denormal");
+    for (int i = 0; i < 4; ++i) b.add_usual_histories(random_colors(r, 0, 1e-38), r);
+    Colors c = flat(glm::vec3(0.0f));
+    c[2] = glm::vec3(std::numeric_limits<float>::denorm_min());
+    b.add_usual_histories(c, r);
+    return std::move(b).finish();
+}
+
+StressCase negative_case(const AxisSet&, Random& r) {
+    CaseBuilder b("negative", "negative channels: in [-1, 0], [-1e3, 1e3] and [-6e4, 0]");
+    for (int i = 0; i < 2; ++i) b.add_usual_histories(random_colors(r, -1, 0), r);
+    for (int i = 0; i < 2; ++i) b.add_usual_histories(random_colors(r, -1e3, 1e3), r);
+    for (int i = 0; i < 2; ++i) b.add_usual_histories(random_colors(r, -6e4, 0), r);
+    return std::move(b).finish();
+}
+
+// All nine colors equal, each of `colors`: the usual histories, then each channel moved by each of
+// `offsets`.
+StressCase flat_case(std::string name, std::string description, std::array<glm::vec3, 2> colors,
+                     std::array<float, 3> offsets, Random& r) {
+    CaseBuilder b(std::move(name), std::move(description));
+    for (glm::vec3 color : colors) {
+        b.add_usual_histories(flat(color), r);
+        for (int ch = 0; ch < 3; ++ch)
+            for (float offset : offsets) {
+                glm::vec3 h = color;
+                h[ch] += offset;
+                b.add(flat(color), h);
+            }
+    }
+    return std::move(b).finish();
+}
+
+StressCase gray_line_case(const AxisSet&, Random& r) {
+    CaseBuilder b("gray-line", "all colors gray (on one line): in [0, 1] and [0, 6e4]");
+    for (double hi : {1.0, 1.0, 6e4, 6e4}) {
+        Colors c = gray_line(r, hi);
+        b.add_usual_histories(c, r);
+        b.add(c, center(c) + glm::vec3(1.0f, -1.0f, 0.0f) * float(1e-3 * hi));
+    }
+    return std::move(b).finish();
+}
+
+StressCase history_is_current_case(const AxisSet&, Random& r) {
+    CaseBuilder b("history-is-current", "every pixel's history equals its current color (LDR, HDR, tiny)");
+    for (double hi : {1.0, 6e4, 1e-30})
+        for (int i = 0; i < 8; ++i) b.add(random_colors(r, 0, hi), glm::vec3(0.0f));
+    b.history_is_current();
+    return std::move(b).finish();
+}
+
+StressCase parallel_case(const AxisSet& set, Random& r) {
+    CaseBuilder b("parallel", "history - current exactly perpendicular to one of the set's axes (dot = 0), "
+                              "flat and varied neighborhoods");
+    Colors varied = random_colors(r, 0, 1);
+    for (glm::vec3& c : varied) c = glm::round(c * 4096.0f) / 4096.0f; // exact sums with power-of-two steps
+    for (const Colors& colors : {flat(glm::vec3(0.375f)), flat(glm::vec3(5e4f)), varied})
+        for (const Axis& axis : set.axes)
+            for (int other : {1, 2}) {
+                glm::vec3 v;
+                if (parallel_offset(axis, center(colors), other, v)) b.add(colors, center(colors) + v);
+            }
+    return std::move(b).finish();
+}
+
+StressCase nan_history_case(const AxisSet&, Random& r) {
+    CaseBuilder b("nan-history", "history with NaN in one or all channels");
+    for (double hi : {1.0, 6e4}) {
+        Colors c = random_colors(r, 0, hi);
+        const glm::vec3 m = center(c);
+        for (glm::vec3 h : {glm::vec3(kNaN, m.y, m.z), glm::vec3(m.x, kNaN, m.z), glm::vec3(kNaN)}) b.add(c, h);
+    }
+    return std::move(b).finish();
+}
+
+StressCase inf_history_case(const AxisSet&, Random& r) {
+    CaseBuilder b("inf-history", "history with +Inf or -Inf channels");
+    for (double hi : {1.0, 6e4}) {
+        Colors c = random_colors(r, 0, hi);
+        const glm::vec3 m = center(c);
+        for (glm::vec3 h :
+             {glm::vec3(kInf, m.y, m.z), glm::vec3(m.x, -kInf, m.z), glm::vec3(kInf, -kInf, 0.0f), glm::vec3(kInf)})
+            b.add(c, h);
+    }
+    return std::move(b).finish();
+}
+
+// Random neighborhoods in [0, 1] with neighbor `at` (not the pixel) replaced by each of `bad`.
+StressCase bad_neighbor_case(std::string name, std::string description, std::initializer_list<glm::vec3> bad, int at,
+                             Random& r) {
+    CaseBuilder b(std::move(name), std::move(description));
+    for (glm::vec3 color : bad) {
+        Colors c = random_colors(r, 0, 1);
+        c[at] = color;
+        b.add_usual_histories(c, r);
+    }
+    return std::move(b).finish();
+}
+
+StressCase rgba16f_case(const AxisSet&, Random& r) {
+    CaseBuilder b("rgba16f",
+                  "half-float textures: channels up to 65504, some exactly 65504, histories up to "
+                  "7e4 (Inf in half)",
+                  TextureFormat::rgba16f);
+    for (int i = 0; i < 4; ++i) {
+        Colors c = random_colors(r, 0, kHalfMax);
+        for (glm::vec3& color : c)
+            for (int ch = 0; ch < 3; ++ch)
+                if (r.uniform() < 0.3) color[ch] = kHalfMax;
+        b.add_usual_histories(c, r);
+        b.add(c, glm::vec3(kHalfMax));
+        b.add(c, glm::vec3(7e4f, 1.0f, 1.0f));
+    }
+    return std::move(b).finish();
+}
+
+// Every case, in the order of the stress matrix; each draws from its own random stream.
 const std::vector<CaseMaker>& case_makers() {
     static const std::vector<CaseMaker> makers = {
         [](const AxisSet&, Random& r) {
@@ -164,137 +290,33 @@ const std::vector<CaseMaker>& case_makers() {
             return magnitude_case("near-max", "channels in [1e37, 1e38]: projections near the float maximum", 1e37,
                                   1e38, r);
         },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("float-max", "channels of either sign up to FLT_MAX: sums and differences overflow");
-            for (int i = 0; i < 3; ++i) b.add_usual_histories(random_colors(r, 0.5 * kFloatMax, kFloatMax), r);
-            for (int i = 0; i < 3; ++i) b.add_usual_histories(random_colors(r, -kFloatMax, kFloatMax), r);
-            return std::move(b).finish();
-        },
+        float_max_case,
         [](const AxisSet&, Random& r) { return magnitude_case("tiny", "channels in [0, 1e-30]", 0, 1e-30, r); },
+        denormal_case,
+        negative_case,
         [](const AxisSet&, Random& r) {
-            CaseBuilder b("denormal", "denormal channels (below 1.2e-38), zeros and the smallest denormal");
-            for (int i = 0; i < 4; ++i) b.add_usual_histories(random_colors(r, 0, 1e-38), r);
-            Colors c = flat(glm::vec3(0.0f));
-            c[2] = glm::vec3(std::numeric_limits<float>::denorm_min());
-            b.add_usual_histories(c, r);
-            return std::move(b).finish();
+            return flat_case("flat-0.37", "all nine colors equal: gray 0.37 and (0.37, 0.2, 0.9)",
+                             {glm::vec3(0.37f), glm::vec3(0.37f, 0.2f, 0.9f)}, {-1e-3f, 1e-3f, 1.0f}, r);
         },
         [](const AxisSet&, Random& r) {
-            CaseBuilder b("negative", "negative channels: in [-1, 0], [-1e3, 1e3] and [-6e4, 0]");
-            for (int i = 0; i < 2; ++i) b.add_usual_histories(random_colors(r, -1, 0), r);
-            for (int i = 0; i < 2; ++i) b.add_usual_histories(random_colors(r, -1e3, 1e3), r);
-            for (int i = 0; i < 2; ++i) b.add_usual_histories(random_colors(r, -6e4, 0), r);
-            return std::move(b).finish();
+            return flat_case("flat-5e4", "all nine colors equal: gray 5e4 and (5e4, 2e4, 6e4)",
+                             {glm::vec3(5e4f), glm::vec3(5e4f, 2e4f, 6e4f)}, {-1.0f, 1.0f, 1e3f}, r);
+        },
+        gray_line_case,
+        history_is_current_case,
+        parallel_case,
+        nan_history_case,
+        inf_history_case,
+        [](const AxisSet&, Random& r) {
+            return bad_neighbor_case("nan-neighbor", "one neighbor (not the pixel) with NaN in one or all channels",
+                                     {glm::vec3(kNaN, 0.5f, 0.5f), glm::vec3(kNaN)}, 1, r);
         },
         [](const AxisSet&, Random& r) {
-            CaseBuilder b("flat-0.37", "all nine colors equal: gray 0.37 and (0.37, 0.2, 0.9)");
-            for (glm::vec3 color : {glm::vec3(0.37f), glm::vec3(0.37f, 0.2f, 0.9f)}) {
-                b.add_usual_histories(flat(color), r);
-                for (int ch = 0; ch < 3; ++ch)
-                    for (float offset : {-1e-3f, 1e-3f, 1.0f}) {
-                        glm::vec3 h = color;
-                        h[ch] += offset;
-                        b.add(flat(color), h);
-                    }
-            }
-            return std::move(b).finish();
+            return bad_neighbor_case("inf-neighbor", "one neighbor (not the pixel) with +Inf or -Inf channels",
+                                     {glm::vec3(kInf, 0.5f, 0.5f), glm::vec3(-kInf), glm::vec3(kInf, -kInf, 1.0f)}, 7,
+                                     r);
         },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("flat-5e4", "all nine colors equal: gray 5e4 and (5e4, 2e4, 6e4)");
-            for (glm::vec3 color : {glm::vec3(5e4f), glm::vec3(5e4f, 2e4f, 6e4f)}) {
-                b.add_usual_histories(flat(color), r);
-                for (int ch = 0; ch < 3; ++ch)
-                    for (float offset : {-1.0f, 1.0f, 1e3f}) {
-                        glm::vec3 h = color;
-                        h[ch] += offset;
-                        b.add(flat(color), h);
-                    }
-            }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("gray-line", "all colors gray (on one line): in [0, 1] and [0, 6e4]");
-            for (double hi : {1.0, 1.0, 6e4, 6e4}) {
-                Colors c = gray_line(r, hi);
-                b.add_usual_histories(c, r);
-                b.add(c, center(c) + glm::vec3(1.0f, -1.0f, 0.0f) * float(1e-3 * hi));
-            }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("history-is-current", "every pixel's history equals its current color (LDR, HDR, tiny)");
-            for (double hi : {1.0, 6e4, 1e-30})
-                for (int i = 0; i < 8; ++i) b.add(random_colors(r, 0, hi), glm::vec3(0.0f));
-            b.history_is_current();
-            return std::move(b).finish();
-        },
-        [](const AxisSet& set, Random& r) {
-            CaseBuilder b("parallel", "history - current exactly perpendicular to one of the set's axes (dot = 0), "
-                                      "flat and varied neighborhoods");
-            Colors varied = random_colors(r, 0, 1);
-            for (glm::vec3& c : varied) c = glm::round(c * 4096.0f) / 4096.0f; // exact sums with power-of-two steps
-            for (const Colors& colors : {flat(glm::vec3(0.375f)), flat(glm::vec3(5e4f)), varied})
-                for (const Axis& axis : set.axes)
-                    for (int other : {1, 2}) {
-                        glm::vec3 v;
-                        if (parallel_offset(axis, center(colors), other, v)) b.add(colors, center(colors) + v);
-                    }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("nan-history", "history with NaN in one or all channels");
-            for (double hi : {1.0, 6e4}) {
-                Colors c = random_colors(r, 0, hi);
-                const glm::vec3 m = center(c);
-                for (glm::vec3 h : {glm::vec3(kNaN, m.y, m.z), glm::vec3(m.x, kNaN, m.z), glm::vec3(kNaN)}) b.add(c, h);
-            }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("inf-history", "history with +Inf or -Inf channels");
-            for (double hi : {1.0, 6e4}) {
-                Colors c = random_colors(r, 0, hi);
-                const glm::vec3 m = center(c);
-                for (glm::vec3 h : {glm::vec3(kInf, m.y, m.z), glm::vec3(m.x, -kInf, m.z), glm::vec3(kInf, -kInf, 0.0f),
-                                    glm::vec3(kInf)})
-                    b.add(c, h);
-            }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("nan-neighbor", "one neighbor (not the pixel) with NaN in one or all channels");
-            for (glm::vec3 bad : {glm::vec3(kNaN, 0.5f, 0.5f), glm::vec3(kNaN)}) {
-                Colors c = random_colors(r, 0, 1);
-                c[1] = bad;
-                b.add_usual_histories(c, r);
-            }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("inf-neighbor", "one neighbor (not the pixel) with +Inf or -Inf channels");
-            for (glm::vec3 bad : {glm::vec3(kInf, 0.5f, 0.5f), glm::vec3(-kInf), glm::vec3(kInf, -kInf, 1.0f)}) {
-                Colors c = random_colors(r, 0, 1);
-                c[7] = bad;
-                b.add_usual_histories(c, r);
-            }
-            return std::move(b).finish();
-        },
-        [](const AxisSet&, Random& r) {
-            CaseBuilder b("rgba16f",
-                          "half-float textures: channels up to 65504, some exactly 65504, histories up to "
-                          "7e4 (Inf in half)",
-                          TextureFormat::rgba16f);
-            for (int i = 0; i < 4; ++i) {
-                Colors c = random_colors(r, 0, kHalfMax);
-                for (glm::vec3& color : c)
-                    for (int ch = 0; ch < 3; ++ch)
-                        if (r.uniform() < 0.3) color[ch] = kHalfMax;
-                b.add_usual_histories(c, r);
-                b.add(c, glm::vec3(kHalfMax));
-                b.add(c, glm::vec3(7e4f, 1.0f, 1.0f));
-            }
-            return std::move(b).finish();
-        },
+        rgba16f_case,
     };
     return makers;
 }
