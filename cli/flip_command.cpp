@@ -3,8 +3,11 @@
 #include "cli/hdr_flip_option.h"
 #include "cli/input_space_option.h"
 #include "cli/number_option.h"
+#include "core/input_files.h"
 #include "core/shown_text.h"
+#include "core/write_files.h"
 #include "flip/flip.h"
+#include "flip/flip_check.h"
 #include "flip/flip_run.h"
 #include "flip/hdr_flip.h"
 #include "generator/command_line.h"
@@ -12,10 +15,97 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <vector>
 
 namespace kdop::cli {
+namespace {
+
+// The flag each output is given with.
+const char* flag(FlipOutput output) {
+    switch (output) {
+    case FlipOutput::out: return "--out";
+    case FlipOutput::exposure_map: return "--exposure-map";
+    case FlipOutput::csv: return "--csv";
+    case FlipOutput::histogram: return "--histogram";
+    }
+    return "";
+}
+
+// A conflict of the options (flip_check.h), named by the flags that gave them.
+std::string conflict_message(const FlipConflict& conflict, const FlipRunOptions& o) {
+    using Kind = FlipConflict::Kind;
+    const std::string& path = output_path(o, conflict.output);
+    switch (conflict.kind) {
+    case Kind::pixels_per_degree: return "--ppd: " + check_pixels_per_degree(o.ppd).error().message;
+    case Kind::no_tests: return "--test: give at least one test image";
+    case Kind::maps_of_several_tests:
+        return fmt::format("--out and --exposure-map write one test's maps, and {} --test images are given; --csv and "
+                           "--histogram take several",
+                           o.tests.size());
+    case Kind::map_format:
+        return fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma colors)",
+                           flag(conflict.output), path);
+    case Kind::histogram_format:
+        return fmt::format("{}: {}: the histogram is drawn as a .png", flag(conflict.output), path);
+    case Kind::same_output:
+        return fmt::format("{} and {} both name {}", flag(conflict.earlier), flag(conflict.output), path);
+    }
+    return "";
+}
+
+// The options' conflicts and the files the run would be refused, before any work: exit 2. Every
+// output is checked: none a folder, a special file or an input.
+std::optional<int> refused(const FlipRunOptions& o) {
+    if (auto conflict = check(o)) return usage_error(conflict_message(*conflict, o));
+    std::vector<std::filesystem::path> inputs{o.reference};
+    inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
+    for (FlipOutput output : kFlipOutputs) {
+        const std::string& path = output_path(o, output);
+        if (path.empty()) continue;
+        if (auto ok = check_output_file(path, flag(output)); !ok) return usage_error(ok.error().message);
+        if (auto ok = check_not_an_input(path, flag(output), inputs); !ok) return report(ok.error());
+    }
+    return std::nullopt;
+}
+
+// What the run found: each test's mean and statistics, the timing; then the files, written.
+int print(const FlipRunOptions& run, const FlipRunResult& r) {
+    report_validation_messages(r.validation_messages);
+    const std::string where = r.device.empty() ? "on the CPU" : "on " + r.device;
+    for (const FlipTestResult& t : r.tests) {
+        // With several tests, each block says which.
+        const std::string which = r.tests.size() > 1 ? terminal_text(t.test) + ": " : "";
+        const FlipStatistics& f = t.statistics;
+        if (run.hdr)
+            std::cout << fmt::format("{}HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
+                                     "exposure{} from {:.4g} to {:.4g}) {}\n",
+                                     which, f.mean, run.ppd, r.width, r.height, r.space,
+                                     to_string(run.exposure.tone_mapper), t.range.count, t.range.count == 1 ? "" : "s",
+                                     t.range.start, t.range.stop, where);
+        else
+            std::cout << fmt::format("{}LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", which, f.mean,
+                                     run.ppd, r.width, r.height, r.space, where);
+        std::cout << fmt::format("  weighted median {:.6f}, 1st weighted quartile {:.6f}, 3rd weighted quartile "
+                                 "{:.6f} (NVlabs/flip's)\n  median {:.6f}, 1st quartile {:.6f}, 3rd quartile "
+                                 "{:.6f}; min {:.6f}, max {:.6f}\n",
+                                 f.weighted_median, f.weighted_q1, f.weighted_q3, f.median, f.q1, f.q3, f.min, f.max);
+    }
+    if (run.timing)
+        std::cout << fmt::format("timing: median of {} evaluation{}: {:.4f} s wall, {:.4f} CPU s; set-up {:.3f} s "
+                                 "wall, {:.3f} CPU s\n",
+                                 run.timing, run.timing == 1 ? "" : "s", median(r.wall_s), median(r.cpu_s),
+                                 r.setup_wall_s, r.setup_cpu_s);
+    if (auto ok = write_flip_outputs(run, r); !ok) return report_error(ok.error().message);
+    for (const std::string& path : {run.out, run.exposure_map, run.csv, run.histogram})
+        if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
+    return 0;
+}
+
+} // namespace
 
 Action add_flip_command(CLI::App& app) {
     struct Options {
@@ -93,39 +183,10 @@ Action add_flip_command(CLI::App& app) {
                                                      o->viewing.distance_m, o->viewing.display_width_m,
                                                      o->viewing.display_width_px, ok.error().message)
                                        : fmt::format("--ppd: {}", ok.error().message));
+        if (auto status = refused(run)) return *status;
         auto result = run_flip(run);
         if (!result) return report(result.error());
-        const FlipRunResult& r = *result;
-        report_validation_messages(r.validation_messages);
-        const std::string where = r.device.empty() ? "on the CPU" : "on " + r.device;
-        for (const FlipTestResult& t : r.tests) {
-            // With several tests, each block says which.
-            const std::string which = r.tests.size() > 1 ? terminal_text(t.test) + ": " : "";
-            const FlipStatistics& f = t.statistics;
-            if (o->run.hdr)
-                std::cout << fmt::format("{}HDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}; {} tone mapper, {} "
-                                         "exposure{} from {:.4g} to {:.4g}) {}\n",
-                                         which, f.mean, run.ppd, r.width, r.height, r.space,
-                                         to_string(o->run.exposure.tone_mapper), t.range.count,
-                                         t.range.count == 1 ? "" : "s", t.range.start, t.range.stop, where);
-            else
-                std::cout << fmt::format("{}LDR-FLIP mean {} at {:.4g} pixels per degree ({}x{}{}) {}\n", which, f.mean,
-                                         run.ppd, r.width, r.height, r.space, where);
-            std::cout << fmt::format("  weighted median {:.6f}, 1st weighted quartile {:.6f}, 3rd weighted quartile "
-                                     "{:.6f} (NVlabs/flip's)\n  median {:.6f}, 1st quartile {:.6f}, 3rd quartile "
-                                     "{:.6f}; min {:.6f}, max {:.6f}\n",
-                                     f.weighted_median, f.weighted_q1, f.weighted_q3, f.median, f.q1, f.q3, f.min,
-                                     f.max);
-        }
-        if (o->run.timing)
-            std::cout << fmt::format("timing: median of {} evaluation{}: {:.4f} s wall, {:.4f} CPU s; set-up {:.3f} s "
-                                     "wall, {:.3f} CPU s\n",
-                                     o->run.timing, o->run.timing == 1 ? "" : "s", median(r.wall_s), median(r.cpu_s),
-                                     r.setup_wall_s, r.setup_cpu_s);
-        if (auto ok = write_flip_outputs(run, r); !ok) return report_error(ok.error().message);
-        for (const std::string& path : {o->run.out, o->run.exposure_map, o->run.csv, o->run.histogram})
-            if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
-        return 0;
+        return print(run, *result);
     };
 }
 

@@ -1,10 +1,10 @@
 #include "flip/flip_run.h"
 
-#include "core/input_files.h"
 #include "core/memory_budget.h"
 #include "core/write_files.h"
 #include "flip/device_flip.h"
 #include "flip/flip.h"
+#include "flip/flip_check.h"
 #include "flip/magma.h"
 #include "harness/declared_table.h"
 #include "harness/gnuplot.h"
@@ -16,8 +16,6 @@
 
 #include <sys/resource.h>
 
-#include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -38,13 +36,6 @@ double process_cpu_seconds() {
     getrusage(RUSAGE_SELF, &usage);
     auto seconds = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
     return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-}
-
-// A map file's extension, in lowercase: .exr or .png.
-std::string lowercase_extension(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    return extension;
 }
 
 // The statistics of every test as a table: the CSV --csv writes.
@@ -105,48 +96,23 @@ Result<OutputFile> histogram_chart(const std::vector<FlipTestResult>& tests, std
     return chart;
 }
 
-} // namespace
+// How the inputs are decoded, as a clause of the summary line, or empty.
+const char* input_space_clause(InputSpace space) {
+    return space == InputSpace::srgb     ? ", every input decoded from sRGB"
+           : space == InputSpace::linear ? ", every input taken as linear"
+                                         : "";
+}
 
-Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
-    if (auto ok = check_pixels_per_degree(o.ppd); !ok) return usage_fail("--ppd: " + ok.error().message);
-    if (o.tests.empty()) return usage_fail("--test: give at least one test image");
-    if (o.tests.size() > 1 && (!o.out.empty() || !o.exposure_map.empty()))
-        return usage_fail(fmt::format("--out and --exposure-map write one test's maps, and {} --test images are "
-                                      "given; --csv and --histogram take several",
-                                      o.tests.size()));
-    // Every output checked before any work: the maps .exr (their values) or .png (in magma colors),
-    // the histogram .png; none a folder, a special file or an input, no two the same.
-    std::vector<std::filesystem::path> inputs{o.reference};
-    inputs.insert(inputs.end(), o.tests.begin(), o.tests.end());
-    const std::pair<const char*, const std::string*> outputs[] = {
-        {"--out", &o.out}, {"--exposure-map", &o.exposure_map}, {"--csv", &o.csv}, {"--histogram", &o.histogram}};
-    for (std::size_t i = 0; i < std::size(outputs); ++i) {
-        const auto& [option, path] = outputs[i];
-        if (path->empty()) continue;
-        const std::string extension = lowercase_extension(*path);
-        if (i < 2 && extension != ".exr" && extension != ".png")
-            return usage_fail(fmt::format("{}: {}: the map is written as .exr (its values) or .png (in magma colors)",
-                                          option, *path));
-        if (i == 3 && extension != ".png")
-            return usage_fail(fmt::format("{}: {}: the histogram is drawn as a .png", option, *path));
-        if (auto ok = check_output_file(*path, option); !ok) return usage_fail(ok.error().message);
-        if (auto ok = check_not_an_input(*path, option, inputs); !ok) return std::unexpected(ok.error());
-        for (std::size_t j = 0; j < i; ++j)
-            if (!outputs[j].second->empty() && *outputs[j].second == *path)
-                return usage_fail(fmt::format("{} and {} both name {}", outputs[j].first, option, *path));
-    }
-    if (!o.histogram.empty() && find_program("gnuplot").empty())
-        return fail(fmt::format("--histogram {}: it is drawn with gnuplot, which is not in PATH (Debian: gnuplot-nox)",
-                                o.histogram));
+// Fails unless `image` is what the run's FLIP takes (LDR: RGB in [0, 1]; HDR: from 0 up).
+Result<void> check_input(const FlipRunOptions& o, const Image& image, const std::string& what) {
+    return o.hdr ? check_hdr_image(image, what) : check_ldr_image(image, what);
+}
 
-    const InputSpace input_space = o.input_space;
-    auto reference = read_image(o.reference, 0, input_space);
+// The reference, read and checked, and the memory its evaluations take checked against the budget.
+Result<Image> read_reference(const FlipRunOptions& o) {
+    auto reference = read_image(o.reference, 0, o.input_space);
     if (!reference) return fail(reference.error().message);
-    const auto check_image = o.hdr ? check_hdr_image : check_ldr_image;
-    if (auto ok = check_image(*reference, "--reference " + o.reference); !ok) return fail(ok.error().message);
-    const char* space = input_space == InputSpace::srgb     ? ", every input decoded from sRGB"
-                        : input_space == InputSpace::linear ? ", every input taken as linear"
-                                                            : "";
+    if (auto ok = check_input(o, *reference, "--reference " + o.reference); !ok) return fail(ok.error().message);
     const std::uint32_t w = reference->width, h = reference->height;
     const std::uint64_t pixels = std::uint64_t(w) * h;
     // The CPU's HDR-FLIP holds two tone-mapped copies and the exposure map besides LDR-FLIP's
@@ -160,94 +126,137 @@ Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
             fmt::format("--reference {}: {}-FLIP of {}x{}", o.reference, o.hdr ? "HDR" : "LDR", w, h), needed);
         !ok)
         return fail(ok.error().message);
+    return std::move(*reference);
+}
 
-    const ExposureOptions& exposure = o.exposure;
+// Where FLIP is computed: the device's passes for the reference's size, or (--cpu) none, the CPU's
+// reference code; and what setting them up took.
+struct FlipBackend {
+    std::unique_ptr<Context> context;
+    std::unique_ptr<DeviceFlip> device; // null: on the CPU
+    double setup_wall_s = 0, setup_cpu_s = 0;
+};
+
+Result<FlipBackend> create_backend(const FlipRunOptions& o, std::uint32_t width, std::uint32_t height) {
+    FlipBackend backend;
     const auto setup_start = std::chrono::steady_clock::now();
     const double setup_cpu_start = process_cpu_seconds();
-    std::unique_ptr<Context> context;
-    std::unique_ptr<DeviceFlip> device;
     if (!o.cpu) {
         auto created = Context::create(o.device);
         if (!created) return fail(created.error().message);
-        context = std::move(*created);
-        auto flip = DeviceFlip::create(*context, o.ppd, w, h);
+        backend.context = std::move(*created);
+        auto flip = DeviceFlip::create(*backend.context, o.ppd, width, height);
         if (!flip)
             return fail(fmt::format("--reference {}: {} (--cpu computes FLIP on the CPU instead)", o.reference,
                                     flip.error().message));
-        device = std::move(*flip);
+        backend.device = std::move(*flip);
     }
-    const double setup_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count(),
-                 setup_cpu = process_cpu_seconds() - setup_cpu_start;
-    // One evaluation on the device or the CPU: with `maps`, its error map read back for the
-    // statistics; without, the mean alone, as a measurement computes it (what --timing times).
-    auto evaluate = [&](const Image& test, bool maps) -> Result<Evaluated> {
-        Evaluated r;
-        if (o.hdr) {
-            auto hdr = device ? device->hdr(*reference, test, exposure, maps)
-                              : HdrFlip(o.ppd).maps(*reference, test, exposure);
-            if (!hdr) return std::unexpected(hdr.error());
-            r.mean = hdr->mean;
-            r.range = hdr->range;
-            r.map = std::move(hdr->error);
-            r.exposure_map = std::move(hdr->exposure);
-            return r;
-        }
-        if (device && !maps) {
-            auto mean = device->mean(*reference, test);
-            if (!mean) return std::unexpected(mean.error());
-            r.mean = *mean;
-            return r;
-        }
-        Result<std::vector<float>> map = std::vector<float>{};
-        if (device) {
-            auto terms = device->terms(*reference, test);
-            if (!terms) return std::unexpected(terms.error());
-            map = std::move(terms->error);
-        } else {
-            map = LdrFlip(o.ppd).error_map(*reference, test);
-        }
-        if (!map) return std::unexpected(map.error());
-        r.mean = mean_error(*map);
-        r.map = std::move(*map);
-        return r;
-    };
+    backend.setup_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
+    backend.setup_cpu_s = process_cpu_seconds() - setup_cpu_start;
+    return backend;
+}
 
-    FlipRunResult out;
-    const bool keep_maps = !o.out.empty() || !o.exposure_map.empty(); // one test, then
-    for (const std::string& path : o.tests) {
-        auto test = read_image(path, 0, input_space);
-        if (!test) return fail(test.error().message);
-        if (test->width != w || test->height != h)
-            return fail(fmt::format("--test {}: {}x{}, but --reference {} is {}x{}", path, test->width, test->height,
-                                    o.reference, w, h));
-        if (auto ok = check_image(*test, "--test " + path); !ok) return fail(ok.error().message);
-        auto result = evaluate(*test, true);
-        if (!result) return fail(fmt::format("--test {}: {}", path, result.error().message));
-        if (out.tests.empty())
-            for (int i = 0; i < o.timing; ++i) {
-                const auto wall_start = std::chrono::steady_clock::now();
-                const double cpu_start = process_cpu_seconds();
-                if (auto again = evaluate(*test, false); !again)
-                    return fail(fmt::format("--test {}: {}", path, again.error().message));
-                out.wall_s.push_back(
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
-                out.cpu_s.push_back(process_cpu_seconds() - cpu_start);
-            }
-        FlipTestResult& t = out.tests.emplace_back();
-        t.test = path;
-        t.statistics = flip_statistics(result->map);
-        t.statistics.mean = result->mean; // as the evaluation summed it (HDR-FLIP's and the device's own order)
-        t.histogram = flip_histogram(result->map);
-        t.range = result->range;
-        if (keep_maps) t.map = std::move(result->map), t.exposure_map = std::move(result->exposure_map);
+// HDR-FLIP of `test`, on the device or the CPU, with its maps.
+Result<Evaluated> evaluate_hdr(const FlipRunOptions& o, DeviceFlip* device, const Image& reference, const Image& test,
+                               bool maps) {
+    auto hdr =
+        device ? device->hdr(reference, test, o.exposure, maps) : HdrFlip(o.ppd).maps(reference, test, o.exposure);
+    if (!hdr) return std::unexpected(hdr.error());
+    Evaluated r;
+    r.mean = hdr->mean;
+    r.range = hdr->range;
+    r.map = std::move(hdr->error);
+    r.exposure_map = std::move(hdr->exposure);
+    return r;
+}
+
+// One evaluation on the device or the CPU: with `maps`, its error map read back for the
+// statistics; without, the mean alone, as a measurement computes it (what --timing times).
+Result<Evaluated> evaluate(const FlipRunOptions& o, DeviceFlip* device, const Image& reference, const Image& test,
+                           bool maps) {
+    if (o.hdr) return evaluate_hdr(o, device, reference, test, maps);
+    Evaluated r;
+    if (device && !maps) {
+        auto mean = device->mean(reference, test);
+        if (!mean) return std::unexpected(mean.error());
+        r.mean = *mean;
+        return r;
     }
-    out.width = w;
-    out.height = h;
-    out.space = space;
-    out.device = context ? context->device_name() : "";
-    out.setup_wall_s = setup_wall;
-    out.setup_cpu_s = setup_cpu;
-    if (context) out.validation_messages = context->validation_messages();
+    Result<std::vector<float>> map = std::vector<float>{};
+    if (device) {
+        auto terms = device->terms(reference, test);
+        if (!terms) return std::unexpected(terms.error());
+        map = std::move(terms->error);
+    } else {
+        map = LdrFlip(o.ppd).error_map(reference, test);
+    }
+    if (!map) return std::unexpected(map.error());
+    r.mean = mean_error(*map);
+    r.map = std::move(*map);
+    return r;
+}
+
+// `o.timing` more evaluations of `test`, the mean alone, each one's wall and CPU seconds into `out`.
+Result<void> time_evaluations(const FlipRunOptions& o, DeviceFlip* device, const Image& reference, const Image& test,
+                              const std::string& path, FlipRunResult& out) {
+    for (int i = 0; i < o.timing; ++i) {
+        const auto wall_start = std::chrono::steady_clock::now();
+        const double cpu_start = process_cpu_seconds();
+        if (auto again = evaluate(o, device, reference, test, false); !again)
+            return fail(fmt::format("--test {}: {}", path, again.error().message));
+        out.wall_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+        out.cpu_s.push_back(process_cpu_seconds() - cpu_start);
+    }
+    return {};
+}
+
+// The test at `path` read, checked against the reference and evaluated into out.tests (the
+// first one also timed); its maps kept where a file wants them (then it is the only test).
+Result<void> measure_test(const FlipRunOptions& o, DeviceFlip* device, const Image& reference, const std::string& path,
+                          FlipRunResult& out) {
+    auto test = read_image(path, 0, o.input_space);
+    if (!test) return fail(test.error().message);
+    if (test->width != reference.width || test->height != reference.height)
+        return fail(fmt::format("--test {}: {}x{}, but --reference {} is {}x{}", path, test->width, test->height,
+                                o.reference, reference.width, reference.height));
+    if (auto ok = check_input(o, *test, "--test " + path); !ok) return fail(ok.error().message);
+    auto result = evaluate(o, device, reference, *test, true);
+    if (!result) return fail(fmt::format("--test {}: {}", path, result.error().message));
+    if (out.tests.empty())
+        if (auto ok = time_evaluations(o, device, reference, *test, path, out); !ok) return ok;
+    FlipTestResult& t = out.tests.emplace_back();
+    t.test = path;
+    t.statistics = flip_statistics(result->map);
+    t.statistics.mean = result->mean; // as the evaluation summed it (HDR-FLIP's and the device's own order)
+    t.histogram = flip_histogram(result->map);
+    t.range = result->range;
+    if (!o.out.empty() || !o.exposure_map.empty())
+        t.map = std::move(result->map), t.exposure_map = std::move(result->exposure_map);
+    return {};
+}
+
+} // namespace
+
+Result<FlipRunResult> run_flip(const FlipRunOptions& o) {
+    if (check(o)) return fail("kdop flip: options that check() refuses");
+    if (!o.histogram.empty() && find_program("gnuplot").empty())
+        return fail(fmt::format("--histogram {}: it is drawn with gnuplot, which is not in PATH (Debian: gnuplot-nox)",
+                                o.histogram));
+    auto reference = read_reference(o);
+    if (!reference) return std::unexpected(reference.error());
+    auto backend = create_backend(o, reference->width, reference->height);
+    if (!backend) return std::unexpected(backend.error());
+    FlipRunResult out;
+    for (const std::string& path : o.tests)
+        if (auto ok = measure_test(o, backend->device.get(), *reference, path, out); !ok)
+            return std::unexpected(ok.error());
+    out.width = reference->width;
+    out.height = reference->height;
+    out.space = input_space_clause(o.input_space);
+    out.device = backend->context ? backend->context->device_name() : "";
+    out.setup_wall_s = backend->setup_wall_s;
+    out.setup_cpu_s = backend->setup_cpu_s;
+    if (backend->context) out.validation_messages = backend->context->validation_messages();
     return out;
 }
 

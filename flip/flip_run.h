@@ -52,8 +52,9 @@ struct FlipRunResult {
     std::vector<std::string> validation_messages;
 };
 
-// The evaluation, with every file checked before it. Errors name the option and file;
-// Error::usage where the command line is at fault.
+// The evaluation of options check() accepts (flip_check.h; others are an error). The caller
+// checks the files the options name before (cli/flip_command.cpp: none a folder, a special file or
+// an input); write_atomically refuses an input again. Errors name the option and file.
 Result<FlipRunResult> run_flip(const FlipRunOptions& options);
 
 // `result`'s files (options.out, exposure_map, csv, histogram: those given), as one set: all or
