@@ -130,6 +130,66 @@ Clip cut(Polytope& poly, int plane, const double* side, const int* outside, int 
     return Clip::clipped;
 }
 
+// Starts `poly` as the parallelepiped of the base slabs: vertex b (bit k set: on the high plane of
+// base axis k) at the sum of corner[k][bit k], linked as `neighbors` and `faces` say.
+void start_parallelepiped(Polytope& poly, const glm::dvec3 (&corner)[3][2], const int (&neighbors)[8][3],
+                          const int (&faces)[8][3]) {
+    for (int b = 0; b < 8; ++b) {
+        const glm::dvec3 p = corner[0][b & 1] + corner[1][b >> 1 & 1] + corner[2][b >> 2 & 1];
+        for (int c = 0; c < 3; ++c) poly.coord[c][b] = p[c];
+        for (int k = 0; k < 3; ++k) {
+            poly.neighbor[b][k] = neighbors[b][k];
+            poly.face[b][k] = faces[b][k];
+        }
+    }
+    poly.count = 8;
+}
+
+// Clips `poly` to the slab lo <= x . a <= hi of axis `axis`, high plane then low (faces 2 axis and
+// 2 axis + 1): unchanged or clipped, or why not. Distances within `tolerance` count as 0. One
+// projection serves both planes: the low one's outside vertices are found before the high one is
+// cut (which moves none of them unless it fills holes), and the vertices that cut adds lie on the
+// high plane.
+Clip clip_slab(Polytope& poly, int axis, glm::dvec3 a, double lo, double hi, double tolerance, ClipScratch& scratch) {
+    double side_hi[kMaxVertices], side_lo[kMaxVertices];
+    int outside_hi[kMaxVertices], outside_lo[kMaxVertices];
+    auto project = [&] {
+        const int count = poly.count;
+        const double *x = poly.coord[0], *y = poly.coord[1], *z = poly.coord[2];
+        for (int v = 0; v < count; ++v) {
+            const double q = a.x * x[v] + a.y * y[v] + a.z * z[v];
+            side_hi[v] = q - hi;
+            side_lo[v] = lo - q;
+        }
+    };
+    project();
+    // Lists written without branches (each slot written, kept by the count), as in bounds_of.
+    int hi_count = 0, lo_count = 0;
+    for (int v = 0; v < poly.count; ++v) {
+        outside_hi[hi_count] = v;
+        hi_count += side_hi[v] > tolerance;
+        outside_lo[lo_count] = v;
+        lo_count += side_lo[v] > tolerance;
+    }
+    // The high plane, then the low one.
+    for (int high = 1; high >= 0; --high) {
+        bool moved = false;
+        const Clip clipped =
+            cut(poly, 2 * axis + (high ? 0 : 1), high ? side_hi : side_lo, high ? outside_hi : outside_lo,
+                high ? hi_count : lo_count, tolerance, scratch, high ? side_lo : side_hi, high ? lo - hi : 0, moved);
+        if (clipped == Clip::empty || clipped == Clip::failed) return clipped;
+        if (clipped == Clip::clipped && high && moved) { // the low plane's outside vertices, again
+            project();
+            lo_count = 0;
+            for (int v = 0; v < poly.count; ++v) {
+                outside_lo[lo_count] = v;
+                lo_count += side_lo[v] > tolerance;
+            }
+        }
+    }
+    return Clip::clipped;
+}
+
 } // namespace
 
 KdopPolytope::KdopPolytope(std::span<const glm::dvec3> axes) {
@@ -274,77 +334,27 @@ double KdopPolytope::solve(const double* lo, const double* hi, double size, Loca
             return 0.0;
         }
 
-    // The parallelepiped of the base slabs: vertex b (bit k set: hi of base axis k).
+    // The parallelepiped of the base slabs, then the rest of the slabs. Distances within 1e-12 of
+    // the coordinates' size count as 0.
     Polytope poly;
     glm::dvec3 corner[3][2]; // base axis k's contribution at its low and high plane
     for (int k = 0; k < 3; ++k) {
         corner[k][0] = lo[base_[k]] * base_inverse_[k];
         corner[k][1] = hi[base_[k]] * base_inverse_[k];
     }
-    for (int b = 0; b < 8; ++b) {
-        const glm::dvec3 p = corner[0][b & 1] + corner[1][b >> 1 & 1] + corner[2][b >> 2 & 1];
-        for (int c = 0; c < 3; ++c) poly.coord[c][b] = p[c];
-        for (int k = 0; k < 3; ++k) {
-            poly.neighbor[b][k] = base_neighbors_[b][k];
-            poly.face[b][k] = base_faces_[b][k];
-        }
-    }
-    poly.count = 8;
-
-    // The rest of the slabs, high plane then low. Distances within 1e-12 of the coordinates' size
-    // count as 0. One projection serves both planes: the low one's outside vertices are found
-    // before the high one is cut (which moves none of them unless it fills holes), and the
-    // vertices that cut adds lie on the high plane.
+    start_parallelepiped(poly, corner, base_neighbors_, base_faces_);
     const double tolerance = 1e-12 * size;
     ClipScratch scratch;
     std::fill_n(scratch.left_of, 2 * n, 0);
-    double side_hi[kMaxVertices], side_lo[kMaxVertices];
-    int outside_hi[kMaxVertices], outside_lo[kMaxVertices];
     for (std::size_t i = 0; i < n; ++i) {
         if (i == base_[0] || i == base_[1] || i == base_[2]) continue;
-        const glm::dvec3 a = axes_[i];
-        const double high_offset = hi[i], low_offset = lo[i];
-        auto project = [&] {
-            const int count = poly.count;
-            const double *x = poly.coord[0], *y = poly.coord[1], *z = poly.coord[2];
-            for (int v = 0; v < count; ++v) {
-                const double q = a.x * x[v] + a.y * y[v] + a.z * z[v];
-                side_hi[v] = q - high_offset;
-                side_lo[v] = low_offset - q;
-            }
-        };
-        project();
-        // Lists written without branches (each slot written, kept by the count), as in bounds_of.
-        int hi_count = 0, lo_count = 0;
-        for (int v = 0; v < poly.count; ++v) {
-            outside_hi[hi_count] = v;
-            hi_count += side_hi[v] > tolerance;
-            outside_lo[lo_count] = v;
-            lo_count += side_lo[v] > tolerance;
-        }
-        // The high plane, then the low one.
-        for (int high = 1; high >= 0; --high) {
-            bool moved = false;
-            const Clip clipped = cut(poly, 2 * static_cast<int>(i) + (high ? 0 : 1), high ? side_hi : side_lo,
-                                     high ? outside_hi : outside_lo, high ? hi_count : lo_count, tolerance, scratch,
-                                     high ? side_lo : side_hi, high ? low_offset - high_offset : 0, moved);
-            switch (clipped) {
-            case Clip::unchanged: break;
-            case Clip::clipped:
-                if (high && moved) { // the low plane's outside vertices, again
-                    project();
-                    lo_count = 0;
-                    for (int v = 0; v < poly.count; ++v) {
-                        outside_lo[lo_count] = v;
-                        lo_count += side_lo[v] > tolerance;
-                    }
-                }
-                break;
-            case Clip::empty: // cannot happen for slabs around one set of points
-                std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
-                return 0.0;
-            case Clip::failed: return std::numeric_limits<double>::quiet_NaN();
-            }
+        switch (clip_slab(poly, static_cast<int>(i), axes_[i], lo[i], hi[i], tolerance, scratch)) {
+        case Clip::unchanged:
+        case Clip::clipped: break;
+        case Clip::empty: // cannot happen for slabs around one set of points
+            std::fill_n(faces, 2 * n, LocalFace{0, glm::dvec3(0.0)});
+            return 0.0;
+        case Clip::failed: return std::numeric_limits<double>::quiet_NaN();
         }
     }
 
