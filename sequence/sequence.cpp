@@ -52,6 +52,7 @@ std::string position_of(std::string_view text, std::size_t offset) {
 class Reader {
 public:
     explicit Reader(fs::path file) : file_(std::move(file)) {}
+    const fs::path& path() const { return file_; }
 
     Error error(std::string_view where, std::string_view what) const {
         return {fmt::format("{}: {}: {}", file_.string(), where, what)};
@@ -168,39 +169,34 @@ glm::vec2 canonical_motion(glm::vec2 stored, const MotionConvention& c, std::uin
     return m;
 }
 
-Result<Sequence> read_sequence(const fs::path& dir) {
-    const fs::path path = dir / "sequence.json";
-    auto text = read_input_file(path);
-    if (!text) return std::unexpected(text.error());
-    // Rows, charts, frames and pictures are named after the folder: refused here, before any work,
-    // where the name could not name them (core/file_name.h).
-    const std::string name = fs::weakly_canonical(dir).filename().string();
-    if (auto problem = name_problem(name))
-        return usage_fail(fmt::format("{}: the folder's name {}; kdop names the sequence's outputs after it, so rename "
-                                      "the folder",
-                                      shown_text(dir.string(), 300), *problem));
-    json root;
+namespace {
+
+// sequence.json's text as JSON, or an error naming the file and the position.
+Result<json> parse_manifest(const std::string& text, const fs::path& path) {
     try {
-        root = json::parse(*text);
+        return json::parse(text);
     } catch (const json::parse_error& e) {
         // nlohmann's message, after its "[json.exception.parse_error.101] parse error at line 1,
         // column 2: " prefix, says what it found and expected.
         std::string_view what = e.what();
         if (const auto colon = what.find(": "); colon != std::string_view::npos) what.remove_prefix(colon + 2);
         return fail(
-            fmt::format("{}:{}: not JSON: {}", path.string(), position_of(*text, e.byte), shown_text(what, 200)));
+            fmt::format("{}:{}: not JSON: {}", path.string(), position_of(text, e.byte), shown_text(what, 200)));
     } catch (const json::exception& e) {
         // A number too large for a double ("99e9999", found by tests/fuzz/sequence_fuzzer.cpp) is
         // nlohmann's out_of_range, not a parse error, and has no position.
         return fail(fmt::format("{}: not JSON kdop can read: {}", path.string(), shown_text(e.what(), 200)));
     }
-    const Reader reader(path);
-    if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
+}
+
+// The top level's version, size and settings (color, measure, motion, depth) into `s`.
+Result<void> read_settings(const Reader& reader, const json& root, Sequence& s) {
+    if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", reader.path().string()));
     if (auto ok = reader.known_keys(
             root, {"kdop_sequence", "width", "height", "color", "measure", "motion", "depth", "frames"},
             "the top level");
         !ok)
-        return std::unexpected(ok.error());
+        return ok;
     const auto version = root.find("kdop_sequence");
     if (version == root.end() || !version->is_number_integer())
         return std::unexpected(
@@ -209,9 +205,6 @@ Result<Sequence> read_sequence(const fs::path& dir) {
         return std::unexpected(
             reader.error("kdop_sequence", fmt::format("version {}; this kdop reads version {}",
                                                       version->get<std::int64_t>(), kSequenceFormatVersion)));
-    Sequence s;
-    s.dir = dir;
-    s.name = name;
     auto width = reader.side(root, "width");
     if (!width) return std::unexpected(width.error());
     auto height = reader.side(root, "height");
@@ -221,7 +214,7 @@ Result<Sequence> read_sequence(const fs::path& dir) {
 
     if (const auto color = root.find("color"); color != root.end()) {
         if (!color->is_object()) return std::unexpected(reader.error("color", "expected an object"));
-        if (auto ok = reader.known_keys(*color, {"range"}, "color"); !ok) return std::unexpected(ok.error());
+        if (auto ok = reader.known_keys(*color, {"range"}, "color"); !ok) return ok;
         auto range = reader.choice(*color, "range", {"ldr", "hdr"}, "color");
         if (!range) return std::unexpected(range.error());
         s.color_range = ColorRange(*range);
@@ -235,8 +228,7 @@ Result<Sequence> read_sequence(const fs::path& dir) {
 
     if (const auto motion = root.find("motion"); motion != root.end()) {
         if (!motion->is_object()) return std::unexpected(reader.error("motion", "expected an object"));
-        if (auto ok = reader.known_keys(*motion, {"units", "points_to", "y_axis"}, "motion"); !ok)
-            return std::unexpected(ok.error());
+        if (auto ok = reader.known_keys(*motion, {"units", "points_to", "y_axis"}, "motion"); !ok) return ok;
         auto units = reader.choice(*motion, "units", {"pixels", "uv"}, "motion");
         auto points_to = reader.choice(*motion, "points_to", {"previous", "current"}, "motion");
         auto y_axis = reader.choice(*motion, "y_axis", {"down", "up"}, "motion");
@@ -248,59 +240,85 @@ Result<Sequence> read_sequence(const fs::path& dir) {
 
     if (const auto depth = root.find("depth"); depth != root.end()) {
         if (!depth->is_object()) return std::unexpected(reader.error("depth", "expected an object"));
-        if (auto ok = reader.known_keys(*depth, {"nearer"}, "depth"); !ok) return std::unexpected(ok.error());
+        if (auto ok = reader.known_keys(*depth, {"nearer"}, "depth"); !ok) return ok;
         auto nearer = reader.choice(*depth, "nearer", {"smaller", "larger"}, "depth");
         if (!nearer) return std::unexpected(nearer.error());
         s.depth_nearer_larger = *nearer == 1;
     }
+    return {};
+}
 
-    const auto frames = root.find("frames");
-    if (frames == root.end() || !frames->is_array() || frames->empty())
+// frames[i]: its files, camera cut and jitter.
+Result<SequenceFrame> read_frame(const Reader& reader, const fs::path& dir, const json& f, std::size_t i) {
+    const std::string where = fmt::format("frames[{}]", i);
+    if (!f.is_object()) return std::unexpected(reader.error(where, "expected an object"));
+    if (auto ok = reader.known_keys(f, {"color", "motion", "depth", "reference", "jitter", "camera_cut"}, where); !ok)
+        return std::unexpected(ok.error());
+    SequenceFrame frame;
+    if (const auto cut = f.find("camera_cut"); cut != f.end()) {
+        if (!cut->is_boolean()) return std::unexpected(reader.error(where + ".camera_cut", "expected true or false"));
+        frame.camera_cut = cut->get<bool>();
+    }
+    if (!f.contains("color")) return std::unexpected(reader.error(where, "has no \"color\" file"));
+    auto color = reader.file(dir, f["color"], where + ".color");
+    if (!color) return std::unexpected(color.error());
+    frame.color = *color;
+    if (f.contains("motion")) {
+        auto motion = reader.file(dir, f["motion"], where + ".motion");
+        if (!motion) return std::unexpected(motion.error());
+        frame.motion = *motion;
+    } else if (i > 0 && !frame.camera_cut) {
+        return std::unexpected(
+            reader.error(where, "has no \"motion\" file, which every frame with a history needs (all but the "
+                                "first and the camera cuts)"));
+    }
+    for (auto [key, target] : {std::pair{"depth", &frame.depth}, std::pair{"reference", &frame.reference}})
+        if (f.contains(key)) {
+            auto file = reader.file(dir, f[key], where + "." + key);
+            if (!file) return std::unexpected(file.error());
+            *target = *file;
+        }
+    if (const auto jitter = f.find("jitter"); jitter != f.end()) {
+        const bool pair =
+            jitter->is_array() && jitter->size() == 2 && (*jitter)[0].is_number() && (*jitter)[1].is_number();
+        // As doubles first: a float conversion of 1e300 would be undefined.
+        const double x = pair ? (*jitter)[0].get<double>() : NAN, y = pair ? (*jitter)[1].get<double>() : NAN;
+        if (!(std::abs(x) <= 0.5 && std::abs(y) <= 0.5))
+            return std::unexpected(
+                reader.error(where + ".jitter", fmt::format("{} is not [x, y] within half a pixel ([-0.5, 0.5] each)",
+                                                            shown_text(jitter->dump(), 60))));
+        frame.jitter = glm::vec2(float(x), float(y));
+    }
+    return frame;
+}
+
+} // namespace
+
+Result<Sequence> read_sequence(const fs::path& dir) {
+    const fs::path path = dir / "sequence.json";
+    auto text = read_input_file(path);
+    if (!text) return std::unexpected(text.error());
+    // Rows, charts, frames and pictures are named after the folder: refused here, before any work,
+    // where the name could not name them (core/file_name.h).
+    const std::string name = fs::weakly_canonical(dir).filename().string();
+    if (auto problem = name_problem(name))
+        return usage_fail(fmt::format("{}: the folder's name {}; kdop names the sequence's outputs after it, so rename "
+                                      "the folder",
+                                      shown_text(dir.string(), 300), *problem));
+    auto root = parse_manifest(*text, path);
+    if (!root) return std::unexpected(root.error());
+    const Reader reader(path);
+    Sequence s;
+    s.dir = dir;
+    s.name = name;
+    if (auto ok = read_settings(reader, *root, s); !ok) return std::unexpected(ok.error());
+    const auto frames = root->find("frames");
+    if (frames == root->end() || !frames->is_array() || frames->empty())
         return std::unexpected(reader.error("frames", "expected a list of at least one frame"));
     for (std::size_t i = 0; i < frames->size(); ++i) {
-        const json& f = (*frames)[i];
-        const std::string where = fmt::format("frames[{}]", i);
-        if (!f.is_object()) return std::unexpected(reader.error(where, "expected an object"));
-        if (auto ok = reader.known_keys(f, {"color", "motion", "depth", "reference", "jitter", "camera_cut"}, where);
-            !ok)
-            return std::unexpected(ok.error());
-        SequenceFrame frame;
-        if (const auto cut = f.find("camera_cut"); cut != f.end()) {
-            if (!cut->is_boolean())
-                return std::unexpected(reader.error(where + ".camera_cut", "expected true or false"));
-            frame.camera_cut = cut->get<bool>();
-        }
-        if (!f.contains("color")) return std::unexpected(reader.error(where, "has no \"color\" file"));
-        auto color = reader.file(dir, f["color"], where + ".color");
-        if (!color) return std::unexpected(color.error());
-        frame.color = *color;
-        if (f.contains("motion")) {
-            auto motion = reader.file(dir, f["motion"], where + ".motion");
-            if (!motion) return std::unexpected(motion.error());
-            frame.motion = *motion;
-        } else if (i > 0 && !frame.camera_cut) {
-            return std::unexpected(reader.error(
-                where, "has no \"motion\" file, which every frame with a history needs (all but the first and the "
-                       "camera cuts)"));
-        }
-        for (auto [key, target] : {std::pair{"depth", &frame.depth}, std::pair{"reference", &frame.reference}})
-            if (f.contains(key)) {
-                auto file = reader.file(dir, f[key], where + "." + key);
-                if (!file) return std::unexpected(file.error());
-                *target = *file;
-            }
-        if (const auto jitter = f.find("jitter"); jitter != f.end()) {
-            const bool pair =
-                jitter->is_array() && jitter->size() == 2 && (*jitter)[0].is_number() && (*jitter)[1].is_number();
-            // As doubles first: a float conversion of 1e300 would be undefined.
-            const double x = pair ? (*jitter)[0].get<double>() : NAN, y = pair ? (*jitter)[1].get<double>() : NAN;
-            if (!(std::abs(x) <= 0.5 && std::abs(y) <= 0.5))
-                return std::unexpected(reader.error(
-                    where + ".jitter", fmt::format("{} is not [x, y] within half a pixel ([-0.5, 0.5] each)",
-                                                   shown_text(jitter->dump(), 60))));
-            frame.jitter = glm::vec2(float(x), float(y));
-        }
-        s.frames.push_back(std::move(frame));
+        auto frame = read_frame(reader, dir, (*frames)[i], i);
+        if (!frame) return std::unexpected(frame.error());
+        s.frames.push_back(std::move(*frame));
     }
     // Every file named is an input from here on, read yet or not (a depth file the resolve never
     // reads included): an output that would replace one is refused, and an earlier run's listing
