@@ -4,7 +4,6 @@
 #include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
-#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -17,32 +16,6 @@ namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-// The format of a texture of `channels` of the pass's format (fewer than four: rgba32f passes only).
-VkFormat vk_format(TextureFormat f, std::uint32_t channels) {
-    if (f == TextureFormat::rgba16f) return VK_FORMAT_R16G16B16A16_SFLOAT;
-    return channels == 1   ? VK_FORMAT_R32_SFLOAT
-           : channels == 2 ? VK_FORMAT_R32G32_SFLOAT
-                           : VK_FORMAT_R32G32B32A32_SFLOAT;
-}
-VkDeviceSize texel_bytes(TextureFormat f, std::uint32_t channels) {
-    return (f == TextureFormat::rgba16f ? 2 : 4) * VkDeviceSize(channels);
-}
-
-// The first `channels` of each pixel of `image`, in `format`, at `to`.
-void pack(const Image& image, TextureFormat format, std::uint32_t channels, std::byte* to) {
-    const std::size_t pixels = image.pixels.size();
-    if (format == TextureFormat::rgba16f) {
-        auto* halves = reinterpret_cast<std::uint64_t*>(to);
-        for (std::size_t k = 0; k < pixels; ++k) halves[k] = glm::packHalf4x16(image.pixels[k]);
-    } else if (channels == 4) {
-        std::memcpy(to, image.pixels.data(), pixels * 16);
-    } else {
-        auto* floats = reinterpret_cast<float*>(to);
-        for (std::size_t k = 0; k < pixels; ++k)
-            for (std::uint32_t c = 0; c < channels; ++c) floats[k * channels + c] = image.pixels[k][int(c)];
-    }
-}
-
 VkBufferImageCopy whole_image(uint32_t w, uint32_t h, VkDeviceSize offset) {
     VkBufferImageCopy copy{};
     copy.bufferOffset = offset;
@@ -52,14 +25,6 @@ VkBufferImageCopy whole_image(uint32_t w, uint32_t h, VkDeviceSize offset) {
 }
 
 } // namespace
-
-std::optional<TextureFormat> parse_texture_format(std::string_view s) {
-    if (s == "rgba32f") return TextureFormat::rgba32f;
-    if (s == "rgba16f") return TextureFormat::rgba16f;
-    return std::nullopt;
-}
-
-const char* to_string(TextureFormat format) { return format == TextureFormat::rgba16f ? "rgba16f" : "rgba32f"; }
 
 Result<void> RectifyPass::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
                                    VkDeviceMemory& memory) {

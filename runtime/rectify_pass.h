@@ -12,6 +12,7 @@
 #include "runtime/kernel.h"
 #include "runtime/kernel_sets.h"
 #include "runtime/one_shot_commands.h"
+#include "runtime/texture_format.h"
 
 #include <memory>
 #include <optional>
@@ -21,13 +22,6 @@
 #include <vector>
 
 namespace kdop {
-
-enum class TextureFormat {
-    rgba32f,
-    rgba16f, // values are rounded to half precision on upload (beyond 65504 they become infinite)
-};
-std::optional<TextureFormat> parse_texture_format(std::string_view s);
-const char* to_string(TextureFormat format);
 
 // An input texture: its name in the kernels, its channels (1, 2 or 4; fewer than four in rgba32f
 // passes only) of the pass's format, and its size, the pass's (the output's) unless given. A
