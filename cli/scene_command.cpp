@@ -43,7 +43,7 @@ Action add_scene_command(CLI::App& app) {
                  "depth per frame (and a supersampled reference with --reference-samples), exactly the frames "
                  "kdop taa measures, to look at, edit or replay with kdop taa --sequence");
     scene->add_option("--out", o->out, "Output directory (created if missing); one folder per sequence")->required();
-    o->choice.add_to(*scene);
+    o->choice.add_to(*scene, true);
     add_input_space_option(*scene, o->input_space);
     scene->add_option("--size", o->size, "Frame size WIDTHxHEIGHT [default: 320x180]");
     scene->add_option("--frames", o->frames, "Frames per sequence [default: 200, kdop taa's warmup and frames]")

@@ -44,9 +44,9 @@ struct SceneChoice {
         if (upscaling)
             app.add_option("--upscale", upscale,
                            "3-D scenes: draw the frames at --size over R (R from 1 to 4: 1.5, 1.7, 2 and 3 are FSR 2's "
-                           "ratios), jittered over ceil(8 R^2) Halton phases, and measure the resolve upscaling "
-                           "them to --size against references of --reference-samples samples at --size (docs/taa.md, "
-                           "\"Upscaling\") [default: 1, no upscaling; with R > 1, 16 reference samples]")
+                           "ratios), jittered over ceil(8 R^2) Halton phases, with references of --reference-samples "
+                           "samples at --size, for a resolve to upscale to --size (docs/taa.md, \"Upscaling\") "
+                           "[default: 1, no upscaling; with R > 1, 16 reference samples]")
                 ->check(finite_number(1, 4));
     }
 

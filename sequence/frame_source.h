@@ -97,8 +97,10 @@ public:
     }
 
     const std::string& name() const override { return s_.name; }
-    std::uint32_t width() const override { return s_.width; }
-    std::uint32_t height() const override { return s_.height; }
+    std::uint32_t width() const override { return s_.upscales() ? s_.output_width : s_.width; }
+    std::uint32_t height() const override { return s_.upscales() ? s_.output_height : s_.height; }
+    std::uint32_t input_width() const override { return s_.width; }
+    std::uint32_t input_height() const override { return s_.height; }
     std::size_t frame_count() const override { return s_.frames.size(); }
     ColorRange color_range() const override { return s_.color_range; }
     bool starts_history(std::size_t index) const override { return s_.starts_history(index); }

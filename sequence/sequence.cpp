@@ -193,7 +193,7 @@ Result<json> parse_manifest(const std::string& text, const fs::path& path) {
 Result<void> read_settings(const Reader& reader, const json& root, Sequence& s) {
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", reader.path().string()));
     if (auto ok = reader.known_keys(
-            root, {"kdop_sequence", "width", "height", "color", "measure", "motion", "depth", "frames"},
+            root, {"kdop_sequence", "width", "height", "output", "color", "measure", "motion", "depth", "frames"},
             "the top level");
         !ok)
         return ok;
@@ -211,6 +211,23 @@ Result<void> read_settings(const Reader& reader, const json& root, Sequence& s) 
     if (!height) return std::unexpected(height.error());
     s.width = *width;
     s.height = *height;
+
+    if (const auto output = root.find("output"); output != root.end()) {
+        if (!output->is_object()) return std::unexpected(reader.error("output", "expected an object"));
+        if (auto ok = reader.known_keys(*output, {"width", "height"}, "output"); !ok) return ok;
+        auto output_width = reader.side(*output, "width");
+        if (!output_width) return std::unexpected(output_width.error());
+        auto output_height = reader.side(*output, "height");
+        if (!output_height) return std::unexpected(output_height.error());
+        // An upscaler's output is at least its input on each side (FSR 2's and NSS's ratios are >= 1).
+        if (*output_width < s.width || *output_height < s.height)
+            return std::unexpected(reader.error(
+                "output", fmt::format("{}x{} is smaller than the frames' {}x{}; the output of an upscaling resolve "
+                                      "is at least its input on each side",
+                                      *output_width, *output_height, s.width, s.height)));
+        s.output_width = *output_width;
+        s.output_height = *output_height;
+    }
 
     if (const auto color = root.find("color"); color != root.end()) {
         if (!color->is_object()) return std::unexpected(reader.error("color", "expected an object"));
@@ -318,6 +335,11 @@ Result<Sequence> read_sequence(const fs::path& dir) {
     for (std::size_t i = 0; i < frames->size(); ++i) {
         auto frame = read_frame(reader, dir, (*frames)[i], i);
         if (!frame) return std::unexpected(frame.error());
+        if (s.upscales() && frame->reference.empty())
+            return std::unexpected(reader.error(
+                fmt::format("frames[{}]", i),
+                "has no \"reference\" file, which every frame of an upscaled sequence needs: its outputs are "
+                "measured against the reference at the output size"));
         s.frames.push_back(std::move(*frame));
     }
     // Every file named is an input from here on, read yet or not (a depth file the resolve never
@@ -358,11 +380,18 @@ Result<void> check_outside(const Sequence& s, const fs::path& out, std::string_v
 
 namespace {
 
-// Refuses a file of another size than the sequence's.
-Result<void> check_size(glm::uvec2 size, const fs::path& file, const Sequence& s) {
-    if (size.x == s.width && size.y == s.height) return {};
-    return fail(fmt::format("{}: {}x{}, but the sequence is {}x{} ({})", file.string(), size.x, size.y, s.width,
-                            s.height, (s.dir / "sequence.json").string()));
+// The size a frame's files have: the sequence's, a reference of an upscaled sequence the output's.
+glm::uvec2 frame_size(const Sequence& s) { return {s.width, s.height}; }
+glm::uvec2 reference_size(const Sequence& s) {
+    return s.upscales() ? glm::uvec2(s.output_width, s.output_height) : frame_size(s);
+}
+
+// Refuses a file of another size than `expected`.
+Result<void> check_size(glm::uvec2 size, glm::uvec2 expected, const fs::path& file, const Sequence& s) {
+    if (size == expected) return {};
+    return fail(fmt::format("{}: {}x{}, but the sequence{} is {}x{} ({})", file.string(), size.x, size.y,
+                            expected == frame_size(s) ? "" : "'s output", expected.x, expected.y,
+                            (s.dir / "sequence.json").string()));
 }
 
 // Refuses a NaN or infinite value among the first `channels`, naming the pixel.
@@ -413,18 +442,19 @@ private:
 // Frame file `file`, opened, its size checked on its header before any pixel is decoded (a frame
 // that claims 16384x16384 in a 64x36 sequence is refused for that, not read), then read through
 // the descriptor by `read`.
-Result<Image> read_frame_file(const fs::path& file, const Sequence& s, const auto& read) {
+Result<Image> read_frame_file(const fs::path& file, const Sequence& s, glm::uvec2 expected, const auto& read) {
     auto opened = FrameFile::open(file, s);
     if (!opened) return std::unexpected(opened.error());
     auto size = read_image_size(opened->proc_path(), file.string());
     if (!size) return std::unexpected(size.error());
-    if (auto ok = check_size(*size, file, s); !ok) return std::unexpected(ok.error());
+    if (auto ok = check_size(*size, expected, file, s); !ok) return std::unexpected(ok.error());
     return read(opened->proc_path());
 }
 
-Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace space, std::string_view what) {
-    auto image =
-        read_frame_file(file, s, [&](const std::string& fd) { return read_image(fd, 0, space, file.string()); });
+Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace space, std::string_view what,
+                         glm::uvec2 expected) {
+    auto image = read_frame_file(file, s, expected,
+                                 [&](const std::string& fd) { return read_image(fd, 0, space, file.string()); });
     if (!image) return image;
     if (auto ok = check_finite(*image, file, 3, what); !ok) return std::unexpected(ok.error());
     return image;
@@ -432,8 +462,8 @@ Result<Image> read_color(const fs::path& file, const Sequence& s, InputSpace spa
 
 // A data file (motion, depth) of `channels` channels, each value finite.
 Result<Image> read_data(const fs::path& file, const Sequence& s, int channels, std::string_view what) {
-    auto image =
-        read_frame_file(file, s, [&](const std::string& fd) { return read_data_image(fd, channels, file.string()); });
+    auto image = read_frame_file(file, s, frame_size(s),
+                                 [&](const std::string& fd) { return read_data_image(fd, channels, file.string()); });
     if (!image) return image;
     if (auto ok = check_finite(*image, file, channels, what); !ok) return std::unexpected(ok.error());
     return image;
@@ -442,13 +472,13 @@ Result<Image> read_data(const fs::path& file, const Sequence& s, int channels, s
 } // namespace
 
 Result<Image> load_frame_color(const Sequence& s, std::size_t index, InputSpace space) {
-    return read_color(s.frames.at(index).color, s, space, "color");
+    return read_color(s.frames.at(index).color, s, space, "color", frame_size(s));
 }
 
 Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace space, bool depth) {
     const SequenceFrame& f = s.frames.at(index);
     LoadedFrame out;
-    auto color = read_color(f.color, s, space, "color");
+    auto color = read_color(f.color, s, space, "color", frame_size(s));
     if (!color) return std::unexpected(color.error());
     out.color = std::move(*color);
     out.jitter = s.frames[index].jitter.value_or(glm::vec2(0.0f));
@@ -465,7 +495,7 @@ Result<LoadedFrame> load_frame(const Sequence& s, std::size_t index, InputSpace 
         out.depth = std::move(*image);
     }
     if (!f.reference.empty()) {
-        auto reference = read_color(f.reference, s, space, "the reference");
+        auto reference = read_color(f.reference, s, space, "the reference", reference_size(s));
         if (!reference) return std::unexpected(reference.error());
         out.reference = std::move(*reference);
     }

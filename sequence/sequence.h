@@ -68,8 +68,12 @@ struct SequenceFrame {
 
 struct Sequence {
     std::filesystem::path dir;
-    std::string name; // the folder's name, for tables
-    std::uint32_t width = 0, height = 0;
+    std::string name;                    // the folder's name, for tables
+    std::uint32_t width = 0, height = 0; // the frames' color, motion and depth
+    // "output": {"width", "height"}: frames drawn for temporal upscaling, resolved to this size,
+    // their references at it (docs/taa.md, "Upscaling"); 0: the frames' own size.
+    std::uint32_t output_width = 0, output_height = 0;
+    bool upscales() const { return output_width != 0 && (output_width != width || output_height != height); }
     // "color": {"range": "ldr" | "hdr"}: the range the color and reference files keep to. Reading
     // a frame does not check it (every finite value is read); the measurement does.
     ColorRange color_range = ColorRange::ldr;

@@ -38,10 +38,10 @@ Image motion_image(const std::vector<glm::vec2>& motion, std::uint32_t width, st
 
 std::string sequence_json(const FrameSource& source) {
     using nlohmann::ordered_json;
-    ordered_json root{{"kdop_sequence", kSequenceFormatVersion},
-                      {"width", source.width()},
-                      {"height", source.height()},
-                      {"color", {{"range", to_string(source.color_range())}}}};
+    ordered_json root{
+        {"kdop_sequence", kSequenceFormatVersion}, {"width", source.input_width()}, {"height", source.input_height()}};
+    if (source.upscales()) root["output"] = {{"width", source.width()}, {"height", source.height()}};
+    root["color"] = {{"range", to_string(source.color_range())}};
     // What the sequence is meant for, where not both: kdop's scenes' still and moving sequences.
     if (const SequenceRoles roles = source.roles(); roles != SequenceRoles{}) {
         ordered_json measure = ordered_json::array();
@@ -69,7 +69,7 @@ std::vector<OutputWriter> sequence_frame_writers(const std::filesystem::path& fo
     auto cache = std::make_shared<FrameCache>();
     cache->source = source;
     std::vector<OutputWriter> writers;
-    const std::uint32_t w = source->width(), h = source->height();
+    const std::uint32_t w = source->input_width(), h = source->input_height(); // the motion's
     // Color is RGBA (no data channels). Motion and depth are data: only the channels they use (what read_data_image
     // reads), so a 1920x1080 frame's motion is 17 MB of floats and its depth 8 MB, not 33 MB each.
     // Full floats, not half: a replay gives the figures of the frames in memory exactly.

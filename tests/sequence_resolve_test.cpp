@@ -13,6 +13,7 @@
 #include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "scenes/sprite_scene.h"
+#include "sequence/jitter.h"
 #include "sequence/sequence_writer.h"
 #include "temporal/taa_measure.h"
 #include "temporal/taa_resolve.h"
@@ -734,6 +735,42 @@ TEST(CliSequence, ReplayingA3dSceneGivesTheInMemoryFigures) {
     const std::string csv = test::read_file(t.dir / "asphalt3d-memory" / "taa.csv");
     EXPECT_NE(csv.find(",asphalt3d,"), std::string::npos) << csv;
     EXPECT_EQ(csv.find(",aliased,"), std::string::npos) << "against the references:\n" << csv;
+}
+
+// kdop scene --upscale 2 writes frames at half the size, their references at the full size and
+// the output size in sequence.json; kdop taa replays them through the upscaling resolve and gives
+// the figures it measures on the frames drawn in memory, to the digit.
+TEST(CliSequence, ReplayingAnUpscaledSceneGivesTheInMemoryFigures) {
+    SequenceRun t;
+    const fs::path scenes = t.dir / "scenes";
+    const std::string scene_args = "--size 64x36 --upscale 2 --reference-samples 4";
+    auto r = t.kdop("scene --scenes grass3d --frames 8 " + scene_args + " --out " + scenes.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto sequence = read_sequence(scenes / "grass3d-ghosting");
+    ASSERT_TRUE(sequence) << sequence.error().message;
+    EXPECT_EQ(sequence->width, 32u);
+    EXPECT_EQ(sequence->height, 18u);
+    EXPECT_EQ(sequence->output_width, 64u);
+    EXPECT_EQ(sequence->output_height, 36u);
+    ASSERT_TRUE(sequence->frames[5].jitter);
+    EXPECT_EQ(*sequence->frames[5].jitter, halton_jitter(5, 32)) << "every frame jittered, the moving one too";
+    for (const auto& [kind, width] : {std::pair{"color", 32}, std::pair{"motion", 32}, std::pair{"reference", 64}}) {
+        auto in = OIIO::ImageInput::open((scenes / "grass3d-ghosting" / kind / "0007.exr").string());
+        ASSERT_TRUE(in) << kind;
+        EXPECT_EQ(in->spec().width, width) << kind;
+    }
+    expect_replay_gives_the_in_memory_figures(t, scenes, "grass3d", scene_args);
+
+    // A reference of the frames' size in an upscaled sequence is refused, naming it.
+    const fs::path reference = scenes / "grass3d-ghosting" / "reference" / "0004.exr";
+    fs::copy_file(scenes / "grass3d-ghosting" / "color" / "0004.exr", reference, fs::copy_options::overwrite_existing);
+    auto refused = t.kdop("taa --sequence " + (scenes / "grass3d-ghosting").string() +
+                          " --warmup 3 --sets aabb "
+                          "--modes clip --no-charts --out " +
+                          (t.dir / "refused").string());
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_NE(refused.err.find("0004.exr: 32x18, but the sequence's output is 64x36"), std::string::npos)
+        << refused.err;
 }
 
 // kdop scene writes what each of its sequences is for; kdop taa measures only that, and leaves the
