@@ -25,7 +25,8 @@ namespace kdop::cli {
 namespace {
 
 struct TaaOptions {
-    std::string out, size = "320x180", device, upscale_filter = "lanczos2";
+    std::string out, size = "320x180", device, upscale_filter = "lanczos2", nss_sequence;
+    double ratio = 2.0;
     std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
     SceneChoice choice;
     SelectionOptions selection;
@@ -45,6 +46,7 @@ struct TaaDeclared {
     CLI::App* taa;
     std::vector<CLI::Option*> hdr_options;
     CLI::Option* picture_frame;
+    CLI::Option* ratio;
 };
 TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     CLI::App* taa = app.add_subcommand(
@@ -64,6 +66,14 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     taa->add_option("--sequence", o->sequences,
                     "Frame sequences to measure (folders with sequence.json; docs/taa.md, \"Frame sequences\"); with "
                     "--sequence, kdop's own scenes run only if --scenes or --background is given too");
+    taa->add_option("--nss-sequence", o->nss_sequence,
+                    "Read the one --sequence folder as the root of an Arm NSS dataset capture and measure its "
+                    "sequence NNNN (NNNN.json, ground_truth/NNNN, x<ratio>/{color,depth,motion}/NNNN; docs/taa.md, "
+                    "\"NSS captures\")");
+    CLI::Option* ratio = taa->add_option("--ratio", o->ratio,
+                                         "With --nss-sequence: the capture's upscaling ratio, whose x<ratio> folder "
+                                         "holds the frames (2, 1.7, 1.5, 1.3) [default: 2]")
+                             ->check(finite_number(1, 8));
     add_input_space_option(*taa, o->input_space);
     add_resolve_options(*taa, o->resolve);
     taa->add_flag("--write-frames", o->write_frames,
@@ -105,7 +115,7 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
                                 "only where a sequence has reference frames [default: shimmer ghosting, the paper's]",
                                 metric_names(default_metrics())));
 
-    return {taa, hdr_options, picture_frame};
+    return {taa, hdr_options, picture_frame, ratio};
 }
 
 } // namespace
@@ -116,7 +126,8 @@ Action add_taa_command(CLI::App& app) {
     CLI::App* taa = declared.taa;
     CLI::Option* picture_frame = declared.picture_frame;
     const std::vector<CLI::Option*> hdr_options = declared.hdr_options;
-    return [o, taa, hdr_options, picture_frame] {
+    CLI::Option* ratio = declared.ratio;
+    return [o, taa, hdr_options, picture_frame, ratio] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
@@ -124,6 +135,12 @@ Action add_taa_command(CLI::App& app) {
         o->resolve.upscale_filter = *parse_upscale_filter(o->upscale_filter); // checked by CLI11
         auto metrics = metrics_named(o->metrics);
         if (!metrics) return usage_error("--metrics: " + metrics.error().message);
+        if (ratio->count() && o->nss_sequence.empty())
+            return usage_error("--ratio: picks the folder of an NSS capture's frames, and needs --nss-sequence");
+        if (!o->nss_sequence.empty() && o->sequences.size() != 1)
+            return usage_error(fmt::format("--nss-sequence {}: needs the capture's root folder as one --sequence ({} "
+                                           "given)",
+                                           o->nss_sequence, o->sequences.size()));
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
         auto outputs = OutputSet::prepare(o->out);
@@ -146,10 +163,14 @@ Action add_taa_command(CLI::App& app) {
                         .scene_names = o->choice.scenes,
                         .backgrounds = o->choice.backgrounds,
                         .scene_options = o->choice.options(size->first, size->second, o->seed, o->input_space),
-                        .picture_frame = picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt});
+                        .picture_frame = picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt,
+                        .nss_sequence = o->nss_sequence,
+                        .nss_ratio = o->ratio});
         if (!sources) return report(sources.error());
         for (const SequenceFrames& sequence : sources->sequences)
             if (auto ok = check_outside(sequence.sequence(), outputs->dir(), "--out"); !ok) return report(ok.error());
+        for (const NssFrames& capture : sources->captures)
+            if (auto ok = check_outside(capture.capture(), outputs->dir(), "--out"); !ok) return report(ok.error());
         for (const CLI::Option* option : hdr_options)
             if (option->count() && !sources->any_hdr())
                 return usage_error(

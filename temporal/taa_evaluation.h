@@ -94,12 +94,13 @@ public:
     // while the evaluation lives.
     Result<FlipEvaluator*> flip_evaluator(std::uint32_t width, std::uint32_t height);
 
-private:
-    TaaEvaluation(const Context& context, const EvaluationOptions& options);
-    // Every variant on one frame source: the one path both measure()s take. `nearer_larger`: the
-    // source's depth convention (only --dilate-motion reads depth).
+    // Every variant on one frame source: the one path the measure()s above take, and an NSS
+    // capture's. `nearer_larger`: the source's depth convention (only --dilate-motion reads depth).
     Result<std::vector<EvaluationRow>> measure(const FrameSource& source, bool nearer_larger,
                                                const EvaluationObserver& observer);
+
+private:
+    TaaEvaluation(const Context& context, const EvaluationOptions& options);
     // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth), and
     // for upscaling or not.
     Result<const Variant*> shader(std::size_t v, bool nearer_larger, bool upscale = false);

@@ -43,10 +43,11 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
 }
 
 // A sequence's ghosting picture at the frame `chooser` kept, cropped where the variants differ most.
-Result<void> add_sequence_picture(OutputSet& outputs, const SequenceFrames& sequence,
-                                  const PictureFrameChooser& chooser, const std::vector<VariantKey>& keys,
-                                  const std::vector<EvaluationRow>& measured, PictureFlip& flip) {
-    auto frame = sequence.without_depth().frame(chooser.index()); // its truth, as the pass read it
+// `sequence` is the source as the pass read it (a sequence's without its depth files).
+Result<void> add_sequence_picture(OutputSet& outputs, const FrameSource& sequence, const PictureFrameChooser& chooser,
+                                  const std::vector<VariantKey>& keys, const std::vector<EvaluationRow>& measured,
+                                  PictureFlip& flip) {
+    auto frame = sequence.frame(chooser.index()); // its truth, as the pass read it
     if (!frame) return std::unexpected(frame.error());
     const bool has_reference = frame->reference.has_value();
     auto truth = std::make_shared<const Image>(std::move(has_reference ? *frame->reference : frame->color));
@@ -93,6 +94,9 @@ void plan_viewer(ViewerFrames& viewer, const TaaSources& sources, const TaaSched
     for (const SequenceFrames& sequence : sources.sequences)
         viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
                     sequence.color_range(), sequence.has_reference());
+    for (const NssFrames& capture : sources.captures)
+        viewer.plan(capture.name(), capture.name(), schedule.warmup, capture.frame_count() - 1, capture.roles(),
+                    capture.color_range(), capture.has_reference());
 }
 
 // The trade and over-time charts, added to `outputs` with their names. A chart that fails costs the
@@ -117,6 +121,7 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
     for (const auto& scene : sources.scenes) scene_contents.emplace_back(scene->name(), scene->content());
     std::vector<std::string> sequence_names;
     for (const SequenceFrames& s : sources.sequences) sequence_names.push_back(s.name());
+    for (const NssFrames& c : sources.captures) sequence_names.push_back(c.name());
     const EvaluationOptions& e = settings.evaluation;
     return {.width = width,
             .height = height,
@@ -139,7 +144,7 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
                             std::span<const Variant* const> rectifiers, const TaaSources& sources,
                             const TaaRunSettings& settings, OutputSet& outputs) {
-    const auto& [scenes, sequences] = sources;
+    const auto& [scenes, sequences, captures] = sources;
     std::vector<VariantKey> keys;
     for (const VariantSpec& spec : specs) keys.push_back(spec.key());
     const TaaSchedule& schedule = settings.evaluation.schedule;
@@ -148,9 +153,12 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     if (!evaluation) return std::unexpected(evaluation.error());
 
     // The rectification is timed at the frame size of what is measured: kdop's scenes', or, with
-    // sequences only, the first sequence's.
-    const std::uint32_t width = scenes.empty() ? sequences.front().width() : settings.width;
-    const std::uint32_t height = scenes.empty() ? sequences.front().height() : settings.height;
+    // sequences only, the first sequence's (or NSS capture's).
+    const FrameSource* first =
+        scenes.empty() ? sequences.empty() ? static_cast<const FrameSource*>(&captures.front()) : &sequences.front()
+                       : nullptr;
+    const std::uint32_t width = first ? first->width() : settings.width;
+    const std::uint32_t height = first ? first->height() : settings.height;
     StagedImages written_frames;
     EvaluationObserver observer;
     if (settings.write_frames)
@@ -184,8 +192,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         std::size_t frames = 0;
         for (const auto& scene : scenes) frames += evaluation->frames(*scene);
         for (const SequenceFrames& sequence : sequences) frames += sequence.frame_count();
+        for (const NssFrames& capture : captures) frames += capture.frame_count();
         Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs.size(),
-                                      scenes.size() + sequences.size(), context.device_name()),
+                                      sources.size(), context.device_name()),
                           frames);
         observer.frame = [&](const std::string& source) { progress.advance(source); };
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
@@ -207,29 +216,42 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
         }
-        for (const SequenceFrames& sequence : sequences) {
+        // A sequence or NSS capture: `read` is the source as the pass reads it, `measure` its measurement.
+        auto measure_sequence = [&](const FrameSource& read, const auto& measure) -> Result<void> {
             // The frame its picture shows, kept as the pass goes (sequences meant for ghosting).
             PictureFrameChooser chooser(settings.picture_frame);
-            const bool pictured = sequence.roles().ghosting;
+            const bool pictured = read.roles().ghosting;
             EvaluationObserver sequence_observer = observer;
             if (pictured)
                 sequence_observer.measured = [&](const MeasuredFrame& frame) -> Result<void> {
                     chooser.offer(frame);
                     return observer.measured ? observer.measured(frame) : Result<void>{};
                 };
-            viewer.measuring(sequence.name());
-            auto measured = evaluation->measure(sequence, sequence_observer);
+            viewer.measuring(read.name());
+            auto measured = measure(sequence_observer);
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
             if (pictured && chooser.chosen()) {
-                auto evaluator = evaluation->flip_evaluator(sequence.width(), sequence.height());
+                auto evaluator = evaluation->flip_evaluator(read.width(), read.height());
                 if (!evaluator) return std::unexpected(evaluator.error());
-                PictureFlip flip(**evaluator, sequence.color_range());
-                if (auto ok = add_sequence_picture(outputs, sequence, chooser, keys, *measured, flip); !ok)
+                PictureFlip flip(**evaluator, read.color_range());
+                if (auto ok = add_sequence_picture(outputs, read, chooser, keys, *measured, flip); !ok)
                     return std::unexpected(ok.error());
-                pictures.push_back(ghosting_picture_name(sequence.name()));
+                pictures.push_back(ghosting_picture_name(read.name()));
             }
-        }
+            return {};
+        };
+        for (const SequenceFrames& sequence : sequences)
+            if (auto ok =
+                    measure_sequence(sequence.without_depth(),
+                                     [&](const EvaluationObserver& o) { return evaluation->measure(sequence, o); });
+                !ok)
+                return std::unexpected(ok.error());
+        for (const NssFrames& capture : captures)
+            if (auto ok = measure_sequence(
+                    capture, [&](const EvaluationObserver& o) { return evaluation->measure(capture, false, o); });
+                !ok)
+                return std::unexpected(ok.error());
     }
     outputs.add(written_frames.writers(outputs.dir()));
     Result<std::vector<ViewerSequence>> viewed;

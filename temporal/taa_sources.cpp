@@ -11,7 +11,8 @@
 namespace kdop {
 
 bool TaaSources::any_hdr() const {
-    return std::ranges::any_of(sequences, [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
+    return !captures.empty() ||
+           std::ranges::any_of(sequences, [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
 }
 
 Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request) {
@@ -22,7 +23,27 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
             return usage_fail(fmt::format("--size {}x{}: {}", scene.width, scene.height, ok.error().message));
     if (auto ok = check_distinct_files(request.sequences, request.option); !ok) return usage_fail(ok.error().message);
     TaaSources sources;
-    for (const std::string& dir : request.sequences) {
+    for (const std::string& dir : request.nss_sequence.empty() ? std::vector<std::string>{} : request.sequences) {
+        auto capture = read_nss_capture(dir, request.nss_sequence, request.nss_ratio);
+        if (!capture) return std::unexpected(capture.error());
+        const std::size_t count = capture->frames.size();
+        if (request.warmup >= count)
+            return usage_fail(fmt::format("{} {} --nss-sequence {}: {} frames, and --warmup {} leaves none to measure; "
+                                          "give a shorter warm-up, e.g. --warmup {} (a third of the frames)",
+                                          request.option, dir, request.nss_sequence, count, request.warmup,
+                                          std::max<std::size_t>(1, count / 3)));
+        if (auto ok = check_measurable(context, capture->width, capture->height, request.device_flip, request.variants);
+            !ok)
+            return fail(fmt::format("{} {}: {}", request.option, dir, ok.error().message));
+        if (request.picture_frame && (*request.picture_frame < request.warmup || *request.picture_frame >= count))
+            return usage_fail(fmt::format("--picture-frame {}: not a measured frame of --nss-sequence {} (frames {} to "
+                                          "{}, after the warmup)",
+                                          *request.picture_frame, request.nss_sequence, request.warmup, count - 1));
+        // Depth is read only where the resolve reads it (--dilate-motion).
+        NssFrames frames(std::move(*capture));
+        sources.captures.push_back(request.resolve.dilate_motion ? std::move(frames) : frames.without_depth());
+    }
+    for (const std::string& dir : request.nss_sequence.empty() ? request.sequences : std::vector<std::string>{}) {
         auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve, request.option);
         if (!sequence) return std::unexpected(sequence.error());
         if (auto ok =
@@ -38,7 +59,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     }
     // --picture-frame picks the frame of a sequence's ghosting picture: kdop's scenes show their
     // trail's frame, and a sequence meant for shimmer alone has no such picture.
-    if (request.picture_frame &&
+    if (request.picture_frame && sources.captures.empty() &&
         std::ranges::none_of(sources.sequences, [](const SequenceFrames& s) { return s.sequence().measure.ghosting; }))
         return usage_fail(fmt::format("--picture-frame {}: picks the frame of each --sequence's ghosting picture, "
                                       "and no sequence given is measured for ghosting (kdop's own scenes show the "
@@ -60,6 +81,10 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
                 return usage_fail(fmt::format("--background: the scene '{}' would write its files as '{}', which "
                                               "another scene's files are named; rename the image",
                                               scene->name(), name));
+    for (const NssFrames& capture : sources.captures)
+        if (!names.insert(capture.name()).second)
+            return usage_fail(fmt::format("--nss-sequence {}: its files would be named '{}', as a scene's are",
+                                          capture.name(), capture.name()));
     for (const SequenceFrames& sequence : sources.sequences)
         if (!names.insert(sequence.name()).second)
             return usage_fail(fmt::format("{} {}: its files would be named '{}', as a scene's or another "

@@ -9,6 +9,7 @@
 #include "scenes/scene_catalog.h"
 #include "scenes/taa_scene.h"
 #include "sequence/frame_source.h"
+#include "sequence/nss_capture.h"
 #include "temporal/resolve_options.h"
 
 #include <cstdint>
@@ -23,9 +24,10 @@ namespace kdop {
 struct TaaSources {
     std::vector<std::shared_ptr<const TaaScene>> scenes;
     std::vector<SequenceFrames> sequences;
+    std::vector<NssFrames> captures; // NSS captures (sequence/nss_capture.h), measured as sequences are
 
-    std::size_t size() const { return scenes.size() + sequences.size(); }
-    bool any_hdr() const; // a sequence measured in HDR-FLIP
+    std::size_t size() const { return scenes.size() + sequences.size() + captures.size(); }
+    bool any_hdr() const; // a sequence measured in HDR-FLIP (every NSS capture is)
 };
 
 struct TaaSourceRequest {
@@ -43,6 +45,10 @@ struct TaaSourceRequest {
     // for ghosting), checked here.
     std::optional<std::size_t> picture_frame;
     std::string option = "--sequence"; // the option that gave the sequences, for errors
+    // --nss-sequence: each folder of `sequences` is then an NSS capture's root, and this sequence
+    // of it is read at upscaling ratio `nss_ratio` (sequence/nss_capture.h).
+    std::string nss_sequence;
+    double nss_ratio = 2.0;
 };
 
 // Reads the sequences, then makes the scenes. Errors name the option and folder; Error::usage

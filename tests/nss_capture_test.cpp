@@ -356,5 +356,42 @@ TEST(NssCapture, RefusesMalformedJson) {
     expect_refused(c, 2.0, {c.json_file().string(), "not JSON"});
 }
 
+// kdop taa on a tiny capture: 32x18 output, 16x9 input, 6 frames, measured against its ground truth.
+TEST(CliNss, TaaMeasuresACaptureAgainstItsGroundTruth) {
+    Capture c;
+    write_capture(c, default_spec());
+    const fs::path out = c.dir / "out";
+    auto taa = test::run({test::kdop_binary(), "taa", "--sequence", c.root().string(), "--nss-sequence", "0000",
+                          "--ratio", "2", "--sets", "aabb", "--modes", "clip", "--warmup", "2", "--viewer-frames", "0",
+                          "--no-charts", "--out", out.string()});
+    ASSERT_EQ(taa.exit_code, 0) << taa.err;
+    const auto rows = test::csv_rows(test::read_file(out / "taa.csv"));
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0].at("scene"), "0000");
+    EXPECT_EQ(rows[0].at("ghosting_against"), "reference");
+    EXPECT_EQ(rows[0].at("flip"), "HDR-FLIP");
+    ASSERT_FALSE(rows[0].at("ghosting").empty());
+    const double ghosting = std::stod(rows[0].at("ghosting"));
+    EXPECT_TRUE(std::isfinite(ghosting) && ghosting >= 0.0) << ghosting;
+    EXPECT_TRUE(fs::exists(out / "ghosting-0000.png"));
+}
+
+TEST(CliNss, OptionsThatDoNotGoTogetherAreUsageErrors) {
+    Capture c;
+    write_capture(c, default_spec());
+    const fs::path out = c.dir / "out";
+    auto ratio_alone =
+        test::run({test::kdop_binary(), "taa", "--sequence", c.root().string(), "--ratio", "2", "--out", out.string()});
+    EXPECT_EQ(ratio_alone.exit_code, 2) << ratio_alone.err;
+    EXPECT_NE(ratio_alone.err.find("--nss-sequence"), std::string::npos) << ratio_alone.err;
+    auto no_root = test::run({test::kdop_binary(), "taa", "--nss-sequence", "0000", "--out", out.string()});
+    EXPECT_EQ(no_root.exit_code, 2) << no_root.err;
+    EXPECT_NE(no_root.err.find("--sequence"), std::string::npos) << no_root.err;
+    auto unindexed = test::run({test::kdop_binary(), "taa", "--sequence", c.root().string(), "--nss-sequence", "0000",
+                                "--ratio", "1.05", "--out", out.string()});
+    EXPECT_EQ(unindexed.exit_code, 2) << unindexed.err;
+    EXPECT_NE(unindexed.err.find("--ratio"), std::string::npos) << unindexed.err;
+}
+
 } // namespace
 } // namespace kdop
