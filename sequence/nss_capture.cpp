@@ -1,5 +1,7 @@
 #include "sequence/nss_capture.h"
 
+#include "sequence/frame_checks.h"
+
 #include "core/file_name.h"
 #include "core/input_files.h"
 #include "core/read_file.h"
@@ -10,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string_view>
 
@@ -122,28 +125,12 @@ Result<std::vector<fs::path>> exr_files(const fs::path& dir, std::string_view wh
     return files;
 }
 
-// Whether `path` is `folder` or lies inside it, both resolved already.
-bool lies_inside(const fs::path& path, const fs::path& folder) {
-    return std::mismatch(folder.begin(), folder.end(), path.begin(), path.end()).first == folder.end();
-}
-
 // Refuses a file whose header is not `width` x `height`.
 Result<void> check_size(const fs::path& file, std::uint32_t width, std::uint32_t height, std::string_view why) {
     auto size = read_image_size(file.string());
     if (!size) return std::unexpected(size.error());
     if (size->x != width || size->y != height)
         return fail(fmt::format("{}: {}x{}, but {} is {}x{}", file.string(), size->x, size->y, why, width, height));
-    return {};
-}
-
-// Refuses a NaN or infinite value among the first `channels`, naming the pixel.
-Result<void> check_finite(const Image& image, const fs::path& file, int channels, std::string_view what) {
-    for (std::uint32_t y = 0; y < image.height; ++y)
-        for (std::uint32_t x = 0; x < image.width; ++x)
-            for (int c = 0; c < channels; ++c)
-                if (!std::isfinite(image.at(x, y)[c]))
-                    return fail(fmt::format("{}: pixel ({}, {}) holds {} in channel {}; {} must be finite",
-                                            file.string(), x, y, image.at(x, y)[c], c, what));
     return {};
 }
 
@@ -162,29 +149,12 @@ Result<std::string> nss_ratio_folder(double ratio) {
     return tenth == 0 ? fmt::format("x{}", whole) : fmt::format("x{}_{}", whole, tenth);
 }
 
-Result<NssCapture> read_nss_capture(const fs::path& root, const std::string& sequence, double ratio) {
-    auto folder = nss_ratio_folder(ratio);
-    if (!folder) return std::unexpected(folder.error());
-    if (auto problem = name_problem(sequence))
-        return usage_fail(fmt::format("--nss-sequence {}: the name {}; kdop names the sequence's outputs after it",
-                                      shown_text(sequence, 60), *problem));
-    const fs::path path = root / (sequence + ".json");
-    auto text = read_input_file(path);
-    if (!text) return std::unexpected(text.error());
-    json root_json;
-    try {
-        root_json = json::parse(with_non_finite_as_strings(*text));
-    } catch (const json::exception& e) {
-        return fail(fmt::format("{}: not JSON kdop can read: {}", path.string(), shown_text(e.what(), 200)));
-    }
-    const JsonReader reader(path);
-    if (!root_json.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
+namespace {
 
-    NssCapture c;
-    c.root = root;
-    c.sequence = sequence;
-    c.ratio_folder = *folder;
-
+// TargetResolution, Samples and ReverseZ into `c`; the ratio's index into each frame's
+// NormalizedPerRatioJitter (READER line 267).
+Result<std::size_t> read_capture_settings(const JsonReader& reader, const json& root_json, const fs::path& path,
+                                          const std::string& index_key, double ratio, NssCapture& c) {
     auto target = reader.member(root_json, "TargetResolution", "the top level");
     if (!target) return std::unexpected(target.error());
     if (!(*target)->is_object())
@@ -207,8 +177,6 @@ Result<NssCapture> read_nss_capture(const fs::path& root, const std::string& seq
         c.reverse_z = reverse->get<bool>();
     }
 
-    // The ratio's index into each frame's NormalizedPerRatioJitter (READER line 267).
-    const std::string index_key = fmt::format("{}_index", *folder);
     auto indices = reader.member(root_json, "UpscalingRatiosIndices", "the top level");
     if (!indices) return std::unexpected(indices.error());
     if (!(*indices)->is_object())
@@ -220,28 +188,29 @@ Result<NssCapture> read_nss_capture(const fs::path& root, const std::string& seq
                                 path.string(), index_key, ratio, ratio));
     if (!index_it->is_number_unsigned())
         return std::unexpected(reader.error("UpscalingRatiosIndices." + index_key, "expected an index from 0"));
-    const std::size_t ratio_index = index_it->get<std::size_t>();
+    return index_it->get<std::size_t>();
+}
 
-    auto frames_json = reader.member(root_json, "Frames", "the top level");
-    if (!frames_json) return std::unexpected(frames_json.error());
-    if (!(*frames_json)->is_array() || (*frames_json)->empty())
-        return std::unexpected(reader.error("Frames", "expected a list of at least one frame"));
+// The files of the streams kdop reads, one per frame, paired by sorted name.
+struct Stream {
+    fs::path dir;
+    const char* what;
+    std::vector<fs::path> files;
+};
+using Streams = std::array<Stream, 4>; // input color, depth and motion, then the reference
 
+Result<Streams> capture_streams(const fs::path& root, const std::string& folder, const std::string& sequence,
+                                double ratio, std::size_t listed, const fs::path& path) {
     // The streams kdop reads. motion_gt, which READER requires too, is not: kdop's resolve
     // reprojects with the input's motion.
-    const fs::path ratio_dir = root / *folder;
+    const fs::path ratio_dir = root / folder;
     if (std::error_code ec; !fs::is_directory(ratio_dir, ec))
         return fail(fmt::format("{}: missing; the capture has no frames at ratio {} (--ratio {})", ratio_dir.string(),
                                 ratio, ratio));
-    struct Stream {
-        fs::path dir;
-        const char* what;
-        std::vector<fs::path> files;
-    };
-    Stream streams[] = {{ratio_dir / "color" / sequence, "input color", {}},
-                        {ratio_dir / "depth" / sequence, "input depth", {}},
-                        {ratio_dir / "motion" / sequence, "input motion", {}},
-                        {root / "ground_truth" / sequence, "reference (ground truth)", {}}};
+    Streams streams{{{ratio_dir / "color" / sequence, "input color", {}},
+                     {ratio_dir / "depth" / sequence, "input depth", {}},
+                     {ratio_dir / "motion" / sequence, "input motion", {}},
+                     {root / "ground_truth" / sequence, "reference (ground truth)", {}}}};
     for (Stream& s : streams) {
         auto files = exr_files(s.dir, s.what);
         if (!files) return std::unexpected(files.error());
@@ -258,10 +227,14 @@ Result<NssCapture> read_nss_capture(const fs::path& root, const std::string& seq
             return fail(fmt::format("{}: {} frames, but {} holds {}; every stream of an NSS capture holds one file "
                                     "per frame, paired by sorted name",
                                     s.dir.string(), s.files.size(), streams[0].dir.string(), count));
-    if ((*frames_json)->size() < count)
-        return fail(fmt::format("{}: Frames lists {} frames, but {} holds {} files", path.string(),
-                                (*frames_json)->size(), streams[0].dir.string(), count));
+    if (listed < count)
+        return fail(fmt::format("{}: Frames lists {} frames, but {} holds {} files", path.string(), listed,
+                                streams[0].dir.string(), count));
+    return streams;
+}
 
+// The reference's size against TargetResolution, the input's against it over the ratio, into `c`.
+Result<void> check_capture_sizes(const Streams& streams, double ratio, const fs::path& path, NssCapture& c) {
     // Sizes: the reference at TargetResolution; the input at TargetResolution / ratio, rounded down
     // (the capture guide's `int(TargetResolution / Ratio)`) or to the nearest (the model's
     // `round(input * scale)`): the spec writes `1920/ratio` and says neither, so kdop takes either.
@@ -287,60 +260,103 @@ Result<NssCapture> read_nss_capture(const fs::path& root, const std::string& seq
             !ok)
             return std::unexpected(ok.error());
 
-    for (std::size_t i = 0; i < count; ++i) {
-        const json& f = (**frames_json)[i];
-        const std::string where = fmt::format("Frames[{}]", i);
-        if (!f.is_object()) return std::unexpected(reader.error(where, "expected an object"));
-        NssFrame frame{streams[0].files[i], streams[1].files[i], streams[2].files[i], streams[3].files[i]};
-        // CameraCut: "true when the current frame is the first frame after a camera cut" (SPEC); absent
-        // means false (READER line 253). kdop drops the history there.
-        if (const auto cut = f.find("CameraCut"); cut != f.end()) {
-            if (!cut->is_boolean())
-                return std::unexpected(reader.error(where + ".CameraCut", "expected true or false"));
-            frame.camera_cut = cut->get<bool>();
-        }
-        // Exposure: optional; READER keeps ln(Exposure) (line 263) and the training multiplies color
-        // and ground truth alike by exp of it before tone mapping (src/ng_model_gym/usecases/nss/data/
-        // process_functions.py lines 125-126): the files are not pre-exposed. kdop multiplies both by
-        // it as it reads them, so HDR-FLIP measures what the model is trained on; both alike, so the
-        // resolve and the reference stay in the same units. Absent: 1.
-        if (const auto exposure = f.find("Exposure"); exposure != f.end()) {
-            auto value = reader.number(*exposure, where + ".Exposure");
-            if (!value) return std::unexpected(value.error());
-            if (!(*value > 0.0) || !std::isfinite(float(*value)))
-                return std::unexpected(
-                    reader.error(where + ".Exposure", fmt::format("{} is not a positive multiplier", *value)));
-            frame.exposure = float(*value);
-        }
-        // Jitter: NormalizedPerRatioJitter[index] is the sample's offset from the pixel's center
-        // divided by the input size (SPEC, "Per-frame"); READER multiplies it by the color file's
-        // size (line 281) with no change of sign, and the model samples pixel i at i + 0.5 + jitter
-        // (src/ng_model_gym/core/model/graphics_utils.py line 265), y down: kdop's convention, so
-        // it is only scaled. READER falls back to the old key QuantisedPerRatioJitter, and so does kdop.
-        const char* jitter_key = f.contains("NormalizedPerRatioJitter")  ? "NormalizedPerRatioJitter"
-                                 : f.contains("QuantisedPerRatioJitter") ? "QuantisedPerRatioJitter"
-                                                                         : nullptr;
-        if (!jitter_key)
-            return std::unexpected(reader.error(where, "has no \"NormalizedPerRatioJitter\", which kdop reads"));
-        const json& list = f[jitter_key];
-        const std::string jitter_where = fmt::format("{}.{}[{}]", where, jitter_key, ratio_index);
-        if (!list.is_array() || ratio_index >= list.size())
-            return std::unexpected(reader.error(
-                jitter_where, fmt::format("missing: UpscalingRatiosIndices.{} is {}", index_key, ratio_index)));
-        const json& j = list[ratio_index];
-        if (!j.is_object() || !j.contains("X") || !j.contains("Y"))
-            return std::unexpected(reader.error(jitter_where, "expected {\"X\": x, \"Y\": y}"));
-        auto x = reader.number(j["X"], jitter_where + ".X");
-        if (!x) return std::unexpected(x.error());
-        auto y = reader.number(j["Y"], jitter_where + ".Y");
-        if (!y) return std::unexpected(y.error());
-        frame.jitter = glm::vec2(float(*x * c.input_width), float(*y * c.input_height));
-        // Within half an input pixel (SPEC: "the Jitter {-0.5, 0.5} divided by the SrcRes"), to
-        // float's rounding of the product.
-        if (!(std::abs(frame.jitter.x) <= 0.5001f && std::abs(frame.jitter.y) <= 0.5001f))
+    return {};
+}
+
+// Frames[i]'s camera cut, exposure and jitter into `frame`.
+Result<void> read_capture_frame(const JsonReader& reader, const json& f, std::size_t i, std::size_t ratio_index,
+                                const std::string& index_key, const NssCapture& c, NssFrame& frame) {
+    const std::string where = fmt::format("Frames[{}]", i);
+    if (!f.is_object()) return std::unexpected(reader.error(where, "expected an object"));
+    // CameraCut: "true when the current frame is the first frame after a camera cut" (SPEC); absent
+    // means false (READER line 253). kdop drops the history there.
+    if (const auto cut = f.find("CameraCut"); cut != f.end()) {
+        if (!cut->is_boolean()) return std::unexpected(reader.error(where + ".CameraCut", "expected true or false"));
+        frame.camera_cut = cut->get<bool>();
+    }
+    // Exposure: optional; READER keeps ln(Exposure) (line 263) and the training multiplies color
+    // and ground truth alike by exp of it before tone mapping (src/ng_model_gym/usecases/nss/data/
+    // process_functions.py lines 125-126): the files are not pre-exposed. kdop multiplies both by
+    // it as it reads them, so HDR-FLIP measures what the model is trained on; both alike, so the
+    // resolve and the reference stay in the same units. Absent: 1.
+    if (const auto exposure = f.find("Exposure"); exposure != f.end()) {
+        auto value = reader.number(*exposure, where + ".Exposure");
+        if (!value) return std::unexpected(value.error());
+        if (!(*value > 0.0) || !std::isfinite(float(*value)))
             return std::unexpected(
-                reader.error(jitter_where, fmt::format("({}, {}) is ({}, {}) input pixels, beyond half a pixel", *x, *y,
-                                                       frame.jitter.x, frame.jitter.y)));
+                reader.error(where + ".Exposure", fmt::format("{} is not a positive multiplier", *value)));
+        frame.exposure = float(*value);
+    }
+    // Jitter: NormalizedPerRatioJitter[index] is the sample's offset from the pixel's center
+    // divided by the input size (SPEC, "Per-frame"); READER multiplies it by the color file's
+    // size (line 281) with no change of sign, and the model samples pixel i at i + 0.5 + jitter
+    // (src/ng_model_gym/core/model/graphics_utils.py line 265), y down: kdop's convention, so
+    // it is only scaled. READER falls back to the old key QuantisedPerRatioJitter, and so does kdop.
+    const char* jitter_key = f.contains("NormalizedPerRatioJitter")  ? "NormalizedPerRatioJitter"
+                             : f.contains("QuantisedPerRatioJitter") ? "QuantisedPerRatioJitter"
+                                                                     : nullptr;
+    if (!jitter_key)
+        return std::unexpected(reader.error(where, "has no \"NormalizedPerRatioJitter\", which kdop reads"));
+    const json& list = f[jitter_key];
+    const std::string jitter_where = fmt::format("{}.{}[{}]", where, jitter_key, ratio_index);
+    if (!list.is_array() || ratio_index >= list.size())
+        return std::unexpected(reader.error(
+            jitter_where, fmt::format("missing: UpscalingRatiosIndices.{} is {}", index_key, ratio_index)));
+    const json& j = list[ratio_index];
+    if (!j.is_object() || !j.contains("X") || !j.contains("Y"))
+        return std::unexpected(reader.error(jitter_where, "expected {\"X\": x, \"Y\": y}"));
+    auto x = reader.number(j["X"], jitter_where + ".X");
+    if (!x) return std::unexpected(x.error());
+    auto y = reader.number(j["Y"], jitter_where + ".Y");
+    if (!y) return std::unexpected(y.error());
+    frame.jitter = glm::vec2(float(*x * c.input_width), float(*y * c.input_height));
+    // Within half an input pixel (SPEC: "the Jitter {-0.5, 0.5} divided by the SrcRes"), to
+    // float's rounding of the product.
+    if (!(std::abs(frame.jitter.x) <= 0.5001f && std::abs(frame.jitter.y) <= 0.5001f))
+        return std::unexpected(
+            reader.error(jitter_where, fmt::format("({}, {}) is ({}, {}) input pixels, beyond half a pixel", *x, *y,
+                                                   frame.jitter.x, frame.jitter.y)));
+    return {};
+}
+
+} // namespace
+
+Result<NssCapture> read_nss_capture(const fs::path& root, const std::string& sequence, double ratio) {
+    auto folder = nss_ratio_folder(ratio);
+    if (!folder) return std::unexpected(folder.error());
+    if (auto problem = name_problem(sequence))
+        return usage_fail(fmt::format("--nss-sequence {}: the name {}; kdop names the sequence's outputs after it",
+                                      shown_text(sequence, 60), *problem));
+    const fs::path path = root / (sequence + ".json");
+    auto text = read_input_file(path);
+    if (!text) return std::unexpected(text.error());
+    json root_json;
+    try {
+        root_json = json::parse(with_non_finite_as_strings(*text));
+    } catch (const json::exception& e) {
+        return fail(fmt::format("{}: not JSON kdop can read: {}", path.string(), shown_text(e.what(), 200)));
+    }
+    const JsonReader reader(path);
+    if (!root_json.is_object()) return fail(fmt::format("{}: expected a JSON object", path.string()));
+
+    NssCapture c;
+    c.root = root;
+    c.sequence = sequence;
+    c.ratio_folder = *folder;
+    const std::string index_key = fmt::format("{}_index", *folder);
+    auto ratio_index = read_capture_settings(reader, root_json, path, index_key, ratio, c);
+    if (!ratio_index) return std::unexpected(ratio_index.error());
+    auto frames_json = reader.member(root_json, "Frames", "the top level");
+    if (!frames_json) return std::unexpected(frames_json.error());
+    if (!(*frames_json)->is_array() || (*frames_json)->empty())
+        return std::unexpected(reader.error("Frames", "expected a list of at least one frame"));
+    auto streams = capture_streams(root, *folder, sequence, ratio, (*frames_json)->size(), path);
+    if (!streams) return std::unexpected(streams.error());
+    if (auto ok = check_capture_sizes(*streams, ratio, path, c); !ok) return std::unexpected(ok.error());
+    for (std::size_t i = 0; i < (*streams)[0].files.size(); ++i) {
+        NssFrame frame{(*streams)[0].files[i], (*streams)[1].files[i], (*streams)[2].files[i], (*streams)[3].files[i]};
+        if (auto ok = read_capture_frame(reader, (**frames_json)[i], i, *ratio_index, index_key, c, frame); !ok)
+            return std::unexpected(ok.error());
         c.frames.push_back(std::move(frame));
     }
     for (const NssFrame& f : c.frames)

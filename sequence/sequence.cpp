@@ -1,5 +1,7 @@
 #include "sequence/sequence.h"
 
+#include "sequence/frame_checks.h"
+
 #include "core/file_name.h"
 #include "core/input_files.h"
 #include "core/read_file.h"
@@ -27,11 +29,6 @@ using nlohmann::json;
 namespace {
 
 constexpr std::uint32_t kMaxSide = 16384;
-
-// Whether `path` is `folder` or lies inside it, both resolved already.
-bool lies_inside(const fs::path& path, const fs::path& folder) {
-    return std::mismatch(folder.begin(), folder.end(), path.begin(), path.end()).first == folder.end();
-}
 
 // "line L, column C" of byte `offset` (1-based, as nlohmann counts it) of `text`.
 std::string position_of(std::string_view text, std::size_t offset) {
@@ -392,17 +389,6 @@ Result<void> check_size(glm::uvec2 size, glm::uvec2 expected, const fs::path& fi
     return fail(fmt::format("{}: {}x{}, but the sequence{} is {}x{} ({})", file.string(), size.x, size.y,
                             expected == frame_size(s) ? "" : "'s output", expected.x, expected.y,
                             (s.dir / "sequence.json").string()));
-}
-
-// Refuses a NaN or infinite value among the first `channels`, naming the pixel.
-Result<void> check_finite(const Image& image, const fs::path& file, int channels, std::string_view what) {
-    for (std::uint32_t y = 0; y < image.height; ++y)
-        for (std::uint32_t x = 0; x < image.width; ++x)
-            for (int c = 0; c < channels; ++c)
-                if (!std::isfinite(image.at(x, y)[c]))
-                    return fail(fmt::format("{}: pixel ({}, {}) holds {} in channel {}; {} must be finite",
-                                            file.string(), x, y, image.at(x, y)[c], c, what));
-    return {};
 }
 
 // A frame's file, open: read_sequence checked that it lies inside the folder, but the file may since

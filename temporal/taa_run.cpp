@@ -139,6 +139,37 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
             .metrics = e.metrics};
 }
 
+// The frames a run goes through: what its progress counts.
+std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sources) {
+    std::size_t frames = 0;
+    for (const auto& scene : sources.scenes) frames += evaluation.frames(*scene);
+    for (const SequenceFrames& sequence : sources.sequences) frames += sequence.frame_count();
+    for (const NssFrames& capture : sources.captures) frames += capture.frame_count();
+    return frames;
+}
+
+// The charts, the intervals, taa.csv, taa_frames.csv, report.md and report.html of what a run
+// measured, and every output staged, written.
+Result<RunMetadata> write_tables_and_reports(RunMetadata run_info, const TaaRunSettings& settings,
+                                             TaaReportSettings& report, std::vector<TaaRow>& rows,
+                                             const std::vector<TaaFrameRow>& frame_rows,
+                                             const std::vector<std::string>& variant_names,
+                                             const std::vector<ViewerSequence>& viewed, OutputSet& outputs) {
+    const Metrics& metrics = settings.evaluation.metrics;
+    run_info.seed = settings.seed;
+    if (charts_available(settings.charts))
+        add_charts(outputs, rows, frame_rows, metrics, report.charts, report.over_time);
+    BootstrapOptions bootstrap;
+    bootstrap.block = history_block(settings.evaluation.resolve.current_weight), bootstrap.seed = settings.seed;
+    add_intervals(rows, frame_rows, metrics.size(), bootstrap);
+    outputs.add_table("taa", taa_table(rows, metrics), run_info);
+    outputs.add_table("taa_frames", taa_frames_table(frame_rows, metrics), run_info);
+    outputs.add("report.md", taa_report_markdown(rows, run_info, report));
+    outputs.add("report.html", taa_report_html(rows, run_info, report, variant_names, viewed));
+    if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
+    return run_info;
+}
+
 } // namespace
 
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
@@ -189,13 +220,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             if (!timing) return std::unexpected(timing.error());
         }
         // A step is a frame, every variant resolved and measured on it.
-        std::size_t frames = 0;
-        for (const auto& scene : scenes) frames += evaluation->frames(*scene);
-        for (const SequenceFrames& sequence : sequences) frames += sequence.frame_count();
-        for (const NssFrames& capture : captures) frames += capture.frame_count();
         Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs.size(),
                                       sources.size(), context.device_name()),
-                          frames);
+                          frame_steps(*evaluation, sources));
         observer.frame = [&](const std::string& source) { progress.advance(source); };
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
         auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
@@ -262,21 +289,10 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     }
     outputs.add(viewer_images.writers(outputs.dir()));
 
-    RunMetadata run_info = describe_run(context);
-    run_info.seed = settings.seed;
     TaaReportSettings report = report_settings(sources, settings, width, height);
     report.pictures = pictures;
-    if (charts_available(settings.charts))
-        add_charts(outputs, rows, frame_rows, metrics, report.charts, report.over_time);
-    BootstrapOptions bootstrap;
-    bootstrap.block = history_block(settings.evaluation.resolve.current_weight), bootstrap.seed = settings.seed;
-    add_intervals(rows, frame_rows, metrics.size(), bootstrap);
-    outputs.add_table("taa", taa_table(rows, metrics), run_info);
-    outputs.add_table("taa_frames", taa_frames_table(frame_rows, metrics), run_info);
-    outputs.add("report.md", taa_report_markdown(rows, run_info, report));
-    outputs.add("report.html", taa_report_html(rows, run_info, report, variant_names, *viewed));
-    if (auto ok = outputs.write(); !ok) return std::unexpected(ok.error());
-    return run_info;
+    return write_tables_and_reports(describe_run(context), settings, report, rows, frame_rows, variant_names, *viewed,
+                                    outputs);
 }
 
 } // namespace kdop
