@@ -185,5 +185,65 @@ TEST_F(UpscaleGpu, AStillJitteredSceneConvergesBelowTheSpatialUpscale) {
         << "temporal " << temporal_flip.back() << ", spatial " << spatial_flip.back();
 }
 
+// A smooth pattern sliding 1.5 output pixels a frame, drawn at 32x20 with a Halton jitter and
+// upscaled to 64x40: with the exact motion (0.75 input pixels) the output follows the pattern, with
+// at most half the error it keeps with no motion or with the motion in output pixels by mistake
+// (twice as far), where the history lags or leads and the clip must cut it.
+TEST_F(UpscaleGpu, AMovingPatternIsTrackedByItsMotion) {
+    constexpr std::uint32_t w = 32, h = 20, out_w = 64, out_h = 40;
+    constexpr float speed = 1.5f; // output pixels a frame, to the right
+    auto pattern = [](float x, float y) {
+        const float v = 0.5f + 0.35f * std::sin(0.45f * x) * std::cos(0.3f * y);
+        return glm::vec4(v, 0.8f * v, 1.0f - v, 1.0f);
+    };
+    const std::uint32_t phases = upscale_jitter_phases(2);
+    auto frame = [&](std::size_t f, float motion) {
+        LoadedFrame out;
+        out.jitter = halton_jitter(std::uint32_t(f), phases);
+        out.color = Image(w, h);
+        for (std::uint32_t y = 0; y < h; ++y)
+            for (std::uint32_t x = 0; x < w; ++x) {
+                const glm::vec2 at = (glm::vec2(x, y) + 0.5f + out.jitter) * 2.0f; // in output pixels
+                out.color.at(x, y) = pattern(at.x - speed * float(f), at.y);
+            }
+        // Where each sample's surface was a frame ago, in input pixels.
+        if (f > 0) out.motion.assign(std::size_t(w) * h, glm::vec2(motion, 0.0f));
+        return out;
+    };
+    ResolveOptions options;
+    options.upscale = true;
+    const VariantSpec spec{*resolve_axis_set("dop22"), Mode::clip, Neighborhood::n9};
+    auto shader = build_taa_shader(spec, options);
+    ASSERT_TRUE(shader) << shader.error().message;
+    // The mean error of the last frame with the exact motion, none, and twice the exact.
+    const float motions[] = {-speed / 2, 0.0f, -speed};
+    double error[3] = {0, 0, 0};
+    for (int m = 0; m < 3; ++m) {
+        auto resolve = upscaling_resolve(**shader, w, h, out_w, out_h, options);
+        ASSERT_TRUE(resolve);
+        const Image* output = nullptr;
+        constexpr std::size_t frames = 30;
+        for (std::size_t f = 0; f < frames; ++f) {
+            auto out = resolve->advance(frame(f, motions[m]), f == 0);
+            ASSERT_TRUE(out) << out.error().message;
+            output = *out;
+        }
+        // Away from the left edge, where the pattern enters without a history.
+        double sum = 0;
+        std::size_t count = 0;
+        for (std::uint32_t y = 0; y < out_h; ++y)
+            for (std::uint32_t x = 8; x < out_w; ++x, ++count) {
+                const glm::vec4 truth = pattern(float(x) + 0.5f - speed * float(frames - 1), float(y) + 0.5f);
+                sum += glm::length(glm::vec3(output->at(x, y) - truth));
+            }
+        error[m] = sum / double(count);
+    }
+    std::cout << fmt::format("mean error of the last frame: {:.4f} with the motion, {:.4f} without, {:.4f} with "
+                             "twice the motion\n",
+                             error[0], error[1], error[2]);
+    EXPECT_LT(error[0], 0.5 * error[1]);
+    EXPECT_LT(error[0], 0.5 * error[2]);
+}
+
 } // namespace
 } // namespace kdop
