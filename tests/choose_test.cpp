@@ -696,6 +696,39 @@ TEST(CliChoose, HoldoutJudgesOnBlocksOfFramesLeftOutOfTheFit) {
     EXPECT_FALSE(fs::exists(refused));
 }
 
+// Sequences drawn for upscaling (kdop scene --upscale 2): the sets are fitted to the input-size
+// frames, the neighborhoods the upscaling resolve clips against, and every held-out figure is kdop
+// taa's on the same sequence, through the same upscaling resolve, to the digit.
+TEST(CliChoose, UpscaledSequencesAreJudgedThroughTheUpscalingResolve) {
+    test::TempDir dir;
+    auto kdop = [](const std::string& args) { return test::run(test::kdop_binary() + " " + args); };
+    const fs::path scenes = dir / "scenes", out = dir / "choose", taa = dir / "taa";
+    auto s = kdop("scene --scenes grass3d asphalt3d --size 64x36 --frames 10 --upscale 2 --reference-samples 4 --out " +
+                  scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const std::string fit = (scenes / "grass3d-ghosting").string(), validate = (scenes / "asphalt3d-ghosting").string();
+    auto r =
+        kdop("choose --fit " + fit + " --validate " + validate +
+             " --fit-axes 4 --sets aabb --modes clip --warmup 4 --timing-rounds 2 --no-charts --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(test::read_file(out / "fitted4.axes").find("5760 3x3 neighborhoods"), std::string::npos)
+        << "fitted to the 32x18 input frames (10 x 576 neighborhoods):\n"
+        << test::read_file(out / "fitted4.axes");
+    auto t = kdop("taa --sequence " + validate + " --sets aabb " + (out / "fitted4.axes").string() +
+                  " --modes clip --warmup 4 --timing-rounds 2 --no-charts --viewer-frames 0 --out " + taa.string());
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    const auto rows = test::csv_rows(test::read_file(taa / "taa.csv"));
+    const auto candidates = test::csv_rows(test::read_file(out / "candidates.csv"));
+    ASSERT_EQ(candidates.size(), 2u);
+    for (auto c : candidates) {
+        SCOPED_TRACE(c["variant"]);
+        const auto row = std::ranges::find_if(rows, [&](auto& r) { return r.at("variant") == c["variant"]; });
+        ASSERT_NE(row, rows.end());
+        EXPECT_EQ(c["validation_ghosting"], row->at("ghosting"));
+        EXPECT_EQ(row->at("ghosting_against"), "reference");
+    }
+}
+
 // mpirun -np R: the fits are shared over the ranks as kdop optimize shares them, and rank 0 measures
 // and writes; the files are those of a run without mpirun (the fitted sets, the manifest, every
 // figure but the timed ms), printed once. A usage error is one, exit 2, before any work.
