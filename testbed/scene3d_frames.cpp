@@ -23,6 +23,7 @@ Camera3d Scene3dFrames::previous_camera(std::size_t index) const {
 }
 
 Result<Image> Scene3dFrames::reference(std::size_t index) const {
+    if (still() && still_reference_) return *still_reference_;
     const double now = time(index);
     const Camera3d camera_now = camera(index);
     Image sum(width(), height(), glm::vec4(0));
@@ -34,6 +35,7 @@ Result<Image> Scene3dFrames::reference(std::size_t index) const {
         for (std::size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += sample.pixels[i];
     }
     for (glm::vec4& p : sum.pixels) p /= float(timeline_.reference_samples);
+    if (still()) still_reference_ = sum;
     return sum;
 }
 

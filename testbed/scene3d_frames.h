@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace kdop {
@@ -66,10 +67,15 @@ private:
     Camera3d previous_camera(std::size_t index) const;
     // Frame `index`'s reference: the mean of the samples at the first R2 points, box-filtered.
     Result<Image> reference(std::size_t index) const;
+    // Whether every frame shows the same instant from the same place: then one reference serves all.
+    bool still() const { return !timeline_.animate && !timeline_.pan; }
 
     std::string name_;
     std::shared_ptr<TestbedRenderer> renderer_, reference_renderer_;
     Scene3dTimeline timeline_;
+    // A still timeline's one reference, drawn when first asked for (frames are drawn on one thread:
+    // the source does not read ahead).
+    mutable std::optional<Image> still_reference_;
 };
 
 } // namespace kdop
