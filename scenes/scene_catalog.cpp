@@ -65,8 +65,9 @@ Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std
             continue;
         }
         if (o.upscale > 1)
-            return fail(fmt::format("--scenes: {} is a 2-D scene, drawn at one size; --upscale takes the 3-D ones ({})",
-                                    name, fmt::join(testbed_names(), ", ")));
+            return usage_fail(
+                fmt::format("--scenes: {} is a 2-D scene, drawn at one size; --upscale takes the 3-D ones ({})", name,
+                            fmt::join(testbed_names(), ", ")));
         if (sprites.empty()) sprites = default_sprite_scenes(o.width, o.height, o.seed);
         auto it = std::find_if(sprites.begin(), sprites.end(), [&](const SpriteScene& s) { return s.name() == name; });
         if (it == sprites.end())
@@ -75,7 +76,7 @@ Result<std::vector<std::shared_ptr<const TaaScene>>> select_taa_scenes(const std
         out.push_back(std::make_shared<SpriteScene>(*it));
     }
     if (o.upscale > 1 && !backgrounds.empty())
-        return fail("--background: a 2-D scene is drawn at one size; --upscale takes the 3-D scenes");
+        return usage_fail("--background: a 2-D scene is drawn at one size; --upscale takes the 3-D scenes");
     for (const std::string& path : backgrounds) {
         auto scene = read_sprite_scene(path, o.width, o.height, o.input_space);
         if (!scene) return std::unexpected(scene.error());

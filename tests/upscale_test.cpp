@@ -4,6 +4,7 @@
 // input; and kdop taa --upscale's refusals.
 #include "flip/flip.h"
 #include "generator/variant_spec.h"
+#include "images/image_io.h"
 #include "images/texture_cases.h"
 #include "reference/cpu_clip.h"
 #include "scenes/sprite_scene.h"
@@ -243,6 +244,28 @@ TEST_F(UpscaleGpu, AMovingPatternIsTrackedByItsMotion) {
                              error[0], error[1], error[2]);
     EXPECT_LT(error[0], 0.5 * error[1]);
     EXPECT_LT(error[0], 0.5 * error[2]);
+}
+
+// kdop taa --upscale on a 2-D scene, alone or beside a 3-D one, or with a background: exit 2 before
+// any work, naming the option, nothing written.
+TEST(CliUpscale, TwoDimensionalScenesAreRefused) {
+    test::TempDir dir;
+    const std::string background = (dir / "background.png").string();
+    ASSERT_TRUE(write_image(background, make_texture(TextureFamily::grass, 16, 16, 1)));
+    const struct {
+        std::string args;
+        const char* says;
+    } cases[] = {{"--scenes grass", "--upscale: only the 3-D scenes"},
+                 {"--scenes grass3d grass", "--scenes: grass is a 2-D scene, drawn at one size"},
+                 {"--scenes grass3d --background " + background, "--background: a 2-D scene"}};
+    for (const auto& c : cases) {
+        const std::filesystem::path out = dir / "out";
+        auto r = test::run(test::kdop_binary() + " taa --upscale 2 --sets aabb --modes clip " + c.args + " --out " +
+                           out.string());
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
+    }
 }
 
 } // namespace
