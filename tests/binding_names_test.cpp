@@ -83,7 +83,7 @@ TEST(BindingNames, TheDocumentedExamplesReflectAsTheirCommentsSayInBothLanguages
 // The engine example's resolves as ported: every binding the GLSL resolve has, its HLSL port has
 // under the same name (the port adds the samplers GLSL's combined image samplers held).
 TEST(BindingNames, TheEngineExamplesHlslPortsBindTheGlslNames) {
-    for (const char* name : {"resolve_compute", "resolve_fragment"}) {
+    for (const char* name : {"resolve_compute", "resolve_fragment", "upscale_compute"}) {
         const Variant* glsl = test_shaders::variants().find(name);
         const Variant* hlsl = test_shaders::variants().find((std::string("hlsl_") + name).c_str());
         ASSERT_NE(glsl, nullptr) << name;

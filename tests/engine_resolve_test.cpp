@@ -5,12 +5,16 @@
 // kdop_add_variants SHADERS (tests/CMakeLists.txt), their reflection is checked against the
 // shaders' declarations, and both run through kdop/vulkan_pipeline.h, with a function table and
 // VK_NO_PROTOTYPES (resolve_runner.cpp), on lavapipe with the validation layer on, against the CPU
-// reference.
+// reference. The example's TAAU resolve, in both languages, runs against kdop's own upscaling resolve.
 #include "examples/engine_resolve/resolve_runner.h"
 #include "generator/shader_reflection.h"
 #include "images/texture_cases.h"
 #include "kdop_test_shaders.h"
 #include "reference/cpu_clip.h"
+#include "scenes/sprite_scene.h"
+#include "sequence/jitter.h"
+#include "temporal/taa_resolve.h"
+#include "temporal/taa_shader.h"
 #include "tests/gpu_support.h"
 
 #include <gtest/gtest.h>
@@ -22,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <span>
 #include <string>
 #include <tuple>
@@ -154,6 +159,34 @@ TEST(EngineShaders, ReflectsTheHlslPortsRegistersAsBindings) {
     EXPECT_EQ(vertex.binding_count, 0u);
 }
 
+// The TAAU resolves: three textures (GLSL's sampler2D a combined image sampler, HLSL's Texture2D
+// read with Load a sampled image), the rgba32f output, and 12 bytes of push constants (jitter and
+// current weight).
+TEST(EngineShaders, ReflectsTheUpscalersTexturesAndPushConstants) {
+    for (const auto& [name, texture_type] : {std::pair{"upscale_compute", DescriptorType::combined_image_sampler},
+                                             std::pair{"hlsl_upscale_compute", DescriptorType::sampled_image}}) {
+        const Variant& upscale = shader(name);
+        EXPECT_EQ(upscale.stage, ShaderStage::compute) << name;
+        EXPECT_EQ(upscale.local_size[0], 8u) << name;
+        EXPECT_EQ(upscale.local_size[1], 8u) << name;
+        ASSERT_EQ(upscale.binding_count, 4u) << name;
+        const char* textures[] = {"current_frame", "motion_frame", "history_frame"};
+        for (std::uint32_t i = 0; i < 3; ++i) {
+            const DescriptorBinding* b = find_binding(upscale, textures[i]);
+            ASSERT_NE(b, nullptr) << name << ": " << textures[i];
+            EXPECT_EQ(b->set, 0u);
+            EXPECT_EQ(b->binding, i) << name << ": " << textures[i];
+            EXPECT_EQ(b->type, texture_type) << name << ": " << to_string(b->type);
+        }
+        const DescriptorBinding* output = find_binding(upscale, "resolved_frame");
+        ASSERT_NE(output, nullptr) << name;
+        EXPECT_EQ(output->binding, 3u);
+        EXPECT_EQ(output->type, DescriptorType::storage_image);
+        EXPECT_EQ(output->format, 109u); // VK_FORMAT_R32G32B32A32_SFLOAT
+        EXPECT_EQ(upscale.push_constant_size, 12u) << name;
+    }
+}
+
 // The registry's storage formats are Vulkan's numbers, written in shader_reflection.cpp without
 // Vulkan's headers; here each is checked against vulkan_core.h's enum, for every SPIR-V format.
 TEST(EngineShaders, StorageFormatsAreVulkansNumbers) {
@@ -219,6 +252,91 @@ Image image_of(const std::vector<float>& floats) {
     for (std::size_t i = 0; i < out.pixels.size(); ++i)
         out.pixels[i] = {floats[4 * i], floats[4 * i + 1], floats[4 * i + 2], floats[4 * i + 3]};
     return out;
+}
+
+// The TAAU resolve an engine writes (upscale_compute.comp, hlsl_upscale_compute.cs.hlsl), run by
+// engine::Upscaler, against kdop's own upscaling resolve (TaaResolve with options.upscale, the same
+// clip): a moving 2-D scene drawn at 32x20 with a Halton jitter, upscaled 2x over eight frames,
+// each resolve from its own history. Float rounding apart (a history within rounding of a slab may
+// land on either side, and then differs in the frames after), the three agree.
+using EngineUpscaleGpu = test::ValidationChecked;
+
+TEST_F(EngineUpscaleGpu, GlslAndHlslMatchKdopsUpscalingResolve) {
+    constexpr std::uint32_t w = 32, h = 20, out_w = 64, out_h = 40;
+    const engine::Device device{test::gpu().instance(), test::gpu().physical_device(), test::gpu().device(),
+                                test::gpu().queue(),    test::gpu().queue_family(),    vkGetInstanceProcAddr};
+    const SceneFrames frames("grass", make_texture(TextureFamily::grass, w, h, 3), 8, true, false);
+    const std::uint32_t phases = upscale_jitter_phases(2);
+
+    ResolveOptions options;
+    options.upscale = true;
+    auto kdop_shader = build_taa_shader({*resolve_axis_set("dop22"), Mode::clip, Neighborhood::n9}, options);
+    ASSERT_TRUE(kdop_shader) << kdop_shader.error().message;
+    const Variant* kdop_shaders[] = {&(*kdop_shader)->variant()};
+    auto kdop_resolve = TaaResolve::create(test::gpu(), kdop_shaders, w, h, out_w, out_h, options);
+    ASSERT_TRUE(kdop_resolve) << kdop_resolve.error().message;
+
+    std::string error;
+    std::unique_ptr<engine::Upscaler> upscalers[2];
+    std::vector<float> histories[2];
+    const char* names[2] = {"upscale_compute", "hlsl_upscale_compute"};
+    for (int l = 0; l < 2; ++l) {
+        upscalers[l] = engine::Upscaler::create(device, shader(names[l]), w, h, out_w, out_h, error);
+        ASSERT_TRUE(upscalers[l]) << names[l] << ": " << error;
+        histories[l].assign(std::size_t(out_w) * out_h * 4, 0.0f);
+    }
+
+    constexpr float kRounding = 1e-4f; // per pixel, the distance of two colors in [0, 1]
+    const auto pixels_apart = [](const std::vector<float>& a, const std::vector<float>& b, float& largest) {
+        std::size_t apart = 0;
+        for (std::size_t i = 0; i < a.size(); i += 4) {
+            const float d = glm::distance(glm::vec3(a[i], a[i + 1], a[i + 2]), glm::vec3(b[i], b[i + 1], b[i + 2]));
+            largest = std::max(largest, d);
+            if (d > kRounding) ++apart;
+        }
+        return apart;
+    };
+    const std::size_t pixels = std::size_t(out_w) * out_h;
+    std::size_t most_apart = 0, most_apart_between = 0;
+    float largest = 0, largest_between = 0;
+    for (std::size_t f = 0; f < frames.frame_count(); ++f) {
+        auto frame = frames.frame(f);
+        ASSERT_TRUE(frame);
+        frame->jitter = halton_jitter(std::uint32_t(f), phases);
+        auto expected_image = (*kdop_resolve)->advance(*frame, frames.starts_history(f));
+        ASSERT_TRUE(expected_image) << expected_image.error().message;
+        const std::vector<float> expected = floats_of(**expected_image);
+
+        engine::UpscaleFrames in;
+        in.current = floats_of(frame->color);
+        in.motion.assign(std::size_t(w) * h * 2, 0.0f);
+        for (std::size_t i = 0; i < frame->motion.size(); ++i) {
+            in.motion[2 * i] = frame->motion[i].x;
+            in.motion[2 * i + 1] = frame->motion[i].y;
+        }
+        in.jitter = {frame->jitter.x, frame->jitter.y};
+        in.current_weight = frames.starts_history(f) ? 1.0f : options.current_weight;
+        std::vector<float> outputs[2];
+        for (int l = 0; l < 2; ++l) {
+            in.history = histories[l];
+            ASSERT_EQ(upscalers[l]->resolve(in, outputs[l]), "") << names[l] << ", frame " << f;
+            ASSERT_EQ(outputs[l].size(), expected.size());
+            const std::size_t apart = pixels_apart(outputs[l], expected, largest);
+            EXPECT_LE(apart, pixels / 500) << names[l] << " against kdop's resolve, frame " << f;
+            most_apart = std::max(most_apart, apart);
+            histories[l] = outputs[l];
+        }
+        const std::size_t apart = pixels_apart(outputs[0], outputs[1], largest_between);
+        EXPECT_LE(apart, pixels / 500) << "GLSL against HLSL, frame " << f;
+        most_apart_between = std::max(most_apart_between, apart);
+    }
+    std::cout << "engine TAAU, " << pixels << " pixels a frame: against kdop's upscaling resolve at most " << most_apart
+              << " apart by more than " << kRounding << ", largest difference " << largest
+              << "; GLSL against HLSL at most " << most_apart_between << ", largest " << largest_between << "\n";
+
+    engine::UpscaleFrames wrong_size;
+    std::vector<float> unused;
+    EXPECT_NE(upscalers[0]->resolve(wrong_size, unused).find("32x20 to 64x40"), std::string::npos);
 }
 
 // The resolves in GLSL ("") and their HLSL ports ("hlsl_"), by the prefix of their registry names.

@@ -219,7 +219,8 @@ TEST(UnusedResources, TheExamplesShadersUseEverythingTheyDeclare) {
     for (const char* file :
          {"taa_resolve/taa_resolve.comp", "engine_resolve/resolve_compute.comp", "engine_resolve/fullscreen.vert",
           "engine_resolve/resolve_fragment.frag", "engine_resolve/hlsl_resolve_compute.cs.hlsl",
-          "engine_resolve/hlsl_fullscreen.vs.hlsl", "engine_resolve/hlsl_resolve_fragment.ps.hlsl"})
+          "engine_resolve/hlsl_fullscreen.vs.hlsl", "engine_resolve/hlsl_resolve_fragment.ps.hlsl",
+          "engine_resolve/upscale_compute.comp", "engine_resolve/hlsl_upscale_compute.cs.hlsl"})
         command.push_back((examples / file).string());
     const test::CommandResult r = test::run(command);
     EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -42,6 +42,10 @@ struct ComputeParameters { // resolve_compute.comp's ResolveParameters (std140)
 struct FragmentParameters { // resolve_fragment.frag's ResolveParameters
     float motion[2];
 };
+struct UpscaleParameters { // upscale_compute.comp's push constants
+    float jitter[2];
+    float current_weight;
+};
 
 struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
@@ -52,31 +56,59 @@ struct Texture {
     VkImageView view = VK_NULL_HANDLE;
 };
 
-struct Resolver::State {
+// What each resolver here holds: the device, the functions it calls, what to destroy, and the
+// helpers that make its resources.
+struct Vulkan {
     Device device;
-    Shaders shaders;
-    std::uint32_t width = 0, height = 0;
     DeviceFunctions fn;
     kdop::VariantVulkanFunctions kdop_fn;
     VkPhysicalDeviceMemoryProperties memory{};
-    std::vector<std::function<void()>> cleanup; // run in reverse by ~State
-
-    Buffer upload, readback, compute_parameters, fragment_parameters, clip_distances;
-    Texture current, history, compute_output, fragment_output;
-    VkSampler nearest = VK_NULL_HANDLE, linear = VK_NULL_HANDLE;
-    VkRenderPass render_pass = VK_NULL_HANDLE;
-    VkFramebuffer framebuffer = VK_NULL_HANDLE;
-    kdop::VariantPipeline compute_pipeline, graphics_pipeline;
-    VkDescriptorSet compute_sets[kdop::kMaxVariantDescriptorSets] = {};
-    VkDescriptorSet graphics_sets[kdop::kMaxVariantDescriptorSets] = {};
+    std::vector<std::function<void()>> cleanup; // run in reverse by destroy()
     VkCommandBuffer commands = VK_NULL_HANDLE;
 
-    ~State() {
+    // Destroys what was made, newest first. The derived states call it from their destructors,
+    // while the members the cleanup refers to (the pipelines) still exist.
+    void destroy() {
         if (device.device && fn.vkDeviceWaitIdle) fn.vkDeviceWaitIdle(device.device);
         for (auto it = cleanup.rbegin(); it != cleanup.rend(); ++it) (*it)();
+        cleanup.clear();
     }
 
-    std::size_t image_bytes() const { return std::size_t(width) * height * 4 * sizeof(float); }
+    // The device's functions, through vkGetDeviceProcAddr.
+    std::string load_functions() {
+        const VkDevice d = device.device;
+        const auto get_device_proc_addr = reinterpret_cast<PFN_vkGetDeviceProcAddr>(
+            device.get_instance_proc_addr(device.instance, "vkGetDeviceProcAddr"));
+        const auto get_memory_properties = reinterpret_cast<PFN_vkGetPhysicalDeviceMemoryProperties>(
+            device.get_instance_proc_addr(device.instance, "vkGetPhysicalDeviceMemoryProperties"));
+        if (!get_device_proc_addr || !get_memory_properties) return "the instance lacks a Vulkan 1.0 entry point";
+        if (kdop::load_variant_functions(d, get_device_proc_addr, kdop_fn) != VK_SUCCESS)
+            return "kdop::load_variant_functions: the device lacks an entry point";
+#define ENGINE_LOAD(name)                                                                                              \
+    fn.name = reinterpret_cast<PFN_##name>(get_device_proc_addr(d, #name));                                            \
+    if (!fn.name) return "the device lacks " #name;
+        ENGINE_DEVICE_FUNCTIONS(ENGINE_LOAD)
+#undef ENGINE_LOAD
+        get_memory_properties(device.physical_device, &memory);
+        return {};
+    }
+
+    // One command buffer, reset and recorded for each submission.
+    std::string create_command_buffer() {
+        const VkDevice d = device.device;
+        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pool_info.queueFamilyIndex = device.queue_family;
+        VkCommandPool pool = VK_NULL_HANDLE;
+        if (auto e = check(fn.vkCreateCommandPool(d, &pool_info, nullptr, &pool), "vkCreateCommandPool"); !e.empty())
+            return e;
+        cleanup.push_back([this, pool] { fn.vkDestroyCommandPool(device.device, pool, nullptr); });
+        VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        allocate_info.commandPool = pool;
+        allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        allocate_info.commandBufferCount = 1;
+        return check(fn.vkAllocateCommandBuffers(d, &allocate_info, &commands), "vkAllocateCommandBuffers");
+    }
 
     std::string check(VkResult result, const char* what) const {
         return result == VK_SUCCESS ? std::string() : std::string(what) + " failed: VkResult " + std::to_string(result);
@@ -115,7 +147,8 @@ struct Resolver::State {
         return check(fn.vkMapMemory(device.device, memory_object, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
     }
 
-    std::string create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage) {
+    std::string create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage, std::uint32_t width,
+                               std::uint32_t height) {
         VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         info.imageType = VK_IMAGE_TYPE_2D;
         info.format = format;
@@ -158,6 +191,48 @@ struct Resolver::State {
         cleanup.push_back([this, out] { fn.vkDestroySampler(device.device, out, nullptr); });
         return {};
     }
+
+    void barrier(VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
+                 VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
+        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        b.srcAccessMask = src_access;
+        b.dstAccessMask = dst_access;
+        b.oldLayout = from;
+        b.newLayout = to;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = image;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        fn.vkCmdPipelineBarrier(commands, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+    }
+
+    // Submits the recorded command buffer and waits for it.
+    std::string submit() {
+        VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit_info.commandBufferCount = 1;
+        submit_info.pCommandBuffers = &commands;
+        if (auto e = check(fn.vkQueueSubmit(device.queue, 1, &submit_info, VK_NULL_HANDLE), "vkQueueSubmit");
+            !e.empty())
+            return e;
+        return check(fn.vkQueueWaitIdle(device.queue), "vkQueueWaitIdle");
+    }
+};
+
+struct Resolver::State : Vulkan {
+    Shaders shaders;
+    std::uint32_t width = 0, height = 0;
+
+    Buffer upload, readback, compute_parameters, fragment_parameters, clip_distances;
+    Texture current, history, compute_output, fragment_output;
+    VkSampler nearest = VK_NULL_HANDLE, linear = VK_NULL_HANDLE;
+    VkRenderPass render_pass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    kdop::VariantPipeline compute_pipeline, graphics_pipeline;
+    VkDescriptorSet compute_sets[kdop::kMaxVariantDescriptorSets] = {};
+    VkDescriptorSet graphics_sets[kdop::kMaxVariantDescriptorSets] = {};
+
+    ~State() { destroy(); }
+
+    std::size_t image_bytes() const { return std::size_t(width) * height * 4 * sizeof(float); }
 
     // A color target for the fragment resolve, left ready to be copied out.
     std::string create_render_pass() {
@@ -319,20 +394,7 @@ struct Resolver::State {
     }
 
     std::string create() {
-        const VkDevice d = device.device;
-        const auto get_device_proc_addr = reinterpret_cast<PFN_vkGetDeviceProcAddr>(
-            device.get_instance_proc_addr(device.instance, "vkGetDeviceProcAddr"));
-        const auto get_memory_properties = reinterpret_cast<PFN_vkGetPhysicalDeviceMemoryProperties>(
-            device.get_instance_proc_addr(device.instance, "vkGetPhysicalDeviceMemoryProperties"));
-        if (!get_device_proc_addr || !get_memory_properties) return "the instance lacks a Vulkan 1.0 entry point";
-        if (kdop::load_variant_functions(d, get_device_proc_addr, kdop_fn) != VK_SUCCESS)
-            return "kdop::load_variant_functions: the device lacks an entry point";
-#define ENGINE_LOAD(name)                                                                                              \
-    fn.name = reinterpret_cast<PFN_##name>(get_device_proc_addr(d, #name));                                            \
-    if (!fn.name) return "the device lacks " #name;
-        ENGINE_DEVICE_FUNCTIONS(ENGINE_LOAD)
-#undef ENGINE_LOAD
-        get_memory_properties(device.physical_device, &memory);
+        if (auto e = load_functions(); !e.empty()) return e;
 
         // The shaders' own declarations size and type the resources: an engine's C++ structs must
         // match the reflected blocks, and the output image takes the format resolved_frame declares.
@@ -363,15 +425,16 @@ struct Resolver::State {
                 return create_buffer(clip_distances, std::size_t(width) * height * sizeof(float),
                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
             },
-            [&] { return create_texture(current, VK_FORMAT_R32G32B32A32_SFLOAT, input); },
-            [&] { return create_texture(history, VK_FORMAT_R32G32B32A32_SFLOAT, input); },
+            [&] { return create_texture(current, VK_FORMAT_R32G32B32A32_SFLOAT, input, width, height); },
+            [&] { return create_texture(history, VK_FORMAT_R32G32B32A32_SFLOAT, input, width, height); },
             [&] {
                 return create_texture(compute_output, static_cast<VkFormat>(output->format),
-                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, width, height);
             },
             [&] {
                 return create_texture(fragment_output, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, width,
+                                      height);
             },
             [&] { return create_sampler(nearest, VK_FILTER_NEAREST); },
             [&] { return create_sampler(linear, VK_FILTER_LINEAR); },
@@ -382,31 +445,7 @@ struct Resolver::State {
         for (const auto& step : steps)
             if (auto e = step(); !e.empty()) return e;
 
-        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        pool_info.queueFamilyIndex = device.queue_family;
-        VkCommandPool pool = VK_NULL_HANDLE;
-        if (auto e = check(fn.vkCreateCommandPool(d, &pool_info, nullptr, &pool), "vkCreateCommandPool"); !e.empty())
-            return e;
-        cleanup.push_back([this, pool] { fn.vkDestroyCommandPool(device.device, pool, nullptr); });
-        VkCommandBufferAllocateInfo allocate_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        allocate_info.commandPool = pool;
-        allocate_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        allocate_info.commandBufferCount = 1;
-        return check(fn.vkAllocateCommandBuffers(d, &allocate_info, &commands), "vkAllocateCommandBuffers");
-    }
-
-    void barrier(VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src_access,
-                 VkAccessFlags dst_access, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
-        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-        b.srcAccessMask = src_access;
-        b.dstAccessMask = dst_access;
-        b.oldLayout = from;
-        b.newLayout = to;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = image;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        fn.vkCmdPipelineBarrier(commands, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+        return create_command_buffer();
     }
 
     // Upload, both resolves, read back: one submission.
@@ -511,18 +550,187 @@ std::string Resolver::resolve(const Frames& frames, Resolved& out) {
     if (auto e = s.check(s.fn.vkBeginCommandBuffer(s.commands, &begin), "vkBeginCommandBuffer"); !e.empty()) return e;
     s.record();
     if (auto e = s.check(s.fn.vkEndCommandBuffer(s.commands), "vkEndCommandBuffer"); !e.empty()) return e;
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &s.commands;
-    if (auto e = s.check(s.fn.vkQueueSubmit(s.device.queue, 1, &submit, VK_NULL_HANDLE), "vkQueueSubmit"); !e.empty())
-        return e;
-    if (auto e = s.check(s.fn.vkQueueWaitIdle(s.device.queue), "vkQueueWaitIdle"); !e.empty()) return e;
+    if (auto e = s.submit(); !e.empty()) return e;
 
     const float* read = static_cast<const float*>(s.readback.mapped);
     out.compute.assign(read, read + floats);
     out.fragment.assign(read + floats, read + 2 * floats);
     const float* distances = static_cast<const float*>(s.clip_distances.mapped);
     out.clip_distance.assign(distances, distances + floats / 4);
+    return {};
+}
+
+// The TAAU resolve: one compute pipeline, three input textures and a storage image, at two sizes.
+struct Upscaler::State : Vulkan {
+    const kdop::Variant* shader = nullptr;
+    std::uint32_t input_width = 0, input_height = 0, width = 0, height = 0;
+
+    Buffer upload, readback; // current, motion and history; output
+    Texture current, motion, history, output;
+    VkSampler nearest = VK_NULL_HANDLE;
+    kdop::VariantPipeline pipeline;
+    VkDescriptorSet sets[kdop::kMaxVariantDescriptorSets] = {};
+    UpscaleParameters parameters{};
+
+    ~State() { destroy(); }
+
+    std::size_t input_bytes() const { return std::size_t(input_width) * input_height * 4 * sizeof(float); }
+    std::size_t output_bytes() const { return std::size_t(width) * height * 4 * sizeof(float); }
+
+    std::string create() {
+        if (auto e = load_functions(); !e.empty()) return e;
+        const kdop::DescriptorBinding *current_frame, *motion_frame, *history_frame, *resolved_frame;
+        for (auto [name, out] :
+             {std::pair{"current_frame", &current_frame}, std::pair{"motion_frame", &motion_frame},
+              std::pair{"history_frame", &history_frame}, std::pair{"resolved_frame", &resolved_frame}})
+            if (!(*out = kdop::find_binding(*shader, name))) return std::string(shader->name) + " declares no " + name;
+        if (resolved_frame->format == 0) return std::string(shader->name) + "'s resolved_frame declares no format";
+        if (shader->push_constant_size != sizeof(UpscaleParameters))
+            return std::string(shader->name) + "'s push constants are not the " +
+                   std::to_string(sizeof(UpscaleParameters)) + " bytes this file writes";
+
+        const VkBufferUsageFlags transfer = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+        const VkImageUsageFlags input = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        const VkFormat rgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+        const std::function<std::string()> steps[] = {
+            [&] { return create_buffer(upload, 2 * input_bytes() + output_bytes(), transfer); },
+            [&] { return create_buffer(readback, output_bytes(), transfer); },
+            [&] { return create_texture(current, rgba32f, input, input_width, input_height); },
+            [&] { return create_texture(motion, rgba32f, input, input_width, input_height); },
+            [&] { return create_texture(history, rgba32f, input, width, height); },
+            [&] {
+                return create_texture(output, static_cast<VkFormat>(resolved_frame->format),
+                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, width, height);
+            },
+            [&] { return create_sampler(nearest, VK_FILTER_NEAREST); },
+            [&] {
+                const VkResult r = kdop::create_variant_pipeline(kdop_fn, device.device, *shader, pipeline);
+                if (r != VK_SUCCESS)
+                    return std::string("kdop::create_variant_pipeline: ") +
+                           (pipeline.failure ? pipeline.failure : "failed");
+                cleanup.push_back([this] { kdop::destroy_variant_pipeline(kdop_fn, device.device, pipeline); });
+                return std::string();
+            },
+            [&] {
+                VkDescriptorPool pool = VK_NULL_HANDLE;
+                if (auto e = check(kdop::create_variant_descriptor_pool(kdop_fn, device.device, pipeline, 1, pool),
+                                   "kdop::create_variant_descriptor_pool");
+                    !e.empty())
+                    return e;
+                cleanup.push_back([this, pool] { kdop_fn.destroy_descriptor_pool(device.device, pool, nullptr); });
+                return check(kdop::allocate_variant_descriptor_sets(kdop_fn, device.device, pool, pipeline, sets),
+                             "kdop::allocate_variant_descriptor_sets");
+            },
+        };
+        for (const auto& step : steps)
+            if (auto e = step(); !e.empty()) return e;
+
+        // GLSL's sampler2D takes the nearest sampler, HLSL's Texture2D (read with Load) ignores it.
+        const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        const VkDescriptorImageInfo infos[] = {{nearest, current.view, read},
+                                               {nearest, motion.view, read},
+                                               {nearest, history.view, read},
+                                               {VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL}};
+        VkWriteDescriptorSet writes[4];
+        const kdop::DescriptorBinding* bindings[] = {current_frame, motion_frame, history_frame, resolved_frame};
+        for (int i = 0; i < 4; ++i) {
+            writes[i] = kdop::variant_descriptor_write(*bindings[i], sets[bindings[i]->set]);
+            writes[i].pImageInfo = &infos[i];
+        }
+        fn.vkUpdateDescriptorSets(device.device, 4, writes, 0, nullptr);
+        return create_command_buffer();
+    }
+
+    // Upload, the resolve, read back.
+    void record() {
+        const VkImage inputs[] = {current.image, motion.image, history.image};
+        const VkExtent3D input_extent{input_width, input_height, 1}, output_extent{width, height, 1};
+        const VkBufferImageCopy copies[] = {
+            {0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, input_extent},
+            {input_bytes(), 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, input_extent},
+            {2 * input_bytes(), 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, output_extent}};
+        for (int i = 0; i < 3; ++i) {
+            barrier(inputs[i], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+            fn.vkCmdCopyBufferToImage(commands, upload.buffer, inputs[i], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                      &copies[i]);
+            barrier(inputs[i], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        }
+        barrier(output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, VK_ACCESS_SHADER_WRITE_BIT,
+                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+
+        fn.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+        fn.vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline_layout, 0,
+                                   pipeline.set_layout_count, sets, 0, nullptr);
+        fn.vkCmdPushConstants(commands, pipeline.pipeline_layout, pipeline.push_constant_stages, 0,
+                              pipeline.push_constant_size, &parameters);
+        // One invocation per output pixel.
+        fn.vkCmdDispatch(commands, (width + shader->local_size[0] - 1) / shader->local_size[0],
+                         (height + shader->local_size[1] - 1) / shader->local_size[1], 1);
+
+        barrier(output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_SHADER_WRITE_BIT,
+                VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+        const VkBufferImageCopy whole{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, output_extent};
+        fn.vkCmdCopyImageToBuffer(commands, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1,
+                                  &whole);
+        VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        fn.vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
+                                nullptr, 0, nullptr);
+    }
+};
+
+Upscaler::Upscaler(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Upscaler::~Upscaler() = default;
+
+std::unique_ptr<Upscaler> Upscaler::create(const Device& device, const kdop::Variant& shader, std::uint32_t input_width,
+                                           std::uint32_t input_height, std::uint32_t width, std::uint32_t height,
+                                           std::string& error) {
+    auto state = std::make_unique<State>();
+    state->device = device;
+    state->shader = &shader;
+    state->input_width = input_width;
+    state->input_height = input_height;
+    state->width = width;
+    state->height = height;
+    if (!device.get_instance_proc_addr || input_width == 0 || input_height == 0 || width == 0 || height == 0)
+        error = "engine::Upscaler::create: a device and non-empty sizes are needed";
+    else
+        error = state->create();
+    if (!error.empty()) return nullptr;
+    return std::unique_ptr<Upscaler>(new Upscaler(std::move(state)));
+}
+
+std::string Upscaler::resolve(const UpscaleFrames& frames, std::vector<float>& out) {
+    State& s = *state_;
+    const std::size_t input_pixels = std::size_t(s.input_width) * s.input_height;
+    if (frames.current.size() != 4 * input_pixels || frames.motion.size() != 2 * input_pixels ||
+        frames.history.size() != s.output_bytes() / sizeof(float))
+        return "engine::Upscaler::resolve: frames of other sizes than the upscaler's " + std::to_string(s.input_width) +
+               "x" + std::to_string(s.input_height) + " to " + std::to_string(s.width) + "x" + std::to_string(s.height);
+    char* upload = static_cast<char*>(s.upload.mapped);
+    std::memcpy(upload, frames.current.data(), s.input_bytes());
+    float* motion = reinterpret_cast<float*>(upload + s.input_bytes()); // RGBA: the motion in .xy
+    for (std::size_t i = 0; i < input_pixels; ++i) {
+        motion[4 * i] = frames.motion[2 * i];
+        motion[4 * i + 1] = frames.motion[2 * i + 1];
+        motion[4 * i + 2] = motion[4 * i + 3] = 0.0f;
+    }
+    std::memcpy(upload + 2 * s.input_bytes(), frames.history.data(), s.output_bytes());
+    s.parameters = {{frames.jitter[0], frames.jitter[1]}, frames.current_weight};
+
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    if (auto e = s.check(s.fn.vkResetCommandBuffer(s.commands, 0), "vkResetCommandBuffer"); !e.empty()) return e;
+    if (auto e = s.check(s.fn.vkBeginCommandBuffer(s.commands, &begin), "vkBeginCommandBuffer"); !e.empty()) return e;
+    s.record();
+    if (auto e = s.check(s.fn.vkEndCommandBuffer(s.commands), "vkEndCommandBuffer"); !e.empty()) return e;
+    if (auto e = s.submit(); !e.empty()) return e;
+    const float* read = static_cast<const float*>(s.readback.mapped);
+    out.assign(read, read + s.output_bytes() / sizeof(float));
     return {};
 }
 
