@@ -35,6 +35,8 @@ foreach(expected IN ITEMS "resolve_compute: compute shader, 6 binding" "resolve_
                           "dynamic rendering pipeline created" "both GLSL resolves ran on llvmpipe"
                           "both HLSL resolves ran on llvmpipe"
                           "GLSL compute and fragment resolves agree" "HLSL compute and fragment resolves agree"
+                          "upscale_compute: compute shader, 4 binding" "hlsl_upscale_compute: compute shader, 4 binding"
+                          "push constants: 12 bytes" "GLSL and HLSL TAAU resolves \\([0-9x to,]+ frames\\) agree"
                           "validation layer on, 0 message\\(s\\)")
   if(NOT out MATCHES "${expected}")
     message(FATAL_ERROR "engine_resolve did not print '${expected}':\n${out}")

@@ -3,7 +3,9 @@
 // opened here and every call goes through function pointers, as with volk. With the Khronos
 // validation layer on when it is installed, it prints what the registry reflected, how far the
 // clip moved the history, and whether the four resolves (compute and fragment, GLSL and HLSL) agree;
-// it exits non-zero when they do not, or when the validation layer reported anything.
+// then it upscales a moving, jittered frame 2x over a few frames with the TAAU resolve
+// (upscale_compute.comp, hlsl_upscale_compute.cs.hlsl) and prints whether GLSL and HLSL agree.
+// It exits non-zero when any do not, or when the validation layer reported anything.
 #include "engine_resolve_kdop_variants.h"
 #include "resolve_runner.h"
 
@@ -34,18 +36,20 @@ int fail(const char* what, VkResult result) {
     return 1;
 }
 
-// A frame with edges and fine detail (a hash per pixel over two bands of color), deterministic.
-std::vector<float> test_frame(std::uint32_t width, std::uint32_t height, std::uint32_t salt) {
+// A frame with edges and fine detail (a hash per pixel over two bands of color), deterministic;
+// `shift` moves it that many pixels to the left.
+std::vector<float> test_frame(std::uint32_t width, std::uint32_t height, std::uint32_t salt, std::uint32_t shift = 0) {
     std::vector<float> rgba(std::size_t(width) * height * 4);
     for (std::uint32_t y = 0; y < height; ++y)
-        for (std::uint32_t x = 0; x < width; ++x) {
+        for (std::uint32_t x0 = 0; x0 < width; ++x0) {
+            const std::uint32_t x = x0 + shift;
             std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (salt * 83492791u);
             h ^= h >> 13;
             h *= 0x5bd1e995u;
             h ^= h >> 15;
             const float noise = float(h & 0xffffu) / 65535.0f;
             const bool band = (x / 8 + y / 6) % 2 == 0;
-            float* p = &rgba[(std::size_t(y) * width + x) * 4];
+            float* p = &rgba[(std::size_t(y) * width + x0) * 4];
             p[0] = band ? 0.2f + 0.3f * noise : 0.7f;
             p[1] = band ? 0.5f : 0.3f + 0.2f * noise;
             p[2] = 0.25f + 0.5f * noise * noise;
@@ -63,9 +67,10 @@ int main(int argc, char** argv) {
                                registry.find("resolve_fragment")};
     const engine::Shaders hlsl{registry.find("hlsl_resolve_compute"), registry.find("hlsl_fullscreen"),
                                registry.find("hlsl_resolve_fragment")};
+    const kdop::Variant* upscalers[] = {registry.find("upscale_compute"), registry.find("hlsl_upscale_compute")};
     const engine::Shaders& shaders = glsl;
-    for (const kdop::Variant* entry :
-         {glsl.compute, glsl.vertex, glsl.fragment, hlsl.compute, hlsl.vertex, hlsl.fragment}) {
+    for (const kdop::Variant* entry : {glsl.compute, glsl.vertex, glsl.fragment, hlsl.compute, hlsl.vertex,
+                                       hlsl.fragment, upscalers[0], upscalers[1]}) {
         if (!entry) {
             std::fprintf(stderr, "a shader of the example is not embedded\n");
             return 1;
@@ -257,6 +262,41 @@ int main(int argc, char** argv) {
         const bool agree = largest_difference <= 4e-4;
         std::printf("%s compute and fragment resolves %s with the GLSL compute resolve: largest difference %.2e\n",
                     language, agree ? "agree" : "DISAGREE", largest_difference);
+        if (!agree) status = 1;
+    }
+    // The TAAU resolves, GLSL and HLSL: the frame above at about half the size, moving one input pixel to
+    // the left a frame, jittered, upscaled 2x over a few frames, each from its own history.
+    const std::uint32_t input_width = 34, input_height = 23;
+    const float jitters[][2] = {{0.0f, -0.1667f}, {-0.25f, 0.1667f}, {0.25f, -0.3889f}, {-0.375f, -0.0556f}};
+    std::vector<float> upscaled[2];
+    for (int l = 0; l < 2; ++l) {
+        std::string error;
+        auto upscaler =
+            engine::Upscaler::create(engine_device, *upscalers[l], input_width, input_height, width, height, error);
+        engine::UpscaleFrames upscale;
+        upscale.motion.assign(std::size_t(input_width) * input_height * 2, 0.0f);
+        for (std::size_t i = 0; i < upscale.motion.size(); i += 2) upscale.motion[i] = 1.0f; // it was 1 to the right
+        upscale.history.assign(std::size_t(width) * height * 4, 0.0f);
+        for (std::uint32_t f = 0; upscaler && error.empty() && f < std::size(jitters); ++f) {
+            upscale.current = test_frame(input_width, input_height, 1, f);
+            upscale.jitter = {jitters[f][0], jitters[f][1]};
+            upscale.current_weight = f == 0 ? 1.0f : 0.1f; // the first frame starts the history
+            error = upscaler->resolve(upscale, upscaled[l]);
+            upscale.history = upscaled[l];
+        }
+        if (!error.empty()) {
+            std::fprintf(stderr, "%s: %s\n", upscalers[l]->name, error.c_str());
+            status = 1;
+        }
+    }
+    if (!upscaled[0].empty() && upscaled[0].size() == upscaled[1].size()) {
+        double largest_difference = 0;
+        for (std::size_t i = 0; i < upscaled[0].size(); ++i)
+            largest_difference = std::max(largest_difference, double(std::abs(upscaled[0][i] - upscaled[1][i])));
+        const bool agree = largest_difference <= 4e-4;
+        std::printf("GLSL and HLSL TAAU resolves (%ux%u to %ux%u, %zu frames) %s: largest difference %.2e\n",
+                    input_width, input_height, width, height, std::size(jitters), agree ? "agree" : "DISAGREE",
+                    largest_difference);
         if (!agree) status = 1;
     }
     vkDestroyDevice(device, nullptr);
