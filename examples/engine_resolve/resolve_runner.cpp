@@ -205,6 +205,18 @@ struct Vulkan {
         fn.vkCmdPipelineBarrier(commands, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
     }
 
+    // Records the command buffer afresh with `record`, submits it and waits for it.
+    template <class Record>
+    std::string run_once(Record record) {
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        if (auto e = check(fn.vkResetCommandBuffer(commands, 0), "vkResetCommandBuffer"); !e.empty()) return e;
+        if (auto e = check(fn.vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer"); !e.empty()) return e;
+        record();
+        if (auto e = check(fn.vkEndCommandBuffer(commands), "vkEndCommandBuffer"); !e.empty()) return e;
+        return submit();
+    }
+
     // Submits the recorded command buffer and waits for it.
     std::string submit() {
         VkSubmitInfo submit_info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -544,13 +556,7 @@ std::string Resolver::resolve(const Frames& frames, Resolved& out) {
     std::memcpy(s.fragment_parameters.mapped, &fragment, sizeof fragment);
     s.push_weight = frames.current_weight;
 
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    if (auto e = s.check(s.fn.vkResetCommandBuffer(s.commands, 0), "vkResetCommandBuffer"); !e.empty()) return e;
-    if (auto e = s.check(s.fn.vkBeginCommandBuffer(s.commands, &begin), "vkBeginCommandBuffer"); !e.empty()) return e;
-    s.record();
-    if (auto e = s.check(s.fn.vkEndCommandBuffer(s.commands), "vkEndCommandBuffer"); !e.empty()) return e;
-    if (auto e = s.submit(); !e.empty()) return e;
+    if (auto e = s.run_once([&] { s.record(); }); !e.empty()) return e;
 
     const float* read = static_cast<const float*>(s.readback.mapped);
     out.compute.assign(read, read + floats);
@@ -722,13 +728,7 @@ std::string Upscaler::resolve(const UpscaleFrames& frames, std::vector<float>& o
     std::memcpy(upload + 2 * s.input_bytes(), frames.history.data(), s.output_bytes());
     s.parameters = {{frames.jitter[0], frames.jitter[1]}, frames.current_weight};
 
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    if (auto e = s.check(s.fn.vkResetCommandBuffer(s.commands, 0), "vkResetCommandBuffer"); !e.empty()) return e;
-    if (auto e = s.check(s.fn.vkBeginCommandBuffer(s.commands, &begin), "vkBeginCommandBuffer"); !e.empty()) return e;
-    s.record();
-    if (auto e = s.check(s.fn.vkEndCommandBuffer(s.commands), "vkEndCommandBuffer"); !e.empty()) return e;
-    if (auto e = s.submit(); !e.empty()) return e;
+    if (auto e = s.run_once([&] { s.record(); }); !e.empty()) return e;
     const float* read = static_cast<const float*>(s.readback.mapped);
     out.assign(read, read + s.output_bytes() / sizeof(float));
     return {};
