@@ -139,6 +139,16 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
             .metrics = e.metrics};
 }
 
+// The frame size the rectification is timed at, that of what is measured: kdop's scenes', or,
+// with sequences only, the first sequence's (or NSS capture's): the output size where it upscales.
+std::pair<std::uint32_t, std::uint32_t> timing_size(const TaaSources& sources, const TaaRunSettings& settings) {
+    const FrameSource* first = !sources.scenes.empty() ? nullptr
+                               : !sources.sequences.empty()
+                                   ? static_cast<const FrameSource*>(&sources.sequences.front())
+                                   : &sources.captures.front();
+    return first ? std::pair(first->width(), first->height()) : std::pair(settings.width, settings.height);
+}
+
 // The frames a run goes through: what its progress counts.
 std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sources) {
     std::size_t frames = 0;
@@ -183,13 +193,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     auto evaluation = TaaEvaluation::create(context, specs, settings.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
 
-    // The rectification is timed at the frame size of what is measured: kdop's scenes', or, with
-    // sequences only, the first sequence's (or NSS capture's).
-    const FrameSource* first =
-        scenes.empty() ? sequences.empty() ? static_cast<const FrameSource*>(&captures.front()) : &sequences.front()
-                       : nullptr;
-    const std::uint32_t width = first ? first->width() : settings.width;
-    const std::uint32_t height = first ? first->height() : settings.height;
+    const auto [width, height] = timing_size(sources, settings);
     StagedImages written_frames;
     EvaluationObserver observer;
     if (settings.write_frames)
