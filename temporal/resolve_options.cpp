@@ -29,9 +29,10 @@ ResolveSettings resolve_settings(const ResolveOptions& o) {
 }
 
 std::string describe(const ResolveOptions& o) {
-    return fmt::format("{} history, {} colors{}, current weight {}, variance gamma {}", to_string(o.history_filter),
+    return fmt::format("{} history, {} colors{}, current weight {}, variance gamma {}{}", to_string(o.history_filter),
                        to_string(o.color_map), o.dilate_motion ? ", motion of the nearest neighbor" : "",
-                       o.current_weight, o.gamma);
+                       o.current_weight, o.gamma,
+                       o.upscale ? fmt::format(", upscaling with the {} filter", to_string(o.upscale_filter)) : "");
 }
 
 } // namespace kdop

@@ -43,7 +43,8 @@ const char* to_string(UpscaleFilter filter);
 // "bilinear" or "catmull-rom" (to_string in kdop/variant.h spells it).
 Result<HistoryFilter> parse_history_filter(std::string_view text);
 
-// What the options say, for a report: "bilinear history, linear colors, w = 0.1".
+// What the options say, for a report: "bilinear history, linear colors, w = 0.1", and with
+// `upscale` the filter.
 std::string describe(const ResolveOptions& options);
 
 // The options as a manifest records them and a registry declares them (kdop/variant.h); the

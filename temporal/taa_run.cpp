@@ -123,6 +123,14 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
     for (const SequenceFrames& s : sources.sequences) sequence_names.push_back(s.name());
     for (const NssFrames& c : sources.captures) sequence_names.push_back(c.name());
     const EvaluationOptions& e = settings.evaluation;
+    // The resolve as the report describes it: upscaling where any source's frames are smaller
+    // than its output (the evaluation sets it per source).
+    ResolveOptions resolve = e.resolve;
+    resolve.upscale = std::ranges::any_of(sources.sequences, &FrameSource::upscales) ||
+                      std::ranges::any_of(sources.captures, &FrameSource::upscales) ||
+                      std::ranges::any_of(sources.scenes, [&](const auto& scene) {
+                          return shimmer_frames(*scene, e.schedule)->upscales();
+                      });
     return {.width = width,
             .height = height,
             .warmup = e.schedule.warmup,
@@ -131,7 +139,7 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
             .pictures = {},
             .charts = {},
             .over_time = {},
-            .resolve = e.resolve,
+            .resolve = resolve,
             .scene_contents = std::move(scene_contents),
             .sequences = std::move(sequence_names),
             .flip_on_device = !e.cpu_flip,

@@ -760,6 +760,10 @@ TEST(CliSequence, ReplayingAnUpscaledSceneGivesTheInMemoryFigures) {
         EXPECT_EQ(in->spec().width, width) << kind;
     }
     expect_replay_gives_the_in_memory_figures(t, scenes, "grass3d", scene_args);
+    for (const char* run : {"grass3d-memory", "grass3d-replay"})
+        EXPECT_NE(test::read_file(t.dir / run / "report.md").find("upscaling with the lanczos2 filter"),
+                  std::string::npos)
+            << run;
 
     // A reference of the frames' size in an upscaled sequence is refused, naming it.
     const fs::path reference = scenes / "grass3d-ghosting" / "reference" / "0004.exr";
