@@ -25,4 +25,13 @@ inline bool has_control_bytes(std::string_view text, bool allow_newlines = false
     return false;
 }
 
+// Aborts unless `message`, a refusal of what a reader found in `folder`, names `file` or a file of
+// `folder` (it starts with the folder's path), echoes no control byte and stays short.
+inline void require_refusal_message(const std::string& message, std::string_view file, const std::string& folder) {
+    require(message.find(file) != std::string::npos || message.find(folder) == 0, "an error that names no file",
+            message);
+    require(!has_control_bytes(message, false), "an error that echoes control bytes", message);
+    require(message.size() < 2000, "an error that repeats the input whole", message);
+}
+
 } // namespace kdop::fuzz
