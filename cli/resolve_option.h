@@ -1,5 +1,6 @@
 // The options of the TAA resolve (temporal/resolve_options.h), for every command that resolves
-// frames: --history-filter, --color-map, --dilate-motion, --current-weight, --gamma.
+// frames: --history-filter, --color-map, --dilate-motion, --current-weight, --gamma, and for
+// sources that upscale --upscale-filter, --upscale-sample-distance and --upscale-box-scale.
 #pragma once
 
 #include "cli/color_map_option.h"
@@ -12,23 +13,51 @@
 
 namespace kdop::cli {
 
-// `with_color_map` false leaves --color-map to the command (kdop optimize's fits in it too).
-inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool with_color_map = true) {
-    const CLI::Validator filter(
-        [&options](std::string& text) -> std::string {
-            auto parsed = parse_history_filter(text);
+// A validator that parses with `parse` and stores the value in `target`; `shown` is what the help
+// says the option takes.
+template <class T, class Parse>
+CLI::Validator parsed_into(T& target, Parse parse, const std::string& shown) {
+    return CLI::Validator(
+        [&target, parse](std::string& text) -> std::string {
+            auto parsed = parse(text);
             if (!parsed) return parsed.error().message;
-            options.history_filter = *parsed;
+            target = *parsed;
             return {};
         },
-        "bilinear|catmull-rom");
-    // The validator parses and stores the value; the option's own function has nothing left to do.
-    auto stored = [](const std::string&) {};
+        shown);
+}
+
+// How a resolve upscales, for sources whose frames are smaller than their output (docs/taa.md,
+// "Upscaling"); a source that does not upscale ignores them.
+inline void add_upscale_options(CLI::App& app, ResolveOptions& options) {
+    auto stored = [](const std::string&) {}; // each validator stores its value
+    app.add_option_function<std::string>(
+           "--upscale-filter", stored,
+           "Where a source upscales: how the resolve reconstructs each output pixel's current color from the "
+           "input samples around it: lanczos2 (clamped to the neighborhood's range, as FSR 2) or gaussian "
+           "[default: lanczos2]")
+        ->check(parsed_into(options.upscale_filter, parse_upscale_filter, "lanczos2|gaussian"));
+    app.add_option_function<std::string>(
+           "--upscale-sample-distance", stored,
+           "Where a source upscales: which neighbors of the nearest input sample the clip keeps: all, those whose "
+           "samples lie within D input pixels of the output pixel's center, or ue4 (UE4's TAAU: lerp(1.51, 1.3, "
+           "ratio - 1)) [default: all]")
+        ->check(parsed_into(options.sample_distance, parse_sample_distance, "all|ue4|D"));
+    app.add_option_function<std::string>(
+           "--upscale-box-scale", stored,
+           "Where a source upscales: widen the variance clip with the ratio: none, or fsr2 (gamma times 1 + (ratio - "
+           "1) / 2, as FSR 2.0 widens its box) [default: none]")
+        ->check(parsed_into(options.box_scale, parse_box_scale, "none|fsr2"));
+}
+
+// `with_color_map` false leaves --color-map to the command (kdop optimize's fits in it too).
+inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool with_color_map = true) {
+    auto stored = [](const std::string&) {}; // the validator parses and stores the value
     app.add_option_function<std::string>(
            "--history-filter", stored,
            "How the history is sampled at the reprojected position: bilinear, or catmull-rom (the 4x4 "
            "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]")
-        ->check(filter);
+        ->check(parsed_into(options.history_filter, parse_history_filter, "bilinear|catmull-rom"));
     if (with_color_map)
         add_color_map_option(
             app, options.color_map,
@@ -42,6 +71,7 @@ inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool wit
         ->check(finite_number(0, 1, true));
     app.add_option("--gamma", options.gamma, "The variance clip's width in standard deviations [default: 1]")
         ->check(gamma_number());
+    add_upscale_options(app, options);
 }
 
 } // namespace kdop::cli

@@ -25,7 +25,7 @@ namespace kdop::cli {
 namespace {
 
 struct TaaOptions {
-    std::string out, size = "320x180", device, upscale_filter = "lanczos2", nss_sequence;
+    std::string out, size = "320x180", device, nss_sequence;
     double ratio = 2.0;
     std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
     SceneChoice choice;
@@ -58,11 +58,6 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true, kCommandDefaults);
     o->choice.add_to(*taa, true);
-    taa->add_option("--upscale-filter", o->upscale_filter,
-                    "With --upscale: how the resolve reconstructs each output pixel's current color from the input "
-                    "samples around it: lanczos2 (clamped to the neighborhood's range, as FSR 2) or gaussian "
-                    "[default: lanczos2]")
-        ->check(CLI::IsMember({"lanczos2", "gaussian"}));
     taa->add_option("--sequence", o->sequences,
                     "Frame sequences to measure (folders with sequence.json; docs/taa.md, \"Frame sequences\"); with "
                     "--sequence, kdop's own scenes run only if --scenes or --background is given too");
@@ -132,7 +127,6 @@ Action add_taa_command(CLI::App& app) {
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
         if (auto ok = check_pixels_per_degree(ppd); !ok) return usage_error("--ppd: " + ok.error().message);
-        o->resolve.upscale_filter = *parse_upscale_filter(o->upscale_filter); // checked by CLI11
         auto metrics = metrics_named(o->metrics);
         if (!metrics) return usage_error("--metrics: " + metrics.error().message);
         if (ratio->count() && o->nss_sequence.empty())
@@ -189,7 +183,8 @@ Action add_taa_command(CLI::App& app) {
                                                      .ppd = ppd,
                                                      .cpu_flip = o->cpu_flip,
                                                      .exposure = o->exposure,
-                                                     .metrics = *metrics},
+                                                     .metrics = *metrics,
+                                                     .spatial_upscale = true},
                                       .width = size->first,
                                       .height = size->second,
                                       .timing_rounds = o->timing_rounds,

@@ -10,6 +10,7 @@ namespace kdop {
 
 std::string VariantKey::name() const {
     if (mode == Mode::copy) return "copy";
+    if (mode == Mode::shader) return set; // a shader of its own is named by its name alone
     if (mode == Mode::gather) return fmt::format("gather-{}", to_string(neighborhood));
     return fmt::format("{}-{}-{}{}{}", set, to_string(mode), to_string(neighborhood), form == Form::loop ? "-loop" : "",
                        numerics == Numerics::paper ? "-paper" : "");

@@ -18,7 +18,7 @@
 namespace kdop {
 
 struct VariantKey {
-    std::string set; // axis-set name; empty for the gather and copy baselines
+    std::string set; // axis-set name; empty for the gather and copy baselines; a Mode::shader's own name
     Mode mode = Mode::clip;
     Neighborhood neighborhood = Neighborhood::n9;
     Form form = Form::unrolled;

@@ -18,9 +18,16 @@ constexpr GroupLook kGroupLooks[] = {
     {Mode::varclip, Neighborhood::n9, 4, 2}, {Mode::varclip, Neighborhood::n5, 12, 4},
     {Mode::gather, Neighborhood::n9, 1, 5},  {Mode::gather, Neighborhood::n5, 2, 5},
     {Mode::copy, Neighborhood::n9, 3, 1},    {Mode::copy, Neighborhood::n5, 3, 1},
+    {Mode::shader, Neighborhood::n9, 6, 6},
 };
 
+// The group's name in the key: its mode and neighborhood, "no clip" for a shader of its own.
+std::string group_name(const GroupLook& g) {
+    return g.mode == Mode::shader ? "no clip" : fmt::format("{}-{}", to_string(g.mode), to_string(g.neighborhood));
+}
+
 const GroupLook& group_look(const VariantKey& key) {
+    if (key.mode == Mode::shader) return kGroupLooks[std::size(kGroupLooks) - 1];
     for (const GroupLook& g : kGroupLooks)
         if (g.mode == key.mode && g.neighborhood == key.neighborhood) return g;
     return kGroupLooks[0];
@@ -41,6 +48,7 @@ VariantChartStyle::VariantChartStyle(std::span<const VariantKey> keys) {
 }
 
 std::string VariantChartStyle::family(const VariantKey& key) {
+    if (key.mode == Mode::shader) return key.set;
     if (!key.is_clip()) return to_string(key.mode);
     std::string name = key.set;
     if (key.form == Form::loop) name += " loop";
@@ -49,6 +57,7 @@ std::string VariantChartStyle::family(const VariantKey& key) {
 }
 
 std::string VariantChartStyle::group(const VariantKey& key) {
+    if (key.mode == Mode::shader) return "no clip";
     return fmt::format("{}-{}", to_string(key.mode), to_string(key.neighborhood));
 }
 
@@ -85,7 +94,7 @@ std::string VariantChartStyle::key_entries() const {
         out += fmt::format(", NaN with lines lw 4 lc rgb '{}' title {}", family_color(f), gnuplot_string(families_[f]));
     for (const std::string& group : groups_)
         for (const GroupLook& g : kGroupLooks)
-            if (fmt::format("{}-{}", to_string(g.mode), to_string(g.neighborhood)) == group)
+            if (group_name(g) == group)
                 out += fmt::format(", NaN with linespoints pt {} ps 1.5 dt {} lw 1.5 lc rgb 'black' title {}", g.point,
                                    g.dash, gnuplot_string(group));
     return out;

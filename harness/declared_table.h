@@ -41,11 +41,13 @@ Table declared_table(const DeclaredColumns<Row>& columns, std::span<const Row> r
 template <class Row>
 DeclaredColumns<Row> variant_key_columns(std::function<const VariantKey&(const Row&)> key) {
     return {{{"variant", "", Shown::text}, [key](const Row& r) { return Value(key(r).name()); }},
-            {{"axis_set", "", Shown::text}, [key](const Row& r) { return Value(key(r).set); }},
+            {{"axis_set", "", Shown::text},
+             [key](const Row& r) { return Value(key(r).mode == Mode::shader ? std::string() : key(r).set); }},
             {{"mode", "", Shown::text}, [key](const Row& r) { return Value(std::string(to_string(key(r).mode))); }},
             {{"neighborhood", "", Shown::text}, [key](const Row& r) {
                  const VariantKey& k = key(r);
-                 return Value(k.mode == Mode::copy ? std::string() : std::string(to_string(k.neighborhood)));
+                 const bool none = k.mode == Mode::copy || k.mode == Mode::shader;
+                 return Value(none ? std::string() : std::string(to_string(k.neighborhood)));
              }}};
 }
 

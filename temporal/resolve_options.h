@@ -22,6 +22,22 @@ enum class UpscaleFilter {
     gaussian, // a Gaussian of standard deviation 0.5 input pixels
 };
 
+// Which of the nearest input sample's neighbors an upscaling resolve's clip keeps: all of them,
+// or those whose samples lie within a distance of the output pixel's center (UE4's TAAU,
+// TemporalAA.usf's HISTORY_CLAMPING_BOX_SAMPLE_DISTANCE).
+struct SampleDistance {
+    enum class Kind { all, ue4, fixed } kind = Kind::all;
+    float pixels = 0; // Kind::fixed: the distance in input pixels
+    // The distance at upscaling ratio `ratio`, in input pixels: fixed's, or UE4's
+    // lerp(1.51, 1.3, ratio - 1), which narrows as the ratio grows to curb ghosting.
+    float at(float ratio) const;
+    friend bool operator==(const SampleDistance&, const SampleDistance&) = default;
+};
+
+// How an upscaling resolve widens the variance clip with the ratio: not at all, or as FSR 2.0
+// widens its box, by 1 + (ratio - 1) / 2 (ffx_fsr2_upsample.h, RectifyHistory).
+enum class BoxScale { none, fsr2 };
+
 struct ResolveOptions {
     HistoryFilter history_filter = HistoryFilter::bilinear;
     ColorMap color_map;               // the space the clip and the blend happen in (color_map.h)
@@ -33,8 +49,22 @@ struct ResolveOptions {
     float current_weight = 0.1f;
     float gamma = 1; // variance-clip width; Salvi's recommended 1, as in the paper's +Var rows
     UpscaleFilter upscale_filter = UpscaleFilter::lanczos2; // for sources whose output is larger than their input
-    bool upscale = false; // the source's: input smaller than the output (set by the evaluation per source)
+    bool upscale = false;           // the source's: input smaller than the output (set by the evaluation per source)
+    SampleDistance sample_distance; // for upscaling sources
+    BoxScale box_scale = BoxScale::none; // for upscaling sources
+    // Every output the filtered current color, no history: the spatial-only upscale kdop taa puts
+    // beside the variants (set by the evaluation for that row alone).
+    bool no_history = false;
 };
+
+// "all", "ue4" or a number of input pixels above 0 and at most 4.
+Result<SampleDistance> parse_sample_distance(std::string_view text);
+std::string to_string(const SampleDistance& distance);
+// "none" or "fsr2".
+Result<BoxScale> parse_box_scale(std::string_view text);
+const char* to_string(BoxScale scale);
+// The factor the variance clip's gamma is multiplied by at upscaling ratio `ratio`.
+float box_scale_at(BoxScale scale, float ratio);
 
 // "lanczos2" or "gaussian".
 Result<UpscaleFilter> parse_upscale_filter(std::string_view text);

@@ -33,6 +33,11 @@ std::string metric_panel(char axis, std::span<const double> values, const Metric
                            : axis_scale(axis, values, label, false));
 }
 
+// ", upscaled 2x" for a scene whose rows upscale; empty for one that does not.
+std::string upscaled(const TaaRow* row) {
+    return row && row->upscale != 1 ? fmt::format(", upscaled {:.3g}x", row->upscale) : std::string();
+}
+
 } // namespace
 
 std::vector<std::string> taa_chart_names(const std::vector<TaaRow>& rows) {
@@ -44,8 +49,9 @@ std::vector<std::string> taa_chart_names(const std::vector<TaaRow>& rows) {
 Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, const Metrics& metrics,
                                            const std::filesystem::path& scratch, const std::filesystem::path& out_dir) {
     const std::vector<std::string> scenes = scenes_of(rows), names = taa_chart_names(rows);
-    std::vector<VariantKey> keys;
-    for (const TaaRow& r : rows) keys.push_back(r.key);
+    std::vector<VariantKey> keys; // the timed rows': the others are lines of their own
+    for (const TaaRow& r : rows)
+        if (std::isfinite(r.ms)) keys.push_back(r.key);
     const VariantChartStyle style(keys);
     // Autoscaled around the points, with a margin: the variants' times and errors lie close together.
     std::string script =
@@ -57,12 +63,17 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
         std::vector<std::vector<double>> values(metrics.size()); // by metric
         std::vector<std::string> plot(metrics.size());
         std::vector<std::string> groups;
-        const TaaRow* any = nullptr; // what the scene's rows were measured in and against
+        const TaaRow* any = nullptr;        // what the scene's rows were measured in and against
+        std::vector<const TaaRow*> untimed; // the spatial-only upscale: a line at its figure, no time
         for (const TaaRow& r : rows)
             if (r.scene == scenes[s]) {
                 any = &r;
-                ms.push_back(r.ms);
                 for (std::size_t m = 0; m < metrics.size(); ++m) values[m].push_back(r.mean(m));
+                if (!std::isfinite(r.ms)) {
+                    untimed.push_back(&r);
+                    continue;
+                }
+                ms.push_back(r.ms);
                 if (std::find(groups.begin(), groups.end(), VariantChartStyle::group(r.key)) == groups.end())
                     groups.push_back(VariantChartStyle::group(r.key));
             }
@@ -72,7 +83,7 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
             std::vector<std::vector<std::string>> points;
             int point = 7;
             for (const TaaRow& r : rows)
-                if (r.scene == scenes[s] && VariantChartStyle::group(r.key) == group) {
+                if (r.scene == scenes[s] && std::isfinite(r.ms) && VariantChartStyle::group(r.key) == group) {
                     const SeriesLook look = style.look(r.key);
                     point = look.point;
                     std::vector<std::string> line{gnuplot_number(r.ms), gnuplot_number(r.ms_q1),
@@ -87,6 +98,16 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
                                        "using 1:{2}:4 with points pt {3} ps 1.5 lc rgb variable notitle",
                                        plot[m].empty() ? "" : ", ", gnuplot_string(data), 5 + m, point);
         }
+        // Each untimed row a dashed line across the panel, named in the key beside the last one.
+        std::string untimed_key;
+        for (const TaaRow* r : untimed) {
+            for (std::size_t m = 0; m < metrics.size(); ++m)
+                if (!std::isnan(r->mean(m)))
+                    plot[m] += fmt::format("{}{} with lines dt 2 lw 2 lc rgb 'gray30' notitle",
+                                           plot[m].empty() ? "" : ", ", gnuplot_number(r->mean(m)));
+            untimed_key += fmt::format(", NaN with lines dt 2 lw 2 lc rgb 'gray30' title {}",
+                                       gnuplot_string(r->key.name() + " (no history)"));
+        }
         // A panel per metric the scene or sequence measures (sequence.json's "measure", --metrics).
         std::vector<std::size_t> panels;
         for (std::size_t m = 0; m < metrics.size(); ++m)
@@ -94,14 +115,14 @@ Result<std::vector<OutputFile>> taa_charts(const std::vector<TaaRow>& rows, cons
                 panels.push_back(m);
         script += gnuplot_output(scratch, s);
         script += fmt::format("set multiplot layout 1,{} title {}\n", std::max<std::size_t>(panels.size(), 1),
-                              gnuplot_string(fmt::format("{}: cost against what a viewer sees, one point per variant "
-                                                         "(color: axis set; shape: mode and neighborhood; bars: "
-                                                         "Q1..Q3 of the time)",
-                                                         scenes[s])));
+                              gnuplot_string(fmt::format("{}{}: cost against what a viewer sees, one point per "
+                                                         "variant (color: axis set; shape: mode and neighborhood; "
+                                                         "bars: Q1..Q3 of the time)",
+                                                         scenes[s], upscaled(any))));
         script += axis_scale('x', ms, "ms, rectification pass on the device (median)", false);
         for (std::size_t m : panels) {
             script += metric_panel('y', values[m], metrics[m], any ? any->range : ColorRange::ldr);
-            script += fmt::format("plot {}{}\n", plot[m], m == panels.back() ? style.key_entries() : "");
+            script += fmt::format("plot {}{}\n", plot[m], m == panels.back() ? style.key_entries() + untimed_key : "");
         }
         script += "unset multiplot\n";
     }

@@ -86,12 +86,25 @@ Result<TaaResolve*> TaaEvaluation::resolve(const FrameSource& source, bool neare
     }
     ResolveOptions options = options_.resolve;
     options.upscale = upscale;
+    if (shader_count(source) > specs_.size()) {
+        if (!spatial_) {
+            auto built = build_spatial_upscale_shader(options);
+            if (!built) return std::unexpected(built.error());
+            spatial_ = std::move(*built);
+        }
+        shaders.push_back(&spatial_->variant());
+        names.push_back(spatial_upscale_name(options.upscale_filter));
+    }
     auto made = TaaResolve::create(*context_, shaders, source.input_width(), source.input_height(), source.width(),
                                    source.height(), options, std::move(names));
     if (!made) return std::unexpected(made.error());
     resolve_ = std::move(*made);
     resolve_key_ = key;
     return resolve_.get();
+}
+
+std::size_t TaaEvaluation::shader_count(const FrameSource& source) const {
+    return specs_.size() + std::size_t(options_.spatial_upscale && source.upscales());
 }
 
 std::size_t TaaEvaluation::frames(const TaaScene&) const {
@@ -122,10 +135,11 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const FrameSource& sou
     if (!measured) return fail(fmt::format("{}: {}", source.name(), measured.error().message));
     std::vector<EvaluationRow> rows;
     std::set<std::string> noted; // HDR-FLIP's notes, once however many variants meet them
-    for (std::size_t v = 0; v < specs_.size(); ++v) {
+    for (std::size_t v = 0; v < measured->size(); ++v) {
         SequenceMeasurement& m = (*measured)[v];
         EvaluationRow row{v,  source.name(),         std::move(m.means), m.against_reference, m.range, nullptr,
                           {}, std::move(m.per_frame)};
+        row.upscale = double(source.width()) / double(source.input_width());
         for (const std::string& note : m.notes)
             if (noted.insert(note).second) row.notes.push_back(note);
         rows.push_back(std::move(row));
@@ -137,7 +151,7 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
     // A scene is two sequences, measured as any other: shimmer on the still one, ghosting on the
     // moving one, whose frame scene.trail_frame(schedule) is the scene's trail.
     const std::uint32_t shown = scene.trail_frame(options_.schedule);
-    std::vector<std::shared_ptr<const Image>> trails(specs_.size());
+    std::vector<std::shared_ptr<const Image>> trails(shader_count(*ghosting_frames(scene, options_.schedule)));
     EvaluationObserver each = observer;
     each.source = scene.name(); // progress counts the scene's frames
     auto still = measure(*shimmer_frames(scene, options_.schedule), false, each);
@@ -149,7 +163,7 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
     auto moving = measure(*ghosting_frames(scene, options_.schedule), false, each);
     if (!moving) return std::unexpected(moving.error());
     std::vector<EvaluationRow> rows;
-    for (std::size_t v = 0; v < specs_.size(); ++v) {
+    for (std::size_t v = 0; v < moving->size(); ++v) {
         EvaluationRow row = std::move((*moving)[v]);
         EvaluationRow& shimmer = (*still)[v];
         row.source = scene.name();

@@ -34,11 +34,14 @@ struct EvaluationOptions {
     bool cpu_flip = false;    // FLIP on the CPU (the reference code) instead of on the device
     ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
     Metrics metrics = default_metrics(); // what each frame is measured with (temporal/metrics.h)
+    // Where a source upscales, one more row after the variants': the spatial-only upscale of the
+    // same input (build_spatial_upscale_shader), so a reader sees what the history buys.
+    bool spatial_upscale = false;
 };
 
 // One variant's figures on one scene or sequence.
 struct EvaluationRow {
-    std::size_t variant = 0;   // into the evaluation's specs
+    std::size_t variant = 0;   // into the evaluation's specs; specs().size() for the spatial-only upscale
     std::string source;        // the scene's or sequence's name
     std::vector<double> means; // by metric (MetricId); NaN where not measured (the source's roles)
     double mean(std::size_t metric) const { return metric < means.size() ? means[metric] : NAN; }
@@ -47,6 +50,7 @@ struct EvaluationRow {
     std::shared_ptr<const Image> trail;  // scenes: the ghosting sequence's frame scene.trail_frame(schedule)
     std::vector<std::string> notes;      // HDR-FLIP's exposure notes (ExposureRange::note), once each
     std::vector<FrameFigures> per_frame; // each measured frame's figures; shimmer and ghosting are their means
+    double upscale = 1;                  // the source's output width over its input width
 };
 
 struct EvaluationObserver {
@@ -85,6 +89,10 @@ public:
     Result<std::vector<EvaluationRow>> measure(const TaaScene& scene, const EvaluationObserver& observer = {});
     Result<std::vector<EvaluationRow>> measure(const SequenceFrames& sequence, const EvaluationObserver& observer = {});
 
+    // The rows measure() gives for `source`: one per variant, and the spatial-only upscale's where
+    // it upscales and the options ask for it (EvaluationRow::variant).
+    std::size_t shader_count(const FrameSource& source) const;
+
     // The frames measure() goes through for `scene` (observer.frame's calls); a sequence's are its
     // frame_count().
     std::size_t frames(const TaaScene& scene) const;
@@ -104,7 +112,8 @@ private:
     // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth), and
     // for upscaling or not.
     Result<const Variant*> shader(std::size_t v, bool nearer_larger, bool upscale = false);
-    // One resolve of every variant's shader, for `source`'s frame sizes and a depth convention.
+    // One resolve of every variant's shader, for `source`'s frame sizes and a depth convention;
+    // where it upscales and options.spatial_upscale asks, the spatial-only upscale last.
     Result<TaaResolve*> resolve(const FrameSource& source, bool nearer_larger);
 
     const Context* context_;
@@ -112,6 +121,7 @@ private:
     EvaluationOptions options_;
     // By upscaling and depth convention (2 x upscale + nearer_larger), built when first needed.
     std::vector<std::unique_ptr<RunnableVariant>> shaders_[4];
+    std::unique_ptr<RunnableVariant> spatial_; // the spatial-only upscale, built when first needed
     // Input width and height, output width and height, nearer_larger.
     using ResolveKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, bool>;
     std::unique_ptr<TaaResolve> resolve_; // the last resolve(), for its key

@@ -177,7 +177,9 @@ bool within_noise_of_fastest(const TaaRow& row, const std::vector<TaaRow>& rows)
 Table taa_table(const std::vector<TaaRow>& rows, const Metrics& metrics) {
     DeclaredColumns<TaaRow> columns =
         variant_key_columns<TaaRow>([](const TaaRow& r) -> const VariantKey& { return r.key; }) +
-        DeclaredColumns<TaaRow>{{{"scene", "", Shown::text}, [](const TaaRow& r) { return Value(r.scene); }}} +
+        DeclaredColumns<TaaRow>{{{"scene", "", Shown::text}, [](const TaaRow& r) { return Value(r.scene); }},
+                                {{"upscale", "x", Shown::fixed, 2, "output width over input width (1: no upscaling)"},
+                                 [](const TaaRow& r) { return Value(r.upscale); }}} +
         time_columns<TaaRow>(&TaaRow::ms, &TaaRow::ms_q1, &TaaRow::ms_q3) +
         DeclaredColumns<TaaRow>{
             {{"ms_noise", "", Shown::flag, 0, "ms within noise of the fastest"}, [&rows](const TaaRow& r) {

@@ -31,8 +31,9 @@ struct MetricFigures {
 };
 
 struct TaaRow {
-    VariantKey key;
+    VariantKey key; // a clip variant, or the spatial-only upscale (a Mode::shader of its own, no time)
     std::string scene;
+    double upscale = 1; // the scene's output width over its input width: 1 where it does not upscale
     // The lavapipe time of the variant's rectification pass at the frame size: median and quartiles.
     double ms = NAN, ms_q1 = NAN, ms_q3 = NAN;
     // Each metric's figures, by MetricId (temporal/metrics.h); NaN where the scene or sequence is

@@ -91,7 +91,8 @@ nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants, con
         // Each variant's mean figure over the sequence (its taa.csv row's), which the viewer opens
         // on: the best variant against the worst, at the worst one's worst frame.
         nlohmann::ordered_json means = nlohmann::ordered_json::array();
-        for (const std::string& variant : variants) {
+        for (std::size_t v = 0; v < s.variants && v < variants.size(); ++v) {
+            const std::string& variant = variants[v];
             double mean = NAN;
             for (const TaaRow& r : rows)
                 if (r.scene == s.scene && r.key.name() == variant) mean = r.mean(s.figure);
@@ -104,6 +105,7 @@ nlohmann::ordered_json viewer_json(const std::vector<std::string>& variants, con
                              {"map", s.map},
                              {"width", s.width},
                              {"height", s.height},
+                             {"variants", s.variants},
                              {"frames", s.frames},
                              {"worst", std::move(worst)},
                              {"figures", std::move(figures)},

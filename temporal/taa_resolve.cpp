@@ -115,13 +115,16 @@ Result<VkImageView> TaaResolve::output_on_device(std::size_t s) {
 }
 
 Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter) {
+    // The upscaling ratio, as FSR 2 and UE4 take it: output width over input width.
+    const float ratio = float(width_) / float(input_width_);
     const RectifyPass::PushConstantValue all[] = {
         {"current_weight", {starts_history ? 1.0f : options_.current_weight}},
-        {"gamma", {options_.gamma}},
+        {"gamma", {options_.gamma * (options_.upscale ? box_scale_at(options_.box_scale, ratio) : 1.0f)}},
         {"jitter", {jitter.x, jitter.y}},
+        {"sample_distance", {options_.sample_distance.at(ratio)}},
     };
-    // Only an upscaling resolve takes the jitter.
-    const std::span<const RectifyPass::PushConstantValue> values = std::span(all).first(options_.upscale ? 3 : 2);
+    // Only an upscaling resolve takes the jitter and the sample distance.
+    const std::span<const RectifyPass::PushConstantValue> values = std::span(all).first(options_.upscale ? 4 : 2);
     for (std::size_t s = 0; s < kernels_.size(); ++s) {
         auto resolved = [&]() -> Result<void> {
             if (auto ok = pass_->select_slot(kHistory, s); !ok) return ok;

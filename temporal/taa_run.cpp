@@ -12,6 +12,7 @@
 #include "temporal/taa_intervals.h"
 #include "temporal/taa_report.h"
 #include "temporal/taa_report_page.h"
+#include "temporal/taa_shader.h"
 #include "temporal/viewer_frames.h"
 
 #include <fmt/format.h>
@@ -22,6 +23,20 @@
 
 namespace kdop {
 namespace {
+
+// Whether any source's frames are smaller than its outputs.
+bool upscales(const TaaSources& sources, const TaaSchedule& schedule) {
+    return std::ranges::any_of(sources.sequences, &FrameSource::upscales) ||
+           std::ranges::any_of(sources.captures, &FrameSource::upscales) ||
+           std::ranges::any_of(sources.scenes,
+                               [&](const auto& scene) { return shimmer_frames(*scene, schedule)->upscales(); });
+}
+
+// The keys of the rows `measured` holds: the variants', and the spatial-only upscale's where it is
+// among them.
+std::vector<VariantKey> keys_of(const std::vector<VariantKey>& keys, const std::vector<EvaluationRow>& measured) {
+    return {keys.begin(), keys.begin() + std::ptrdiff_t(std::min(keys.size(), measured.size()))};
+}
 
 // taa.csv's row of variant `key` on `m.source`, timed by `ms`: each metric's figures summarized
 // over its frames (the mean as measured).
@@ -39,6 +54,7 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
     }
     row.truth = m.against_reference ? "reference" : "aliased";
     row.range = m.range;
+    row.upscale = m.upscale;
     return row;
 }
 
@@ -82,21 +98,23 @@ Result<void> add_scene_picture(OutputSet& outputs, const TaaScene& scene, const 
                                 ghosting, picture_flip);
 }
 
-// The viewer's frames of every sequence measured, planned before the pass.
-void plan_viewer(ViewerFrames& viewer, const TaaSources& sources, const TaaSchedule& schedule) {
+// The viewer's frames of every sequence measured, planned before the pass, each with the
+// evaluation's shaders for it (the spatial-only upscale only where it upscales).
+void plan_viewer(ViewerFrames& viewer, const TaaSources& sources, const TaaSchedule& schedule,
+                 const TaaEvaluation& evaluation) {
     const std::size_t last = schedule.warmup + schedule.frames - 1;
     for (const auto& scene : sources.scenes) {
         const auto still = shimmer_frames(*scene, schedule), moving = ghosting_frames(*scene, schedule);
         for (const FrameSource* frames : {still.get(), moving.get()})
             viewer.plan(frames->name(), scene->name(), schedule.warmup, last, frames->roles(), frames->color_range(),
-                        frames->has_reference());
+                        frames->has_reference(), evaluation.shader_count(*frames));
     }
     for (const SequenceFrames& sequence : sources.sequences)
         viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
-                    sequence.color_range(), sequence.has_reference());
+                    sequence.color_range(), sequence.has_reference(), evaluation.shader_count(sequence));
     for (const NssFrames& capture : sources.captures)
         viewer.plan(capture.name(), capture.name(), schedule.warmup, capture.frame_count() - 1, capture.roles(),
-                    capture.color_range(), capture.has_reference());
+                    capture.color_range(), capture.has_reference(), evaluation.shader_count(capture));
 }
 
 // The trade and over-time charts, added to `outputs` with their names. A chart that fails costs the
@@ -126,11 +144,7 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
     // The resolve as the report describes it: upscaling where any source's frames are smaller
     // than its output (the evaluation sets it per source).
     ResolveOptions resolve = e.resolve;
-    resolve.upscale = std::ranges::any_of(sources.sequences, &FrameSource::upscales) ||
-                      std::ranges::any_of(sources.captures, &FrameSource::upscales) ||
-                      std::ranges::any_of(sources.scenes, [&](const auto& scene) {
-                          return shimmer_frames(*scene, e.schedule)->upscales();
-                      });
+    resolve.upscale = upscales(sources, e.schedule);
     return {.width = width,
             .height = height,
             .warmup = e.schedule.warmup,
@@ -200,6 +214,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     const Metrics& metrics = settings.evaluation.metrics;
     auto evaluation = TaaEvaluation::create(context, specs, settings.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
+    // The spatial-only upscale's rows, last, where a source upscales (EvaluationOptions::spatial_upscale).
+    if (settings.evaluation.spatial_upscale && upscales(sources, schedule))
+        keys.push_back({spatial_upscale_name(settings.evaluation.resolve.upscale_filter), Mode::shader});
 
     const auto [width, height] = timing_size(sources, settings);
     StagedImages written_frames;
@@ -214,7 +231,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     StagedImages viewer_images;
     ViewerFrames viewer(settings.viewer_frames, variant_names, viewer_images, settings.evaluation.exposure);
     if (settings.viewer_frames > 0) {
-        plan_viewer(viewer, sources, schedule);
+        plan_viewer(viewer, sources, schedule, *evaluation);
         observer.measured = [&](const MeasuredFrame& frame) { return viewer.offer(frame); };
         observer.maps = true; // the viewer shows the maps the figures were measured with
     }
@@ -239,7 +256,10 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
         auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
             for (const EvaluationRow& m : measured) {
-                rows.push_back(taa_row(keys[m.variant], m, timing->ms[m.variant], metrics));
+                // The spatial-only upscale has no rectification to time.
+                const std::vector<double> none;
+                const std::vector<double>& ms = m.variant < timing->ms.size() ? timing->ms[m.variant] : none;
+                rows.push_back(taa_row(keys[m.variant], m, ms, metrics));
                 for (const FrameFigures& f : m.per_frame)
                     frame_rows.push_back({keys[m.variant], m.source, f.sequence, f.index, f.values, m.range});
                 for (const std::string& note : m.notes)
@@ -251,7 +271,9 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             auto measured = evaluation->measure(*scene, observer);
             if (!measured) return std::unexpected(measured.error());
             add_rows(*measured);
-            if (auto ok = add_scene_picture(outputs, *scene, schedule, keys, *measured, *evaluation); !ok)
+            if (auto ok =
+                    add_scene_picture(outputs, *scene, schedule, keys_of(keys, *measured), *measured, *evaluation);
+                !ok)
                 return std::unexpected(ok.error());
             pictures.push_back(ghosting_picture_name(scene->name()));
         }
@@ -274,7 +296,8 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                 auto evaluator = evaluation->flip_evaluator(read.width(), read.height());
                 if (!evaluator) return std::unexpected(evaluator.error());
                 PictureFlip flip(**evaluator, read.color_range());
-                if (auto ok = add_sequence_picture(outputs, read, chooser, keys, *measured, flip); !ok)
+                if (auto ok = add_sequence_picture(outputs, read, chooser, keys_of(keys, *measured), *measured, flip);
+                    !ok)
                     return std::unexpected(ok.error());
                 pictures.push_back(ghosting_picture_name(read.name()));
             }

@@ -19,10 +19,12 @@ std::string option_defines(const ResolveOptions& o) {
     // shader's constant is that value (the option's own digits would be rounded twice).
     return fmt::format("#define KDOP_HISTORY_FILTER {}\n#define KDOP_COLOR_MAP {}\n#define KDOP_MAP_EXPONENT {:.9g}\n"
                        "#define KDOP_MAP_LOG_OFFSET {:.9g}\n#define KDOP_DILATE_MOTION {}\n"
-                       "#define KDOP_DEPTH_NEARER_LARGER {}\n#define KDOP_UPSCALE {}\n#define KDOP_UPSCALE_FILTER {}\n",
+                       "#define KDOP_DEPTH_NEARER_LARGER {}\n#define KDOP_UPSCALE {}\n#define KDOP_UPSCALE_FILTER {}\n"
+                       "#define KDOP_SAMPLE_DISTANCE {}\n#define KDOP_NO_HISTORY {}\n",
                        o.history_filter == HistoryFilter::catmull_rom ? 1 : 0, map, float(o.color_map.exponent),
                        kColorMapLogOffset, o.dilate_motion ? 1 : 0, o.depth_nearer_larger ? 1 : 0, o.upscale ? 1 : 0,
-                       o.upscale_filter == UpscaleFilter::gaussian ? 1 : 0);
+                       o.upscale_filter == UpscaleFilter::gaussian ? 1 : 0,
+                       o.sample_distance.kind != SampleDistance::Kind::all ? 1 : 0, o.no_history ? 1 : 0);
 }
 
 } // namespace
@@ -61,6 +63,19 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spe
                     "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
                     count, emit_function(spec), glsl_function_name(spec), gamma);
     return build_taa_shader(rectification, "taa-" + variant_name(spec), options);
+}
+
+std::string spatial_upscale_name(UpscaleFilter filter) { return fmt::format("spatial-{}", to_string(filter)); }
+
+Result<std::unique_ptr<RunnableVariant>> build_spatial_upscale_shader(const ResolveOptions& options) {
+    if (!options.upscale) return fail("internal error: a spatial-only upscale of a resolve that does not upscale");
+    ResolveOptions spatial = options;
+    spatial.no_history = true;
+    // The resolve writes the filtered current color before it clips: no clip is ever called.
+    constexpr std::string_view kNoClip = "#define KDOP_NEIGHBORS 9\n"
+                                         "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 n[9])\n"
+                                         "{\n    return current;\n}\n";
+    return build_taa_shader(kNoClip, "taa-" + spatial_upscale_name(options.upscale_filter), spatial);
 }
 
 } // namespace kdop

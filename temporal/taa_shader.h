@@ -26,4 +26,10 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spe
 Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name,
                                                           const ResolveOptions& options = {});
 
+// The spatial-only upscale (options.upscale): every output the current color the resolve's filter
+// reconstructs from the input samples, with no history, named "spatial-<filter>"
+// (spatial_upscale_name). What an upscaling resolve is compared with to see what its history buys.
+Result<std::unique_ptr<RunnableVariant>> build_spatial_upscale_shader(const ResolveOptions& options);
+std::string spatial_upscale_name(UpscaleFilter filter);
+
 } // namespace kdop

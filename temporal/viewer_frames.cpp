@@ -83,7 +83,7 @@ std::size_t ViewerFrames::staged_frames() const {
 }
 
 void ViewerFrames::plan(const std::string& sequence, const std::string& scene, std::size_t first, std::size_t last,
-                        SequenceRoles roles, ColorRange range, bool against_reference) {
+                        SequenceRoles roles, ColorRange range, bool against_reference, std::size_t variants) {
     auto kept = std::make_shared<Kept>();
     ViewerSequence& shown = kept->shown;
     shown.name = sequence;
@@ -95,9 +95,10 @@ void ViewerFrames::plan(const std::string& sequence, const std::string& scene, s
     shown.map = shown.figure == kShimmer ? fmt::format("{} against the output before", flip)
                 : against_reference      ? fmt::format("{} against the reference", flip)
                                          : fmt::format("{} against the aliased frame", flip);
-    shown.worst.assign(variants_.size(), ViewerSequence::kNone);
+    shown.variants = variants == 0 ? variants_.size() : std::min(variants, variants_.size());
+    shown.worst.assign(shown.variants, ViewerSequence::kNone);
     kept->spread = spread_frames(first, last, spread_);
-    kept->worst_value.assign(variants_.size(), -INFINITY);
+    kept->worst_value.assign(shown.variants, -INFINITY);
     by_name_[{scene, sequence}] = sequences_.size();
     sequences_.push_back(std::move(kept));
 }
@@ -113,6 +114,9 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
     std::vector<double> figures;
     const bool spread = std::binary_search(kept.spread.begin(), kept.spread.end(), frame.index);
     bool keep = spread;
+    if (frame.figures.size() != kept.shown.variants)
+        return fail(fmt::format("{}: {} outputs offered to the viewer, which planned {}", frame.sequence,
+                                frame.figures.size(), kept.shown.variants));
     for (std::size_t v = 0; v < frame.figures.size(); ++v) {
         const FrameFigures& f = frame.figures[v];
         figures.push_back(f.value(kept.shown.figure));
@@ -193,12 +197,11 @@ Result<void> ViewerFrames::add_map(const ViewerSequence& sequence, std::size_t i
                         flip::magma_image(map, sequence.width, sequence.height));
 }
 
-Result<void> ViewerFrames::on_every_core(const std::function<Result<void>()>& truth,
+Result<void> ViewerFrames::on_every_core(std::size_t variants, const std::function<Result<void>()>& truth,
                                          const std::function<Result<void>(std::size_t v)>& variant) const {
     // The truth is item 0; the first error, in item order, is reported.
-    std::vector<Result<void>> done(variants_.size() + 1);
-    parallel_for(variants_.size() + 1, 0,
-                 [&](std::size_t item) { done[item] = item == 0 ? truth() : variant(item - 1); });
+    std::vector<Result<void>> done(variants + 1);
+    parallel_for(variants + 1, 0, [&](std::size_t item) { done[item] = item == 0 ? truth() : variant(item - 1); });
     for (const Result<void>& ok : done)
         if (!ok) return ok;
     return {};
@@ -207,11 +210,12 @@ Result<void> ViewerFrames::on_every_core(const std::function<Result<void>()>& tr
 Result<void> ViewerFrames::write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,
                                        std::span<const Image* const> outputs,
                                        std::span<const std::vector<float>> maps) const {
-    return on_every_core([&] { return add_shown(sequence, index, sequence.truth, truth); },
-                         [&](std::size_t v) -> Result<void> {
-                             if (auto ok = add_shown(sequence, index, variants_[v], *outputs[v]); !ok) return ok;
-                             return add_map(sequence, index, v, maps[v]);
-                         });
+    return on_every_core(
+        sequence.variants, [&] { return add_shown(sequence, index, sequence.truth, truth); },
+        [&](std::size_t v) -> Result<void> {
+            if (auto ok = add_shown(sequence, index, variants_[v], *outputs[v]); !ok) return ok;
+            return add_map(sequence, index, v, maps[v]);
+        });
 }
 
 Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void(const std::string&)>& on_frame) const {
@@ -226,6 +230,7 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void
             if (staged_maps == kept.has_map.end()) continue; // a spread frame, written as it was measured
             // As write_frame, each image read back on the core that writes it.
             auto written = on_every_core(
+                sequence.variants,
                 [&]() -> Result<void> {
                     auto truth = read_staged_image(staged(s, index, "truth"), sequence.width, sequence.height);
                     if (!truth) return std::unexpected(truth.error());

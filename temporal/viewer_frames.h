@@ -44,6 +44,9 @@ struct ViewerSequence {
     static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
     std::vector<std::size_t> worst;           // per variant: its worst frame; kNone where it has no figure
     std::vector<std::vector<double>> figures; // per kept frame, per variant: the figure on it (NaN: none)
+    // How many of the run's variants, the first ones, the sequence was resolved by: the spatial-only
+    // upscale, last, only where it upscales.
+    std::size_t variants = 0;
 };
 
 // The `spread` measured frames of `first`..`last` spread evenly, both ends among them (one: the
@@ -67,9 +70,10 @@ public:
                  const ExposureOptions& exposure);
 
     // Before a sequence's pass: its name, the taa.csv row it belongs to, its measured frames
-    // (`first`..`last`), what it measures and against what.
+    // (`first`..`last`), what it measures and against what, and how many of the variants (the
+    // first ones; 0: all) resolve it.
     void plan(const std::string& sequence, const std::string& scene, std::size_t first, std::size_t last,
-              SequenceRoles roles, ColorRange range, bool against_reference);
+              SequenceRoles roles, ColorRange range, bool against_reference, std::size_t variants = 0);
 
     // Before measuring a scene or sequence, its name: a user's sequence may share its name with
     // one of a scene's (grass-ghosting), so frames are offered as of the source measured.
@@ -97,8 +101,9 @@ private:
     std::filesystem::path staged(std::size_t s, std::size_t index, const std::string& name) const;
     Result<void> stage(std::size_t s, const MeasuredFrame& frame);
     void drop_unkept(std::size_t s);
-    // `truth` and `variant` for each variant, one per core at a time; the first error in that order.
-    Result<void> on_every_core(const std::function<Result<void>()>& truth,
+    // `truth` and `variant` for each of `variants` variants, one per core at a time; the first
+    // error in that order.
+    Result<void> on_every_core(std::size_t variants, const std::function<Result<void>()>& truth,
                                const std::function<Result<void>(std::size_t v)>& variant) const;
     // Frame `index`'s PNGs: the truth, and each variant's output and map (none where empty).
     Result<void> write_frame(const ViewerSequence& sequence, std::size_t index, const Image& truth,

@@ -760,6 +760,13 @@ TEST(CliSequence, ReplayingAnUpscaledSceneGivesTheInMemoryFigures) {
         EXPECT_EQ(in->spec().width, width) << kind;
     }
     expect_replay_gives_the_in_memory_figures(t, scenes, "grass3d", scene_args);
+    // The spatial-only upscale's row too.
+    const std::string in_memory = test::read_file(t.dir / "grass3d-memory" / "taa.csv");
+    const std::string replayed = test::read_file(t.dir / "grass3d-replay" / "taa.csv");
+    auto ghosting = [](const std::string& figures) { return figures.substr(figures.find(',') + 1); };
+    EXPECT_EQ(ghosting(figures(replayed, "spatial-lanczos2", "grass3d-ghosting")),
+              ghosting(figures(in_memory, "spatial-lanczos2", "grass3d")))
+        << replayed;
     for (const char* run : {"grass3d-memory", "grass3d-replay"})
         EXPECT_NE(test::read_file(t.dir / run / "report.md").find("upscaling with the lanczos2 filter"),
                   std::string::npos)
@@ -775,6 +782,60 @@ TEST(CliSequence, ReplayingAnUpscaledSceneGivesTheInMemoryFigures) {
     EXPECT_EQ(refused.exit_code, 1);
     EXPECT_NE(refused.err.find("0004.exr: 32x18, but the sequence's output is 64x36"), std::string::npos)
         << refused.err;
+}
+
+// An upscaled sequence beside a native one: kdop taa puts the spatial-only upscale (the same
+// filter, no history) after the variants on the upscaled one only, untimed, with the ratio in
+// taa.csv's upscale column; report.html's viewer offers it only there. An engine choice of the
+// clip's samples (UE4's sample distance) changes the variants' figures and not the spatial row's,
+// which never clips; the spatial row replays from the files as in memory.
+TEST(CliSequence, AnUpscaledSequenceHasASpatialOnlyRowBesideItsVariants) {
+    SequenceRun t;
+    const fs::path scenes = t.dir / "upscaled", native = t.scenes();
+    const std::string scene_args = "--size 64x36 --upscale 2 --reference-samples 4";
+    ASSERT_EQ(t.kdop("scene --scenes grass3d --frames 8 " + scene_args + " --out " + scenes.string()).exit_code, 0);
+    const std::string sources =
+        " --sequence " + (scenes / "grass3d-ghosting").string() + " " + (native / "grass-ghosting").string();
+    const std::string common = " --sets aabb dop22 --modes clip --warmup 3 --timing-rounds 2 --no-charts";
+    const fs::path out = t.dir / "taa", ue4 = t.dir / "taa-ue4";
+    auto r = t.kdop("taa" + sources + common + " --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto r2 = t.kdop("taa" + sources + common + " --upscale-sample-distance ue4 --out " + ue4.string());
+    ASSERT_EQ(r2.exit_code, 0) << r2.err;
+
+    const std::string csv = test::read_file(out / "taa.csv");
+    std::map<std::string, std::vector<std::string>> variants; // by scene, in order
+    for (auto& row : test::csv_rows(csv)) {
+        variants[row["scene"]].push_back(row["variant"]);
+        EXPECT_EQ(row["upscale"], row["scene"] == "grass3d-ghosting" ? "2" : "1") << row["variant"];
+        EXPECT_EQ(row["ms"].empty(), row["variant"] == "spatial-lanczos2") << row["variant"];
+    }
+    EXPECT_EQ(variants["grass3d-ghosting"],
+              (std::vector<std::string>{"aabb-clip-n9", "dop22-clip-n9", "spatial-lanczos2"}));
+    EXPECT_EQ(variants["grass-ghosting"], (std::vector<std::string>{"aabb-clip-n9", "dop22-clip-n9"}));
+
+    // What the history buys: the spatial upscale ghosts more than every clip.
+    const auto ghosting = [](const std::string& figures) { return std::stod(figures.substr(figures.find(',') + 1)); };
+    const double spatial = ghosting(figures(csv, "spatial-lanczos2", "grass3d-ghosting"));
+    for (const char* variant : {"aabb-clip-n9", "dop22-clip-n9"})
+        EXPECT_GT(spatial, ghosting(figures(csv, variant, "grass3d-ghosting"))) << variant << "\n" << csv;
+
+    const std::string with_ue4 = test::read_file(ue4 / "taa.csv");
+    EXPECT_EQ(figures(with_ue4, "spatial-lanczos2", "grass3d-ghosting"),
+              figures(csv, "spatial-lanczos2", "grass3d-ghosting"));
+    EXPECT_NE(figures(with_ue4, "dop22-clip-n9", "grass3d-ghosting"),
+              figures(csv, "dop22-clip-n9", "grass3d-ghosting"));
+    EXPECT_EQ(figures(with_ue4, "dop22-clip-n9", "grass-ghosting"), figures(csv, "dop22-clip-n9", "grass-ghosting"))
+        << "a sequence that does not upscale ignores the upscaling options";
+    EXPECT_NE(test::read_file(ue4 / "report.md").find("UE4's distance"), std::string::npos);
+
+    // The viewer: the run's three variants, two of them for the native sequence.
+    const std::string html = test::read_file(out / "report.html");
+    EXPECT_NE(html.find(R"("variants":["aabb-clip-n9","dop22-clip-n9","spatial-lanczos2"])"), std::string::npos);
+    EXPECT_NE(html.find(R"("name":"grass-ghosting")"), std::string::npos);
+    const std::size_t native_entry = html.find(R"("name":"grass-ghosting")");
+    EXPECT_NE(html.find(R"("variants":2)", native_entry), std::string::npos) << html.substr(native_entry, 400);
+    EXPECT_TRUE(fs::exists(out / "viewer" / "grass3d-ghosting" / "grass3d-ghosting"));
 }
 
 // kdop scene writes what each of its sequences is for; kdop taa measures only that, and leaves the

@@ -57,13 +57,21 @@ struct CpuUpscale {
         const Image& c = f.color;
         const glm::ivec2 in_last(int(c.width) - 1, int(c.height) - 1);
         const glm::dvec2 scale(double(c.width) / width, double(c.height) / height), jitter(f.jitter);
+        const std::vector<glm::ivec2> offsets = reference_offsets(Neighborhood::n9);
         Image out(width, height);
         for (std::uint32_t y = 0; y < height; ++y)
             for (std::uint32_t x = 0; x < width; ++x) {
                 const glm::dvec2 center = (glm::dvec2(x, y) + 0.5) * scale;
                 const glm::ivec2 nearest = glm::clamp(glm::ivec2(glm::floor(center - jitter)), glm::ivec2(0), in_last);
                 std::vector<glm::dvec3> neighborhood;
-                for (glm::ivec2 d : reference_offsets(Neighborhood::n9)) neighborhood.push_back(at(c, nearest + d));
+                for (glm::ivec2 d : offsets) neighborhood.push_back(at(c, nearest + d));
+                // UE4's sample distance: a neighbor whose sample lies that far from the center
+                // stands in as the center sample.
+                const double limit = o.sample_distance.at(float(width) / float(c.width));
+                for (std::size_t i = 0; i < neighborhood.size(); ++i) {
+                    const glm::dvec2 d = glm::dvec2(offsets[i] + nearest) + 0.5 + jitter - center;
+                    if (glm::dot(d, d) >= limit * limit) neighborhood[i] = neighborhood[4];
+                }
                 glm::dvec3 sum(0), low(1e30), high(-1e30);
                 double weights = 0;
                 for (int dy = -1; dy <= 1; ++dy)
@@ -74,6 +82,10 @@ struct CpuUpscale {
                         low = glm::min(low, at(c, q)), high = glm::max(high, at(c, q));
                     }
                 const glm::dvec3 current = glm::clamp(sum / weights, low, high);
+                if (o.no_history) {
+                    out.at(x, y) = glm::vec4(glm::vec3(current), 1);
+                    continue;
+                }
                 const glm::dvec2 motion =
                     glm::dvec2(f.motion.empty() ? glm::vec2(0) : f.motion[nearest.y * c.width + nearest.x]) / scale;
                 const glm::dvec2 previous = glm::dvec2(x, y) + 0.5 + motion;
@@ -85,7 +97,8 @@ struct CpuUpscale {
                 const double weight = o.current_weight * std::exp(-2 * glm::dot(offset, offset));
                 // The clip's ray starts at the nearest sample, the neighborhood's center.
                 const glm::dvec3 r =
-                    reference_clip(axes, neighborhood, neighborhood[4], bilinear(history, previous), mode, 1);
+                    reference_clip(axes, neighborhood, neighborhood[4], bilinear(history, previous), mode,
+                                   o.gamma * box_scale_at(o.box_scale, float(width) / float(c.width)));
                 out.at(x, y) = glm::vec4(glm::vec3(r + weight * (current - r)), 1);
             }
         return out;
@@ -144,6 +157,59 @@ TEST_F(UpscaleGpu, EachFilterMatchesTheCpuRestatement) {
     }
 }
 
+// The choices engines make differently, on the same scene at 2x: UE4's sample distance (a fixed
+// 1.2 input pixels here, and UE4's own, 1.3 at 2x), FSR 2.0's box scale (the variance clip's
+// gamma times 1.5 at 2x) and the spatial-only upscale. Each matches the CPU restatement, and each
+// changes the outputs (so none is a define the shader ignores).
+TEST_F(UpscaleGpu, EachEngineChoiceMatchesTheCpuRestatement) {
+    constexpr std::uint32_t w = 32, h = 20, out_w = 64, out_h = 40;
+    const SceneFrames frames("grass", make_texture(TextureFamily::grass, w, h, 3), 16, true, false);
+    const std::uint32_t phases = upscale_jitter_phases(2);
+    const VariantSpec spec{*resolve_axis_set("dop22"), Mode::varclip, Neighborhood::n9};
+    struct Choice {
+        const char* name;
+        ResolveOptions options;
+    };
+    std::vector<Choice> choices(5);
+    for (Choice& c : choices) c.options.upscale = true;
+    choices[0].name = "the defaults";
+    choices[1].name = "samples within 1.2 input pixels";
+    choices[1].options.sample_distance = {SampleDistance::Kind::fixed, 1.2f};
+    choices[2].name = "UE4's sample distance";
+    choices[2].options.sample_distance = {SampleDistance::Kind::ue4, 0};
+    choices[3].name = "FSR 2.0's box scale";
+    choices[3].options.box_scale = BoxScale::fsr2;
+    choices[4].name = "the spatial-only upscale";
+    choices[4].options.no_history = true;
+    EXPECT_FLOAT_EQ(choices[2].options.sample_distance.at(2), 1.3f);
+    EXPECT_FLOAT_EQ(box_scale_at(BoxScale::fsr2, 2), 1.5f);
+    std::vector<Image> last(choices.size());
+    for (std::size_t c = 0; c < choices.size(); ++c) {
+        const ResolveOptions& options = choices[c].options;
+        auto shader = options.no_history ? build_spatial_upscale_shader(options) : build_taa_shader(spec, options);
+        ASSERT_TRUE(shader) << shader.error().message;
+        auto resolve = upscaling_resolve(**shader, w, h, out_w, out_h, options);
+        ASSERT_TRUE(resolve);
+        const CpuUpscale cpu{options, unit_axes(spec.set), Mode::varclip};
+        Image history;
+        for (std::size_t f = 0; f < frames.frame_count(); ++f) {
+            auto frame = frames.frame(f);
+            ASSERT_TRUE(frame);
+            frame->jitter = halton_jitter(std::uint32_t(f), phases);
+            auto gpu = resolve->advance(*frame, frames.starts_history(f));
+            ASSERT_TRUE(gpu) << gpu.error().message;
+            const Image expected = cpu.frame(*frame, frames.starts_history(f), history, out_w, out_h);
+            EXPECT_LE(pixels_apart(expected, **gpu, 2e-4f), expected.pixels.size() / 500)
+                << choices[c].name << ", frame " << f;
+            history = **gpu;
+        }
+        last[c] = history;
+        if (c > 0)
+            EXPECT_GT(pixels_apart(last[0], last[c], 1e-3f), last[0].pixels.size() / 50)
+                << choices[c].name << " leaves the last output as the defaults'";
+    }
+}
+
 // The still grass3d scene drawn at 48x27 and upscaled to 96x54: its output's FLIP against the 16-
 // sample reference falls over the frames, and ends at most 0.6 of the spatial-only (measured: 0.40) upscale's (the
 // same filter on the same input without a history: current weight 1).
@@ -154,14 +220,15 @@ TEST_F(UpscaleGpu, AStillJitteredSceneConvergesBelowTheSpatialUpscale) {
     const auto frames = (*scene)->frames("still", 40, false, true);
     ASSERT_EQ(frames->input_width(), 48u);
     ASSERT_EQ(frames->width(), width);
-    ResolveOptions temporal, spatial;
-    temporal.upscale = spatial.upscale = true;
-    spatial.current_weight = 1;
+    ResolveOptions options;
+    options.upscale = true;
     const VariantSpec spec{*resolve_axis_set("aabb"), Mode::clip, Neighborhood::n9};
-    auto shader = build_taa_shader(spec, temporal);
-    ASSERT_TRUE(shader) << shader.error().message;
-    auto with_history = upscaling_resolve(**shader, 48, 27, width, height, temporal);
-    auto without = upscaling_resolve(**shader, 48, 27, width, height, spatial);
+    // The spatial-only upscale is the row kdop taa puts beside the variants.
+    auto shader = build_taa_shader(spec, options);
+    auto spatial = build_spatial_upscale_shader(options);
+    ASSERT_TRUE(shader && spatial);
+    auto with_history = upscaling_resolve(**shader, 48, 27, width, height, options);
+    auto without = upscaling_resolve(**spatial, 48, 27, width, height, options);
     ASSERT_TRUE(with_history && without);
     const LdrFlip flip(67);
     std::vector<double> temporal_flip, spatial_flip;

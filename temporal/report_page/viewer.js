@@ -115,6 +115,12 @@
   function render() {
     const sequence = data.viewer[state.sequence];
     state.frame = Math.max(0, Math.min(state.frame, sequence.frames.length - 1));
+    // A sequence that does not upscale has no spatial-only upscale, the last variant: offer only
+    // the variants that resolved it.
+    state.a = Math.min(state.a, sequence.variants - 1);
+    state.b = Math.min(state.b, sequence.variants - 1);
+    for (const select of [$("variant-a"), $("variant-b")])
+      for (const o of select.options) o.disabled = Number(o.value) >= sequence.variants;
     $("sequence").value = state.sequence;
     $("frame-slider").max = sequence.frames.length - 1;
     $("frame-slider").value = state.frame;
