@@ -93,11 +93,19 @@ OutputWriter image_writer(std::filesystem::path path, std::shared_ptr<const Imag
 // What an OutputWriter whose image is made only when the set is written (a sequence's frames)
 // does with its temporary: writes `image` to `temporary` and checks it as write_image does, errors
 // naming `path`, the file's final name.
-Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image);
+//
+// `precision` half stores EXR's channels as 16-bit floats (what Arm's NSS captures hold,
+// R16G16B16A16_SFLOAT): the values are rounded to the nearest half, and the file read back must
+// hold exactly that rounding; a finite value beyond half's range (65504) is refused, naming the
+// pixel, rather than written as infinity; any format but EXR is refused.
+enum class FloatPrecision { full, half };
+Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image,
+                            FloatPrecision precision = FloatPrecision::full);
 // write_image_to for an image of data (what read_data_image reads): the first channels.size()
 // channels of each pixel, named `channels` ({"R", "G"} for motion, {"Z"} for depth), stored as
 // floats in EXR or TIFF (any other format is refused): no channel the data does not use.
 Result<void> write_data_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image,
-                                 std::span<const char* const> channels);
+                                 std::span<const char* const> channels,
+                                 FloatPrecision precision = FloatPrecision::full);
 
 } // namespace kdop

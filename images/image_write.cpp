@@ -36,8 +36,19 @@ Expected stored(float v, OIIO::TypeDesc type) {
         const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
         return {std::round(clamped * levels) / levels, 1.01f / levels};
     }
-    if (type == OIIO::TypeDesc::HALF) return {v, std::max(std::abs(v) * 1e-3f, 1e-7f)};
+    // Half: verify_written compares with the nearest halves (nearest_halves).
     return {v, 0.0f};
+}
+
+// Each channel value of `image` rounded to the nearest half float, as OpenImageIO rounds it when
+// it writes halves (Imath's conversion): what a half EXR must read back as, exactly.
+std::vector<float> nearest_halves(const Image& image) {
+    const int n = int(image.pixels.size() * 4);
+    std::vector<std::uint16_t> halves(std::size_t(n), 0);
+    std::vector<float> out(std::size_t(n), 0.0f);
+    OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, image.pixels.data(), OIIO::TypeDesc::HALF, halves.data(), n);
+    OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, halves.data(), OIIO::TypeDesc::FLOAT, out.data(), n);
+    return out;
 }
 
 // The file just written, opened to be read back, if it is of the size written.
@@ -67,6 +78,8 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
         return fail(fmt::format("{}: written, but does not read back whole (disk full?): {}", path,
                                 library_message(in->geterror())));
     const bool shared_exponent = std::string_view(in->format_name()) == "hdr";
+    const std::vector<float> halves =
+        spec.format == OIIO::TypeDesc::HALF ? nearest_halves(image) : std::vector<float>{};
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         const glm::vec4& p = image.pixels[i];
         // RGBE keeps about 8 bits of the largest channel's magnitude for all three, and no pixel
@@ -75,7 +88,8 @@ Result<void> verify_written(const std::string& file, const Image& image, const s
         for (int c = 0; c < channels; ++c) {
             const float read = data[i * channels + c];
             const bool encoded = c < 3 && !spec.format.is_floating_point();
-            const Expected e = stored(encoded ? linear_to_srgb(p[c]) : p[c], spec.format);
+            const Expected e = halves.empty() ? stored(encoded ? linear_to_srgb(p[c]) : p[c], spec.format)
+                                              : Expected{halves[i * 4 + c], 0.0f};
             const float tolerance = shared_exponent && c < 3 ? rgbe : e.tolerance;
             const bool same =
                 std::isnan(e.value) ? std::isnan(read) : std::abs(read - e.value) <= tolerance || read == e.value;
@@ -171,10 +185,23 @@ std::string disk_full(const std::filesystem::path& file) {
                                                                 : "";
 }
 
+// Half's largest finite value: a float beyond it would be written as infinity.
+constexpr float kHalfMax = 65504.0f;
+
+// The first finite value of the first `channels` channels beyond half's range.
+std::optional<OutsideValue> first_beyond_half(const Image& image, int channels) {
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < channels; ++c)
+            if (const float v = image.pixels[i][c]; std::isfinite(v) && std::abs(v) > kHalfMax)
+                return OutsideValue{std::uint32_t(i % image.width), std::uint32_t(i / image.width), v};
+    return std::nullopt;
+}
+
 // Writes `image` to `file` (a temporary) and checks it; errors name `path`, the file's final name.
 // With `data_channels`, the image is data: that many of its channels, so named, in a float format.
 Result<void> write_checked(const std::filesystem::path& file, const std::string& path, const Image& image,
-                           std::span<const char* const> data_channels = {}) {
+                           std::span<const char* const> data_channels = {},
+                           FloatPrecision precision = FloatPrecision::full) {
     // The temporary keeps the extension, which tells OpenImageIO the format.
     auto out = OIIO::ImageOutput::create(file.string());
     if (!out)
@@ -188,13 +215,21 @@ Result<void> write_checked(const std::filesystem::path& file, const std::string&
     const bool data = !data_channels.empty();
     if (data && format != "openexr" && format != "tiff")
         return fail(fmt::format("{}: {} does not keep the floats data holds; write EXR", path, format));
+    const bool half_floats = precision == FloatPrecision::half;
+    if (half_floats && format != "openexr")
+        return fail(fmt::format("{}: half floats are written to EXR only, not {}", path, format));
 
     // RGBA where the format has alpha, else RGB (Radiance HDR stores three channels only). An opaque
     // PNG leaves its alpha out: a quarter fewer bytes to compress, the same pixels read back.
     const bool png = format == "png";
     const int channels = data ? int(data_channels.size()) : out->supports("alpha") && !(png && opaque(image)) ? 4 : 3;
+    if (half_floats)
+        if (auto beyond = first_beyond_half(image, channels))
+            return fail(fmt::format("{}: pixel ({}, {}) holds {}, beyond the largest half float ({}); write it as "
+                                    "full floats",
+                                    path, beyond->x, beyond->y, beyond->value, kHalfMax));
     OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), channels,
-                         OIIO::TypeDesc::FLOAT);
+                         half_floats ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
     if (data) {
         spec.channelnames.assign(data_channels.begin(), data_channels.end());
         spec.alpha_channel = -1;
@@ -269,13 +304,14 @@ Result<void> named_as_output(Result<void> written, const std::filesystem::path& 
 
 } // namespace
 
-Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image) {
-    return named_as_output(write_checked(temporary, path, image), temporary, path);
+Result<void> write_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image,
+                            FloatPrecision precision) {
+    return named_as_output(write_checked(temporary, path, image, {}, precision), temporary, path);
 }
 
 Result<void> write_data_image_to(const std::filesystem::path& temporary, const std::string& path, const Image& image,
-                                 std::span<const char* const> channels) {
-    return named_as_output(write_checked(temporary, path, image, channels), temporary, path);
+                                 std::span<const char* const> channels, FloatPrecision precision) {
+    return named_as_output(write_checked(temporary, path, image, channels, precision), temporary, path);
 }
 
 Result<void> write_image(const std::string& path, const Image& image) {
