@@ -25,7 +25,7 @@ namespace kdop::cli {
 namespace {
 
 struct TaaOptions {
-    std::string out, size = "320x180", device, nss_sequence;
+    std::string out, size = "320x180", device, nss_sequence, nss_range = "hdr";
     double ratio = 2.0;
     std::vector<std::string> sequences, metrics{"shimmer", "ghosting"};
     SceneChoice choice;
@@ -47,6 +47,7 @@ struct TaaDeclared {
     std::vector<CLI::Option*> hdr_options;
     CLI::Option* picture_frame;
     CLI::Option* ratio;
+    CLI::Option* nss_range;
 };
 TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     CLI::App* taa = app.add_subcommand(
@@ -69,6 +70,13 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
                                          "With --nss-sequence: the capture's upscaling ratio, whose x<ratio> folder "
                                          "holds the frames (2, 1.7, 1.5, 1.3) [default: 2]")
                              ->check(finite_number(1, 8));
+    CLI::Option* nss_range =
+        taa->add_option("--nss-range", o->nss_range,
+                        "With --nss-sequence: the range of the capture's colors: hdr (linear values from 0 up, as "
+                        "NSS captures are), measured in HDR-FLIP; or ldr (values from 0 to 1, such as kdop scene "
+                        "--layout nss writes of kdop's scenes), measured in LDR-FLIP as the scenes are in memory, a "
+                        "value outside [0, 1] refused, naming its file and pixel, never clamped [default: hdr]")
+            ->check(CLI::IsMember({"hdr", "ldr"}));
     add_input_space_option(*taa, o->input_space);
     add_resolve_options(*taa, o->resolve);
     taa->add_flag("--write-frames", o->write_frames,
@@ -110,7 +118,7 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
                                 "only where a sequence has reference frames [default: shimmer ghosting, the paper's]",
                                 metric_names(default_metrics())));
 
-    return {taa, hdr_options, picture_frame, ratio};
+    return {taa, hdr_options, picture_frame, ratio, nss_range};
 }
 
 } // namespace
@@ -122,7 +130,8 @@ Action add_taa_command(CLI::App& app) {
     CLI::Option* picture_frame = declared.picture_frame;
     const std::vector<CLI::Option*> hdr_options = declared.hdr_options;
     CLI::Option* ratio = declared.ratio;
-    return [o, taa, hdr_options, picture_frame, ratio] {
+    CLI::Option* nss_range = declared.nss_range;
+    return [o, taa, hdr_options, picture_frame, ratio, nss_range] {
         if (o->selection.baselines)
             return report_error("--baselines: the gather and copy baselines are not clips; they have no place in TAA");
         const double ppd = taa->count("--ppd") ? o->ppd : pixels_per_degree(ViewingConditions{});
@@ -131,6 +140,8 @@ Action add_taa_command(CLI::App& app) {
         if (!metrics) return usage_error("--metrics: " + metrics.error().message);
         if (ratio->count() && o->nss_sequence.empty())
             return usage_error("--ratio: picks the folder of an NSS capture's frames, and needs --nss-sequence");
+        if (nss_range->count() && o->nss_sequence.empty())
+            return usage_error("--nss-range: says the range of an NSS capture's colors, and needs --nss-sequence");
         if (!o->nss_sequence.empty() && o->sequences.size() != 1)
             return usage_error(fmt::format("--nss-sequence {}: needs the capture's root folder as one --sequence ({} "
                                            "given)",
@@ -159,7 +170,8 @@ Action add_taa_command(CLI::App& app) {
                         .scene_options = o->choice.options(size->first, size->second, o->seed, o->input_space),
                         .picture_frame = picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt,
                         .nss_sequence = o->nss_sequence,
-                        .nss_ratio = o->ratio});
+                        .nss_ratio = o->ratio,
+                        .nss_range = o->nss_range == "ldr" ? ColorRange::ldr : ColorRange::hdr});
         if (!sources) return report(sources.error());
         for (const SequenceFrames& sequence : sources->sequences)
             if (auto ok = check_outside(sequence.sequence(), outputs->dir(), "--out"); !ok) return report(ok.error());

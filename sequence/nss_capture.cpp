@@ -134,17 +134,31 @@ Result<void> check_size(const fs::path& file, std::uint32_t width, std::uint32_t
     return {};
 }
 
+// Under --nss-range ldr: refuses a color value outside [0, 1] (after the exposure), naming the file
+// and the pixel, never clamping it, as kdop refuses an LDR sequence's (temporal/taa_measure.cpp).
+Result<void> check_unit_range(const Image& image, const fs::path& file, float exposure) {
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (const float v = image.pixels[i][c]; !(v >= 0.0f && v <= 1.0f))
+                return fail(fmt::format("{}: pixel ({}, {}) has {} {}{}, outside [0, 1]; --nss-range ldr measures the "
+                                        "capture in LDR-FLIP, which takes linear values from 0 to 1: read an HDR "
+                                        "capture with --nss-range hdr (kdop does not clamp it)",
+                                        file.string(), i % image.width, i / image.width, "RGB"[c], v,
+                                        exposure == 1.0f ? "" : fmt::format(" (times the Exposure {})", exposure)));
+    return {};
+}
+
 } // namespace
 
-Result<std::string> nss_ratio_folder(double ratio) {
+Result<std::string> nss_ratio_folder(double ratio, std::string_view option) {
     if (!(ratio >= 1.0 && ratio <= 8.0))
-        return usage_fail(fmt::format("--ratio {}: an NSS upscaling ratio is from 1 to 8 (x2, x1_5, ...)", ratio));
+        return usage_fail(fmt::format("{} {}: an NSS upscaling ratio is from 1 to 8 (x2, x1_5, ...)", option, ratio));
     // One decimal at most: Arm's name drops "_0" wherever it occurs, so 1.05 would be "x15".
     const double tenths = std::round(ratio * 10.0);
     if (std::abs(ratio * 10.0 - tenths) > 1e-9)
-        return usage_fail(fmt::format("--ratio {}: NSS names a ratio's folder with one decimal at most (x2, x1_5, "
+        return usage_fail(fmt::format("{} {}: NSS names a ratio's folder with one decimal at most (x2, x1_5, "
                                       "x1_7, x1_3)",
-                                      ratio));
+                                      option, ratio));
     const int whole = int(tenths) / 10, tenth = int(tenths) % 10;
     return tenth == 0 ? fmt::format("x{}", whole) : fmt::format("x{}_{}", whole, tenth);
 }
@@ -400,6 +414,8 @@ Result<LoadedFrame> NssFrames::frame(std::size_t index) const {
         if (!image) return image;
         if (auto ok = check_finite(*image, file, 3, what); !ok) return std::unexpected(ok.error());
         for (glm::vec4& p : image->pixels) p = glm::vec4(glm::vec3(p) * f.exposure, 1.0f);
+        if (range_ == ColorRange::ldr)
+            if (auto ok = check_unit_range(*image, file, f.exposure); !ok) return std::unexpected(ok.error());
         return image;
     };
     auto read_data = [&](const fs::path& file, int channels, std::string_view what) -> Result<Image> {

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace kdop {
@@ -30,7 +31,8 @@ namespace kdop {
 // `str(float(scale)).replace(".", "_").replace("_0", "")`): 2 -> "x2", 1.5 -> "x1_5", 1.7 -> "x1_7".
 // Refuses a ratio below 1, above 8 or not finite; and one of more than one decimal, which Arm's
 // name mangles (1.05 -> "x15").
-Result<std::string> nss_ratio_folder(double ratio);
+// Errors name `option`, the option that gave the ratio.
+Result<std::string> nss_ratio_folder(double ratio, std::string_view option = "--ratio");
 
 struct NssFrame {
     std::filesystem::path color, depth, motion, reference;
@@ -62,7 +64,12 @@ Result<void> check_outside(const NssCapture& capture, const std::filesystem::pat
 
 class NssFrames final : public FrameSource {
 public:
-    explicit NssFrames(NssCapture capture) : c_(std::move(capture)), name_(c_.sequence) {}
+    // `range`: hdr (what NSS captures are, the spec's "linear HDR"), measured in HDR-FLIP; or ldr,
+    // for a capture whose values lie in [0, 1] (kdop's own scenes written by `kdop scene --layout
+    // nss`), measured in LDR-FLIP: frame() then refuses a color or ground truth value outside
+    // [0, 1], after the exposure, naming its file and pixel (never clamped).
+    explicit NssFrames(NssCapture capture, ColorRange range = ColorRange::hdr)
+        : c_(std::move(capture)), name_(c_.sequence), range_(range) {}
     const NssCapture& capture() const { return c_; }
     // The same frames read without their depth files, for a resolve that does not read depth.
     NssFrames without_depth() const {
@@ -77,8 +84,7 @@ public:
     std::uint32_t input_width() const override { return c_.input_width; }
     std::uint32_t input_height() const override { return c_.input_height; }
     std::size_t frame_count() const override { return c_.frames.size(); }
-    // NSS captures are linear HDR (the spec's "Images" table), measured in HDR-FLIP.
-    ColorRange color_range() const override { return ColorRange::hdr; }
+    ColorRange color_range() const override { return range_; }
     bool starts_history(std::size_t index) const override { return index == 0 || c_.frames[index].camera_cut; }
     std::optional<glm::vec2> jitter(std::size_t index) const override { return c_.frames[index].jitter; }
     bool has_depth() const override { return depth_; }
@@ -90,6 +96,7 @@ public:
 private:
     NssCapture c_;
     std::string name_;
+    ColorRange range_;
     bool depth_ = true;
 };
 

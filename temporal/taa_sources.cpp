@@ -11,7 +11,7 @@
 namespace kdop {
 
 bool TaaSources::any_hdr() const {
-    return !captures.empty() ||
+    return std::ranges::any_of(captures, [](const NssFrames& c) { return c.color_range() == ColorRange::hdr; }) ||
            std::ranges::any_of(sequences, [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
 }
 
@@ -40,7 +40,7 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
                                           "{}, after the warmup)",
                                           *request.picture_frame, request.nss_sequence, request.warmup, count - 1));
         // Depth is read only where the resolve reads it (--dilate-motion).
-        NssFrames frames(std::move(*capture));
+        NssFrames frames(std::move(*capture), request.nss_range);
         sources.captures.push_back(request.resolve.dilate_motion ? std::move(frames) : frames.without_depth());
     }
     for (const std::string& dir : request.nss_sequence.empty() ? request.sequences : std::vector<std::string>{}) {

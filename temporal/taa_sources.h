@@ -27,7 +27,7 @@ struct TaaSources {
     std::vector<NssFrames> captures; // NSS captures (sequence/nss_capture.h), measured as sequences are
 
     std::size_t size() const { return scenes.size() + sequences.size() + captures.size(); }
-    bool any_hdr() const; // a sequence measured in HDR-FLIP (every NSS capture is)
+    bool any_hdr() const; // a sequence measured in HDR-FLIP (an NSS capture but under --nss-range ldr)
 };
 
 struct TaaSourceRequest {
@@ -49,6 +49,8 @@ struct TaaSourceRequest {
     // of it is read at upscaling ratio `nss_ratio` (sequence/nss_capture.h).
     std::string nss_sequence;
     double nss_ratio = 2.0;
+    // --nss-range: the range the capture's colors keep to, and so the FLIP it is measured in.
+    ColorRange nss_range = ColorRange::hdr;
 };
 
 // Reads the sequences, then makes the scenes. Errors name the option and folder; Error::usage

@@ -376,6 +376,24 @@ TEST(CliNss, TaaMeasuresACaptureAgainstItsGroundTruth) {
     EXPECT_TRUE(fs::exists(out / "ghosting-0000.png"));
 }
 
+// --nss-range ldr: the capture measured in LDR-FLIP, a value above 1 (the bright dot, 4) refused
+// naming its file and pixel, never clamped.
+TEST(NssCapture, AnLdrRangeRefusesAValueOutsideZeroToOne) {
+    Capture c;
+    write_capture(c, default_spec());
+    auto capture = read_nss_capture(c.root(), "0000", 2.0);
+    ASSERT_TRUE(capture) << capture.error().message;
+    const NssFrames frames(std::move(*capture), ColorRange::ldr);
+    EXPECT_EQ(frames.color_range(), ColorRange::ldr);
+    auto frame = frames.frame(0);
+    ASSERT_FALSE(frame);
+    const std::string& message = frame.error().message;
+    EXPECT_NE(message.find((c.root() / "x2" / "color" / "0000" / "0000.exr").string() + ": pixel (3, 1) has R 4"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("--nss-range hdr"), std::string::npos) << message;
+}
+
 TEST(CliNss, OptionsThatDoNotGoTogetherAreUsageErrors) {
     Capture c;
     write_capture(c, default_spec());
@@ -387,6 +405,10 @@ TEST(CliNss, OptionsThatDoNotGoTogetherAreUsageErrors) {
     auto no_root = test::run({test::kdop_binary(), "taa", "--nss-sequence", "0000", "--out", out.string()});
     EXPECT_EQ(no_root.exit_code, 2) << no_root.err;
     EXPECT_NE(no_root.err.find("--sequence"), std::string::npos) << no_root.err;
+    auto range_alone = test::run(
+        {test::kdop_binary(), "taa", "--sequence", c.root().string(), "--nss-range", "ldr", "--out", out.string()});
+    EXPECT_EQ(range_alone.exit_code, 2) << range_alone.err;
+    EXPECT_NE(range_alone.err.find("--nss-range"), std::string::npos) << range_alone.err;
     auto unindexed = test::run({test::kdop_binary(), "taa", "--sequence", c.root().string(), "--nss-sequence", "0000",
                                 "--ratio", "1.05", "--out", out.string()});
     EXPECT_EQ(unindexed.exit_code, 2) << unindexed.err;
