@@ -1,6 +1,7 @@
 #include "scenes/scene_export.h"
 
 #include "harness/progress.h"
+#include "sequence/nss_writer.h"
 #include "sequence/sequence_writer.h"
 
 #include <fmt/format.h>
@@ -10,8 +11,40 @@
 
 namespace kdop {
 
-Result<std::size_t> export_scenes(const std::vector<std::shared_ptr<const TaaScene>>& scenes,
-                                  const SceneExportOptions& options, OutputSet& outputs) {
+namespace {
+
+// Every source as an NSS sequence, numbered in order, under outputs' folder: the JSON files added
+// to `outputs`, the frames' writers returned. Refuses, before anything is drawn, a source NSS
+// cannot hold.
+Result<std::vector<OutputWriter>> nss_writers(const std::vector<std::shared_ptr<const FrameSource>>& sources,
+                                              const SceneExportOptions& options, OutputSet& outputs) {
+    std::vector<OutputWriter> writers;
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+        const FrameSource& source = *sources[s];
+        NssWriteOptions nss{.ratio = options.ratio, .precision = options.precision};
+        // How the testbed jitters (Scene3dFrames::jitter): Halton (2, 3) when upscaling, else R2.
+        nss.sample_sequence = options.ratio > 1 ? "Halton(2,3)" : source.jitter(0) ? "R2" : "None";
+        if (auto ok = check_nss_writable(source, nss); !ok) {
+            if (!source.has_reference())
+                return usage_fail(fmt::format(
+                    "--layout nss: {}; draw it with references: a 3-D scene (grass3d, asphalt3d) with "
+                    "--reference-samples N, or --upscale R (16 reference samples by default); 2-D scenes have none",
+                    ok.error().message));
+            return std::unexpected(ok.error());
+        }
+        const std::string number = nss_sequence_number(s);
+        outputs.add(number + ".json", nss_sequence_json(source, nss));
+        for (OutputWriter& w : nss_frame_writers(outputs.dir(), number, sources[s], nss))
+            writers.push_back(std::move(w));
+    }
+    outputs.add(kNssSequencesFile, nss_sequences_json(sources));
+    return writers;
+}
+
+} // namespace
+
+Result<std::vector<std::string>> export_scenes(const std::vector<std::shared_ptr<const TaaScene>>& scenes,
+                                               const SceneExportOptions& options, OutputSet& outputs) {
     std::vector<std::shared_ptr<const FrameSource>> sources;
     for (const auto& scene : scenes) {
         if (!options.animate && !options.jitter) {
@@ -25,11 +58,19 @@ Result<std::size_t> export_scenes(const std::vector<std::shared_ptr<const TaaSce
         }
     }
     std::vector<OutputWriter> writers;
-    for (const auto& source : sources) {
-        outputs.add(source->name() + "/sequence.json", sequence_json(*source));
-        for (OutputWriter& w : sequence_frame_writers(outputs.dir() / source->name(), source))
-            writers.push_back(std::move(w));
+    std::vector<std::string> names;
+    if (options.layout == SceneLayout::nss) {
+        auto nss = nss_writers(sources, options, outputs);
+        if (!nss) return std::unexpected(nss.error());
+        writers = std::move(*nss);
+    } else {
+        for (const auto& source : sources) {
+            outputs.add(source->name() + "/sequence.json", sequence_json(*source));
+            for (OutputWriter& w : sequence_frame_writers(outputs.dir() / source->name(), source))
+                writers.push_back(std::move(w));
+        }
     }
+    for (const auto& source : sources) names.push_back(source->name());
     // The frames are drawn as they are written; the progress line follows the writes, a file each.
     Progress progress(fmt::format("Drawing and writing {} sequences:", sources.size()), writers.size());
     for (OutputWriter& w : writers)
@@ -41,7 +82,7 @@ Result<std::size_t> export_scenes(const std::vector<std::shared_ptr<const TaaSce
         };
     outputs.add(std::move(writers));
     if (auto ok = outputs.write(); !ok) return fail(ok.error().message);
-    return sources.size();
+    return names;
 }
 
 } // namespace kdop

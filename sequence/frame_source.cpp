@@ -6,6 +6,10 @@
 
 namespace kdop {
 
+Result<std::vector<glm::vec2>> FrameSource::output_motion(std::size_t index) const {
+    return fail(fmt::format("{}: kdop has no motion at the output size for this source", frame_label(index)));
+}
+
 bool SequenceFrames::has_depth() const {
     return depth_ &&
            std::all_of(s_.frames.begin(), s_.frames.end(), [](const SequenceFrame& f) { return !f.depth.empty(); });

@@ -6,6 +6,7 @@
 
 #include "sequence/sequence.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
 #include <cstddef>
@@ -13,10 +14,20 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace kdop {
 
 class DeviceFrames; // testbed/device_frames.h
+
+// The camera a frame was drawn with, where the source has one (kdop's 3-D testbed): what an NSS
+// capture's per-frame metadata records.
+struct FrameCamera {
+    float fov_x = 0, fov_y = 0;          // radians, at the output's aspect
+    float near_plane = 0, far_plane = 0; // in the scene's units
+    // World to clip, for column vectors (clip = M p), without jitter, at the output size.
+    glm::mat4 view_projection{1.0f};
+};
 
 class FrameSource {
 public:
@@ -42,6 +53,14 @@ public:
     virtual bool has_reference() const = 0;
     // Frame `index`'s images, motion in load_frame()'s convention.
     virtual Result<LoadedFrame> frame(std::size_t index) const = 0;
+    // Whether the source can give each frame's motion at the output size, drawn at the output
+    // pixels' centers without jitter (what an NSS capture's motion_gt holds), and that motion, in
+    // load_frame()'s convention, row-major, width() x height(). A source that draws its frames
+    // (the 3-D testbed) draws it; others have none.
+    virtual bool has_output_motion() const { return false; }
+    virtual Result<std::vector<glm::vec2>> output_motion(std::size_t index) const;
+    // Frame `index`'s camera, where the source draws its frames through one.
+    virtual std::optional<FrameCamera> camera_of(std::size_t /*index*/) const { return std::nullopt; }
     // What an error about frame `index`'s color names: its file, or the scene and frame.
     virtual std::string frame_label(std::size_t index) const = 0;
     // Whether frame() may run on another thread while the resolve works on the last frame (it
@@ -73,6 +92,11 @@ public:
     bool has_depth() const override { return source_->has_depth(); }
     bool has_reference() const override { return source_->has_reference(); }
     Result<LoadedFrame> frame(std::size_t index) const override { return source_->frame(index); }
+    bool has_output_motion() const override { return source_->has_output_motion(); }
+    Result<std::vector<glm::vec2>> output_motion(std::size_t index) const override {
+        return source_->output_motion(index);
+    }
+    std::optional<FrameCamera> camera_of(std::size_t index) const override { return source_->camera_of(index); }
     std::string frame_label(std::size_t index) const override { return source_->frame_label(index); }
     bool reads_ahead() const override { return source_->reads_ahead(); }
     SequenceRoles roles() const override { return roles_; }

@@ -1,6 +1,7 @@
 #include "sequence/sequence_writer.h"
 
 #include "images/image_io.h"
+#include "sequence/frame_cache.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -9,24 +10,6 @@ namespace kdop {
 namespace {
 
 std::string frame_file(const char* kind, std::size_t index) { return fmt::format("{}/{:04}.exr", kind, index); }
-
-// The frame the writers are on: made by the first writer of a frame, kept for its others.
-struct FrameCache {
-    std::shared_ptr<const FrameSource> source;
-    std::size_t index = SIZE_MAX;
-    LoadedFrame frame;
-
-    Result<const LoadedFrame*> get(std::size_t i) {
-        if (i != index) {
-            index = SIZE_MAX;
-            auto loaded = source->frame(i);
-            if (!loaded) return std::unexpected(loaded.error());
-            frame = std::move(*loaded);
-            index = i;
-        }
-        return &frame;
-    }
-};
 
 Image motion_image(const std::vector<glm::vec2>& motion, std::uint32_t width, std::uint32_t height) {
     Image out(width, height);

@@ -1,6 +1,9 @@
 #include "testbed/scene3d_frames.h"
 
 #include "sequence/jitter.h"
+#include "testbed/camera.h"
+
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -61,7 +64,7 @@ Result<LoadedFrame> Scene3dFrames::frame(std::size_t index) const {
     out.jitter = jitter(index).value_or(glm::vec2(0));
     out.color = std::move(drawn->color);
     out.motion = std::move(drawn->motion);
-    out.depth = Image(width(), height());
+    out.depth = Image(input_width(), input_height()); // drawn at the input size, as color and motion
     for (std::size_t i = 0; i < drawn->depth.size(); ++i) out.depth->pixels[i] = glm::vec4(drawn->depth[i], 0, 0, 1);
     if (timeline_.reference_samples > 0) {
         auto reference_image = reference(index);
@@ -69,6 +72,26 @@ Result<LoadedFrame> Scene3dFrames::frame(std::size_t index) const {
         out.reference = std::move(*reference_image);
     }
     return out;
+}
+
+Result<std::vector<glm::vec2>> Scene3dFrames::output_motion(std::size_t index) const {
+    // The same instants and cameras as the frame's own motion, drawn at the output size without
+    // jitter: what NSS's motion_gt is ("Non-Jittered, output resolution velocity"). Only the
+    // motion is kept; the color of this draw is not a reference (one sample per pixel).
+    auto drawn = reference_renderer_->draw(time(index), camera(index), previous_time(index), previous_camera(index),
+                                           glm::vec2(0));
+    if (!drawn) return fail(fmt::format("{}: output-size motion: {}", frame_label(index), drawn.error().message));
+    return std::move(drawn->motion);
+}
+
+std::optional<FrameCamera> Scene3dFrames::camera_of(std::size_t index) const {
+    const Camera3d c = camera(index);
+    const float aspect = float(width()) / float(height());
+    return FrameCamera{.fov_x = 2.0f * std::atan(std::tan(c.fov_y / 2.0f) * aspect),
+                       .fov_y = c.fov_y,
+                       .near_plane = kNearPlane,
+                       .far_plane = kFarPlane,
+                       .view_projection = view_projection(c, width(), height())};
 }
 
 } // namespace kdop

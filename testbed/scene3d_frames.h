@@ -55,6 +55,10 @@ public:
     bool has_depth() const override { return true; }
     bool has_reference() const override { return timeline_.reference_samples > 0; }
     Result<LoadedFrame> frame(std::size_t index) const override;
+    // Drawn by the reference renderer (the output size) at the pixels' centers.
+    bool has_output_motion() const override { return true; }
+    Result<std::vector<glm::vec2>> output_motion(std::size_t index) const override;
+    std::optional<FrameCamera> camera_of(std::size_t index) const override;
     std::string frame_label(std::size_t index) const override;
     const DeviceFrames* device_frames() const override { return this; }
     // The frame's color, motion and depth on the device; its reference is drawn only when read back.
