@@ -366,7 +366,9 @@ TEST(CliNss, TaaMeasuresACaptureAgainstItsGroundTruth) {
                           "--no-charts", "--out", out.string()});
     ASSERT_EQ(taa.exit_code, 0) << taa.err;
     const auto rows = test::csv_rows(test::read_file(out / "taa.csv"));
-    ASSERT_EQ(rows.size(), 1u);
+    ASSERT_EQ(rows.size(), 2u) << "the variant, and the spatial-only upscale of the capture";
+    EXPECT_EQ(rows[1].at("variant"), "spatial-lanczos2");
+    EXPECT_EQ(rows[0].at("upscale"), "2");
     EXPECT_EQ(rows[0].at("scene"), "0000");
     EXPECT_EQ(rows[0].at("ghosting_against"), "reference");
     EXPECT_EQ(rows[0].at("flip"), "HDR-FLIP");
