@@ -4,6 +4,7 @@
 #include "core/color_map.h"
 #include "core/read_file.h"
 #include "core/shown_text.h"
+#include "core/upscale_settings.h"
 #include "generator/inside_folder.h"
 
 #include <fmt/format.h>
@@ -25,8 +26,10 @@ std::string_view trimmed(std::string_view s) {
     return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
-// The resolve's keys, in the order resolve_lines writes them.
+// The resolve's keys, in the order resolve_lines writes them; then those of a resolve that
+// upscaled, all three or none.
 constexpr std::string_view kResolveKeys[] = {"gamma", "current-weight", "color-map", "history-filter", "dilate-motion"};
+constexpr std::string_view kUpscaleKeys[] = {"upscale-filter", "upscale-sample-distance", "upscale-box-scale"};
 
 // A decimal above 0 and at most `max`, as float: the commands' numbers (cli/number_option.h), so
 // "0x10", " 5" and "inf" are refused; a value float cannot hold above 0 (1e-50) is refused too.
@@ -48,16 +51,28 @@ struct ResolveLines {
 
     // `key: value` on line `number`, `where` naming it.
     Result<void> read(std::string_view key, std::string_view value, int number, const std::string& where) {
-        const auto known = std::ranges::find(kResolveKeys, key);
-        if (known == std::end(kResolveKeys))
+        auto known = std::ranges::find(kResolveKeys, key);
+        const auto upscale_key = std::ranges::find(kUpscaleKeys, key);
+        if (known == std::end(kResolveKeys) && upscale_key == std::end(kUpscaleKeys))
             return fail(fmt::format("{}: unknown key '{}'; a line is a variant name, `set: FILE`, or one of the "
                                     "resolve's settings (gamma:, current-weight:, color-map:, history-filter:, "
-                                    "dilate-motion:)",
+                                    "dilate-motion:, and for an upscaling resolve upscale-filter:, "
+                                    "upscale-sample-distance:, upscale-box-scale:)",
                                     where, shown_text(key, 80)));
-        if (auto earlier = given.find(*known); earlier != given.end())
+        const std::string_view name = known != std::end(kResolveKeys) ? *known : *upscale_key;
+        if (auto earlier = given.find(name); earlier != given.end())
             return fail(fmt::format("{}: '{}:' is given twice (first on line {})", where, key, earlier->second));
-        given.emplace(*known, number);
+        given.emplace(name, number);
         auto refused = [&](const std::string& why) { return fail(fmt::format("{}: {}: {}", where, key, why)); };
+        auto parsed = [&](auto parse, auto& into) -> Result<void> {
+            auto value_read = parse(value);
+            if (!value_read) return refused(shown_text(value_read.error().message, 300));
+            into = *value_read;
+            return {};
+        };
+        if (key == "upscale-filter") return parsed(parse_upscale_filter, settings.upscale_filter);
+        if (key == "upscale-sample-distance") return parsed(parse_sample_distance, settings.sample_distance);
+        if (key == "upscale-box-scale") return parsed(parse_box_scale, settings.box_scale);
         if (key == "gamma" || key == "current-weight") {
             auto number_read = positive_float(value, key == "gamma" ? 100 : 1);
             if (!number_read) return refused(number_read.error().message);
@@ -85,12 +100,19 @@ struct ResolveLines {
         return {};
     }
 
-    // All five or none.
-    Result<std::optional<ResolveSettings>> finish(const fs::path& path) const {
+    // All five or none; and the upscaling resolve's three all or none, and only with the five.
+    Result<std::optional<ResolveSettings>> finish(const fs::path& path) {
         if (given.empty()) return std::optional<ResolveSettings>();
-        std::vector<std::string_view> missing;
+        std::vector<std::string_view> missing, missing_upscale;
         for (std::string_view key : kResolveKeys)
             if (!given.count(key)) missing.push_back(key);
+        for (std::string_view key : kUpscaleKeys)
+            if (!given.count(key)) missing_upscale.push_back(key);
+        if (!missing_upscale.empty() && missing_upscale.size() < std::size(kUpscaleKeys))
+            return fail(fmt::format("{}: records how its resolve upscaled but not {}: a manifest records all three "
+                                    "(upscale-filter:, upscale-sample-distance:, upscale-box-scale:) or none",
+                                    path.string(), fmt::join(missing_upscale, ", ")));
+        settings.upscaling = missing_upscale.empty();
         if (!missing.empty())
             return fail(fmt::format("{}: records its resolve's settings but not {}: a manifest records all five "
                                     "(gamma:, current-weight:, color-map:, history-filter:, dilate-motion:) or none, "
@@ -112,9 +134,15 @@ std::string color_map_text(const ResolveSettings& resolve) {
 }
 
 std::string resolve_lines(const ResolveSettings& resolve) {
-    return fmt::format("gamma: {}\ncurrent-weight: {}\ncolor-map: {}\nhistory-filter: {}\ndilate-motion: {}\n",
-                       resolve.gamma, resolve.current_weight, color_map_text(resolve),
-                       to_string(resolve.history_filter), resolve.dilate_motion ? "yes" : "no");
+    std::string lines =
+        fmt::format("gamma: {}\ncurrent-weight: {}\ncolor-map: {}\nhistory-filter: {}\ndilate-motion: {}\n",
+                    resolve.gamma, resolve.current_weight, color_map_text(resolve), to_string(resolve.history_filter),
+                    resolve.dilate_motion ? "yes" : "no");
+    if (resolve.upscaling)
+        lines += fmt::format("upscale-filter: {}\nupscale-sample-distance: {}\nupscale-box-scale: {}\n",
+                             to_string(resolve.upscale_filter), to_string(resolve.sample_distance),
+                             to_string(resolve.box_scale));
+    return lines;
 }
 
 Result<Manifest> read_manifest(const fs::path& path) {

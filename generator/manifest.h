@@ -22,7 +22,13 @@
 //     dilate-motion: no         # yes or no
 //
 // All five or none (a resolve half recorded would leave the rest to a guess), each once; numbers
-// are decimals. kdop-gen gives them to the build (the registry's `resolve_settings`, the
+// are decimals. Where the variants were judged through an upscaling resolve, three more lines say
+// how it upscaled, all three or none:
+//
+//     upscale-filter: lanczos2      # lanczos2 or gaussian
+//     upscale-sample-distance: all  # all, ue4 or a number of input pixels above 0, at most 4
+//     upscale-box-scale: none       # none or fsr2
+// kdop-gen gives them to the build (the registry's `resolve_settings`, the
 // reflection's "resolve"). An unknown key, a value out of range and a key given twice are errors
 // naming the line.
 #pragma once
@@ -42,13 +48,13 @@ namespace kdop {
 struct Manifest {
     std::vector<VariantSpec> variants;            // in the manifest's order
     std::vector<std::filesystem::path> set_files; // the `set:` files, as the manifest resolves them
-    std::optional<ResolveSettings> resolve;       // its five resolve lines; none where it has none
+    std::optional<ResolveSettings> resolve;       // its resolve lines; none where it has none
 };
 
 Result<Manifest> read_manifest(const std::filesystem::path& path);
 
-// The five lines that record `resolve`, in the order above, each value in the fewest digits that
-// read back as the same float (or double, for the color map's exponent): what read_manifest reads.
+// The five lines that record `resolve` (and the three of an upscaling one), in the order above, each value in the
+// fewest digits that read back as the same float (or double, for the color map's exponent): what read_manifest reads.
 std::string resolve_lines(const ResolveSettings& resolve);
 // The color map as the color-map: line and --color-map spell it: "linear", "gamma:2.2", "log".
 std::string color_map_text(const ResolveSettings& resolve);

@@ -1,5 +1,7 @@
 #include "generator/reflection_json.h"
 
+#include "core/upscale_settings.h"
+
 #include "generator/manifest.h"
 #include "generator/provenance.h"
 #include "generator/spirv_module.h"
@@ -97,7 +99,11 @@ Json resolve_json(const ResolveSettings& r) {
             {"current_weight", float_json(r.current_weight)},
             {"color_map", color_map_text(r)},
             {"history_filter", to_string(r.history_filter)},
-            {"dilate_motion", r.dilate_motion}};
+            {"dilate_motion", r.dilate_motion},
+            {"upscale", !r.upscaling ? Json(nullptr)
+                                     : Json{{"filter", to_string(r.upscale_filter)},
+                                            {"sample_distance", to_string(r.sample_distance)},
+                                            {"box_scale", to_string(r.box_scale)}}}};
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 #include "core/escaped_text.h"
 #include "core/input_files.h"
 #include "core/shown_text.h"
+#include "core/upscale_settings.h"
 #include "core/write_files.h"
 #include "generator/manifest.h"
 
@@ -59,6 +60,21 @@ std::string float_literal(float value) {
     return text + "f";
 }
 
+// The members of an upscaling resolve's settings (upscale-filter:, upscale-sample-distance:,
+// upscale-box-scale:); none for one that did not upscale, whose members keep their defaults.
+std::string upscale_declaration(const ResolveSettings& r) {
+    if (!r.upscaling) return {};
+    const char* kind = r.sample_distance.kind == SampleDistance::Kind::ue4     ? "ue4"
+                       : r.sample_distance.kind == SampleDistance::Kind::fixed ? "fixed"
+                                                                               : "all";
+    return fmt::format("    true, // upscaling\n"
+                       "    kdop::UpscaleFilter::{}, // upscale-filter\n"
+                       "    {{kdop::SampleDistance::Kind::{}, {}}}, // upscale-sample-distance: {}\n"
+                       "    kdop::BoxScale::{}, // upscale-box-scale\n",
+                       to_string(r.upscale_filter), kind, float_literal(r.sample_distance.pixels),
+                       to_string(r.sample_distance), to_string(r.box_scale));
+}
+
 // The manifest's resolve, as constants an engine reads at compile time.
 std::string resolve_declaration(const ResolveSettings& r) {
     const char* map = r.color_map == ColorMapKind::power ? "power"
@@ -67,18 +83,20 @@ std::string resolve_declaration(const ResolveSettings& r) {
     std::string exponent = fmt::format("{}", r.color_map_exponent);
     if (exponent.find_first_of(".e") == std::string::npos) exponent += ".0";
     return fmt::format("// The TAA resolve the manifest records these variants were measured with (its gamma:,\n"
-                       "// current-weight:, color-map:, history-filter: and dilate-motion: lines): build the resolve\n"
-                       "// with it, and give a varclip variant `gamma` as its push constant.\n"
+                       "// current-weight:, color-map:, history-filter: and dilate-motion: lines, and its upscale-\n"
+                       "// lines where it upscaled): build the resolve with it, and give a varclip variant `gamma`\n"
+                       "// as its push constant.\n"
                        "inline constexpr kdop::ResolveSettings resolve_settings{{\n"
                        "    {}, // gamma\n"
                        "    {}, // current_weight\n"
                        "    kdop::ColorMapKind::{}, {}, // color-map: {}\n"
                        "    kdop::HistoryFilter::{}, // history-filter: {}\n"
                        "    {}, // dilate_motion\n"
+                       "{}"
                        "}};\n\n",
                        float_literal(r.gamma), float_literal(r.current_weight), map, exponent, color_map_text(r),
                        r.history_filter == HistoryFilter::catmull_rom ? "catmull_rom" : "bilinear",
-                       to_string(r.history_filter), r.dilate_motion ? "true" : "false");
+                       to_string(r.history_filter), r.dilate_motion ? "true" : "false", upscale_declaration(r));
 }
 
 } // namespace

@@ -109,9 +109,15 @@ std::string bootstrap_paragraph(const ChooseResult& r) {
 }
 
 // Every setting the figures were measured with: the variant's, the resolve's, FLIP's.
+// The resolve the candidates were measured through: the options', upscaling where the sequences did.
+ResolveSettings measured_resolve(const ChooseResult& r, const ChooseOptions& o) {
+    ResolveOptions resolve = o.evaluation.resolve;
+    resolve.upscale = r.upscaled;
+    return resolve_settings(resolve);
+}
+
 std::string settings_section(const ChooseResult& r, const ChooseOptions& o) {
-    const ResolveOptions& resolve = o.evaluation.resolve;
-    const ResolveSettings settings = resolve_settings(resolve);
+    const ResolveSettings settings = measured_resolve(r, o);
     std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
     if (r.recommendation.chosen) {
         const Candidate& c = r.candidates[*r.recommendation.chosen];
@@ -125,9 +131,15 @@ std::string settings_section(const ChooseResult& r, const ChooseOptions& o) {
                       to_string(settings.history_filter), settings.dilate_motion ? "yes" : "no",
                       r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP", o.evaluation.ppd,
                       o.evaluation.schedule.warmup);
+    if (settings.upscaling)
+        md += fmt::format("The resolve upscaled the sequences' frames: filter {}, the clip's samples {}, box scale "
+                          "{}.\n\n",
+                          to_string(settings.upscale_filter), to_string(settings.sample_distance),
+                          to_string(settings.box_scale));
     if (r.recommendation.chosen)
         md += "kdop.manifest records the resolve's settings beside the variant (its gamma:, current-weight:, "
-              "color-map:, history-filter: and dilate-motion: lines), and kdop_add_variants(MANIFEST) gives them to "
+              "color-map:, history-filter: and dilate-motion: lines, and its upscale- lines where it upscaled), and "
+              "kdop_add_variants(MANIFEST) gives them to "
               "the build as `resolve_settings` in the registry's header and \"resolve\" in its JSON "
               "(docs/embedding.md): a resolve built otherwise may not see these figures.\n\n";
     return md;
@@ -220,7 +232,7 @@ std::string choice_manifest(const ChooseResult& r, const ChooseOptions& o) {
     const Candidate& c = r.candidates[*r.recommendation.chosen];
     std::string text = "# kdop choose's recommendation (choice.md says why), and the TAA resolve it was measured\n"
                        "# with: build the resolve with these (kdop_add_variants declares them as resolve_settings).\n";
-    text += resolve_lines(resolve_settings(o.evaluation.resolve));
+    text += resolve_lines(measured_resolve(r, o));
     if (c.fitted || r.given_files.count(c.key.set)) text += fmt::format("set: {}.axes\n", c.key.set);
     return text + c.key.name() + "\n";
 }

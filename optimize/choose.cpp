@@ -293,6 +293,8 @@ Result<Plan> plan_candidates(const Context& context, const ChooseOptions& o, Cho
                                               first->sequence().dir.string(), mode(*first)));
             }
     result.range = first ? first->color_range() : ColorRange::ldr;
+    result.upscaled =
+        std::ranges::any_of(*fit, &FrameSource::upscales) || std::ranges::any_of(*validate, &FrameSource::upscales);
     result.metrics = o.evaluation.metrics;
     // Held-out blocks: every fit sequence must have a frame in one.
     const Holdout& holdout = plan.holdout;

@@ -162,8 +162,9 @@ struct ChooseResult {
     std::string held_out;                                          // what was held out, in words
     std::map<std::string, GivenSetFile> given_files;               // by set name: every --sets file's
     ColorRange range = ColorRange::ldr;                            // every sequence's, so every figure's FLIP mode
-    BootstrapOptions bootstrap;                                    // how the held-out ghosting's intervals were drawn
-    Metrics metrics; // what each candidate's figures are, by index: the evaluation's
+    bool upscaled = false;      // whether any sequence's frames are smaller than its outputs: the resolve upscaled
+    BootstrapOptions bootstrap; // how the held-out ghosting's intervals were drawn
+    Metrics metrics;            // what each candidate's figures are, by index: the evaluation's
 };
 
 // The run, on options that pass check(): checks (a usage Error where the command line is at fault:

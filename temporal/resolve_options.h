@@ -7,36 +7,14 @@
 
 #include "core/color_map.h"
 #include "core/result.h"
+#include "core/upscale_settings.h"
 
-#include <kdop/variant.h> // HistoryFilter, ResolveSettings
+#include <kdop/variant.h> // HistoryFilter, UpscaleFilter, SampleDistance, BoxScale, ResolveSettings
 
 #include <string>
 #include <string_view>
 
 namespace kdop {
-
-// How an upscaling resolve reconstructs the current color from the input samples around an
-// output pixel (docs/taa.md, "Upscaling").
-enum class UpscaleFilter {
-    lanczos2, // Lanczos-2 of the distance, clamped to the neighborhood's range (FSR 2's)
-    gaussian, // a Gaussian of standard deviation 0.5 input pixels
-};
-
-// Which of the nearest input sample's neighbors an upscaling resolve's clip keeps: all of them,
-// or those whose samples lie within a distance of the output pixel's center (UE4's TAAU,
-// TemporalAA.usf's HISTORY_CLAMPING_BOX_SAMPLE_DISTANCE).
-struct SampleDistance {
-    enum class Kind { all, ue4, fixed } kind = Kind::all;
-    float pixels = 0; // Kind::fixed: the distance in input pixels
-    // The distance at upscaling ratio `ratio`, in input pixels: fixed's, or UE4's
-    // lerp(1.51, 1.3, ratio - 1), which narrows as the ratio grows to curb ghosting.
-    float at(float ratio) const;
-    friend bool operator==(const SampleDistance&, const SampleDistance&) = default;
-};
-
-// How an upscaling resolve widens the variance clip with the ratio: not at all, or as FSR 2.0
-// widens its box, by 1 + (ratio - 1) / 2 (ffx_fsr2_upsample.h, RectifyHistory).
-enum class BoxScale { none, fsr2 };
 
 struct ResolveOptions {
     HistoryFilter history_filter = HistoryFilter::bilinear;
@@ -60,15 +38,10 @@ struct ResolveOptions {
 // "all", "ue4" or a number of input pixels above 0 and at most 4.
 Result<SampleDistance> parse_sample_distance(std::string_view text);
 std::string to_string(const SampleDistance& distance);
-// "none" or "fsr2".
+// "none" or "fsr2" (to_string in kdop/variant.h spells it).
 Result<BoxScale> parse_box_scale(std::string_view text);
-const char* to_string(BoxScale scale);
 // The factor the variance clip's gamma is multiplied by at upscaling ratio `ratio`.
 float box_scale_at(BoxScale scale, float ratio);
-
-// "lanczos2" or "gaussian".
-Result<UpscaleFilter> parse_upscale_filter(std::string_view text);
-const char* to_string(UpscaleFilter filter);
 
 // "bilinear" or "catmull-rom" (to_string in kdop/variant.h spells it).
 Result<HistoryFilter> parse_history_filter(std::string_view text);

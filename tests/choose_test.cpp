@@ -727,6 +727,12 @@ TEST(CliChoose, UpscaledSequencesAreJudgedThroughTheUpscalingResolve) {
         EXPECT_EQ(c["validation_ghosting"], row->at("ghosting"));
         EXPECT_EQ(row->at("ghosting_against"), "reference");
     }
+    // The manifest records how the resolve upscaled, and a manifest read back gives those lines.
+    const std::string manifest = test::read_file(out / "kdop.manifest");
+    EXPECT_NE(manifest.find("upscale-filter: lanczos2\nupscale-sample-distance: all\nupscale-box-scale: none\n"),
+              std::string::npos)
+        << manifest;
+    EXPECT_NE(test::read_file(out / "choice.md").find("The resolve upscaled the sequences' frames"), std::string::npos);
 }
 
 // mpirun -np R: the fits are shared over the ranks as kdop optimize shares them, and rank 0 measures

@@ -122,6 +122,52 @@ TEST(Manifest, RecordsTheResolveItsVariantsWereMeasuredWith) {
     EXPECT_FALSE(plain->resolve);
 }
 
+// A choice judged through an upscaling resolve records how it upscaled, in three more lines, all
+// three or none and only beside the five; read back, the registry's header declares them.
+TEST(Manifest, RecordsHowTheResolveUpscaled) {
+    test::TempDir dir;
+    const std::string five = "gamma: 1\ncurrent-weight: 0.1\ncolor-map: linear\nhistory-filter: bilinear\n"
+                             "dilate-motion: no\n";
+    test::write_file(dir / "upscaled.manifest", five + "upscale-box-scale: fsr2\nupscale-filter: gaussian\n"
+                                                       "upscale-sample-distance: 1.25\ndop22-clip-n9\n");
+    auto m = read_manifest(dir / "upscaled.manifest");
+    ASSERT_TRUE(m && m->resolve) << (m ? "no resolve" : m.error().message);
+    EXPECT_TRUE(m->resolve->upscaling);
+    EXPECT_EQ(m->resolve->upscale_filter, UpscaleFilter::gaussian);
+    EXPECT_EQ(m->resolve->sample_distance.kind, SampleDistance::Kind::fixed);
+    EXPECT_EQ(m->resolve->sample_distance.pixels, 1.25f);
+    EXPECT_EQ(m->resolve->box_scale, BoxScale::fsr2);
+    EXPECT_EQ(resolve_lines(*m->resolve),
+              five + "upscale-filter: gaussian\nupscale-sample-distance: 1.25\nupscale-box-scale: fsr2\n");
+
+    test::write_file(dir / "ue4.manifest", five + "upscale-filter: lanczos2\nupscale-sample-distance: ue4\n"
+                                                  "upscale-box-scale: none\naabb-clip-n9\n");
+    auto ue4 = read_manifest(dir / "ue4.manifest");
+    ASSERT_TRUE(ue4 && ue4->resolve) << (ue4 ? "no resolve" : ue4.error().message);
+    EXPECT_EQ(ue4->resolve->sample_distance.kind, SampleDistance::Kind::ue4);
+    EXPECT_FLOAT_EQ(ue4->resolve->sample_distance.at(2), 1.3f);
+
+    const struct {
+        std::string text;
+        const char* says;
+    } refused[] = {
+        {five + "upscale-filter: lanczos2\naabb-clip-n9\n", "but not upscale-sample-distance, upscale-box-scale"},
+        {"upscale-filter: lanczos2\nupscale-sample-distance: all\nupscale-box-scale: none\naabb-clip-n9\n",
+         "but not gamma"},
+        {five + "upscale-filter: bicubic\nupscale-sample-distance: all\nupscale-box-scale: none\naabb-clip-n9\n",
+         ":6: upscale-filter: 'bicubic' is not an upscaling filter"},
+        {five + "upscale-filter: lanczos2\nupscale-sample-distance: 9\nupscale-box-scale: none\naabb-clip-n9\n",
+         ":7: upscale-sample-distance: '9' is not a sample distance"},
+        {five + "upscale-filter: lanczos2\nupscale-filter: lanczos2\naabb-clip-n9\n", "given twice (first on line 6)"},
+    };
+    for (const auto& c : refused) {
+        test::write_file(dir / "refused.manifest", c.text);
+        auto r = read_manifest(dir / "refused.manifest");
+        ASSERT_FALSE(r) << c.text;
+        EXPECT_NE(r.error().message.find(c.says), std::string::npos) << r.error().message;
+    }
+}
+
 TEST(Cli, ManifestSelectsWhatListAndGenProduce) {
     test::TempDir dir;
     test::write_file(dir / "forest.axes", kSceneSet);

@@ -157,11 +157,16 @@ TEST(ReflectionJson, CarriesTheResolveTheManifestRecords) {
     EXPECT_EQ(r.color_map_exponent, 2.2);
     EXPECT_EQ(r.history_filter, HistoryFilter::catmull_rom);
     EXPECT_TRUE(r.dilate_motion);
+    static_assert(r.upscaling && r.upscale_filter == UpscaleFilter::gaussian && r.box_scale == BoxScale::fsr2,
+                  "how the resolve upscaled, read at compile time");
+    static_assert(r.sample_distance.kind == SampleDistance::Kind::ue4 && r.sample_distance.at(2) == 1.3f);
     ASSERT_NE(resolve_test_variants::variants().find("aabb-varclip-n9"), nullptr);
 
     const Json document = read_json(KDOP_RESOLVE_TEST_JSON);
     EXPECT_EQ(document["resolve"], Json::parse(R"({"gamma": 1.5, "current_weight": 0.125, "color_map": "gamma:2.2",
-                                                   "history_filter": "catmull-rom", "dilate_motion": true})"));
+                                                   "history_filter": "catmull-rom", "dilate_motion": true,
+                                                   "upscale": {"filter": "gaussian", "sample_distance": "ue4",
+                                                               "box_scale": "fsr2"}})"));
     EXPECT_TRUE(read_json(KDOP_TEST_SHADERS_JSON)["resolve"].is_null()) << "no manifest, no resolve";
 
     // kdop gen --manifest writes it into variants.json too; kdop-gen's header declares nothing

@@ -438,11 +438,11 @@ TEST(CliTaa, WritesTheTableFramesAndAPicturePerScene) {
     const std::string csv = test::read_file(out / "taa.csv");
     EXPECT_EQ(
         csv.substr(0, csv.find('\n')),
-        "variant,axis_set,mode,neighborhood,scene,ms,ms_q1,ms_q3,ms_noise,shimmer,shimmer_median,shimmer_p95,"
+        "variant,axis_set,mode,neighborhood,scene,upscale,ms,ms_q1,ms_q3,ms_noise,shimmer,shimmer_median,shimmer_p95,"
         "shimmer_low,shimmer_high,ghosting,ghosting_median,ghosting_p95,ghosting_low,ghosting_high,ghosting_noise,"
         "worst_ghosting_frame,worst_shimmer_frame,ghosting_against,flip");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << "2 variants x 2 scenes:\n" << csv;
-    EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\ndop22-clip-n9,dop22,clip,n9,asphalt,1,"), std::string::npos) << csv;
     for (const char* scene : {"grass", "asphalt"}) {
         EXPECT_TRUE(fs::exists(out / fmt::format("ghosting-{}.png", scene)));
         for (const char* frame : {"aliased", "aabb-clip-n9", "dop22-clip-n9"})

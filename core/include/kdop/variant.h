@@ -129,6 +129,35 @@ enum class HistoryFilter : std::uint8_t {
     catmull_rom, // the 4x4 Catmull-Rom cubic
 };
 
+// How an upscaling resolve reconstructs each output pixel's current color from the input samples
+// around it (--upscale-filter): Lanczos-2 clamped to the neighborhood's range (FSR 2's), or a
+// Gaussian of standard deviation 0.5 input pixels.
+enum class UpscaleFilter : std::uint8_t {
+    lanczos2,
+    gaussian,
+};
+
+// How an upscaling resolve widens the variance clip with the ratio r (--upscale-box-scale): not at
+// all, or gamma times 1 + (r - 1) / 2, as FSR 2.0 widens its box.
+enum class BoxScale : std::uint8_t {
+    none,
+    fsr2,
+};
+
+// Which of the nearest input sample's neighbors an upscaling resolve's clip keeps
+// (--upscale-sample-distance): all, those within a fixed distance of the output pixel's center, or
+// within UE4's (TemporalAA.usf's HISTORY_CLAMPING_BOX_SAMPLE_DISTANCE). A neighbor farther away
+// stands in as the center sample.
+struct SampleDistance {
+    enum class Kind : std::uint8_t { all, ue4, fixed } kind = Kind::all;
+    float pixels = 0; // Kind::fixed: the distance in input pixels
+    // The distance at upscaling ratio `ratio`, in input pixels: fixed's, UE4's lerp(1.51, 1.3,
+    // ratio - 1), or for all one no neighbor of a 3x3 lies beyond.
+    constexpr float at(float ratio) const {
+        return kind == Kind::fixed ? pixels : kind == Kind::ue4 ? 1.51f + (1.3f - 1.51f) * (ratio - 1.0f) : 1e30f;
+    }
+};
+
 // The TAA resolve a manifest's variants were measured with: `kdop choose` records it in the
 // kdop.manifest it writes (gamma:, current-weight:, color-map:, history-filter: and dilate-motion:
 // lines), and kdop_add_variants(MANIFEST) declares it in the registry's header as
@@ -141,6 +170,12 @@ struct ResolveSettings {
     double color_map_exponent;    // ColorMapKind::power: each color channel raised to it; otherwise 1
     HistoryFilter history_filter; // how the history is sampled
     bool dilate_motion;           // the motion of the nearest of the 3x3 neighbors by depth, not the pixel's own
+    // Where the variants were judged on frames the resolve upscaled (the manifest's upscale-filter:,
+    // upscale-sample-distance: and upscale-box-scale: lines): how it upscaled.
+    bool upscaling = false;
+    UpscaleFilter upscale_filter = UpscaleFilter::lanczos2;
+    SampleDistance sample_distance = {};
+    BoxScale box_scale = BoxScale::none;
 };
 
 struct VariantList {
@@ -202,6 +237,12 @@ inline std::uint32_t vulkan_stage_bit(ShaderStage stage) {
 inline const char* to_string(HistoryFilter filter) {
     return filter == HistoryFilter::catmull_rom ? "catmull-rom" : "bilinear";
 }
+
+inline const char* to_string(UpscaleFilter filter) {
+    return filter == UpscaleFilter::gaussian ? "gaussian" : "lanczos2";
+}
+
+inline const char* to_string(BoxScale scale) { return scale == BoxScale::fsr2 ? "fsr2" : "none"; }
 inline const char* to_string(Form form) { return form == Form::unrolled ? "unrolled" : "loop"; }
 inline const char* to_string(Numerics numerics) { return numerics == Numerics::hardened ? "hardened" : "paper"; }
 inline const char* to_string(Neighborhood n) { return n == Neighborhood::n9 ? "n9" : "n5"; }
