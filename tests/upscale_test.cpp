@@ -121,15 +121,38 @@ std::unique_ptr<TaaResolve> upscaling_resolve(const RunnableVariant& shader, std
     return resolve ? std::move(*resolve) : nullptr;
 }
 
+// Resolves `frames` (32x20, jittered over 2x's Halton phases) to 64x40 with `shader` and checks
+// every frame against `cpu`'s restatement; returns the last output. `label` names the case.
+Image expect_restated(const RunnableVariant& shader, const SceneFrames& frames, const CpuUpscale& cpu,
+                      const std::string& label) {
+    constexpr std::uint32_t w = 32, h = 20, out_w = 64, out_h = 40;
+    auto resolve = upscaling_resolve(shader, w, h, out_w, out_h, cpu.o);
+    if (!resolve) return {};
+    Image history;
+    for (std::size_t f = 0; f < frames.frame_count(); ++f) {
+        auto frame = frames.frame(f);
+        EXPECT_TRUE(frame);
+        if (!frame) return {};
+        frame->jitter = halton_jitter(std::uint32_t(f), upscale_jitter_phases(2));
+        auto gpu = resolve->advance(*frame, frames.starts_history(f));
+        EXPECT_TRUE(gpu) << gpu.error().message;
+        if (!gpu) return {};
+        EXPECT_EQ((*gpu)->width, out_w);
+        const Image expected = cpu.frame(*frame, frames.starts_history(f), history, out_w, out_h);
+        // float32 against double; a history within rounding of a slab may land on either side.
+        EXPECT_LE(pixels_apart(expected, **gpu, 2e-4f), expected.pixels.size() / 500) << label << ", frame " << f;
+        history = **gpu;
+    }
+    return history;
+}
+
 using UpscaleGpu = test::ValidationChecked;
 
 // A moving 2-D scene drawn at 32x20, upscaled 2x with a Halton jitter: every output as the CPU
 // restatement computes it, with the Lanczos-2 and the Gaussian filter.
 TEST_F(UpscaleGpu, EachFilterMatchesTheCpuRestatement) {
-    constexpr std::uint32_t w = 32, h = 20, out_w = 64, out_h = 40;
-    const SceneFrames frames("grass", make_texture(TextureFamily::grass, w, h, 3), 24, true, false);
-    const std::uint32_t phases = upscale_jitter_phases(2);
-    EXPECT_EQ(phases, 32u);
+    const SceneFrames frames("grass", make_texture(TextureFamily::grass, 32, 20, 3), 24, true, false);
+    EXPECT_EQ(upscale_jitter_phases(2), 32u);
     for (const UpscaleFilter filter : {UpscaleFilter::lanczos2, UpscaleFilter::gaussian}) {
         ResolveOptions options;
         options.upscale = true;
@@ -137,23 +160,7 @@ TEST_F(UpscaleGpu, EachFilterMatchesTheCpuRestatement) {
         const VariantSpec spec{*resolve_axis_set("dop22"), Mode::clip, Neighborhood::n9};
         auto shader = build_taa_shader(spec, options);
         ASSERT_TRUE(shader) << shader.error().message;
-        auto resolve = upscaling_resolve(**shader, w, h, out_w, out_h, options);
-        ASSERT_TRUE(resolve);
-        const CpuUpscale cpu{options, unit_axes(spec.set), Mode::clip};
-        Image history;
-        for (std::size_t f = 0; f < frames.frame_count(); ++f) {
-            auto frame = frames.frame(f);
-            ASSERT_TRUE(frame);
-            frame->jitter = halton_jitter(std::uint32_t(f), phases);
-            auto gpu = resolve->advance(*frame, frames.starts_history(f));
-            ASSERT_TRUE(gpu) << gpu.error().message;
-            ASSERT_EQ((*gpu)->width, out_w);
-            const Image expected = cpu.frame(*frame, frames.starts_history(f), history, out_w, out_h);
-            // float32 against double; a history within rounding of a slab may land on either side.
-            EXPECT_LE(pixels_apart(expected, **gpu, 2e-4f), expected.pixels.size() / 500)
-                << to_string(filter) << ", frame " << f;
-            history = **gpu;
-        }
+        expect_restated(**shader, frames, CpuUpscale{options, unit_axes(spec.set), Mode::clip}, to_string(filter));
     }
 }
 
@@ -162,9 +169,7 @@ TEST_F(UpscaleGpu, EachFilterMatchesTheCpuRestatement) {
 // gamma times 1.5 at 2x) and the spatial-only upscale. Each matches the CPU restatement, and each
 // changes the outputs (so none is a define the shader ignores).
 TEST_F(UpscaleGpu, EachEngineChoiceMatchesTheCpuRestatement) {
-    constexpr std::uint32_t w = 32, h = 20, out_w = 64, out_h = 40;
-    const SceneFrames frames("grass", make_texture(TextureFamily::grass, w, h, 3), 16, true, false);
-    const std::uint32_t phases = upscale_jitter_phases(2);
+    const SceneFrames frames("grass", make_texture(TextureFamily::grass, 32, 20, 3), 16, true, false);
     const VariantSpec spec{*resolve_axis_set("dop22"), Mode::varclip, Neighborhood::n9};
     struct Choice {
         const char* name;
@@ -188,21 +193,8 @@ TEST_F(UpscaleGpu, EachEngineChoiceMatchesTheCpuRestatement) {
         const ResolveOptions& options = choices[c].options;
         auto shader = options.no_history ? build_spatial_upscale_shader(options) : build_taa_shader(spec, options);
         ASSERT_TRUE(shader) << shader.error().message;
-        auto resolve = upscaling_resolve(**shader, w, h, out_w, out_h, options);
-        ASSERT_TRUE(resolve);
-        const CpuUpscale cpu{options, unit_axes(spec.set), Mode::varclip};
-        Image history;
-        for (std::size_t f = 0; f < frames.frame_count(); ++f) {
-            auto frame = frames.frame(f);
-            ASSERT_TRUE(frame);
-            frame->jitter = halton_jitter(std::uint32_t(f), phases);
-            auto gpu = resolve->advance(*frame, frames.starts_history(f));
-            ASSERT_TRUE(gpu) << gpu.error().message;
-            const Image expected = cpu.frame(*frame, frames.starts_history(f), history, out_w, out_h);
-            EXPECT_LE(pixels_apart(expected, **gpu, 2e-4f), expected.pixels.size() / 500)
-                << choices[c].name << ", frame " << f;
-            history = **gpu;
-        }
+        const Image history =
+            expect_restated(**shader, frames, CpuUpscale{options, unit_axes(spec.set), Mode::varclip}, choices[c].name);
         last[c] = history;
         if (c > 0)
             EXPECT_GT(pixels_apart(last[0], last[c], 1e-3f), last[0].pixels.size() / 50)
