@@ -196,9 +196,10 @@ TEST_F(UpscaleGpu, EachEngineChoiceMatchesTheCpuRestatement) {
         const Image history =
             expect_restated(**shader, frames, CpuUpscale{options, unit_axes(spec.set), Mode::varclip}, choices[c].name);
         last[c] = history;
-        if (c > 0)
+        if (c > 0) {
             EXPECT_GT(pixels_apart(last[0], last[c], 1e-3f), last[0].pixels.size() / 50)
                 << choices[c].name << " leaves the last output as the defaults'";
+        }
     }
 }
 
