@@ -127,6 +127,11 @@ Result<ProjectShader> build_project_shader(const fs::path& file, std::span<const
     // shader cannot read "/etc/passwd" or "../../../secret" into a build.
     std::vector<std::string> unresolved, outside;
     IncludeResolver resolve = [&](std::string_view header, std::string_view includer) -> std::optional<IncludedSource> {
+        for (const IncludedSource& given : options.provided)
+            if (header == given.name) {
+                out.provided_included.push_back(given.name);
+                return given;
+            }
         for (const BuiltVariant& v : variants)
             if (header == std::string(v.name).append(language.extension))
                 return IncludedSource{std::string(header), v.function(*language.dialect)};

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/result.h"
+#include "generator/glsl_compiler.h"
 #include "generator/target_env.h"
 #include "generator/variant_builder.h"
 
@@ -20,6 +21,7 @@ struct ProjectShader {
     BuiltVariant built;                            // mode shader, name = the file's name without its extensions
     std::vector<std::filesystem::path> read_files; // the shader and every file it included, for a depfile
     std::vector<std::string> warnings;             // lines "<file>: warning: ...": each resource unused
+    std::vector<std::string> provided_included;    // the names of options.provided the shader included
 };
 
 struct ProjectShaderOptions {
@@ -27,6 +29,9 @@ struct ProjectShaderOptions {
     TargetEnv env = TargetEnv::vulkan1_0;
     bool strip_names = false;              // drop OpName and OpMemberName
     std::string hlsl_entry_point = "main"; // of every HLSL shader (a GLSL shader's is main)
+    // Headers given by name, looked up before the variants and the files: kdop taa --resolve's
+    // "kdop_variant.glsl", the variant under test behind a name that does not change.
+    std::vector<IncludedSource> provided;
 };
 
 // Where a shader file's stage, language and registry name come from: its extensions.

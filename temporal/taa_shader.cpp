@@ -3,6 +3,7 @@
 #include "core/embedded_files.h"
 #include "generator/clip_emitter.h"
 #include "generator/glsl_compiler.h"
+#include "generator/project_shader.h"
 #include "generator/variant_builder.h"
 
 #include <fmt/format.h>
@@ -51,18 +52,44 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view recti
     return std::make_unique<RunnableVariant>(std::move(built));
 }
 
+std::string kdop_variant_source(const VariantSpec& spec, bool hlsl) {
+    const int count = spec.neighborhood == Neighborhood::n9 ? 9 : 5;
+    const std::string gamma = spec.mode == Mode::varclip ? "gamma, " : "";
+    const char* vec3 = hlsl ? "float3" : "vec3";
+    return fmt::format("#define KDOP_NEIGHBORS {0}\n{1}\n"
+                       "{4} kdop_rectify({4} current, {4} history, float gamma, {4} neighborhood[{0}])\n"
+                       "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
+                       count, emit_function(spec, hlsl ? kHlsl : kGlsl), glsl_function_name(spec), gamma, vec3);
+}
+
 Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spec, const ResolveOptions& options) {
     if (spec.mode != Mode::clip && spec.mode != Mode::varclip)
         return fail(fmt::format("{}: the TAA resolve takes clip and varclip variants", variant_name(spec)));
     // The variant's function as a renderer includes it, and the one signature the resolve calls.
-    const int count = spec.neighborhood == Neighborhood::n9 ? 9 : 5;
-    const std::string gamma = spec.mode == Mode::varclip ? "gamma, " : "";
-    const std::string rectification =
-        fmt::format("#define KDOP_NEIGHBORS {0}\n{1}\n"
-                    "vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[{0}])\n"
-                    "{{\n    return {2}(current, history, {3}neighborhood);\n}}\n",
-                    count, emit_function(spec), glsl_function_name(spec), gamma);
-    return build_taa_shader(rectification, "taa-" + variant_name(spec), options);
+    return build_taa_shader(kdop_variant_source(spec, false), "taa-" + variant_name(spec), options);
+}
+
+Result<std::unique_ptr<RunnableVariant>> build_own_resolve(const std::filesystem::path& shader, const VariantSpec& spec,
+                                                           const std::string& hlsl_entry_point) {
+    if (spec.mode != Mode::clip && spec.mode != Mode::varclip)
+        return fail(fmt::format("{}: a resolve takes clip and varclip variants", variant_name(spec)));
+    auto kind = shader_file_kind(shader);
+    if (!kind) return std::unexpected(kind.error());
+    if (kind->stage != ShaderStage::compute)
+        return fail(fmt::format("{}: a resolve is a compute shader (.comp or .cs.hlsl)", shader.string()));
+    const std::string header = kind->hlsl ? "kdop_variant.hlsl" : "kdop_variant.glsl";
+    ProjectShaderOptions options;
+    options.hlsl_entry_point = hlsl_entry_point;
+    options.provided.push_back({header, kdop_variant_source(spec, kind->hlsl)});
+    auto built = build_project_shader(shader, {}, options);
+    if (!built) return std::unexpected(built.error());
+    if (built->provided_included.empty())
+        return fail(fmt::format("{}: does not #include \"{}\", so no variant would be measured in it: include it "
+                                "and clip with kdop_rectify(current, history, gamma, neighborhood) (docs/taa.md, "
+                                "\"Your own resolve\")",
+                                shader.string(), header));
+    built->built.name = fmt::format("{}-{}", kind->name, variant_name(spec));
+    return std::make_unique<RunnableVariant>(std::move(built->built));
 }
 
 std::string spatial_upscale_name(UpscaleFilter filter) { return fmt::format("spatial-{}", to_string(filter)); }

@@ -11,6 +11,7 @@
 #include "generator/variant_spec.h"
 #include "temporal/resolve_options.h"
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -25,6 +26,20 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spe
 // Messages name `name`.
 Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name,
                                                           const ResolveOptions& options = {});
+
+// "kdop_variant.glsl" (or, with `hlsl`, ".hlsl") for `spec`: KDOP_NEIGHBORS and the variant's
+// function behind the one name every resolve calls,
+//   vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[KDOP_NEIGHBORS])
+// (float3 in HLSL; gamma is passed on to a variance clip and ignored by a clip).
+std::string kdop_variant_source(const VariantSpec& spec, bool hlsl);
+
+// A renderer's own resolve around `spec` (kdop taa --resolve): `shader`, a compute shader in GLSL
+// (.comp) or HLSL (.cs.hlsl, entry `hlsl_entry_point`), includes "kdop_variant.glsl" (or .hlsl),
+// and its other includes resolve as kdop_add_variants resolves a project's (generator/
+// project_shader.h). Named "<shader>-<variant>". Refused: a shader that does not include it, or
+// does not compile (file:line).
+Result<std::unique_ptr<RunnableVariant>> build_own_resolve(const std::filesystem::path& shader, const VariantSpec& spec,
+                                                           const std::string& hlsl_entry_point = "main");
 
 // The spatial-only upscale (options.upscale): every output the current color the resolve's filter
 // reconstructs from the input samples, with no history, named "spatial-<filter>"

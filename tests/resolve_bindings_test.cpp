@@ -7,6 +7,7 @@
 #include "temporal/taa_shader.h"
 #include "tests/test_support.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -103,6 +104,122 @@ TEST(ResolveBindings, EachWrongMapIsRefusedNamingWhatIsWrong) {
         EXPECT_NE(bound.error().message.find(c.says), std::string::npos) << bound.error().message;
         EXPECT_EQ(bound.error().message.find("map.json"), 0u) << bound.error().message;
     }
+}
+
+// A renderer's resolve, GLSL: its own names and header, the variant through kdop_variant.glsl.
+constexpr const char* kGlslResolve = R"(#version 450
+#include "kdop_variant.glsl"
+#include "blend.glsl"
+#if KDOP_NEIGHBORS != 9
+#error this resolve gathers a 3x3
+#endif
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D current_color;
+layout(set = 0, binding = 1) uniform sampler2D previous_output;
+layout(set = 0, binding = 2) uniform sampler2D velocity;
+layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D resolved;
+layout(push_constant) uniform Push { float blend; float width; } push;
+void main()
+{
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy), size = textureSize(current_color, 0);
+    if (any(greaterThanEqual(p, size)))
+        return;
+    vec3 n[KDOP_NEIGHBORS];
+    for (int i = 0; i < 9; ++i)
+        n[i] = texelFetch(current_color, clamp(p + ivec2(i % 3 - 1, i / 3 - 1), ivec2(0), size - 1), 0).rgb;
+    const vec2 uv = (vec2(p) + 0.5 + texelFetch(velocity, p, 0).xy) / vec2(size);
+    const vec3 rectified = kdop_rectify(n[4], textureLod(previous_output, uv, 0.0).rgb, push.width, n);
+    imageStore(resolved, p, vec4(blend_current(rectified, n[4], push.blend), 1.0));
+}
+)";
+
+// The same in HLSL, with a separate sampler.
+constexpr const char* kHlslResolve = R"(#include "kdop_variant.hlsl"
+Texture2D<float4> current_color : register(t0);
+Texture2D<float4> previous_output : register(t1);
+SamplerState linear_clamp : register(s2);
+[[vk::image_format("rgba32f")]] RWTexture2D<float4> resolved : register(u3);
+struct Push
+{
+    float blend;
+    float width;
+};
+[[vk::push_constant]] ConstantBuffer<Push> push;
+[numthreads(8, 8, 1)]
+void main(uint3 id : SV_DispatchThreadID)
+{
+    uint w, h;
+    current_color.GetDimensions(w, h);
+    if (id.x >= w || id.y >= h)
+        return;
+    float3 n[KDOP_NEIGHBORS];
+    for (int i = 0; i < 9; ++i)
+        n[i] = current_color.Load(int3(clamp(int2(id.xy) + int2(i % 3 - 1, i / 3 - 1), int2(0, 0),
+                                             int2(w - 1, h - 1)), 0)).rgb;
+    const float3 history = previous_output.SampleLevel(linear_clamp, (float2(id.xy) + 0.5) / float2(w, h), 0).rgb;
+    resolved[id.xy] = float4(lerp(kdop_rectify(n[4], history, push.width, n), n[4], push.blend), 1);
+}
+)";
+
+std::string reflected(const Variant& v) {
+    std::string names;
+    for (std::uint32_t b = 0; b < v.binding_count; ++b)
+        names += fmt::format("{} ({}) ", v.bindings[b].name, int(v.bindings[b].type));
+    for (std::uint32_t m = 0; m < v.push_constant_count; ++m)
+        names += fmt::format("{}:{} ", v.push_constants[m].name, v.push_constants[m].size);
+    return names;
+}
+
+// A resolve in each language builds around a variant under its own file's name, and binds with
+// its map; the same shader without the include, or with an error, is refused.
+TEST(ResolveBindings, ARenderersResolveBuildsAroundTheVariantAndBindsByItsMap) {
+    test::TempDir dir;
+    test::write_file(dir / "resolve.comp", kGlslResolve);
+    test::write_file(dir / "blend.glsl", "vec3 blend_current(vec3 r, vec3 c, float w) { return r + w * (c - r); }\n");
+    test::write_file(dir / "resolve.cs.hlsl", kHlslResolve);
+    const VariantSpec spec{*resolve_axis_set("dop22"), Mode::varclip, Neighborhood::n9};
+    const struct {
+        const char* file;
+        const char* map;
+    } cases[] = {
+        {"resolve.comp", R"({"format": "kdop-resolve-bindings", "version": 1,
+            "resources": {"current_color": "current", "previous_output": "history", "velocity": "motion",
+                          "resolved": "output"},
+            "push_constants": {"blend": "current_weight", "width": "gamma"}})"},
+        {"resolve.cs.hlsl", R"({"format": "kdop-resolve-bindings", "version": 1,
+            "resources": {"current_color": "current", "previous_output": "history", "linear_clamp": "sampler",
+                          "resolved": "output"},
+            "push_constants": {"blend": "current_weight", "width": "gamma"}})"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.file);
+        auto built = build_own_resolve(dir / c.file, spec);
+        ASSERT_TRUE(built) << built.error().message;
+        EXPECT_EQ(std::string((*built)->variant().name),
+                  std::string(fs::path(c.file).stem().stem()) + "-dop22-varclip-n9");
+        auto map = parse_resolve_bindings(c.map, "map.json");
+        ASSERT_TRUE(map) << map.error().message;
+        auto bound = bind(*map, (*built)->variant());
+        ASSERT_TRUE(bound) << bound.error().message << "\n" << reflected((*built)->variant());
+        EXPECT_STREQ(bound->find(ResourceRole::output)->name, "resolved");
+    }
+
+    // A resolve that compiles but clips with a function of its own measures no variant.
+    std::string plain_text = kGlslResolve;
+    plain_text.replace(plain_text.find("#include \"kdop_variant.glsl\""), 28,
+                       "#define KDOP_NEIGHBORS 9\nvec3 kdop_rectify(vec3 c, vec3 h, float g, vec3 n[9]) { return h; }");
+    test::write_file(dir / "plain.comp", plain_text);
+    auto plain = build_own_resolve(dir / "plain.comp", spec);
+    ASSERT_FALSE(plain);
+    EXPECT_NE(plain.error().message.find("does not #include \"kdop_variant.glsl\""), std::string::npos)
+        << plain.error().message;
+
+    std::string broken = kGlslResolve;
+    broken.replace(broken.find("push.blend"), 10, "push.blnd");
+    test::write_file(dir / "broken.comp", broken);
+    auto error = build_own_resolve(dir / "broken.comp", spec);
+    ASSERT_FALSE(error);
+    EXPECT_NE(error.error().message.find("broken.comp:23:"), std::string::npos) << error.error().message;
 }
 
 // A map without a role every resolve has: the output.
