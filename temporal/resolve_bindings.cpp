@@ -98,21 +98,22 @@ struct MapReader {
             error(fmt::format("motion.{}", key), fmt::format("expected \"{}\" or \"{}\"", first, second)));
     }
 
+    // Spelled as sequence.json's "motion" (units, points_to, y_axis).
     Result<MotionConvention> motion(const json& root) const {
         MotionConvention m;
         const auto it = root.find("motion");
         if (it == root.end()) return m;
-        if (!it->is_object()) return std::unexpected(error("motion", "expected an object (units, y, points_to)"));
-        if (auto ok = known_keys(*it, {"units", "y", "points_to"}, "motion"); !ok) return std::unexpected(ok.error());
+        if (!it->is_object()) return std::unexpected(error("motion", "expected an object (units, points_to, y_axis)"));
+        if (auto ok = known_keys(*it, {"units", "points_to", "y_axis"}, "motion"); !ok)
+            return std::unexpected(ok.error());
         auto uv = either(*it, "units", "pixels", "uv");
-        auto up = either(*it, "y", "down", "up");
-        auto to_next = either(*it, "points_to", "previous", "next");
-        if (!uv) return std::unexpected(uv.error());
-        if (!up) return std::unexpected(up.error());
-        if (!to_next) return std::unexpected(to_next.error());
+        auto current = either(*it, "points_to", "previous", "current");
+        auto up = either(*it, "y_axis", "down", "up");
+        for (const auto* r : {&uv, &current, &up})
+            if (!*r) return std::unexpected(r->error());
         m.units = *uv ? MotionConvention::Units::uv : MotionConvention::Units::pixels;
-        m.y_up = *up;
-        m.points_to_previous = !*to_next;
+        m.points_to = *current ? MotionConvention::PointsTo::current : MotionConvention::PointsTo::previous;
+        m.y_axis = *up ? MotionConvention::YAxis::up : MotionConvention::YAxis::down;
         return m;
     }
 };
@@ -149,8 +150,8 @@ const char* to_string(ValueRole role) {
 MotionScale motion_scale(const MotionConvention& c, std::uint32_t width, std::uint32_t height) {
     MotionScale s;
     if (c.units == MotionConvention::Units::uv) s.x /= float(width), s.y /= float(height);
-    if (c.y_up) s.y = -s.y;
-    if (!c.points_to_previous) s.x = -s.x, s.y = -s.y;
+    if (c.y_axis == MotionConvention::YAxis::up) s.y = -s.y;
+    if (c.points_to == MotionConvention::PointsTo::current) s.x = -s.x, s.y = -s.y;
     return s;
 }
 

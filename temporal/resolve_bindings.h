@@ -11,11 +11,12 @@
 //       "resources": {"color_frame": "current", "history_frame": "history",
 //                     "motion_frame": "motion", "rectified_history": "output"},
 //       "push_constants": {"current_weight": "current_weight", "jitter": "jitter"},
-//       "motion": {"units": "pixels", "y": "down", "points_to": "previous"}
+//       "motion": {"units": "pixels", "points_to": "previous", "y_axis": "down"}
 //     }
 #pragma once
 
 #include "core/result.h"
+#include "sequence/sequence.h" // MotionConvention
 
 #include <kdop/variant.h>
 
@@ -54,17 +55,9 @@ enum class ValueRole : std::uint8_t {
 const char* to_string(ResourceRole role);
 const char* to_string(ValueRole role);
 
-// How the shader reads motion: in input pixels or as a fraction of the input size, +y down or up
-// the image, pointing to where the surface was last frame or from there to here.
-struct MotionConvention {
-    enum class Units : std::uint8_t { pixels, uv } units = Units::pixels;
-    bool y_up = false;
-    bool points_to_previous = true;
-    friend bool operator==(const MotionConvention&, const MotionConvention&) = default;
-};
-
-// kdop's motion (input pixels, +y down, pointing to the previous position) as the shader expects
-// it, for an input of width x height.
+// The factors that turn kdop's motion (input pixels, y down, pointing to the previous position)
+// into what a shader of `convention` reads (sequence.h's, the map's "motion": the inverse of
+// canonical_motion), for an input of width x height.
 struct MotionScale {
     float x = 1, y = 1;
 };
@@ -74,7 +67,7 @@ struct ResolveBindings {
     std::string file;                                              // the map's path, as given: what errors name
     std::vector<std::pair<std::string, ResourceRole>> resources;   // the shader's name, its role
     std::vector<std::pair<std::string, ValueRole>> push_constants; // the member's name, its role
-    MotionConvention motion;
+    MotionConvention motion;                                       // as sequence.json's "motion" spells it
 };
 
 // The map in `text`, read from `file` (which errors name, with the key at fault): unknown keys,

@@ -13,6 +13,7 @@
 #include "reference/cpu_clip.h"
 #include "scenes/sprite_scene.h"
 #include "sequence/jitter.h"
+#include "temporal/resolve_bindings.h"
 #include "temporal/taa_resolve.h"
 #include "temporal/taa_shader.h"
 #include "tests/gpu_support.h"
@@ -26,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <span>
 #include <string>
@@ -184,6 +186,24 @@ TEST(EngineShaders, ReflectsTheUpscalersTexturesAndPushConstants) {
         EXPECT_EQ(output->type, DescriptorType::storage_image);
         EXPECT_EQ(output->format, 109u); // VK_FORMAT_R32G32B32A32_SFLOAT
         EXPECT_EQ(upscale.push_constant_size, 12u) << name;
+    }
+}
+
+// The bindings map shipped beside each TAAU resolve (examples/engine_resolve/*.bindings.json, for
+// kdop taa --resolve-bindings) binds every texture, the output and both push constants of the
+// shader as the registry reflects it.
+TEST(EngineShaders, EachUpscalersBindingsMapBindsItsShader) {
+    for (const char* name : {"upscale_compute", "hlsl_upscale_compute"}) {
+        SCOPED_TRACE(name);
+        const std::filesystem::path file = std::filesystem::path(KDOP_SOURCE_DIR) / "examples" / "engine_resolve" /
+                                           (std::string(name) + ".bindings.json");
+        auto map = read_resolve_bindings(file);
+        ASSERT_TRUE(map) << map.error().message;
+        auto bound = bind(*map, shader(name));
+        ASSERT_TRUE(bound) << bound.error().message;
+        EXPECT_EQ(bound->resources.size(), 4u);
+        EXPECT_EQ(bound->values.size(), 2u);
+        EXPECT_STREQ(bound->find(ResourceRole::output)->name, "resolved_frame");
     }
 }
 

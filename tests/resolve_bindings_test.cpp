@@ -42,7 +42,9 @@ TEST(ResolveBindings, TheMapOfKdopsOwnResolveBindsEveryResourceAndMember) {
     ASSERT_TRUE(bound->find(ResourceRole::current));
     EXPECT_STREQ(bound->find(ResourceRole::current)->name, "color_frame");
     EXPECT_STREQ(bound->find(ResourceRole::output)->name, "rectified_history");
-    EXPECT_EQ(bound->motion, MotionConvention{});
+    EXPECT_EQ(bound->motion.units, MotionConvention::Units::pixels);
+    EXPECT_EQ(bound->motion.points_to, MotionConvention::PointsTo::previous);
+    EXPECT_EQ(bound->motion.y_axis, MotionConvention::YAxis::down);
 }
 
 // kdop's motion (input pixels, y down, to the previous position) as each convention reads it.
@@ -50,10 +52,22 @@ TEST(ResolveBindings, MotionIsScaledToTheShadersConvention) {
     const MotionScale same = motion_scale({}, 160, 90);
     EXPECT_EQ(same.x, 1.0f);
     EXPECT_EQ(same.y, 1.0f);
-    const MotionScale uv_up_next =
-        motion_scale({MotionConvention::Units::uv, /*y_up=*/true, /*points_to_previous=*/false}, 160, 90);
+    const MotionScale uv_up_next = motion_scale(
+        {MotionConvention::Units::uv, MotionConvention::PointsTo::current, MotionConvention::YAxis::up}, 160, 90);
     EXPECT_FLOAT_EQ(uv_up_next.x, -1.0f / 160);
     EXPECT_FLOAT_EQ(uv_up_next.y, 1.0f / 90);
+    // Every convention: what the shader reads, read back as a sequence of that convention is read,
+    // is kdop's motion again.
+    const glm::vec2 motion(2.5f, -1.25f);
+    for (auto units : {MotionConvention::Units::pixels, MotionConvention::Units::uv})
+        for (auto points_to : {MotionConvention::PointsTo::previous, MotionConvention::PointsTo::current})
+            for (auto y_axis : {MotionConvention::YAxis::down, MotionConvention::YAxis::up}) {
+                const MotionConvention c{units, points_to, y_axis};
+                const MotionScale s = motion_scale(c, 160, 90);
+                const glm::vec2 back = canonical_motion(motion * glm::vec2(s.x, s.y), c, 160, 90);
+                EXPECT_FLOAT_EQ(back.x, motion.x);
+                EXPECT_FLOAT_EQ(back.y, motion.y);
+            }
 }
 
 // Each wrong map is refused, naming the map file, what is wrong and where.
@@ -74,7 +88,7 @@ TEST(ResolveBindings, EachWrongMapIsRefusedNamingWhatIsWrong) {
         {head + R"("resources": {}, "extra": 1})", "map.json: the map: unknown key \"extra\""},
         {head + R"("resources": {"color_frame": "curent"}})", "resources.color_frame: \"curent\" is not a role"},
         {head + R"("resources": {"a": "current", "b": "current"}})", "the role current is also given to \"a\""},
-        {head + R"("motion": {"y": "sideways"}})", "motion.y: expected \"down\" or \"up\""},
+        {head + R"("motion": {"y_axis": "sideways"}})", "motion.y_axis: expected \"down\" or \"up\""},
         // Against the shader's reflection:
         {head + R"("resources": {"colour": "current", "history_frame": "history", "motion_frame": "motion",
                                  "rectified_history": "output"}, )" +
