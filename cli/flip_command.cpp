@@ -158,7 +158,7 @@ Action add_flip_command(CLI::App& app) {
                                "Compute on the CPU with the reference code the device passes are tested against, not "
                                "on the Vulkan device");
     flip->add_option("--device", o->run.device.device,
-                     "Vulkan device: a substring of its name [default: $KDOP_DEVICE, else lavapipe]")
+                     "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]")
         ->excludes(cpu);
     flip->add_flag("--validation", o->run.device.validation, "Enable the Khronos validation layer (slower)")
         ->excludes(cpu);

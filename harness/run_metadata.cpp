@@ -76,13 +76,20 @@ RunMetadata describe_run(const Context& context) {
     RunMetadata run = describe_run();
     run.device = context.device_name();
     run.driver = context.driver_info();
+    switch (context.properties().deviceType) {
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: run.device_type = "cpu"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: run.device_type = "discrete GPU"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: run.device_type = "integrated GPU"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: run.device_type = "virtual GPU"; break;
+    default: run.device_type = "other"; break;
+    }
     return run;
 }
 
 std::string metadata_markdown(const RunMetadata& run) {
     std::string out = fmt::format("- command: {}\n- kdop: {} (commit {})\n- date: {}\n- machine: {}\n",
                                   markdown_code(run.command), run.version, run.commit, run.date, run.machine);
-    if (!run.device.empty()) out += fmt::format("- device: {} ({})\n", run.device, run.driver);
+    if (!run.device.empty()) out += fmt::format("- device: {} ({}; {})\n", run.device, run.device_type, run.driver);
     if (run.seed) out += fmt::format("- seed: {}\n", *run.seed);
     return out;
 }
@@ -95,6 +102,7 @@ nlohmann::json metadata_json(const RunMetadata& run) {
                         {"machine", run.machine}};
     j["device"] = run.device.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device);
     j["driver"] = run.driver.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.driver);
+    j["device_type"] = run.device_type.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device_type);
     j["seed"] = run.seed ? nlohmann::json(*run.seed) : nlohmann::json(nullptr);
     return j;
 }

@@ -20,6 +20,7 @@ struct RunMetadata {
     std::string date;           // UTC, ISO 8601
     std::string machine;        // CPU model and core count
     std::string device, driver; // empty where no device took part
+    std::string device_type;    // "cpu", "discrete GPU", "integrated GPU", "virtual GPU" or "other"; as device
     std::optional<std::uint64_t> seed;
 };
 

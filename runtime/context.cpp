@@ -114,12 +114,27 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     if (wanted.empty())
         if (const char* env = std::getenv("KDOP_DEVICE")) wanted = env;
     std::vector<std::string> names;
+    // "gpu": the first discrete GPU, else the first integrated or virtual one: whatever the machine
+    // has that is not a CPU device, for a script that runs on any GPU machine.
+    const bool any_gpu = wanted == "gpu";
+    auto is_gpu = [](VkPhysicalDeviceType t, bool discrete_only) {
+        return t == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU ||
+               (!discrete_only &&
+                (t == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU || t == VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU));
+    };
+    bool has_discrete = false;
+    for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(d, &p);
+        has_discrete = has_discrete || p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+    }
     for (VkPhysicalDevice d : devices) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(d, &p);
         names.emplace_back(p.deviceName);
-        bool match = wanted.empty() ? p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
-                                    : names.back().find(wanted) != std::string::npos;
+        bool match = any_gpu          ? is_gpu(p.deviceType, has_discrete)
+                     : wanted.empty() ? p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
+                                      : names.back().find(wanted) != std::string::npos;
         if (match && !c->physical_) {
             c->physical_ = d;
             c->properties_ = p;
@@ -136,6 +151,9 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
         return fail(
             wanted.empty()
                 ? fmt::format("no CPU Vulkan device (lavapipe; Debian: mesa-vulkan-drivers); available devices: {}",
+                              available)
+            : any_gpu
+                ? fmt::format("no Vulkan GPU (a CPU device such as lavapipe is not one); available devices: {}",
                               available)
                 : fmt::format("no Vulkan device whose name contains '{}'; available devices: {}", wanted, available));
     }
