@@ -58,8 +58,9 @@ Action add_accuracy_command(CLI::App& app) {
         ->add_option("--volume-samples", o->study.volume_samples,
                      "Pixels per pair and neighborhood for the k-DOP/hull volume ratio; 0 skips it [default: 256]")
         ->check(whole_number(0, 1 << 20));
-    accuracy->add_option("--device", o->study.device.device,
-                         "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
+    accuracy->add_option(
+        "--device", o->study.device.device,
+        "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
     accuracy->add_flag("--validation", o->study.device.validation, "Enable the Khronos validation layer (slower)");
     accuracy->add_flag("--no-charts", o->no_charts, "Write the tables and report without the Pareto charts");
 

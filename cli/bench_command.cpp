@@ -63,8 +63,9 @@ Action add_bench_command(CLI::App& app) {
         ->excludes(callgrind_size)
         ->excludes(jobs);
     bench->add_flag("--no-charts", o->no_charts, "Write the table and report without charts");
-    bench->add_option("--device", o->study.bench.device,
-                      "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
+    bench->add_option(
+        "--device", o->study.bench.device,
+        "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
 
     return [o, bench] {
         auto catalog = VariantCatalog::create(o->sets);

@@ -109,8 +109,9 @@ Action add_choose_command(CLI::App& app) {
                     "Seed of the fit and of the bootstrap of the held-out ghosting's intervals [default: 1]")
         ->check(seed_number());
     cmd->add_option("--threads", o->run.threads, "Threads of the fit [default: one per core]")->check(thread_count());
-    cmd->add_option("--device", o->device,
-                    "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
+    cmd->add_option(
+        "--device", o->device,
+        "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
     cmd->add_flag(
         "--no-charts", [o](std::int64_t) { o->run.chart = false; }, "Write the tables and report without choice.png");
     cmd->add_option("--out", o->run.out, "Output directory (created if missing)")->required();

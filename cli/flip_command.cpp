@@ -157,8 +157,9 @@ Action add_flip_command(CLI::App& app) {
     auto* cpu = flip->add_flag("--cpu", o->run.cpu,
                                "Compute on the CPU with the reference code the device passes are tested against, not "
                                "on the Vulkan device");
-    flip->add_option("--device", o->run.device.device,
-                     "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]")
+    flip->add_option(
+            "--device", o->run.device.device,
+            "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]")
         ->excludes(cpu);
     flip->add_flag("--validation", o->run.device.validation, "Enable the Khronos validation layer (slower)")
         ->excludes(cpu);

@@ -49,8 +49,9 @@ Action add_run_command(CLI::App& app) {
                     "Variance-clip slab half-width in standard deviations (varclip only) [default: 1]")
         ->check(gamma_number());
     run->add_option("--format", o->format, "Texture format the inputs are uploaded in: rgba32f or rgba16f");
-    run->add_option("--device", o->device,
-                    "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
+    run->add_option(
+        "--device", o->device,
+        "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
     run->add_option("--repeat", o->repeat,
                     "Dispatch this many times and report pipeline creation and median dispatch time")
         ->check(whole_number(1, 100000));

@@ -29,8 +29,9 @@ Action add_stress_command(CLI::App& app) {
                   "double-precision reference; prints a table of variants x cases. Exits 3 if an invariant broke");
     stress->add_option("--out", o->out,
                        "Also write stress.csv, stress.json and report.md to this directory (created if missing)");
-    stress->add_option("--device", o->device,
-                       "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
+    stress->add_option(
+        "--device", o->device,
+        "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
     o->selection.add_to(*stress);
     stress->add_option("--seed", o->seed, "Seed of the random colors [default: 1]")->check(seed_number());
     stress->add_option("--gamma", o->gamma, "Variance-clip slab half-width in standard deviations [default: 1]")

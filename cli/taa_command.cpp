@@ -104,8 +104,9 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     taa->add_option("--seed", o->seed,
                     "Seed of the synthetic textures, the 3-D scenes and the bootstrap intervals [default: 1]")
         ->check(seed_number());
-    taa->add_option("--device", o->device,
-                    "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
+    taa->add_option(
+        "--device", o->device,
+        "Vulkan device: a substring of its name, or gpu for the first GPU [default: $KDOP_DEVICE, else lavapipe]");
     taa->add_flag("--validation", o->validation, "Enable the Khronos validation layer (slower)");
     taa->add_flag("--cpu-flip", o->cpu_flip,
                   "Measure ghosting and shimmer with the CPU's FLIP, the reference code the device's is tested "
