@@ -17,6 +17,9 @@ template <class... F>
 struct Overloaded : F... {
     using F::operator()...;
 };
+// Clang 16 (the fuzzers' compiler) deduces no aggregate's template arguments without it.
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
 
 bool missing(const Value& v) {
     return std::holds_alternative<std::monostate>(v) ||

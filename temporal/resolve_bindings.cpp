@@ -160,7 +160,7 @@ Result<ResolveBindings> parse_resolve_bindings(std::string_view text, const std:
     json root;
     try {
         root = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) { // a syntax error, or a number too large for a double
         return fail(fmt::format("{}: not JSON: {}", file, shown_text(e.what(), 200)));
     }
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", file));

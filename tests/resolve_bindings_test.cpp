@@ -84,6 +84,7 @@ TEST(ResolveBindings, EachWrongMapIsRefusedNamingWhatIsWrong) {
         const char* says;
     } cases[] = {
         {"{", "map.json: not JSON"},
+        {R"({"version": 8e8888})", "map.json: not JSON"}, // beyond a double: the fuzzer's first find
         {R"({"format": "other", "version": 1})", "map.json: format: expected \"kdop-resolve-bindings\""},
         {head + R"("resources": {}, "extra": 1})", "map.json: the map: unknown key \"extra\""},
         {head + R"("resources": {"color_frame": "curent"}})", "resources.color_frame: \"curent\" is not a role"},
