@@ -13,51 +13,46 @@
 
 namespace kdop::cli {
 
-// A validator that parses with `parse` and stores the value in `target`; `shown` is what the help
-// says the option takes.
+// Option `name`, whose text `parse` reads into `target` (a Result); `shown` is what the help says
+// it takes. A text `parse` refuses is a usage error with its message.
 template <class T, class Parse>
-CLI::Validator parsed_into(T& target, Parse parse, const std::string& shown) {
-    return CLI::Validator(
+void add_parsed_option(CLI::App& app, const std::string& name, T& target, Parse parse, const std::string& shown,
+                       const std::string& help) {
+    const CLI::Validator parsed(
         [&target, parse](std::string& text) -> std::string {
-            auto parsed = parse(text);
-            if (!parsed) return parsed.error().message;
-            target = *parsed;
+            auto value = parse(text);
+            if (!value) return value.error().message;
+            target = *value;
             return {};
         },
         shown);
+    // The validator has stored the value; the option's own function has nothing left to do.
+    app.add_option_function<std::string>(
+           name, [](const std::string&) {}, help)
+        ->check(parsed);
 }
 
 // How a resolve upscales, for sources whose frames are smaller than their output (docs/taa.md,
 // "Upscaling"); a source that does not upscale ignores them.
 inline void add_upscale_options(CLI::App& app, ResolveOptions& options) {
-    auto stored = [](const std::string&) {}; // each validator stores its value
-    app.add_option_function<std::string>(
-           "--upscale-filter", stored,
-           "Where a source upscales: how the resolve reconstructs each output pixel's current color from the "
-           "input samples around it: lanczos2 (clamped to the neighborhood's range, as FSR 2) or gaussian "
-           "[default: lanczos2]")
-        ->check(parsed_into(options.upscale_filter, parse_upscale_filter, "lanczos2|gaussian"));
-    app.add_option_function<std::string>(
-           "--upscale-sample-distance", stored,
-           "Where a source upscales: which neighbors of the nearest input sample the clip keeps: all, those whose "
-           "samples lie within D input pixels of the output pixel's center, or ue4 (UE4's TAAU: lerp(1.51, 1.3, "
-           "ratio - 1)) [default: all]")
-        ->check(parsed_into(options.sample_distance, parse_sample_distance, "all|ue4|D"));
-    app.add_option_function<std::string>(
-           "--upscale-box-scale", stored,
-           "Where a source upscales: widen the variance clip with the ratio: none, or fsr2 (gamma times 1 + (ratio - "
-           "1) / 2, as FSR 2.0 widens its box) [default: none]")
-        ->check(parsed_into(options.box_scale, parse_box_scale, "none|fsr2"));
+    add_parsed_option(app, "--upscale-filter", options.upscale_filter, parse_upscale_filter, "lanczos2|gaussian",
+                      "Where a source upscales: how the resolve reconstructs each output pixel's current color from "
+                      "the input samples around it: lanczos2 (clamped to the neighborhood's range, as FSR 2) or "
+                      "gaussian [default: lanczos2]");
+    add_parsed_option(app, "--upscale-sample-distance", options.sample_distance, parse_sample_distance, "all|ue4|D",
+                      "Where a source upscales: which neighbors of the nearest input sample the clip keeps: all, "
+                      "those whose samples lie within D input pixels of the output pixel's center, or ue4 (UE4's "
+                      "TAAU: lerp(1.51, 1.3, ratio - 1)) [default: all]");
+    add_parsed_option(app, "--upscale-box-scale", options.box_scale, parse_box_scale, "none|fsr2",
+                      "Where a source upscales: widen the variance clip with the ratio: none, or fsr2 (gamma times 1 "
+                      "+ (ratio - 1) / 2, as FSR 2.0 widens its box) [default: none]");
 }
 
 // `with_color_map` false leaves --color-map to the command (kdop optimize's fits in it too).
 inline void add_resolve_options(CLI::App& app, ResolveOptions& options, bool with_color_map = true) {
-    auto stored = [](const std::string&) {}; // the validator parses and stores the value
-    app.add_option_function<std::string>(
-           "--history-filter", stored,
-           "How the history is sampled at the reprojected position: bilinear, or catmull-rom (the 4x4 "
-           "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]")
-        ->check(parsed_into(options.history_filter, parse_history_filter, "bilinear|catmull-rom"));
+    add_parsed_option(app, "--history-filter", options.history_filter, parse_history_filter, "bilinear|catmull-rom",
+                      "How the history is sampled at the reprojected position: bilinear, or catmull-rom (the 4x4 "
+                      "cubic, sharper; Tauray uses its 5-tap approximation) [default: bilinear]");
     if (with_color_map)
         add_color_map_option(
             app, options.color_map,

@@ -6,26 +6,17 @@ binding's type misspelled, a required key dropped or an unknown key added is ref
 Usage: validate_reflection.py SCHEMA JSON...
 """
 import copy
-import json
 import sys
 
-import jsonschema
+from json_schema_check import load_json, print_errors, validator_for_file
 
 
 def main():
     schema_path, documents = sys.argv[1], sys.argv[2:]
-    with open(schema_path, encoding="utf-8") as f:
-        schema = json.load(f)
-    validator_class = jsonschema.validators.validator_for(schema)
-    validator_class.check_schema(schema)
-    validator = validator_class(schema)
+    validator = validator_for_file(schema_path)
     for path in documents:
-        with open(path, encoding="utf-8") as f:
-            document = json.load(f)
-        errors = sorted(validator.iter_errors(document), key=lambda e: list(e.path))
-        for error in errors:
-            print(f"{path}: {'/'.join(map(str, error.path))}: {error.message}")
-        if errors:
+        document = load_json(path)
+        if print_errors(validator, path, document):
             return 1
         entries = document["entries"]
         if not entries:
