@@ -4,6 +4,7 @@
 
 #include "cli/input_space_option.h"
 #include "cli/number_option.h"
+#include "cli/own_resolve_option.h"
 #include "cli/resolve_option.h"
 #include "core/shown_text.h"
 #include "generator/selection_options.h"
@@ -42,6 +43,7 @@ std::string conflict_message(const ChooseConflict& conflict) {
 Action add_choose_command(CLI::App& app) {
     struct Options {
         ChooseOptions run;
+        OwnResolveOptions own_resolve;
         std::string device;
         double ppd = 0;
     };
@@ -100,6 +102,7 @@ Action add_choose_command(CLI::App& app) {
                     "Frames of each sequence before measuring [default: 100]")
         ->check(whole_number(1, 100000));
     add_resolve_options(*cmd, o->run.evaluation.resolve);
+    add_own_resolve_options(*cmd, o->own_resolve);
     add_input_space_option(*cmd, o->run.input_space);
     cmd->add_option("--ppd", o->ppd, "FLIP's pixels per degree [default: as kdop taa's, about 67]")
         ->check(finite_number(kMinPixelsPerDegree, kMaxPixelsPerDegree));
@@ -128,6 +131,10 @@ Action add_choose_command(CLI::App& app) {
         if (auto ok = (*ranks)->agree(context ? Result<void>{} : std::unexpected(context.error())); !ok)
             return report_error(ok.error().message);
         if (auto conflict = check(o->run)) return usage_error(conflict_message(*conflict));
+        OwnResolveChoice own = own_resolve_choice(*cmd, o->own_resolve);
+        if (!own.usage.empty()) return usage_error(own.usage);
+        if (!own.input.empty()) return report_error(own.input);
+        o->run.evaluation.own_resolve = std::move(own.resolve);
         auto chosen = run_choose(**context, o->run, **ranks, *outputs);
         if (!chosen) return report(chosen.error());
         if (!(*ranks)->is_root()) return 0;

@@ -3,6 +3,7 @@
 #include "cli/hdr_flip_option.h"
 #include "cli/input_space_option.h"
 #include "cli/number_option.h"
+#include "cli/own_resolve_option.h"
 #include "cli/resolve_option.h"
 #include "cli/scene_options.h"
 #include "cli/size_option.h"
@@ -38,6 +39,7 @@ struct TaaOptions {
     bool validation = false, no_charts = false, write_frames = false, cpu_flip = false;
     InputSpace input_space = InputSpace::from_file;
     ResolveOptions resolve;
+    OwnResolveOptions own_resolve;
     ExposureOptions exposure; // HDR-FLIP's, for HDR sequences
 };
 
@@ -79,6 +81,7 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
             ->check(CLI::IsMember({"hdr", "ldr"}));
     add_input_space_option(*taa, o->input_space);
     add_resolve_options(*taa, o->resolve);
+    add_own_resolve_options(*taa, o->own_resolve);
     taa->add_flag("--write-frames", o->write_frames,
                   "Also write every measured output as EXR, frames/<sequence>/<variant>/NNNN.exr (kdop's scenes: "
                   "<scene>-shimmer and <scene>-ghosting)");
@@ -149,6 +152,9 @@ Action add_taa_command(CLI::App& app) {
                                            o->nss_sequence, o->sequences.size()));
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
+        OwnResolveChoice own = own_resolve_choice(*taa, o->own_resolve);
+        if (!own.usage.empty()) return usage_error(own.usage);
+        if (!own.input.empty()) return report_error(own.input);
         auto outputs = OutputSet::prepare(o->out);
         if (!outputs) return report_error(outputs.error().message);
         auto specs = o->selection.select();
@@ -197,7 +203,8 @@ Action add_taa_command(CLI::App& app) {
                                                      .cpu_flip = o->cpu_flip,
                                                      .exposure = o->exposure,
                                                      .metrics = *metrics,
-                                                     .spatial_upscale = true},
+                                                     .spatial_upscale = true,
+                                                     .own_resolve = std::move(own.resolve)},
                                       .width = size->first,
                                       .height = size->second,
                                       .timing_rounds = o->timing_rounds,

@@ -91,6 +91,7 @@ std::string metadata_markdown(const RunMetadata& run) {
                                   markdown_code(run.command), run.version, run.commit, run.date, run.machine);
     if (!run.device.empty()) out += fmt::format("- device: {} ({}; {})\n", run.device, run.device_type, run.driver);
     if (run.seed) out += fmt::format("- seed: {}\n", *run.seed);
+    if (!run.resolve.empty()) out += fmt::format("- resolve: {}\n", markdown_code(run.resolve));
     return out;
 }
 
@@ -104,6 +105,7 @@ nlohmann::json metadata_json(const RunMetadata& run) {
     j["driver"] = run.driver.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.driver);
     j["device_type"] = run.device_type.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device_type);
     j["seed"] = run.seed ? nlohmann::json(*run.seed) : nlohmann::json(nullptr);
+    if (!run.resolve.empty()) j["resolve"] = run.resolve;
     return j;
 }
 

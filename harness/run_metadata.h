@@ -22,6 +22,9 @@ struct RunMetadata {
     std::string device, driver; // empty where no device took part
     std::string device_type;    // "cpu", "discrete GPU", "integrated GPU", "virtual GPU" or "other"; as device
     std::optional<std::uint64_t> seed;
+    // The resolve the figures come from, where not kdop's own: a renderer's (kdop taa --resolve),
+    // "<file> (fnv1a64 <hash of its text and map>)".
+    std::string resolve;
 };
 
 // Keeps argv for describe_run(); main() calls it first.

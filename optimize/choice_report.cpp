@@ -1,6 +1,7 @@
 #include "optimize/choice_report.h"
 
 #include "core/escaped_text.h"
+#include "core/shown_text.h"
 #include "generator/manifest.h"
 #include "harness/declared_table.h"
 #include "harness/gnuplot.h"
@@ -116,7 +117,28 @@ ResolveSettings measured_resolve(const ChooseResult& r, const ChooseOptions& o) 
     return resolve_settings(resolve);
 }
 
+// The same, measured through a renderer's own resolve (--resolve): only what kdop gave it.
+std::string own_resolve_section(const ChooseResult& r, const ChooseOptions& o, const OwnResolve& own) {
+    std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
+    if (r.recommendation.chosen) {
+        const Candidate& c = r.candidates[*r.recommendation.chosen];
+        md += fmt::format("| mode (recommended) | {} |\n| neighborhood (recommended) | {} |\n", to_string(c.key.mode),
+                          to_string(c.key.neighborhood));
+    }
+    md += fmt::format("| resolve | {} (--resolve), bound by {} |\n| gamma, where its map takes it | {} |\n"
+                      "| current weight, where its map takes it | {} |\n| FLIP | {} at {:.1f} pixels per degree |\n"
+                      "| warm-up | {} frames |\n\n",
+                      markdown_code(own.label()), markdown_code(own.bindings.file), o.evaluation.resolve.gamma,
+                      o.evaluation.resolve.current_weight, r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP",
+                      o.evaluation.ppd, o.evaluation.schedule.warmup);
+    if (r.recommendation.chosen)
+        md += "kdop.manifest names the resolve in a comment and records no resolve settings: the figures are those "
+              "of your resolve, as your build makes it, with kdop's variant in it.\n\n";
+    return md;
+}
+
 std::string settings_section(const ChooseResult& r, const ChooseOptions& o) {
+    if (o.evaluation.own_resolve) return own_resolve_section(r, o, *o.evaluation.own_resolve);
     const ResolveSettings settings = measured_resolve(r, o);
     std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
     if (r.recommendation.chosen) {
@@ -232,7 +254,13 @@ std::string choice_manifest(const ChooseResult& r, const ChooseOptions& o) {
     const Candidate& c = r.candidates[*r.recommendation.chosen];
     std::string text = "# kdop choose's recommendation (choice.md says why), and the TAA resolve it was measured\n"
                        "# with: build the resolve with these (kdop_add_variants declares them as resolve_settings).\n";
-    text += resolve_lines(measured_resolve(r, o));
+    if (o.evaluation.own_resolve)
+        text += fmt::format("# Measured through your own resolve, {} (kdop choose --resolve), with a current weight\n"
+                            "# of {:g} and a gamma of {:g} where its map takes them.\n",
+                            one_line_text(o.evaluation.own_resolve->label()), o.evaluation.resolve.current_weight,
+                            o.evaluation.resolve.gamma);
+    else
+        text += resolve_lines(measured_resolve(r, o));
     if (c.fitted || r.given_files.count(c.key.set)) text += fmt::format("set: {}.axes\n", c.key.set);
     return text + c.key.name() + "\n";
 }
@@ -241,7 +269,8 @@ Result<ChooseResult> run_choose(const Context& context, const ChooseOptions& opt
                                 OutputSet& outputs) {
     auto chosen = choose(context, options, ranks);
     if (!chosen || !ranks.is_root()) return chosen;
-    const RunMetadata run = describe_run(context);
+    RunMetadata run = describe_run(context);
+    if (options.evaluation.own_resolve) run.resolve = options.evaluation.own_resolve->label();
     // A chart that fails costs the chart, not the run.
     bool charted = false;
     if (charts_available(options.chart)) {

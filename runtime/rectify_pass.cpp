@@ -137,8 +137,13 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     sampler.magFilter = sampler.minFilter = VK_FILTER_NEAREST;
     sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &p->sampler_));
+    sampler.magFilter = sampler.minFilter = VK_FILTER_LINEAR;
+    KDOP_VK_TRY(vkCreateSampler(device, &sampler, nullptr, &p->linear_sampler_));
 
+    // A renderer's resolve may read its inputs as separate textures, with one sampler or several.
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, input_count},
+                                          {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, input_count},
+                                          {VK_DESCRIPTOR_TYPE_SAMPLER, input_count},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     auto sets = KernelSets::create(context, sizes, 1);
     if (!sets) return std::unexpected(sets.error());
@@ -240,7 +245,11 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, float gamma) 
 }
 
 Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<const PushConstantValue> values) {
+    return dispatch(kernel, values, {});
+}
 
+Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<const PushConstantValue> values,
+                                             std::span<const BindingAs> as) {
     VkDevice device = context_.device();
 
     if (auto ok = kernel_sets_.reset(); !ok) return std::unexpected(ok.error());
@@ -248,42 +257,51 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     if (!allocated) return std::unexpected(allocated.error());
     const VkDescriptorSet set = *allocated;
     // Each binding the registry reports gets the image its name asks for (the names of the
-    // compute-shader template, shader_templates/rectify.comp.in, or those given to create()),
-    // whatever its binding number.
-    const std::size_t count = kernel.bindings().size();
+    // compute-shader template, shader_templates/rectify.comp.in, or those given to create(), or
+    // what `as` gives it), whatever its binding number.
+    const VkSampler sampler = as.empty() ? sampler_ : linear_sampler_;
     std::vector<Bound> bound;
-    for (std::size_t i = 0; i < count; ++i) {
-        const Kernel::Binding& b = kernel.bindings()[i];
+    for (const Kernel::Binding& b : kernel.bindings()) {
+        const auto given = std::find_if(as.begin(), as.end(), [&](const BindingAs& a) { return a.binding == b.name; });
+        const std::string_view wanted = given != as.end() ? given->input : std::string_view(b.name);
+        if (wanted == kSampler && b.type == DescriptorType::sampler) {
+            bound.push_back({b.binding, BoundImage{VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED, sampler}});
+            continue;
+        }
         const auto input =
-            std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.name == b.name; });
-        const Texture* texture = b.name == "rectified_history" ? &output_
-                                 : input != inputs_.end()      ? &input->texture()
-                                                               : nullptr;
+            std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.name == wanted; });
+        const Texture* texture = wanted == kOutput ? &output_ : input != inputs_.end() ? &input->texture() : nullptr;
         const bool storage = b.type == DescriptorType::storage_image;
-        const bool image = storage || b.type == DescriptorType::combined_image_sampler;
+        const bool separate = b.type == DescriptorType::sampled_image;
+        const bool image = storage || separate || b.type == DescriptorType::combined_image_sampler;
         if (!texture || !image || storage != (texture == &output_)) {
             std::string provided;
             for (const Input& in : inputs_) provided += in.name + " ";
-            return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides ({}samplers, "
-                                    "rectified_history storage image)",
-                                    kernel.name(), b.binding, b.name, to_string(b.type), provided));
+            return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides ({}textures, "
+                                    "{} storage image)",
+                                    kernel.name(), b.binding, b.name, to_string(b.type), provided, kOutput));
         }
         if (input != inputs_.end() && !input->uploaded)
-            return fail(fmt::format("{}: dispatch before '{}' was uploaded", kernel.name(), b.name));
+            return fail(fmt::format("{}: dispatch before '{}' was uploaded", kernel.name(), wanted));
         bound.push_back(
             {b.binding,
              BoundImage{texture->view, storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                        storage ? VK_NULL_HANDLE : sampler_}});
+                        storage || separate ? VK_NULL_HANDLE : sampler}});
     }
     if (auto ok = kernel_sets_.write(kernel, set, bound); !ok) return std::unexpected(ok.error());
     // Push constants by name, as the registry lays them out: every member needs a value of its size.
     std::vector<std::byte> push(kernel.push_constant_size());
     for (const Kernel::PushConstant& p : kernel.push_constants()) {
         auto given = std::find_if(values.begin(), values.end(), [&](const auto& v) { return v.name == p.name; });
-        if (given == values.end() || given->values.size() * sizeof(float) != p.size || p.offset + p.size > push.size())
+        const std::size_t words = given == values.end() ? 0 : given->values.size() + given->uints.size();
+        if (given == values.end() || words * 4 != p.size || p.offset + p.size > push.size() ||
+            (!given->values.empty() && !given->uints.empty()))
             return fail(fmt::format("{}: push constant '{}' ({} bytes at {}) has no value of that size from the caller",
                                     kernel.name(), p.name, p.size, p.offset));
-        std::memcpy(push.data() + p.offset, given->values.data(), p.size);
+        if (given->uints.empty())
+            std::memcpy(push.data() + p.offset, given->values.data(), p.size);
+        else
+            std::memcpy(push.data() + p.offset, given->uints.data(), p.size);
     }
     for (const PushConstantValue& v : values)
         if (std::none_of(kernel.push_constants().begin(), kernel.push_constants().end(),
@@ -460,6 +478,7 @@ RectifyPass::~RectifyPass() {
     vkDeviceWaitIdle(device);
     vkDestroyQueryPool(device, timestamps_, nullptr);
     vkDestroySampler(device, sampler_, nullptr);
+    vkDestroySampler(device, linear_sampler_, nullptr);
     for (Input& in : inputs_)
         for (Texture& t : in.slots) destroy(t);
     destroy(output_);

@@ -68,10 +68,31 @@ public:
     // storage image), a project's own shader included: every push-constant member gets the value
     // of its name, as floats; a missing or extra value is an error.
     struct PushConstantValue {
+        PushConstantValue(std::string name, std::vector<float> values)
+            : name(std::move(name)), values(std::move(values)) {}
+        // A uint member's (a frame index, a flag).
+        static PushConstantValue uint(std::string name, std::uint32_t value) {
+            PushConstantValue v(std::move(name), {});
+            v.uints = {value};
+            return v;
+        }
         std::string name;
         std::vector<float> values;
+        std::vector<std::uint32_t> uints; // instead of values
     };
     Result<DispatchTiming> dispatch(const Kernel& kernel, std::span<const PushConstantValue> values);
+    // The same for a kernel whose bindings are named otherwise: a renderer's own resolve, bound by
+    // role (temporal/resolve_bindings.h). Each of `as` names one of the kernel's bindings and what
+    // it gets: an input's name, kOutput (the storage image written) or kSampler (for a separate
+    // texture's sampler). A binding `as` does not name gets the input of its own name. Every
+    // sampler is then linear and clamped to the edge, as a renderer's texture() reads expect; kdop's
+    // own kernels read with texelFetch, where the sampler does nothing.
+    struct BindingAs {
+        std::string_view binding, input;
+    };
+    static constexpr std::string_view kOutput = "rectified_history", kSampler = "(sampler)";
+    Result<DispatchTiming> dispatch(const Kernel& kernel, std::span<const PushConstantValue> values,
+                                    std::span<const BindingAs> as);
     // The output of the last dispatch.
     Result<Image> download();
 
@@ -129,9 +150,10 @@ private:
     // Where the output is after the last command: GENERAL after a dispatch, TRANSFER_SRC_OPTIMAL
     // after a copy or a download.
     VkImageLayout output_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
-    DeviceBuffer upload_, readback_; // host-visible
-    VkSampler sampler_ = VK_NULL_HANDLE;
-    KernelSets kernel_sets_; // one set, written afresh for each dispatch's kernel
+    DeviceBuffer upload_, readback_;            // host-visible
+    VkSampler sampler_ = VK_NULL_HANDLE;        // nearest: kdop's kernels, which read with texelFetch
+    VkSampler linear_sampler_ = VK_NULL_HANDLE; // dispatches with bindings `as`
+    KernelSets kernel_sets_;                    // one set, written afresh for each dispatch's kernel
     std::unique_ptr<OneShotCommands> commands_;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
     bool dispatched_ = false;                 // the output holds a dispatch's result

@@ -31,23 +31,30 @@ Result<void> TaaEvaluation::set_variants(std::vector<VariantSpec> specs) {
     return {};
 }
 
-Result<const Variant*> TaaEvaluation::shader(std::size_t v, bool nearer_larger, bool upscale) {
+Result<const BoundOwnResolve*> TaaEvaluation::shader(std::size_t v, bool nearer_larger, bool upscale) {
+    const bool own = options_.own_resolve.has_value();
     const bool reads_depth = options_.resolve.dilate_motion && nearer_larger;
-    auto& built = shaders_[2 * int(upscale) + int(reads_depth)];
+    auto& built = shaders_[own ? 0 : 2 * int(upscale) + int(reads_depth)];
     if (built.empty()) {
         // All or none: a failed build leaves nothing half-built for the next call to index into.
         ResolveOptions options = options_.resolve;
         options.depth_nearer_larger = reads_depth;
         options.upscale = upscale;
-        std::vector<std::unique_ptr<RunnableVariant>> shaders;
+        std::vector<BoundOwnResolve> shaders;
         for (const VariantSpec& spec : specs_) {
+            if (own) {
+                auto bound = build_bound_resolve(*options_.own_resolve, spec);
+                if (!bound) return std::unexpected(bound.error());
+                shaders.push_back(std::move(*bound));
+                continue;
+            }
             auto shader = build_taa_shader(spec, options);
             if (!shader) return std::unexpected(shader.error());
-            shaders.push_back(std::move(*shader));
+            shaders.push_back({std::move(*shader), {}});
         }
         built = std::move(shaders);
     }
-    return &built[v]->variant();
+    return &built[v];
 }
 
 Result<FlipEvaluator*> TaaEvaluation::flip_evaluator(std::uint32_t width, std::uint32_t height) {
@@ -78,11 +85,13 @@ Result<TaaResolve*> TaaEvaluation::resolve(const FrameSource& source, bool neare
     resolve_.reset();
     std::vector<const Variant*> shaders;
     std::vector<std::string> names;
+    std::vector<const BoundResolve*> roles;
     for (std::size_t v = 0; v < specs_.size(); ++v) {
         auto shader = this->shader(v, nearer_larger, upscale);
         if (!shader) return std::unexpected(shader.error());
-        shaders.push_back(*shader);
+        shaders.push_back(&(*shader)->shader->variant());
         names.push_back(variant_name(specs_[v]));
+        if (options_.own_resolve) roles.push_back(&(*shader)->roles);
     }
     ResolveOptions options = options_.resolve;
     options.upscale = upscale;
@@ -96,7 +105,7 @@ Result<TaaResolve*> TaaEvaluation::resolve(const FrameSource& source, bool neare
         names.push_back(spatial_upscale_name(options.upscale_filter));
     }
     auto made = TaaResolve::create(*context_, shaders, source.input_width(), source.input_height(), source.width(),
-                                   source.height(), options, std::move(names));
+                                   source.height(), options, std::move(names), std::move(roles));
     if (!made) return std::unexpected(made.error());
     resolve_ = std::move(*made);
     resolve_key_ = key;
@@ -104,7 +113,7 @@ Result<TaaResolve*> TaaEvaluation::resolve(const FrameSource& source, bool neare
 }
 
 std::size_t TaaEvaluation::shader_count(const FrameSource& source) const {
-    return specs_.size() + std::size_t(options_.spatial_upscale && source.upscales());
+    return specs_.size() + std::size_t(options_.spatial_upscale && source.upscales() && !options_.own_resolve);
 }
 
 std::size_t TaaEvaluation::frames(const TaaScene&) const {
@@ -179,9 +188,12 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const TaaScene& scene,
 
 Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const SequenceFrames& sequence,
                                                           const EvaluationObserver& observer) {
-    // A resolve that does not dilate motion never reads depth: its files are not decoded.
+    // A resolve that does not read depth (kdop's without --dilate-motion, a renderer's without a
+    // depth role): its files are not decoded.
+    const bool reads_depth =
+        options_.own_resolve ? options_.own_resolve->reads_depth() : options_.resolve.dilate_motion;
     const SequenceFrames without_depth = sequence.without_depth();
-    const SequenceFrames& source = options_.resolve.dilate_motion ? sequence : without_depth;
+    const SequenceFrames& source = reads_depth ? sequence : without_depth;
     return measure(source, sequence.sequence().depth_nearer_larger, observer);
 }
 

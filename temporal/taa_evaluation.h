@@ -12,6 +12,7 @@
 #include "scenes/taa_scene.h"
 #include "sequence/frame_source.h"
 #include "temporal/flip_evaluator.h"
+#include "temporal/own_resolve.h"
 #include "temporal/resolve_options.h"
 #include "temporal/taa_measure.h"
 #include "temporal/taa_resolve.h"
@@ -20,6 +21,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <tuple>
@@ -37,6 +39,10 @@ struct EvaluationOptions {
     // Where a source upscales, one more row after the variants': the spatial-only upscale of the
     // same input (build_spatial_upscale_shader), so a reader sees what the history buys.
     bool spatial_upscale = false;
+    // A renderer's own resolve, run in place of kdop's (kdop taa --resolve). The options of kdop's
+    // resolve that its shader has no counterpart of do not apply: the values its map's roles take
+    // (the current weight, gamma, the sample distance) do, and there is no spatial-only row.
+    std::optional<OwnResolve> own_resolve;
 };
 
 // One variant's figures on one scene or sequence.
@@ -110,8 +116,9 @@ public:
 private:
     TaaEvaluation(const Context& context, const EvaluationOptions& options);
     // The resolve of variant `v` for a depth convention (only --dilate-motion reads depth), and
-    // for upscaling or not.
-    Result<const Variant*> shader(std::size_t v, bool nearer_larger, bool upscale = false);
+    // for upscaling or not; a renderer's own resolve (options.own_resolve) is the same for all,
+    // with the roles it is bound by.
+    Result<const BoundOwnResolve*> shader(std::size_t v, bool nearer_larger, bool upscale = false);
     // One resolve of every variant's shader, for `source`'s frame sizes and a depth convention;
     // where it upscales and options.spatial_upscale asks, the spatial-only upscale last.
     Result<TaaResolve*> resolve(const FrameSource& source, bool nearer_larger);
@@ -119,8 +126,9 @@ private:
     const Context* context_;
     std::vector<VariantSpec> specs_;
     EvaluationOptions options_;
-    // By upscaling and depth convention (2 x upscale + nearer_larger), built when first needed.
-    std::vector<std::unique_ptr<RunnableVariant>> shaders_[4];
+    // By upscaling and depth convention (2 x upscale + nearer_larger), built when first needed;
+    // the roles only for a renderer's own resolve, built once, in the first.
+    std::vector<BoundOwnResolve> shaders_[4];
     std::unique_ptr<RunnableVariant> spatial_; // the spatial-only upscale, built when first needed
     // Input width and height, output width and height, nearer_larger.
     using ResolveKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, bool>;

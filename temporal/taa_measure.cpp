@@ -200,7 +200,8 @@ public:
             ahead_.emplace(source.frame_count(), 1, [&source](std::size_t i) { return source.frame(i); });
         // A source that draws on the device draws every frame straight into the resolve: motion and
         // depth never come back, color and reference only for the frames measured.
-        on_device_ = ahead_ ? nullptr : source.device_frames();
+        // Not where the resolve converts the motion on the host (a renderer's own convention).
+        on_device_ = ahead_ || !resolve.takes_device_frames() ? nullptr : source.device_frames();
     }
 
     // Frame `i` through every shader, its outputs read back with `read_outputs`; the frame as it
@@ -217,7 +218,7 @@ public:
         auto read = ahead_ ? ahead_->take() : source_.frame(i);
         if (!read) return std::unexpected(read.error());
         if (auto ok = check(*read, i, label); !ok) return std::unexpected(ok.error());
-        if (auto ok = resolve_.advance_all(*read, starts, read_outputs); !ok)
+        if (auto ok = resolve_.advance_all(*read, starts, read_outputs, std::uint32_t(i)); !ok)
             return fail(fmt::format("{}: {}", label, ok.error().message));
         return std::move(*read);
     }

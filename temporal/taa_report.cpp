@@ -241,11 +241,18 @@ Table taa_frames_table(const std::vector<TaaFrameRow>& rows, const Metrics& metr
     return declared_table<TaaFrameRow>(columns, rows);
 }
 
+std::string describe_resolve(const TaaReportSettings& s) {
+    if (s.own_resolve.empty()) return describe(s.resolve);
+    return fmt::format("the resolve {} given to kdop taa --resolve, bound by its map, with a current weight of {:g} "
+                       "and a gamma of {:g} where its map asks for them",
+                       s.own_resolve, s.resolve.current_weight, s.resolve.gamma);
+}
+
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run, const TaaReportSettings& s) {
     std::string md = "# kdop taa: ghosting and shimmer over TAA sequences\n\n";
     md += fmt::format("Each variant rectifies the history of one TAA resolve on the device ({}x{} frames; {}), as in "
                       "Ikkala et al. 2024, Sec. 4, in LDR-FLIP at {:.1f} pixels per degree (computed {}).",
-                      s.width, s.height, describe(s.resolve), s.pixels_per_degree,
+                      s.width, s.height, describe_resolve(s), s.pixels_per_degree,
                       s.flip_on_device ? "on the device, kdop's flip/device_flip.h" : "on the CPU, kdop's flip/flip.h");
     // kdop's own scenes are the rows whose scene is not a sequence's.
     const bool own_scenes = std::any_of(rows.begin(), rows.end(), [&](const TaaRow& r) {

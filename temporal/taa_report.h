@@ -78,6 +78,7 @@ struct TaaReportSettings {
     std::vector<std::string> charts;    // per scene, cost against ghosting and shimmer; empty: none drawn
     std::vector<std::string> over_time; // per scene, each variant's figures over the frames; empty: none drawn
     ResolveOptions resolve;
+    std::string own_resolve; // a renderer's resolve measured instead of kdop's (OwnResolve::label); empty: kdop's
     // kdop's own scenes measured: name and what the scene is made of (TaaScene::content).
     std::vector<std::pair<std::string, std::string>> scene_contents;
     // The sequences measured (`kdop taa --sequence`), by name, beside kdop's own scenes.
@@ -86,6 +87,9 @@ struct TaaReportSettings {
     ExposureOptions hdr;                 // HDR-FLIP's tone mapper and exposures, for the HDR sequences
     Metrics metrics = default_metrics(); // what the rows were measured with
 };
+
+// The resolve as the reports describe it: kdop's with its options, or a renderer's by name.
+std::string describe_resolve(const TaaReportSettings& settings);
 
 std::string taa_report_markdown(const std::vector<TaaRow>& rows, const RunMetadata& run,
                                 const TaaReportSettings& settings);

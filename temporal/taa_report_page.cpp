@@ -168,7 +168,7 @@ std::string taa_report_html(const std::vector<TaaRow>& rows, const RunMetadata& 
                     "(HDR sequences in HDR-FLIP) at {:.1f} pixels per degree, {}. <a href=\"report.md\">report.md</a> "
                     "explains every column; <a href=\"taa.csv\">taa.csv</a> and "
                     "<a href=\"taa_frames.csv\">taa_frames.csv</a> hold the figures.</p>\n",
-                    variants.size(), scenes.size(), s.pixels_per_degree, html_text(describe(s.resolve)));
+                    variants.size(), scenes.size(), s.pixels_per_degree, html_text(describe_resolve(s)));
     html += "<nav><a href=\"#table\">table</a>";
     if (has_viewer) html += "<a href=\"#viewer-section\">frame viewer</a>";
     for (const std::string& scene : scenes)

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace kdop {
 namespace {
 
@@ -10,6 +12,25 @@ constexpr const char* kColor = "color_frame";
 constexpr const char* kHistory = "history_frame"; // one per shader, kept on the device
 constexpr const char* kMotion = "motion_frame";
 constexpr const char* kDepth = "depth_frame";
+
+// What the pass gives a binding of each role.
+std::string_view pass_input(ResourceRole role) {
+    switch (role) {
+    case ResourceRole::current: return kColor;
+    case ResourceRole::history: return kHistory;
+    case ResourceRole::motion: return kMotion;
+    case ResourceRole::depth: return kDepth;
+    case ResourceRole::output: return RectifyPass::kOutput;
+    case ResourceRole::sampler: return RectifyPass::kSampler;
+    }
+    return {};
+}
+
+constexpr std::uint32_t kRgba32f = 109; // VK_FORMAT_R32G32B32A32_SFLOAT, as the reflection records it
+
+bool same(const MotionConvention& a, const MotionConvention& b) {
+    return a.units == b.units && a.points_to == b.points_to && a.y_axis == b.y_axis;
+}
 
 } // namespace
 
@@ -29,9 +50,11 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
 Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, std::span<const Variant* const> shaders,
                                                        std::uint32_t input_width, std::uint32_t input_height,
                                                        std::uint32_t width, std::uint32_t height,
-                                                       const ResolveOptions& options, std::vector<std::string> names) {
+                                                       const ResolveOptions& options, std::vector<std::string> names,
+                                                       std::vector<const BoundResolve*> roles) {
     if (shaders.empty()) return fail("a resolve of no shader");
     if (!names.empty() && names.size() != shaders.size()) return fail("a resolve's shaders and names differ in count");
+    if (!roles.empty() && roles.size() != shaders.size()) return fail("a resolve's shaders and roles differ in count");
     const bool smaller = input_width != width || input_height != height;
     if (smaller != options.upscale)
         return fail(fmt::format("internal error: a resolve of {}x{} frames to {}x{} built {}for upscaling", input_width,
@@ -46,6 +69,33 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
         auto kernel = Kernel::create(context, *shader);
         if (!kernel) return std::unexpected(kernel.error());
         r->kernels_.push_back(std::move(*kernel));
+    }
+    r->reads_depth_ = options.dilate_motion;
+    r->roles_ = std::move(roles);
+    r->as_.resize(shaders.size());
+    const BoundResolve* first = nullptr; // the first shader's with roles
+    for (std::size_t s = 0; s < r->roles_.size(); ++s) {
+        const BoundResolve* bound = r->roles_[s];
+        if (!bound) continue;
+        if (!first) first = bound;
+        if (!same(bound->motion, first->motion))
+            return fail("internal error: the shaders of one resolve declare different motion conventions");
+        // The history is a copy of the output, kept on the device in the pass's rgba32f.
+        const DescriptorBinding* output = bound->find(ResourceRole::output);
+        if (output && output->format != kRgba32f)
+            return fail(fmt::format("{}: its output '{}' is not rgba32f: kdop keeps every history as rgba32f and "
+                                    "copies the output there, so declare the output rgba32f to measure the resolve",
+                                    r->names_[s], output->name));
+        for (const BoundResolve::Resource& resource : bound->resources) {
+            r->as_[s].push_back({resource.binding->name, pass_input(resource.role)});
+            if (resource.role == ResourceRole::depth) r->reads_depth_ = true;
+        }
+    }
+    if (first) {
+        r->motion_scale_ = motion_scale(first->motion, input_width, input_height);
+        // kdop's own shaders read kdop's motion: they cannot share the upload with a conversion.
+        if (!r->takes_device_frames() && std::find(r->roles_.begin(), r->roles_.end(), nullptr) != r->roles_.end())
+            return fail("internal error: kdop's resolve beside one that reads its motion in another convention");
     }
     r->outputs_.resize(shaders.size());
     // In the order advance_all() uploads them; motion and depth with the channels they have.
@@ -67,7 +117,8 @@ Result<const Image*> TaaResolve::advance(const LoadedFrame& frame, bool starts_h
     return &outputs_.front();
 }
 
-Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs) {
+Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs,
+                                     std::uint32_t index) {
     if (frame.color.width != input_width_ || frame.color.height != input_height_)
         return fail(fmt::format("a {}x{} frame for a resolve of {}x{} frames", frame.color.width, frame.color.height,
                                 input_width_, input_height_));
@@ -78,34 +129,48 @@ Result<void> TaaResolve::advance_all(const LoadedFrame& frame, bool starts_histo
     if (has_motion && frame.motion.size() != pixels) return fail("a frame with a history but no motion");
     if (options_.dilate_motion && has_motion && !frame.depth)
         return fail("--dilate-motion takes the motion of the nearest neighbor, and this frame has no depth");
+    if (reads_depth_ && !options_.dilate_motion && !frame.depth)
+        return fail("the resolve reads depth (its map's depth role), and this frame has none");
     // The frame's inputs once; then each shader's own history, its dispatch and its output. Depth
     // only reaches the device where the shader reads it.
     const Image* frame_inputs[] = {&frame.color, nullptr, nullptr,
-                                   options_.dilate_motion && frame.depth ? &*frame.depth : nullptr};
+                                   reads_depth_ && frame.depth ? &*frame.depth : nullptr};
     if (auto ok = pass_->upload(frame_inputs); !ok) return std::unexpected(ok.error());
-    const std::span<const float> motion =
+    std::span<const float> motion =
         has_motion ? std::span<const float>(&frame.motion[0].x, 2 * pixels) : std::span<const float>(zeros_);
+    if (has_motion && !takes_device_frames()) {
+        // In the convention the shaders declare (zero motion is zero in every convention).
+        scaled_.resize(2 * pixels);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            scaled_[2 * i] = frame.motion[i].x * motion_scale_.x;
+            scaled_[2 * i + 1] = frame.motion[i].y * motion_scale_.y;
+        }
+        motion = scaled_;
+    }
     if (auto ok = pass_->upload(kMotion, motion); !ok) return std::unexpected(ok.error());
-    if (options_.dilate_motion && !frame.depth)
+    if (reads_depth_ && !frame.depth)
         if (auto ok = pass_->upload(kDepth, std::span<const float>(zeros_).first(pixels)); !ok)
             return std::unexpected(ok.error());
-    return resolve_all(starts_history, read_outputs, frame.jitter);
+    return resolve_all(starts_history, read_outputs, frame.jitter, index);
 }
 
 Result<LoadedFrame> TaaResolve::advance_all(const DeviceFrames& frames, std::size_t index, bool starts_history,
                                             bool read_outputs, bool read_frame) {
+    if (!takes_device_frames())
+        return fail("internal error: frames drawn on the device for a resolve whose motion is converted on the host");
     std::vector<std::string_view> names{kColor, kMotion};
-    if (options_.dilate_motion) names.push_back(kDepth);
+    if (reads_depth_) names.push_back(kDepth);
     auto images = pass_->images_to_fill(names);
     if (!images) return std::unexpected(images.error());
     // A frame that starts a history resolves without motion, as the other advance_all gives it.
     const RasterTargets targets{(*images)[0], starts_history ? VK_NULL_HANDLE : (*images)[1],
-                                options_.dilate_motion ? (*images)[2] : VK_NULL_HANDLE};
+                                reads_depth_ ? (*images)[2] : VK_NULL_HANDLE};
     if (starts_history)
         if (auto ok = pass_->upload(kMotion, zeros_); !ok) return std::unexpected(ok.error());
     auto frame = frames.draw_into(index, targets, read_frame);
     if (!frame) return frame;
-    if (auto ok = resolve_all(starts_history, read_outputs, frame->jitter); !ok) return std::unexpected(ok.error());
+    if (auto ok = resolve_all(starts_history, read_outputs, frame->jitter, std::uint32_t(index)); !ok)
+        return std::unexpected(ok.error());
     return frame;
 }
 
@@ -114,21 +179,49 @@ Result<VkImageView> TaaResolve::output_on_device(std::size_t s) {
     return pass_->view_to_sample(kHistory);
 }
 
-Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter) {
+std::vector<RectifyPass::PushConstantValue> TaaResolve::push_values(std::size_t s, bool starts_history,
+                                                                    glm::vec2 jitter, std::uint32_t index) const {
     // The upscaling ratio, as FSR 2 and UE4 take it: output width over input width.
     const float ratio = float(width_) / float(input_width_);
-    const RectifyPass::PushConstantValue all[] = {
-        {"current_weight", {starts_history ? 1.0f : options_.current_weight}},
-        {"gamma", {options_.gamma * (options_.upscale ? box_scale_at(options_.box_scale, ratio) : 1.0f)}},
-        {"jitter", {jitter.x, jitter.y}},
-        {"sample_distance", {options_.sample_distance.at(ratio)}},
-    };
-    // Only an upscaling resolve takes the jitter and the sample distance.
-    const std::span<const RectifyPass::PushConstantValue> values = std::span(all).first(options_.upscale ? 4 : 2);
+    const float weight = starts_history ? 1.0f : options_.current_weight;
+    const float gamma = options_.gamma * (options_.upscale ? box_scale_at(options_.box_scale, ratio) : 1.0f);
+    const float distance = options_.sample_distance.at(ratio);
+    if (roles_.empty() || !roles_[s]) {
+        // kdop's resolve: only an upscaling one takes the jitter and the sample distance.
+        std::vector<RectifyPass::PushConstantValue> values{{"current_weight", {weight}}, {"gamma", {gamma}}};
+        if (options_.upscale)
+            values.insert(values.end(), {{"jitter", {jitter.x, jitter.y}}, {"sample_distance", {distance}}});
+        return values;
+    }
+    std::vector<RectifyPass::PushConstantValue> values;
+    for (const BoundResolve::Value& v : roles_[s]->values) {
+        const std::string name = v.member->name;
+        switch (v.role) {
+        case ValueRole::current_weight: values.emplace_back(name, std::vector{weight}); break;
+        case ValueRole::gamma: values.emplace_back(name, std::vector{gamma}); break;
+        case ValueRole::jitter: values.emplace_back(name, std::vector{jitter.x, jitter.y}); break;
+        case ValueRole::input_size:
+            values.emplace_back(name, std::vector{float(input_width_), float(input_height_)});
+            break;
+        case ValueRole::output_size: values.emplace_back(name, std::vector{float(width_), float(height_)}); break;
+        case ValueRole::frame_index: values.push_back(RectifyPass::PushConstantValue::uint(name, index)); break;
+        case ValueRole::reset:
+            values.push_back(RectifyPass::PushConstantValue::uint(name, starts_history ? 1u : 0u));
+            break;
+        case ValueRole::exposure: values.emplace_back(name, std::vector{1.0f}); break; // no source gives one yet
+        case ValueRole::sample_distance: values.emplace_back(name, std::vector{distance}); break;
+        }
+    }
+    return values;
+}
+
+Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter, std::uint32_t index) {
     for (std::size_t s = 0; s < kernels_.size(); ++s) {
         auto resolved = [&]() -> Result<void> {
             if (auto ok = pass_->select_slot(kHistory, s); !ok) return ok;
-            if (auto timing = pass_->dispatch(*kernels_[s], values); !timing) return std::unexpected(timing.error());
+            const auto values = push_values(s, starts_history, jitter, index);
+            if (auto timing = pass_->dispatch(*kernels_[s], values, as_[s]); !timing)
+                return std::unexpected(timing.error());
             if (auto ok = pass_->copy_output_to(kHistory); !ok) return ok;
             if (!read_outputs) return {};
             auto out = pass_->download();

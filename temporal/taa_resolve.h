@@ -13,6 +13,7 @@
 #include "runtime/kernel.h"
 #include "runtime/rectify_pass.h"
 #include "sequence/frame_source.h"
+#include "temporal/resolve_bindings.h"
 #include "temporal/resolve_options.h"
 #include "testbed/device_frames.h"
 
@@ -34,12 +35,13 @@ public:
                                                       const ResolveOptions& options,
                                                       std::vector<std::string> names = {});
     // An upscaling resolve (options.upscale): frames of input_width x input_height in, outputs and
-    // histories of width x height.
-    static Result<std::unique_ptr<TaaResolve>> create(const Context& context, std::span<const Variant* const> shaders,
-                                                      std::uint32_t input_width, std::uint32_t input_height,
-                                                      std::uint32_t width, std::uint32_t height,
-                                                      const ResolveOptions& options,
-                                                      std::vector<std::string> names = {});
+    // histories of width x height. `roles`, one per shader where given: a renderer's own resolve
+    // (kdop taa --resolve), bound by the roles its map declares instead of kdop's names; each must
+    // outlive the resolve, and all declare one motion convention, to which the motion is converted.
+    static Result<std::unique_ptr<TaaResolve>>
+    create(const Context& context, std::span<const Variant* const> shaders, std::uint32_t input_width,
+           std::uint32_t input_height, std::uint32_t width, std::uint32_t height, const ResolveOptions& options,
+           std::vector<std::string> names = {}, std::vector<const BoundResolve*> roles = {});
     // One shader.
     static Result<std::unique_ptr<TaaResolve>> create(const Context& context, const Variant& shader,
                                                       std::uint32_t width, std::uint32_t height,
@@ -51,8 +53,16 @@ public:
 
     // One frame through every shader: reproject its history by the frame's motion, rectify, blend.
     // With `starts_history` (the first frame, a camera cut) each output is the frame's color. With
-    // `read_outputs` each output is also read back, for output().
-    Result<void> advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs = true);
+    // `read_outputs` each output is also read back, for output(). `index`: the frame's in its
+    // sequence, for a resolve that reads it (ValueRole::frame_index).
+    Result<void> advance_all(const LoadedFrame& frame, bool starts_history, bool read_outputs = true,
+                             std::uint32_t index = 0);
+
+    // Whether frames drawn on the device can go straight into the resolve: not where a shader's
+    // motion convention needs the motion converted, which happens on the host.
+    bool takes_device_frames() const { return motion_scale_.x == 1 && motion_scale_.y == 1; }
+    // Whether a shader reads depth: kdop's with --dilate-motion, a renderer's with a depth role.
+    bool reads_depth() const { return reads_depth_; }
     // Shader `s`'s output of the last frame that read them back, valid until the next call.
     const Image& output(std::size_t s) const { return outputs_[s]; }
     // The same, moved out (output(s) is then empty until the next frame read back).
@@ -77,7 +87,10 @@ private:
     TaaResolve(const Context& context, const ResolveOptions& options) : context_(&context), options_(options) {}
     // Every shader on the frame in the inputs: its history, its dispatch, its output kept as its
     // next history and, with `read_outputs`, read back. `jitter`: the frame's (upscaling only).
-    Result<void> resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter);
+    Result<void> resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter, std::uint32_t index);
+    // The push constants of shader `s`: kdop's names, or those its roles give.
+    std::vector<RectifyPass::PushConstantValue> push_values(std::size_t s, bool starts_history, glm::vec2 jitter,
+                                                            std::uint32_t index) const;
 
     const Context* context_;
     ResolveOptions options_;
@@ -87,7 +100,12 @@ private:
     std::unique_ptr<RectifyPass> pass_;
     std::vector<Image> outputs_; // one per shader, read back
     std::vector<std::string> names_;
-    std::vector<float> zeros_; // two per input pixel: the motion, or the depth, where a frame has none
+    std::vector<const BoundResolve*> roles_;              // one per shader, or empty: kdop's own
+    std::vector<std::vector<RectifyPass::BindingAs>> as_; // each shader's bindings by role
+    MotionScale motion_scale_;                            // kdop's motion to what the shaders read
+    bool reads_depth_ = false;
+    std::vector<float> zeros_;  // two per input pixel: the motion, or the depth, where a frame has none
+    std::vector<float> scaled_; // the motion converted (motion_scale_)
 };
 
 } // namespace kdop

@@ -154,6 +154,7 @@ TaaReportSettings report_settings(const TaaSources& sources, const TaaRunSetting
             .charts = {},
             .over_time = {},
             .resolve = resolve,
+            .own_resolve = e.own_resolve ? e.own_resolve->label() : std::string(),
             .scene_contents = std::move(scene_contents),
             .sequences = std::move(sequence_names),
             .flip_on_device = !e.cpu_flip,
@@ -189,6 +190,7 @@ Result<RunMetadata> write_tables_and_reports(RunMetadata run_info, const TaaRunS
                                              const std::vector<ViewerSequence>& viewed, OutputSet& outputs) {
     const Metrics& metrics = settings.evaluation.metrics;
     run_info.seed = settings.seed;
+    if (settings.evaluation.own_resolve) run_info.resolve = settings.evaluation.own_resolve->label();
     if (charts_available(settings.charts))
         add_charts(outputs, rows, frame_rows, metrics, report.charts, report.over_time);
     BootstrapOptions bootstrap;
@@ -215,7 +217,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     auto evaluation = TaaEvaluation::create(context, specs, settings.evaluation);
     if (!evaluation) return std::unexpected(evaluation.error());
     // The spatial-only upscale's rows, last, where a source upscales (EvaluationOptions::spatial_upscale).
-    if (settings.evaluation.spatial_upscale && upscales(sources, schedule))
+    if (settings.evaluation.spatial_upscale && upscales(sources, schedule) && !settings.evaluation.own_resolve)
         keys.push_back({spatial_upscale_name(settings.evaluation.resolve.upscale_filter), Mode::shader});
 
     const auto [width, height] = timing_size(sources, settings);

@@ -13,8 +13,9 @@ namespace {
 
 constexpr std::string_view kTemplate = "shader_templates/taa_resolve.comp.in";
 
-// The defines the template's resolve_options.glsl stands for.
-std::string option_defines(const ResolveOptions& o) {
+} // namespace
+
+std::string resolve_option_defines(const ResolveOptions& o) {
     const int map = o.color_map.kind == ColorMap::Kind::power ? 1 : o.color_map.kind == ColorMap::Kind::log ? 2 : 0;
     // The exponent as the float the CPU's map_color uses, with every digit a float has, so the
     // shader's constant is that value (the option's own digits would be rounded twice).
@@ -28,8 +29,6 @@ std::string option_defines(const ResolveOptions& o) {
                        o.sample_distance.kind != SampleDistance::Kind::all ? 1 : 0, o.no_history ? 1 : 0);
 }
 
-} // namespace
-
 Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name,
                                                           const ResolveOptions& options) {
     auto source = find_embedded_file(kTemplate);
@@ -39,10 +38,11 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view recti
     built.name = name;
     built.compute_glsl = std::string(*source);
     const std::string file = name + ".comp";
-    const std::string defines = option_defines(options);
+    const std::string defines = resolve_option_defines(options);
     IncludeResolver resolve = [&](std::string_view header, std::string_view) -> std::optional<IncludedSource> {
-        if (header == "rectification.glsl")
-            return IncludedSource{name + "/rectification.glsl", std::string(rectification)};
+        // The one include a renderer's own resolve has too (build_own_resolve): the template is one.
+        if (header == "kdop_variant.glsl")
+            return IncludedSource{name + "/kdop_variant.glsl", std::string(rectification)};
         if (header == "resolve_options.glsl") return IncludedSource{name + "/resolve_options.glsl", defines};
         return std::nullopt;
     };

@@ -27,6 +27,10 @@ Result<std::unique_ptr<RunnableVariant>> build_taa_shader(const VariantSpec& spe
 Result<std::unique_ptr<RunnableVariant>> build_taa_shader(std::string_view rectification, const std::string& name,
                                                           const ResolveOptions& options = {});
 
+// The template's "resolve_options.glsl" for `options`: its defines. Beside a copy of the template,
+// it makes kdop's resolve a renderer's own for kdop taa --resolve (docs/taa.md, "Your own resolve").
+std::string resolve_option_defines(const ResolveOptions& options);
+
 // "kdop_variant.glsl" (or, with `hlsl`, ".hlsl") for `spec`: KDOP_NEIGHBORS and the variant's
 // function behind the one name every resolve calls,
 //   vec3 kdop_rectify(vec3 current, vec3 history, float gamma, vec3 neighborhood[KDOP_NEIGHBORS])

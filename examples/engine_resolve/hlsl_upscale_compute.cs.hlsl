@@ -2,7 +2,8 @@
 // (the nearest input sample's 3x3 clips the reprojected history with kdop's dop22-clip-n9, the 3x3
 // filtered at the output pixel's center blends in) with HLSL's resources: Texture2D read with Load,
 // so no sampler, an RWTexture2D for the output and the parameters in push constants.
-#include "dop22-clip-n9.hlsl"
+// The variant: dop22-clip-n9 here, each variant measured under kdop taa --resolve.
+#include "kdop_variant.hlsl"
 
 struct UpscaleParameters
 {
@@ -83,7 +84,7 @@ void main(uint3 id : SV_DispatchThreadID)
     }
 
     // Clipped toward the nearest sample; this frame weighed by how near that sample fell.
-    const float3 clipped = kdop_dop22_clip_n9(neighborhood[4], history_at(previous, out_size - 1), neighborhood);
+    const float3 clipped = kdop_rectify(neighborhood[4], history_at(previous, out_size - 1), 1.0, neighborhood);
     const float2 offset = (float2(nearest) + 0.5 + parameters.jitter - center) / scale;
     const float weight = parameters.current_weight * exp(-2.0 * dot(offset, offset));
     resolved_frame[p] = float4(clipped + weight * (current - clipped), 1.0);

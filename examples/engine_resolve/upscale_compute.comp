@@ -5,7 +5,8 @@
 // center, clips the reprojected history to that sample's 3x3 neighborhood with kdop's
 // dop22-clip-n9 (included at build time) and blends in the 3x3 filtered at the center. It is the
 // upscaling path of kdop's own resolve (docs/taa.md, "Upscaling") with its defaults, written out.
-#include "dop22-clip-n9.glsl"
+// The variant: dop22-clip-n9 here, each variant measured under kdop taa --resolve.
+#include "kdop_variant.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
@@ -90,7 +91,7 @@ void main()
     // The clip's `current` is the neighborhood's center, the nearest sample. The blend weighs this
     // frame by how near that sample fell to the center, in output pixels (1 on it), so a still
     // image converges to the jittered samples' average.
-    const vec3 clipped = kdop_dop22_clip_n9(neighborhood[4], history_at(previous, out_size - 1), neighborhood);
+    const vec3 clipped = kdop_rectify(neighborhood[4], history_at(previous, out_size - 1), 1.0, neighborhood);
     const vec2 offset = (vec2(nearest) + 0.5 + parameters.jitter - center) / scale;
     const float weight = parameters.current_weight * exp(-2.0 * dot(offset, offset));
     imageStore(resolved_frame, p, vec4(clipped + weight * (current - clipped), 1.0));
