@@ -16,6 +16,8 @@
 #include "tests/gpu_support.h"
 #include "tests/test_support.h"
 
+#include <kdop/resolve_runner.h>
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -269,6 +271,70 @@ TEST_F(OwnResolveGpu, AResolveInYCoCgWithALuminanceWeightMatchesItsCpuRestatemen
         std::cout << shaders[s]->name << ": largest distance from the CPU restatement " << largest
                   << ", mean from kdop's resolve " << from_kdops / double(expected.pixels.size()) << "\n";
     }
+}
+
+// kdop/resolve_runner.h, the helper an engine compiles into its tools, runs the YCoCg resolve as
+// kdop's own path runs it: the same outputs to the bit over a start and a moving frame, the
+// history kept on the device. What it cannot bind or fill is refused, naming it.
+TEST_F(OwnResolveGpu, TheInstalledRunHelperResolvesAsKdopsPathDoes) {
+    constexpr std::uint32_t w = 24, h = 16;
+    auto own = load_own_resolve(source_file("tests/data/own_resolve/ycocg_resolve.comp"),
+                                source_file("tests/data/own_resolve/ycocg_resolve.bindings.json"));
+    ASSERT_TRUE(own) << own.error().message;
+    auto bound = build_bound_resolve(*own, spec_of("dop22", Mode::clip));
+    ASSERT_TRUE(bound) << bound.error().message;
+    const Variant& shader = bound->shader->variant();
+    ResolveOptions options;
+    options.current_weight = 0.2f;
+    const Variant* shaders[] = {&shader};
+    auto kdops = TaaResolve::create(test::gpu(), shaders, w, h, w, h, options, {}, {&bound->roles});
+    ASSERT_TRUE(kdops) << kdops.error().message;
+
+    const kdop::RunnerDevice device{test::gpu().instance(), test::gpu().physical_device(), test::gpu().device(),
+                                    test::gpu().queue(),    test::gpu().queue_family(),    vkGetInstanceProcAddr};
+    ResolveRunner::Layout layout;
+    layout.inputs = {{"scene_color", w, h}, {"scene_velocity", w, h}, {"accumulated", w, h}};
+    layout.output = "resolved";
+    layout.width = w, layout.height = h;
+    layout.history = "accumulated";
+    std::string error;
+    auto runner = ResolveRunner::create(device, shader, layout, error);
+    ASSERT_TRUE(runner) << error;
+
+    const glm::vec2 motion_pixels(2, -1), motion_uv = motion_pixels / glm::vec2(w, h);
+    const std::vector<float> zero_motion(std::size_t(w) * h * 4, 0.0f);
+    std::vector<float> uv_motion(std::size_t(w) * h * 4, 0.0f);
+    for (std::size_t i = 0; i < std::size_t(w) * h; ++i)
+        uv_motion[4 * i] = motion_uv.x, uv_motion[4 * i + 1] = motion_uv.y;
+    const LoadedFrame frames[] = {
+        {make_texture(TextureFamily::grass, w, h, 3), {}, {}, {}, {}},
+        {make_texture(TextureFamily::grass, w, h, 5), std::vector<glm::vec2>(w * h, motion_pixels), {}, {}, {}}};
+    std::vector<float> out;
+    EXPECT_NE(runner->resolve(&out).find("push constant 'reset' was never set"), std::string::npos);
+    for (std::uint32_t f = 0; f < 2; ++f) {
+        ASSERT_TRUE((*kdops)->advance_all(frames[f], f == 0));
+        const std::vector<float> color(&frames[f].color.pixels[0].x, &frames[f].color.pixels[0].x + 4 * w * h);
+        const std::uint32_t reset = f == 0;
+        const float blend = f == 0 ? 1.0f : options.current_weight, gamma = options.gamma;
+        for (const std::string& e :
+             {runner->set_input("scene_color", color.data(), color.size()),
+              runner->set_input("scene_velocity", (f == 0 ? zero_motion : uv_motion).data(), uv_motion.size()),
+              runner->set_push_constant("reset", &reset, 4), runner->set_push_constant("blend", &blend, 4),
+              runner->set_push_constant("variance_gamma", &gamma, 4), runner->resolve(&out)})
+            ASSERT_EQ(e, "");
+        const Image& expected = (*kdops)->output(0);
+        ASSERT_EQ(out.size(), 4 * expected.pixels.size());
+        EXPECT_EQ(std::memcmp(out.data(), expected.pixels.data(), out.size() * sizeof(float)), 0) << "frame " << f;
+    }
+
+    EXPECT_NE(runner->set_input("scene_color", out.data(), 8).find("takes 24x16 RGBA texels, not 8 floats"),
+              std::string::npos);
+    EXPECT_NE(runner->set_push_constant("blend", &w, 8).find("is 4 bytes, not 8"), std::string::npos);
+    EXPECT_NE(runner->set_input("depth", out.data(), out.size()).find("has no input 'depth'"), std::string::npos);
+    layout.inputs.pop_back(); // the history's texture left out
+    EXPECT_FALSE(ResolveRunner::create(device, shader, layout, error));
+    EXPECT_NE(error.find("its binding 'accumulated' is not in the layout's inputs or output"), std::string::npos)
+        << error;
 }
 
 // kdop taa over a 3-D scene upscaled 2x, with kdop's resolve and with the same given as

@@ -276,13 +276,11 @@ int main(int argc, char** argv) {
         engine::UpscaleFrames upscale;
         upscale.motion.assign(std::size_t(input_width) * input_height * 2, 0.0f);
         for (std::size_t i = 0; i < upscale.motion.size(); i += 2) upscale.motion[i] = 1.0f; // it was 1 to the right
-        upscale.history.assign(std::size_t(width) * height * 4, 0.0f);
         for (std::uint32_t f = 0; upscaler && error.empty() && f < std::size(jitters); ++f) {
             upscale.current = test_frame(input_width, input_height, 1, f);
             upscale.jitter = {jitters[f][0], jitters[f][1]};
-            upscale.current_weight = f == 0 ? 1.0f : 0.1f; // the first frame starts the history
-            error = upscaler->resolve(upscale, upscaled[l]);
-            upscale.history = upscaled[l];
+            upscale.current_weight = f == 0 ? 1.0f : 0.1f;   // the first frame starts the history
+            error = upscaler->resolve(upscale, upscaled[l]); // the next frame's history, kept on the device
         }
         if (!error.empty()) {
             std::fprintf(stderr, "%s: %s\n", upscalers[l]->name, error.c_str());

@@ -2,6 +2,7 @@
 // and nothing kdop-specific beyond kdop/vulkan_pipeline.h and the registry entries.
 #include "resolve_runner.h"
 
+#include <kdop/resolve_runner.h>
 #include <kdop/vulkan_pipeline.h>
 
 #include <cstring>
@@ -41,10 +42,6 @@ struct ComputeParameters { // resolve_compute.comp's ResolveParameters (std140)
 };
 struct FragmentParameters { // resolve_fragment.frag's ResolveParameters
     float motion[2];
-};
-struct UpscaleParameters { // upscale_compute.comp's push constants
-    float jitter[2];
-    float current_weight;
 };
 
 struct Buffer {
@@ -566,127 +563,12 @@ std::string Resolver::resolve(const Frames& frames, Resolved& out) {
     return {};
 }
 
-// The TAAU resolve: one compute pipeline, three input textures and a storage image, at two sizes.
-struct Upscaler::State : Vulkan {
-    const kdop::Variant* shader = nullptr;
-    std::uint32_t input_width = 0, input_height = 0, width = 0, height = 0;
-
-    Buffer upload, readback; // current, motion and history; output
-    Texture current, motion, history, output;
-    VkSampler nearest = VK_NULL_HANDLE;
-    kdop::VariantPipeline pipeline;
-    VkDescriptorSet sets[kdop::kMaxVariantDescriptorSets] = {};
-    UpscaleParameters parameters{};
-
-    ~State() { destroy(); }
-
-    std::size_t input_bytes() const { return std::size_t(input_width) * input_height * 4 * sizeof(float); }
-    std::size_t output_bytes() const { return std::size_t(width) * height * 4 * sizeof(float); }
-
-    std::string create() {
-        if (auto e = load_functions(); !e.empty()) return e;
-        const kdop::DescriptorBinding *current_frame, *motion_frame, *history_frame, *resolved_frame;
-        for (auto [name, out] :
-             {std::pair{"current_frame", &current_frame}, std::pair{"motion_frame", &motion_frame},
-              std::pair{"history_frame", &history_frame}, std::pair{"resolved_frame", &resolved_frame}})
-            if (!(*out = kdop::find_binding(*shader, name))) return std::string(shader->name) + " declares no " + name;
-        if (resolved_frame->format == 0) return std::string(shader->name) + "'s resolved_frame declares no format";
-        if (shader->push_constant_size != sizeof(UpscaleParameters))
-            return std::string(shader->name) + "'s push constants are not the " +
-                   std::to_string(sizeof(UpscaleParameters)) + " bytes this file writes";
-
-        const VkBufferUsageFlags transfer = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-        const VkImageUsageFlags input = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-        const VkFormat rgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
-        const std::function<std::string()> steps[] = {
-            [&] { return create_buffer(upload, 2 * input_bytes() + output_bytes(), transfer); },
-            [&] { return create_buffer(readback, output_bytes(), transfer); },
-            [&] { return create_texture(current, rgba32f, input, input_width, input_height); },
-            [&] { return create_texture(motion, rgba32f, input, input_width, input_height); },
-            [&] { return create_texture(history, rgba32f, input, width, height); },
-            [&] {
-                return create_texture(output, static_cast<VkFormat>(resolved_frame->format),
-                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, width, height);
-            },
-            [&] { return create_sampler(nearest, VK_FILTER_NEAREST); },
-            [&] {
-                const VkResult r = kdop::create_variant_pipeline(kdop_fn, device.device, *shader, pipeline);
-                if (r != VK_SUCCESS)
-                    return std::string("kdop::create_variant_pipeline: ") +
-                           (pipeline.failure ? pipeline.failure : "failed");
-                cleanup.push_back([this] { kdop::destroy_variant_pipeline(kdop_fn, device.device, pipeline); });
-                return std::string();
-            },
-            [&] {
-                VkDescriptorPool pool = VK_NULL_HANDLE;
-                if (auto e = check(kdop::create_variant_descriptor_pool(kdop_fn, device.device, pipeline, 1, pool),
-                                   "kdop::create_variant_descriptor_pool");
-                    !e.empty())
-                    return e;
-                cleanup.push_back([this, pool] { kdop_fn.destroy_descriptor_pool(device.device, pool, nullptr); });
-                return check(kdop::allocate_variant_descriptor_sets(kdop_fn, device.device, pool, pipeline, sets),
-                             "kdop::allocate_variant_descriptor_sets");
-            },
-        };
-        for (const auto& step : steps)
-            if (auto e = step(); !e.empty()) return e;
-
-        // GLSL's sampler2D takes the nearest sampler, HLSL's Texture2D (read with Load) ignores it.
-        const VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        const VkDescriptorImageInfo infos[] = {{nearest, current.view, read},
-                                               {nearest, motion.view, read},
-                                               {nearest, history.view, read},
-                                               {VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL}};
-        VkWriteDescriptorSet writes[4];
-        const kdop::DescriptorBinding* bindings[] = {current_frame, motion_frame, history_frame, resolved_frame};
-        for (int i = 0; i < 4; ++i) {
-            writes[i] = kdop::variant_descriptor_write(*bindings[i], sets[bindings[i]->set]);
-            writes[i].pImageInfo = &infos[i];
-        }
-        fn.vkUpdateDescriptorSets(device.device, 4, writes, 0, nullptr);
-        return create_command_buffer();
-    }
-
-    // Upload, the resolve, read back.
-    void record() {
-        const VkImage inputs[] = {current.image, motion.image, history.image};
-        const VkExtent3D input_extent{input_width, input_height, 1}, output_extent{width, height, 1};
-        const VkBufferImageCopy copies[] = {
-            {0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, input_extent},
-            {input_bytes(), 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, input_extent},
-            {2 * input_bytes(), 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, output_extent}};
-        for (int i = 0; i < 3; ++i) {
-            barrier(inputs[i], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-            fn.vkCmdCopyBufferToImage(commands, upload.buffer, inputs[i], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                                      &copies[i]);
-            barrier(inputs[i], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-        }
-        barrier(output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-
-        fn.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
-        fn.vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline_layout, 0,
-                                   pipeline.set_layout_count, sets, 0, nullptr);
-        fn.vkCmdPushConstants(commands, pipeline.pipeline_layout, pipeline.push_constant_stages, 0,
-                              pipeline.push_constant_size, &parameters);
-        // One invocation per output pixel.
-        fn.vkCmdDispatch(commands, (width + shader->local_size[0] - 1) / shader->local_size[0],
-                         (height + shader->local_size[1] - 1) / shader->local_size[1], 1);
-
-        barrier(output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-        const VkBufferImageCopy whole{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, output_extent};
-        fn.vkCmdCopyImageToBuffer(commands, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1,
-                                  &whole);
-        VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        fn.vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0,
-                                nullptr, 0, nullptr);
-    }
+// The TAAU resolve, through kdop's run helper: it makes the pipeline, the textures and the
+// storage image from the registry entry, keeps the history on the device and reads the output back.
+struct Upscaler::State {
+    std::unique_ptr<kdop::ResolveRunner> runner;
+    std::uint32_t input_width = 0, input_height = 0;
+    std::vector<float> motion; // RGBA: the motion in .xy
 };
 
 Upscaler::Upscaler(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -695,43 +577,39 @@ Upscaler::~Upscaler() = default;
 std::unique_ptr<Upscaler> Upscaler::create(const Device& device, const kdop::Variant& shader, std::uint32_t input_width,
                                            std::uint32_t input_height, std::uint32_t width, std::uint32_t height,
                                            std::string& error) {
+    kdop::ResolveRunner::Layout layout;
+    layout.inputs = {{"current_frame", input_width, input_height},
+                     {"motion_frame", input_width, input_height},
+                     {"history_frame", width, height}};
+    layout.output = "resolved_frame";
+    layout.width = width, layout.height = height;
+    layout.history = "history_frame";
+    const kdop::RunnerDevice on{device.instance, device.physical_device, device.device,
+                                device.queue,    device.queue_family,    device.get_instance_proc_addr};
     auto state = std::make_unique<State>();
-    state->device = device;
-    state->shader = &shader;
-    state->input_width = input_width;
-    state->input_height = input_height;
-    state->width = width;
-    state->height = height;
-    if (!device.get_instance_proc_addr || input_width == 0 || input_height == 0 || width == 0 || height == 0)
-        error = "engine::Upscaler::create: a device and non-empty sizes are needed";
-    else
-        error = state->create();
-    if (!error.empty()) return nullptr;
+    state->runner = kdop::ResolveRunner::create(on, shader, layout, error);
+    if (!state->runner) return nullptr;
+    state->input_width = input_width, state->input_height = input_height;
     return std::unique_ptr<Upscaler>(new Upscaler(std::move(state)));
 }
 
 std::string Upscaler::resolve(const UpscaleFrames& frames, std::vector<float>& out) {
     State& s = *state_;
-    const std::size_t input_pixels = std::size_t(s.input_width) * s.input_height;
-    if (frames.current.size() != 4 * input_pixels || frames.motion.size() != 2 * input_pixels ||
-        frames.history.size() != s.output_bytes() / sizeof(float))
-        return "engine::Upscaler::resolve: frames of other sizes than the upscaler's " + std::to_string(s.input_width) +
-               "x" + std::to_string(s.input_height) + " to " + std::to_string(s.width) + "x" + std::to_string(s.height);
-    char* upload = static_cast<char*>(s.upload.mapped);
-    std::memcpy(upload, frames.current.data(), s.input_bytes());
-    float* motion = reinterpret_cast<float*>(upload + s.input_bytes()); // RGBA: the motion in .xy
-    for (std::size_t i = 0; i < input_pixels; ++i) {
-        motion[4 * i] = frames.motion[2 * i];
-        motion[4 * i + 1] = frames.motion[2 * i + 1];
-        motion[4 * i + 2] = motion[4 * i + 3] = 0.0f;
+    const std::size_t pixels = std::size_t(s.input_width) * s.input_height;
+    if (frames.motion.size() != 2 * pixels)
+        return "engine::Upscaler::resolve: motion for other than the upscaler's " + std::to_string(s.input_width) +
+               "x" + std::to_string(s.input_height) + " input";
+    s.motion.assign(4 * pixels, 0.0f);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        s.motion[4 * i] = frames.motion[2 * i];
+        s.motion[4 * i + 1] = frames.motion[2 * i + 1];
     }
-    std::memcpy(upload + 2 * s.input_bytes(), frames.history.data(), s.output_bytes());
-    s.parameters = {{frames.jitter[0], frames.jitter[1]}, frames.current_weight};
-
-    if (auto e = s.run_once([&] { s.record(); }); !e.empty()) return e;
-    const float* read = static_cast<const float*>(s.readback.mapped);
-    out.assign(read, read + s.output_bytes() / sizeof(float));
-    return {};
+    for (std::string e : {s.runner->set_input("current_frame", frames.current.data(), frames.current.size()),
+                          s.runner->set_input("motion_frame", s.motion.data(), s.motion.size()),
+                          s.runner->set_push_constant("jitter", frames.jitter.data(), sizeof(float) * 2),
+                          s.runner->set_push_constant("current_weight", &frames.current_weight, sizeof(float))})
+        if (!e.empty()) return e;
+    return s.runner->resolve(&out);
 }
 
 } // namespace engine

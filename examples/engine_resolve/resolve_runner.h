@@ -5,8 +5,9 @@
 // kdop/vulkan_pipeline.h from the registry entries alone, images and buffers sized and typed from their reflection (the
 // storage image's format, the uniform blocks' sizes), then one submission that resolves the same frames both ways.
 //
-// Upscaler runs the TAAU resolve (upscale_compute.comp, or hlsl_upscale_compute.cs.hlsl) the same
-// way: input-size color and motion, output-size history and output, the jitter in push constants.
+// Upscaler runs the TAAU resolve (upscale_compute.comp, or hlsl_upscale_compute.cs.hlsl) through
+// kdop's run helper (kdop/resolve_runner.h): input-size color and motion, output-size history and
+// output, the history kept on the device, the jitter in push constants.
 //
 // Compiled with VK_NO_PROTOTYPES: every Vulkan call goes through vkGetInstanceProcAddr and
 // vkGetDeviceProcAddr, as with volk, so nothing here links the loader.
@@ -74,12 +75,12 @@ private:
     std::unique_ptr<State> state_;
 };
 
-// One frame of the TAAU resolve (upscale_compute, hlsl_upscale_compute): this frame at the input
-// size, the history at the output size. Colors are RGBA floats, row-major from the top-left pixel.
+// One frame of the TAAU resolve (upscale_compute, hlsl_upscale_compute) at the input size; the
+// history is the last frame's output, kept on the device. Colors are RGBA floats, row-major from
+// the top-left pixel.
 struct UpscaleFrames {
     std::vector<float> current;    // this frame, input size (jittered)
     std::vector<float> motion;     // two per input pixel: input pixels to where that sample was last frame
-    std::vector<float> history;    // last frame's resolve, output size
     std::array<float, 2> jitter{}; // input pixel i's sample lies at i + 0.5 + jitter
     float current_weight = 0.1f;   // 1 starts the history (the first frame, a cut)
 };
@@ -94,7 +95,8 @@ public:
     Upscaler(const Upscaler&) = delete;
     Upscaler& operator=(const Upscaler&) = delete;
 
-    // The resolve of `frames` into `out` (RGBA, width x height); empty on success, else what failed.
+    // The resolve of `frames` into `out` (RGBA, width x height), the next frame's history; empty on
+    // success, else what failed.
     std::string resolve(const UpscaleFrames& frames, std::vector<float>& out);
 
     struct State; // resolve_runner.cpp
