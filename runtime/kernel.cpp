@@ -13,7 +13,8 @@ Result<std::unique_ptr<Kernel>> Kernel::create(const Context& context, const Var
     VkDevice device = context.device();
     k->name_ = variant.name;
     for (uint32_t i = 0; i < variant.binding_count; ++i)
-        k->bindings_.push_back({variant.bindings[i].binding, variant.bindings[i].type, variant.bindings[i].name});
+        k->bindings_.push_back({variant.bindings[i].binding, variant.bindings[i].type, variant.bindings[i].name,
+                                variant.bindings[i].format});
     for (uint32_t i = 0; i < variant.push_constant_count; ++i)
         k->push_constants_.push_back(
             {variant.push_constants[i].name, variant.push_constants[i].offset, variant.push_constants[i].size});

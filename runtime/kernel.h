@@ -28,6 +28,7 @@ public:
         std::uint32_t binding;
         DescriptorType type;
         std::string name;
+        std::uint32_t format; // a storage image's VkFormat as the shader declares it; else 0
     };
     struct PushConstant {
         std::string name;

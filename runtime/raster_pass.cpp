@@ -96,7 +96,7 @@ Result<std::vector<Kernel::Binding>> set_bindings(const Variant& vertex, const V
                                         stage->name, b.name, b.set));
             if (std::none_of(bindings.begin(), bindings.end(),
                              [&](const Kernel::Binding& seen) { return seen.binding == b.binding; }))
-                bindings.push_back({b.binding, b.type, b.name});
+                bindings.push_back({b.binding, b.type, b.name, b.format});
         }
     return bindings;
 }

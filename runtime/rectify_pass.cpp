@@ -4,6 +4,7 @@
 #include "runtime/vulkan_error.h"
 
 #include <fmt/format.h>
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -15,6 +16,7 @@ namespace kdop {
 namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kHalfOutputFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 VkBufferImageCopy whole_image(uint32_t w, uint32_t h, VkDeviceSize offset) {
     VkBufferImageCopy copy{};
@@ -260,6 +262,16 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     // compute-shader template, shader_templates/rectify.comp.in, or those given to create(), or
     // what `as` gives it), whatever its binding number.
     const VkSampler sampler = as.empty() ? sampler_ : linear_sampler_;
+    // A renderer's resolve may keep its history in half floats: its output is then written there.
+    bool half = false;
+    for (const Kernel::Binding& b : kernel.bindings())
+        if (b.type == DescriptorType::storage_image && b.format == kHalfOutputFormat) half = true;
+    if (half && !half_output_.image)
+        if (auto ok = create_texture(half_output_, kHalfOutputFormat,
+                                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, width_, height_);
+            !ok)
+            return std::unexpected(ok.error());
+    const Texture& output = half ? half_output_ : output_;
     std::vector<Bound> bound;
     for (const Kernel::Binding& b : kernel.bindings()) {
         const auto given = std::find_if(as.begin(), as.end(), [&](const BindingAs& a) { return a.binding == b.name; });
@@ -270,11 +282,11 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
         }
         const auto input =
             std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.name == wanted; });
-        const Texture* texture = wanted == kOutput ? &output_ : input != inputs_.end() ? &input->texture() : nullptr;
+        const Texture* texture = wanted == kOutput ? &output : input != inputs_.end() ? &input->texture() : nullptr;
         const bool storage = b.type == DescriptorType::storage_image;
         const bool separate = b.type == DescriptorType::sampled_image;
         const bool image = storage || separate || b.type == DescriptorType::combined_image_sampler;
-        if (!texture || !image || storage != (texture == &output_)) {
+        if (!texture || !image || storage != (texture == &output)) {
             std::string provided;
             for (const Input& in : inputs_) provided += in.name + " ";
             return fail(fmt::format("{}: binding {} ('{}', {}) is not one the rectify pass provides ({}textures, "
@@ -312,7 +324,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     const uint32_t groups_y = (height_ + kernel.local_size()[1] - 1) / kernel.local_size()[1];
     auto wall = commands_->run([&](VkCommandBuffer cb) {
         // The output's previous contents are not needed: every pixel is written.
-        image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+        image_barrier(cb, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline());
@@ -329,6 +341,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
     });
     if (!wall) return std::unexpected(wall.error());
     dispatched_ = true;
+    half_written_ = half;
     output_layout_ = VK_IMAGE_LAYOUT_GENERAL;
 
     DispatchTiming timing{*wall, std::numeric_limits<double>::quiet_NaN()};
@@ -344,7 +357,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
 // The output, written by the last dispatch (or already copied), ready to be read by a transfer.
 void RectifyPass::output_to_transfer_source(VkCommandBuffer cb) {
     if (output_layout_ == VK_IMAGE_LAYOUT_GENERAL)
-        image_barrier(cb, output_.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        image_barrier(cb, written().image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT);
     output_layout_ = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL; // reads after reads need no barrier
@@ -355,15 +368,23 @@ Result<Image> RectifyPass::download() {
     auto copied = commands_->run([&](VkCommandBuffer cb) {
         output_to_transfer_source(cb);
         VkBufferImageCopy copy = whole_image(width_, height_, 0);
-        vkCmdCopyImageToBuffer(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
+        vkCmdCopyImageToBuffer(cb, written().image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer(), 1, &copy);
         host_read_barrier(cb, readback_.buffer());
     });
     if (!copied) return std::unexpected(copied.error());
     // Filled straight from the mapped buffer: one pass over the pixels, none to clear them first.
     Image out;
     out.width = width_, out.height = height_;
+    const std::size_t pixels = std::size_t(width_) * height_;
+    if (half_written_) {
+        // Every half is a float exactly.
+        const auto* mapped = static_cast<const std::uint16_t*>(readback_.mapped());
+        out.pixels.resize(pixels);
+        for (std::size_t i = 0; i < 4 * pixels; ++i) (&out.pixels[0].x)[i] = glm::unpackHalf1x16(mapped[i]);
+        return out;
+    }
     const auto* mapped = static_cast<const glm::vec4*>(readback_.mapped());
-    out.pixels.assign(mapped, mapped + std::size_t(width_) * height_);
+    out.pixels.assign(mapped, mapped + pixels);
     return out;
 }
 
@@ -431,11 +452,20 @@ Result<void> RectifyPass::copy_output_to(std::string_view name) {
         // The last dispatch may have read this texture: its reads come before the copy's writes.
         image_barrier(cb, into.image, was, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-        VkImageCopy copy{};
-        copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.extent = {width_, height_, 1};
-        vkCmdCopyImage(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, into.image,
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        if (half_written_) {
+            // A blit of one size converts the format texel for texel; half to float is exact.
+            VkImageBlit blit{};
+            blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            blit.srcOffsets[1] = blit.dstOffsets[1] = {std::int32_t(width_), std::int32_t(height_), 1};
+            vkCmdBlitImage(cb, half_output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, into.image,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+        } else {
+            VkImageCopy copy{};
+            copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            copy.extent = {width_, height_, 1};
+            vkCmdCopyImage(cb, output_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, into.image,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        }
         image_barrier(cb, into.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                       VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
@@ -482,6 +512,7 @@ RectifyPass::~RectifyPass() {
     for (Input& in : inputs_)
         for (Texture& t : in.slots) destroy(t);
     destroy(output_);
+    if (half_output_.image) destroy(half_output_);
 }
 
 Result<Image> rectify(const Context& context, const Variant& variant, const Image& current, const Image& history,

@@ -93,7 +93,7 @@ public:
     static constexpr std::string_view kOutput = "rectified_history", kSampler = "(sampler)";
     Result<DispatchTiming> dispatch(const Kernel& kernel, std::span<const PushConstantValue> values,
                                     std::span<const BindingAs> as);
-    // The output of the last dispatch.
+    // The output of the last dispatch, as floats (an rgba16f output's halves, exactly).
     Result<Image> download();
 
     // State a caller keeps on the device between dispatches, per kernel: input `name` gets `count`
@@ -103,6 +103,7 @@ public:
     Result<void> select_slot(std::string_view name, std::size_t slot);
     // Copies the last dispatch's output into input `name`'s selected texture, on the device; the
     // output stays for download(). The next frame's history, with no round trip through the host.
+    // An output the kernel declared rgba16f (a renderer's history format) is converted, exactly.
     Result<void> copy_output_to(std::string_view name);
     // The selected textures of the inputs named, in that order, for another pass on the same device
     // to fill with its own commands (a frame drawn there: RasterPass::draw_into), never through
@@ -126,6 +127,9 @@ private:
     Result<void> allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, VkDeviceMemory& memory);
     Result<void> create_texture(Texture& t, VkFormat format, VkImageUsageFlags usage, uint32_t width, uint32_t height);
     void output_to_transfer_source(VkCommandBuffer cb);
+    // The texture the last dispatch wrote: output_, or half_output_ for a kernel that declared its
+    // storage image rgba16f.
+    const Texture& written() const { return half_written_ ? half_output_ : output_; }
     void destroy(Texture& t);
 
     const Context& context_;
@@ -147,6 +151,8 @@ private:
     Result<void> copy_uploads(const std::vector<bool>& which);
     std::vector<Input> inputs_;
     Texture output_;
+    Texture half_output_;       // made when a kernel first writes rgba16f
+    bool half_written_ = false; // the last dispatch wrote half_output_
     // Where the output is after the last command: GENERAL after a dispatch, TRANSFER_SRC_OPTIMAL
     // after a copy or a download.
     VkImageLayout output_layout_ = VK_IMAGE_LAYOUT_UNDEFINED;

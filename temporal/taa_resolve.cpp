@@ -26,8 +26,6 @@ std::string_view pass_input(ResourceRole role) {
     return {};
 }
 
-constexpr std::uint32_t kRgba32f = 109; // VK_FORMAT_R32G32B32A32_SFLOAT, as the reflection records it
-
 bool same(const MotionConvention& a, const MotionConvention& b) {
     return a.units == b.units && a.points_to == b.points_to && a.y_axis == b.y_axis;
 }
@@ -80,12 +78,6 @@ Result<std::unique_ptr<TaaResolve>> TaaResolve::create(const Context& context, s
         if (!first) first = bound;
         if (!same(bound->motion, first->motion))
             return fail("internal error: the shaders of one resolve declare different motion conventions");
-        // The history is a copy of the output, kept on the device in the pass's rgba32f.
-        const DescriptorBinding* output = bound->find(ResourceRole::output);
-        if (output && output->format != kRgba32f)
-            return fail(fmt::format("{}: its output '{}' is not rgba32f: kdop keeps every history as rgba32f and "
-                                    "copies the output there, so declare the output rgba32f to measure the resolve",
-                                    r->names_[s], output->name));
         for (const BoundResolve::Resource& resource : bound->resources) {
             r->as_[s].push_back({resource.binding->name, pass_input(resource.role)});
             if (resource.role == ResourceRole::depth) r->reads_depth_ = true;
