@@ -44,7 +44,7 @@ echo "== fuzzing"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
       -DCMAKE_CXX_COMPILER=clang++-16 -DKDOP_FUZZ=ON \
       -DKDOP_BUILD_TESTS=OFF
-cmake --build build-fuzz --target kdop_axis_set_fuzzer kdop_manifest_fuzzer kdop_sequence_fuzzer kdop_nss_capture_fuzzer kdop_resolve_bindings_fuzzer kdop_image_fuzzer \
+cmake --build build-fuzz --target kdop_axis_set_fuzzer kdop_manifest_fuzzer kdop_sequence_fuzzer kdop_nss_capture_fuzzer kdop_resolve_bindings_fuzzer kdop_sequence_list_fuzzer kdop_image_fuzzer \
       kdop_hdr_fuzzer kdop_output_listing_fuzzer
 # Reports name functions and lines.
 export ASAN_SYMBOLIZER_PATH=/usr/bin/llvm-symbolizer-16
@@ -74,6 +74,7 @@ fuzz manifest 200000
 fuzz sequence 100000
 fuzz nss_capture 50000
 fuzz resolve_bindings 100000
+fuzz sequence_list 100000
 fuzz output_listing 100000
 # Two 4x3 HDR images of any float bits, a color map and an exposure: about 2 ms an input (HDR-FLIP).
 fuzz hdr 10000

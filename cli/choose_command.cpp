@@ -11,6 +11,7 @@
 #include "harness/output_set.h"
 #include "harness/ranks.h"
 #include "optimize/choice_report.h"
+#include "sequence/sequence_corpus.h"
 
 #include <fmt/format.h>
 
@@ -53,13 +54,15 @@ Action add_choose_command(CLI::App& app) {
                   "out of the fit, as `kdop taa --sequence` measures, and recommend the variant to ship: the least "
                   "held-out ghosting within a cost budget, or the cheapest that meets a ghosting target; writes "
                   "candidates.csv (and JSON), choice.md and its chart, the fitted .axes files and kdop.manifest");
-    cmd->add_option("--fit", o->run.fit, "Frame sequences to fit the axis sets to")
+    cmd->add_option("--fit", o->run.fit,
+                    "Frame sequences to fit the axis sets to: each a sequence's folder, a folder of sequences or a "
+                    "list file (docs/taa.md, \"Many sequences\")")
         ->required()
-        ->check(CLI::ExistingDirectory);
+        ->check(CLI::ExistingPath);
     cmd->add_option("--validate", o->run.validate,
                     "Frame sequences held out of the fit, that every candidate is judged on (this or --holdout: "
-                    "nothing is judged on the frames it was fitted to)")
-        ->check(CLI::ExistingDirectory);
+                    "nothing is judged on the frames it was fitted to), given as --fit's are")
+        ->check(CLI::ExistingPath);
     cmd->add_option("--holdout", o->run.holdout,
                     "Instead of --validate: hold out of the fit every other block of this many frames of the --fit "
                     "sequences after the warmup (the second, the fourth, ...), and judge on those")
@@ -130,6 +133,12 @@ Action add_choose_command(CLI::App& app) {
         // waiting in the fit.
         if (auto ok = (*ranks)->agree(context ? Result<void>{} : std::unexpected(context.error())); !ok)
             return report_error(ok.error().message);
+        // A folder of sequences or a list file stands for the sequences it names.
+        for (auto [option, sequences] : {std::pair{"--fit", &o->run.fit}, std::pair{"--validate", &o->run.validate}}) {
+            auto expanded = expand_sequence_arguments(*sequences, option);
+            if (!expanded) return report_error(expanded.error().message);
+            *sequences = std::move(*expanded);
+        }
         if (auto conflict = check(o->run)) return usage_error(conflict_message(*conflict));
         OwnResolveChoice own = own_resolve_choice(*cmd, o->own_resolve);
         if (!own.usage.empty()) return usage_error(own.usage);

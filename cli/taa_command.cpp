@@ -13,6 +13,7 @@
 #include "harness/output_set.h"
 #include "harness/variant_catalog.h"
 #include "sequence/sequence.h"
+#include "sequence/sequence_corpus.h"
 #include "temporal/metrics.h"
 #include "temporal/taa_run.h"
 
@@ -62,12 +63,14 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
     o->selection.add_to(*taa, true, kCommandDefaults);
     o->choice.add_to(*taa, true);
     taa->add_option("--sequence", o->sequences,
-                    "Frame sequences to measure (folders with sequence.json; docs/taa.md, \"Frame sequences\"); with "
-                    "--sequence, kdop's own scenes run only if --scenes or --background is given too");
+                    "Frame sequences to measure: each a folder with sequence.json (docs/taa.md, \"Frame "
+                    "sequences\"), a folder of such folders, or a list file of them, one folder a line (\"Many "
+                    "sequences\"); with --sequence, kdop's own scenes run only if --scenes or --background is given "
+                    "too");
     taa->add_option("--nss-sequence", o->nss_sequence,
                     "Read the one --sequence folder as the root of an Arm NSS dataset capture and measure its "
                     "sequence NNNN (NNNN.json, ground_truth/NNNN, x<ratio>/{color,depth,motion}/NNNN; docs/taa.md, "
-                    "\"NSS captures\")");
+                    "\"NSS captures\"), or with all every sequence there");
     CLI::Option* ratio = taa->add_option("--ratio", o->ratio,
                                          "With --nss-sequence: the capture's upscaling ratio, whose x<ratio> folder "
                                          "holds the frames (2, 1.7, 1.5, 1.3) [default: 2]")
@@ -152,6 +155,13 @@ Action add_taa_command(CLI::App& app) {
                                            o->nss_sequence, o->sequences.size()));
         auto size = size_option("--size", o->size);
         if (!size) return usage_error(size.error().message);
+        // A folder of sequences or a list file stands for the sequences it names (an NSS root is one).
+        std::vector<std::string> sequences = o->sequences;
+        if (o->nss_sequence.empty()) {
+            auto expanded = expand_sequence_arguments(o->sequences, "--sequence");
+            if (!expanded) return report_error(expanded.error().message);
+            sequences = std::move(*expanded);
+        }
         OwnResolveChoice own = own_resolve_choice(*taa, o->own_resolve);
         if (!own.usage.empty()) return usage_error(own.usage);
         if (!own.input.empty()) return report_error(own.input);
@@ -165,9 +175,10 @@ Action add_taa_command(CLI::App& app) {
         auto context = Context::create({o->device, o->validation});
         if (!context) return report_error(context.error().message);
         auto sources = taa_sources(
-            **context, {.sequences = o->sequences,
+            **context, {.sequences = sequences,
                         .warmup = o->warmup,
                         .resolve = o->resolve,
+                        .own_reads_depth = own.resolve && own.resolve->reads_depth(),
                         .input_space = o->input_space,
                         .device_flip = !o->cpu_flip,
                         .variants = specs->size(),

@@ -1,6 +1,7 @@
 #include "temporal/taa_sources.h"
 
 #include "core/input_files.h"
+#include "sequence/sequence_corpus.h"
 #include "temporal/taa_measure.h"
 
 #include <fmt/format.h>
@@ -15,6 +16,35 @@ bool TaaSources::any_hdr() const {
            std::ranges::any_of(sequences, [](const SequenceFrames& s) { return s.color_range() == ColorRange::hdr; });
 }
 
+namespace {
+
+// NSS sequence `name` of the capture root `dir`, read and checked, added to `sources`.
+Result<void> add_nss_capture(const Context& context, const TaaSourceRequest& request, const std::string& dir,
+                             const std::string& name, TaaSources& sources) {
+    auto capture = read_nss_capture(dir, name, request.nss_ratio);
+    if (!capture) return std::unexpected(capture.error());
+    const std::size_t count = capture->frames.size();
+    if (request.warmup >= count)
+        return usage_fail(fmt::format("{} {} --nss-sequence {}: {} frames, and --warmup {} leaves none to measure; "
+                                      "give a shorter warm-up, e.g. --warmup {} (a third of the frames)",
+                                      request.option, dir, name, count, request.warmup,
+                                      std::max<std::size_t>(1, count / 3)));
+    if (auto ok = check_measurable(context, capture->width, capture->height, request.device_flip, request.variants);
+        !ok)
+        return fail(fmt::format("{} {}: {}", request.option, dir, ok.error().message));
+    if (request.picture_frame && (*request.picture_frame < request.warmup || *request.picture_frame >= count))
+        return usage_fail(fmt::format("--picture-frame {}: not a measured frame of --nss-sequence {} (frames {} to "
+                                      "{}, after the warmup)",
+                                      *request.picture_frame, name, request.warmup, count - 1));
+    // Depth is read only where the resolve reads it (--dilate-motion, a renderer's depth role).
+    NssFrames frames(std::move(*capture), request.nss_range);
+    const bool depth = request.resolve.dilate_motion || request.own_reads_depth;
+    sources.captures.push_back(depth ? std::move(frames) : frames.without_depth());
+    return {};
+}
+
+} // namespace
+
 Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request) {
     // Every size is checked against the device and memory before any frame is made or read.
     const SceneOptions& scene = request.scene_options;
@@ -24,24 +54,15 @@ Result<TaaSources> taa_sources(const Context& context, TaaSourceRequest request)
     if (auto ok = check_distinct_files(request.sequences, request.option); !ok) return usage_fail(ok.error().message);
     TaaSources sources;
     for (const std::string& dir : request.nss_sequence.empty() ? std::vector<std::string>{} : request.sequences) {
-        auto capture = read_nss_capture(dir, request.nss_sequence, request.nss_ratio);
-        if (!capture) return std::unexpected(capture.error());
-        const std::size_t count = capture->frames.size();
-        if (request.warmup >= count)
-            return usage_fail(fmt::format("{} {} --nss-sequence {}: {} frames, and --warmup {} leaves none to measure; "
-                                          "give a shorter warm-up, e.g. --warmup {} (a third of the frames)",
-                                          request.option, dir, request.nss_sequence, count, request.warmup,
-                                          std::max<std::size_t>(1, count / 3)));
-        if (auto ok = check_measurable(context, capture->width, capture->height, request.device_flip, request.variants);
-            !ok)
-            return fail(fmt::format("{} {}: {}", request.option, dir, ok.error().message));
-        if (request.picture_frame && (*request.picture_frame < request.warmup || *request.picture_frame >= count))
-            return usage_fail(fmt::format("--picture-frame {}: not a measured frame of --nss-sequence {} (frames {} to "
-                                          "{}, after the warmup)",
-                                          *request.picture_frame, request.nss_sequence, request.warmup, count - 1));
-        // Depth is read only where the resolve reads it (--dilate-motion).
-        NssFrames frames(std::move(*capture), request.nss_range);
-        sources.captures.push_back(request.resolve.dilate_motion ? std::move(frames) : frames.without_depth());
+        // --nss-sequence all: every sequence of the root, in numeric order.
+        auto names = request.nss_sequence == "all"
+                         ? nss_sequences(dir)
+                         : Result<std::vector<std::string>>(std::vector{request.nss_sequence});
+        if (!names)
+            return fail(fmt::format("{} {} --nss-sequence all: {}", request.option, dir, names.error().message));
+        for (const std::string& name : *names)
+            if (auto ok = add_nss_capture(context, request, dir, name, sources); !ok)
+                return std::unexpected(ok.error());
     }
     for (const std::string& dir : request.nss_sequence.empty() ? request.sequences : std::vector<std::string>{}) {
         auto sequence = read_resolvable_sequence(dir, request.warmup, request.resolve, request.option);

@@ -34,6 +34,7 @@ struct TaaSourceRequest {
     std::vector<std::string> sequences; // folders
     std::uint32_t warmup = 100;         // frames every sequence must have more of
     ResolveOptions resolve;             // what the resolve needs of a sequence (depth for --dilate-motion)
+    bool own_reads_depth = false;       // a renderer's resolve (--resolve) reads depth: an NSS capture's is kept
     InputSpace input_space = InputSpace::from_file;
     bool device_flip = true;  // FLIP on the device: its limits count too
     std::size_t variants = 1; // resolved together in one pass: each holds its history in memory
