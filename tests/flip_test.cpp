@@ -487,8 +487,9 @@ struct FlipFiles {
     std::string inputs() const { return "--reference " + reference_exr + " --test " + test_exr; }
 };
 
-// On the device by default (within DeviceFlip's tolerances of the CPU code), on the CPU with --cpu
-// (exactly the CPU code's figures).
+// On the device where one is named (within DeviceFlip's tolerances of the CPU code), on the CPU
+// with --cpu (exactly the CPU code's figures), and on the CPU where no device is named: kdop's
+// default device, lavapipe, is a CPU, where the CPU code is faster; the output says why.
 TEST(CliFlip, PrintsTheMeanAndWritesTheMap) {
     FlipFiles files;
     const LdrFlip flip(kDefaultPpd);
@@ -508,8 +509,18 @@ TEST(CliFlip, PrintsTheMeanAndWritesTheMap) {
 
     r = test::run(kdop_flip(files.inputs() + " --out " + exr + " --cpu"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("at 67.02 pixels per degree (24x16) on the CPU"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("at 67.02 pixels per degree (24x16) on the CPU\n"), std::string::npos) << r.out;
     EXPECT_EQ(printed_mean(r.out), mean) << r.out;
+    for (const char* environment : {"env -u KDOP_DEVICE ", "env KDOP_DEVICE= "}) {
+        auto chosen = test::run(environment + kdop_flip(files.inputs()));
+        ASSERT_EQ(chosen.exit_code, 0) << chosen.err;
+        EXPECT_NE(chosen.out.find("(24x16) on the CPU (kdop's default device, lavapipe, is a CPU"), std::string::npos)
+            << chosen.out;
+        EXPECT_EQ(printed_mean(chosen.out), mean) << chosen.out;
+    }
+    auto named = test::run("env KDOP_DEVICE=llvmpipe " + kdop_flip(files.inputs()));
+    ASSERT_EQ(named.exit_code, 0) << named.err;
+    EXPECT_NE(named.out.find("(24x16) on llvmpipe"), std::string::npos) << named.out;
     written = read_image(exr);
     ASSERT_TRUE(written) << written.error().message;
     for (std::size_t i = 0; i < map.size(); ++i) ASSERT_EQ(written->pixels[i], glm::vec4(glm::vec3(map[i]), 1)) << i;
