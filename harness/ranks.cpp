@@ -60,6 +60,12 @@ std::pair<std::size_t, std::size_t> Ranks::share(std::size_t count) const {
     return {share_start(count, rank_, size_), share_start(count, rank_ + 1, size_)};
 }
 
+int Ranks::owner(std::size_t i, std::size_t count) const {
+    int r = 0;
+    while (r + 1 < size_ && share_start(count, r + 1, size_) <= i) ++r;
+    return r;
+}
+
 void Ranks::all_gather(std::span<double> all, std::span<const std::size_t> per_item) const {
     if (size_ == 1) return;
 #ifdef KDOP_WITH_MPI

@@ -29,6 +29,8 @@ public:
 
     // [first, end) of `count` items, rank r's share: contiguous, in rank order, sizes within one.
     std::pair<std::size_t, std::size_t> share(std::size_t count) const;
+    // The rank whose share of `count` items holds item `i`.
+    int owner(std::size_t i, std::size_t count) const;
 
     // Fills `all` (the whole array, laid out by item) from every rank's items: rank r has written
     // items [share(items).first, .end), each `per_item[i]` doubles long, and receives the others'.

@@ -117,6 +117,22 @@ ResolveSettings measured_resolve(const ChooseResult& r, const ChooseOptions& o) 
     return resolve_settings(resolve);
 }
 
+// Which rank measured which candidates, under mpirun; nothing for one rank.
+std::string ranks_line(const ChooseResult& r) {
+    if (r.ranks <= 1) return {};
+    std::string line = fmt::format("The candidates were measured over {} ranks (mpirun), each its share; the "
+                                   "timings are rank 0's:",
+                                   r.ranks);
+    for (int rank = 0; rank < r.ranks; ++rank) {
+        std::vector<std::string> names;
+        for (const Candidate& c : r.candidates)
+            if (c.rank == rank) names.push_back(markdown_text(c.key.name()));
+        line += fmt::format(" rank {} {}{}", rank, names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", ")),
+                            rank + 1 < r.ranks ? ";" : ".\n\n");
+    }
+    return line;
+}
+
 // The same, measured through a renderer's own resolve (--resolve): only what kdop gave it.
 std::string own_resolve_section(const ChooseResult& r, const ChooseOptions& o, const OwnResolve& own) {
     std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
@@ -131,6 +147,7 @@ std::string own_resolve_section(const ChooseResult& r, const ChooseOptions& o, c
                       markdown_code(own.label()), markdown_code(own.bindings.file), o.evaluation.resolve.gamma,
                       o.evaluation.resolve.current_weight, r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP",
                       o.evaluation.ppd, o.evaluation.schedule.warmup);
+    md += ranks_line(r);
     if (r.recommendation.chosen)
         md += "kdop.manifest names the resolve in a comment and records no resolve settings: the figures are those "
               "of your resolve, as your build makes it, with kdop's variant in it.\n\n";
@@ -153,6 +170,7 @@ std::string settings_section(const ChooseResult& r, const ChooseOptions& o) {
                       to_string(settings.history_filter), settings.dilate_motion ? "yes" : "no",
                       r.range == ColorRange::hdr ? "HDR-FLIP" : "LDR-FLIP", o.evaluation.ppd,
                       o.evaluation.schedule.warmup);
+    md += ranks_line(r);
     if (settings.upscaling)
         md += fmt::format("The resolve upscaled the sequences' frames: filter {}, the clip's samples {}, box scale "
                           "{}.\n\n",

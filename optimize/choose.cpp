@@ -126,6 +126,52 @@ Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const st
     return figures;
 }
 
+// Every rank's candidates' figures, on every rank: rank r measured candidates [first, end) of
+// ranks.share(variants) into `mine` (indexed from its first); the whole is what one rank measuring
+// every candidate gets, each candidate's figures being its own history's alone. Two all-gathers:
+// each candidate's means and per-sequence frame counts, then its frames' values.
+Figures gather_figures(const Ranks& ranks, const Figures& mine, std::size_t variants, std::size_t metrics,
+                       std::size_t sequences) {
+    const auto [first, end] = ranks.share(variants);
+    const std::size_t head = metrics * (1 + sequences); // the means, then the counts by (metric, sequence)
+    std::vector<double> heads(variants * head);
+    for (std::size_t v = first; v < end; ++v)
+        for (std::size_t m = 0; m < metrics; ++m) {
+            heads[v * head + m] = mine.means[v - first][m];
+            for (std::size_t s = 0; s < sequences; ++s)
+                heads[v * head + metrics + m * sequences + s] = double(mine.frames[v - first][m][s].size());
+        }
+    ranks.all_gather(heads, std::vector<std::size_t>(variants, head));
+    std::vector<std::size_t> lengths(variants, 0), offsets(variants + 1, 0);
+    for (std::size_t v = 0; v < variants; ++v) {
+        for (std::size_t i = metrics; i < head; ++i) lengths[v] += std::size_t(heads[v * head + i]);
+        offsets[v + 1] = offsets[v] + lengths[v];
+    }
+    std::vector<double> values(offsets.back());
+    for (std::size_t v = first; v < end; ++v) {
+        std::size_t at = offsets[v];
+        for (const auto& metric : mine.frames[v - first])
+            for (const std::vector<double>& sequence : metric)
+                at = std::size_t(std::copy(sequence.begin(), sequence.end(), values.begin() + at) - values.begin());
+    }
+    ranks.all_gather(values, lengths);
+    Figures all{std::vector<std::vector<double>>(variants, std::vector<double>(metrics)),
+                std::vector<std::vector<std::vector<std::vector<double>>>>(
+                    variants, std::vector<std::vector<std::vector<double>>>(metrics))};
+    for (std::size_t v = 0; v < variants; ++v) {
+        std::size_t at = offsets[v];
+        for (std::size_t m = 0; m < metrics; ++m) {
+            all.means[v][m] = heads[v * head + m];
+            for (std::size_t s = 0; s < sequences; ++s) {
+                const auto count = std::size_t(heads[v * head + metrics + m * sequences + s]);
+                all.frames[v][m].emplace_back(values.begin() + at, values.begin() + at + count);
+                at += count;
+            }
+        }
+    }
+    return all;
+}
+
 // The candidates' rectification passes timed on the device (bench/timing.h, as kdop taa times
 // them), interleaved, and the float ops of each pass's SPIR-V as the generator counts them (what
 // kdop gen and kdop bench print: the same catalog, the same modules). `sets` are --sets' names and
@@ -355,6 +401,39 @@ Result<std::vector<VariantSpec>> fit_candidates(const ChooseOptions& o, const Pl
     return specs;
 }
 
+// This rank's share of the candidates measured: with --validate every measured frame of those
+// sequences, then of the fitted ones; with --holdout the fitted sequences once, their held-out
+// frames and the others. A rank with no candidate measures nothing.
+struct MeasuredShare {
+    Figures held, in_sample;
+};
+Result<MeasuredShare> measure_candidates(const Context& context, const ChooseOptions& o, const Plan& plan,
+                                         const std::vector<VariantSpec>& specs, const Ranks& ranks) {
+    const auto [first, end] = ranks.share(specs.size());
+    const std::vector<VariantSpec> mine(specs.begin() + std::ptrdiff_t(first), specs.begin() + std::ptrdiff_t(end));
+    if (mine.empty()) return MeasuredShare{};
+    auto evaluation = TaaEvaluation::create(context, mine, o.evaluation);
+    if (!evaluation) return std::unexpected(evaluation.error());
+    std::size_t frames = 0;
+    for (const auto* sequences : {&plan.validate, &plan.fit})
+        for (const SequenceFrames& s : *sequences) frames += s.frame_count();
+    Progress progress(fmt::format("TAA of {} candidates on the held-out and fitted frames,", specs.size()), frames);
+    if (plan.holdout.block == 0) {
+        auto on_validate = measure_figures(*evaluation, plan.validate, {nullptr}, progress);
+        if (!on_validate) return std::unexpected(on_validate.error());
+        auto on_fit = measure_figures(*evaluation, plan.fit, {nullptr}, progress);
+        if (!on_fit) return std::unexpected(on_fit.error());
+        return MeasuredShare{std::move(on_validate->front()), std::move(on_fit->front())};
+    }
+    const Holdout& holdout = plan.holdout;
+    auto split = measure_figures(
+        *evaluation, plan.fit,
+        {[&](std::size_t i) { return holdout.held_out(i); }, [&](std::size_t i) { return !holdout.held_out(i); }},
+        progress);
+    if (!split) return std::unexpected(split.error());
+    return MeasuredShare{std::move((*split)[0]), std::move((*split)[1])};
+}
+
 } // namespace
 
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, const Ranks& ranks) {
@@ -377,12 +456,22 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
     auto specs = stop_ranks_on_lost_frame<std::vector<VariantSpec>>(
         ranks, [&] { return fit_candidates(o, *plan, ranks, result); });
     if (!specs) return std::unexpected(specs.error());
-    // The fit is every rank's; the measuring is rank 0's, and so are the outputs.
-    if (!ranks.is_root()) return result;
+    // The fit is every rank's, and so is the measuring, each rank its share of the candidates (each
+    // candidate's figures are its own history's, whichever others share the pass); the timings and
+    // the outputs are rank 0's.
     const std::size_t fitted_count = specs->size();
     specs->insert(specs->end(), plan->builtin_specs.begin(), plan->builtin_specs.end());
     const Holdout& holdout = plan->holdout;
     const std::vector<SequenceFrames>&fit = plan->fit, &validate = plan->validate;
+    auto measured = measure_candidates(context, o, *plan, *specs, ranks);
+    if (auto ok = ranks.agree(measured ? Result<void>{} : std::unexpected(measured.error())); !ok)
+        return std::unexpected(ok.error());
+    const std::size_t metric_count = o.evaluation.metrics.size();
+    const Figures held = gather_figures(ranks, measured->held, specs->size(), metric_count,
+                                        holdout.block == 0 ? validate.size() : fit.size());
+    const Figures in_sample = gather_figures(ranks, measured->in_sample, specs->size(), metric_count, fit.size());
+    if (!ranks.is_root()) return result;
+    result.ranks = ranks.size();
 
     // Each candidate's rectification pass timed as kdop taa times it, at the held-out frames' size.
     const SequenceFrames& sized = validate.empty() ? fit.front() : validate.front();
@@ -406,30 +495,6 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
             }
     }
 
-    auto evaluation = TaaEvaluation::create(context, *specs, o.evaluation);
-    if (!evaluation) return std::unexpected(evaluation.error());
-    std::size_t frames = 0;
-    for (const auto* sequences : {&validate, &fit})
-        for (const SequenceFrames& s : *sequences) frames += s.frame_count();
-    Progress progress(fmt::format("TAA of {} candidates on the held-out and fitted frames,", specs->size()), frames);
-    // With --validate: every measured frame of those sequences, then of the fitted ones. With
-    // --holdout: the fitted sequences once, their held-out frames and the others.
-    Figures held, in_sample;
-    if (holdout.block == 0) {
-        auto on_validate = measure_figures(*evaluation, validate, {nullptr}, progress);
-        if (!on_validate) return std::unexpected(on_validate.error());
-        auto on_fit = measure_figures(*evaluation, fit, {nullptr}, progress);
-        if (!on_fit) return std::unexpected(on_fit.error());
-        held = std::move(on_validate->front()), in_sample = std::move(on_fit->front());
-    } else {
-        auto split = measure_figures(
-            *evaluation, fit,
-            {[&](std::size_t i) { return holdout.held_out(i); }, [&](std::size_t i) { return !holdout.held_out(i); }},
-            progress);
-        if (!split) return std::unexpected(split.error());
-        held = std::move((*split)[0]), in_sample = std::move((*split)[1]);
-    }
-
     // Each held-out ghosting's interval: blocks of frames that share their history, drawn alike for
     // every candidate (harness/block_bootstrap.h).
     result.bootstrap.block = history_block(o.evaluation.resolve.current_weight);
@@ -440,6 +505,7 @@ Result<ChooseResult> choose(const Context& context, const ChooseOptions& o, cons
         Candidate c;
         c.key = spec.key();
         c.fitted = v < fitted_count;
+        c.rank = ranks.owner(v, specs->size());
         c.float_ops = timed->float_ops[v];
         c.analytic_ops = analytic_min_float_ops(spec.set, spec.mode, spec.neighborhood);
         c.range = result.range;

@@ -80,6 +80,7 @@ struct CandidateFigure {
 struct Candidate {
     VariantKey key;
     bool fitted = false;
+    int rank = 0; // the rank that measured its figures (under mpirun; its timing is rank 0's)
     // The float ops of its compute shader's SPIR-V as the generator counts them (spirv_cost.h): the
     // count kdop gen and kdop bench print, which --budget-ops is held against. Beside it the
     // analytic lower bound of the same clip (analytic_cost.h; bench's "analytic min"), a few below.
@@ -165,13 +166,15 @@ struct ChooseResult {
     bool upscaled = false;      // whether any sequence's frames are smaller than its outputs: the resolve upscaled
     BootstrapOptions bootstrap; // how the held-out ghosting's intervals were drawn
     Metrics metrics;            // what each candidate's figures are, by index: the evaluation's
+    int ranks = 1;              // the ranks the candidates were measured over
 };
 
 // The run, on options that pass check(): checks (a usage Error where the command line is at fault:
 // sequences of two color ranges, two candidates of one set name, a set
-// file it would write over an input), fits, measures, recommends. Writes nothing. Under mpirun every rank checks, and
-// the fits are shared over the ranks as kdop optimize shares them (the same sets for any rank count); rank 0 alone then
-// times and measures the candidates, and on the other ranks the result holds the fitted files and no candidates.
+// file it would write over an input), fits, measures, recommends. Writes nothing. Under mpirun every rank checks, the
+// fits are shared over the ranks as kdop optimize shares them (the same sets for any rank count), and so are the
+// candidates' measurements, each rank its contiguous share (the same figures for any rank count); rank 0 alone times
+// them, and on the other ranks the result holds the fitted files and no candidates.
 Result<ChooseResult> choose(const Context& context, const ChooseOptions& options, const Ranks& ranks);
 
 } // namespace kdop

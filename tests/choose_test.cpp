@@ -774,7 +774,24 @@ TEST(CliChoose, TheSameFilesOnAnyRankCount) {
         for (std::size_t at = 0; (at = r.out.find("kdop choose: ", at)) != std::string::npos; ++at) ++printed;
         EXPECT_EQ(printed, 1u) << r.out;
         EXPECT_NE(r.err.find(fmt::format("on rank 0 of {}", ranks)), std::string::npos) << r.err;
+        // The candidates' measurements shared: each candidate measured once, by one rank, every rank
+        // measuring some, in rank order.
+        const std::string report = test::read_file(out / "choice.md");
+        const std::size_t line = report.find(fmt::format("The candidates were measured over {} ranks", ranks));
+        ASSERT_NE(line, std::string::npos) << report;
+        const std::string shares = report.substr(line, report.find('\n', line) - line);
+        for (int rank = 0; rank < ranks; ++rank) {
+            const std::size_t at = shares.find(fmt::format(" rank {} ", rank));
+            ASSERT_NE(at, std::string::npos) << shares;
+            EXPECT_NE(shares.substr(at, 12).find("none"), 8u) << shares;
+        }
+        for (auto c : figures(out / "candidates.csv")) {
+            std::size_t seen = 0;
+            for (std::size_t at = 0; (at = shares.find(c["variant"], at)) != std::string::npos; ++at) ++seen;
+            EXPECT_EQ(seen, 1u) << c["variant"] << " in " << shares;
+        }
     }
+    EXPECT_EQ(test::read_file(dir / "alone" / "choice.md").find("measured over"), std::string::npos);
     const fs::path refused = dir / "refused";
     auto b = choose(test::mpirun_np() + "2 ", refused, "");
     EXPECT_EQ(b.exit_code, 2) << b.err;
