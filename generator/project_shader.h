@@ -31,7 +31,7 @@ struct ProjectShaderOptions {
     std::string hlsl_entry_point = "main"; // of every HLSL shader (a GLSL shader's is main)
     // Headers given by name, looked up before the variants and the files: kdop taa --resolve's
     // "kdop_variant.glsl", the variant under test behind a name that does not change.
-    std::vector<IncludedSource> provided;
+    std::vector<IncludedSource> provided = {};
 };
 
 // Where a shader file's stage, language and registry name come from: its extensions.

@@ -72,6 +72,13 @@ Result<void> add_bindings(const Compiler& compiler, const spirv_cross::SmallVect
         if (type == DescriptorType::uniform_buffer || type == DescriptorType::storage_buffer)
             b.block_size =
                 static_cast<std::uint32_t>(compiler.get_declared_struct_size(compiler.get_type(r.base_type_id)));
+        if (type == DescriptorType::uniform_buffer) {
+            const SPIRType& block = compiler.get_type(r.base_type_id);
+            for (std::uint32_t m = 0; m < block.member_types.size(); ++m)
+                b.members.push_back({compiler.get_member_name(r.base_type_id, m),
+                                     compiler.type_struct_member_offset(block, m),
+                                     static_cast<std::uint32_t>(compiler.get_declared_struct_member_size(block, m))});
+        }
         out.bindings.push_back(std::move(b));
     }
     return {};

@@ -30,6 +30,13 @@ struct BindingInfo {
     std::uint32_t count = 1;      // array length; 1 for a single descriptor
     std::uint32_t block_size = 0; // buffers: declared block size in bytes
     std::uint32_t format = 0;     // storage images and texel buffers: VkFormat value, 0 if none declared
+    // Uniform blocks: each member's name, offset and size (what kdop taa --resolve fills by role;
+    // not in the registry, which records the block's size alone).
+    struct Member {
+        std::string name;
+        std::uint32_t offset, size;
+    };
+    std::vector<Member> members = {};
 };
 
 struct PushConstantInfo {

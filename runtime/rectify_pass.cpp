@@ -146,6 +146,7 @@ Result<std::unique_ptr<RectifyPass>> RectifyPass::create(const Context& context,
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, input_count},
                                           {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, input_count},
                                           {VK_DESCRIPTOR_TYPE_SAMPLER, input_count},
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, input_count},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     auto sets = KernelSets::create(context, sizes, 1);
     if (!sets) return std::unexpected(sets.error());
@@ -251,7 +252,7 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
 }
 
 Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<const PushConstantValue> values,
-                                             std::span<const BindingAs> as) {
+                                             std::span<const BindingAs> as, std::span<const UniformBlock> uniforms) {
     VkDevice device = context_.device();
 
     if (auto ok = kernel_sets_.reset(); !ok) return std::unexpected(ok.error());
@@ -278,6 +279,20 @@ Result<DispatchTiming> RectifyPass::dispatch(const Kernel& kernel, std::span<con
         const std::string_view wanted = given != as.end() ? given->input : std::string_view(b.name);
         if (wanted == kSampler && b.type == DescriptorType::sampler) {
             bound.push_back({b.binding, BoundImage{VK_NULL_HANDLE, VK_IMAGE_LAYOUT_UNDEFINED, sampler}});
+            continue;
+        }
+        const auto block =
+            std::find_if(uniforms.begin(), uniforms.end(), [&](const UniformBlock& u) { return u.binding == b.name; });
+        if (block != uniforms.end() && b.type == DescriptorType::uniform_buffer) {
+            auto buffer = uniform_buffers_.find(b.name);
+            if (buffer == uniform_buffers_.end() || buffer->second.size() < block->bytes.size()) {
+                auto made = DeviceBuffer::create(context_, block->bytes.size(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                                 DeviceBuffer::Memory::host, "a uniform block");
+                if (!made) return std::unexpected(made.error());
+                buffer = uniform_buffers_.insert_or_assign(b.name, std::move(*made)).first;
+            }
+            std::memcpy(buffer->second.mapped(), block->bytes.data(), block->bytes.size());
+            bound.push_back({b.binding, BoundBuffer{buffer->second.buffer()}});
             continue;
         }
         const auto input =

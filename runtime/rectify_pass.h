@@ -14,6 +14,7 @@
 #include "runtime/one_shot_commands.h"
 #include "runtime/texture_format.h"
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -70,10 +71,10 @@ public:
     struct PushConstantValue {
         PushConstantValue(std::string name, std::vector<float> values)
             : name(std::move(name)), values(std::move(values)) {}
-        // A uint member's (a frame index, a flag).
-        static PushConstantValue uint(std::string name, std::uint32_t value) {
+        // A member's words as they are: a uint's (a frame index, a flag), or any value's bits.
+        static PushConstantValue words(std::string name, std::vector<std::uint32_t> words) {
             PushConstantValue v(std::move(name), {});
-            v.uints = {value};
+            v.uints = std::move(words);
             return v;
         }
         std::string name;
@@ -91,8 +92,14 @@ public:
         std::string_view binding, input;
     };
     static constexpr std::string_view kOutput = "rectified_history", kSampler = "(sampler)";
+    // A uniform block's bytes for this dispatch (its binding's name, the block's whole size),
+    // copied into a buffer the pass keeps for that binding.
+    struct UniformBlock {
+        std::string_view binding;
+        std::span<const std::byte> bytes;
+    };
     Result<DispatchTiming> dispatch(const Kernel& kernel, std::span<const PushConstantValue> values,
-                                    std::span<const BindingAs> as);
+                                    std::span<const BindingAs> as, std::span<const UniformBlock> uniforms = {});
     // The output of the last dispatch, as floats (an rgba16f output's halves, exactly).
     Result<Image> download();
 
@@ -160,6 +167,9 @@ private:
     VkSampler sampler_ = VK_NULL_HANDLE;        // nearest: kdop's kernels, which read with texelFetch
     VkSampler linear_sampler_ = VK_NULL_HANDLE; // dispatches with bindings `as`
     KernelSets kernel_sets_;                    // one set, written afresh for each dispatch's kernel
+    // A uniform block's buffer by binding name, made when first given: written before each
+    // dispatch, which the pass waits for, so one buffer per block serves every dispatch.
+    std::map<std::string, DeviceBuffer, std::less<>> uniform_buffers_;
     std::unique_ptr<OneShotCommands> commands_;
     VkQueryPool timestamps_ = VK_NULL_HANDLE; // null where the queue cannot time
     bool dispatched_ = false;                 // the output holds a dispatch's result

@@ -41,7 +41,11 @@ Result<OwnResolve> load_own_resolve(const std::filesystem::path& shader, const s
 Result<BoundOwnResolve> build_bound_resolve(const OwnResolve& resolve, const VariantSpec& spec) {
     auto shader = build_own_resolve(resolve.shader, spec, resolve.hlsl_entry);
     if (!shader) return std::unexpected(shader.error());
-    auto roles = bind(resolve.bindings, (*shader)->variant());
+    // The registry form records a uniform block's size alone; its members come from the build.
+    std::vector<UniformMember> members;
+    for (const BindingInfo& b : (*shader)->built().interface.bindings)
+        for (const BindingInfo::Member& m : b.members) members.push_back({b.name, m.name, m.offset, m.size});
+    auto roles = kdop::bind(resolve.bindings, (*shader)->variant(), members); // not std::bind, found by ADL
     if (!roles) return std::unexpected(roles.error());
     return BoundOwnResolve{std::move(*shader), std::move(*roles)};
 }

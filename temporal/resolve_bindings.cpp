@@ -164,7 +164,9 @@ Result<ResolveBindings> parse_resolve_bindings(std::string_view text, const std:
         return fail(fmt::format("{}: not JSON: {}", file, shown_text(e.what(), 200)));
     }
     if (!root.is_object()) return fail(fmt::format("{}: expected a JSON object", file));
-    if (auto ok = read.known_keys(root, {"format", "version", "resources", "push_constants", "motion"}, "the map"); !ok)
+    if (auto ok = read.known_keys(root, {"format", "version", "resources", "push_constants", "uniforms", "motion"},
+                                  "the map");
+        !ok)
         return std::unexpected(ok.error());
     if (root.value("format", json()) != "kdop-resolve-bindings")
         return std::unexpected(read.error("format", "expected \"kdop-resolve-bindings\""));
@@ -175,9 +177,21 @@ Result<ResolveBindings> parse_resolve_bindings(std::string_view text, const std:
     if (!resources) return std::unexpected(resources.error());
     auto values = read.roles(root, "push_constants", kValueRoles);
     if (!values) return std::unexpected(values.error());
+    auto uniforms = read.roles(root, "uniforms", kValueRoles);
+    if (!uniforms) return std::unexpected(uniforms.error());
+    // A value is written in one place: a role in both is refused as one given twice within either.
+    for (const auto& [name, role] : *uniforms)
+        for (const auto& [member, given] : *values)
+            if (role == given)
+                return std::unexpected(read.error(
+                    fmt::format("uniforms.{}", shown_text(name, 60)),
+                    fmt::format("the role {} is also given to push_constants.{}; kdop fills one resource or member "
+                                "with each",
+                                to_string(role), shown_text(member, 60))));
     auto motion = read.motion(root);
     if (!motion) return std::unexpected(motion.error());
-    map.resources = std::move(*resources), map.push_constants = std::move(*values), map.motion = *motion;
+    map.resources = std::move(*resources), map.push_constants = std::move(*values);
+    map.uniforms = std::move(*uniforms), map.motion = *motion;
     return map;
 }
 
@@ -218,7 +232,8 @@ std::optional<std::string> type_mismatch(const DescriptorBinding& b, ResourceRol
 
 } // namespace
 
-Result<BoundResolve> bind(const ResolveBindings& map, const Variant& shader) {
+Result<BoundResolve> bind(const ResolveBindings& map, const Variant& shader,
+                          std::span<const UniformMember> uniform_members) {
     const std::span<const DescriptorBinding> bindings(shader.bindings, shader.binding_count);
     const std::span<const PushConstantMember> members(shader.push_constants, shader.push_constant_count);
     auto refused = [&](const std::string& what) {
@@ -239,8 +254,37 @@ Result<BoundResolve> bind(const ResolveBindings& map, const Variant& shader) {
                                        shown_text(name, 60), to_string(role), *expected, b->name, b->set, b->binding));
         bound.resources.push_back({role, &*b});
     }
+    // A uniform block's members each take a value role, and then the block is bound by them.
+    for (const auto& [name, role] : map.uniforms) {
+        const auto m = std::ranges::find_if(uniform_members,
+                                            [&](const UniformMember& u) { return name == u.block + "." + u.name; });
+        const auto b =
+            m == uniform_members.end()
+                ? bindings.end()
+                : std::ranges::find_if(bindings, [&](const DescriptorBinding& d) { return m->block == d.name; });
+        if (b == bindings.end())
+            return refused(fmt::format("uniforms.{}: the shader has no uniform block member \"{}\" (named "
+                                       "\"<block>.<member>\", the block as its resources are)",
+                                       shown_text(name, 60), shown_text(name, 60)));
+        if (m->size != value_size(role))
+            return refused(fmt::format(
+                "uniforms.{}: the role {} takes {} bytes ({}), and \"{}\" is {}", shown_text(name, 60), to_string(role),
+                value_size(role), value_size(role) == 8 ? "a vec2" : "a float or uint", shown_text(name, 60), m->size));
+        bound.uniforms.push_back({role, &*b, m->offset, m->size});
+    }
+    for (const UniformMember& u : uniform_members)
+        if (std::ranges::none_of(map.uniforms,
+                                 [&](const auto& given) { return given.first == u.block + "." + u.name; }))
+            return refused(fmt::format("its uniform block member \"{}.{}\" has no role in the map's \"uniforms\", "
+                                       "so kdop could not fill it",
+                                       u.block, u.name));
+    const auto is_uniform_block = [&](const DescriptorBinding& d) {
+        return d.type == DescriptorType::uniform_buffer &&
+               std::ranges::any_of(bound.uniforms, [&](const BoundResolve::Uniform& u) { return u.block == &d; });
+    };
     for (const DescriptorBinding& d : bindings)
-        if (std::ranges::none_of(bound.resources, [&](const auto& r) { return r.binding == &d; }))
+        if (!is_uniform_block(d) &&
+            std::ranges::none_of(bound.resources, [&](const auto& r) { return r.binding == &d; }))
             return refused(fmt::format("its resource \"{}\" (set {}, binding {}) has no role in the map's "
                                        "\"resources\", so kdop could not bind it",
                                        d.name, d.set, d.binding));

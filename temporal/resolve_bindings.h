@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,7 +68,16 @@ struct ResolveBindings {
     std::string file;                                              // the map's path, as given: what errors name
     std::vector<std::pair<std::string, ResourceRole>> resources;   // the shader's name, its role
     std::vector<std::pair<std::string, ValueRole>> push_constants; // the member's name, its role
+    std::vector<std::pair<std::string, ValueRole>> uniforms;       // "<block>.<member>", its role
     MotionConvention motion;                                       // as sequence.json's "motion" spells it
+};
+
+// A member of one of the shader's uniform blocks (a cbuffer), as its reflection gives it: the
+// registry records a block's size alone, so build_bound_resolve passes these from the build.
+struct UniformMember {
+    std::string block; // the block's binding name (DescriptorBinding::name)
+    std::string name;
+    std::uint32_t offset, size;
 };
 
 // The map in `text`, read from `file` (which errors name, with the key at fault): unknown keys,
@@ -85,18 +95,28 @@ struct BoundResolve {
         ValueRole role;
         const PushConstantMember* member;
     };
-    std::vector<Resource> resources;
+    // A uniform block's member: where in the block kdop writes the role's value.
+    struct Uniform {
+        ValueRole role;
+        const DescriptorBinding* block;
+        std::uint32_t offset, size;
+    };
+    std::vector<Resource> resources; // a uniform block is not one: its members are uniforms
     std::vector<Value> values;
+    std::vector<Uniform> uniforms;
     MotionConvention motion;
     const DescriptorBinding* find(ResourceRole role) const;
 };
 
 // Refuses, naming the map, the shader and the resource: a name the shader does not have; a resource
 // of the wrong type for its role (a sampled image for current, history, motion and depth; a storage
-// image of rgba32f or rgba16f for the output; a sampler for sampler); a push-constant member of the
-// wrong size (the reflection records sizes, not scalar types: 4 bytes for a float or uint, 8 for a
-// vec2); a resource or member of the shader the map gives no role (kdop could not fill it); and a
-// map without current, history or output. `shader` must outlive the result.
-Result<BoundResolve> bind(const ResolveBindings& map, const Variant& shader);
+// image of rgba32f or rgba16f for the output; a sampler for sampler); a push-constant or uniform
+// member of the wrong size (the reflection records sizes, not scalar types: 4 bytes for a float or
+// uint, 8 for a vec2); a resource or member of the shader the map gives no role (kdop could not
+// fill it); a role given twice across push_constants and uniforms; and a map without current,
+// history or output. `uniform_members`: the members of the shader's uniform blocks. `shader` must
+// outlive the result.
+Result<BoundResolve> bind(const ResolveBindings& map, const Variant& shader,
+                          std::span<const UniformMember> uniform_members = {});
 
 } // namespace kdop

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 
 namespace kdop {
 namespace {
@@ -171,48 +172,74 @@ Result<VkImageView> TaaResolve::output_on_device(std::size_t s) {
     return pass_->view_to_sample(kHistory);
 }
 
-std::vector<RectifyPass::PushConstantValue> TaaResolve::push_values(std::size_t s, bool starts_history,
-                                                                    glm::vec2 jitter, std::uint32_t index) const {
+std::vector<std::uint32_t> TaaResolve::role_words(ValueRole role, const FrameValues& frame) const {
     // The upscaling ratio, as FSR 2 and UE4 take it: output width over input width.
     const float ratio = float(width_) / float(input_width_);
-    const float weight = starts_history ? 1.0f : options_.current_weight;
-    const float gamma = options_.gamma * (options_.upscale ? box_scale_at(options_.box_scale, ratio) : 1.0f);
-    const float distance = options_.sample_distance.at(ratio);
+    std::vector<float> floats;
+    switch (role) {
+    case ValueRole::current_weight: floats = {frame.starts_history ? 1.0f : options_.current_weight}; break;
+    case ValueRole::gamma:
+        floats = {options_.gamma * (options_.upscale ? box_scale_at(options_.box_scale, ratio) : 1.0f)};
+        break;
+    case ValueRole::jitter: floats = {frame.jitter.x, frame.jitter.y}; break;
+    case ValueRole::input_size: floats = {float(input_width_), float(input_height_)}; break;
+    case ValueRole::output_size: floats = {float(width_), float(height_)}; break;
+    case ValueRole::frame_index: return {frame.index};
+    case ValueRole::reset: return {frame.starts_history ? 1u : 0u};
+    case ValueRole::exposure: floats = {1.0f}; break; // no source kdop reads gives one yet
+    case ValueRole::sample_distance: floats = {options_.sample_distance.at(ratio)}; break;
+    }
+    std::vector<std::uint32_t> words(floats.size());
+    std::memcpy(words.data(), floats.data(), 4 * floats.size());
+    return words;
+}
+
+std::vector<RectifyPass::PushConstantValue> TaaResolve::push_values(std::size_t s, const FrameValues& frame) const {
+    auto value = [&](ValueRole role) {
+        std::vector<float> floats(role == ValueRole::jitter ? 2 : 1);
+        std::memcpy(floats.data(), role_words(role, frame).data(), 4 * floats.size());
+        return floats;
+    };
     if (roles_.empty() || !roles_[s]) {
         // kdop's resolve: only an upscaling one takes the jitter and the sample distance.
-        std::vector<RectifyPass::PushConstantValue> values{{"current_weight", {weight}}, {"gamma", {gamma}}};
+        std::vector<RectifyPass::PushConstantValue> values{{"current_weight", value(ValueRole::current_weight)},
+                                                           {"gamma", value(ValueRole::gamma)}};
         if (options_.upscale)
-            values.insert(values.end(), {{"jitter", {jitter.x, jitter.y}}, {"sample_distance", {distance}}});
+            values.insert(values.end(), {{"jitter", value(ValueRole::jitter)},
+                                         {"sample_distance", value(ValueRole::sample_distance)}});
         return values;
     }
     std::vector<RectifyPass::PushConstantValue> values;
-    for (const BoundResolve::Value& v : roles_[s]->values) {
-        const std::string name = v.member->name;
-        switch (v.role) {
-        case ValueRole::current_weight: values.emplace_back(name, std::vector{weight}); break;
-        case ValueRole::gamma: values.emplace_back(name, std::vector{gamma}); break;
-        case ValueRole::jitter: values.emplace_back(name, std::vector{jitter.x, jitter.y}); break;
-        case ValueRole::input_size:
-            values.emplace_back(name, std::vector{float(input_width_), float(input_height_)});
-            break;
-        case ValueRole::output_size: values.emplace_back(name, std::vector{float(width_), float(height_)}); break;
-        case ValueRole::frame_index: values.push_back(RectifyPass::PushConstantValue::uint(name, index)); break;
-        case ValueRole::reset:
-            values.push_back(RectifyPass::PushConstantValue::uint(name, starts_history ? 1u : 0u));
-            break;
-        case ValueRole::exposure: values.emplace_back(name, std::vector{1.0f}); break; // no source gives one yet
-        case ValueRole::sample_distance: values.emplace_back(name, std::vector{distance}); break;
-        }
-    }
+    for (const BoundResolve::Value& v : roles_[s]->values)
+        values.push_back(RectifyPass::PushConstantValue::words(v.member->name, role_words(v.role, frame)));
     return values;
 }
 
+std::vector<std::pair<std::string_view, std::vector<std::byte>>>
+TaaResolve::uniform_blocks(std::size_t s, const FrameValues& frame) const {
+    std::vector<std::pair<std::string_view, std::vector<std::byte>>> blocks;
+    if (roles_.empty() || !roles_[s]) return blocks;
+    for (const BoundResolve::Uniform& u : roles_[s]->uniforms) {
+        auto block =
+            std::find_if(blocks.begin(), blocks.end(), [&](const auto& b) { return b.first == u.block->name; });
+        if (block == blocks.end())
+            block = blocks.insert(blocks.end(), {u.block->name, std::vector<std::byte>(u.block->block_size)});
+        const std::vector<std::uint32_t> words = role_words(u.role, frame);
+        std::memcpy(block->second.data() + u.offset, words.data(), std::min<std::size_t>(u.size, 4 * words.size()));
+    }
+    return blocks;
+}
+
 Result<void> TaaResolve::resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter, std::uint32_t index) {
+    const FrameValues frame{starts_history, jitter, index};
     for (std::size_t s = 0; s < kernels_.size(); ++s) {
         auto resolved = [&]() -> Result<void> {
             if (auto ok = pass_->select_slot(kHistory, s); !ok) return ok;
-            const auto values = push_values(s, starts_history, jitter, index);
-            if (auto timing = pass_->dispatch(*kernels_[s], values, as_[s]); !timing)
+            const auto values = push_values(s, frame);
+            const auto blocks = uniform_blocks(s, frame);
+            std::vector<RectifyPass::UniformBlock> uniforms;
+            for (const auto& [name, bytes] : blocks) uniforms.push_back({name, bytes});
+            if (auto timing = pass_->dispatch(*kernels_[s], values, as_[s], uniforms); !timing)
                 return std::unexpected(timing.error());
             if (auto ok = pass_->copy_output_to(kHistory); !ok) return ok;
             if (!read_outputs) return {};

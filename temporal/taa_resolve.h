@@ -88,9 +88,19 @@ private:
     // Every shader on the frame in the inputs: its history, its dispatch, its output kept as its
     // next history and, with `read_outputs`, read back. `jitter`: the frame's (upscaling only).
     Result<void> resolve_all(bool starts_history, bool read_outputs, glm::vec2 jitter, std::uint32_t index);
+    // What one frame gives the shaders: kdop's push constants by name, and for a renderer's
+    // resolve the words of each value role.
+    struct FrameValues {
+        bool starts_history;
+        glm::vec2 jitter;
+        std::uint32_t index;
+    };
+    std::vector<std::uint32_t> role_words(ValueRole role, const FrameValues& frame) const;
     // The push constants of shader `s`: kdop's names, or those its roles give.
-    std::vector<RectifyPass::PushConstantValue> push_values(std::size_t s, bool starts_history, glm::vec2 jitter,
-                                                            std::uint32_t index) const;
+    std::vector<RectifyPass::PushConstantValue> push_values(std::size_t s, const FrameValues& frame) const;
+    // The bytes of each of shader `s`'s uniform blocks, its roles' values at their offsets.
+    std::vector<std::pair<std::string_view, std::vector<std::byte>>> uniform_blocks(std::size_t s,
+                                                                                    const FrameValues& frame) const;
 
     const Context* context_;
     ResolveOptions options_;

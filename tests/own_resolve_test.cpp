@@ -295,6 +295,85 @@ TEST_P(OwnResolveFormatGpu, AResolveInYCoCgWithALuminanceWeightMatchesItsCpuRest
 
 INSTANTIATE_TEST_SUITE_P(Output, OwnResolveFormatGpu, ::testing::Values("rgba32f", "rgba16f"));
 
+// The YCoCg resolve with its values in a uniform block (a cbuffer) instead of push constants,
+// bound by "<block>.<member>" under the map's "uniforms": the same outputs to the bit. What does
+// not fit is refused, naming the member.
+TEST_F(OwnResolveGpu, UniformBlockMembersAreFilledAsPushConstantsAre) {
+    constexpr std::uint32_t w = 24, h = 16;
+    test::TempDir dir;
+    std::string text = read_input_file(source_file("tests/data/own_resolve/ycocg_resolve.comp")).value_or("");
+    const std::string push = "layout(push_constant) uniform Constants";
+    ASSERT_NE(text.find(push), std::string::npos);
+    text.replace(text.find(push), push.size(), "layout(set = 0, binding = 5) uniform Constants");
+    write_text(dir / "uniform_resolve.comp", text);
+    std::string map = read_input_file(source_file("tests/data/own_resolve/ycocg_resolve.bindings.json")).value_or("");
+    const std::string values = R"("push_constants": {
+    "reset": "reset",
+    "blend": "current_weight",
+    "variance_gamma": "gamma"
+  })";
+    ASSERT_NE(map.find(values), std::string::npos) << map;
+    const std::string uniforms = R"("uniforms": {"constants.reset": "reset", "constants.blend": "current_weight",
+                 "constants.variance_gamma": "gamma"})";
+    write_text(dir / "uniform.json", std::string(map).replace(map.find(values), values.size(), uniforms));
+
+    auto by_push = load_own_resolve(source_file("tests/data/own_resolve/ycocg_resolve.comp"),
+                                    source_file("tests/data/own_resolve/ycocg_resolve.bindings.json"));
+    auto by_uniform = load_own_resolve(dir / "uniform_resolve.comp", dir / "uniform.json");
+    ASSERT_TRUE(by_push) << by_push.error().message;
+    ASSERT_TRUE(by_uniform) << by_uniform.error().message;
+    const VariantSpec spec = spec_of("dop16-grass", Mode::varclip);
+    std::vector<BoundOwnResolve> bound;
+    bound.reserve(2);
+    for (const OwnResolve* resolve : {&*by_push, &*by_uniform}) {
+        auto built = build_bound_resolve(*resolve, spec);
+        ASSERT_TRUE(built) << built.error().message;
+        bound.push_back(std::move(*built));
+    }
+    EXPECT_EQ(bound[1].roles.uniforms.size(), 3u);
+    EXPECT_TRUE(bound[1].roles.values.empty());
+    ResolveOptions options;
+    options.current_weight = 0.2f;
+    options.gamma = 1.25f;
+    const Variant* shaders[] = {&bound[0].shader->variant(), &bound[1].shader->variant()};
+    auto resolve =
+        TaaResolve::create(test::gpu(), shaders, w, h, w, h, options, {}, {&bound[0].roles, &bound[1].roles});
+    ASSERT_TRUE(resolve) << resolve.error().message;
+    const LoadedFrame frames[] = {
+        {make_texture(TextureFamily::grass, w, h, 3), {}, {}, {}, {}},
+        {make_texture(TextureFamily::grass, w, h, 5), std::vector<glm::vec2>(w * h, glm::vec2(2, -1)), {}, {}, {}},
+        {make_texture(TextureFamily::grass, w, h, 7), std::vector<glm::vec2>(w * h, glm::vec2(-1, 1)), {}, {}, {}}};
+    for (std::uint32_t f = 0; f < 3; ++f) {
+        ASSERT_TRUE((*resolve)->advance_all(frames[f], f == 0, true, f));
+        EXPECT_TRUE(same_bits((*resolve)->output(0), (*resolve)->output(1))) << "frame " << f;
+    }
+
+    // A member left without a role, a member the block lacks, a role given twice: refused.
+    const struct {
+        std::string from, to, says;
+    } wrong[] = {
+        {"\"constants.variance_gamma\": \"gamma\"", "\"constants.variance_gamma2\": \"gamma\"",
+         "uniforms.constants.variance_gamma2: the shader has no uniform block member"},
+        {", \"constants.blend\": \"current_weight\"", "",
+         "its uniform block member \"constants.blend\" has no role in the map's \"uniforms\""},
+        {"\"resources\": {", "\"push_constants\": {\"unused\": \"reset\"}, \"resources\": {",
+         "uniforms.constants.reset: the role reset is also given to push_constants.unused"},
+    };
+    const std::string good = read_input_file(dir / "uniform.json").value_or("");
+    for (const auto& c : wrong) {
+        SCOPED_TRACE(c.says);
+        std::string text_map = good;
+        ASSERT_NE(text_map.find(c.from), std::string::npos) << text_map;
+        write_text(dir / "wrong.json", text_map.replace(text_map.find(c.from), c.from.size(), c.to));
+        auto loaded = load_own_resolve(dir / "uniform_resolve.comp", dir / "wrong.json");
+        const std::string message = !loaded ? loaded.error().message : [&] {
+            auto built = build_bound_resolve(*loaded, spec);
+            return built ? std::string("bound") : built.error().message;
+        }();
+        EXPECT_NE(message.find(c.says), std::string::npos) << message;
+    }
+}
+
 // kdop/resolve_runner.h, the helper an engine compiles into its tools, runs the YCoCg resolve as
 // kdop's own path runs it: the same outputs to the bit over a start and a moving frame, the
 // history kept on the device. What it cannot bind or fill is refused, naming it.
