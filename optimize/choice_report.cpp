@@ -133,14 +133,20 @@ std::string ranks_line(const ChooseResult& r) {
     return line;
 }
 
-// The same, measured through a renderer's own resolve (--resolve): only what kdop gave it.
-std::string own_resolve_section(const ChooseResult& r, const ChooseOptions& o, const OwnResolve& own) {
+// The settings section's head: its title, and the recommended variant's mode and neighborhood.
+std::string settings_head(const ChooseResult& r) {
     std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
     if (r.recommendation.chosen) {
         const Candidate& c = r.candidates[*r.recommendation.chosen];
         md += fmt::format("| mode (recommended) | {} |\n| neighborhood (recommended) | {} |\n", to_string(c.key.mode),
                           to_string(c.key.neighborhood));
     }
+    return md;
+}
+
+// The same, measured through a renderer's own resolve (--resolve): only what kdop gave it.
+std::string own_resolve_section(const ChooseResult& r, const ChooseOptions& o, const OwnResolve& own) {
+    std::string md = settings_head(r);
     md += fmt::format("| resolve | {} (--resolve), bound by {} |\n| gamma, where its map takes it | {} |\n"
                       "| current weight, where its map takes it | {} |\n| FLIP | {} at {:.1f} pixels per degree |\n"
                       "| warm-up | {} frames |\n\n",
@@ -157,12 +163,7 @@ std::string own_resolve_section(const ChooseResult& r, const ChooseOptions& o, c
 std::string settings_section(const ChooseResult& r, const ChooseOptions& o) {
     if (o.evaluation.own_resolve) return own_resolve_section(r, o, *o.evaluation.own_resolve);
     const ResolveSettings settings = measured_resolve(r, o);
-    std::string md = "## What the figures were measured with\n\n| setting | value |\n|---|---|\n";
-    if (r.recommendation.chosen) {
-        const Candidate& c = r.candidates[*r.recommendation.chosen];
-        md += fmt::format("| mode (recommended) | {} |\n| neighborhood (recommended) | {} |\n", to_string(c.key.mode),
-                          to_string(c.key.neighborhood));
-    }
+    std::string md = settings_head(r);
     md += fmt::format("| gamma (the variance clip's width; varclip only) | {} |\n| current weight | {} |\n"
                       "| color map | {} |\n| history filter | {} |\n| motion dilation | {} |\n"
                       "| FLIP | {} at {:.1f} pixels per degree |\n| warm-up | {} frames |\n\n",

@@ -584,10 +584,8 @@ std::unique_ptr<Upscaler> Upscaler::create(const Device& device, const kdop::Var
     layout.output = "resolved_frame";
     layout.width = width, layout.height = height;
     layout.history = "history_frame";
-    const kdop::RunnerDevice on{device.instance, device.physical_device, device.device,
-                                device.queue,    device.queue_family,    device.get_instance_proc_addr};
     auto state = std::make_unique<State>();
-    state->runner = kdop::ResolveRunner::create(on, shader, layout, error);
+    state->runner = kdop::ResolveRunner::create(device, shader, layout, error);
     if (!state->runner) return nullptr;
     state->input_width = input_width, state->input_height = input_height;
     return std::unique_ptr<Upscaler>(new Upscaler(std::move(state)));

@@ -13,6 +13,7 @@
 // vkGetDeviceProcAddr, as with volk, so nothing here links the loader.
 #pragma once
 
+#include <kdop/resolve_runner.h>
 #include <kdop/variant.h>
 
 #include <vulkan/vulkan.h>
@@ -25,15 +26,8 @@
 
 namespace engine {
 
-// The caller's device; its queue must do graphics and compute.
-struct Device {
-    VkInstance instance = VK_NULL_HANDLE;
-    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
-    VkDevice device = VK_NULL_HANDLE;
-    VkQueue queue = VK_NULL_HANDLE;
-    std::uint32_t queue_family = 0;
-    PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
-};
+// The caller's device, as kdop's run helper takes it; its queue must do graphics and compute.
+using Device = kdop::RunnerDevice;
 
 // The registry entries of the three shaders, GLSL or HLSL.
 struct Shaders {
