@@ -25,7 +25,7 @@ inline void add_own_resolve_options(CLI::App& app, OwnResolveOptions& o) {
         "gamma, neighborhood), built once per variant; needs --resolve-bindings (docs/taa.md, \"Your own resolve\")");
     o.bindings_option = app.add_option("--resolve-bindings", o.bindings,
                                        "With --resolve: the map (JSON, docs/resolve-bindings.schema.json) of what each "
-                                       "of the shader's resources and push-constant members is");
+                                       "of the shader's resources, push-constant and uniform-block members is");
     o.entry_option =
         app.add_option("--hlsl-entry", o.hlsl_entry, "With an HLSL --resolve: its entry point [default: main]");
 }

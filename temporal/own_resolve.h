@@ -1,7 +1,7 @@
 // A renderer's own TAA or TAAU resolve, measured in place of kdop's (kdop taa --resolve): its
 // compute shader, which includes the variant under test as "kdop_variant.glsl" (or .hlsl), and the
-// map that declares what each of its resources and push-constant members is
-// (resolve_bindings.h). Built once per variant and bound by role; the TAA resolve
+// map that declares what each of its resources, push-constant members and uniform-block members
+// is (resolve_bindings.h). Built once per variant and bound by role; the TAA resolve
 // (taa_resolve.h) then runs it as it runs kdop's, with the history kept on the device.
 #pragma once
 

@@ -1,6 +1,7 @@
 // A renderer's own TAA or TAAU resolve declared by role: the map `kdop taa --resolve-bindings`
-// reads names, for each of the shader's resources and push-constant members, what kdop fills it
-// with, and the conventions the shader expects of its motion. bind() checks the map against the
+// reads names, for each of the shader's resources, push-constant members and uniform-block members
+// ("uniforms": "<block>.<member>"), what kdop fills it with, and the conventions the shader expects
+// of its motion. bind() checks the map against the
 // shader's reflection (the registry's, kdop/variant.h), so a role that is missing, names a resource
 // the shader lacks or has the wrong type is refused before any frame, naming the shader's
 // resource, the role and what it expected. The format's schema is
