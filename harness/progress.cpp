@@ -16,8 +16,8 @@ std::string clock_text(double seconds) {
     return fmt::format("{}:{:02}", s / 60, s % 60);
 }
 
-Progress::Progress(std::string step, std::size_t total)
-    : step_(std::move(step)), total_(total), terminal_(isatty(fileno(stderr)) != 0),
+Progress::Progress(std::string step, std::size_t total, std::string unit)
+    : step_(std::move(step)), unit_(std::move(unit)), total_(total), terminal_(isatty(fileno(stderr)) != 0),
       start_(std::chrono::steady_clock::now()) {}
 
 void Progress::finish() {
@@ -37,10 +37,12 @@ void Progress::advance(const std::string& item) {
     const std::string eta =
         done_ < total_ ? fmt::format(", about {} left", clock_text(elapsed / double(done_) * double(total_ - done_)))
                        : "";
+    const std::string rate =
+        unit_.empty() || elapsed <= 0 ? "" : fmt::format(", {:.1f} {}/s", double(done_) / elapsed, unit_);
     const int width = static_cast<int>(fmt::format("{}", total_).size());
     // One line a step, whatever the names in it hold (one_line_text): a log reads one line per step.
-    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_,
-               one_line_text(step_), one_line_text(item), clock_text(elapsed), eta, terminal_ ? "" : "\n");
+    fmt::print(stderr, "{}[{:>{}}/{}] {} {}  {} elapsed{}{}{}", terminal_ ? "\r\033[K" : "", done_, width, total_,
+               one_line_text(step_), one_line_text(item), clock_text(elapsed), rate, eta, terminal_ ? "" : "\n");
     std::fflush(stderr);
 }
 

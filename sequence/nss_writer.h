@@ -31,7 +31,7 @@ struct NssWriteOptions {
     // Color, ground truth, motion and motion_gt: half floats (the spec's R16G16B16A16_SFLOAT and
     // R16G16_SFLOAT) or full; depth is always full (R32_SFLOAT).
     FloatPrecision precision = FloatPrecision::half;
-    std::string sample_sequence; // Samples.Sequence: how the jitter was chosen ("Halton(2,3)"); empty: left out
+    std::string sample_sequence = {}; // Samples.Sequence: how the jitter was chosen ("Halton(2,3)"); empty: left out
     std::string ratio_option = "--upscale"; // the option that gave `ratio`, for errors
 };
 

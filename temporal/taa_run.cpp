@@ -253,8 +253,13 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         // A step is a frame, every variant resolved and measured on it.
         Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs.size(),
                                       sources.size(), context.device_name()),
-                          frame_steps(*evaluation, sources));
-        observer.frame = [&](const std::string& source) { progress.advance(source); };
+                          frame_steps(*evaluation, sources), "frames");
+        // Each line says which source of how many, for a corpus of hundreds.
+        std::vector<std::string> started;
+        observer.frame = [&](const std::string& source) {
+            if (started.empty() || started.back() != source) started.push_back(source);
+            progress.advance(fmt::format("{} ({} of {})", source, started.size(), sources.size()));
+        };
         std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
         auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
             for (const EvaluationRow& m : measured) {
