@@ -798,6 +798,19 @@ TEST(CliChoose, TheSameFilesOnAnyRankCount) {
     EXPECT_NE(b.err.find("give --validate SEQUENCE... or --holdout FRAMES"), std::string::npos) << b.err;
     EXPECT_EQ(b.err.find("give --validate"), b.err.rfind("give --validate")) << "one rank speaks\n" << b.err;
     EXPECT_FALSE(fs::exists(refused));
+
+    // A held-out frame that cannot be read, met by the ranks measuring their shares: every rank
+    // stops with the frame named, once, and nothing is written.
+    fs::copy(scenes / "asphalt-ghosting", dir / "broken", fs::copy_options::recursive);
+    const fs::path frame = dir / "broken" / "color" / "0006.exr";
+    ASSERT_TRUE(fs::exists(frame));
+    fs::resize_file(frame, 100);
+    const fs::path stopped = dir / "stopped";
+    auto c = choose(test::mpirun_np() + "2 ", stopped, " --validate " + (dir / "broken").string());
+    EXPECT_EQ(c.exit_code, 1) << c.err;
+    EXPECT_NE(c.err.find("0006.exr"), std::string::npos) << c.err;
+    EXPECT_EQ(c.err.find("0006.exr"), c.err.rfind("0006.exr")) << "one rank speaks\n" << c.err;
+    EXPECT_FALSE(fs::exists(stopped) && !fs::is_empty(stopped));
 #endif
 }
 
