@@ -15,7 +15,6 @@
 
 #include <fmt/format.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -74,13 +73,13 @@ std::optional<int> refused(const FlipRunOptions& o) {
 }
 
 // What the run found: each test's mean and statistics, the timing; then the files, written.
-// `cpu_by_default`: the CPU was chosen for the default device (default_to_cpu).
-int print(const FlipRunOptions& run, const FlipRunResult& r, bool cpu_by_default) {
+int print(const FlipRunOptions& run, const FlipRunResult& r) {
     report_validation_messages(r.validation_messages);
     const std::string where = !r.device.empty() ? "on " + r.device
-                              : cpu_by_default  ? "on the CPU (kdop's default device, lavapipe, is a CPU, where kdop's "
-                                                  "CPU code is faster; --device llvmpipe computes it there)"
-                                                : "on the CPU";
+                              : r.cpu_by_default
+                                  ? "on the CPU (kdop's default device, lavapipe, is a CPU, where kdop's "
+                                    "CPU code is faster; --device llvmpipe computes it there)"
+                                  : "on the CPU";
     for (const FlipTestResult& t : r.tests) {
         // With several tests, each block says which.
         const std::string which = r.tests.size() > 1 ? terminal_text(t.test) + ": " : "";
@@ -108,15 +107,6 @@ int print(const FlipRunOptions& run, const FlipRunResult& r, bool cpu_by_default
     for (const std::string& path : {run.out, run.exposure_map, run.csv, run.histogram})
         if (!path.empty()) std::cout << fmt::format("wrote {}\n", terminal_text(path));
     return 0;
-}
-
-// Whether FLIP runs on the CPU because the device it would run on is kdop's default, lavapipe:
-// no --device, no $KDOP_DEVICE, no --validation (which asks for a device). Lavapipe runs the
-// device passes on the same cores, slower than the CPU code (a 1080p LDR pair here: 1.8 CPU s
-// against 1.1), and its instance alone costs start-up time.
-bool default_to_cpu(const FlipRunOptions& run) {
-    const char* named = std::getenv("KDOP_DEVICE");
-    return !run.cpu && run.device.device.empty() && !run.device.validation && (!named || !*named);
 }
 
 } // namespace
@@ -200,11 +190,9 @@ Action add_flip_command(CLI::App& app) {
                                                      o->viewing.display_width_px, ok.error().message)
                                        : fmt::format("--ppd: {}", ok.error().message));
         if (auto status = refused(run)) return *status;
-        const bool cpu_by_default = default_to_cpu(run);
-        if (cpu_by_default) run.cpu = true;
         auto result = run_flip(run);
         if (!result) return report(result.error());
-        return print(run, *result, cpu_by_default);
+        return print(run, *result);
     };
 }
 

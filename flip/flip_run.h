@@ -24,7 +24,7 @@ struct FlipRunOptions {
     InputSpace input_space = InputSpace::from_file;
     bool hdr = false;         // HDR-FLIP instead of LDR-FLIP
     ExposureOptions exposure; // HDR-FLIP's
-    bool cpu = false;         // the CPU's reference code instead of the device
+    bool cpu = false;         // the CPU's reference code instead of the device (the default where none is named)
     ContextOptions device;    // which device, and the validation layer
     int timing = 0;           // evaluations after the first, timed
     std::string out;          // one test's error map: .exr (values) or .png (magma); empty: none
@@ -47,6 +47,9 @@ struct FlipRunResult {
     std::uint32_t width = 0, height = 0;
     std::string space;  // how the inputs were decoded, as a clause (", every input taken as linear"), or empty
     std::string device; // the device's name; empty: on the CPU
+    // On the CPU because no device was named (no --device, $KDOP_DEVICE or --validation): kdop's
+    // default device, lavapipe, is a CPU, where the device passes are slower than the CPU code.
+    bool cpu_by_default = false;
     std::vector<double> wall_s, cpu_s;        // per timed evaluation of the first test: its mean alone
     double setup_wall_s = 0, setup_cpu_s = 0; // the device and its passes' set-up
     std::vector<std::string> validation_messages;
