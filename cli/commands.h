@@ -38,9 +38,9 @@ struct Command {
 };
 // Every command, in the order --help lists them.
 inline constexpr Command kCommands[] = {
-    {add_list_command},           {add_gen_command},   {add_show_command},   {add_run_command},
-    {add_textures_command},       {add_bench_command}, {add_stress_command}, {add_accuracy_command},
-    {add_optimize_command, true}, {add_flip_command},  {add_taa_command},    {add_scene_command},
+    {add_list_command},           {add_gen_command},   {add_show_command},      {add_run_command},
+    {add_textures_command},       {add_bench_command}, {add_stress_command},    {add_accuracy_command},
+    {add_optimize_command, true}, {add_flip_command},  {add_taa_command, true}, {add_scene_command},
     {add_choose_command, true},
 };
 

@@ -11,6 +11,7 @@
 #include "generator/command_line.h"
 #include "generator/selection_options.h"
 #include "harness/output_set.h"
+#include "harness/ranks.h"
 #include "harness/variant_catalog.h"
 #include "sequence/sequence.h"
 #include "sequence/sequence_corpus.h"
@@ -165,15 +166,23 @@ Action add_taa_command(CLI::App& app) {
         OwnResolveChoice own = own_resolve_choice(*taa, o->own_resolve);
         if (!own.usage.empty()) return usage_error(own.usage);
         if (!own.input.empty()) return report_error(own.input);
+        // Under mpirun every rank runs this; only rank 0 speaks and writes (taa_ranks.h). What a rank
+        // alone may fail at (its folder, device, files) is agreed on, so none waits for one that left.
+        auto ranks = Ranks::world();
+        if (!ranks) return report_error(ranks.error().message);
+        (*ranks)->quiet_unless_root();
+        auto agreed = [&](auto&& result) {
+            return (*ranks)->agree(result ? Result<void>{} : std::unexpected(result.error()));
+        };
         auto outputs = OutputSet::prepare(o->out);
-        if (!outputs) return report_error(outputs.error().message);
+        if (auto ok = agreed(outputs); !ok) return report_error(ok.error().message);
         auto specs = o->selection.select();
         if (!specs) return report_error(specs.error().message);
         warn_fitted_space(*specs, o->resolve.color_map, "this run (--color-map)");
         // A scene given twice would only give the same rows twice.
         if (auto misuse = o->choice.misuse()) return usage_error(*misuse);
         auto context = Context::create({o->device, o->validation});
-        if (!context) return report_error(context.error().message);
+        if (auto ok = agreed(context); !ok) return report_error(ok.error().message);
         auto sources = taa_sources(
             **context, {.sequences = sequences,
                         .warmup = o->warmup,
@@ -190,7 +199,7 @@ Action add_taa_command(CLI::App& app) {
                         .nss_sequence = o->nss_sequence,
                         .nss_ratio = o->ratio,
                         .nss_range = o->nss_range == "ldr" ? ColorRange::ldr : ColorRange::hdr});
-        if (!sources) return report(sources.error());
+        if (auto ok = agreed(sources); !ok) return report(ok.error());
         for (const SequenceFrames& sequence : sources->sequences)
             if (auto ok = check_outside(sequence.sequence(), outputs->dir(), "--out"); !ok) return report(ok.error());
         for (const NssFrames& capture : sources->captures)
@@ -207,7 +216,7 @@ Action add_taa_command(CLI::App& app) {
         if (!catalog) return report_error(catalog.error().message);
 
         auto rectifiers = catalog->find_all(keys_of(*specs), o->selection.manifest.empty() ? "--sets" : "--manifest");
-        if (!rectifiers) return report_error(rectifiers.error().message);
+        if (auto ok = agreed(rectifiers); !ok) return report_error(ok.error().message);
         const TaaRunSettings settings{.evaluation = {.resolve = o->resolve,
                                                      .schedule = {o->warmup, o->frames},
                                                      .ppd = ppd,
@@ -225,9 +234,10 @@ Action add_taa_command(CLI::App& app) {
                                       .viewer_frames = o->viewer_frames,
                                       .picture_frame =
                                           picture_frame->count() ? std::optional(o->picture_frame) : std::nullopt};
-        auto run_info = run_taa(**context, *specs, *rectifiers, *sources, settings, *outputs);
+        auto run_info = run_taa(**context, *specs, *rectifiers, *sources, settings, *outputs, **ranks);
         report_validation_messages((*context)->validation_messages());
         if (!run_info) return report_error(run_info.error().message);
+        if (!(*ranks)->is_root()) return 0;
         std::cout << fmt::format("kdop taa: {} variants x {} scenes and sequences on {} ({}): {}\n", specs->size(),
                                  sources->size(), run_info->device, run_info->driver,
                                  terminal_text((outputs->dir() / "report.md").string()));

@@ -91,6 +91,69 @@ void Ranks::broadcast(std::span<double> values) const {
 #endif
 }
 
+std::vector<int> Ranks::balance(std::span<const double> costs) const { return balance_over(costs, size_); }
+
+std::vector<int> balance_over(std::span<const double> costs, int ranks) {
+    std::vector<std::size_t> order(costs.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::ranges::stable_sort(order, [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+    std::vector<double> load(std::size_t(std::max(ranks, 1)), 0.0);
+    std::vector<int> owners(costs.size(), 0);
+    for (const std::size_t item : order) {
+        const auto least = std::ranges::min_element(load); // the first of equals
+        owners[item] = int(least - load.begin());
+        *least += costs[item];
+    }
+    return owners;
+}
+
+std::vector<std::string> Ranks::gather_to_root(const std::string& mine) const {
+    if (size_ == 1) return {mine};
+#ifdef KDOP_WITH_MPI
+    std::vector<std::string> all;
+    if (is_root()) all.push_back(mine);
+    for (int r = 1; r < size_; ++r) {
+        if (is_root())
+            all.push_back(receive(r));
+        else if (r == rank_)
+            send(mine, 0);
+    }
+    return all;
+#else
+    return {mine};
+#endif
+}
+
+#ifdef KDOP_WITH_MPI
+namespace {
+// MPI counts are ints: a message goes as its length, then in pieces of at most 1 GiB.
+constexpr std::size_t kPiece = std::size_t(1) << 30;
+constexpr int kBytesTag = 7;
+} // namespace
+#endif
+
+void Ranks::send([[maybe_unused]] const std::string& bytes, [[maybe_unused]] int to) const {
+#ifdef KDOP_WITH_MPI
+    unsigned long long length = bytes.size();
+    MPI_Send(&length, 1, MPI_UNSIGNED_LONG_LONG, to, kBytesTag, MPI_COMM_WORLD);
+    for (std::size_t at = 0; at < bytes.size(); at += kPiece)
+        MPI_Send(bytes.data() + at, int(std::min(kPiece, bytes.size() - at)), MPI_CHAR, to, kBytesTag, MPI_COMM_WORLD);
+#endif
+}
+
+std::string Ranks::receive([[maybe_unused]] int from) const {
+    std::string bytes;
+#ifdef KDOP_WITH_MPI
+    unsigned long long length = 0;
+    MPI_Recv(&length, 1, MPI_UNSIGNED_LONG_LONG, from, kBytesTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    bytes.resize(length);
+    for (std::size_t at = 0; at < bytes.size(); at += kPiece)
+        MPI_Recv(bytes.data() + at, int(std::min(kPiece, bytes.size() - at)), MPI_CHAR, from, kBytesTag, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+#endif
+    return bytes;
+}
+
 Result<void> Ranks::agree(Result<void> mine) const {
     if (size_ == 1) return mine;
 #ifdef KDOP_WITH_MPI
@@ -105,6 +168,8 @@ Result<void> Ranks::agree(Result<void> mine) const {
     error.message.resize(header[0]);
     MPI_Bcast(error.message.data(), int(header[0]), MPI_CHAR, first, MPI_COMM_WORLD);
     error.usage = header[1] != 0;
+    // Where rank 0 went on, the failing rank is named: on a cluster, the machine to look at.
+    if (first != 0) error.message = fmt::format("rank {} of {}: {}", first, size_, error.message);
     return std::unexpected(std::move(error));
 #else
     return mine;

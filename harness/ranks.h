@@ -1,7 +1,8 @@
 // The processes one command runs as: one, or R ranks started by `mpirun -np R` (Open MPI). kdop
-// optimize shares its work over ranks, and kdop choose its fits: each rank reads and evaluates its
-// own range of frames, and these collectives hand every rank what the others computed. Nothing here is
-// kdop's own protocol: every exchange is an MPI all-gather or broadcast.
+// optimize shares its work over ranks, kdop choose its fits and candidates, and kdop taa its sources: each rank reads
+// and evaluates its own range of frames, and these collectives hand every rank what the others computed. Nothing here
+// is kdop's own protocol: every exchange is an MPI all-gather, broadcast or send, of numbers or of bytes a library
+// encoded (kdop taa's figures in CBOR, its images as files).
 //
 // MPI is initialized only when the process was started by a launcher (it sets OMPI_COMM_WORLD_SIZE,
 // PMI_SIZE or PMIX_RANK), so a plain run neither pays for it nor needs one; a build without MPI
@@ -39,7 +40,18 @@ public:
     // Rank 0's `values` on every rank.
     void broadcast(std::span<double> values) const;
 
-    // Whether every rank succeeded: the first failing rank's error (in rank order) on every rank.
+    // balance_over(costs, size()): the same on every rank.
+    std::vector<int> balance(std::span<const double> costs) const;
+
+    // Every rank's `mine` on rank 0, in rank order (its own first); empty on the others.
+    std::vector<std::string> gather_to_root(const std::string& mine) const;
+    // Point to point, for what is too large to gather at once (a run's images, one at a time):
+    // `bytes` to rank `to`, which takes them with receive(from), in the order sent.
+    void send(const std::string& bytes, int to) const;
+    std::string receive(int from) const;
+
+    // Whether every rank succeeded: the first failing rank's error (in rank order) on every rank,
+    // "rank R of N: " before it where that is not rank 0.
     Result<void> agree(Result<void> mine) const;
 
     // Sends the output of every rank but rank 0 to /dev/null: progress, tables and errors come
@@ -54,6 +66,11 @@ private:
     int rank_ = 0, size_ = 1;
     int stderr_ = 2; // where abort() writes
 };
+
+// The rank of each item of the given costs among `ranks`: each item, largest first (the earlier of
+// equals), goes to the rank with the least cost so far (the lowest of equals), which keeps the
+// largest share within one item of the mean (Graham's longest-processing-time rule).
+std::vector<int> balance_over(std::span<const double> costs, int ranks);
 
 // Whether a launcher (mpirun) started this process, and how many ranks it says it started (1
 // where it does not say, or without a launcher), read before MPI is initialized.

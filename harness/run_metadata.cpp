@@ -7,6 +7,7 @@
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -92,6 +93,13 @@ std::string metadata_markdown(const RunMetadata& run) {
     if (!run.device.empty()) out += fmt::format("- device: {} ({}; {})\n", run.device, run.device_type, run.driver);
     if (run.seed) out += fmt::format("- seed: {}\n", *run.seed);
     if (!run.resolve.empty()) out += fmt::format("- resolve: {}\n", markdown_code(run.resolve));
+    if (!run.ranks.empty()) out += fmt::format("- ranks: {} (MPI), each measuring:\n", run.ranks.size());
+    for (std::size_t r = 0; r < run.ranks.size(); ++r) {
+        std::vector<std::string> measured;
+        for (const std::string& name : run.ranks[r].measured) measured.push_back(markdown_text(name));
+        out += fmt::format("  - rank {} on {}: {}\n", r, markdown_text(run.ranks[r].device),
+                           measured.empty() ? "nothing" : fmt::format("{}", fmt::join(measured, ", ")));
+    }
     return out;
 }
 
@@ -106,6 +114,8 @@ nlohmann::json metadata_json(const RunMetadata& run) {
     j["device_type"] = run.device_type.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device_type);
     j["seed"] = run.seed ? nlohmann::json(*run.seed) : nlohmann::json(nullptr);
     if (!run.resolve.empty()) j["resolve"] = run.resolve;
+    for (const RunMetadata::RankShare& share : run.ranks)
+        j["ranks"].push_back({{"device", share.device}, {"measured", share.measured}});
     return j;
 }
 

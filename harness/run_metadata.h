@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace kdop {
 
@@ -25,6 +26,13 @@ struct RunMetadata {
     // The resolve the figures come from, where not kdop's own: a renderer's (kdop taa --resolve),
     // "<file> (fnv1a64 <hash of its text and map>)".
     std::string resolve;
+    // Under mpirun, what each rank measured (kdop taa: its sources) and on what device; empty for
+    // one rank.
+    struct RankShare {
+        std::string device;
+        std::vector<std::string> measured;
+    };
+    std::vector<RankShare> ranks; // by rank
 };
 
 // Keeps argv for describe_run(); main() calls it first.

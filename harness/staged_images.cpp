@@ -1,24 +1,52 @@
 #include "harness/staged_images.h"
 
+#include "core/read_file.h"
 #include "images/image_io.h"
 
 #include <fmt/format.h>
 
+#include <fstream>
+
 namespace kdop {
 
-Result<void> StagedImages::add(const std::string& name, const Image& image) {
-    if (scratch_->path.empty()) return fail("cannot create a scratch folder for the frames (is TMPDIR writable?)");
-    const std::filesystem::path staged = scratch_->path / name;
+namespace {
+
+// Where `name` is staged in `scratch`, its folder made.
+Result<std::filesystem::path> staging_path(const ScratchDirectory& scratch, const std::string& name) {
+    if (scratch.path.empty()) return fail("cannot create a scratch folder for the frames (is TMPDIR writable?)");
+    const std::filesystem::path staged = scratch.path / name;
     std::error_code ec;
     std::filesystem::create_directories(staged.parent_path(), ec);
     // Another thread may have made it meanwhile.
     if (ec && !std::filesystem::is_directory(staged.parent_path()))
         return fail(fmt::format("{}: {}", staged.parent_path().string(), ec.message()));
-    if (auto ok = write_image(staged.string(), image); !ok) return ok;
+    return staged;
+}
+
+} // namespace
+
+Result<void> StagedImages::add(const std::string& name, const Image& image) {
+    auto staged = staging_path(*scratch_, name);
+    if (!staged) return std::unexpected(staged.error());
+    if (auto ok = write_image(staged->string(), image); !ok) return ok;
     std::lock_guard lock(mutex_);
     names_.push_back(name);
     return {};
 }
+
+Result<void> StagedImages::add_encoded(const std::string& name, const std::string& bytes) {
+    auto staged = staging_path(*scratch_, name);
+    if (!staged) return std::unexpected(staged.error());
+    std::ofstream out(*staged, std::ios::binary);
+    out << bytes;
+    out.close();
+    if (!out) return fail(fmt::format("{}: cannot write", staged->string()));
+    std::lock_guard lock(mutex_);
+    names_.push_back(name);
+    return {};
+}
+
+Result<std::string> StagedImages::bytes(const std::string& name) const { return read_own_file(scratch_->path / name); }
 
 std::vector<OutputWriter> StagedImages::writers(const std::filesystem::path& dir) const {
     std::vector<OutputWriter> out;

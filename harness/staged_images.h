@@ -24,6 +24,11 @@ public:
     // Writes `image` now, to be `name` (relative to the output folder) when the set is written.
     // Several threads may add at once.
     Result<void> add(const std::string& name, const Image& image);
+    // A file already encoded (a rank's image, sent to rank 0), to be `name` as above.
+    Result<void> add_encoded(const std::string& name, const std::string& bytes);
+    // The names added so far, in order, and a staged file's bytes.
+    const std::vector<std::string>& names() const { return names_; }
+    Result<std::string> bytes(const std::string& name) const;
     // The writers that move the staged images into `dir`; valid while this object lives.
     std::vector<OutputWriter> writers(const std::filesystem::path& dir) const;
 

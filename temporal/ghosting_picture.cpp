@@ -24,29 +24,29 @@ Result<std::vector<std::vector<float>>> ghosting_maps(PictureFlip& flip, const I
     return maps;
 }
 
-Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
+Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& trails,
                                   const std::vector<std::vector<float>>& errors, const std::vector<double>& ghosting,
                                   const PictureFlip& flip) {
     const std::uint32_t width = truth->width, height = truth->height;
     // As data, the frames as they are; to look at, as the picture shows them (HDR tone mapped).
-    auto add_frame = [&](const std::string& stem, const std::shared_ptr<const Image>& image) {
-        outputs.add_image(fmt::format("frames/{}/{}.exr", shown.source, stem), image);
-        outputs.add_image(fmt::format("frames/{}/{}.png", shown.source, stem),
-                          flip.range() == ColorRange::ldr ? image : std::make_shared<const Image>(flip.shown(*image)));
+    auto add_frame = [&](const std::string& stem, const Image& image) -> Result<void> {
+        if (auto ok = outputs.add(fmt::format("frames/{}/{}.exr", shown.source, stem), image); !ok) return ok;
+        return outputs.add(fmt::format("frames/{}/{}.png", shown.source, stem),
+                           flip.range() == ColorRange::ldr ? image : flip.shown(image));
     };
     std::vector<Image> maps, looks;
     maps.reserve(trails.size()); // the picture points into both
     looks.reserve(trails.size() + 1);
     looks.push_back(flip.shown(*truth));
     std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), &looks.back()}};
-    add_frame(truth_name, truth);
+    if (auto ok = add_frame(truth_name, *truth); !ok) return ok;
     for (std::size_t v = 0; v < keys.size(); ++v) {
         const std::vector<float>& error = errors[v];
         maps.push_back(flip::magma_image(error, width, height));
         looks.push_back(flip.shown(*trails[v]));
-        add_frame(keys[v].name(), trails[v]);
+        if (auto ok = add_frame(keys[v].name(), *trails[v]); !ok) return ok;
         labeled.push_back({keys[v].name(), &looks.back(), &maps.back(),
                            fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(error))});
     }
@@ -59,8 +59,7 @@ Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown,
     const ColorScale scale{&bar, caption};
     auto picture = trail_picture(labeled, shown.crop, 4, &scale);
     if (!picture) return std::unexpected(picture.error());
-    outputs.add_image(ghosting_picture_name(shown.source), std::make_shared<const Image>(std::move(*picture)));
-    return {};
+    return outputs.add(ghosting_picture_name(shown.source), *picture);
 }
 
 void PictureFrameChooser::offer(const MeasuredFrame& frame) {

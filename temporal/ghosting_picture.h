@@ -6,7 +6,7 @@
 #include "core/result.h"
 #include "core/variant_key.h"
 #include "flip/flip.h"
-#include "harness/output_set.h"
+#include "harness/staged_images.h"
 #include "images/image.h"
 #include "scenes/taa_scene.h"
 #include "temporal/picture_flip.h"
@@ -37,13 +37,14 @@ struct PictureFrame {
 Result<std::vector<std::vector<float>>> ghosting_maps(PictureFlip& flip, const Image& truth,
                                                       const std::vector<std::shared_ptr<const Image>>& frames);
 
-// What a scene or sequence shows of its ghosting, added to `outputs`: the truth (the aliased frame,
+// What a scene or sequence shows of its ghosting, staged in `outputs` (written now, moved into the
+// output folder with the rest): the truth (the aliased frame,
 // or the reference where there is one) and each variant's frame at `shown` under frames/<source>/,
 // as data (EXR) and to look at (PNG; HDR tone mapped), and the labeled picture of them all, each
 // variant's crop over its FLIP map against the truth (`maps`, ghosting_maps' of the frames), under
 // it the variant's ghosting (the mean over the measured frames) and this frame's mean FLIP, and
 // the maps' color scale under the grid.
-Result<void> add_ghosting_picture(OutputSet& outputs, const PictureFrame& shown, const std::string& truth_name,
+Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
                                   const std::vector<std::shared_ptr<const Image>>& frames,
                                   const std::vector<std::vector<float>>& maps, const std::vector<double>& ghosting,

@@ -10,6 +10,7 @@
 #include "temporal/ghosting_picture.h"
 #include "temporal/taa_chart.h"
 #include "temporal/taa_intervals.h"
+#include "temporal/taa_ranks.h"
 #include "temporal/taa_report.h"
 #include "temporal/taa_report_page.h"
 #include "temporal/taa_shader.h"
@@ -18,6 +19,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <set>
 
@@ -60,9 +62,9 @@ TaaRow taa_row(const VariantKey& key, const EvaluationRow& m, const std::vector<
 
 // A sequence's ghosting picture at the frame `chooser` kept, cropped where the variants differ most.
 // `sequence` is the source as the pass read it (a sequence's without its depth files).
-Result<void> add_sequence_picture(OutputSet& outputs, const FrameSource& sequence, const PictureFrameChooser& chooser,
-                                  const std::vector<VariantKey>& keys, const std::vector<EvaluationRow>& measured,
-                                  PictureFlip& flip) {
+Result<void> add_sequence_picture(StagedImages& outputs, const FrameSource& sequence,
+                                  const PictureFrameChooser& chooser, const std::vector<VariantKey>& keys,
+                                  const std::vector<EvaluationRow>& measured, PictureFlip& flip) {
     auto frame = sequence.frame(chooser.index()); // its truth, as the pass read it
     if (!frame) return std::unexpected(frame.error());
     const bool has_reference = frame->reference.has_value();
@@ -78,7 +80,7 @@ Result<void> add_sequence_picture(OutputSet& outputs, const FrameSource& sequenc
 }
 
 // A scene's ghosting picture: every variant's trail frame over its FLIP map against the truth.
-Result<void> add_scene_picture(OutputSet& outputs, const TaaScene& scene, const TaaSchedule& schedule,
+Result<void> add_scene_picture(StagedImages& outputs, const TaaScene& scene, const TaaSchedule& schedule,
                                const std::vector<VariantKey>& keys, const std::vector<EvaluationRow>& measured,
                                TaaEvaluation& evaluation) {
     auto shown = ghosting_frames(scene, schedule)->frame(scene.trail_frame(schedule));
@@ -101,20 +103,25 @@ Result<void> add_scene_picture(OutputSet& outputs, const TaaScene& scene, const 
 // The viewer's frames of every sequence measured, planned before the pass, each with the
 // evaluation's shaders for it (the spatial-only upscale only where it upscales).
 void plan_viewer(ViewerFrames& viewer, const TaaSources& sources, const TaaSchedule& schedule,
-                 const TaaEvaluation& evaluation) {
+                 const TaaEvaluation& evaluation, const std::function<bool(std::size_t)>& mine) {
     const std::size_t last = schedule.warmup + schedule.frames - 1;
-    for (const auto& scene : sources.scenes) {
-        const auto still = shimmer_frames(*scene, schedule), moving = ghosting_frames(*scene, schedule);
+    for (std::size_t i = 0; i < sources.scenes.size(); ++i) {
+        if (!mine(i)) continue;
+        const TaaScene& scene = *sources.scenes[i];
+        const auto still = shimmer_frames(scene, schedule), moving = ghosting_frames(scene, schedule);
         for (const FrameSource* frames : {still.get(), moving.get()})
-            viewer.plan(frames->name(), scene->name(), schedule.warmup, last, frames->roles(), frames->color_range(),
+            viewer.plan(frames->name(), scene.name(), schedule.warmup, last, frames->roles(), frames->color_range(),
                         frames->has_reference(), evaluation.shader_count(*frames));
     }
+    auto plan = [&](const FrameSource& source) {
+        viewer.plan(source.name(), source.name(), schedule.warmup, source.frame_count() - 1, source.roles(),
+                    source.color_range(), source.has_reference(), evaluation.shader_count(source));
+    };
+    std::size_t i = sources.scenes.size();
     for (const SequenceFrames& sequence : sources.sequences)
-        viewer.plan(sequence.name(), sequence.name(), schedule.warmup, sequence.frame_count() - 1, sequence.roles(),
-                    sequence.color_range(), sequence.has_reference(), evaluation.shader_count(sequence));
+        if (mine(i++)) plan(sequence);
     for (const NssFrames& capture : sources.captures)
-        viewer.plan(capture.name(), capture.name(), schedule.warmup, capture.frame_count() - 1, capture.roles(),
-                    capture.color_range(), capture.has_reference(), evaluation.shader_count(capture));
+        if (mine(i++)) plan(capture);
 }
 
 // The trade and over-time charts, added to `outputs` with their names. A chart that fails costs the
@@ -173,12 +180,29 @@ std::pair<std::uint32_t, std::uint32_t> timing_size(const TaaSources& sources, c
 }
 
 // The frames a run goes through: what its progress counts.
-std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sources) {
-    std::size_t frames = 0;
-    for (const auto& scene : sources.scenes) frames += evaluation.frames(*scene);
-    for (const SequenceFrames& sequence : sources.sequences) frames += sequence.frame_count();
-    for (const NssFrames& capture : sources.captures) frames += capture.frame_count();
+std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sources,
+                        const std::function<bool(std::size_t)>& mine) {
+    std::size_t frames = 0, i = 0;
+    for (const auto& scene : sources.scenes)
+        if (mine(i++)) frames += evaluation.frames(*scene);
+    for (const SequenceFrames& sequence : sources.sequences)
+        if (mine(i++)) frames += sequence.frame_count();
+    for (const NssFrames& capture : sources.captures)
+        if (mine(i++)) frames += capture.frame_count();
     return frames;
+}
+
+// What each rank measured, on what device, as the run's metadata says.
+std::vector<RunMetadata::RankShare> rank_shares(const TaaSources& sources, const std::vector<int>& owners,
+                                                const std::vector<std::string>& devices) {
+    std::vector<std::string> names;
+    for (const auto& scene : sources.scenes) names.push_back(scene->name());
+    for (const SequenceFrames& sequence : sources.sequences) names.push_back(sequence.name());
+    for (const NssFrames& capture : sources.captures) names.push_back(capture.name());
+    std::vector<RunMetadata::RankShare> shares;
+    for (const std::string& device : devices) shares.push_back({device, {}});
+    for (std::size_t i = 0; i < owners.size(); ++i) shares[std::size_t(owners[i])].measured.push_back(names[i]);
+    return shares;
 }
 
 // The charts, the intervals, taa.csv, taa_frames.csv, report.md and report.html of what a run
@@ -208,84 +232,81 @@ Result<RunMetadata> write_tables_and_reports(RunMetadata run_info, const TaaRunS
 
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
                             std::span<const Variant* const> rectifiers, const TaaSources& sources,
-                            const TaaRunSettings& settings, OutputSet& outputs) {
+                            const TaaRunSettings& settings, OutputSet& outputs, const Ranks& ranks) {
     const auto& [scenes, sequences, captures] = sources;
     std::vector<VariantKey> keys;
     for (const VariantSpec& spec : specs) keys.push_back(spec.key());
     const TaaSchedule& schedule = settings.evaluation.schedule;
     const Metrics& metrics = settings.evaluation.metrics;
     auto evaluation = TaaEvaluation::create(context, specs, settings.evaluation);
-    if (!evaluation) return std::unexpected(evaluation.error());
+    if (auto ok = ranks.agree(evaluation ? Result<void>{} : std::unexpected(evaluation.error())); !ok)
+        return std::unexpected(ok.error());
     // The spatial-only upscale's rows, last, where a source upscales (EvaluationOptions::spatial_upscale).
     if (settings.evaluation.spatial_upscale && upscales(sources, schedule) && !settings.evaluation.own_resolve)
         keys.push_back({spatial_upscale_name(settings.evaluation.resolve.upscale_filter), Mode::shader});
+    std::vector<std::string> variant_names;
+    for (const VariantKey& key : keys) variant_names.push_back(key.name());
 
-    const auto [width, height] = timing_size(sources, settings);
-    StagedImages written_frames;
+    // This rank's sources (taa_ranks.h): all of them on one.
+    const std::vector<int> owners = source_owners(ranks, sources, *evaluation, schedule);
+    auto mine = [&](std::size_t i) { return owners[i] == ranks.rank(); };
+    // Every image the run writes, staged as it is made: the pictures, the viewer's frames and
+    // --write-frames' outputs.
+    StagedImages images;
     EvaluationObserver observer;
     if (settings.write_frames)
         observer.output = [&](const std::string& sequence, std::size_t v, std::size_t index, const Image& output) {
-            return written_frames.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index), output);
+            return images.add(fmt::format("frames/{}/{}/{:04}.exr", sequence, keys[v].name(), index), output);
         };
-
-    std::vector<std::string> variant_names;
-    for (const VariantKey& key : keys) variant_names.push_back(key.name());
-    StagedImages viewer_images;
-    ViewerFrames viewer(settings.viewer_frames, variant_names, viewer_images, settings.evaluation.exposure);
+    ViewerFrames viewer(settings.viewer_frames, variant_names, images, settings.evaluation.exposure);
     if (settings.viewer_frames > 0) {
-        plan_viewer(viewer, sources, schedule, *evaluation);
+        plan_viewer(viewer, sources, schedule, *evaluation, mine);
         observer.measured = [&](const MeasuredFrame& frame) { return viewer.offer(frame); };
         observer.maps = true; // the viewer shows the maps the figures were measured with
     }
-    std::vector<TaaRow> rows;
-    std::vector<TaaFrameRow> frame_rows;
-    std::vector<std::string> pictures;
-    {
-        // Two lines, each with its own estimate: a timing round takes a fraction of a variant's TAA.
-        Result<bench::TimingRun> timing;
-        {
+
+    const auto [width, height] = timing_size(sources, settings);
+    std::optional<bench::TimingRun> timing; // rank 0's, of every variant
+    std::vector<std::optional<MeasuredSource>> measured(sources.size());
+    auto measure_mine = [&]() -> Result<void> {
+        if (ranks.is_root()) {
+            // Two lines, each with its own estimate: a timing round takes a fraction of a variant's TAA.
             Progress timing_progress(fmt::format("timing {} variants on {},", specs.size(), context.device_name()),
                                      settings.timing_rounds);
-            timing =
+            auto timed =
                 bench::time_interleaved(context, rectifiers, width, height, settings.timing_rounds, timing_progress);
-            if (!timing) return std::unexpected(timing.error());
+            if (!timed) return std::unexpected(timed.error());
+            timing = std::move(*timed);
         }
-        // A step is a frame, every variant resolved and measured on it.
-        Progress progress(fmt::format("TAA of {} variants x {} scenes and sequences on {},", specs.size(),
-                                      sources.size(), context.device_name()),
-                          frame_steps(*evaluation, sources), "frames");
+        // A step is a frame, every variant resolved and measured on it; under mpirun rank 0's
+        // share is what its line counts.
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < sources.size(); ++i) count += mine(i);
+        Progress progress(
+            fmt::format("TAA of {} variants x {} scenes and sequences{} on {},", specs.size(), sources.size(),
+                        ranks.size() == 1 ? std::string()
+                                          : fmt::format(" ({} of them on this rank of {})", count, ranks.size()),
+                        context.device_name()),
+            frame_steps(*evaluation, sources, mine), "frames");
         // Each line says which source of how many, for a corpus of hundreds.
         std::vector<std::string> started;
         observer.frame = [&](const std::string& source) {
             if (started.empty() || started.back() != source) started.push_back(source);
-            progress.advance(fmt::format("{} ({} of {})", source, started.size(), sources.size()));
+            progress.advance(fmt::format("{} ({} of {})", source, started.size(), count));
         };
-        std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
-        auto add_rows = [&](const std::vector<EvaluationRow>& measured) {
-            for (const EvaluationRow& m : measured) {
-                // The spatial-only upscale has no rectification to time.
-                const std::vector<double> none;
-                const std::vector<double>& ms = m.variant < timing->ms.size() ? timing->ms[m.variant] : none;
-                rows.push_back(taa_row(keys[m.variant], m, ms, metrics));
-                for (const FrameFigures& f : m.per_frame)
-                    frame_rows.push_back({keys[m.variant], m.source, f.sequence, f.index, f.values, m.range});
-                for (const std::string& note : m.notes)
-                    if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
-            }
-        };
-        for (const auto& scene : scenes) {
-            viewer.measuring(scene->name());
-            auto measured = evaluation->measure(*scene, observer);
-            if (!measured) return std::unexpected(measured.error());
-            add_rows(*measured);
-            if (auto ok =
-                    add_scene_picture(outputs, *scene, schedule, keys_of(keys, *measured), *measured, *evaluation);
-                !ok)
+        for (std::size_t i = 0; i < scenes.size(); ++i) {
+            if (!mine(i)) continue;
+            const TaaScene& scene = *scenes[i];
+            viewer.measuring(scene.name());
+            auto rows = evaluation->measure(scene, observer);
+            if (!rows) return std::unexpected(rows.error());
+            if (auto ok = add_scene_picture(images, scene, schedule, keys_of(keys, *rows), *rows, *evaluation); !ok)
                 return std::unexpected(ok.error());
-            pictures.push_back(ghosting_picture_name(scene->name()));
+            measured[i] =
+                MeasuredSource{.rows = std::move(*rows), .picture = ghosting_picture_name(scene.name()), .viewed = {}};
         }
         // A sequence or NSS capture: `read` is the source as the pass reads it, `measure` its measurement.
-        auto measure_sequence = [&](const FrameSource& read, const auto& measure) -> Result<void> {
+        auto measure_sequence = [&](std::size_t i, const FrameSource& read, const auto& measure) -> Result<void> {
             // The frame its picture shows, kept as the pass goes (sequences meant for ghosting).
             PictureFrameChooser chooser(settings.picture_frame);
             const bool pictured = read.roles().ghosting;
@@ -296,44 +317,83 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                     return observer.measured ? observer.measured(frame) : Result<void>{};
                 };
             viewer.measuring(read.name());
-            auto measured = measure(sequence_observer);
-            if (!measured) return std::unexpected(measured.error());
-            add_rows(*measured);
+            auto rows = measure(sequence_observer);
+            if (!rows) return std::unexpected(rows.error());
+            MeasuredSource source{.rows = std::move(*rows), .picture = {}, .viewed = {}};
             if (pictured && chooser.chosen()) {
                 auto evaluator = evaluation->flip_evaluator(read.width(), read.height());
                 if (!evaluator) return std::unexpected(evaluator.error());
                 PictureFlip flip(**evaluator, read.color_range());
-                if (auto ok = add_sequence_picture(outputs, read, chooser, keys_of(keys, *measured), *measured, flip);
+                if (auto ok =
+                        add_sequence_picture(images, read, chooser, keys_of(keys, source.rows), source.rows, flip);
                     !ok)
                     return std::unexpected(ok.error());
-                pictures.push_back(ghosting_picture_name(read.name()));
+                source.picture = ghosting_picture_name(read.name());
             }
+            measured[i] = std::move(source);
             return {};
         };
-        for (const SequenceFrames& sequence : sequences)
-            if (auto ok =
-                    measure_sequence(sequence.without_depth(),
-                                     [&](const EvaluationObserver& o) { return evaluation->measure(sequence, o); });
-                !ok)
-                return std::unexpected(ok.error());
-        for (const NssFrames& capture : captures)
-            if (auto ok = measure_sequence(
-                    capture, [&](const EvaluationObserver& o) { return evaluation->measure(capture, false, o); });
-                !ok)
-                return std::unexpected(ok.error());
-    }
-    outputs.add(written_frames.writers(outputs.dir()));
-    Result<std::vector<ViewerSequence>> viewed;
-    {
+        for (std::size_t s = 0; s < sequences.size(); ++s)
+            if (const std::size_t i = scenes.size() + s; mine(i))
+                if (auto ok = measure_sequence(
+                        i, sequences[s].without_depth(),
+                        [&](const EvaluationObserver& o) { return evaluation->measure(sequences[s], o); });
+                    !ok)
+                    return ok;
+        for (std::size_t c = 0; c < captures.size(); ++c)
+            if (const std::size_t i = scenes.size() + sequences.size() + c; mine(i))
+                if (auto ok = measure_sequence(
+                        i, captures[c],
+                        [&](const EvaluationObserver& o) { return evaluation->measure(captures[c], false, o); });
+                    !ok)
+                    return ok;
+        return {};
+    };
+    // The viewer's staged frames written, and what it shows of each source handed to its measurement.
+    auto write_viewer = [&]() -> Result<void> {
         Progress progress("Writing report.html's worst frames and FLIP maps:", viewer.staged_frames());
-        viewed = viewer.write([&](const std::string& sequence) { progress.advance(sequence); });
+        auto viewed = viewer.write([&](const std::string& sequence) { progress.advance(sequence); });
         if (!viewed) return std::unexpected(viewed.error());
+        auto next = viewed->begin();
+        for (std::size_t i = 0; i < sources.size() && next != viewed->end(); ++i)
+            if (mine(i))
+                for (std::size_t k = 0; k < viewed_sequences(sources, i); ++k) measured[i]->viewed.push_back(*next++);
+        return {};
+    };
+    Result<void> done = measure_mine();
+    if (done && settings.viewer_frames > 0) done = write_viewer();
+    // A rank that failed stops them all, with its message, before anything is gathered or written.
+    if (auto ok = ranks.agree(std::move(done)); !ok) return std::unexpected(ok.error());
+    if (ranks.size() > 1) std::cerr << "Gathering the figures and images of " << ranks.size() << " ranks\n";
+    GatheredSources gathered = gather_sources(ranks, std::move(measured), context.device_name(), images);
+    if (!ranks.is_root()) return describe_run(context);
+
+    std::vector<TaaRow> rows;
+    std::vector<TaaFrameRow> frame_rows;
+    std::vector<std::string> pictures;
+    std::vector<ViewerSequence> viewed;
+    std::set<std::string> warned; // HDR-FLIP's notes, once however many variants meet them
+    for (MeasuredSource& source : gathered.sources) {
+        for (const EvaluationRow& m : source.rows) {
+            // The spatial-only upscale has no rectification to time.
+            const std::vector<double> none;
+            const std::vector<double>& ms = m.variant < timing->ms.size() ? timing->ms[m.variant] : none;
+            rows.push_back(taa_row(keys[m.variant], m, ms, metrics));
+            for (const FrameFigures& f : m.per_frame)
+                frame_rows.push_back({keys[m.variant], m.source, f.sequence, f.index, f.values, m.range});
+            for (const std::string& note : m.notes)
+                if (warned.insert(note).second) std::cerr << "warning: " << terminal_text(note) << "\n";
+        }
+        if (!source.picture.empty()) pictures.push_back(source.picture);
+        for (ViewerSequence& sequence : source.viewed) viewed.push_back(std::move(sequence));
     }
-    outputs.add(viewer_images.writers(outputs.dir()));
+    outputs.add(images.writers(outputs.dir()));
 
     TaaReportSettings report = report_settings(sources, settings, width, height);
     report.pictures = pictures;
-    return write_tables_and_reports(describe_run(context), settings, report, rows, frame_rows, variant_names, *viewed,
+    RunMetadata run_info = describe_run(context);
+    if (ranks.size() > 1) run_info.ranks = rank_shares(sources, owners, gathered.devices);
+    return write_tables_and_reports(std::move(run_info), settings, report, rows, frame_rows, variant_names, viewed,
                                     outputs);
 }
 

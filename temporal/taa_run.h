@@ -6,6 +6,7 @@
 #include "core/result.h"
 #include "generator/variant_spec.h"
 #include "harness/output_set.h"
+#include "harness/ranks.h"
 #include "harness/run_metadata.h"
 #include "runtime/context.h"
 #include "scenes/taa_scene.h"
@@ -38,8 +39,11 @@ struct TaaRunSettings {
 // `sources` and writes taa.csv (and JSON), report.md, report.html with its viewer's frames, the
 // pictures and charts through `outputs`.
 // Returns the run's metadata, as the report states it.
+// Under mpirun the sources are shared over `ranks` (taa_ranks.h): each rank measures its own, rank 0
+// times every variant, gathers the rest and writes every output; the other ranks return without
+// writing. A rank that fails stops all of them, with its error, before anything is written.
 Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpec>& specs,
                             std::span<const Variant* const> rectifiers, const TaaSources& sources,
-                            const TaaRunSettings& settings, OutputSet& outputs);
+                            const TaaRunSettings& settings, OutputSet& outputs, const Ranks& ranks = Ranks{});
 
 } // namespace kdop
