@@ -59,7 +59,7 @@ TaaDeclared declare_taa(CLI::App& app, TaaOptions* o) {
                "and measure the ghosting and shimmer a viewer sees, in LDR-FLIP (HDR sequences in HDR-FLIP), as Ikkala "
                "et al. 2024 do (Tables 1 and 2); writes taa.csv (and JSON), report.md, report.html (the table, "
                "charts and a frame viewer), selected frames as EXR and PNG and a labeled ghosting picture per scene "
-               "and sequence");
+               "and sequence; under mpirun, the scenes and sequences over ranks");
     taa->add_option("--out", o->out, "Output directory (created if missing)")->required();
     o->selection.add_to(*taa, true, kCommandDefaults);
     o->choice.add_to(*taa, true);

@@ -97,7 +97,8 @@ std::string metadata_markdown(const RunMetadata& run) {
     for (std::size_t r = 0; r < run.ranks.size(); ++r) {
         std::vector<std::string> measured;
         for (const std::string& name : run.ranks[r].measured) measured.push_back(markdown_text(name));
-        out += fmt::format("  - rank {} on {}: {}\n", r, markdown_text(run.ranks[r].device),
+        out += fmt::format("  - rank {} on {}, {:.1f} s: {}\n", r, markdown_text(run.ranks[r].device),
+                           run.ranks[r].seconds,
                            measured.empty() ? "nothing" : fmt::format("{}", fmt::join(measured, ", ")));
     }
     return out;
@@ -115,7 +116,7 @@ nlohmann::json metadata_json(const RunMetadata& run) {
     j["seed"] = run.seed ? nlohmann::json(*run.seed) : nlohmann::json(nullptr);
     if (!run.resolve.empty()) j["resolve"] = run.resolve;
     for (const RunMetadata::RankShare& share : run.ranks)
-        j["ranks"].push_back({{"device", share.device}, {"measured", share.measured}});
+        j["ranks"].push_back({{"device", share.device}, {"seconds", share.seconds}, {"measured", share.measured}});
     return j;
 }
 

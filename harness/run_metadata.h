@@ -30,6 +30,7 @@ struct RunMetadata {
     // one rank.
     struct RankShare {
         std::string device;
+        double seconds = 0; // measuring its share (and writing its images), before rank 0 gathers
         std::vector<std::string> measured;
     };
     std::vector<RankShare> ranks; // by rank

@@ -104,16 +104,16 @@ Result<MeasuredSource> measured_source_from(const std::string& bytes) {
 }
 
 GatheredSources gather_sources(const Ranks& ranks, std::vector<std::optional<MeasuredSource>> mine,
-                               const std::string& device, StagedImages& images) {
+                               const RunMetadata::RankShare& me, StagedImages& images) {
     GatheredSources gathered;
     if (ranks.size() == 1) {
         for (std::optional<MeasuredSource>& source : mine) gathered.sources.push_back(std::move(*source));
-        gathered.devices = {device};
+        gathered.shares = {me};
         return gathered;
     }
-    // This rank's device, figures and staged images' names in one message (rank 0 keeps its own),
+    // This rank's device, time, figures and staged images' names in one message (rank 0 keeps its own),
     // then each image's bytes.
-    json message{{"device", device}, {"files", images.names()}, {"sources", json::array()}};
+    json message{{"device", me.device}, {"seconds", me.seconds}, {"files", images.names()}, {"sources", json::array()}};
     for (std::size_t i = 0; i < mine.size() && !ranks.is_root(); ++i)
         if (mine[i]) message["sources"].push_back({{"index", i}, {"source", to_json(*mine[i])}});
     const std::vector<std::string> all = ranks.gather_to_root(cbor(message));
@@ -130,7 +130,8 @@ GatheredSources gather_sources(const Ranks& ranks, std::vector<std::optional<Mea
         json received;
         try {
             received = json::from_cbor(all[std::size_t(r)]);
-            gathered.devices.push_back(received.at("device").get<std::string>());
+            gathered.shares.push_back(
+                {received.at("device").get<std::string>(), received.at("seconds").get<double>(), {}});
             if (r > 0)
                 for (const json& s : received.at("sources"))
                     sources.at(s.at("index").get<std::size_t>()) = measured_from(s.at("source"));

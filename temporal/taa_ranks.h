@@ -9,6 +9,7 @@
 
 #include "core/result.h"
 #include "harness/ranks.h"
+#include "harness/run_metadata.h"
 #include "harness/staged_images.h"
 #include "temporal/taa_evaluation.h"
 #include "temporal/taa_sources.h"
@@ -37,15 +38,16 @@ std::size_t viewed_sequences(const TaaSources& sources, std::size_t i);
 
 // What every rank measured, on rank 0: `mine` holds this rank's sources (by source index, nullopt
 // for another's), and `images` its staged images, which go to rank 0's `images`. Returns every
-// source's measurement on rank 0 (each source measured by exactly one rank), and `devices` each
-// rank's device; on the other ranks, nothing. A rank that cannot send or stage a file stops every
+// source's measurement on rank 0 (each source measured by exactly one rank), and each rank's
+// `me` (its device and seconds; RunMetadata::RankShare::measured is left to the caller); on the
+// other ranks, nothing. A rank that cannot send or stage a file stops every
 // rank (Ranks::abort): the others are inside the exchange.
 struct GatheredSources {
     std::vector<MeasuredSource> sources;
-    std::vector<std::string> devices; // by rank
+    std::vector<RunMetadata::RankShare> shares; // by rank
 };
 GatheredSources gather_sources(const Ranks& ranks, std::vector<std::optional<MeasuredSource>> mine,
-                               const std::string& device, StagedImages& images);
+                               const RunMetadata::RankShare& me, StagedImages& images);
 
 // A measured source in CBOR (through nlohmann::json: doubles exactly, NaN kept) and back: what
 // gather_sources sends; exposed for its test.

@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -192,15 +193,13 @@ std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sourc
     return frames;
 }
 
-// What each rank measured, on what device, as the run's metadata says.
+// `shares` with what each rank measured, as the run's metadata says.
 std::vector<RunMetadata::RankShare> rank_shares(const TaaSources& sources, const std::vector<int>& owners,
-                                                const std::vector<std::string>& devices) {
+                                                std::vector<RunMetadata::RankShare> shares) {
     std::vector<std::string> names;
     for (const auto& scene : sources.scenes) names.push_back(scene->name());
     for (const SequenceFrames& sequence : sources.sequences) names.push_back(sequence.name());
     for (const NssFrames& capture : sources.captures) names.push_back(capture.name());
-    std::vector<RunMetadata::RankShare> shares;
-    for (const std::string& device : devices) shares.push_back({device, {}});
     for (std::size_t i = 0; i < owners.size(); ++i) shares[std::size_t(owners[i])].measured.push_back(names[i]);
     return shares;
 }
@@ -360,12 +359,15 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                 for (std::size_t k = 0; k < viewed_sequences(sources, i); ++k) measured[i]->viewed.push_back(*next++);
         return {};
     };
+    const auto started = std::chrono::steady_clock::now();
     Result<void> done = measure_mine();
     if (done && settings.viewer_frames > 0) done = write_viewer();
     // A rank that failed stops them all, with its message, before anything is gathered or written.
     if (auto ok = ranks.agree(std::move(done)); !ok) return std::unexpected(ok.error());
     if (ranks.size() > 1) std::cerr << "Gathering the figures and images of " << ranks.size() << " ranks\n";
-    GatheredSources gathered = gather_sources(ranks, std::move(measured), context.device_name(), images);
+    const RunMetadata::RankShare me{
+        context.device_name(), std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), {}};
+    GatheredSources gathered = gather_sources(ranks, std::move(measured), me, images);
     if (!ranks.is_root()) return describe_run(context);
 
     std::vector<TaaRow> rows;
@@ -392,7 +394,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     TaaReportSettings report = report_settings(sources, settings, width, height);
     report.pictures = pictures;
     RunMetadata run_info = describe_run(context);
-    if (ranks.size() > 1) run_info.ranks = rank_shares(sources, owners, gathered.devices);
+    if (ranks.size() > 1) run_info.ranks = rank_shares(sources, owners, std::move(gathered.shares));
     return write_tables_and_reports(std::move(run_info), settings, report, rows, frame_rows, variant_names, viewed,
                                     outputs);
 }
