@@ -1,9 +1,10 @@
 // Reading and writing images through OpenImageIO, in any format it knows (EXR, HDR, PNG, ...).
 // kdop's images hold linear RGB. Reading takes RGB from the first three channels, decoded to linear
 // as the file says (InputSpace; never clamped), and alpha from the fourth if there is one, as
-// stored. Writing is all-or-nothing: the file appears complete or not at all (it is read back and
-// compared before it is renamed into place, because some of OpenImageIO's writers report success on
-// a full disk); and deterministic: the same image gives the same bytes.
+// stored. Writing is all-or-nothing: the file appears complete or not at all (because some of
+// OpenImageIO's writers report success on a full disk, a PNG is encoded in memory and its bytes
+// written by kdop, which sees every error, and any other file is read back and compared before it
+// is renamed into place); and deterministic: the same image gives the same bytes.
 #pragma once
 
 #include "core/result.h"

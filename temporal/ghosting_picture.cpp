@@ -36,16 +36,26 @@ Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& sho
         return outputs.add(fmt::format("frames/{}/{}.png", shown.source, stem),
                            flip.range() == ColorRange::ldr ? image : flip.shown(image));
     };
+    // The picture shows the crop alone: its looks and maps are made of the crop's pixels (of 12
+    // variants at 1080p, whole ones held 0.8 GB).
     std::vector<Image> maps, looks;
     maps.reserve(trails.size()); // the picture points into both
     looks.reserve(trails.size() + 1);
-    looks.push_back(flip.shown(*truth));
+    auto look = [&](const Image& frame) -> Result<void> {
+        auto part = crop_of(frame, shown.crop);
+        if (!part) return std::unexpected(part.error());
+        looks.push_back(flip.shown(*part));
+        return {};
+    };
+    if (auto ok = look(*truth); !ok) return ok;
     std::vector<LabeledFrame> labeled{{fmt::format("{}, frame {}", truth_name, shown.index), &looks.back()}};
     if (auto ok = add_frame(truth_name, *truth); !ok) return ok;
     for (std::size_t v = 0; v < keys.size(); ++v) {
         const std::vector<float>& error = errors[v];
-        maps.push_back(flip::magma_image(error, width, height));
-        looks.push_back(flip.shown(*trails[v]));
+        auto part = crop_of(error, width, height, shown.crop);
+        if (!part) return std::unexpected(part.error());
+        maps.push_back(flip::magma_image(*part, shown.crop.width, shown.crop.height));
+        if (auto ok = look(*trails[v]); !ok) return ok;
         if (auto ok = add_frame(keys[v].name(), *trails[v]); !ok) return ok;
         labeled.push_back({keys[v].name(), &looks.back(), &maps.back(),
                            fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(error))});
@@ -57,22 +67,26 @@ Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& sho
         fmt::format("{} against the {}{}", flip.name(), truth_name == "aliased" ? "aliased frame" : truth_name,
                     flip.range() == ColorRange::hdr ? " (frames tone mapped)" : "");
     const ColorScale scale{&bar, caption};
-    auto picture = trail_picture(labeled, shown.crop, 4, &scale);
+    const TrailCrop whole_part{0, 0, shown.crop.width, shown.crop.height, shown.crop.scale};
+    auto picture = trail_picture(labeled, whole_part, 4, &scale);
     if (!picture) return std::unexpected(picture.error());
     return outputs.add(ghosting_picture_name(shown.source), *picture);
 }
 
-void PictureFrameChooser::offer(const MeasuredFrame& frame) {
+Result<void> PictureFrameChooser::offer(const MeasuredFrame& frame) {
     double low = INFINITY, high = -INFINITY;
     for (const FrameFigures& f : frame.figures)
         low = std::min(low, f.value(kGhosting)), high = std::max(high, f.value(kGhosting));
     const double spread = frame.figures.size() == 1 ? high : high - low;
     if (fixed_ ? frame.index != *fixed_ : !(spread > spread_))
-        return; // NaN (no ghosting measured) never wins; the earliest of equals stays
+        return {}; // NaN (no ghosting measured) never wins; the earliest of equals stays
+    auto outputs = frame.outputs();
+    if (!outputs) return std::unexpected(outputs.error());
     spread_ = spread;
     index_ = frame.index;
     outputs_.clear();
-    for (const Image* output : frame.outputs) outputs_.push_back(std::make_shared<const Image>(*output));
+    for (const Image* output : *outputs) outputs_.push_back(std::make_shared<const Image>(*output));
+    return {};
 }
 
 TrailCrop disagreement_crop(const std::vector<std::vector<float>>& maps, std::uint32_t width, std::uint32_t height) {

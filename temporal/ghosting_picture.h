@@ -57,7 +57,8 @@ Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& sho
 class PictureFrameChooser {
 public:
     explicit PictureFrameChooser(std::optional<std::size_t> fixed = std::nullopt) : fixed_(fixed) {}
-    void offer(const MeasuredFrame& frame);
+    // An error where the frame's outputs cannot come to the host.
+    Result<void> offer(const MeasuredFrame& frame);
     bool chosen() const { return !outputs_.empty(); }
     std::size_t index() const { return index_; }
     const std::vector<std::shared_ptr<const Image>>& outputs() const { return outputs_; }

@@ -108,4 +108,9 @@ Result<const Image*> DeviceOutputStore::image(FrameHandle handle) {
     return &*(*s)->host;
 }
 
+void DeviceOutputStore::let_go(FrameHandle handle) {
+    auto s = find(handle);
+    if (s) (*s)->host.reset();
+}
+
 } // namespace kdop

@@ -46,9 +46,12 @@ public:
     // moved onto `range` as within_range does (temporal/taa_measure.h), its error naming `label`.
     virtual Result<FrameHandle> take_output(std::size_t slot, TaaResolve& resolve, std::size_t shader, ColorRange range,
                                             std::string_view label) = 0;
-    // The image `handle` names, on the host: valid until its slot changes. An error for a stale
-    // handle, or where the image cannot come back.
+    // The image `handle` names, on the host: valid until its slot changes or let_go(). An error for
+    // a stale handle, or where the image cannot come back.
     virtual Result<const Image*> image(FrameHandle handle) = 0;
+    // Frees the host's copy of what image() brought back from the device (nothing where the host
+    // is where the frame is kept): an observer's read-back held no longer than it needs it.
+    virtual void let_go(FrameHandle) {}
 
 protected:
     struct Slot {
@@ -82,6 +85,7 @@ public:
     Result<FrameHandle> take_output(std::size_t slot, TaaResolve& resolve, std::size_t shader, ColorRange range,
                                     std::string_view label) override;
     Result<const Image*> image(FrameHandle handle) override;
+    void let_go(FrameHandle handle) override;
 
     // What FLIP evaluates: `handle`'s image on the host, or, where it is on the device alone, null,
     // with it loaded into `input` of FLIP's pair (copied there unless it is there already).

@@ -243,28 +243,36 @@ private:
     const DeviceFrames* on_device_ = nullptr;
 };
 
-// A measured frame, every shader done, as `on_measured` sees it.
+// A measured frame, every shader done, as `on_measured` sees it. The outputs it brought to the host
+// are let go when it returns: the store keeps them where they were measured.
 Result<void> observe(OutputStore& store, std::vector<Meter>& meters, std::span<const FrameHandle> outputs,
                      FrameHandle truth, std::string_view sequence, std::size_t index, bool maps,
                      const MeasuredFrameObserver& on_measured) {
     std::vector<FrameFigures> figures;
-    std::vector<const Image*> shown_outputs;
     std::vector<std::vector<float>> frame_maps;
     for (std::size_t s = 0; s < meters.size(); ++s) {
         figures.push_back(meters[s].last_figures());
-        auto image = store.image(outputs[s]);
-        if (!image) return std::unexpected(image.error());
-        shown_outputs.push_back(*image);
         if (maps) frame_maps.push_back(meters[s].take_map());
     }
     auto shown_truth = store.image(truth);
     if (!shown_truth) return std::unexpected(shown_truth.error());
-    return on_measured(MeasuredFrame{.sequence = sequence,
-                                     .index = index,
-                                     .figures = figures,
-                                     .outputs = shown_outputs,
-                                     .maps = frame_maps,
-                                     .truth = *shown_truth});
+    auto shown_outputs = [&]() -> Result<std::vector<const Image*>> {
+        std::vector<const Image*> images;
+        for (const FrameHandle output : outputs) {
+            auto image = store.image(output);
+            if (!image) return std::unexpected(image.error());
+            images.push_back(*image);
+        }
+        return images;
+    };
+    auto observed = on_measured(MeasuredFrame{.sequence = sequence,
+                                              .index = index,
+                                              .figures = figures,
+                                              .maps = frame_maps,
+                                              .outputs = shown_outputs,
+                                              .truth = *shown_truth});
+    for (const FrameHandle output : outputs) store.let_go(output);
+    return observed;
 }
 
 } // namespace

@@ -110,11 +110,15 @@ struct MeasuredFrame {
     std::string_view sequence; // the source's name
     std::size_t index = 0;
     std::span<const FrameFigures> figures; // each shader's, in order
-    std::span<const Image* const> outputs; // each shader's output on the frame (within range)
     // Where maps were asked for: each shader's FLIP map of the figure maps_show_ghosting names, the
     // one its figure is the mean of (empty for shimmer after a camera cut). Else empty.
     std::span<const std::vector<float>> maps;
-    const Image* truth = nullptr; // what ghosting is measured against: the reference, else the color
+    // Each shader's output on the frame (within range), brought to the host on the first call: an
+    // output kept on the device costs a read-back (and its memory until the call returns), so an
+    // observer asks for the frames it keeps alone, deciding by their figures.
+    std::function<Result<std::vector<const Image*>>()> outputs;
+    // What ghosting is measured against: the reference, else the color (on the host).
+    const Image* truth = nullptr;
 };
 // Called after each measured frame; an error stops the measurement.
 using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& frame)>;

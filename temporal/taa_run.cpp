@@ -312,7 +312,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             EvaluationObserver sequence_observer = observer;
             if (pictured)
                 sequence_observer.measured = [&](const MeasuredFrame& frame) -> Result<void> {
-                    chooser.offer(frame);
+                    if (auto ok = chooser.offer(frame); !ok) return ok;
                     return observer.measured ? observer.measured(frame) : Result<void>{};
                 };
             viewer.measuring(read.name());

@@ -22,16 +22,42 @@ int fitting_font_size(const std::string& text, int size, int width, const std::s
     return size;
 }
 
+// Whether `crop` lies inside a width x height frame.
+Result<void> check_crop(const TrailCrop& crop, std::uint32_t width, std::uint32_t height) {
+    if (crop.scale == 0 || crop.width == 0 || crop.height == 0 || crop.x + crop.width > width ||
+        crop.y + crop.height > height)
+        return fail(fmt::format("trail picture: the crop {}x{} at ({}, {}) leaves the {}x{} frame", crop.width,
+                                crop.height, crop.x, crop.y, width, height));
+    return {};
+}
+
 } // namespace
+
+Result<Image> crop_of(const Image& frame, const TrailCrop& crop) {
+    if (auto ok = check_crop(crop, frame.width, frame.height); !ok) return std::unexpected(ok.error());
+    Image part(crop.width, crop.height);
+    for (std::uint32_t y = 0; y < crop.height; ++y)
+        for (std::uint32_t x = 0; x < crop.width; ++x) part.at(x, y) = frame.at(crop.x + x, crop.y + y);
+    return part;
+}
+
+Result<std::vector<float>> crop_of(std::span<const float> map, std::uint32_t width, std::uint32_t height,
+                                   const TrailCrop& crop) {
+    if (auto ok = check_crop(crop, width, height); !ok) return std::unexpected(ok.error());
+    if (map.size() != std::size_t(width) * height) return fail("trail picture: a map of another size than its frame");
+    std::vector<float> part;
+    part.reserve(std::size_t(crop.width) * crop.height);
+    for (std::uint32_t y = 0; y < crop.height; ++y)
+        for (std::uint32_t x = 0; x < crop.width; ++x)
+            part.push_back(map[std::size_t(crop.y + y) * width + crop.x + x]);
+    return part;
+}
 
 Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns,
                             const ColorScale* scale) {
     if (frames.empty()) return fail("trail picture: no frames");
     const Image& first = *frames[0].frame;
-    if (crop.scale == 0 || crop.width == 0 || crop.height == 0 || crop.x + crop.width > first.width ||
-        crop.y + crop.height > first.height)
-        return fail(fmt::format("trail picture: the crop {}x{} at ({}, {}) leaves the {}x{} frame", crop.width,
-                                crop.height, crop.x, crop.y, first.width, first.height));
+    if (auto ok = check_crop(crop, first.width, first.height); !ok) return std::unexpected(ok.error());
     const int w = int(crop.width * crop.scale), h = int(crop.height * crop.scale);
     const bool maps = std::any_of(frames.begin(), frames.end(), [](const LabeledFrame& f) { return f.error_map; });
     const bool notes = std::any_of(frames.begin(), frames.end(), [](const LabeledFrame& f) { return !f.note.empty(); });

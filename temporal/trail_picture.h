@@ -34,4 +34,11 @@ struct ColorScale {
 Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCrop& crop, std::uint32_t columns = 4,
                             const ColorScale* scale = nullptr);
 
+// The part of a width x height frame `crop` shows, not magnified: all a picture needs of the frame
+// (a 320x180 crop of a 1080p frame is 2.8% of it). An error where the crop leaves the frame. The
+// crop of the parts is {0, 0, crop.width, crop.height, crop.scale}.
+Result<Image> crop_of(const Image& frame, const TrailCrop& crop);
+Result<std::vector<float>> crop_of(std::span<const float> map, std::uint32_t width, std::uint32_t height,
+                                   const TrailCrop& crop);
+
 } // namespace kdop

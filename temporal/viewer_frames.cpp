@@ -126,15 +126,17 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
             keep = true;
         }
     }
-    if (!keep) return {};
-    if (frame.maps.size() != frame.outputs.size())
+    if (!keep) return {}; // its outputs never come to the host
+    if (frame.maps.size() != frame.figures.size())
         return fail("the viewer shows each output's FLIP map, and the frame came without them (measure with "
                     "EvaluationObserver::maps)");
+    auto outputs = frame.outputs();
+    if (!outputs) return std::unexpected(outputs.error());
     kept.shown.width = frame.truth->width, kept.shown.height = frame.truth->height;
     // A spread frame is kept whatever comes later: its PNGs are written now, on every core. A worst
     // frame so far may stop being one, so it is staged until the end.
-    if (auto ok = spread ? write_frame(kept.shown, frame.index, *frame.truth, frame.outputs, frame.maps)
-                         : stage(it->second, frame);
+    if (auto ok = spread ? write_frame(kept.shown, frame.index, *frame.truth, *outputs, frame.maps)
+                         : stage(it->second, frame, *outputs);
         !ok)
         return ok;
     kept.figures[frame.index] = std::move(figures);
@@ -142,7 +144,7 @@ Result<void> ViewerFrames::offer(const MeasuredFrame& frame) {
     return {};
 }
 
-Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame) {
+Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame, std::span<const Image* const> outputs) {
     if (!scratch_) scratch_ = std::make_unique<ScratchDirectory>("kdop-viewer");
     if (scratch_->path.empty())
         return fail("cannot create a scratch folder for the viewer's frames (is TMPDIR writable?)");
@@ -151,8 +153,8 @@ Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame) {
     if (ec) return fail(fmt::format("{}: {}", scratch_->path.string(), ec.message()));
     if (auto ok = write_staged(staged(s, frame.index, "truth"), *frame.truth); !ok) return ok;
     std::vector<bool> has_map;
-    for (std::size_t v = 0; v < frame.outputs.size(); ++v) {
-        if (auto ok = write_staged(staged(s, frame.index, std::to_string(v)), *frame.outputs[v]); !ok) return ok;
+    for (std::size_t v = 0; v < outputs.size(); ++v) {
+        if (auto ok = write_staged(staged(s, frame.index, std::to_string(v)), *outputs[v]); !ok) return ok;
         // The map the figure was measured with; none for shimmer after a camera cut.
         has_map.push_back(!frame.maps[v].empty());
         if (has_map.back())

@@ -99,7 +99,7 @@ private:
     struct Kept; // one sequence's frames so far
     // The staged file of image `name` of frame `index` of sequence `s`.
     std::filesystem::path staged(std::size_t s, std::size_t index, const std::string& name) const;
-    Result<void> stage(std::size_t s, const MeasuredFrame& frame);
+    Result<void> stage(std::size_t s, const MeasuredFrame& frame, std::span<const Image* const> outputs);
     void drop_unkept(std::size_t s);
     // `truth` and `variant` for each of `variants` variants, one per core at a time; the first
     // error in that order.

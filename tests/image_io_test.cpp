@@ -5,6 +5,7 @@
 #include "images/image_io.h"
 #include "images/random.h"
 #include "images/srgb.h"
+#include "images/srgb_bytes.h"
 #include "tests/test_support.h"
 
 #include <OpenImageIO/imageio.h>
@@ -400,6 +401,35 @@ TEST(ImageIo, LossyFormatsAreRefusedBeforeAnythingIsWritten) {
     ASSERT_FALSE(written);
     EXPECT_NE(written.error().message.find("jpeg is lossy"), std::string::npos) << written.error().message;
     EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+// The 8-bit codes found by search are the formula's (linear_to_srgb, then OpenImageIO's conversion)
+// for every float within 2^16 of each step, both sides, and for every 61st float of [0, 1]; each
+// step is where the formula's code first reaches it.
+TEST(SrgbBytes, TheSearchGivesTheFormulasCodes) {
+    for (const auto& [steps, formula] :
+         {std::pair{&ByteSteps::srgb(), &srgb_byte_by_formula}, std::pair{&ByteSteps::unit(), &unit_byte_by_formula}}) {
+        std::size_t checked = 0;
+        auto expect_same = [&](std::uint32_t bits) {
+            const float v = std::bit_cast<float>(bits);
+            ASSERT_EQ(steps->code(v), formula(v)) << "at " << v << " (bits " << bits << ")";
+            ++checked;
+        };
+        const std::uint32_t one = std::bit_cast<std::uint32_t>(1.0f);
+        for (int code = 1; code <= 255; ++code) {
+            const std::uint32_t step = std::bit_cast<std::uint32_t>(steps->step(code));
+            ASSERT_EQ(formula(steps->step(code)), code);
+            ASSERT_LT(formula(std::bit_cast<float>(step - 1)), code);
+            for (std::uint32_t b = step - std::min(step, 1u << 16); b <= std::min(one, step + (1u << 16)); ++b)
+                expect_same(b);
+        }
+        for (std::uint32_t b = 0; b <= one; b += 61) expect_same(b);
+        expect_same(one);
+        EXPECT_GT(checked, 30'000'000u);
+    }
+    EXPECT_EQ(ByteSteps::srgb().code(0.0f), 0);
+    EXPECT_EQ(ByteSteps::srgb().code(1.0f), 255);
+    EXPECT_EQ(ByteSteps::srgb().code(0.5f), 188); // 0.5 linear is sRGB 0.735
 }
 
 } // namespace

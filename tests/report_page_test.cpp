@@ -61,9 +61,25 @@ bool shows_in_magma(const Image& shown, float value) {
     return true;
 }
 
+// A measured frame as the evaluation offers it, its outputs counted in `fetched` when asked for.
+MeasuredFrame offered(std::string_view sequence, std::size_t index, std::span<const FrameFigures> figures,
+                      const std::vector<const Image*>& outputs, std::span<const std::vector<float>> maps,
+                      const Image* truth, std::size_t* fetched = nullptr) {
+    return {.sequence = sequence,
+            .index = index,
+            .figures = figures,
+            .maps = maps,
+            .outputs = [outputs, fetched]() -> Result<std::vector<const Image*>> {
+                if (fetched) ++*fetched;
+                return outputs;
+            },
+            .truth = truth};
+}
+
 // Fed frame after frame, it keeps the spread and each variant's worst frame (the earliest of
 // equals), stages their outputs and maps and drops the frames that stop being worst; what it
-// writes are those frames' outputs and maps, not later ones'.
+// writes are those frames' outputs and maps, not later ones'. It asks for the outputs of the frames
+// it keeps alone (on the device each is a read-back).
 TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
     StagedImages images;
     ViewerFrames viewer(3, {"a", "b"}, images, {});
@@ -73,18 +89,21 @@ TEST(ViewerFrames, KeepsTheSpreadAndEachVariantsWorstFrame) {
     const std::vector<std::pair<double, double>> ghosting{{0.1, 0.1}, {0.2, 0.2}, {0.5, 0.3}, {0.1, 0.1}, {0.3, 0.4},
                                                           {0.2, 0.5}, {0.5, 0.2}, {0.4, 0.6}, {0.3, 0.1}};
     const Image truth = gray(0.5f);
+    std::size_t fetched = 0;
     for (std::size_t i = 2; i <= 10; ++i) {
         const auto [a, b] = ghosting[i - 2];
         const std::vector<FrameFigures> figures{{"moving", i, {NAN, a}}, {"moving", i, {NAN, b}}};
         const Image output_a = gray(float(i) / 20), output_b = gray(float(i) / 20 + 0.25f);
         const std::vector<const Image*> outputs{&output_a, &output_b};
         const std::vector<std::vector<float>> maps{flat_map(float(i) / 10), flat_map(1.0f - float(i) / 20)};
-        ASSERT_TRUE(viewer.offer({"moving", i, figures, outputs, maps, &truth}));
+        ASSERT_TRUE(viewer.offer(offered("moving", i, figures, outputs, maps, &truth, &fetched)));
     }
+    EXPECT_EQ(fetched, 7u) << "frames 5 and 8 are neither spread nor a worst so far";
     // A frame of a sequence not planned is not kept.
     const std::vector<FrameFigures> other{{"other", 3, {NAN, 1.0}}, {"other", 3, {NAN, 1.0}}};
     const std::vector<const Image*> outputs{&truth, &truth};
-    ASSERT_TRUE(viewer.offer({"other", 3, other, outputs, {}, &truth}));
+    ASSERT_TRUE(viewer.offer(offered("other", 3, other, outputs, {}, &truth, &fetched)));
+    EXPECT_EQ(fetched, 7u);
 
     EXPECT_EQ(viewer.staged_frames(), 2u) << "the spread frames are written as they are measured; 4 and 9 staged";
     auto shown = viewer.write();
@@ -131,9 +150,9 @@ TEST(ViewerFrames, ShowsTheMapsTheFiguresWereMeasuredWith) {
     const std::vector<const Image*> outputs{&now};
     const std::vector<FrameFigures> first{{"still", 1, {NAN, NAN}}}, second{{"still", 2, {0.3, NAN}}};
     const std::vector<std::vector<float>> none{{}}, measured{flat_map(0.3f)};
-    ASSERT_TRUE(viewer.offer({"still", 1, first, outputs, none, &truth})); // a cut: nothing before
-    ASSERT_TRUE(viewer.offer({"still", 2, second, outputs, measured, &truth}));
-    auto without = viewer.offer({"still", 2, second, outputs, {}, &truth});
+    ASSERT_TRUE(viewer.offer(offered("still", 1, first, outputs, none, &truth))); // a cut: nothing before
+    ASSERT_TRUE(viewer.offer(offered("still", 2, second, outputs, measured, &truth)));
+    auto without = viewer.offer(offered("still", 2, second, outputs, {}, &truth));
     ASSERT_FALSE(without);
     EXPECT_NE(without.error().message.find("FLIP map"), std::string::npos) << without.error().message;
     auto shown = viewer.write();

@@ -409,8 +409,10 @@ TEST_F(ResolveGpu, MeasuredFramesCarryTheMapsTheirFiguresAreMeansOf) {
                 auto check = [&](const MeasuredFrame& frame) -> Result<void> {
                     ++frames;
                     EXPECT_EQ(frame.maps.size(), 2u) << what;
+                    auto outputs = frame.outputs();
+                    if (!outputs) return std::unexpected(outputs.error());
                     for (std::size_t s = 0; s < 2 && frame.maps.size() == 2; ++s) {
-                        const Image& output = *frame.outputs[s];
+                        const Image& output = *(*outputs)[s];
                         const std::vector<float>& map = frame.maps[s];
                         const double figure =
                             roles.ghosting ? frame.figures[s].value(kGhosting) : frame.figures[s].value(kShimmer);
@@ -492,7 +494,9 @@ TEST_F(ResolveGpu, OutputsMeasuredOnTheDeviceGiveTheFiguresOfOutputsReadBack) {
                     EXPECT_TRUE(resolve);
                     if (!resolve) return seen;
                     auto observe = [&](const MeasuredFrame& frame) -> Result<void> {
-                        for (const Image* output : frame.outputs) seen.outputs.push_back(*output);
+                        auto outputs = frame.outputs();
+                        if (!outputs) return std::unexpected(outputs.error());
+                        for (const Image* output : *outputs) seen.outputs.push_back(*output);
                         for (const std::vector<float>& map : frame.maps) seen.maps.push_back(map);
                         return {};
                     };
