@@ -25,6 +25,32 @@ Result<std::filesystem::path> staging_path(const ScratchDirectory& scratch, cons
 
 } // namespace
 
+Result<void> write_raw(const std::filesystem::path& path, std::span<const float> values) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size_bytes()));
+    if (!out.flush()) return fail(fmt::format("{}: cannot write a staged frame", path.string()));
+    return {};
+}
+
+Result<void> write_raw(const std::filesystem::path& path, const Image& image) {
+    return write_raw(path, std::span(reinterpret_cast<const float*>(image.pixels.data()), image.pixels.size() * 4));
+}
+
+Result<void> read_raw(const std::filesystem::path& path, std::span<float> values) {
+    std::ifstream in(path, std::ios::binary);
+    in.read(reinterpret_cast<char*>(values.data()), std::streamsize(values.size_bytes()));
+    if (!in) return fail(fmt::format("{}: cannot read a staged frame back", path.string()));
+    return {};
+}
+
+Result<Image> read_raw_image(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height) {
+    Image image(width, height);
+    if (auto ok = read_raw(path, std::span(reinterpret_cast<float*>(image.pixels.data()), image.pixels.size() * 4));
+        !ok)
+        return std::unexpected(ok.error());
+    return image;
+}
+
 Result<void> StagedImages::add(const std::string& name, const Image& image) {
     auto staged = staging_path(*scratch_, name);
     if (!staged) return std::unexpected(staged.error());

@@ -12,10 +12,21 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace kdop {
+
+// A frame or FLIP map staged for this process alone: its floats as they are in memory. The process
+// reads back only what it wrote itself, moments before, so no format is needed, and many frames are
+// staged and dropped during a pass (report.html's viewer, the picture's frame): an EXR's
+// compression and OpenImageIO's checks cost more there than the whole copy (written by hand for
+// that reason). The reader gives the size, the frame's.
+Result<void> write_raw(const std::filesystem::path& path, std::span<const float> values);
+Result<void> write_raw(const std::filesystem::path& path, const Image& image);
+Result<void> read_raw(const std::filesystem::path& path, std::span<float> values);
+Result<Image> read_raw_image(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height);
 
 class StagedImages {
 public:

@@ -13,11 +13,19 @@ namespace kdop {
 // ghosting-<scene>.png
 std::string ghosting_picture_name(const std::string& scene) { return fmt::format("ghosting-{}.png", scene); }
 
+PictureFrames frames_in_memory(std::vector<std::shared_ptr<const Image>> frames) {
+    const std::size_t count = frames.size();
+    return {count,
+            [frames = std::move(frames)](std::size_t v) -> Result<std::shared_ptr<const Image>> { return frames[v]; }};
+}
+
 Result<std::vector<std::vector<float>>> ghosting_maps(PictureFlip& flip, const Image& truth,
-                                                      const std::vector<std::shared_ptr<const Image>>& frames) {
+                                                      const PictureFrames& frames) {
     std::vector<std::vector<float>> maps;
-    for (const auto& frame : frames) {
-        auto map = flip.map(truth, *frame, !maps.empty());
+    for (std::size_t v = 0; v < frames.count; ++v) {
+        auto frame = frames.frame(v);
+        if (!frame) return std::unexpected(frame.error());
+        auto map = flip.map(truth, **frame, !maps.empty());
         if (!map) return std::unexpected(map.error());
         maps.push_back(std::move(*map));
     }
@@ -26,9 +34,8 @@ Result<std::vector<std::vector<float>>> ghosting_maps(PictureFlip& flip, const I
 
 Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& shown, const std::string& truth_name,
                                   std::shared_ptr<const Image> truth, const std::vector<VariantKey>& keys,
-                                  const std::vector<std::shared_ptr<const Image>>& trails,
-                                  const std::vector<std::vector<float>>& errors, const std::vector<double>& ghosting,
-                                  const PictureFlip& flip) {
+                                  const PictureFrames& trails, const std::vector<std::vector<float>>& errors,
+                                  const std::vector<double>& ghosting, const PictureFlip& flip) {
     const std::uint32_t width = truth->width, height = truth->height;
     // As data, the frames as they are; to look at, as the picture shows them (HDR tone mapped).
     auto add_frame = [&](const std::string& stem, const Image& image) -> Result<void> {
@@ -39,8 +46,8 @@ Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& sho
     // The picture shows the crop alone: its looks and maps are made of the crop's pixels (of 12
     // variants at 1080p, whole ones held 0.8 GB).
     std::vector<Image> maps, looks;
-    maps.reserve(trails.size()); // the picture points into both
-    looks.reserve(trails.size() + 1);
+    maps.reserve(trails.count); // the picture points into both
+    looks.reserve(trails.count + 1);
     auto look = [&](const Image& frame) -> Result<void> {
         auto part = crop_of(frame, shown.crop);
         if (!part) return std::unexpected(part.error());
@@ -55,8 +62,10 @@ Result<void> add_ghosting_picture(StagedImages& outputs, const PictureFrame& sho
         auto part = crop_of(error, width, height, shown.crop);
         if (!part) return std::unexpected(part.error());
         maps.push_back(flip::magma_image(*part, shown.crop.width, shown.crop.height));
-        if (auto ok = look(*trails[v]); !ok) return ok;
-        if (auto ok = add_frame(keys[v].name(), *trails[v]); !ok) return ok;
+        auto trail = trails.frame(v);
+        if (!trail) return std::unexpected(trail.error());
+        if (auto ok = look(**trail); !ok) return ok;
+        if (auto ok = add_frame(keys[v].name(), **trail); !ok) return ok;
         labeled.push_back({keys[v].name(), &looks.back(), &maps.back(),
                            fmt::format("ghosting {:.4f} | frame {:.4f}", ghosting[v], mean_error(error))});
     }
@@ -82,11 +91,24 @@ Result<void> PictureFrameChooser::offer(const MeasuredFrame& frame) {
         return {}; // NaN (no ghosting measured) never wins; the earliest of equals stays
     auto outputs = frame.outputs();
     if (!outputs) return std::unexpected(outputs.error());
+    if (!scratch_) scratch_ = std::make_unique<ScratchDirectory>("kdop-picture");
+    if (scratch_->path.empty())
+        return fail("cannot create a scratch folder for the picture's frame (is TMPDIR writable?)");
+    for (std::size_t v = 0; v < outputs->size(); ++v)
+        if (auto ok = write_raw(scratch_->path / std::to_string(v), *(*outputs)[v]); !ok) return ok;
     spread_ = spread;
     index_ = frame.index;
-    outputs_.clear();
-    for (const Image* output : *outputs) outputs_.push_back(std::make_shared<const Image>(*output));
+    outputs_ = outputs->size();
+    if (!outputs->empty()) width_ = outputs->front()->width, height_ = outputs->front()->height;
     return {};
+}
+
+PictureFrames PictureFrameChooser::outputs() const {
+    return {outputs_, [this](std::size_t v) -> Result<std::shared_ptr<const Image>> {
+                auto image = read_raw_image(scratch_->path / std::to_string(v), width_, height_);
+                if (!image) return std::unexpected(image.error());
+                return std::make_shared<const Image>(std::move(*image));
+            }};
 }
 
 TrailCrop disagreement_crop(const std::vector<std::vector<float>>& maps, std::uint32_t width, std::uint32_t height) {

@@ -88,9 +88,10 @@ Result<void> add_scene_picture(StagedImages& outputs, const TaaScene& scene, con
     if (!shown) return std::unexpected(shown.error());
     const bool has_reference = shown->reference.has_value();
     auto truth = std::make_shared<const Image>(std::move(has_reference ? *shown->reference : shown->color));
-    std::vector<std::shared_ptr<const Image>> trails;
+    std::vector<std::shared_ptr<const Image>> held;
     std::vector<double> ghosting;
-    for (const EvaluationRow& m : measured) trails.push_back(m.trail), ghosting.push_back(m.mean(kGhosting));
+    for (const EvaluationRow& m : measured) held.push_back(m.trail), ghosting.push_back(m.mean(kGhosting));
+    const PictureFrames trails = frames_in_memory(std::move(held));
     const PictureFrame at{scene.name(), scene.trail_frame(schedule), scene.trail_crop(schedule)};
     auto flip = evaluation.flip_evaluator(truth->width, truth->height);
     if (!flip) return std::unexpected(flip.error());
@@ -301,6 +302,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             if (!rows) return std::unexpected(rows.error());
             if (auto ok = add_scene_picture(images, scene, schedule, keys_of(keys, *rows), *rows, *evaluation); !ok)
                 return std::unexpected(ok.error());
+            for (EvaluationRow& row : *rows) row.trail.reset(); // pictured: a frame per variant let go
             measured[i] =
                 MeasuredSource{.rows = std::move(*rows), .picture = ghosting_picture_name(scene.name()), .viewed = {}};
         }

@@ -11,37 +11,6 @@
 #include <span>
 
 namespace kdop {
-namespace {
-
-// A staged image or FLIP map: its floats as they are in memory. The process reads back only what
-// it wrote itself, moments before, so no format is needed, and many frames are staged and dropped
-// during a pass: an EXR's compression and OpenImageIO's checks cost more there than the whole copy
-// (written by hand for that reason). An image's size is the frame's (ViewerSequence::width).
-Result<void> write_staged(const std::filesystem::path& path, std::span<const float> values) {
-    std::ofstream out(path, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size_bytes()));
-    if (!out.flush()) return fail(fmt::format("{}: cannot write the viewer's staged frame", path.string()));
-    return {};
-}
-Result<void> write_staged(const std::filesystem::path& path, const Image& image) {
-    return write_staged(path, std::span(reinterpret_cast<const float*>(image.pixels.data()), image.pixels.size() * 4));
-}
-
-Result<void> read_staged(const std::filesystem::path& path, std::span<float> values) {
-    std::ifstream in(path, std::ios::binary);
-    in.read(reinterpret_cast<char*>(values.data()), std::streamsize(values.size_bytes()));
-    if (!in) return fail(fmt::format("{}: cannot read the viewer's staged frame back", path.string()));
-    return {};
-}
-Result<Image> read_staged_image(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height) {
-    Image image(width, height);
-    if (auto ok = read_staged(path, std::span(reinterpret_cast<float*>(image.pixels.data()), image.pixels.size() * 4));
-        !ok)
-        return std::unexpected(ok.error());
-    return image;
-}
-
-} // namespace
 
 std::vector<std::size_t> spread_frames(std::size_t first, std::size_t last, std::size_t spread) {
     std::vector<std::size_t> frames;
@@ -151,15 +120,14 @@ Result<void> ViewerFrames::stage(std::size_t s, const MeasuredFrame& frame, std:
     std::error_code ec;
     std::filesystem::create_directories(staged(s, frame.index, "truth").parent_path(), ec);
     if (ec) return fail(fmt::format("{}: {}", scratch_->path.string(), ec.message()));
-    if (auto ok = write_staged(staged(s, frame.index, "truth"), *frame.truth); !ok) return ok;
+    if (auto ok = write_raw(staged(s, frame.index, "truth"), *frame.truth); !ok) return ok;
     std::vector<bool> has_map;
     for (std::size_t v = 0; v < outputs.size(); ++v) {
-        if (auto ok = write_staged(staged(s, frame.index, std::to_string(v)), *outputs[v]); !ok) return ok;
+        if (auto ok = write_raw(staged(s, frame.index, std::to_string(v)), *outputs[v]); !ok) return ok;
         // The map the figure was measured with; none for shimmer after a camera cut.
         has_map.push_back(!frame.maps[v].empty());
         if (has_map.back())
-            if (auto ok = write_staged(staged(s, frame.index, fmt::format("flip-{}", v)), frame.maps[v]); !ok)
-                return ok;
+            if (auto ok = write_raw(staged(s, frame.index, fmt::format("flip-{}", v)), frame.maps[v]); !ok) return ok;
     }
     sequences_[s]->has_map[frame.index] = std::move(has_map);
     return {};
@@ -234,19 +202,18 @@ Result<std::vector<ViewerSequence>> ViewerFrames::write(const std::function<void
             auto written = on_every_core(
                 sequence.variants,
                 [&]() -> Result<void> {
-                    auto truth = read_staged_image(staged(s, index, "truth"), sequence.width, sequence.height);
+                    auto truth = read_raw_image(staged(s, index, "truth"), sequence.width, sequence.height);
                     if (!truth) return std::unexpected(truth.error());
                     return add_shown(sequence, index, sequence.truth, *truth);
                 },
                 [&](std::size_t v) -> Result<void> {
-                    auto output =
-                        read_staged_image(staged(s, index, std::to_string(v)), sequence.width, sequence.height);
+                    auto output = read_raw_image(staged(s, index, std::to_string(v)), sequence.width, sequence.height);
                     if (!output) return std::unexpected(output.error());
                     if (auto ok = add_shown(sequence, index, variants_[v], *output); !ok) return ok;
                     std::vector<float> map;
                     if (staged_maps->second[v]) {
                         map.resize(std::size_t(sequence.width) * sequence.height);
-                        if (auto ok = read_staged(staged(s, index, fmt::format("flip-{}", v)), map); !ok) return ok;
+                        if (auto ok = read_raw(staged(s, index, fmt::format("flip-{}", v)), map); !ok) return ok;
                     }
                     return add_map(sequence, index, v, map);
                 });
