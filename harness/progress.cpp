@@ -27,8 +27,9 @@ void Progress::finish() {
     std::fflush(stderr);
 }
 
-void Progress::advance(const std::string& item) {
-    ++done_;
+void Progress::advance(const std::string& item, std::size_t steps) {
+    if (steps == 0) return;
+    done_ += steps;
     const std::size_t tenth = total_ ? done_ * 10 / total_ : 0;
     if (!terminal_ && item == last_item_ && tenth == last_tenth_ && done_ < total_) return;
     last_item_ = item;

@@ -22,8 +22,8 @@ public:
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
 
-    // One more item is done.
-    void advance(const std::string& item);
+    // One more item is done (or `steps` more: other ranks' frames, kdop taa under mpirun).
+    void advance(const std::string& item, std::size_t steps = 1);
     // Clears the line on a terminal; called by the destructor.
     void finish();
 

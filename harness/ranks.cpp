@@ -3,9 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdint>
 #include <cstdlib>
+#include <deque>
 #include <iostream>
 #include <numeric>
+#include <thread>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -152,6 +156,76 @@ std::string Ranks::receive([[maybe_unused]] int from) const {
                  MPI_STATUS_IGNORE);
 #endif
     return bytes;
+}
+
+#ifdef KDOP_WITH_MPI
+namespace {
+// Progress messages: a count of steps, or kFinished. The world has one Ranks, so its messages in
+// flight are kept here: each count stays put (a deque does not move its elements) until its send
+// completes.
+constexpr int kProgressTag = 8;
+constexpr std::uint64_t kFinished = ~std::uint64_t(0);
+std::deque<std::uint64_t> progress_counts;
+std::vector<MPI_Request> progress_requests;
+int progress_finished = 0; // on rank 0: the other ranks that have said they finished
+
+void send_progress(std::uint64_t count) {
+    progress_counts.push_back(count);
+    progress_requests.emplace_back();
+    MPI_Isend(&progress_counts.back(), 1, MPI_UINT64_T, 0, kProgressTag, MPI_COMM_WORLD, &progress_requests.back());
+}
+} // namespace
+#endif
+
+void Ranks::tell_progress([[maybe_unused]] std::size_t steps) const {
+#ifdef KDOP_WITH_MPI
+    if (size_ > 1 && !is_root() && steps > 0) send_progress(steps);
+#endif
+}
+
+void Ranks::finish_progress() const {
+#ifdef KDOP_WITH_MPI
+    if (size_ == 1 || is_root()) return;
+    send_progress(kFinished);
+    MPI_Waitall(int(progress_requests.size()), progress_requests.data(), MPI_STATUSES_IGNORE);
+    progress_requests.clear();
+    progress_counts.clear();
+#endif
+}
+
+std::size_t Ranks::take_progress() const {
+    std::size_t steps = 0;
+#ifdef KDOP_WITH_MPI
+    if (size_ == 1 || !is_root()) return 0;
+    for (;;) {
+        int arrived = 0;
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, kProgressTag, MPI_COMM_WORLD, &arrived, &status);
+        if (!arrived) break;
+        std::uint64_t count = 0;
+        MPI_Recv(&count, 1, MPI_UINT64_T, status.MPI_SOURCE, kProgressTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (count == kFinished)
+            ++progress_finished;
+        else
+            steps += std::size_t(count);
+    }
+#endif
+    return steps;
+}
+
+void Ranks::wait_for_progress(const std::function<void(std::size_t steps)>& on_steps) const {
+#ifdef KDOP_WITH_MPI
+    if (size_ == 1 || !is_root()) return;
+    // Each rank's finish is its last message, so every count has arrived when all have finished.
+    for (;;) {
+        if (const std::size_t steps = take_progress(); steps > 0) on_steps(steps);
+        if (progress_finished == size_ - 1) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    progress_finished = 0;
+#else
+    (void)on_steps;
+#endif
 }
 
 Result<void> Ranks::agree(Result<void> mine) const {

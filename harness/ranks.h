@@ -12,6 +12,7 @@
 #include "core/result.h"
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -49,6 +50,17 @@ public:
     // `bytes` to rank `to`, which takes them with receive(from), in the order sent.
     void send(const std::string& bytes, int to) const;
     std::string receive(int from) const;
+
+    // Progress under mpirun, for rank 0's one progress line: each other rank tells rank 0 how many
+    // steps it has done since it last said, and at the end that it has finished, well or not
+    // (small messages it does not wait on; finish_progress() waits until they are delivered).
+    // Rank 0 takes what has arrived; wait_for_progress() returns once every rank has finished,
+    // passing on what arrives meanwhile. Every rank calls its side before the next collective.
+    void tell_progress(std::size_t steps) const;
+    void finish_progress() const;
+    // Rank 0: the steps the other ranks have said they did since the last call.
+    std::size_t take_progress() const;
+    void wait_for_progress(const std::function<void(std::size_t steps)>& on_steps) const;
 
     // Whether every rank succeeded: the first failing rank's error (in rank order) on every rank,
     // "rank R of N: " before it where that is not rank 0.

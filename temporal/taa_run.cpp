@@ -22,6 +22,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <set>
 
 namespace kdop {
@@ -268,6 +269,8 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     const auto [width, height] = timing_size(sources, settings);
     std::optional<bench::TimingRun> timing; // rank 0's, of every variant
     std::vector<std::optional<MeasuredSource>> measured(sources.size());
+    // Rank 0's one progress line counts every rank's frames: the others tell it theirs.
+    std::optional<Progress> progress;
     auto measure_mine = [&]() -> Result<void> {
         if (ranks.is_root()) {
             // Two lines, each with its own estimate: a timing round takes a fraction of a variant's TAA.
@@ -278,21 +281,23 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             if (!timed) return std::unexpected(timed.error());
             timing = std::move(*timed);
         }
-        // A step is a frame, every variant resolved and measured on it; under mpirun rank 0's
-        // share is what its line counts.
+        // A step is a frame, every variant resolved and measured on it, on any rank.
         std::size_t count = 0;
         for (std::size_t i = 0; i < sources.size(); ++i) count += mine(i);
-        Progress progress(
-            fmt::format("TAA of {} variants x {} scenes and sequences{} on {},", specs.size(), sources.size(),
-                        ranks.size() == 1 ? std::string()
-                                          : fmt::format(" ({} of them on this rank of {})", count, ranks.size()),
-                        context.device_name()),
-            frame_steps(*evaluation, sources, mine), "frames");
+        progress.emplace(fmt::format("TAA of {} variants x {} scenes and sequences on {}{},", specs.size(),
+                                     sources.size(), context.device_name(),
+                                     ranks.size() == 1 ? std::string() : fmt::format(" and {} ranks", ranks.size())),
+                         frame_steps(*evaluation, sources, [](std::size_t) { return true; }), "frames");
         // Each line says which source of how many, for a corpus of hundreds.
         std::vector<std::string> started;
         observer.frame = [&](const std::string& source) {
             if (started.empty() || started.back() != source) started.push_back(source);
-            progress.advance(fmt::format("{} ({} of {})", source, started.size(), count));
+            const std::string item = ranks.size() == 1
+                                         ? fmt::format("{} ({} of {})", source, started.size(), count)
+                                         : fmt::format("{} ({} of {} on rank 0)", source, started.size(), count);
+            progress->advance(item);
+            progress->advance(item, ranks.take_progress());
+            ranks.tell_progress(1);
         };
         for (std::size_t i = 0; i < scenes.size(); ++i) {
             if (!mine(i)) continue;
@@ -363,6 +368,14 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     };
     const auto started = std::chrono::steady_clock::now();
     Result<void> done = measure_mine();
+    // Every rank says it is done, well or not, and rank 0 counts the others' frames until they are.
+    if (ranks.is_root())
+        ranks.wait_for_progress([&](std::size_t steps) {
+            if (progress) progress->advance("the other ranks' sources", steps);
+        });
+    else
+        ranks.finish_progress();
+    progress.reset();
     if (done && settings.viewer_frames > 0) done = write_viewer();
     // A rank that failed stops them all, with its message, before anything is gathered or written.
     if (auto ok = ranks.agree(std::move(done)); !ok) return std::unexpected(ok.error());

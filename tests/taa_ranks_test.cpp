@@ -128,8 +128,11 @@ TEST(CliTaaRanks, TheSameFilesOnAnyRankCount) {
         EXPECT_EQ(untimed(out / "taa.csv"), untimed(alone / "taa.csv"));
         EXPECT_EQ(r.out.find("kdop taa: "), r.out.rfind("kdop taa: ")) << "printed once\n" << r.out;
         if (ranks == 1) continue;
-        // One progress stream, rank 0's, saying it is one rank's share.
-        EXPECT_NE(r.err.find(fmt::format("on this rank of {})", ranks)), std::string::npos) << r.err;
+        // One progress stream, rank 0's, counting every rank's frames: the scene's 2 x 7 and the
+        // sequences' 2 x 8.
+        EXPECT_NE(r.err.find(fmt::format("and {} ranks,", ranks)), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("[30/30] TAA of"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("[31/"), std::string::npos) << r.err;
         EXPECT_EQ(r.err.find("Gathering"), r.err.rfind("Gathering")) << r.err;
         // Each of the 3 sources measured by exactly one rank, every rank measuring some.
         const nlohmann::json shares = nlohmann::json::parse(test::read_file(out / "taa.json"))["run"]["ranks"];
