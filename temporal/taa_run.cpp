@@ -183,15 +183,11 @@ std::pair<std::uint32_t, std::uint32_t> timing_size(const TaaSources& sources, c
 }
 
 // The frames a run goes through: what its progress counts.
-std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sources,
-                        const std::function<bool(std::size_t)>& mine) {
-    std::size_t frames = 0, i = 0;
-    for (const auto& scene : sources.scenes)
-        if (mine(i++)) frames += evaluation.frames(*scene);
-    for (const SequenceFrames& sequence : sources.sequences)
-        if (mine(i++)) frames += sequence.frame_count();
-    for (const NssFrames& capture : sources.captures)
-        if (mine(i++)) frames += capture.frame_count();
+std::size_t frame_steps(const TaaEvaluation& evaluation, const TaaSources& sources) {
+    std::size_t frames = 0;
+    for (const auto& scene : sources.scenes) frames += evaluation.frames(*scene);
+    for (const SequenceFrames& sequence : sources.sequences) frames += sequence.frame_count();
+    for (const NssFrames& capture : sources.captures) frames += capture.frame_count();
     return frames;
 }
 
@@ -287,7 +283,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
         progress.emplace(fmt::format("TAA of {} variants x {} scenes and sequences on {}{},", specs.size(),
                                      sources.size(), context.device_name(),
                                      ranks.size() == 1 ? std::string() : fmt::format(" and {} ranks", ranks.size())),
-                         frame_steps(*evaluation, sources, [](std::size_t) { return true; }), "frames");
+                         frame_steps(*evaluation, sources), "frames");
         // Each line says which source of how many, for a corpus of hundreds.
         std::vector<std::string> started;
         observer.frame = [&](const std::string& source) {
@@ -366,8 +362,10 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                 for (std::size_t k = 0; k < viewed_sequences(sources, i); ++k) measured[i]->viewed.push_back(*next++);
         return {};
     };
-    const auto started = std::chrono::steady_clock::now();
+    // This rank's own time: its share and its viewer's frames, not the waits for the others.
+    auto started = std::chrono::steady_clock::now();
     Result<void> done = measure_mine();
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     // Every rank says it is done, well or not, and rank 0 counts the others' frames until they are.
     if (ranks.is_root())
         ranks.wait_for_progress([&](std::size_t steps) {
@@ -376,12 +374,15 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     else
         ranks.finish_progress();
     progress.reset();
-    if (done && settings.viewer_frames > 0) done = write_viewer();
+    if (done && settings.viewer_frames > 0) {
+        started = std::chrono::steady_clock::now();
+        done = write_viewer();
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    }
     // A rank that failed stops them all, with its message, before anything is gathered or written.
     if (auto ok = ranks.agree(std::move(done)); !ok) return std::unexpected(ok.error());
     if (ranks.size() > 1) std::cerr << "Gathering the figures and images of " << ranks.size() << " ranks\n";
-    const RunMetadata::RankShare me{
-        context.device_name(), std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), {}};
+    const RunMetadata::RankShare me{context.device_name(), seconds, {}};
     GatheredSources gathered = gather_sources(ranks, std::move(measured), me, images);
     if (!ranks.is_root()) return describe_run(context);
 
