@@ -23,7 +23,7 @@ packages="
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools spirv-headers libspirv-cross-c-shared-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
-  libopenimageio-dev
+  libopenimageio-dev libpng-dev
   libglm-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libglpk-dev libqhull-dev
   libopenmpi-dev openmpi-bin

@@ -26,6 +26,10 @@ if(TARGET kdop)
 endif()
 install(TARGETS ${installed_programs} kdop_variant_headers EXPORT kdopTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET kdop)
+  # kdop's image codecs, which it loads on first use from <bindir>/../<libdir>/kdop (images/image_codecs.h).
+  install(TARGETS kdop_image_codecs LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/kdop)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/kdop DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shader_templates/axis_sets/ DESTINATION ${KDOP_INSTALL_AXIS_SET_DIR}
         FILES_MATCHING PATTERN "*.axes")

@@ -5,7 +5,6 @@
 #include "core/write_files.h"
 #include "runtime/kernel.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -15,8 +14,8 @@ namespace kdop {
 Result<RectifyRunResult> run_rectify(const Variant& variant, const RectifyRunOptions& o) {
     if (o.gamma && variant.mode != Mode::varclip)
         return usage_fail(fmt::format("--gamma: {} is not a variance clip and takes no gamma", variant.name));
-    if (!OIIO::ImageOutput::create(o.out))
-        return usage_fail(fmt::format("--out: {}: no image format for this extension", o.out));
+    if (auto ok = check_image_writable(o.out); !ok)
+        return std::unexpected(Error{"--out: " + ok.error().message, ok.error().usage});
     const std::filesystem::path inputs[] = {o.current, o.history};
     if (auto ok = check_output_file(o.out, "--out"); !ok) return usage_fail(ok.error().message);
     if (auto ok = check_not_an_input(o.out, "--out", inputs); !ok) return std::unexpected(ok.error());

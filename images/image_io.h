@@ -1,4 +1,5 @@
-// Reading and writing images through OpenImageIO, in any format it knows (EXR, HDR, PNG, ...).
+// Reading and writing images through OpenImageIO, in any format it knows (EXR, HDR, PNG, ...),
+// whose codecs are loaded on the first image read or written (images/image_codecs.h).
 // kdop's images hold linear RGB. Reading takes RGB from the first three channels, decoded to linear
 // as the file says (InputSpace; never clamped), and alpha from the fourth if there is one, as
 // stored. Writing is all-or-nothing: the file appears complete or not at all (because some of
@@ -78,6 +79,10 @@ Result<Image> read_finite_image(const std::string& path, std::string_view why,
 // Lossy formats (JPEG, WebP, HEIF, GIF) are refused: they would not
 // give back what was written.
 Result<void> write_image(const std::string& path, const Image& image);
+
+// Whether some image format is written for `path`'s extension: a usage error naming `path` where
+// none is (for a command to refuse its output's name before it works).
+Result<void> check_image_writable(const std::string& path);
 
 // Several images as a set, all or nothing: each is written under a temporary name next to its
 // destination, and all are renamed into place only when every one was written.

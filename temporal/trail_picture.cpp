@@ -1,26 +1,16 @@
 #include "temporal/trail_picture.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "images/image_codecs.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <filesystem>
 
 namespace kdop {
 namespace {
 
 constexpr int kLabelHeight = 22, kNoteHeight = 18, kFontSize = 15, kNoteFontSize = 12, kGap = 4;
 constexpr int kScaleHeight = 40, kBarHeight = 12, kBarWidth = 320;
-constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-
-// The largest font size from `size` down to 8 at which `text` fits in `width` pixels.
-int fitting_font_size(const std::string& text, int size, int width, const std::string& font) {
-    for (; size > 8; --size)
-        if (OIIO::ImageBufAlgo::text_size(text, size, font).width() <= width) break;
-    return size;
-}
 
 // Whether `crop` lies inside a width x height frame.
 Result<void> check_crop(const TrailCrop& crop, std::uint32_t width, std::uint32_t height) {
@@ -67,23 +57,17 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
     const int cell_w = w + kGap, cell_h = kLabelHeight + h * (maps ? 2 : 1) + note_h + kGap;
     const int grid_w = cols * cell_w - kGap, grid_h = rows * cell_h - kGap;
 
-    OIIO::ImageBuf grid(OIIO::ImageSpec(grid_w, grid_h + (scale ? kScaleHeight : 0), 3, OIIO::TypeDesc::FLOAT));
-    OIIO::ImageBufAlgo::zero(grid);
+    Image grid(std::uint32_t(grid_w), std::uint32_t(grid_h + (scale ? kScaleHeight : 0))); // black, opaque
     // The crop of `image`, magnified, with its top left corner at (x0, y0) of the grid.
     auto place = [&](const Image& image, int x0, int y0) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const glm::vec4& c = image.at(crop.x + x / crop.scale, crop.y + y / crop.scale);
-                const float rgb[3] = {c.r, c.g, c.b};
-                grid.setpixel(x0 + x, y0 + y, rgb, 3);
+                grid.at(std::uint32_t(x0 + x), std::uint32_t(y0 + y)) = glm::vec4(c.r, c.g, c.b, 1.0f);
             }
     };
-    const std::string font = std::filesystem::exists(kFont) ? kFont : "";
-    const float white[3] = {1, 1, 1};
-    auto text = [&](int x, int y, const std::string& line, int size) -> Result<void> {
-        if (OIIO::ImageBufAlgo::render_text(grid, x, y, line, size, font, white)) return {};
-        return fail(fmt::format("trail picture: cannot draw the text \"{}\": {}", line, grid.geterror()));
-    };
+    // The labels and notes, drawn once the crops are placed (each in a strip of its own cell).
+    std::vector<TextLine> lines;
     for (std::size_t i = 0; i < frames.size(); ++i) {
         for (const Image* image : {frames[i].frame, frames[i].error_map})
             if (image && (image->width != first.width || image->height != first.height))
@@ -91,15 +75,10 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
         const int x0 = int(i % cols) * cell_w, y0 = int(i / cols) * cell_h;
         place(*frames[i].frame, x0, y0 + kLabelHeight);
         if (frames[i].error_map) place(*frames[i].error_map, x0, y0 + kLabelHeight + h);
-        const std::string& label = frames[i].label;
-        if (auto ok = text(x0 + 3, y0 + kLabelHeight - 6, label, fitting_font_size(label, kFontSize, w - 6, font)); !ok)
-            return std::unexpected(ok.error());
-        const std::string& note = frames[i].note;
-        if (!note.empty())
-            if (auto ok = text(x0 + 3, y0 + kLabelHeight + h * (maps ? 2 : 1) + kNoteHeight - 5, note,
-                               fitting_font_size(note, kNoteFontSize, w - 6, font));
-                !ok)
-                return std::unexpected(ok.error());
+        lines.push_back({x0 + 3, y0 + kLabelHeight - 6, frames[i].label, kFontSize, w - 6});
+        if (!frames[i].note.empty())
+            lines.push_back({x0 + 3, y0 + kLabelHeight + h * (maps ? 2 : 1) + kNoteHeight - 5, frames[i].note,
+                             kNoteFontSize, w - 6});
     }
     if (scale && scale->bar->width > 0) {
         const int bar_w = std::min(kBarWidth, grid_w - 60), x0 = 20, y0 = grid_h + 8;
@@ -107,26 +86,16 @@ Result<Image> trail_picture(std::span<const LabeledFrame> frames, const TrailCro
             for (int x = 0; x < bar_w; ++x) {
                 const glm::vec4& c =
                     scale->bar->at(std::uint32_t(x * (scale->bar->width - 1) / std::max(bar_w - 1, 1)), 0);
-                const float rgb[3] = {c.r, c.g, c.b};
-                grid.setpixel(x0 + x, y0 + y, rgb, 3);
+                grid.at(std::uint32_t(x0 + x), std::uint32_t(y0 + y)) = glm::vec4(c.r, c.g, c.b, 1.0f);
             }
         const int baseline = y0 + kBarHeight + 14;
-        if (auto ok = text(x0 - 4, baseline, "0", kNoteFontSize); !ok) return std::unexpected(ok.error());
-        if (auto ok = text(x0 + bar_w - 4, baseline, "1", kNoteFontSize); !ok) return std::unexpected(ok.error());
-        if (auto ok = text(x0 + bar_w + 14, y0 + kBarHeight, scale->caption,
-                           fitting_font_size(scale->caption, kNoteFontSize, grid_w - bar_w - x0 - 18, font));
-            !ok)
-            return std::unexpected(ok.error());
+        lines.push_back({x0 - 4, baseline, "0", kNoteFontSize});
+        lines.push_back({x0 + bar_w - 4, baseline, "1", kNoteFontSize});
+        lines.push_back({x0 + bar_w + 14, y0 + kBarHeight, scale->caption, kNoteFontSize, grid_w - bar_w - x0 - 18});
     }
-
-    Image out(grid.spec().width, grid.spec().height);
-    for (std::uint32_t y = 0; y < out.height; ++y)
-        for (std::uint32_t x = 0; x < out.width; ++x) {
-            float rgb[3];
-            grid.getpixel(int(x), int(y), rgb, 3);
-            out.at(x, y) = glm::vec4(rgb[0], rgb[1], rgb[2], 1.0f); // text is blended over [0, 1] frames
-        }
-    return out;
+    // Text is blended over [0, 1] frames; alpha stays 1.
+    if (auto ok = draw_text(grid, lines); !ok) return fail("trail picture: " + ok.error().message);
+    return grid;
 }
 
 } // namespace kdop

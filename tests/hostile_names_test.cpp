@@ -174,7 +174,7 @@ TEST(CliHostileNames, SceneAndTaaRefuseBackgroundsWhoseStemNamesNoFile) {
 TEST(CliHostileNames, ASequenceNamedAsASceneSequenceIsRefused) {
     test::TempDir dir;
     const fs::path source = template_sequence(dir.path());
-    for (const std::string& name : {"grass-ghosting", "grass-shimmer", "grass"}) {
+    for (const std::string name : {"grass-ghosting", "grass-shimmer", "grass"}) {
         fs::copy(source, dir / name, fs::copy_options::recursive);
         auto r = test::run(kdop_args({"taa", "--scenes", "grass", "--size", "24x16", "--warmup", "2", "--frames", "2",
                                       "--sets", "aabb", "--write-frames", "--out", (dir / "out").string(), "--sequence",

@@ -123,8 +123,9 @@ TEST(CliTaaRanks, TheSameFilesOnAnyRankCount) {
         ASSERT_EQ(r.exit_code, 0) << r.err;
         ASSERT_EQ(files_under(out), written);
         for (const std::string& file : written)
-            if (!timed.contains(file) && !file.starts_with("trade-"))
+            if (!timed.contains(file) && !file.starts_with("trade-")) {
                 EXPECT_EQ(test::read_file(out / file), test::read_file(alone / file)) << file;
+            }
         EXPECT_EQ(untimed(out / "taa.csv"), untimed(alone / "taa.csv"));
         EXPECT_EQ(r.out.find("kdop taa: "), r.out.rfind("kdop taa: ")) << "printed once\n" << r.out;
         if (ranks == 1) continue;
