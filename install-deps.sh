@@ -12,6 +12,7 @@ set -eu
 # libspirv-cross-c-shared-dev: SPIRV-Cross's static core library, which reflects shaders' interfaces.
 # clang-format: the test format_is_applied checks the tree against .clang-format.
 # nlohmann-json3-dev: every measurement writes its tables as JSON too (harness/table.h).
+# libpng-dev: plain PNGs are read without loading OpenImageIO's codecs (images/png_read.h).
 # fonts-dejavu-core: the font of the labels in `kdop taa`'s pictures (temporal/trail_picture.h).
 # libopenmpi-dev and openmpi-bin: `mpirun -np R kdop optimize` shares a fit's frames over ranks
 # (the build leaves MPI out where it is not installed).
