@@ -7,11 +7,35 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
+#include <link.h>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace kdop {
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+// Keeps the Vulkan drivers the loader has opened (Mesa's libvulkan_*.so) loaded until the process
+// ends, where the loader would unload them with the last instance. Mesa's lavapipe keeps memory in
+// its globals: unloaded, LeakSanitizer takes that memory for a leak of kdop's, with no frame it can
+// name (found when kdop stopped loading OpenImageIO's 260 libraries at start, which had kept the
+// driver loaded by chance). A later context in the same process then also finds it loaded.
+void keep_drivers_loaded() {
+    std::vector<std::string> drivers;
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void* found) {
+            const std::string_view name = info->dlpi_name;
+            if (name.find("/libvulkan_") != std::string_view::npos)
+                static_cast<std::vector<std::string>*>(found)->emplace_back(name);
+            return 0;
+        },
+        &drivers);
+    // Outside the iteration, which holds the loader's lock. The handle is never closed.
+    for (const std::string& driver : drivers) dlopen(driver.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+}
 
 bool has_layer(const char* name) {
     uint32_t count = 0;
@@ -98,6 +122,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
             "--target-ghosting and --lavapipe-cost) and scene (of the 2-D scenes) still work, and so does kdop-gen",
             vk_result_text(created), files ? fmt::format(" (now: {})", files) : std::string()));
     }
+    keep_drivers_loaded();
     if (options.validation) {
         auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(c->instance_, "vkCreateDebugUtilsMessengerEXT"));
