@@ -160,36 +160,83 @@ std::string Ranks::receive([[maybe_unused]] int from) const {
 
 #ifdef KDOP_WITH_MPI
 namespace {
-// Progress messages: a count of steps, or kFinished. The world has one Ranks, so its messages in
-// flight are kept here: each count stays put (a deque does not move its elements) until its send
-// completes.
-constexpr int kProgressTag = 8;
-constexpr std::uint64_t kFinished = ~std::uint64_t(0);
-std::deque<std::uint64_t> progress_counts;
-std::vector<MPI_Request> progress_requests;
-int progress_finished = 0; // on rank 0: the other ranks that have said they finished
+// Progress messages: a count of steps, or kFinished / kFailed. The world has one Ranks, so its
+// messages in flight are kept here: each value stays put (a deque does not move its elements)
+// until its send completes.
+constexpr int kProgressTag = 8, kLastWordTag = 10;
+constexpr std::uint64_t kFinished = ~std::uint64_t(0), kFailed = kFinished - 1;
+// Rank 0's last word to each other rank.
+constexpr std::uint64_t kDone = 0, kStop = 1;
 
-void send_progress(std::uint64_t count) {
-    progress_counts.push_back(count);
-    progress_requests.emplace_back();
-    MPI_Isend(&progress_counts.back(), 1, MPI_UINT64_T, 0, kProgressTag, MPI_COMM_WORLD, &progress_requests.back());
+struct Sends {
+    std::deque<std::uint64_t> values;
+    std::vector<MPI_Request> requests;
+    void send(std::uint64_t value, int to, int tag) {
+        values.push_back(value);
+        requests.emplace_back();
+        MPI_Isend(&values.back(), 1, MPI_UINT64_T, to, tag, MPI_COMM_WORLD, &requests.back());
+    }
+    void wait() {
+        MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        requests.clear();
+        values.clear();
+    }
+};
+
+// On the other ranks: the counts and the finish sent; whether rank 0's last word has come, and
+// what it said.
+Sends progress_sends;
+bool last_word_taken = false, stop_said = false;
+
+// On rank 0: the last words sent, to whom, and what it has heard.
+Sends last_words;
+std::vector<char> told;    // by rank: its last word sent
+int progress_finished = 0; // the other ranks that have said they finished
+bool failure_heard = false;
+
+void tell(int rank, std::uint64_t word) {
+    int size = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    told.resize(std::size_t(size), 0);
+    if (told[std::size_t(rank)]) return;
+    told[std::size_t(rank)] = 1;
+    last_words.send(word, rank, kLastWordTag);
+}
+
+// Rank 0: "stop" to every rank not yet told.
+void stop_every_rank() {
+    int size = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    for (int r = 1; r < size; ++r) tell(r, kStop);
+}
+
+// The other ranks: rank 0's last word, if it has come (or, with `wait`, once it comes).
+void take_last_word(bool wait) {
+    if (last_word_taken) return;
+    int arrived = 1;
+    if (!wait) MPI_Iprobe(0, kLastWordTag, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
+    if (!arrived) return;
+    std::uint64_t word = kDone;
+    MPI_Recv(&word, 1, MPI_UINT64_T, 0, kLastWordTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    last_word_taken = true;
+    stop_said = word == kStop;
 }
 } // namespace
 #endif
 
 void Ranks::tell_progress([[maybe_unused]] std::size_t steps) const {
 #ifdef KDOP_WITH_MPI
-    if (size_ > 1 && !is_root() && steps > 0) send_progress(steps);
+    if (size_ > 1 && !is_root() && steps > 0) progress_sends.send(steps, 0, kProgressTag);
 #endif
 }
 
-void Ranks::finish_progress() const {
+void Ranks::finish_progress([[maybe_unused]] bool succeeded) const {
 #ifdef KDOP_WITH_MPI
     if (size_ == 1 || is_root()) return;
-    send_progress(kFinished);
-    MPI_Waitall(int(progress_requests.size()), progress_requests.data(), MPI_STATUSES_IGNORE);
-    progress_requests.clear();
-    progress_counts.clear();
+    progress_sends.send(succeeded ? kFinished : kFailed, 0, kProgressTag);
+    progress_sends.wait();
+    take_last_word(true);
+    last_word_taken = stop_said = false;
 #endif
 }
 
@@ -204,25 +251,45 @@ std::size_t Ranks::take_progress() const {
         if (!arrived) break;
         std::uint64_t count = 0;
         MPI_Recv(&count, 1, MPI_UINT64_T, status.MPI_SOURCE, kProgressTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        if (count == kFinished)
+        if (count == kFinished || count == kFailed) {
             ++progress_finished;
-        else
+            failure_heard = failure_heard || count == kFailed;
+            tell(status.MPI_SOURCE, kDone); // it has finished: nothing left to stop
+            if (failure_heard) stop_every_rank();
+        } else {
             steps += std::size_t(count);
+        }
     }
 #endif
     return steps;
 }
 
-void Ranks::wait_for_progress(const std::function<void(std::size_t steps)>& on_steps) const {
+bool Ranks::stop_asked() const {
+#ifdef KDOP_WITH_MPI
+    if (size_ == 1) return false;
+    if (is_root()) return failure_heard;
+    take_last_word(false);
+    return stop_said;
+#else
+    return false;
+#endif
+}
+
+void Ranks::wait_for_progress(const std::function<void(std::size_t steps)>& on_steps,
+                              [[maybe_unused]] bool succeeded) const {
 #ifdef KDOP_WITH_MPI
     if (size_ == 1 || !is_root()) return;
+    if (!succeeded) stop_every_rank();
     // Each rank's finish is its last message, so every count has arrived when all have finished.
     for (;;) {
         if (const std::size_t steps = take_progress(); steps > 0) on_steps(steps);
         if (progress_finished == size_ - 1) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+    last_words.wait();
+    told.clear();
     progress_finished = 0;
+    failure_heard = false;
 #else
     (void)on_steps;
 #endif

@@ -52,15 +52,25 @@ public:
     std::string receive(int from) const;
 
     // Progress under mpirun, for rank 0's one progress line: each other rank tells rank 0 how many
-    // steps it has done since it last said, and at the end that it has finished, well or not
-    // (small messages it does not wait on; finish_progress() waits until they are delivered).
-    // Rank 0 takes what has arrived; wait_for_progress() returns once every rank has finished,
-    // passing on what arrives meanwhile. Every rank calls its side before the next collective.
+    // steps it has done since it last said, and at the end that it has finished, and whether it
+    // succeeded (small messages it does not wait on). Rank 0 takes what has arrived;
+    // wait_for_progress() returns once every rank has finished, passing on what arrives meanwhile.
+    // Every rank calls its side before the next collective.
+    //
+    // A failure stops every rank early, not once the others have done their share: rank 0, told of
+    // another rank's failure or failing itself (wait_for_progress's `succeeded`), tells every rank
+    // still working to stop, and each asks stop_asked() between steps. Each other rank gets one
+    // last word from rank 0, "stop" or "done", which finish_progress() waits for, so no message is
+    // left unread. A rank that stops so has not failed: it gives agree() its success, and the
+    // failing rank's error is everyone's.
     void tell_progress(std::size_t steps) const;
-    void finish_progress() const;
+    void finish_progress(bool succeeded) const;
     // Rank 0: the steps the other ranks have said they did since the last call.
     std::size_t take_progress() const;
-    void wait_for_progress(const std::function<void(std::size_t steps)>& on_steps) const;
+    // Whether this rank should stop its share: on rank 0, whether another rank has said it failed
+    // (in what take_progress() took); on the others, whether rank 0 has said stop.
+    bool stop_asked() const;
+    void wait_for_progress(const std::function<void(std::size_t steps)>& on_steps, bool succeeded) const;
 
     // Whether every rank succeeded: the first failing rank's error (in rank order) on every rank,
     // "rank R of N: " before it where that is not rank 0.

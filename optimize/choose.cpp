@@ -107,7 +107,10 @@ Result<std::vector<Figures>> measure_figures(TaaEvaluation& evaluation, const st
                             variants, std::vector<std::vector<std::vector<double>>>(metrics))};
     std::vector<Figures> figures(filters.size(), empty);
     EvaluationObserver observer;
-    observer.frame = [&](const std::string& source) { progress.advance(source); };
+    observer.frame = [&](const std::string& source) -> Result<void> {
+        progress.advance(source);
+        return {};
+    };
     for (const SequenceFrames& sequence : sequences) {
         auto rows = evaluation.measure(sequence, observer);
         if (!rows) return std::unexpected(rows.error());

@@ -137,8 +137,9 @@ Result<std::vector<EvaluationRow>> TaaEvaluation::measure(const FrameSource& sou
         output = [&](std::size_t v, std::size_t index, const Image& image) {
             return observer.output(source.name(), v, index, image);
         };
-    std::function<void()> on_frame;
-    if (observer.frame) on_frame = [&] { observer.frame(observer.source.empty() ? source.name() : observer.source); };
+    FrameObserver on_frame;
+    if (observer.frame)
+        on_frame = [&] { return observer.frame(observer.source.empty() ? source.name() : observer.source); };
     auto measured = measure_sequence_all(**resolve, source, options_.schedule.warmup, **flip, output, on_frame,
                                          observer.measured, observer.maps, options_.metrics);
     if (!measured) return fail(fmt::format("{}: {}", source.name(), measured.error().message));

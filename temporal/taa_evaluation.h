@@ -66,8 +66,8 @@ struct EvaluationObserver {
                                const Image& output)>
         output;
     // After each frame of a source, every variant resolved and measured on it, naming the source
-    // (a scene's name for both of its sequences).
-    std::function<void(const std::string& source)> frame;
+    // (a scene's name for both of its sequences). An error stops the evaluation.
+    std::function<Result<void>(const std::string& source)> frame;
     // After each measured frame, every variant's figures and output on it (a scene's sequences are
     // <scene>-shimmer and <scene>-ghosting), and with `maps` their FLIP maps (MeasuredFrame::maps).
     MeasuredFrameObserver measured;

@@ -279,7 +279,7 @@ Result<void> observe(OutputStore& store, std::vector<Meter>& meters, std::span<c
 
 Result<std::vector<SequenceMeasurement>>
 measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, FlipEvaluator& flip,
-                     const ShaderOutputObserver& on_output, const std::function<void()>& on_frame,
+                     const ShaderOutputObserver& on_output, const FrameObserver& on_frame,
                      const MeasuredFrameObserver& on_measured, bool maps, const Metrics& metrics) {
     const std::size_t count = source.frame_count();
     if (warmup >= count)
@@ -359,7 +359,8 @@ measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32
         }
         // For the interrupt tests: mid-pass, the first outputs measured, the next frame read ahead.
         if (i == warmup) test_hold_point("taa_pass");
-        if (on_frame) on_frame();
+        if (on_frame)
+            if (auto ok = on_frame(); !ok) return std::unexpected(ok.error());
     }
     std::vector<SequenceMeasurement> measured;
     for (Meter& meter : meters) measured.push_back(meter.finish());
@@ -368,7 +369,7 @@ measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32
 
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
                                              FlipEvaluator& flip, const OutputObserver& on_output,
-                                             const std::function<void()>& on_frame, const Metrics& metrics) {
+                                             const FrameObserver& on_frame, const Metrics& metrics) {
     ShaderOutputObserver first;
     if (on_output)
         first = [&](std::size_t s, std::size_t index, const Image& output) -> Result<void> {
@@ -388,7 +389,7 @@ std::vector<double> scene_means(std::span<const double> still, std::span<const d
 
 Result<std::vector<TaaMeasurement>>
 measure_scene_all(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule, FlipEvaluator& flip,
-                  const SceneShaderOutputObserver& on_output, const std::function<void()>& on_frame,
+                  const SceneShaderOutputObserver& on_output, const FrameObserver& on_frame,
                   const MeasuredFrameObserver& on_measured, bool maps, const Metrics& metrics) {
     std::vector<TaaMeasurement> m(resolve.size());
     const auto still = shimmer_frames(scene, schedule);
@@ -417,7 +418,7 @@ measure_scene_all(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule&
 
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
                                      FlipEvaluator& flip, const SceneOutputObserver& on_output,
-                                     const std::function<void()>& on_frame, const Metrics& metrics) {
+                                     const FrameObserver& on_frame, const Metrics& metrics) {
     SceneShaderOutputObserver first;
     if (on_output)
         first = [&](const std::string& sequence, std::size_t s, std::size_t index, const Image& output) {

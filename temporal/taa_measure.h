@@ -70,6 +70,10 @@ using OutputObserver = std::function<Result<void>(std::size_t index, const Image
 // The same for a resolve of several shaders, with the shader's index.
 using ShaderOutputObserver = std::function<Result<void>(std::size_t shader, std::size_t index, const Image& output)>;
 
+// Called after each frame, measured or not; an error stops the measurement (another rank's failure,
+// harness/ranks.h).
+using FrameObserver = std::function<Result<void>()>;
+
 // Resolves every frame of `source` on `resolve` (a resolve of one shader: with more, every shader
 // runs and the first one's figures come back), measuring after `warmup` the figures the source is
 // meant for (FrameSource::roles; each costs one FLIP per measured frame). Frames and references
@@ -78,7 +82,7 @@ using ShaderOutputObserver = std::function<Result<void>(std::size_t shader, std:
 // each frame, measured or not.
 Result<SequenceMeasurement> measure_sequence(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup,
                                              FlipEvaluator& flip, const OutputObserver& on_output = {},
-                                             const std::function<void()>& on_frame = {},
+                                             const FrameObserver& on_frame = {},
                                              const Metrics& metrics = default_metrics());
 
 struct TaaMeasurement {
@@ -131,7 +135,7 @@ using MeasuredFrameObserver = std::function<Result<void>(const MeasuredFrame& fr
 // shows them).
 Result<std::vector<SequenceMeasurement>>
 measure_sequence_all(TaaResolve& resolve, const FrameSource& source, std::uint32_t warmup, FlipEvaluator& flip,
-                     const ShaderOutputObserver& on_output = {}, const std::function<void()>& on_frame = {},
+                     const ShaderOutputObserver& on_output = {}, const FrameObserver& on_frame = {},
                      const MeasuredFrameObserver& on_measured = {}, bool maps = false,
                      const Metrics& metrics = default_metrics());
 // A scene's figures from its two sequences' means (by metric): each metric's from the sequence
@@ -142,15 +146,14 @@ std::vector<double> scene_means(std::span<const double> still, std::span<const d
 Result<std::vector<TaaMeasurement>> measure_scene_all(TaaResolve& resolve, const TaaScene& scene,
                                                       const TaaSchedule& schedule, FlipEvaluator& flip,
                                                       const SceneShaderOutputObserver& on_output = {},
-                                                      const std::function<void()>& on_frame = {},
+                                                      const FrameObserver& on_frame = {},
                                                       const MeasuredFrameObserver& on_measured = {}, bool maps = false,
                                                       const Metrics& metrics = default_metrics());
 
 // Both of a scene's sequences on `resolve`.
 Result<TaaMeasurement> measure_scene(TaaResolve& resolve, const TaaScene& scene, const TaaSchedule& schedule,
                                      FlipEvaluator& flip, const SceneOutputObserver& on_output = {},
-                                     const std::function<void()>& on_frame = {},
-                                     const Metrics& metrics = default_metrics());
+                                     const FrameObserver& on_frame = {}, const Metrics& metrics = default_metrics());
 
 // A resolve's output ready for FLIP (and, for ldr, PNG): the resolve's blends and clips land on
 // segments between colors in the range, so anything beyond it is float rounding. Values outside

@@ -267,6 +267,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     std::vector<std::optional<MeasuredSource>> measured(sources.size());
     // Rank 0's one progress line counts every rank's frames: the others tell it theirs.
     std::optional<Progress> progress;
+    bool stopped = false; // by rank 0, another rank having failed
     auto measure_mine = [&]() -> Result<void> {
         if (ranks.is_root()) {
             // Two lines, each with its own estimate: a timing round takes a fraction of a variant's TAA.
@@ -286,7 +287,7 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
                          frame_steps(*evaluation, sources), "frames");
         // Each line says which source of how many, for a corpus of hundreds.
         std::vector<std::string> started;
-        observer.frame = [&](const std::string& source) {
+        observer.frame = [&](const std::string& source) -> Result<void> {
             if (started.empty() || started.back() != source) started.push_back(source);
             const std::string item = ranks.size() == 1
                                          ? fmt::format("{} ({} of {})", source, started.size(), count)
@@ -294,6 +295,12 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
             progress->advance(item);
             progress->advance(item, ranks.take_progress());
             ranks.tell_progress(1);
+            // Another rank failed: its error will be everyone's, and the rest of this share is of no use.
+            if (ranks.stop_asked()) {
+                stopped = true;
+                return fail("stopped: another rank failed");
+            }
+            return {};
         };
         for (std::size_t i = 0; i < scenes.size(); ++i) {
             if (!mine(i)) continue;
@@ -366,21 +373,26 @@ Result<RunMetadata> run_taa(const Context& context, const std::vector<VariantSpe
     auto started = std::chrono::steady_clock::now();
     Result<void> done = measure_mine();
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    // Every rank says it is done, well or not, and rank 0 counts the others' frames until they are.
+    // Every rank says it is done, well or not, and rank 0 counts the others' frames until they are,
+    // stopping them all where one failed.
+    const bool failed = !done && !stopped;
     if (ranks.is_root())
-        ranks.wait_for_progress([&](std::size_t steps) {
-            if (progress) progress->advance("the other ranks' sources", steps);
-        });
+        ranks.wait_for_progress(
+            [&](std::size_t steps) {
+                if (progress) progress->advance("the other ranks' sources", steps);
+            },
+            !failed);
     else
-        ranks.finish_progress();
+        ranks.finish_progress(!failed);
     progress.reset();
     if (done && settings.viewer_frames > 0) {
         started = std::chrono::steady_clock::now();
         done = write_viewer();
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     }
-    // A rank that failed stops them all, with its message, before anything is gathered or written.
-    if (auto ok = ranks.agree(std::move(done)); !ok) return std::unexpected(ok.error());
+    // A rank that failed stops them all, with its message, before anything is gathered or written. A
+    // rank told to stop gives its success, so that the failing rank's error is everyone's.
+    if (auto ok = ranks.agree(stopped ? Result<void>{} : std::move(done)); !ok) return std::unexpected(ok.error());
     if (ranks.size() > 1) std::cerr << "Gathering the figures and images of " << ranks.size() << " ranks\n";
     const RunMetadata::RankShare me{context.device_name(), seconds, {}};
     GatheredSources gathered = gather_sources(ranks, std::move(measured), me, images);

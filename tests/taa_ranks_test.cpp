@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -172,6 +173,65 @@ TEST(CliTaaRanks, TheSameFilesOnAnyRankCount) {
     EXPECT_NE(b.err.find(broken + "/color/0006.exr"), std::string::npos) << b.err;
     EXPECT_EQ(b.err.find("0006.exr"), b.err.rfind("0006.exr")) << "one rank speaks\n" << b.err;
     EXPECT_FALSE(fs::exists(stopped) && !fs::is_empty(stopped));
+#endif
+}
+
+// The largest k of the progress lines "[k/total]" in `log`.
+std::size_t furthest_step(const std::string& log, std::size_t total) {
+    std::size_t furthest = 0;
+    const std::string end = fmt::format("/{}]", total);
+    for (std::size_t at = log.find(end); at != std::string::npos; at = log.find(end, at + 1)) {
+        const std::size_t open = log.rfind('[', at);
+        if (open != std::string::npos) furthest = std::max<std::size_t>(furthest, std::stoul(log.substr(open + 1)));
+    }
+    return furthest;
+}
+
+// A rank that cannot read a frame stops the others early: rank 0, with a long share (a
+// scene of 2 x 603 frames), stops within a few of its frames instead of measuring them all, and
+// the failing rank's error is the one printed.
+TEST(CliTaaRanks, AFailingRankStopsTheOthersEarly) {
+#ifndef KDOP_MPIEXEC
+    GTEST_SKIP() << "kdop was built without MPI (libopenmpi-dev)";
+#else
+    test::TempDir dir;
+    const fs::path scenes = dir / "scenes";
+    auto s =
+        test::run(test::kdop_binary() + " scene --scenes asphalt --size 32x18 --frames 8 --out " + scenes.string());
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    // Rank 1 measures the two short sequences (the balance gives the scene to rank 0), each cut
+    // short from its fourth frame (the first is read by every rank as the sources are opened).
+    for (const char* sequence : {"asphalt-ghosting", "asphalt-shimmer"})
+        fs::resize_file(scenes / sequence / "color" / "0003.exr", 100);
+    const fs::path out = dir / "out";
+    auto r = test::run(test::mpirun_np() + "2 " + test::kdop_binary() +
+                       " taa --scenes grass --size 64x36 --sets aabb --modes clip --warmup 3 --frames 600 "
+                       "--timing-rounds 1 --viewer-frames 0 --sequence " +
+                       scenes.string() + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("rank 1 of 2: asphalt-"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("/color/0003.exr"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("stopped"), std::string::npos) << "the failure is said, not the stop\n" << r.err;
+    // 2 x 603 frames of the scene and 2 x 8 of the sequences: rank 0 stopped well before the end
+    // (without the stop: [1100/1222] and more).
+    const std::size_t total = 2 * 603 + 2 * 8;
+    EXPECT_LT(furthest_step(r.err, total), total / 2) << r.err;
+    EXPECT_FALSE(fs::exists(out) && !fs::is_empty(out));
+
+    // Rank 0 failing stops rank 1: two sequences of 300 frames, the first of them rank 0's.
+    const fs::path long_ones = dir / "long";
+    auto l = test::run(test::kdop_binary() + " scene --scenes asphalt --size 64x36 --frames 300 --out " +
+                       long_ones.string());
+    ASSERT_EQ(l.exit_code, 0) << l.err;
+    fs::resize_file(long_ones / "asphalt-ghosting" / "color" / "0003.exr", 100);
+    auto z = test::run(test::mpirun_np() + "2 " + test::kdop_binary() +
+                       " taa --sets aabb --modes clip --warmup 3 --timing-rounds 1 --viewer-frames 0 --sequence " +
+                       long_ones.string() + " --out " + out.string());
+    EXPECT_EQ(z.exit_code, 1) << z.err;
+    EXPECT_NE(z.err.find("kdop: asphalt-ghosting: "), std::string::npos) << z.err;
+    // 2 x 300 frames: rank 1 stopped well before the end of its 300 (without the stop: [303/600]).
+    EXPECT_LT(furthest_step(z.err, 600), 150u) << z.err;
+    EXPECT_FALSE(fs::exists(out) && !fs::is_empty(out));
 #endif
 }
 

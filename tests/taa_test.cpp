@@ -317,7 +317,10 @@ TEST_F(TaaGpu, OnePassOverTheFramesGivesEachVariantTheFiguresOfItsOwnPass) {
     auto all = TaaResolve::create(test::gpu(), variants, w, h, {});
     ASSERT_TRUE(all) << all.error().message;
     std::size_t frames = 0;
-    auto together = measure_scene_all(**all, scene, schedule, *cpu_flip_evaluator(flip), {}, [&] { ++frames; });
+    auto together = measure_scene_all(**all, scene, schedule, *cpu_flip_evaluator(flip), {}, [&] {
+        ++frames;
+        return Result<void>{};
+    });
     ASSERT_TRUE(together) << together.error().message;
     EXPECT_EQ(frames, 2u * (schedule.warmup + schedule.frames)) << "each frame drawn once";
     ASSERT_EQ(together->size(), shaders.size());
