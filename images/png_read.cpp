@@ -34,8 +34,12 @@ std::optional<PlainHeader> plain_header(std::FILE* f) {
         big_endian(start.data() + 8) != 13)
         return std::nullopt;
     const unsigned char* ihdr = start.data() + 16;
-    const int depth = ihdr[8], color_type = ihdr[9];
+    const int depth = ihdr[8], color_type = ihdr[9], interlace = ihdr[12];
     if (depth != 8 || (color_type != PNG_COLOR_TYPE_RGB && color_type != PNG_COLOR_TYPE_RGB_ALPHA)) return std::nullopt;
+    // Interlaced: the codecs read such a file to its end (IEND and its CRC) and refuse one cut short
+    // after its pixels, which libpng's simplified API does not look at. Neither kdop nor
+    // OpenImageIO writes one.
+    if (interlace != PNG_INTERLACE_NONE) return std::nullopt;
     const PlainHeader header{big_endian(ihdr), big_endian(ihdr + 4), color_type == PNG_COLOR_TYPE_RGB ? 3 : 4};
     if (header.width == 0 || header.height == 0) return std::nullopt;
     if (std::fseek(f, 4, SEEK_CUR) != 0) return std::nullopt; // IHDR's CRC
@@ -59,6 +63,20 @@ std::optional<PlainHeader> plain_header(std::FILE* f) {
         if (length > 0x7fffffffu) return std::nullopt;
         std::uint32_t skipped = length;
         if (type == "sRGB") srgb = true;
+        // OpenImageIO takes a text chunk's keyword and text as an attribute of the image, after the
+        // color space it found: "oiio:ColorSpace" other than sRGB (its writer's own, for lin_srgb,
+        // raw, ...) says the values are other than sRGB. kdop's PNGs say "sRGB" there. The
+        // keyword is the chunk's first field; tEXt's text follows it, uncompressed.
+        if (type == "tEXt" || type == "zTXt" || type == "iTXt") {
+            std::array<char, 64> start_of_text{};
+            const std::uint32_t size = std::min<std::uint32_t>(length, start_of_text.size());
+            if (std::fread(start_of_text.data(), 1, size, f) != size) return std::nullopt;
+            skipped = length - size;
+            std::string text(start_of_text.data(), size);
+            std::ranges::transform(text, text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+            if (text.starts_with("oiio:") && !(type == "tEXt" && text == std::string("oiio:colorspace\0srgb", 20)))
+                return std::nullopt;
+        }
         if (type == "gAMA" || type == "cHRM") {
             // sRGB's gamma (1/2.2 in units of 100000) and its primaries and white point (Rec. 709, D65).
             static constexpr std::array<std::uint32_t, 8> kSrgbChromaticities{31270, 32900, 64000, 33000,
@@ -93,15 +111,9 @@ std::optional<Result<Image>> read_plain_png(const std::string& file, const Image
     const std::optional<PlainHeader> header = plain_header(f.get());
     if (!header || header->channels < read.needed || std::fseek(f.get(), 0, SEEK_SET) != 0) return std::nullopt;
 
-    // The codecs' checks, in their words.
-    if (auto ok = check_max_side(path, header->width, header->height, read.max_side); !ok)
-        return std::unexpected(ok.error());
-    if (auto ok = check_memory(fmt::format("{}: a {}x{} image", path, header->width, header->height),
-                               whole_read_bytes(header->width, header->height, header->channels));
-        !ok)
-        return std::unexpected(ok.error());
-
     // libpng's simplified API reports its errors in the image, with no longjmp through kdop's code.
+    // A header it refuses (a side beyond its limit, an unknown method, a bad CRC) is the codecs'
+    // to report.
     png_image png{};
     png.version = PNG_IMAGE_VERSION;
     if (!png_image_begin_read_from_stdio(&png, f.get())) {
@@ -114,6 +126,16 @@ std::optional<Result<Image>> read_plain_png(const std::string& file, const Image
         png_image_free(&png);
         return std::nullopt;
     }
+    // The codecs' checks, in their words, on a header libpng has accepted.
+    auto refused = [&](Error error) {
+        png_image_free(&png);
+        return std::optional<Result<Image>>(std::unexpected(std::move(error)));
+    };
+    if (auto ok = check_max_side(path, header->width, header->height, read.max_side); !ok) return refused(ok.error());
+    if (auto ok = check_memory(fmt::format("{}: a {}x{} image", path, header->width, header->height),
+                               whole_read_bytes(header->width, header->height, header->channels));
+        !ok)
+        return refused(ok.error());
     std::vector<std::uint8_t> stored(PNG_IMAGE_SIZE(png));
     if (!png_image_finish_read(&png, nullptr, stored.data(), 0, nullptr)) {
         png_image_free(&png);

@@ -1,6 +1,7 @@
 // Plain PNGs, read by libpng without the codecs' module (images/png_read.h): every pixel is the
 // codecs' own, bit for bit, in every input space and for data; any PNG that is not plain is left
-// to the codecs, and the module's table refuses a caller of another build.
+// to the codecs, and the module's table refuses a caller of another build. Found by review: a text
+// chunk "oiio:ColorSpace" and an interlaced file cut short after its pixels.
 #include "images/image_codecs.h"
 #include "images/oiio_codecs.h"
 #include "images/png_read.h"
@@ -29,6 +30,8 @@ struct PngKind {
     double gamma = 0;                           // a gAMA chunk's, where not 0
     bool srgb_gamma_and_chromaticities = false; // sRGB, gAMA and cHRM, as OpenImageIO writes them
     bool transparent_color = false;
+    const char* text_key = nullptr; // a tEXt chunk's keyword, where given
+    const char* text = "";
 };
 
 // A width x height PNG of `kind` holding every value of its depth in each channel, written with
@@ -64,6 +67,13 @@ void write_png(const fs::path& path, const PngKind& kind, std::uint32_t width, s
         if (kind.srgb_chunk) png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
         if (kind.gamma > 0) png_set_gAMA(png, info, kind.gamma);
         if (kind.srgb_gamma_and_chromaticities) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_ABSOLUTE);
+        if (kind.text_key) {
+            png_text text{};
+            text.compression = PNG_TEXT_COMPRESSION_NONE;
+            text.key = const_cast<char*>(kind.text_key);
+            text.text = const_cast<char*>(kind.text);
+            png_set_text(png, info, &text, 1);
+        }
         if (kind.transparent_color) {
             png_color_16 transparent{0, 0, 0, 0, 0};
             png_set_tRNS(png, info, nullptr, 0, &transparent);
@@ -95,7 +105,7 @@ TEST(PlainPng, EveryPixelIsTheCodecs) {
         {.name = "rgba", .color_type = PNG_COLOR_TYPE_RGB_ALPHA},
         {.name = "rgb-srgb", .srgb_chunk = true},
         {.name = "rgb-srgb-gamma-chromaticities", .srgb_gamma_and_chromaticities = true},
-        {.name = "rgba-interlaced", .color_type = PNG_COLOR_TYPE_RGB_ALPHA, .interlaced = true},
+        {.name = "rgb-software", .text_key = "Software", .text = "a renderer"},
     };
     const ImageRead reads[] = {
         {.space = InputSpace::from_file},
@@ -139,11 +149,21 @@ TEST(PlainPng, AnyOtherPngIsLeftToTheCodecs) {
         {.name = "linear", .gamma = 1.0},
         {.name = "gamma-2.2", .gamma = 1 / 2.2}, // OpenImageIO: GammaCorrected2.2, not sRGB
         {.name = "transparent-black", .transparent_color = true},
+        // OpenImageIO's reader refuses one cut short after its pixels; libpng's simplified API does not.
+        {.name = "rgba-interlaced", .color_type = PNG_COLOR_TYPE_RGB_ALPHA, .interlaced = true},
+        // OpenImageIO's writer says so for lin_srgb, raw, ...: values as stored, not sRGB.
+        {.name = "linear-by-text", .text_key = "oiio:ColorSpace", .text = "lin_srgb"},
     };
     for (const PngKind& kind : others) {
         const fs::path path = dir / (std::string(kind.name) + ".png");
         write_png(path, kind, 19, 11);
         EXPECT_FALSE(read_plain_png(path.string(), {})) << kind.name;
+        // And read as the codecs read it, or refused as they refuse it.
+        const auto read = read_image(path.string()), codecs = oiio::read(path.string(), {});
+        ASSERT_EQ(bool(read), bool(codecs)) << kind.name;
+        if (read) {
+            EXPECT_TRUE(same_bits(*read, *codecs)) << kind.name;
+        }
     }
     // A plain PNG by another extension, and a corner, are the codecs' too.
     write_png(dir / "rgb.png", {.name = "rgb"}, 19, 11);
