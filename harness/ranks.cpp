@@ -184,9 +184,9 @@ struct Sends {
 };
 
 // On the other ranks: the counts and the finish sent; whether rank 0's last word has come, and
-// what it said.
+// what it said; whether the finish has been sent, so that agree() takes the last word first.
 Sends progress_sends;
-bool last_word_taken = false, stop_said = false;
+bool last_word_taken = false, stop_said = false, progress_finished_here = false;
 
 // On rank 0: the last words sent, to whom, and what it has heard.
 Sends last_words;
@@ -235,8 +235,7 @@ void Ranks::finish_progress([[maybe_unused]] bool succeeded) const {
     if (size_ == 1 || is_root()) return;
     progress_sends.send(succeeded ? kFinished : kFailed, 0, kProgressTag);
     progress_sends.wait();
-    take_last_word(true);
-    last_word_taken = stop_said = false;
+    progress_finished_here = true;
 #endif
 }
 
@@ -298,6 +297,13 @@ void Ranks::wait_for_progress(const std::function<void(std::size_t steps)>& on_s
 Result<void> Ranks::agree(Result<void> mine) const {
     if (size_ == 1) return mine;
 #ifdef KDOP_WITH_MPI
+    // Rank 0's last word after this rank's progress, taken here rather than as it finished: rank 0
+    // says it only between its own frames, and this rank has work of its own meanwhile (its
+    // viewer's frames). Rank 0 has said every last word before it comes here.
+    if (progress_finished_here) {
+        take_last_word(true);
+        last_word_taken = stop_said = progress_finished_here = false;
+    }
     // The lowest failing rank, then its message, broadcast from it.
     int failed = mine ? size_ : rank_, first = size_;
     MPI_Allreduce(&failed, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);

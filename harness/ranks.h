@@ -60,7 +60,7 @@ public:
     // A failure stops every rank early, not once the others have done their share: rank 0, told of
     // another rank's failure or failing itself (wait_for_progress's `succeeded`), tells every rank
     // still working to stop, and each asks stop_asked() between steps. Each other rank gets one
-    // last word from rank 0, "stop" or "done", which finish_progress() waits for, so no message is
+    // last word from rank 0, "stop" or "done", which the next agree() waits for, so no message is
     // left unread. A rank that stops so has not failed: it gives agree() its success, and the
     // failing rank's error is everyone's.
     void tell_progress(std::size_t steps) const;
