@@ -22,6 +22,7 @@
 #include <memory>
 #include <numeric>
 #include <optional>
+#include <string_view>
 #include <sys/statvfs.h>
 
 namespace kdop::oiio {
@@ -36,10 +37,15 @@ std::optional<float> stored_gamma(const OIIO::ImageSpec& spec, InputSpace space)
     std::string tag = spec.get_string_attribute("oiio:ColorSpace");
     std::ranges::transform(tag, tag.begin(), [](unsigned char c) { return std::tolower(c); });
     if (tag == "linear" || tag == "lin_srgb" || tag == "scene_linear" || tag == "raw") return 1.0f;
-    if (tag.starts_with("gammacorrected")) {
-        const float gamma = spec.get_float_attribute("oiio:Gamma", std::strtof(tag.c_str() + 14, nullptr));
-        if (std::isfinite(gamma) && gamma > 0) return gamma;
-    }
+    // OpenImageIO 2.4 tags its own files "GammaCorrected2.2" and a PNG whose gAMA chunk says so
+    // (without sRGB's chunk) "Gamma2.2".
+    for (std::string_view prefix : {"gammacorrected", "gamma"})
+        if (tag.starts_with(prefix)) {
+            const float gamma =
+                spec.get_float_attribute("oiio:Gamma", std::strtof(tag.c_str() + prefix.size(), nullptr));
+            if (std::isfinite(gamma) && gamma > 0) return gamma;
+            break;
+        }
     return std::nullopt;
 }
 

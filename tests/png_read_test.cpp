@@ -14,6 +14,7 @@
 #include <png.h>
 
 #include <bit>
+#include <cmath>
 #include <csetjmp>
 #include <cstdio>
 #include <filesystem>
@@ -186,6 +187,22 @@ TEST(PlainPng, ADamagedPlainPngIsTheCodecsToReport) {
     auto read = read_image((dir / "cut.png").string());
     ASSERT_FALSE(read);
     EXPECT_NE(read.error().message.find("cut.png: cannot read pixels"), std::string::npos) << read.error().message;
+}
+
+// A PNG whose gAMA chunk says 1/2.2, without sRGB's chunk (as GIMP and ImageMagick write it), holds
+// values to the power 2.2, not sRGB: OpenImageIO 2.4 tags it "Gamma2.2", which kdop read as sRGB
+// until review found it.
+TEST(PlainPng, AGammaChunkIsAPower) {
+    test::TempDir dir;
+    const fs::path path = dir / "gamma.png";
+    write_png(path, {.name = "gamma", .gamma = 1 / 2.2}, 4, 1);
+    auto image = read_image(path.string());
+    ASSERT_TRUE(image) << image.error().message;
+    // The first pixels hold 0, 1, 2, ... in turn (write_png).
+    for (int c = 0; c < 3; ++c) {
+        const float stored = float(3 + c) * (1.0f / 255.0f);
+        EXPECT_EQ(image->at(1, 0)[c], std::pow(stored, 2.2f)) << c;
+    }
 }
 
 // The module beside the test binary gives its table to this build alone.
