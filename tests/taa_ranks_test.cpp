@@ -75,6 +75,13 @@ TEST(TaaRanks, AMeasuredSourceSurvivesItsEncoding) {
     EXPECT_FALSE(measured_source_from("not CBOR"));
 }
 
+// `kdop scene --scenes asphalt` into `out`: its ghosting and shimmer sequences of `frames` frames.
+void write_asphalt_sequences(const fs::path& out, const std::string& size, int frames) {
+    auto s = test::run(fmt::format("{} scene --scenes asphalt --size {} --frames {} --out {}", test::kdop_binary(),
+                                   size, frames, out.string()));
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+}
+
 // Every file under `dir`, relative to it.
 std::set<std::string> files_under(const fs::path& dir) {
     std::set<std::string> files;
@@ -94,9 +101,7 @@ TEST(CliTaaRanks, TheSameFilesOnAnyRankCount) {
 #else
     test::TempDir dir;
     const fs::path scenes = dir / "scenes";
-    auto s =
-        test::run(test::kdop_binary() + " scene --scenes asphalt --size 32x18 --frames 8 --out " + scenes.string());
-    ASSERT_EQ(s.exit_code, 0) << s.err;
+    ASSERT_NO_FATAL_FAILURE(write_asphalt_sequences(scenes, "32x18", 8));
     auto taa = [&](const std::string& launch, const fs::path& out, const fs::path& sequences) {
         return test::run(launch + test::kdop_binary() +
                          " taa --scenes grass --size 32x18 --sets aabb dop16-grass --modes clip "
@@ -196,9 +201,7 @@ TEST(CliTaaRanks, AFailingRankStopsTheOthersEarly) {
 #else
     test::TempDir dir;
     const fs::path scenes = dir / "scenes";
-    auto s =
-        test::run(test::kdop_binary() + " scene --scenes asphalt --size 32x18 --frames 8 --out " + scenes.string());
-    ASSERT_EQ(s.exit_code, 0) << s.err;
+    ASSERT_NO_FATAL_FAILURE(write_asphalt_sequences(scenes, "32x18", 8));
     // Rank 1 measures the two short sequences (the balance gives the scene to rank 0), each cut
     // short from its fourth frame (the first is read by every rank as the sources are opened).
     for (const char* sequence : {"asphalt-ghosting", "asphalt-shimmer"})
@@ -222,9 +225,7 @@ TEST(CliTaaRanks, AFailingRankStopsTheOthersEarly) {
     // variants make each of rank 1's frames slow enough that the head start it has while rank 0
     // times the variants (a second or two) is a few dozen frames, not half its share.
     const fs::path long_ones = dir / "long";
-    auto l = test::run(test::kdop_binary() + " scene --scenes asphalt --size 64x36 --frames 300 --out " +
-                       long_ones.string());
-    ASSERT_EQ(l.exit_code, 0) << l.err;
+    ASSERT_NO_FATAL_FAILURE(write_asphalt_sequences(long_ones, "64x36", 300));
     fs::resize_file(long_ones / "asphalt-ghosting" / "color" / "0003.exr", 100);
     auto z = test::run(test::mpirun_np() + "2 " + test::kdop_binary() +
                        " taa --sets aabb dop16-grass dop22 dop32 --modes clip varclip --warmup 3 --timing-rounds 1 "
