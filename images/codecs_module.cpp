@@ -2,7 +2,7 @@
 // (images/image_codecs.h) to an executable of the same build.
 #include "images/oiio_codecs.h"
 
-#include <cstring>
+#include <string>
 
 extern "C" __attribute__((visibility("default"))) const kdop::ImageCodecs* kdop_image_codecs(const char* build) {
     static const kdop::ImageCodecs codecs{
